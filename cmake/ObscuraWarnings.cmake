@@ -1,0 +1,14 @@
+# Warnings on and treated as errors for our own targets; sanitizers when asked.
+# Missing field initializers are the Vulkan idiom `VkFooInfo info{VK_STRUCTURE_TYPE_FOO}`.
+# -Wrestrict: GCC 12 reports false positives inside std::string at -O2 (GCC bug 105329).
+function(obscura_target_warnings target)
+  target_compile_options(${target} PRIVATE
+    $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wconversion -Wno-sign-conversion -Wno-missing-field-initializers -Wno-restrict -Werror>
+    $<$<COMPILE_LANGUAGE:C>:-Wall -Wextra -Wpedantic -Werror>)
+endfunction()
+
+if(OBSCURA_SANITIZE)
+  # glslang is built without RTTI: the vptr check cannot work across it.
+  add_compile_options(-fsanitize=address,undefined -fno-sanitize=vptr -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  add_link_options(-fsanitize=address,undefined)
+endif()

@@ -1,0 +1,106 @@
+#include "delegate/frame_scene_builder.h"
+
+#include "delegate/prims/light.h"
+#include "delegate/prims/material.h"
+#include "delegate/prims/mesh.h"
+#include "passes/frame_data.h"
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+namespace obscura::delegate {
+namespace {
+
+template <typename T>
+gpu::BufferPtr uploadRecords(gpu::Device& device, const void* header, size_t headerSize, const std::vector<T>& records,
+                             VkBufferUsageFlags usage, const char* name) {
+    // Never empty: a binding without a resource is an error.
+    size_t size = std::max<size_t>(headerSize + records.size() * sizeof(T), sizeof(T));
+    auto buffer = device.createBuffer(size, usage, gpu::MemoryUsage::Upload, name);
+    auto* dst = static_cast<char*>(buffer->mapped());
+    std::memset(dst, 0, size);
+    if (headerSize) std::memcpy(dst, header, headerSize);
+    if (!records.empty()) std::memcpy(dst + headerSize, records.data(), records.size() * sizeof(T));
+    return buffer;
+}
+
+// The inverse transpose of the upper 3x3, in the shader's mat4 layout.
+Matrix4d normalMatrix(const Matrix4d& model) {
+    Matrix4d linear = model;
+    linear[12] = linear[13] = linear[14] = 0.0;
+    Matrix4d inverse = kIdentity;
+    if (!invert(linear, inverse)) return kIdentity;
+    return transpose(inverse);
+}
+
+}  // namespace
+
+passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& in) {
+    passes::FrameScene scene;
+    scene.width = in.width;
+    scene.height = in.height;
+
+    const Camera& cam = in.camera;
+    Matrix4d view = cam.viewMatrix();
+    Matrix4d projection = cam.projectionMatrix(double(in.width) / double(in.height));
+    Matrix4d viewProjection = multiply(view, projection);
+    Matrix4d inverseViewProjection = kIdentity;
+    invert(viewProjection, inverseViewProjection);
+    passes::CameraData cd{};
+    cd.view = toFloats<passes::Mat4>(view);
+    cd.projection = toFloats<passes::Mat4>(projection);
+    cd.viewProjection = toFloats<passes::Mat4>(viewProjection);
+    cd.inverseViewProjection = toFloats<passes::Mat4>(inverseViewProjection);
+    Vec3d eye = transformPoint({0, 0, 0}, cam.params().cameraToWorld);
+    cd.position = {float(eye[0]), float(eye[1]), float(eye[2]), 1.0f};
+    cd.resolution = {float(in.width), float(in.height)};
+    cd.exposureScale = float(std::exp2(cam.params().exposure + in.exposureStops));
+    scene.camera = device.createBuffer(sizeof(cd), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "camera");
+    std::memcpy(scene.camera->mapped(), &cd, sizeof(cd));
+
+    // Materials: index 0 is the fallback for meshes without a (valid) binding.
+    std::vector<passes::MaterialData> materials(1);
+    materials[0].diffuseRoughness = {0.18f, 0.18f, 0.18f, 0.5f};
+    materials[0].opacityPad = {1.0f, 0, 0, 0};
+    std::map<std::string, uint32_t> materialIndex;
+    std::vector<passes::LightData> lights;
+    for (const auto& [path, prim] : in.prims) {
+        if (prim->skipped()) continue;
+        if (auto* m = dynamic_cast<const Material*>(prim.get())) {
+            materialIndex[path] = static_cast<uint32_t>(materials.size());
+            materials.push_back(m->data());
+        } else if (auto* l = dynamic_cast<const Light*>(prim.get())) {
+            if (l->visible()) lights.push_back(l->data());
+        }
+    }
+
+    std::vector<passes::InstanceData> instances;
+    for (const auto& [path, prim] : in.prims) {
+        auto* mesh = dynamic_cast<const Mesh*>(prim.get());
+        if (!mesh || mesh->skipped() || !mesh->drawable()) continue;
+        passes::InstanceData inst{};
+        inst.model = toFloats<passes::Mat4>(mesh->transform());
+        inst.normalMatrix = toFloats<passes::Mat4>(normalMatrix(mesh->transform()));
+        inst.primId = mesh->primId();
+        inst.materialIndex = 0;
+        if (mesh->materialPath()) {
+            auto it = materialIndex.find(*mesh->materialPath());
+            if (it != materialIndex.end()) inst.materialIndex = it->second;
+        }
+        // UsdPreviewSurface wins over displayColor; without a material, displayColor is the
+        // surface colour (as Hydra's fallback material).
+        if (inst.materialIndex == 0) inst.flags |= passes::kInstanceVertexColor;
+        if (mesh->doubleSided()) inst.flags |= passes::kInstanceDoubleSided;
+        scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
+                               static_cast<uint32_t>(instances.size())});
+        instances.push_back(inst);
+    }
+    passes::LightBufferHeader header{static_cast<uint32_t>(lights.size()), {0, 0, 0}};
+    scene.instances = uploadRecords(device, nullptr, 0, instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instances");
+    scene.materials = uploadRecords(device, nullptr, 0, materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials");
+    scene.lights = uploadRecords(device, &header, sizeof(header), lights, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights");
+    return scene;
+}
+
+}  // namespace obscura::delegate

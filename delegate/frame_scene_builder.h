@@ -1,0 +1,25 @@
+// Packs the synced prims into the per-frame GPU records the passes read (camera constants,
+// instances, materials, lights) and the list of draws.
+#pragma once
+
+#include "delegate/prims/camera.h"
+#include "delegate/prims/prim.h"
+#include "passes/frame_scene.h"
+
+#include <map>
+#include <memory>
+#include <string>
+
+namespace obscura::delegate {
+
+struct FrameSceneInputs {
+    const std::map<std::string, std::unique_ptr<Prim>>& prims;
+    const Camera& camera;
+    uint32_t width;
+    uint32_t height;
+    double exposureStops;  // render setting, added to the camera's exposure
+};
+
+passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs);
+
+}  // namespace obscura::delegate

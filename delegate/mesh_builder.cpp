@@ -1,0 +1,122 @@
+#include "delegate/mesh_builder.h"
+
+#include <array>
+#include <cmath>
+
+namespace obscura::delegate {
+namespace {
+
+using V3 = std::array<float, 3>;
+
+V3 point(const std::vector<float>& p, size_t i) { return {p[3 * i], p[3 * i + 1], p[3 * i + 2]}; }
+V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V3 cross(V3 a, V3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+
+// Index into a primvar's elements for one face-vertex.
+size_t primvarIndex(ObscuraInterpolation interpolation, size_t face, size_t faceVertex, size_t pointIndex) {
+    switch (interpolation) {
+        case OBSCURA_INTERPOLATION_CONSTANT: return 0;
+        case OBSCURA_INTERPOLATION_UNIFORM: return face;
+        case OBSCURA_INTERPOLATION_FACE_VARYING: return faceVertex;
+        default: return pointIndex;
+    }
+}
+
+}  // namespace
+
+size_t primvarElementCount(const MeshInput& mesh, ObscuraInterpolation interpolation) {
+    switch (interpolation) {
+        case OBSCURA_INTERPOLATION_CONSTANT: return 1;
+        case OBSCURA_INTERPOLATION_UNIFORM: return mesh.faceVertexCounts.size();
+        case OBSCURA_INTERPOLATION_FACE_VARYING: return mesh.faceVertexIndices.size();
+        default: return mesh.points.size() / 3;
+    }
+}
+
+std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh) {
+    MeshGeometry out;
+    const size_t pointCount = mesh.points.size() / 3;
+    size_t total = 0;
+    for (size_t f = 0; f < mesh.faceVertexCounts.size(); ++f) {
+        int32_t c = mesh.faceVertexCounts[f];
+        if (c < 3) return "faceVertexCounts[" + std::to_string(f) + "] is " + std::to_string(c) + " (a face needs 3 or more)";
+        total += size_t(c);
+    }
+    if (total != mesh.faceVertexIndices.size())
+        return "faceVertexCounts sum to " + std::to_string(total) + " but faceVertexIndices has " +
+               std::to_string(mesh.faceVertexIndices.size()) + " entries";
+    for (size_t i = 0; i < mesh.faceVertexIndices.size(); ++i) {
+        int32_t idx = mesh.faceVertexIndices[i];
+        if (idx < 0 || size_t(idx) >= pointCount)
+            return "faceVertexIndices[" + std::to_string(i) + "] = " + std::to_string(idx) + " is outside the " +
+                   std::to_string(pointCount) + " points";
+    }
+
+    auto usable = [&](const std::optional<MeshPrimvar>& pv, const char* name) -> const MeshPrimvar* {
+        if (!pv) return nullptr;
+        size_t expected = primvarElementCount(mesh, pv->interpolation);
+        if (pv->values.size() != expected * 3) {
+            out.warnings.push_back(std::string(name) + " has " + std::to_string(pv->values.size() / 3) +
+                                   " elements but its interpolation needs " + std::to_string(expected) + "; ignored");
+            return nullptr;
+        }
+        return &*pv;
+    };
+    const MeshPrimvar* normals = usable(mesh.normals, "normals");
+    const MeshPrimvar* colors = usable(mesh.displayColor, "primvars:displayColor");
+
+    // Smooth vertex normals when none are authored: area-weighted sum of face normals (the
+    // cross products of a fan are twice the triangle areas).
+    std::vector<float> smooth;
+    if (!normals) {
+        smooth.assign(pointCount * 3, 0.0f);
+        size_t base = 0;
+        for (int32_t count : mesh.faceVertexCounts) {
+            V3 p0 = point(mesh.points, size_t(mesh.faceVertexIndices[base]));
+            V3 n{0, 0, 0};
+            for (int32_t k = 1; k + 1 < count; ++k) {
+                V3 e1 = sub(point(mesh.points, size_t(mesh.faceVertexIndices[base + size_t(k)])), p0);
+                V3 e2 = sub(point(mesh.points, size_t(mesh.faceVertexIndices[base + size_t(k) + 1])), p0);
+                V3 c = cross(e1, e2);
+                for (int j = 0; j < 3; ++j) n[j] += c[j];
+            }
+            if (mesh.leftHanded)
+                for (auto& v : n) v = -v;
+            for (int32_t k = 0; k < count; ++k) {
+                size_t pi = size_t(mesh.faceVertexIndices[base + size_t(k)]);
+                for (int j = 0; j < 3; ++j) smooth[3 * pi + size_t(j)] += n[j];
+            }
+            base += size_t(count);
+        }
+    }
+
+    // One vertex per face-vertex keeps face-varying and uniform primvars exact.
+    out.vertices.reserve(mesh.faceVertexIndices.size());
+    size_t base = 0;
+    for (size_t f = 0; f < mesh.faceVertexCounts.size(); ++f) {
+        size_t count = size_t(mesh.faceVertexCounts[f]);
+        for (size_t k = 0; k < count; ++k) {
+            size_t fv = base + k;
+            size_t pi = size_t(mesh.faceVertexIndices[fv]);
+            passes::Vertex v{};
+            for (int j = 0; j < 3; ++j) v.position[j] = mesh.points[3 * pi + size_t(j)];
+            const float* n = normals ? &normals->values[3 * primvarIndex(normals->interpolation, f, fv, pi)] : &smooth[3 * pi];
+            float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            for (int j = 0; j < 3; ++j) v.normal[j] = len > 0 ? n[j] / len : (j == 2 ? 1.0f : 0.0f);
+            const float kGrey = 0.18f;
+            for (int j = 0; j < 3; ++j)
+                v.color[j] = colors ? colors->values[3 * primvarIndex(colors->interpolation, f, fv, pi) + size_t(j)] : kGrey;
+            out.vertices.push_back(v);
+        }
+        // Fan triangulation; left-handed meshes wind the other way.
+        for (size_t k = 1; k + 1 < count; ++k) {
+            uint32_t a = uint32_t(base), b = uint32_t(base + k), c = uint32_t(base + k + 1);
+            if (mesh.leftHanded) std::swap(b, c);
+            out.indices.insert(out.indices.end(), {a, b, c});
+        }
+        base += count;
+    }
+    return out;
+}
+
+}  // namespace obscura::delegate

@@ -1,0 +1,45 @@
+// Turns a USD mesh (points, face counts and indices, primvars with their interpolation) into the
+// triangle list the G-buffer pass draws. Pure CPU code: no Vulkan, unit-tested on its own.
+#pragma once
+
+#include "passes/frame_data.h"
+
+#include <obscura/obscura.h>
+
+#include <optional>
+#include <variant>
+#include <string>
+#include <vector>
+
+namespace obscura::delegate {
+
+struct MeshPrimvar {
+    std::vector<float> values;  // 3 components per element
+    ObscuraInterpolation interpolation = OBSCURA_INTERPOLATION_VERTEX;
+};
+
+struct MeshInput {
+    std::vector<float> points;  // xyz
+    std::vector<int32_t> faceVertexCounts;
+    std::vector<int32_t> faceVertexIndices;
+    bool leftHanded = false;
+    std::optional<MeshPrimvar> normals;
+    std::optional<MeshPrimvar> displayColor;
+};
+
+struct MeshGeometry {
+    std::vector<passes::Vertex> vertices;
+    std::vector<uint32_t> indices;
+    std::vector<std::string> warnings;  // primvars dropped for a wrong element count, ...
+};
+
+// Expected element count of a primvar of this interpolation on this mesh.
+size_t primvarElementCount(const MeshInput& mesh, ObscuraInterpolation interpolation);
+
+// Validates topology (counts >= 3 and summing to the index count, indices within the points)
+// and returns the reason when the mesh is unusable. Primvars of the wrong size are dropped with
+// a warning: the mesh still draws. Without authored normals, smooth vertex normals are computed
+// (area-weighted face normals), as Hydra does for unrefined meshes.
+std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh);
+
+}  // namespace obscura::delegate

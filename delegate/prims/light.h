@@ -1,0 +1,28 @@
+// DistantLight and SphereLight sprims (UsdLux). Radiometric conventions (DESIGN.md):
+// inputs:intensity * 2^inputs:exposure * inputs:color is the emitted radiance; a distant light's
+// irradiance at normal incidence is that radiance times the solid angle of its disc
+// (2 pi (1 - cos(angle / 2))), or the intensity itself when inputs:normalize is on; a normalized
+// sphere light divides its radiance by its surface area.
+#pragma once
+
+#include "delegate/prims/prim.h"
+#include "passes/frame_data.h"
+
+namespace obscura::delegate {
+
+class Light final : public Prim {
+public:
+    Light(std::string path, const schema::PrimSchema& schema, passes::LightType type)
+        : Prim(std::move(path), schema), type_(type) {}
+    bool visible() const { return visible_; }
+    const passes::LightData& data() const { return data_; }
+
+private:
+    void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
+    passes::LightType type_;
+    Matrix4d transform_ = kIdentity;
+    passes::LightData data_{};
+    bool visible_ = true;
+};
+
+}  // namespace obscura::delegate

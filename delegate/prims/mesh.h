@@ -1,0 +1,44 @@
+// The mesh rprim: topology, points and primvars pulled from the host, triangulated on the CPU
+// and uploaded as one vertex and one index buffer.
+#pragma once
+
+#include "delegate/mesh_builder.h"
+#include "delegate/prims/prim.h"
+#include "gpu/device.h"
+
+namespace obscura::delegate {
+
+class Mesh final : public Prim {
+public:
+    Mesh(std::string path, const schema::PrimSchema& schema, int32_t primId)
+        : Prim(std::move(path), schema), primId_(primId) {}
+
+    int32_t primId() const { return primId_; }
+    bool drawable() const { return visible_ && vertices_ && indexCount_ > 0; }
+    const gpu::BufferPtr& vertices() const { return vertices_; }
+    const gpu::BufferPtr& indices() const { return indices_; }
+    uint32_t indexCount() const { return indexCount_; }
+    const Matrix4d& transform() const { return transform_; }
+    bool doubleSided() const { return doubleSided_; }
+    const std::optional<std::string>& materialPath() const { return material_; }
+    bool hasDisplayColor() const { return input_.displayColor.has_value(); }
+    const std::vector<std::string>& warnings() const { return warnings_; }
+
+private:
+    void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
+    void reset() override;
+
+    int32_t primId_;
+    MeshInput input_;
+    Matrix4d transform_ = kIdentity;
+    std::vector<TransformSample> shutterTransforms_;  // for motion blur
+    bool doubleSided_ = false;
+    bool visible_ = true;
+    std::optional<std::string> material_;
+    gpu::BufferPtr vertices_;
+    gpu::BufferPtr indices_;
+    uint32_t indexCount_ = 0;
+    std::vector<std::string> warnings_;
+};
+
+}  // namespace obscura::delegate

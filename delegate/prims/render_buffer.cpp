@@ -1,0 +1,48 @@
+#include "delegate/prims/render_buffer.h"
+
+namespace obscura::delegate {
+
+ObscuraFormat parseFormat(const std::string& t) {
+    if (t == "float32Vec4") return OBSCURA_FORMAT_FLOAT32_VEC4;
+    if (t == "float32Vec3") return OBSCURA_FORMAT_FLOAT32_VEC3;
+    if (t == "float32") return OBSCURA_FORMAT_FLOAT32;
+    if (t == "int32") return OBSCURA_FORMAT_INT32;
+    if (t == "unorm8Vec4") return OBSCURA_FORMAT_UNORM8_VEC4;
+    return OBSCURA_FORMAT_UNKNOWN;
+}
+
+size_t RenderBuffer::bytesPerPixel() const {
+    switch (format_) {
+        case OBSCURA_FORMAT_FLOAT32_VEC4: return 16;
+        case OBSCURA_FORMAT_FLOAT32_VEC3: return 12;
+        case OBSCURA_FORMAT_FLOAT32:
+        case OBSCURA_FORMAT_INT32:
+        case OBSCURA_FORMAT_UNORM8_VEC4: return 4;
+        default: return 0;
+    }
+}
+
+void RenderBuffer::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
+    if (!(bits & OBSCURA_DIRTY_PARAMS)) return;
+    auto dims = s.getInt2("dimensions");
+    constexpr int32_t kMaxDimension = 16384;
+    if (dims[0] <= 0 || dims[1] <= 0 || dims[0] > kMaxDimension || dims[1] > kMaxDimension)
+        throw PrimDataError(s.path() + ": dimensions (" + std::to_string(dims[0]) + ", " + std::to_string(dims[1]) +
+                            ") must be within 1.." + std::to_string(kMaxDimension));
+    ObscuraFormat f = parseFormat(s.getToken("format"));
+    if (f == OBSCURA_FORMAT_UNKNOWN) throw PrimDataError(s.path() + ": unknown format");
+    width_ = uint32_t(dims[0]);
+    height_ = uint32_t(dims[1]);
+    format_ = f;
+    rendered_ = false;
+}
+
+const gpu::BufferPtr& RenderBuffer::storage(gpu::Device& device) {
+    VkDeviceSize size = VkDeviceSize(width_) * height_ * bytesPerPixel();
+    if (!storage_ || storage_->size != size)
+        storage_ = device.createBuffer(size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Readback,
+                                       path().c_str());
+    return storage_;
+}
+
+}  // namespace obscura::delegate

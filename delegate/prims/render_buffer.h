@@ -1,0 +1,32 @@
+// The render buffer bprim: an AOV's destination, in host-visible memory the host maps.
+#pragma once
+
+#include "delegate/prims/prim.h"
+#include "gpu/device.h"
+
+namespace obscura::delegate {
+
+class RenderBuffer final : public Prim {
+public:
+    using Prim::Prim;
+    uint32_t width() const { return width_; }
+    uint32_t height() const { return height_; }
+    ObscuraFormat format() const { return format_; }
+    size_t bytesPerPixel() const;
+    // (Re)allocates the storage when the size or format changed.
+    const gpu::BufferPtr& storage(gpu::Device& device);
+    bool rendered() const { return rendered_; }
+    void setRendered(bool r) { rendered_ = r; }
+    bool mapped = false;
+
+private:
+    void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
+    uint32_t width_ = 0, height_ = 0;
+    ObscuraFormat format_ = OBSCURA_FORMAT_FLOAT32_VEC4;
+    gpu::BufferPtr storage_;
+    bool rendered_ = false;
+};
+
+ObscuraFormat parseFormat(const std::string& token);
+
+}  // namespace obscura::delegate

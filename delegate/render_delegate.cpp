@@ -1,0 +1,288 @@
+#include "delegate/render_delegate.h"
+
+#include "delegate/frame_scene_builder.h"
+#include "gpu/vk_check.h"
+#include "passes/aov_readback.h"
+#include "passes/best_fit_normals.h"
+#include "passes/gbuffer.h"
+#include "passes/lighting.h"
+#include "passes/tonemap.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+namespace obscura::delegate {
+namespace {
+
+// Hydra's sync order: sprims (cameras, lights, materials) and bprims before the rprims that
+// reference them.
+int syncOrder(const Prim& p) {
+    std::string category = p.schema().category;
+    return category == "rprim" ? 1 : 0;
+}
+
+struct AovInfo {
+    const char* name;
+    passes::Aov aov;
+    ObscuraFormat format;
+};
+constexpr AovInfo kAovs[] = {
+    {"color", passes::Aov::Color, OBSCURA_FORMAT_FLOAT32_VEC4},
+    {"depth", passes::Aov::Depth, OBSCURA_FORMAT_FLOAT32},
+    {"normal", passes::Aov::Normal, OBSCURA_FORMAT_FLOAT32_VEC3},
+    {"albedo", passes::Aov::Albedo, OBSCURA_FORMAT_FLOAT32_VEC3},
+    {"primId", passes::Aov::PrimId, OBSCURA_FORMAT_INT32},
+    {"display", passes::Aov::Display, OBSCURA_FORMAT_UNORM8_VEC4},
+};
+
+const char* formatName(ObscuraFormat f) {
+    switch (f) {
+        case OBSCURA_FORMAT_FLOAT32_VEC4: return "float32Vec4";
+        case OBSCURA_FORMAT_FLOAT32_VEC3: return "float32Vec3";
+        case OBSCURA_FORMAT_FLOAT32: return "float32";
+        case OBSCURA_FORMAT_INT32: return "int32";
+        case OBSCURA_FORMAT_UNORM8_VEC4: return "unorm8Vec4";
+        default: return "unknown";
+    }
+}
+
+}  // namespace
+
+RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
+    logFn_ = info.log;
+    logUser_ = info.logUserData;
+    bool validation = info.validation == 1;
+    if (info.validation < 0) {
+        const char* env = std::getenv("OBSCURA_VALIDATION");
+        validation = env && std::strcmp(env, "0") != 0 && *env;
+    }
+    failOnValidation_ = validation;
+    gpu::ContextOptions options;
+    options.deviceSelector = info.device ? info.device : "";
+    options.validation = validation;
+    options.log = [this](LogLevel level, const std::string& message) {
+        log(level == LogLevel::Error     ? OBSCURA_LOG_ERROR
+            : level == LogLevel::Warning ? OBSCURA_LOG_WARNING
+            : level == LogLevel::Info    ? OBSCURA_LOG_INFO
+                                         : OBSCURA_LOG_DEBUG,
+            message);
+    };
+    auto context = gpu::Context::create(options);
+    if (!context) throw ApiError{OBSCURA_ERROR_DEVICE, context.error()};
+    device_ = std::make_unique<gpu::Device>(std::move(*context));
+    pipelines_ = std::make_unique<passes::PipelineCache>(*device_);
+    transients_ = std::make_unique<gpu::TransientImagePool>(*device_);
+    timestamps_ = std::make_unique<gpu::Timestamps>(*device_);
+    bestFitNormals_ = passes::createBestFitNormalsTexture(*device_);
+    log(OBSCURA_LOG_INFO, "device: " + device_->context().summary().name);
+}
+
+RenderDelegate::~RenderDelegate() {
+    vkDeviceWaitIdle(device_->vk());
+    prims_.clear();
+    bestFitNormals_.reset();
+    timestamps_.reset();
+    transients_.reset();
+    pipelines_.reset();
+    device_.reset();
+}
+
+void RenderDelegate::log(ObscuraLogLevel level, const std::string& message) const {
+    if (logFn_) {
+        logFn_(logUser_, level, message.c_str());
+    } else if (level >= OBSCURA_LOG_WARNING) {
+        std::fprintf(stderr, "obscura: %s: %s\n", level == OBSCURA_LOG_ERROR ? "error" : "warning", message.c_str());
+    }
+}
+
+template <typename T>
+T* RenderDelegate::find(const std::string& path) const {
+    auto it = prims_.find(path);
+    return it == prims_.end() ? nullptr : dynamic_cast<T*>(it->second.get());
+}
+
+void RenderDelegate::setSceneDelegate(const ObscuraSceneDelegate& sd) {
+    if (sd.structSize < sizeof(ObscuraSceneDelegate) || sd.sType != OBSCURA_STRUCTURE_TYPE_SCENE_DELEGATE)
+        throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "ObscuraSceneDelegate: wrong sType or structSize"};
+    if (!sd.getValue) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "ObscuraSceneDelegate.getValue is required"};
+    sceneDelegate_ = sd;
+    hasSceneDelegate_ = true;
+    for (auto& [path, prim] : prims_) prim->markDirty(OBSCURA_DIRTY_ALL);
+}
+
+void RenderDelegate::insertPrim(const std::string& type, const std::string& path) {
+    if (path.empty() || path[0] != '/')
+        throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "prim path '" + path + "' is not absolute"};
+    const schema::PrimSchema* schema = schema::findPrimSchema(type);
+    if (!schema) throw ApiError{OBSCURA_ERROR_UNKNOWN_TYPE, "unknown prim type '" + type + "'"};
+    if (prims_.count(path)) throw ApiError{OBSCURA_ERROR_ALREADY_EXISTS, "a prim already exists at " + path};
+    std::unique_ptr<Prim> prim;
+    if (type == "mesh") prim = std::make_unique<Mesh>(path, *schema, nextPrimId_++);
+    else if (type == "camera") prim = std::make_unique<Camera>(path, *schema);
+    else if (type == "distantLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Distant);
+    else if (type == "sphereLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Sphere);
+    else if (type == "material") prim = std::make_unique<Material>(path, *schema);
+    else if (type == "renderBuffer") prim = std::make_unique<RenderBuffer>(path, *schema);
+    else throw ApiError{OBSCURA_ERROR_UNKNOWN_TYPE, "prim type '" + type + "' has a schema but no implementation"};
+    prims_.emplace(path, std::move(prim));
+}
+
+void RenderDelegate::removePrim(const std::string& path) {
+    // GPU resources the prim owns are retired: they die at the end of the next frame.
+    if (!prims_.erase(path)) throw ApiError{OBSCURA_ERROR_NOT_FOUND, "no prim at " + path};
+}
+
+void RenderDelegate::markDirty(const std::string& path, ObscuraDirtyBits bits) {
+    auto it = prims_.find(path);
+    if (it == prims_.end()) throw ApiError{OBSCURA_ERROR_NOT_FOUND, "no prim at " + path};
+    it->second->markDirty(bits);
+}
+
+void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue* value) {
+    std::string problem = settings_.set(key, value);
+    if (!problem.empty())
+        throw ApiError{findRenderSetting(key) ? OBSCURA_ERROR_INVALID_ARGUMENT : OBSCURA_ERROR_NOT_FOUND, problem};
+}
+
+void RenderDelegate::sync(double time, const Camera* camera) {
+    primsSynced_ = 0;
+    // The camera's shutter decides the interval transforms are sampled over; sync it first.
+    std::vector<Prim*> dirty;
+    for (auto& [path, prim] : prims_)
+        if (prim->dirtyBits() != OBSCURA_DIRTY_CLEAN) dirty.push_back(prim.get());
+    std::stable_sort(dirty.begin(), dirty.end(), [camera](Prim* a, Prim* b) {
+        int oa = a == camera ? -1 : syncOrder(*a), ob = b == camera ? -1 : syncOrder(*b);
+        return oa < ob;
+    });
+    SyncContext ctx{sceneDelegate_, *device_, time, time, time};
+    auto takeShutter = [&] {
+        if (!camera || camera->skipped()) return;
+        ctx.shutterOpen = time + camera->params().shutterOpen;
+        ctx.shutterClose = time + camera->params().shutterClose;
+    };
+    takeShutter();
+    for (Prim* prim : dirty) {
+        prim->sync(ctx);
+        if (prim == camera) takeShutter();
+        ++primsSynced_;
+        if (prim->skipped()) log(OBSCURA_LOG_ERROR, "skipped prim " + prim->problem());
+        if (auto* mesh = dynamic_cast<Mesh*>(prim))
+            for (const auto& w : mesh->warnings()) log(OBSCURA_LOG_WARNING, mesh->path() + ": " + w);
+    }
+    // All uploads of this sync go to the GPU in one submission.
+    device_->flushUploads();
+}
+
+ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
+    if (desc.structSize < sizeof(ObscuraRenderPassDesc) || desc.sType != OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC)
+        throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "ObscuraRenderPassDesc: wrong sType or structSize"};
+    if (!hasSceneDelegate_) throw ApiError{OBSCURA_ERROR_INVALID_STATE, "no scene delegate: call setSceneDelegate first"};
+    if (!desc.cameraPath) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "render pass without a camera"};
+    Camera* camera = find<Camera>(desc.cameraPath);
+    if (!camera) throw ApiError{OBSCURA_ERROR_NOT_FOUND, std::string("no camera prim at ") + desc.cameraPath};
+    if (desc.aovBindingCount > 0 && !desc.aovBindings)
+        throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "aovBindings is NULL but aovBindingCount is not 0"};
+
+    sync(desc.time, camera);
+    if (camera->skipped()) throw ApiError{OBSCURA_ERROR_BAD_PRIM_DATA, "camera " + camera->problem()};
+
+    // Bind render buffers; they all share the viewport's size.
+    std::vector<passes::AovRequest> requests;
+    std::vector<RenderBuffer*> targets;
+    uint32_t width = desc.viewport[2] > 0 ? uint32_t(desc.viewport[2]) : 0;
+    uint32_t height = desc.viewport[3] > 0 ? uint32_t(desc.viewport[3]) : 0;
+    for (uint32_t i = 0; i < desc.aovBindingCount; ++i) {
+        const ObscuraAovBinding& b = desc.aovBindings[i];
+        if (!b.aov || !b.renderBufferPath) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "AOV binding with NULL names"};
+        const AovInfo* info = nullptr;
+        for (const auto& a : kAovs)
+            if (std::strcmp(a.name, b.aov) == 0) info = &a;
+        if (!info) throw ApiError{OBSCURA_ERROR_NOT_FOUND, std::string("unknown AOV '") + b.aov + "'"};
+        RenderBuffer* rb = find<RenderBuffer>(b.renderBufferPath);
+        if (!rb) throw ApiError{OBSCURA_ERROR_NOT_FOUND, std::string("no render buffer at ") + b.renderBufferPath};
+        if (rb->skipped()) throw ApiError{OBSCURA_ERROR_BAD_PRIM_DATA, "render buffer " + rb->problem()};
+        if (rb->mapped) throw ApiError{OBSCURA_ERROR_INVALID_STATE, std::string(b.renderBufferPath) + " is still mapped"};
+        if (rb->format() != info->format)
+            throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, std::string("AOV '") + b.aov + "' needs format " +
+                                                               formatName(info->format) + ", " + b.renderBufferPath +
+                                                               " is " + formatName(rb->format())};
+        if (width == 0) width = rb->width(), height = rb->height();
+        if (rb->width() != width || rb->height() != height)
+            throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, std::string(b.renderBufferPath) +
+                                                               " does not match the viewport size"};
+        requests.push_back({info->aov, rb->storage(*device_)});
+        targets.push_back(rb);
+    }
+    if (width == 0 || height == 0) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "empty viewport and no render buffers"};
+
+    passes::FrameScene scene = buildFrameScene(*device_, {prims_, *camera, width, height, settings_.number("exposure")});
+    trianglesDrawn_ = 0;
+    for (const auto& d : scene.draws) trianglesDrawn_ += d.indexCount / 3;
+
+    // The frame (DESIGN.md "The frame"): G-buffer, lighting, tone mapping, AOV readback.
+    gpu::FrameGraph graph;
+    passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
+    gpu::ImageHandle hdr = passes::addLightingPass(graph, *pipelines_, scene, gbuffer);
+    gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, gbuffer.instance);
+    passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, display, requests);
+    graph.compile();
+
+    device_->context().submitAndWait([&](VkCommandBuffer cmd) {
+        timestamps_->reset(cmd);
+        graph.execute(*transients_, cmd, timestamps_.get());
+    });
+    timings_ = timestamps_->resolve();
+    device_->endFrame();
+    transients_->endFrame();
+    for (RenderBuffer* rb : targets) rb->setRendered(true);
+
+    if (failOnValidation_ && device_->context().validationErrorCount() > 0)
+        throw ApiError{OBSCURA_ERROR_VALIDATION, std::to_string(device_->context().validationErrorCount()) +
+                                                     " Vulkan validation error(s); see the log"};
+    for (const auto& [path, prim] : prims_)
+        if (prim->skipped()) {
+            lastError_ = "some prims were skipped because of bad data (first: " + prim->problem() + ")";
+            return OBSCURA_ERROR_BAD_PRIM_DATA;
+        }
+    return OBSCURA_OK;
+}
+
+void RenderDelegate::map(const std::string& path, ObscuraMappedBuffer& out) {
+    RenderBuffer* rb = find<RenderBuffer>(path);
+    if (!rb) throw ApiError{OBSCURA_ERROR_NOT_FOUND, "no render buffer at " + path};
+    if (!rb->rendered()) throw ApiError{OBSCURA_ERROR_INVALID_STATE, path + " has not been rendered"};
+    out.width = rb->width();
+    out.height = rb->height();
+    out.format = rb->format();
+    out.rowStride = rb->width() * rb->bytesPerPixel();
+    out.data = rb->storage(*device_)->mapped();
+    rb->mapped = true;
+}
+
+void RenderDelegate::unmap(const std::string& path) {
+    RenderBuffer* rb = find<RenderBuffer>(path);
+    if (!rb) throw ApiError{OBSCURA_ERROR_NOT_FOUND, "no render buffer at " + path};
+    rb->mapped = false;
+}
+
+ObscuraRenderStats RenderDelegate::stats() const {
+    ObscuraRenderStats s{};
+    s.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
+    s.structSize = sizeof(s);
+    s.primsSynced = primsSynced_;
+    for (const auto& [path, prim] : prims_) s.primsSkipped += prim->skipped() ? 1u : 0u;
+    s.validationErrors = device_->context().validationErrorCount();
+    s.converged = 1;  // a single deferred frame: nothing accumulates yet
+    s.trianglesDrawn = trianglesDrawn_;
+    std::snprintf(s.deviceName, sizeof(s.deviceName), "%s", device_->context().summary().name.c_str());
+    return s;
+}
+
+int32_t RenderDelegate::primId(const std::string& path) const {
+    Mesh* mesh = find<Mesh>(path);
+    if (!mesh) throw ApiError{OBSCURA_ERROR_NOT_FOUND, "no mesh at " + path};
+    return mesh->primId();
+}
+
+}  // namespace obscura::delegate

@@ -1,0 +1,78 @@
+// The render delegate behind the C ABI: the prim store with dirty tracking, sync (pulling dirty
+// prims from the host's scene delegate), and the frame (building the frame graph of passes).
+#pragma once
+
+#include "delegate/prims/camera.h"
+#include "delegate/prims/light.h"
+#include "delegate/prims/material.h"
+#include "delegate/prims/mesh.h"
+#include "delegate/prims/render_buffer.h"
+#include "delegate/render_settings.h"
+#include "gpu/frame_graph.h"
+#include "gpu/timestamps.h"
+#include "passes/pipeline_cache.h"
+
+#include <obscura/obscura.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace obscura::delegate {
+
+// A failure of an ABI call: its status and message.
+struct ApiError {
+    ObscuraStatus status;
+    std::string message;
+};
+
+class RenderDelegate {
+public:
+    // Throws ApiError when no device can be had.
+    explicit RenderDelegate(const ObscuraDelegateCreateInfo& info);
+    ~RenderDelegate();
+
+    void setSceneDelegate(const ObscuraSceneDelegate& sceneDelegate);
+    void insertPrim(const std::string& type, const std::string& path);
+    void removePrim(const std::string& path);
+    void markDirty(const std::string& path, ObscuraDirtyBits bits);
+    void setRenderSetting(const std::string& key, const ObscuraValue* value);
+    // Returns OBSCURA_OK, or OBSCURA_ERROR_BAD_PRIM_DATA when prims were skipped.
+    ObscuraStatus render(const ObscuraRenderPassDesc& desc);
+    void map(const std::string& path, ObscuraMappedBuffer& out);
+    void unmap(const std::string& path);
+    const std::vector<gpu::PassTime>& passTimings() const { return timings_; }
+    ObscuraRenderStats stats() const;
+    int32_t primId(const std::string& path) const;
+
+    std::string& lastError() { return lastError_; }
+    void log(ObscuraLogLevel level, const std::string& message) const;
+
+private:
+    void sync(double time, const Camera* camera);
+    template <typename T>
+    T* find(const std::string& path) const;
+
+    PFN_obscuraLog logFn_ = nullptr;
+    void* logUser_ = nullptr;
+    bool failOnValidation_ = false;
+    std::unique_ptr<gpu::Device> device_;
+    std::unique_ptr<passes::PipelineCache> pipelines_;
+    std::unique_ptr<gpu::TransientImagePool> transients_;
+    std::unique_ptr<gpu::Timestamps> timestamps_;
+    gpu::ImagePtr bestFitNormals_;
+
+    ObscuraSceneDelegate sceneDelegate_{};
+    bool hasSceneDelegate_ = false;
+    std::map<std::string, std::unique_ptr<Prim>> prims_;
+    int32_t nextPrimId_ = 0;
+    RenderSettings settings_;
+
+    std::vector<gpu::PassTime> timings_;
+    uint32_t primsSynced_ = 0;
+    uint64_t trianglesDrawn_ = 0;
+    std::string lastError_;
+};
+
+}  // namespace obscura::delegate

@@ -1,0 +1,56 @@
+#include "delegate/render_settings.h"
+
+#include <cmath>
+#include <iterator>
+
+namespace obscura::delegate {
+namespace {
+
+const RenderSettingInfo kSettings[] = {
+    {"exposure", "exposure adjustment in stops, added to the camera's exposure (float, default 0)",
+     OBSCURA_VALUE_FLOAT, 0.0},
+};
+
+}  // namespace
+
+const RenderSettingInfo* findRenderSetting(const std::string& name) {
+    for (const auto& s : kSettings)
+        if (name == s.name) return &s;
+    return nullptr;
+}
+
+const RenderSettingInfo* renderSettingAt(uint32_t index) {
+    return index < std::size(kSettings) ? &kSettings[index] : nullptr;
+}
+
+std::string RenderSettings::set(const std::string& name, const ObscuraValue* value) {
+    const RenderSettingInfo* info = findRenderSetting(name);
+    if (!info) return "unknown render setting '" + name + "' (see `obscura info`)";
+    if (!value) {
+        numbers_.erase(name);
+        ++version_;
+        return {};
+    }
+    if (value->isArray || value->count != 1 || !value->data) return name + ": expected one value";
+    double v = 0;
+    switch (value->type) {
+        case OBSCURA_VALUE_FLOAT: v = *static_cast<const float*>(value->data); break;
+        case OBSCURA_VALUE_DOUBLE: v = *static_cast<const double*>(value->data); break;
+        case OBSCURA_VALUE_INT:
+        case OBSCURA_VALUE_BOOL: v = *static_cast<const int32_t*>(value->data); break;
+        default: return name + ": expected a number";
+    }
+    if (!std::isfinite(v)) return name + ": value is not finite";
+    numbers_[name] = v;
+    ++version_;
+    return {};
+}
+
+double RenderSettings::number(const std::string& name) const {
+    auto it = numbers_.find(name);
+    if (it != numbers_.end()) return it->second;
+    const RenderSettingInfo* info = findRenderSetting(name);
+    return info ? info->defaultNumber : 0.0;
+}
+
+}  // namespace obscura::delegate

@@ -1,0 +1,36 @@
+// Render settings by name, as DESIGN.md names them everywhere (ABI, --set, docs). Only settings
+// the frame honours are listed; `obscura info` prints this table.
+#pragma once
+
+#include <obscura/obscura.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+
+namespace obscura::delegate {
+
+struct RenderSettingInfo {
+    const char* name;
+    const char* description;
+    ObscuraValueType type;
+    double defaultNumber;
+};
+
+const RenderSettingInfo* findRenderSetting(const std::string& name);
+const RenderSettingInfo* renderSettingAt(uint32_t index);
+
+class RenderSettings {
+public:
+    // Stores a value after checking its type; returns a reason on failure. nullptr resets.
+    std::string set(const std::string& name, const ObscuraValue* value);
+    double number(const std::string& name) const;
+    uint64_t version() const { return version_; }
+
+private:
+    std::map<std::string, double> numbers_;
+    uint64_t version_ = 0;
+};
+
+}  // namespace obscura::delegate

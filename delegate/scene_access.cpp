@@ -1,0 +1,164 @@
+#include "delegate/scene_access.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace obscura::delegate {
+
+SceneAccess::SceneAccess(const ObscuraSceneDelegate& sd, const schema::PrimSchema& schema, const std::string& path,
+                         double time)
+    : sd_(sd), schema_(schema), path_(path), time_(time) {}
+
+void SceneAccess::fail(const std::string& message) const { throw PrimDataError(path_ + ": " + message); }
+
+const schema::AttributeSchema& SceneAccess::attribute(const char* name) const {
+    const schema::AttributeSchema* a = schema::findAttribute(schema_, name);
+    // The delegate only asks for attributes its schemas declare: a miss is a programming error.
+    if (!a) throw std::logic_error(std::string("schema '") + schema_.name + "' has no attribute " + name);
+    return *a;
+}
+
+std::optional<ObscuraValue> SceneAccess::fetch(const schema::AttributeSchema& a) {
+    if (!sd_.getValue) return std::nullopt;
+    ObscuraValue v{};
+    ++callbacks_;
+    ObscuraStatus s = sd_.getValue(sd_.userData, path_.c_str(), a.name, time_, &v);
+    if (s == OBSCURA_ERROR_NOT_FOUND) return std::nullopt;
+    if (s != OBSCURA_OK) fail(std::string("the host failed to provide ") + a.name + " (status " + std::to_string(s) + ")");
+    std::string problem = schema::checkValue(a, v);
+    if (!problem.empty()) fail(problem);
+    return v;
+}
+
+namespace {
+double numberAt(const ObscuraValue& v, size_t i) {
+    switch (v.type) {
+        case OBSCURA_VALUE_BOOL:
+        case OBSCURA_VALUE_INT:
+        case OBSCURA_VALUE_INT2: return static_cast<const int32_t*>(v.data)[i];
+        case OBSCURA_VALUE_DOUBLE:
+        case OBSCURA_VALUE_MATRIX4D: return static_cast<const double*>(v.data)[i];
+        default: return static_cast<const float*>(v.data)[i];
+    }
+}
+}  // namespace
+
+bool SceneAccess::getBool(const char* name) {
+    const auto& a = attribute(name);
+    auto v = fetch(a);
+    return v ? numberAt(*v, 0) != 0 : (a.defaultCount ? a.defaultNumbers[0] != 0 : false);
+}
+
+int32_t SceneAccess::getInt(const char* name) {
+    const auto& a = attribute(name);
+    auto v = fetch(a);
+    return v ? static_cast<int32_t>(numberAt(*v, 0)) : static_cast<int32_t>(a.defaultCount ? a.defaultNumbers[0] : 0);
+}
+
+double SceneAccess::getDouble(const char* name) {
+    const auto& a = attribute(name);
+    auto v = fetch(a);
+    return v ? numberAt(*v, 0) : (a.defaultCount ? a.defaultNumbers[0] : 0.0);
+}
+
+std::array<float, 2> SceneAccess::getFloat2(const char* name) {
+    const auto& a = attribute(name);
+    auto v = fetch(a);
+    std::array<float, 2> r{};
+    for (size_t i = 0; i < 2; ++i)
+        r[i] = static_cast<float>(v ? numberAt(*v, i) : (a.defaultCount > i ? a.defaultNumbers[i] : 0.0));
+    return r;
+}
+
+std::array<float, 3> SceneAccess::getFloat3(const char* name) {
+    const auto& a = attribute(name);
+    auto v = fetch(a);
+    std::array<float, 3> r{};
+    for (size_t i = 0; i < 3; ++i)
+        r[i] = static_cast<float>(v ? numberAt(*v, i) : (a.defaultCount > i ? a.defaultNumbers[i] : 0.0));
+    return r;
+}
+
+std::array<int32_t, 2> SceneAccess::getInt2(const char* name) {
+    const auto& a = attribute(name);
+    auto v = fetch(a);
+    std::array<int32_t, 2> r{};
+    for (size_t i = 0; i < 2; ++i)
+        r[i] = static_cast<int32_t>(v ? numberAt(*v, i) : (a.defaultCount > i ? a.defaultNumbers[i] : 0.0));
+    return r;
+}
+
+std::string SceneAccess::getToken(const char* name) {
+    const auto& a = attribute(name);
+    auto v = fetch(a);
+    if (v) return static_cast<const char* const*>(v->data)[0];
+    return a.defaultToken ? a.defaultToken : "";
+}
+
+std::optional<std::string> SceneAccess::getPath(const char* name) {
+    auto v = fetch(attribute(name));
+    if (!v || v->count == 0) return std::nullopt;
+    return std::string(static_cast<const char* const*>(v->data)[0]);
+}
+
+std::optional<std::vector<int32_t>> SceneAccess::getIntArray(const char* name) {
+    auto v = fetch(attribute(name));
+    if (!v) return std::nullopt;
+    const auto* p = static_cast<const int32_t*>(v->data);
+    return std::vector<int32_t>(p, p + v->count);
+}
+
+std::optional<std::vector<float>> SceneAccess::getFloatArray(const char* name) {
+    auto v = fetch(attribute(name));
+    if (!v) return std::nullopt;
+    size_t components = v->type == OBSCURA_VALUE_FLOAT3 ? 3 : v->type == OBSCURA_VALUE_FLOAT2 ? 2 : 1;
+    std::vector<float> out(v->count * components);
+    for (size_t i = 0; i < out.size(); ++i) out[i] = static_cast<float>(numberAt(*v, i));
+    return out;
+}
+
+ObscuraInterpolation SceneAccess::interpolation(const char* name) {
+    const auto& a = attribute(name);
+    ObscuraInterpolation out = OBSCURA_INTERPOLATION_VERTEX;
+    if (a.interpolation) {
+        std::string d = a.interpolation;
+        out = d == "constant"      ? OBSCURA_INTERPOLATION_CONSTANT
+              : d == "uniform"     ? OBSCURA_INTERPOLATION_UNIFORM
+              : d == "varying"     ? OBSCURA_INTERPOLATION_VARYING
+              : d == "faceVarying" ? OBSCURA_INTERPOLATION_FACE_VARYING
+                                   : OBSCURA_INTERPOLATION_VERTEX;
+    }
+    if (sd_.getInterpolation) {
+        ObscuraInterpolation host{};
+        if (sd_.getInterpolation(sd_.userData, path_.c_str(), name, &host) == OBSCURA_OK) {
+            if (host < OBSCURA_INTERPOLATION_CONSTANT || host > OBSCURA_INTERPOLATION_FACE_VARYING)
+                fail(std::string(name) + ": unknown interpolation " + std::to_string(int(host)));
+            out = host;
+        }
+    }
+    return out;
+}
+
+std::vector<TransformSample> SceneAccess::sampleTransform(double time0, double time1) {
+    constexpr uint32_t kMaxSamples = 16;
+    if (!sd_.sampleTransform) return {{time_, kIdentity}};
+    double times[kMaxSamples];
+    double matrices[kMaxSamples * 16];
+    uint32_t count = 0;
+    ObscuraStatus s = sd_.sampleTransform(sd_.userData, path_.c_str(), time0, time1, kMaxSamples, times, matrices, &count);
+    if (s == OBSCURA_ERROR_NOT_FOUND || (s == OBSCURA_OK && count == 0)) return {{time_, kIdentity}};
+    if (s != OBSCURA_OK) fail("the host failed to sample the transform (status " + std::to_string(s) + ")");
+    if (count > kMaxSamples) fail("sampleTransform returned more samples than asked for");
+    std::vector<TransformSample> out;
+    for (uint32_t i = 0; i < count; ++i) {
+        TransformSample t{times[i], {}};
+        for (int k = 0; k < 16; ++k) {
+            t.matrix[k] = matrices[i * 16 + k];
+            if (!std::isfinite(t.matrix[k])) fail("transform sample " + std::to_string(i) + " is not finite");
+        }
+        out.push_back(t);
+    }
+    return out;
+}
+
+}  // namespace obscura::delegate

@@ -1,0 +1,69 @@
+// Typed, schema-checked pulls from the host's scene delegate for one prim during sync.
+// Unauthored attributes get the schema default; a value of the wrong type, shape or with
+// NaN/Inf is bad prim data: it throws PrimDataError, and the delegate skips the prim.
+#pragma once
+
+#include "delegate/matrix.h"
+#include "schemas/schema.h"
+
+#include <obscura/obscura.h>
+
+#include <array>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace obscura::delegate {
+
+struct PrimDataError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct TransformSample {
+    double time;
+    Matrix4d matrix;
+};
+
+class SceneAccess {
+public:
+    SceneAccess(const ObscuraSceneDelegate& sceneDelegate, const schema::PrimSchema& schema, const std::string& path,
+                double time);
+
+    double time() const { return time_; }
+    const std::string& path() const { return path_; }
+
+    bool getBool(const char* name);
+    int32_t getInt(const char* name);
+    double getDouble(const char* name);  // float or double attributes
+    float getFloat(const char* name) { return static_cast<float>(getDouble(name)); }
+    std::array<float, 2> getFloat2(const char* name);
+    std::array<float, 3> getFloat3(const char* name);
+    std::array<int32_t, 2> getInt2(const char* name);
+    std::string getToken(const char* name);
+    std::optional<std::string> getPath(const char* name);  // empty when unauthored
+    // Arrays: nullopt when not authored.
+    std::optional<std::vector<int32_t>> getIntArray(const char* name);
+    std::optional<std::vector<float>> getFloatArray(const char* name);  // float[] and floatN[] flattened
+    ObscuraInterpolation interpolation(const char* name);
+
+    // World transform samples over [time0, time1] (at least one).
+    std::vector<TransformSample> sampleTransform(double time0, double time1);
+
+    // Number of getValue callbacks made through this accessor.
+    uint32_t callbackCount() const { return callbacks_; }
+
+private:
+    // The host's value, checked against the schema; nullopt when not authored.
+    std::optional<ObscuraValue> fetch(const schema::AttributeSchema& attribute);
+    const schema::AttributeSchema& attribute(const char* name) const;
+    [[noreturn]] void fail(const std::string& message) const;
+
+    const ObscuraSceneDelegate& sd_;
+    const schema::PrimSchema& schema_;
+    std::string path_;
+    double time_;
+    uint32_t callbacks_ = 0;
+};
+
+}  // namespace obscura::delegate

@@ -1,0 +1,290 @@
+#include "gpu/context.h"
+
+#include "gpu/vk_check.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+
+namespace obscura::gpu {
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+bool hasLayer(const char* name) {
+    uint32_t count = 0;
+    vkEnumerateInstanceLayerProperties(&count, nullptr);
+    std::vector<VkLayerProperties> layers(count);
+    vkEnumerateInstanceLayerProperties(&count, layers.data());
+    return std::any_of(layers.begin(), layers.end(),
+                       [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+VkResult createInstance(bool validation, const VkDebugUtilsMessengerCreateInfoEXT* messengerInfo,
+                        VkInstance* out) {
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "obscura";
+    app.pEngineName = "obscura";
+    app.apiVersion = VK_API_VERSION_1_3;
+    std::vector<const char*> layers;
+    std::vector<const char*> extensions;
+    if (validation) {
+        layers.push_back(kValidationLayer);
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    }
+    VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    // Chained so that messages of instance creation and destruction are caught too.
+    ci.pNext = messengerInfo;
+    ci.pApplicationInfo = &app;
+    ci.enabledLayerCount = static_cast<uint32_t>(layers.size());
+    ci.ppEnabledLayerNames = layers.data();
+    ci.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+    ci.ppEnabledExtensionNames = extensions.data();
+    return vkCreateInstance(&ci, nullptr, out);
+}
+
+PhysicalDeviceSummary summarise(VkPhysicalDevice pd) {
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
+    vkGetPhysicalDeviceProperties2(pd, &props);
+    PhysicalDeviceSummary s;
+    s.name = props.properties.deviceName;
+    s.driver = std::string(driver.driverName) + " " + driver.driverInfo;
+    s.apiVersion = props.properties.apiVersion;
+    s.discrete = props.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU;
+    s.cpu = props.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    s.msaaSamples = props.properties.limits.framebufferColorSampleCounts &
+                    props.properties.limits.framebufferDepthSampleCounts;
+    return s;
+}
+
+int typeRank(VkPhysicalDevice pd) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(pd, &p);
+    switch (p.deviceType) {
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
+        default: return 4;
+    }
+}
+
+bool supportsVulkan13Features(VkPhysicalDevice pd) {
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13};
+    vkGetPhysicalDeviceFeatures2(pd, &f);
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(pd, &p);
+    return p.apiVersion >= VK_API_VERSION_1_3 && f13.dynamicRendering && f13.synchronization2 && f13.maintenance4;
+}
+
+// OBSCURA_DEVICE / the create-info selector: an index into the device list or a name substring.
+Result<VkPhysicalDevice> pickDevice(const std::vector<VkPhysicalDevice>& devices, const std::string& selector) {
+    std::vector<VkPhysicalDevice> usable;
+    for (VkPhysicalDevice pd : devices)
+        if (supportsVulkan13Features(pd)) usable.push_back(pd);
+    if (usable.empty()) return Failure{"no Vulkan 1.3 device with dynamic rendering and synchronization2"};
+    if (!selector.empty()) {
+        char* end = nullptr;
+        unsigned long index = std::strtoul(selector.c_str(), &end, 10);
+        if (end && *end == '\0') {
+            if (index >= devices.size()) return Failure{"device index " + selector + " out of range"};
+            if (!supportsVulkan13Features(devices[index]))
+                return Failure{"device " + selector + " lacks Vulkan 1.3 features"};
+            return devices[index];
+        }
+        for (VkPhysicalDevice pd : usable)
+            if (summarise(pd).name.find(selector) != std::string::npos) return pd;
+        return Failure{"no Vulkan device matches '" + selector + "'"};
+    }
+    // Discrete GPU first, lavapipe (CPU) last.
+    std::stable_sort(usable.begin(), usable.end(), [](VkPhysicalDevice a, VkPhysicalDevice b) {
+        return typeRank(a) < typeRank(b);
+    });
+    return usable.front();
+}
+
+uint32_t pickQueueFamily(VkPhysicalDevice pd) {
+    uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, families.data());
+    for (uint32_t i = 0; i < count; ++i) {
+        VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+        if ((families[i].queueFlags & need) == need && families[i].timestampValidBits > 0) return i;
+    }
+    for (uint32_t i = 0; i < count; ++i)
+        if (families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) return i;
+    return UINT32_MAX;
+}
+
+}  // namespace
+
+VkBool32 Context::debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
+                                const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+    auto* self = static_cast<Context*>(user);
+    std::string msg = std::string("vulkan: ") + (data && data->pMessage ? data->pMessage : "");
+    if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
+        self->validationErrors_.fetch_add(1);
+        self->log(LogLevel::Error, msg);
+    } else if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+        self->log(LogLevel::Warning, msg);
+    }
+    return VK_FALSE;
+}
+
+void Context::log(LogLevel level, const std::string& message) const {
+    if (log_) log_(level, message);
+}
+
+Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
+    std::unique_ptr<Context> ctx(new Context());
+    ctx->log_ = options.log;
+    bool validation = options.validation;
+    if (validation && !hasLayer(kValidationLayer)) {
+        return Failure{"validation requested but VK_LAYER_KHRONOS_validation is not installed"};
+    }
+    VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    messengerInfo.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                                VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                                VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    messengerInfo.pfnUserCallback = &Context::debugCallback;
+    messengerInfo.pUserData = ctx.get();
+
+    VkResult r = createInstance(validation, validation ? &messengerInfo : nullptr, &ctx->instance_);
+    if (r != VK_SUCCESS) return Failure{std::string("vkCreateInstance failed: ") + vkResultName(r)};
+    if (validation) {
+        auto createMessenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(ctx->instance_, "vkCreateDebugUtilsMessengerEXT"));
+        if (!createMessenger || createMessenger(ctx->instance_, &messengerInfo, nullptr, &ctx->messenger_) != VK_SUCCESS)
+            return Failure{"cannot create the validation debug messenger"};
+    }
+
+    uint32_t count = 0;
+    vkEnumeratePhysicalDevices(ctx->instance_, &count, nullptr);
+    std::vector<VkPhysicalDevice> devices(count);
+    vkEnumeratePhysicalDevices(ctx->instance_, &count, devices.data());
+    if (devices.empty()) return Failure{"no Vulkan device (is mesa-vulkan-drivers installed?)"};
+    std::string selector = options.deviceSelector;
+    if (selector.empty()) {
+        if (const char* env = std::getenv("OBSCURA_DEVICE")) selector = env;
+    }
+    auto picked = pickDevice(devices, selector);
+    if (!picked) return Failure{picked.error()};
+    ctx->physical_ = *picked;
+    ctx->summary_ = summarise(ctx->physical_);
+    vkGetPhysicalDeviceProperties(ctx->physical_, &ctx->properties_);
+    vkGetPhysicalDeviceMemoryProperties(ctx->physical_, &ctx->memoryProperties_);
+
+    ctx->queueFamily_ = pickQueueFamily(ctx->physical_);
+    if (ctx->queueFamily_ == UINT32_MAX) return Failure{"device has no graphics queue"};
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    qci.queueFamilyIndex = ctx->queueFamily_;
+    qci.queueCount = 1;
+    qci.pQueuePriorities = &priority;
+
+    // maintenance4: glslang's vulkan1.3 SPIR-V uses LocalSizeId.
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    f13.dynamicRendering = VK_TRUE;
+    f13.synchronization2 = VK_TRUE;
+    f13.maintenance4 = VK_TRUE;
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
+    f12.hostQueryReset = VK_TRUE;
+    f12.scalarBlockLayout = VK_TRUE;
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
+    VkPhysicalDeviceFeatures supported{};
+    vkGetPhysicalDeviceFeatures(ctx->physical_, &supported);
+    features.features.sampleRateShading = supported.sampleRateShading;
+    features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
+    features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
+
+    VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
+    dci.queueCreateInfoCount = 1;
+    dci.pQueueCreateInfos = &qci;
+    r = vkCreateDevice(ctx->physical_, &dci, nullptr, &ctx->device_);
+    if (r != VK_SUCCESS) return Failure{std::string("vkCreateDevice failed: ") + vkResultName(r)};
+    vkGetDeviceQueue(ctx->device_, ctx->queueFamily_, 0, &ctx->queue_);
+
+    VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pci.queueFamilyIndex = ctx->queueFamily_;
+    vkCheck(vkCreateCommandPool(ctx->device_, &pci, nullptr, &ctx->commandPool_), "vkCreateCommandPool");
+    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    vkCheck(vkCreateFence(ctx->device_, &fci, nullptr, &ctx->fence_), "vkCreateFence");
+    return ctx;
+}
+
+Result<std::vector<PhysicalDeviceSummary>> Context::enumerate() {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkResult r = createInstance(false, nullptr, &instance);
+    if (r != VK_SUCCESS) return Failure{std::string("vkCreateInstance failed: ") + vkResultName(r)};
+    uint32_t count = 0;
+    vkEnumeratePhysicalDevices(instance, &count, nullptr);
+    std::vector<VkPhysicalDevice> devices(count);
+    vkEnumeratePhysicalDevices(instance, &count, devices.data());
+    std::vector<PhysicalDeviceSummary> out;
+    for (VkPhysicalDevice pd : devices) out.push_back(summarise(pd));
+    vkDestroyInstance(instance, nullptr);
+    return out;
+}
+
+Context::~Context() {
+    if (device_) {
+        vkDeviceWaitIdle(device_);
+        vkDestroyFence(device_, fence_, nullptr);
+        vkDestroyCommandPool(device_, commandPool_, nullptr);
+        vkDestroyDevice(device_, nullptr);
+    }
+    if (messenger_) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+        if (destroy) destroy(instance_, messenger_, nullptr);
+    }
+    if (instance_) vkDestroyInstance(instance_, nullptr);
+}
+
+void Context::beginOneShot(VkCommandBuffer& cmd) {
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = commandPool_;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    vkCheck(vkAllocateCommandBuffers(device_, &ai, &cmd), "vkAllocateCommandBuffers");
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vkCheck(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+}
+
+void Context::endOneShot(VkCommandBuffer cmd) {
+    vkCheck(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cmd;
+    vkCheck(vkResetFences(device_, 1, &fence_), "vkResetFences");
+    vkCheck(vkQueueSubmit(queue_, 1, &si, fence_), "vkQueueSubmit");
+    vkCheck(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    vkFreeCommandBuffers(device_, commandPool_, 1, &cmd);
+}
+
+const char* vkResultName(VkResult r) {
+    switch (r) {
+        case VK_SUCCESS: return "VK_SUCCESS";
+        case VK_ERROR_OUT_OF_HOST_MEMORY: return "VK_ERROR_OUT_OF_HOST_MEMORY";
+        case VK_ERROR_OUT_OF_DEVICE_MEMORY: return "VK_ERROR_OUT_OF_DEVICE_MEMORY";
+        case VK_ERROR_INITIALIZATION_FAILED: return "VK_ERROR_INITIALIZATION_FAILED";
+        case VK_ERROR_DEVICE_LOST: return "VK_ERROR_DEVICE_LOST";
+        case VK_ERROR_LAYER_NOT_PRESENT: return "VK_ERROR_LAYER_NOT_PRESENT";
+        case VK_ERROR_EXTENSION_NOT_PRESENT: return "VK_ERROR_EXTENSION_NOT_PRESENT";
+        case VK_ERROR_FEATURE_NOT_PRESENT: return "VK_ERROR_FEATURE_NOT_PRESENT";
+        case VK_ERROR_INCOMPATIBLE_DRIVER: return "VK_ERROR_INCOMPATIBLE_DRIVER";
+        case VK_ERROR_FORMAT_NOT_SUPPORTED: return "VK_ERROR_FORMAT_NOT_SUPPORTED";
+        case VK_TIMEOUT: return "VK_TIMEOUT";
+        case VK_NOT_READY: return "VK_NOT_READY";
+        default: return "VkResult error";
+    }
+}
+
+}  // namespace obscura::gpu

@@ -1,0 +1,94 @@
+// The Vulkan instance, the chosen physical device, the logical device and its one queue.
+// Each delegate owns one Context: delegates in one process are fully independent.
+#pragma once
+
+#include "gpu/log.h"
+#include "gpu/result.h"
+
+#include <vulkan/vulkan.h>
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace obscura::gpu {
+
+struct ContextOptions {
+    std::string deviceSelector;  // name substring or index; empty: OBSCURA_DEVICE, then the best device
+    bool validation = false;     // Khronos validation layer; its errors are counted
+    LogSink log;
+};
+
+struct PhysicalDeviceSummary {
+    std::string name;
+    std::string driver;
+    uint32_t apiVersion = 0;
+    bool discrete = false;
+    bool cpu = false;
+    VkSampleCountFlags msaaSamples = 0;
+};
+
+class Context {
+public:
+    static Result<std::unique_ptr<Context>> create(const ContextOptions& options);
+    // Devices as `obscura info` lists them (own short-lived instance, no validation).
+    static Result<std::vector<PhysicalDeviceSummary>> enumerate();
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    VkInstance instance() const { return instance_; }
+    VkPhysicalDevice physicalDevice() const { return physical_; }
+    VkDevice device() const { return device_; }
+    VkQueue queue() const { return queue_; }
+    uint32_t queueFamily() const { return queueFamily_; }
+    const VkPhysicalDeviceProperties& properties() const { return properties_; }
+    const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
+    const PhysicalDeviceSummary& summary() const { return summary_; }
+    bool validationEnabled() const { return messenger_ != VK_NULL_HANDLE; }
+
+    // Validation messages of error severity since creation.
+    uint32_t validationErrorCount() const { return validationErrors_.load(); }
+    void log(LogLevel level, const std::string& message) const;
+
+    // Runs a one-off command buffer to completion (uploads at sync time, readbacks).
+    template <typename F>
+    void submitAndWait(F&& record);
+
+    VkCommandPool commandPool() const { return commandPool_; }
+    VkFence fence() const { return fence_; }
+
+private:
+    Context() = default;
+    static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                        VkDebugUtilsMessageTypeFlagsEXT types,
+                                                        const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                        void* user);
+    void beginOneShot(VkCommandBuffer& cmd);
+    void endOneShot(VkCommandBuffer cmd);
+
+    LogSink log_;
+    VkInstance instance_ = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    uint32_t queueFamily_ = 0;
+    VkPhysicalDeviceProperties properties_{};
+    VkPhysicalDeviceMemoryProperties memoryProperties_{};
+    PhysicalDeviceSummary summary_;
+    VkCommandPool commandPool_ = VK_NULL_HANDLE;
+    VkFence fence_ = VK_NULL_HANDLE;
+    std::atomic<uint32_t> validationErrors_{0};
+};
+
+template <typename F>
+void Context::submitAndWait(F&& record) {
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    beginOneShot(cmd);
+    record(cmd);
+    endOneShot(cmd);
+}
+
+}  // namespace obscura::gpu

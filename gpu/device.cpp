@@ -1,0 +1,211 @@
+#include "gpu/device.h"
+
+#include "gpu/vk_check.h"
+
+#include <cstring>
+
+namespace obscura::gpu {
+
+bool isDepthFormat(VkFormat f) {
+    return f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D32_SFLOAT_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT ||
+           f == VK_FORMAT_D16_UNORM;
+}
+bool hasStencil(VkFormat f) { return f == VK_FORMAT_D32_SFLOAT_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT; }
+VkImageAspectFlags aspectsOf(VkFormat f) {
+    if (!isDepthFormat(f)) return VK_IMAGE_ASPECT_COLOR_BIT;
+    return VK_IMAGE_ASPECT_DEPTH_BIT | (hasStencil(f) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
+}
+
+Device::Device(std::unique_ptr<Context> context) : context_(std::move(context)) {
+    memory_ = std::make_unique<MemoryAllocator>(context_->device(), context_->memoryProperties());
+    if (context_->validationEnabled())
+        setObjectName_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+            vkGetDeviceProcAddr(context_->device(), "vkSetDebugUtilsObjectNameEXT"));
+
+    VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    si.magFilter = si.minFilter = VK_FILTER_LINEAR;
+    si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    si.maxLod = VK_LOD_CLAMP_NONE;
+    vkCheck(vkCreateSampler(vk(), &si, nullptr, &linearClamp_), "vkCreateSampler");
+    si.magFilter = si.minFilter = VK_FILTER_NEAREST;
+    si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    vkCheck(vkCreateSampler(vk(), &si, nullptr, &nearestClamp_), "vkCreateSampler");
+
+    const VkDescriptorPoolSize sizes[] = {
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 256},         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 512},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 512}, {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 512},
+        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 256},
+    };
+    VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pi.maxSets = 256;
+    pi.poolSizeCount = static_cast<uint32_t>(std::size(sizes));
+    pi.pPoolSizes = sizes;
+    vkCheck(vkCreateDescriptorPool(vk(), &pi, nullptr, &descriptorPool_), "vkCreateDescriptorPool");
+}
+
+Device::~Device() {
+    vkDeviceWaitIdle(vk());
+    pendingUploads_.clear();
+    endFrame();
+    vkDestroyDescriptorPool(vk(), descriptorPool_, nullptr);
+    vkDestroySampler(vk(), linearClamp_, nullptr);
+    vkDestroySampler(vk(), nearestClamp_, nullptr);
+    memory_.reset();
+}
+
+void Device::setName(VkObjectType type, uint64_t handle, const char* name) {
+    if (!setObjectName_ || !name) return;
+    VkDebugUtilsObjectNameInfoEXT ni{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
+    ni.objectType = type;
+    ni.objectHandle = handle;
+    ni.pObjectName = name;
+    setObjectName_(vk(), &ni);
+}
+
+void Device::retire(std::function<void()> destroy) { retired_.push_back(std::move(destroy)); }
+
+void Device::endFrame() {
+    auto retired = std::move(retired_);
+    retired_.clear();
+    for (auto& destroy : retired) destroy();
+    vkResetDescriptorPool(vk(), descriptorPool_, 0);
+}
+
+VkDescriptorSet Device::allocateDescriptorSet(VkDescriptorSetLayout layout) {
+    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    ai.descriptorPool = descriptorPool_;
+    ai.descriptorSetCount = 1;
+    ai.pSetLayouts = &layout;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    vkCheck(vkAllocateDescriptorSets(vk(), &ai, &set), "vkAllocateDescriptorSets");
+    return set;
+}
+
+BufferPtr Device::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memoryUsage,
+                               const char* debugName) {
+    auto* b = new Buffer();
+    b->size = size;
+    VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    bi.size = size;
+    bi.usage = usage;
+    bi.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    vkCheck(vkCreateBuffer(vk(), &bi, nullptr, &b->buffer), "vkCreateBuffer");
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(vk(), b->buffer, &req);
+    b->allocation = memory_->allocate(req, memoryUsage, ResourceTiling::Linear);
+    vkCheck(vkBindBufferMemory(vk(), b->buffer, b->allocation.memory, b->allocation.offset), "vkBindBufferMemory");
+    setName(VK_OBJECT_TYPE_BUFFER, reinterpret_cast<uint64_t>(b->buffer), debugName);
+    return BufferPtr(b, [this](Buffer* p) {
+        retire([this, p] {
+            vkDestroyBuffer(vk(), p->buffer, nullptr);
+            memory_->free(p->allocation);
+            delete p;
+        });
+    });
+}
+
+ImagePtr Device::createImage(const ImageDesc& desc, const char* debugName) {
+    auto* img = new Image();
+    img->desc = desc;
+    VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ii.imageType = VK_IMAGE_TYPE_2D;
+    ii.format = desc.format;
+    ii.extent = {desc.width, desc.height, 1};
+    ii.mipLevels = desc.mipLevels;
+    ii.arrayLayers = 1;
+    ii.samples = desc.samples;
+    ii.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ii.usage = desc.usage;
+    ii.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    vkCheck(vkCreateImage(vk(), &ii, nullptr, &img->image), "vkCreateImage");
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(vk(), img->image, &req);
+    img->allocation = memory_->allocate(req, MemoryUsage::DeviceLocal, ResourceTiling::Optimal);
+    vkCheck(vkBindImageMemory(vk(), img->image, img->allocation.memory, img->allocation.offset), "vkBindImageMemory");
+    setName(VK_OBJECT_TYPE_IMAGE, reinterpret_cast<uint64_t>(img->image), debugName);
+
+    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vi.image = img->image;
+    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vi.format = desc.format;
+    // A depth/stencil view for sampling must name one aspect; attachments use the same view
+    // (dynamic rendering accepts a depth-only view of a depth/stencil image for both aspects).
+    vi.subresourceRange = {isDepthFormat(desc.format) ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT)
+                                                      : VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT),
+                           0, desc.mipLevels, 0, 1};
+    vkCheck(vkCreateImageView(vk(), &vi, nullptr, &img->view), "vkCreateImageView");
+    if (hasStencil(desc.format)) {
+        vi.subresourceRange.aspectMask = VK_IMAGE_ASPECT_STENCIL_BIT;
+        vkCheck(vkCreateImageView(vk(), &vi, nullptr, &img->stencilView), "vkCreateImageView");
+    }
+    return ImagePtr(img, [this](Image* p) {
+        retire([this, p] {
+            vkDestroyImageView(vk(), p->view, nullptr);
+            if (p->stencilView) vkDestroyImageView(vk(), p->stencilView, nullptr);
+            vkDestroyImage(vk(), p->image, nullptr);
+            memory_->free(p->allocation);
+            delete p;
+        });
+    });
+}
+
+BufferPtr Device::createBufferWithData(const void* data, VkDeviceSize size, VkBufferUsageFlags usage,
+                                       const char* debugName) {
+    if (size == 0) size = 4;  // zero-sized buffers are invalid; keep one word
+    auto buffer = createBuffer(size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::DeviceLocal, debugName);
+    auto staging = createBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging");
+    if (data) std::memcpy(staging->mapped(), data, size);
+    else std::memset(staging->mapped(), 0, size);
+    pendingUploads_.push_back({std::move(staging), buffer, size});
+    return buffer;
+}
+
+void Device::flushUploads() {
+    if (pendingUploads_.empty()) return;
+    context_->submitAndWait([&](VkCommandBuffer cmd) {
+        for (const auto& u : pendingUploads_) {
+            VkBufferCopy region{0, 0, u.size};
+            vkCmdCopyBuffer(cmd, u.staging->buffer, u.destination->buffer, 1, &region);
+        }
+    });
+    pendingUploads_.clear();
+}
+
+ImagePtr Device::createTextureWithData(const ImageDesc& descIn, const void* pixels, VkDeviceSize size,
+                                       const char* debugName) {
+    ImageDesc desc = descIn;
+    desc.usage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    auto image = createImage(desc, debugName);
+    auto staging = createBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging");
+    std::memcpy(staging->mapped(), pixels, size);
+    context_->submitAndWait([&](VkCommandBuffer cmd) {
+        VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+        b.srcStageMask = VK_PIPELINE_STAGE_2_NONE;
+        b.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.image = image->image;
+        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, desc.mipLevels, 0, 1};
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.imageMemoryBarrierCount = 1;
+        dep.pImageMemoryBarriers = &b;
+        vkCmdPipelineBarrier2(cmd, &dep);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {desc.width, desc.height, 1};
+        vkCmdCopyBufferToImage(cmd, staging->buffer, image->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        b.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        b.dstAccessMask = VK_ACCESS_2_SHADER_READ_BIT;
+        b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        b.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+        vkCmdPipelineBarrier2(cmd, &dep);
+    });
+    return image;
+}
+
+}  // namespace obscura::gpu

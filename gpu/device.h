@@ -1,0 +1,102 @@
+// The GPU device a delegate renders with: context, memory, buffers and images with deferred
+// destruction (objects die at the end of the frame that last used them), samplers and the
+// per-frame descriptor pool.
+#pragma once
+
+#include "gpu/context.h"
+#include "gpu/memory.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace obscura::gpu {
+
+class Device;
+
+struct Buffer {
+    VkBuffer buffer = VK_NULL_HANDLE;
+    Allocation allocation;
+    VkDeviceSize size = 0;
+    void* mapped() const { return allocation.mapped; }
+};
+
+struct ImageDesc {
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    uint32_t width = 0;
+    uint32_t height = 0;
+    uint32_t mipLevels = 1;
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    VkImageUsageFlags usage = 0;
+    bool operator==(const ImageDesc&) const = default;
+};
+
+struct Image {
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;         // all aspects a shader may read (depth only for D/S)
+    VkImageView stencilView = VK_NULL_HANDLE;  // stencil aspect of depth/stencil formats
+    Allocation allocation;
+    ImageDesc desc;
+};
+
+using BufferPtr = std::shared_ptr<Buffer>;
+using ImagePtr = std::shared_ptr<Image>;
+
+bool isDepthFormat(VkFormat format);
+bool hasStencil(VkFormat format);
+VkImageAspectFlags aspectsOf(VkFormat format);
+
+class Device {
+public:
+    explicit Device(std::unique_ptr<Context> context);
+    ~Device();
+    Device(const Device&) = delete;
+    Device& operator=(const Device&) = delete;
+
+    Context& context() { return *context_; }
+    VkDevice vk() const { return context_->device(); }
+    MemoryAllocator& memory() { return *memory_; }
+
+    // Resources are shared_ptrs whose deleter queues destruction to the end of the frame.
+    BufferPtr createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memoryUsage,
+                           const char* debugName);
+    ImagePtr createImage(const ImageDesc& desc, const char* debugName);
+    // A device-local buffer whose contents arrive with the next flushUploads(): sync creates
+    // many, and all their copies go to the GPU in one submission.
+    BufferPtr createBufferWithData(const void* data, VkDeviceSize size, VkBufferUsageFlags usage,
+                                   const char* debugName);
+    void flushUploads();
+    // Upload pixel data (tightly packed, mip 0) and leave the image SHADER_READ_ONLY_OPTIMAL.
+    ImagePtr createTextureWithData(const ImageDesc& desc, const void* pixels, VkDeviceSize size,
+                                   const char* debugName);
+
+    VkSampler linearClampSampler() const { return linearClamp_; }
+    VkSampler nearestClampSampler() const { return nearestClamp_; }
+
+    // Per-frame descriptor sets, freed all at once when the frame ends.
+    VkDescriptorSet allocateDescriptorSet(VkDescriptorSetLayout layout);
+
+    // The frame ends: the GPU is idle, retired objects die and descriptor sets are recycled.
+    void endFrame();
+    void retire(std::function<void()> destroy);
+
+private:
+    void setName(VkObjectType type, uint64_t handle, const char* name);
+
+    std::unique_ptr<Context> context_;
+    std::unique_ptr<MemoryAllocator> memory_;
+    std::vector<std::function<void()>> retired_;
+    struct PendingUpload {
+        BufferPtr staging;
+        BufferPtr destination;
+        VkDeviceSize size;
+    };
+    std::vector<PendingUpload> pendingUploads_;
+    VkSampler linearClamp_ = VK_NULL_HANDLE;
+    VkSampler nearestClamp_ = VK_NULL_HANDLE;
+    VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
+    PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
+};
+
+}  // namespace obscura::gpu

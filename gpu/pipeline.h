@@ -1,0 +1,94 @@
+// Compute and graphics pipelines built from embedded SPIR-V, with one descriptor set whose
+// layout each pass declares, and a small writer that fills a per-frame set and binds it.
+#pragma once
+
+#include "gpu/device.h"
+
+#include <string>
+#include <vector>
+
+namespace obscura::gpu {
+
+struct BindingDesc {
+    uint32_t binding;
+    VkDescriptorType type;
+};
+
+struct VertexAttribute {
+    uint32_t location;
+    VkFormat format;
+    uint32_t offset;
+};
+
+struct GraphicsPipelineDesc {
+    std::string vertexShader;
+    std::string fragmentShader;
+    std::vector<BindingDesc> bindings;
+    uint32_t pushConstantSize = 0;
+    uint32_t vertexStride = 0;
+    std::vector<VertexAttribute> vertexAttributes;
+    std::vector<VkFormat> colorFormats;
+    VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    bool depthTest = true;
+    bool depthWrite = true;
+    VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
+};
+
+struct ComputePipelineDesc {
+    std::string shader;
+    std::vector<BindingDesc> bindings;
+    uint32_t pushConstantSize = 0;
+};
+
+class Pipeline {
+public:
+    Pipeline(Device& device, const ComputePipelineDesc& desc);
+    Pipeline(Device& device, const GraphicsPipelineDesc& desc);
+    ~Pipeline();
+    Pipeline(const Pipeline&) = delete;
+    Pipeline& operator=(const Pipeline&) = delete;
+
+    VkPipeline vk() const { return pipeline_; }
+    VkPipelineLayout layout() const { return layout_; }
+    VkDescriptorSetLayout setLayout() const { return setLayout_; }
+    VkPipelineBindPoint bindPoint() const { return bindPoint_; }
+    const std::vector<BindingDesc>& bindings() const { return bindings_; }
+
+private:
+    void createLayout(const std::vector<BindingDesc>& bindings, uint32_t pushConstantSize, VkShaderStageFlags stages);
+    VkShaderModule loadModule(const std::string& name);
+
+    Device& device_;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+    VkPipelineBindPoint bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
+    std::vector<BindingDesc> bindings_;
+};
+
+// Fills a fresh per-frame descriptor set for `pipeline` and binds it. Every binding the pipeline
+// declares must be written: a missing resource is an error, not a silently black pass.
+class DescriptorWriter {
+public:
+    DescriptorWriter(Device& device, const Pipeline& pipeline);
+    DescriptorWriter& sampled(uint32_t binding, VkImageView view, VkSampler sampler,
+                              VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    DescriptorWriter& storageImage(uint32_t binding, VkImageView view);
+    DescriptorWriter& buffer(uint32_t binding, VkBuffer buffer, VkDeviceSize offset = 0,
+                             VkDeviceSize range = VK_WHOLE_SIZE);
+    void bind(VkCommandBuffer cmd);
+
+private:
+    Device& device_;
+    const Pipeline& pipeline_;
+    std::vector<VkWriteDescriptorSet> writes_;
+    std::vector<VkDescriptorImageInfo> images_;
+    std::vector<VkDescriptorBufferInfo> buffers_;
+    std::vector<uint32_t> written_;
+};
+
+// Dispatch enough 8x8 groups to cover width x height.
+void dispatch2D(VkCommandBuffer cmd, uint32_t width, uint32_t height, uint32_t groupSize = 8);
+
+}  // namespace obscura::gpu

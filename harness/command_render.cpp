@@ -1,0 +1,135 @@
+#include "harness/aov_output.h"
+#include "harness/commands.h"
+#include "harness/exit_codes.h"
+#include "harness/session.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+namespace obscura::harness {
+namespace {
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// "####" (any run of #) becomes the zero-padded frame number.
+std::string framePath(const std::string& pattern, double frame) {
+    auto first = pattern.find('#');
+    if (first == std::string::npos) return pattern;
+    auto last = pattern.find_first_not_of('#', first);
+    size_t width = (last == std::string::npos ? pattern.size() : last) - first;
+    char number[64];
+    std::snprintf(number, sizeof(number), "%0*lld", int(width), static_cast<long long>(std::llround(frame)));
+    return pattern.substr(0, first) + number + (last == std::string::npos ? "" : pattern.substr(last));
+}
+
+std::variant<std::vector<double>, std::string> frameList(const RenderOptions& o, const usda::StageMetadata& meta) {
+    if (!o.frames.empty()) {
+        auto dash = o.frames.find('-', 1);
+        char* end = nullptr;
+        double a = std::strtod(o.frames.c_str(), &end);
+        double b = dash == std::string::npos ? a : std::strtod(o.frames.c_str() + dash + 1, &end);
+        if (!end || *end != '\0' || b < a) return "--frames expects A-B with A <= B, got '" + o.frames + "'";
+        std::vector<double> frames;
+        for (double f = a; f <= b; f += 1.0) frames.push_back(f);
+        return frames;
+    }
+    if (o.frame) return std::vector<double>{*o.frame};
+    return std::vector<double>{meta.startTimeCode.value_or(0.0)};
+}
+
+DepthConversion depthConversion(const usda::Stage& stage, const std::string& cameraPath, double time) {
+    DepthConversion c;
+    const usda::Prim* cam = stage.find(cameraPath);
+    if (!cam) return c;
+    if (const auto* a = cam->attribute("clippingRange"))
+        if (auto v = a->evaluate(time); v && v->numbers.size() == 2) c.nearClip = v->numbers[0], c.farClip = v->numbers[1];
+    if (const auto* a = cam->attribute("projection"))
+        if (auto v = a->evaluate(time); v && !v->strings.empty()) c.orthographic = v->strings[0] == "orthographic";
+    return c;
+}
+
+}  // namespace
+
+int runRender(const RenderOptions& o) {
+    bool exr = endsWith(o.output, ".exr"), png = endsWith(o.output, ".png");
+    if (!exr && !png) {
+        std::fprintf(stderr, "obscura: output must end in .exr or .png: %s\n", o.output.c_str());
+        return kExitUsage;
+    }
+    if (o.width <= 0 || o.height <= 0) {
+        std::fprintf(stderr, "obscura: --width and --height must be positive\n");
+        return kExitUsage;
+    }
+    auto opened = Session::open(o.scene);
+    if (auto* error = std::get_if<SessionError>(&opened)) {
+        std::fprintf(stderr, "obscura: %s\n", error->message.c_str());
+        return error->exitCode;
+    }
+    Session& session = *std::get<std::unique_ptr<Session>>(opened);
+    if (auto problem = session.applySettings(o.settings)) {
+        std::fprintf(stderr, "obscura: %s\n", problem->message.c_str());
+        return problem->exitCode;
+    }
+    std::string camera = o.camera.empty() ? session.host().defaultCamera() : o.camera;
+    if (camera.empty()) {
+        std::fprintf(stderr, "obscura: %s has no camera (UsdGeomCamera); add one or pass --camera\n", o.scene.c_str());
+        return kExitBadInput;
+    }
+    auto frames = frameList(o, session.stage().metadata());
+    if (auto* problem = std::get_if<std::string>(&frames)) {
+        std::fprintf(stderr, "obscura: %s\n", problem->c_str());
+        return kExitUsage;
+    }
+
+    std::vector<std::string> aovs = png ? std::vector<std::string>{"display"}
+                                        : (o.aovs.empty() ? std::vector<std::string>{"color"} : o.aovs);
+    std::vector<std::string> buffers;
+    std::vector<ObscuraAovBinding> bindings;
+    for (const auto& aov : aovs) buffers.push_back(session.host().addRenderBuffer(session.api(), session.delegate(), aov, o.width, o.height));
+    for (size_t i = 0; i < aovs.size(); ++i) bindings.push_back({aovs[i].c_str(), buffers[i].c_str()});
+
+    int exitCode = kExitOk;
+    const auto& frameTimes = std::get<std::vector<double>>(frames);
+    for (size_t fi = 0; fi < frameTimes.size(); ++fi) {
+        double frame = frameTimes[fi];
+        if (fi > 0) session.host().markTimeVarying(session.api(), session.delegate());
+        ObscuraRenderPassDesc desc{OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC, nullptr, sizeof(ObscuraRenderPassDesc),
+                                   camera.c_str(), {0, 0, o.width, o.height}, frame,
+                                   static_cast<uint32_t>(bindings.size()), bindings.data()};
+        ObscuraStatus status = session.api().render(session.delegate(), &desc);
+        if (status == OBSCURA_ERROR_BAD_PRIM_DATA) {
+            exitCode = kExitBadInput;  // the frame still renders without the bad prims
+        } else if (status != OBSCURA_OK) {
+            std::fprintf(stderr, "obscura: render failed: %s\n", session.lastError().c_str());
+            return status == OBSCURA_ERROR_NOT_FOUND || status == OBSCURA_ERROR_INVALID_ARGUMENT ? kExitBadInput
+                                                                                                  : kExitPluginOrDevice;
+        }
+        std::vector<MappedAov> mapped;
+        for (size_t i = 0; i < aovs.size(); ++i) {
+            MappedAov m{aovs[i], {}};
+            m.buffer.sType = OBSCURA_STRUCTURE_TYPE_MAPPED_BUFFER;
+            m.buffer.structSize = sizeof(ObscuraMappedBuffer);
+            if (session.api().mapRenderBuffer(session.delegate(), buffers[i].c_str(), &m.buffer) != OBSCURA_OK) {
+                std::fprintf(stderr, "obscura: %s\n", session.lastError().c_str());
+                return kExitPluginOrDevice;
+            }
+            mapped.push_back(m);
+        }
+        std::string path = framePath(o.output, frame);
+        std::string problem = png ? writePngDisplay(path, mapped[0].buffer)
+                                  : writeExrAovs(path, mapped, depthConversion(session.stage(), camera, frame));
+        for (const auto& b : buffers) session.api().unmapRenderBuffer(session.delegate(), b.c_str());
+        if (!problem.empty()) {
+            std::fprintf(stderr, "obscura: cannot write %s: %s\n", path.c_str(), problem.c_str());
+            return kExitBadInput;
+        }
+        if (frameTimes.size() > 1)
+            std::fprintf(stderr, "obscura: frame %g (%zu/%zu) -> %s\n", frame, fi + 1, frameTimes.size(), path.c_str());
+    }
+    return exitCode;
+}
+
+}  // namespace obscura::harness

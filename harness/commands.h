@@ -1,0 +1,44 @@
+// The harness's subcommands (DESIGN.md, CLI contract). main.cpp parses the command line.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace obscura::harness {
+
+struct RenderOptions {
+    std::string scene;
+    std::string output;
+    std::string camera;
+    std::optional<double> frame;
+    std::string frames;  // "A-B"
+    int width = 960;
+    int height = 540;
+    std::vector<std::string> aovs;
+    std::vector<std::string> settings;
+};
+
+struct CompareOptions {
+    std::string a;
+    std::string b;
+    std::optional<double> psnrMin;
+    std::optional<double> ssimMin;
+    std::string diff;
+};
+
+struct BenchOptions {
+    std::string scene;
+    int frames = 50;
+    int width = 1920;
+    int height = 1080;
+    bool json = false;
+    std::vector<std::string> settings;
+};
+
+int runInfo();
+int runRender(const RenderOptions& options);
+int runCompare(const CompareOptions& options);
+int runBench(const BenchOptions& options);
+
+}  // namespace obscura::harness

@@ -1,0 +1,57 @@
+// obscura: the standalone host. Loads the renderer plugin through its C ABI and renders,
+// compares and benchmarks scenes (DESIGN.md, CLI contract). CLI11 lives in this file only.
+#include "harness/commands.h"
+#include "harness/exit_codes.h"
+
+#include <CLI/CLI.hpp>
+
+int main(int argc, char** argv) {
+    using namespace obscura::harness;
+    CLI::App app{"obscura: render USD scenes with the Obscura render delegate plugin"};
+    app.require_subcommand(1);
+
+    app.add_subcommand("info", "plugins found, ABI versions, Vulkan devices, render settings");
+
+    RenderOptions render;
+    double frame = 0;
+    auto* r = app.add_subcommand("render", "render a scene to an image");
+    r->add_option("scene", render.scene, "scene file (.usda)")->required();
+    r->add_option("-o,--output", render.output, "output .exr (all AOVs, linear) or .png (display); #### = frame")->required();
+    r->add_option("--camera", render.camera, "camera prim path (default: the first camera)");
+    auto* frameOpt = r->add_option("--frame", frame, "time code to render");
+    r->add_option("--frames", render.frames, "range A-B of frames");
+    r->add_option("--width", render.width, "image width in pixels")->check(CLI::PositiveNumber);
+    r->add_option("--height", render.height, "image height in pixels")->check(CLI::PositiveNumber);
+    r->add_option("--aov", render.aovs, "AOVs for .exr: color,depth,normal,albedo,primId")->delimiter(',');
+    r->add_option("--set", render.settings, "render setting key=value (repeatable)");
+    frameOpt->excludes(r->get_option("--frames"));
+
+    CompareOptions compare;
+    auto* c = app.add_subcommand("compare", "compare two images; exit 1 below a threshold");
+    c->add_option("a", compare.a, "first image")->required();
+    c->add_option("b", compare.b, "second image")->required();
+    c->add_option("--psnr-min", compare.psnrMin, "fail below this PSNR (dB)");
+    c->add_option("--ssim-min", compare.ssimMin, "fail below this SSIM");
+    c->add_option("--diff", compare.diff, "write a difference image (PNG)");
+
+    BenchOptions bench;
+    auto* b = app.add_subcommand("bench", "per-pass GPU timestamp medians");
+    b->add_option("scene", bench.scene, "scene file (.usda)")->required();
+    b->add_option("--frames", bench.frames, "measured frames")->check(CLI::PositiveNumber);
+    b->add_option("--width", bench.width, "image width")->check(CLI::PositiveNumber);
+    b->add_option("--height", bench.height, "image height")->check(CLI::PositiveNumber);
+    b->add_flag("--json", bench.json, "machine-readable output");
+    b->add_option("--set", bench.settings, "render setting key=value (repeatable)");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int code = app.exit(e);
+        return code == 0 ? kExitOk : kExitUsage;
+    }
+    if (*frameOpt) render.frame = frame;
+    if (app.got_subcommand("info")) return runInfo();
+    if (app.got_subcommand("render")) return runRender(render);
+    if (app.got_subcommand("compare")) return runCompare(compare);
+    return runBench(bench);
+}

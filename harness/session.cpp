@@ -1,0 +1,92 @@
+#include "harness/session.h"
+
+#include "harness/exit_codes.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace obscura::harness {
+
+std::variant<LoadedPlugin, SessionError> loadBestPlugin() {
+    const char* env = std::getenv("OBSCURA_PLUGINPATH");
+    DiscoveryResult found = discoverPlugins(env ? env : "", executableDir() / ".." / "plugin");
+    for (const auto& problem : found.problems) std::fprintf(stderr, "obscura: warning: %s\n", problem.c_str());
+    if (found.plugins.empty())
+        return SessionError{kExitPluginOrDevice,
+                            "no renderer plugin found (searched OBSCURA_PLUGINPATH and the plugin folder beside the "
+                            "obscura executable)"};
+    std::string reasons;
+    for (const auto& info : found.plugins) {
+        auto loaded = loadPlugin(info);
+        if (auto* plugin = std::get_if<LoadedPlugin>(&loaded)) return std::move(*plugin);
+        reasons += "\n  " + std::get<std::string>(loaded);
+    }
+    return SessionError{kExitPluginOrDevice, "no plugin could be loaded:" + reasons};
+}
+
+void Session::logToStderr(void* user, ObscuraLogLevel level, const char* message) {
+    auto* self = static_cast<Session*>(user);
+    if (level == OBSCURA_LOG_ERROR) ++self->loggedErrors_;
+    if (level < OBSCURA_LOG_WARNING) return;
+    std::fprintf(stderr, "obscura: %s: %s\n", level == OBSCURA_LOG_ERROR ? "error" : "warning", message);
+}
+
+std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::string& scenePath) {
+    std::unique_ptr<Session> s(new Session());
+    auto opened = usda::Stage::open(scenePath);
+    if (auto* error = std::get_if<usda::Error>(&opened)) return SessionError{kExitBadInput, error->str()};
+    s->stage_ = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));
+    for (const auto& w : s->stage_->warnings())
+        std::fprintf(stderr, "obscura: warning: %s:%d:%d: %s\n", w.where.file.c_str(), w.where.line, w.where.column,
+                     w.message.c_str());
+
+    auto plugin = loadBestPlugin();
+    if (auto* error = std::get_if<SessionError>(&plugin)) return *error;
+    s->plugin_.emplace(std::move(std::get<LoadedPlugin>(plugin)));
+
+    ObscuraDelegateCreateInfo info{OBSCURA_STRUCTURE_TYPE_DELEGATE_CREATE_INFO, nullptr, sizeof(ObscuraDelegateCreateInfo),
+                                   nullptr, -1, &Session::logToStderr, s.get()};
+    if (s->api().createDelegate(&info, &s->delegate_) != OBSCURA_OK)
+        return SessionError{kExitPluginOrDevice, std::string("cannot create a delegate: ") + s->api().lastError(nullptr)};
+
+    s->host_ = std::make_unique<UsdSceneHost>(*s->stage_);
+    if (s->api().setSceneDelegate(s->delegate_, &s->host_->sceneDelegate()) != OBSCURA_OK ||
+        s->host_->populate(s->api(), s->delegate_) != OBSCURA_OK)
+        return SessionError{kExitPluginOrDevice, s->lastError()};
+    for (const auto& m : s->host_->messages()) std::fprintf(stderr, "obscura: warning: %s\n", m.text.c_str());
+    return s;
+}
+
+Session::~Session() {
+    if (delegate_) api().destroyDelegate(delegate_);
+}
+
+std::optional<SessionError> Session::applySettings(const std::vector<std::string>& settings) {
+    for (const auto& kv : settings) {
+        auto eq = kv.find('=');
+        if (eq == std::string::npos || eq == 0)
+            return SessionError{kExitUsage, "--set expects key=value, got '" + kv + "'"};
+        std::string key = kv.substr(0, eq), text = kv.substr(eq + 1);
+        ObscuraValue value{};
+        double number = 0;
+        int32_t flag = 0;
+        std::string token;
+        const char* tokenPtr = nullptr;
+        char* end = nullptr;
+        if (text == "true" || text == "on" || text == "false" || text == "off") {
+            flag = (text == "true" || text == "on") ? 1 : 0;
+            value = {OBSCURA_VALUE_BOOL, 0, 1, &flag};
+        } else if (number = std::strtod(text.c_str(), &end); end && *end == '\0' && !text.empty()) {
+            value = {OBSCURA_VALUE_DOUBLE, 0, 1, &number};
+        } else {
+            token = text;
+            tokenPtr = token.c_str();
+            value = {OBSCURA_VALUE_TOKEN, 0, 1, &tokenPtr};
+        }
+        if (api().setRenderSetting(delegate_, key.c_str(), &value) != OBSCURA_OK)
+            return SessionError{kExitUsage, "--set " + kv + ": " + lastError()};
+    }
+    return std::nullopt;
+}
+
+}  // namespace obscura::harness

@@ -1,0 +1,50 @@
+// What render and bench share: find and load the plugin, create a delegate that logs to
+// stderr, open a scene and populate the delegate through the public ABI.
+#pragma once
+
+#include "harness/plugin_loader.h"
+#include "harness/usd_scene_host.h"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace obscura::harness {
+
+struct SessionError {
+    int exitCode;
+    std::string message;
+};
+
+class Session {
+public:
+    // Loads the highest-priority plugin found (OBSCURA_PLUGINPATH, then beside the harness).
+    static std::variant<std::unique_ptr<Session>, SessionError> open(const std::string& scenePath);
+    ~Session();
+
+    const ObscuraApiV1& api() const { return plugin_->api(); }
+    ObscuraDelegate delegate() const { return delegate_; }
+    UsdSceneHost& host() { return *host_; }
+    const usda::Stage& stage() const { return *stage_; }
+    std::string lastError() const { return api().lastError(delegate_); }
+    uint32_t loggedErrors() const { return loggedErrors_; }
+
+    // Applies "key=value" settings; returns the first problem.
+    std::optional<SessionError> applySettings(const std::vector<std::string>& settings);
+
+private:
+    Session() = default;
+    static void logToStderr(void* user, ObscuraLogLevel level, const char* message);
+
+    std::optional<LoadedPlugin> plugin_;
+    std::unique_ptr<usda::Stage> stage_;
+    std::unique_ptr<UsdSceneHost> host_;
+    ObscuraDelegate delegate_ = nullptr;
+    uint32_t loggedErrors_ = 0;
+};
+
+// Loads the best plugin without a scene (for `obscura info`).
+std::variant<LoadedPlugin, SessionError> loadBestPlugin();
+
+}  // namespace obscura::harness

@@ -1,0 +1,273 @@
+#include "harness/usd_scene_host.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace obscura::harness {
+namespace {
+
+// USD prim type -> Obscura prim type.
+const std::map<std::string, std::string> kPrimTypes = {
+    {"Mesh", "mesh"},
+    {"Camera", "camera"},
+    {"DistantLight", "distantLight"},
+    {"SphereLight", "sphereLight"},
+    {"Material", "material"},
+};
+
+// Types that organise a scene and are not drawn themselves.
+const std::set<std::string> kStructuralTypes = {"", "Xform", "Scope", "Shader", "NodeGraph", "GeomSubset",
+                                                "RenderSettings", "RenderProduct", "RenderVar"};
+
+ObscuraDirtyBits dirtyBitFor(const std::string& attribute) {
+    if (attribute == "points") return OBSCURA_DIRTY_POINTS;
+    if (attribute == "normals") return OBSCURA_DIRTY_NORMALS;
+    if (attribute.rfind("primvars:", 0) == 0) return OBSCURA_DIRTY_PRIMVAR;
+    if (attribute == "faceVertexCounts" || attribute == "faceVertexIndices") return OBSCURA_DIRTY_TOPOLOGY;
+    if (attribute == "visibility") return OBSCURA_DIRTY_VISIBILITY;
+    if (attribute.rfind("xformOp", 0) == 0) return OBSCURA_DIRTY_TRANSFORM;
+    return OBSCURA_DIRTY_PARAMS;
+}
+
+bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+}  // namespace
+
+UsdSceneHost::UsdSceneHost(const usda::Stage& stage) : stage_(stage) {
+    sceneDelegate_.sType = OBSCURA_STRUCTURE_TYPE_SCENE_DELEGATE;
+    sceneDelegate_.structSize = sizeof(ObscuraSceneDelegate);
+    sceneDelegate_.userData = this;
+    sceneDelegate_.getValue = &UsdSceneHost::getValueThunk;
+    sceneDelegate_.getInterpolation = &UsdSceneHost::getInterpolationThunk;
+    sceneDelegate_.sampleTransform = &UsdSceneHost::sampleTransformThunk;
+}
+
+void UsdSceneHost::warnOnce(const std::string& key, const std::string& text) {
+    if (warned_.insert(key).second) messages_.push_back({false, text});
+}
+
+ObscuraStatus UsdSceneHost::populate(const ObscuraApiV1& api, ObscuraDelegate delegate) {
+    std::map<std::string, int> unsupported;
+    for (const usda::Prim* prim : stage_.prims()) {
+        auto it = kPrimTypes.find(prim->typeName);
+        if (it == kPrimTypes.end()) {
+            if (!kStructuralTypes.count(prim->typeName)) ++unsupported[prim->typeName];
+            continue;
+        }
+        if (it->second == "material") {
+            // UsdShade: outputs:surface connects to a UsdPreviewSurface shader.
+            const usda::Attribute* surface = prim->attribute("outputs:surface");
+            const usda::Prim* shader = nullptr;
+            if (surface && surface->connection) {
+                std::string target = surface->connection->substr(0, surface->connection->find('.'));
+                shader = stage_.find(target);
+            }
+            const usda::Attribute* id = shader ? shader->attribute("info:id") : nullptr;
+            auto idValue = id ? id->evaluate(0) : std::nullopt;
+            if (!shader || !idValue || idValue->strings.empty() || idValue->strings[0] != "UsdPreviewSurface") {
+                warnOnce("material:" + prim->path, prim->path + ": no UsdPreviewSurface on outputs:surface; material skipped");
+                continue;
+            }
+            surfaces_[prim->path] = shader;
+        }
+        ObscuraStatus s = api.insertPrim(delegate, it->second.c_str(), prim->path.c_str());
+        if (s != OBSCURA_OK) return s;
+        primTypes_[prim->path] = it->second;
+    }
+    for (const auto& [type, count] : unsupported)
+        warnOnce("type:" + type, "prim type '" + type + "' is not supported yet; " + std::to_string(count) +
+                                     " prim(s) skipped");
+    return OBSCURA_OK;
+}
+
+ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDelegate delegate) {
+    for (const auto& [path, type] : primTypes_) {
+        const usda::Prim* prim = stage_.find(path);
+        ObscuraDirtyBits bits = 0;
+        if (!stage_.transformSampleTimes(*prim).empty()) bits |= OBSCURA_DIRTY_TRANSFORM;
+        const usda::Prim* valuesFrom = type == "material" ? surfaces_.at(path) : prim;
+        for (const auto& [name, attr] : valuesFrom->attributes)
+            if (attr.isAnimated()) bits |= dirtyBitFor(name);
+        if (bits) {
+            ObscuraStatus s = api.markDirty(delegate, path.c_str(), bits);
+            if (s != OBSCURA_OK) return s;
+        }
+    }
+    return OBSCURA_OK;
+}
+
+std::string UsdSceneHost::addRenderBuffer(const ObscuraApiV1& api, ObscuraDelegate delegate, const std::string& aov,
+                                          int width, int height) {
+    std::string path = "/Render/Buffers/" + aov;
+    std::string format = aov == "color"     ? "float32Vec4"
+                         : aov == "depth"   ? "float32"
+                         : aov == "primId"  ? "int32"
+                         : aov == "display" ? "unorm8Vec4"
+                                            : "float32Vec3";
+    bool exists = renderBuffers_.count(path) > 0;
+    renderBuffers_[path] = {width, height, format};
+    if (!exists) api.insertPrim(delegate, "renderBuffer", path.c_str());
+    else api.markDirty(delegate, path.c_str(), OBSCURA_DIRTY_PARAMS);
+    return path;
+}
+
+std::string UsdSceneHost::defaultCamera() const {
+    for (const usda::Prim* prim : stage_.prims())
+        if (prim->typeName == "Camera") return prim->path;
+    return {};
+}
+
+const usda::Attribute* UsdSceneHost::resolveAttribute(const std::string& path, const std::string& attribute) const {
+    auto surface = surfaces_.find(path);
+    if (surface != surfaces_.end()) return surface->second->attribute(attribute);
+    const usda::Prim* prim = stage_.find(path);
+    if (!prim) return nullptr;
+    if (const usda::Attribute* a = prim->attribute(attribute)) return a;
+    // UsdLux before 21.02 named light inputs without the "inputs:" prefix.
+    if (startsWith(attribute, "inputs:")) return prim->attribute(attribute.substr(7));
+    return nullptr;
+}
+
+ObscuraStatus UsdSceneHost::fill(const usda::Value& v, ObscuraValue* out) {
+    out->isArray = v.isArray ? 1 : 0;
+    out->count = v.size();
+    const std::string& t = v.typeName;
+    if (!v.strings.empty() || t == "token" || t == "string" || t == "asset") {
+        strings_ = v.strings;
+        stringPointers_.clear();
+        for (const auto& s : strings_) stringPointers_.push_back(s.c_str());
+        out->type = OBSCURA_VALUE_TOKEN;
+        out->data = stringPointers_.data();
+        return OBSCURA_OK;
+    }
+    bool integer = startsWith(t, "int") || startsWith(t, "uint") || t == "uchar";
+    if (t == "bool" || (integer && v.tupleSize == 1)) {
+        ints_.assign(v.numbers.begin(), v.numbers.end());
+        std::transform(v.numbers.begin(), v.numbers.end(), ints_.begin(), [](double d) { return int32_t(d); });
+        out->type = t == "bool" ? OBSCURA_VALUE_BOOL : OBSCURA_VALUE_INT;
+        out->data = ints_.data();
+        return OBSCURA_OK;
+    }
+    if (integer && v.tupleSize == 2) {
+        ints_.resize(v.numbers.size());
+        std::transform(v.numbers.begin(), v.numbers.end(), ints_.begin(), [](double d) { return int32_t(d); });
+        out->type = OBSCURA_VALUE_INT2;
+        out->data = ints_.data();
+        return OBSCURA_OK;
+    }
+    if (v.tupleSize == 16 || ((t == "double" || t == "timecode") && v.tupleSize == 1)) {
+        doubles_ = v.numbers;
+        out->type = v.tupleSize == 16 ? OBSCURA_VALUE_MATRIX4D : OBSCURA_VALUE_DOUBLE;
+        out->data = doubles_.data();
+        return OBSCURA_OK;
+    }
+    floats_.resize(v.numbers.size());
+    std::transform(v.numbers.begin(), v.numbers.end(), floats_.begin(), [](double d) { return float(d); });
+    switch (v.tupleSize) {
+        case 1: out->type = OBSCURA_VALUE_FLOAT; break;
+        case 2: out->type = OBSCURA_VALUE_FLOAT2; break;
+        case 3: out->type = OBSCURA_VALUE_FLOAT3; break;
+        case 4: out->type = OBSCURA_VALUE_FLOAT4; break;
+        default: return OBSCURA_ERROR_INVALID_ARGUMENT;
+    }
+    out->data = floats_.data();
+    return OBSCURA_OK;
+}
+
+ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string& attribute, double time,
+                                     ObscuraValue* out) {
+    auto rb = renderBuffers_.find(path);
+    if (rb != renderBuffers_.end()) {
+        if (attribute == "dimensions") {
+            ints_ = {rb->second.width, rb->second.height};
+            *out = {OBSCURA_VALUE_INT2, 0, 1, ints_.data()};
+            return OBSCURA_OK;
+        }
+        if (attribute == "format") {
+            strings_ = {rb->second.format};
+            stringPointers_ = {strings_[0].c_str()};
+            *out = {OBSCURA_VALUE_TOKEN, 0, 1, stringPointers_.data()};
+            return OBSCURA_OK;
+        }
+        return OBSCURA_ERROR_NOT_FOUND;
+    }
+    const usda::Prim* prim = stage_.find(path);
+    if (!prim) return OBSCURA_ERROR_NOT_FOUND;
+    if (attribute == "visibility") {
+        strings_ = {stage_.isVisible(*prim, time) ? "inherited" : "invisible"};
+        stringPointers_ = {strings_[0].c_str()};
+        *out = {OBSCURA_VALUE_TOKEN, 0, 1, stringPointers_.data()};
+        return OBSCURA_OK;
+    }
+    if (attribute == "material:binding") {
+        // Bindings are inherited down the namespace: the nearest ancestor's binding applies.
+        for (const usda::Prim* p = prim; p; p = p->parent) {
+            const usda::Relationship* rel = p->relationship("material:binding");
+            if (rel && !rel->targets.empty()) {
+                strings_ = {rel->targets.front()};
+                stringPointers_ = {strings_[0].c_str()};
+                *out = {OBSCURA_VALUE_PATH, 0, 1, stringPointers_.data()};
+                return OBSCURA_OK;
+            }
+        }
+        return OBSCURA_ERROR_NOT_FOUND;
+    }
+    const usda::Attribute* a = resolveAttribute(path, attribute);
+    if (!a) return OBSCURA_ERROR_NOT_FOUND;
+    if (a->connection) {
+        warnOnce("connection:" + path + attribute,
+                 path + ": " + attribute + " is connected to a shading network, which is not supported yet; "
+                                           "its authored value or the default is used");
+    }
+    auto value = a->evaluate(time);
+    // A declared but valueless attribute is unauthored; an empty array is an authored value.
+    if (!value || (value->empty() && !value->isArray)) return OBSCURA_ERROR_NOT_FOUND;
+    return fill(*value, out);
+}
+
+ObscuraStatus UsdSceneHost::getValueThunk(void* user, const char* path, const char* attribute, double time,
+                                          ObscuraValue* out) {
+    if (!user || !path || !attribute || !out) return OBSCURA_ERROR_INVALID_ARGUMENT;
+    return static_cast<UsdSceneHost*>(user)->getValue(path, attribute, time, out);
+}
+
+ObscuraStatus UsdSceneHost::getInterpolationThunk(void* user, const char* path, const char* attribute,
+                                                  ObscuraInterpolation* out) {
+    auto* self = static_cast<UsdSceneHost*>(user);
+    const usda::Attribute* a = self->resolveAttribute(path, attribute);
+    if (!a) return OBSCURA_ERROR_NOT_FOUND;
+    auto it = a->metadata.find("interpolation");
+    if (it == a->metadata.end() || it->second.strings.empty()) return OBSCURA_ERROR_NOT_FOUND;
+    const std::string& i = it->second.strings[0];
+    *out = i == "constant"      ? OBSCURA_INTERPOLATION_CONSTANT
+           : i == "uniform"     ? OBSCURA_INTERPOLATION_UNIFORM
+           : i == "varying"     ? OBSCURA_INTERPOLATION_VARYING
+           : i == "faceVarying" ? OBSCURA_INTERPOLATION_FACE_VARYING
+                                : OBSCURA_INTERPOLATION_VERTEX;
+    return OBSCURA_OK;
+}
+
+ObscuraStatus UsdSceneHost::sampleTransformThunk(void* user, const char* path, double t0, double t1,
+                                                 uint32_t maxSamples, double* times, double* matrices,
+                                                 uint32_t* count) {
+    auto* self = static_cast<UsdSceneHost*>(user);
+    const usda::Prim* prim = self->stage_.find(path);
+    if (!prim || maxSamples == 0) return OBSCURA_ERROR_NOT_FOUND;
+    // The interval's ends and every authored sample time strictly inside it.
+    std::vector<double> sampleTimes = {t0};
+    for (double t : self->stage_.transformSampleTimes(*prim))
+        if (t > t0 && t < t1) sampleTimes.push_back(t);
+    if (t1 > t0) sampleTimes.push_back(t1);
+    if (sampleTimes.size() > maxSamples) {
+        sampleTimes.erase(sampleTimes.begin() + (maxSamples - 1), sampleTimes.end() - 1);
+    }
+    for (size_t i = 0; i < sampleTimes.size(); ++i) {
+        times[i] = sampleTimes[i];
+        auto m = self->stage_.worldTransform(*prim, sampleTimes[i]);
+        std::copy(m.begin(), m.end(), matrices + 16 * i);
+    }
+    *count = static_cast<uint32_t>(sampleTimes.size());
+    return OBSCURA_OK;
+}
+
+}  // namespace obscura::harness

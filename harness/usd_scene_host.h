@@ -1,0 +1,73 @@
+// The harness as a Hydra host: a composed USD stage presented to the plugin as prims, with a
+// scene-delegate callback table that answers the plugin's pulls (attribute values at a time,
+// transforms sampled over an interval). It uses only the public ABI.
+#pragma once
+
+#include "harness/usda/stage.h"
+
+#include <obscura/obscura.h>
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace obscura::harness {
+
+struct HostMessage {
+    bool error;
+    std::string text;
+};
+
+class UsdSceneHost {
+public:
+    explicit UsdSceneHost(const usda::Stage& stage);
+
+    // Inserts every supported prim into the delegate; unknown prim types are reported once each.
+    ObscuraStatus populate(const ObscuraApiV1& api, ObscuraDelegate delegate);
+    // Marks dirty the prims whose values change between two time codes (for --frames).
+    ObscuraStatus markTimeVarying(const ObscuraApiV1& api, ObscuraDelegate delegate);
+    const ObscuraSceneDelegate& sceneDelegate() const { return sceneDelegate_; }
+
+    // Render buffers: one prim per AOV under /Render/Buffers, sized width x height.
+    std::string addRenderBuffer(const ObscuraApiV1& api, ObscuraDelegate delegate, const std::string& aov,
+                                int width, int height);
+
+    // The first camera of the stage, or "" if there is none.
+    std::string defaultCamera() const;
+    const usda::Stage& stage() const { return stage_; }
+    const std::vector<HostMessage>& messages() const { return messages_; }
+
+private:
+    static ObscuraStatus getValueThunk(void* user, const char* path, const char* attribute, double time,
+                                       ObscuraValue* out);
+    static ObscuraStatus getInterpolationThunk(void* user, const char* path, const char* attribute,
+                                               ObscuraInterpolation* out);
+    static ObscuraStatus sampleTransformThunk(void* user, const char* path, double t0, double t1, uint32_t maxSamples,
+                                              double* times, double* matrices, uint32_t* count);
+    ObscuraStatus getValue(const std::string& path, const std::string& attribute, double time, ObscuraValue* out);
+    ObscuraStatus fill(const usda::Value& value, ObscuraValue* out);
+    // The attribute a delegate name maps to on the USD prim (materials read their surface shader).
+    const usda::Attribute* resolveAttribute(const std::string& path, const std::string& attribute) const;
+    void warnOnce(const std::string& key, const std::string& text);
+
+    const usda::Stage& stage_;
+    ObscuraSceneDelegate sceneDelegate_{};
+    std::map<std::string, std::string> primTypes_;        // delegate path -> delegate type
+    std::map<std::string, const usda::Prim*> surfaces_;   // material path -> UsdPreviewSurface shader
+    struct RenderBufferDesc {
+        int width, height;
+        std::string format;
+    };
+    std::map<std::string, RenderBufferDesc> renderBuffers_;
+    std::set<std::string> warned_;
+    std::vector<HostMessage> messages_;
+    // Storage that backs the last value returned (valid until the next callback, per the ABI).
+    std::vector<float> floats_;
+    std::vector<double> doubles_;
+    std::vector<int32_t> ints_;
+    std::vector<std::string> strings_;
+    std::vector<const char*> stringPointers_;
+};
+
+}  // namespace obscura::harness

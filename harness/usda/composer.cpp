@@ -1,0 +1,178 @@
+#include "harness/usda/composer.h"
+
+#include <map>
+#include <set>
+
+#include "harness/usda/sdf_path.h"
+
+namespace obscura::usda {
+
+namespace {
+
+// Paths authored in a node's layer stack, carried into the stage's namespace.
+ListOp<std::string> mapped(const ListOp<std::string>& op, const IndexNode& node) {
+    return op.transformed([&](const std::string& path) { return mapToRoot(node, path); });
+}
+
+std::vector<std::string> composeMappedPaths(const std::vector<std::pair<const ListOp<std::string>*, const IndexNode*>>& ops) {
+    std::vector<ListOp<std::string>> owned;
+    owned.reserve(ops.size());
+    for (const auto& [op, node] : ops) owned.push_back(mapped(*op, *node));
+    std::vector<const ListOp<std::string>*> pointers;
+    for (const auto& op : owned) pointers.push_back(&op);
+    return composeListOps(pointers);
+}
+
+// The strongest opinion for each key wins.
+void mergeMetadata(std::map<std::string, Value>& into, const std::map<std::string, Value>& weaker) {
+    for (const auto& [key, value] : weaker) into.emplace(key, value);
+}
+
+template <class Spec>
+using SpecsByName = std::map<std::string, std::vector<std::pair<const Spec*, const IndexNode*>>>;
+
+Attribute composeAttribute(const std::string& name, const std::vector<std::pair<const AttributeSpec*, const IndexNode*>>& specs) {
+    const AttributeSpec& strongest = *specs.front().first;
+    Attribute attr;
+    attr.name = name;
+    attr.typeName = strongest.typeName;
+    attr.isUniform = strongest.isUniform;
+    attr.isCustom = strongest.isCustom;
+    attr.where = strongest.where;
+    for (const auto& [spec, node] : specs) {
+        if (!spec->defaultValue) continue;
+        if (!spec->defaultValue->blocked) attr.defaultValue = *spec->defaultValue;
+        break;
+    }
+    for (const auto& [spec, node] : specs) {
+        if (!spec->timeSamples) continue;
+        attr.timeSamples = *spec->timeSamples;
+        break;
+    }
+    std::vector<std::pair<const ListOp<std::string>*, const IndexNode*>> connections;
+    for (const auto& [spec, node] : specs) {
+        connections.emplace_back(&spec->connections, node);
+        mergeMetadata(attr.metadata, spec->metadata);
+    }
+    const std::vector<std::string> sources = composeMappedPaths(connections);
+    if (!sources.empty()) attr.connection = sources.front();
+    return attr;
+}
+
+Relationship composeRelationship(const std::string& name,
+                                 const std::vector<std::pair<const RelationshipSpec*, const IndexNode*>>& specs) {
+    std::vector<std::pair<const ListOp<std::string>*, const IndexNode*>> targets;
+    for (const auto& [spec, node] : specs) targets.emplace_back(&spec->targets, node);
+    return Relationship{name, composeMappedPaths(targets)};
+}
+
+void readStageMetadata(const Layer& layer, StageMetadata& out) {
+    auto text = [&](const char* key) -> const std::string* {
+        const auto it = layer.metadata.find(key);
+        return it == layer.metadata.end() || it->second.strings.empty() ? nullptr : &it->second.strings.front();
+    };
+    auto number = [&](const char* key) -> std::optional<double> {
+        const auto it = layer.metadata.find(key);
+        if (it == layer.metadata.end() || it->second.numbers.empty()) return std::nullopt;
+        return it->second.numbers.front();
+    };
+    if (const std::string* upAxis = text("upAxis")) out.upAxis = *upAxis;
+    if (const std::string* defaultPrim = text("defaultPrim")) out.defaultPrim = *defaultPrim;
+    if (const std::string* doc = text("documentation")) out.doc = *doc;
+    if (auto value = number("metersPerUnit")) out.metersPerUnit = *value;
+    if (auto value = number("timeCodesPerSecond")) out.timeCodesPerSecond = *value;
+    if (auto value = number("framesPerSecond")) out.framesPerSecond = *value;
+    out.startTimeCode = number("startTimeCode");
+    out.endTimeCode = number("endTimeCode");
+}
+
+// Child names from weakest to strongest opinion, as Pcp orders them: a referenced asset's
+// children keep their order and local additions follow.
+template <class Range>
+std::vector<std::string> childNames(const Range& strongestFirstSpecs) {
+    std::vector<std::string> names;
+    std::set<std::string> seen;
+    for (auto it = strongestFirstSpecs.rbegin(); it != strongestFirstSpecs.rend(); ++it)
+        for (const auto& child : (*it)->children)
+            if (seen.insert(child->name).second) names.push_back(child->name);
+    return names;
+}
+
+}  // namespace
+
+std::variant<std::unique_ptr<Stage>, Error> Composer::compose(std::string_view rootText, const std::string& identifier) {
+    try {
+        Composer composer;
+        return composer.composeStage(composer.layers_.addRoot(rootText, identifier));
+    } catch (CompositionFailure& failure) {
+        return std::move(failure.error);
+    }
+}
+
+std::unique_ptr<Stage> Composer::composeStage(const Layer& rootLayer) {
+    rootStack_ = &layers_.stackOf(rootLayer);
+    std::unique_ptr<Stage> stage(new Stage());
+    readStageMetadata(rootLayer, stage->metadata_);
+    // Not `= "/"`: assigning that literal trips a GCC 12 -Wrestrict false positive at -O2.
+    stage->root_->path = std::string(1, '/');
+    stage->primsByPath_["/"] = stage->root_.get();
+    std::vector<const PrimSpec*> roots;
+    for (const Layer* layer : rootStack_->layers) roots.push_back(&layer->pseudoRoot);
+    composeChildren(*stage, *stage->root_, childNames(roots));
+    stage->warnings_ = diagnostics_.take();
+    return stage;
+}
+
+void Composer::composeChildren(Stage& stage, Prim& parent, const std::vector<std::string>& names) {
+    for (const std::string& name : names) {
+        const std::string path = sdfpath::appendChild(parent.path, name);
+        const std::vector<Opinion> opinions = opinionsOf(indexer_.index(*rootStack_, path, parent.where));
+        if (opinions.empty()) continue;
+        std::unique_ptr<Prim> prim = composePrim(path, opinions, parent);
+        std::vector<const PrimSpec*> specs;
+        for (const Opinion& opinion : opinions) specs.push_back(opinion.spec);
+        composeChildren(stage, *prim, childNames(specs));
+        stage.primsByPath_[path] = prim.get();
+        parent.children.push_back(std::move(prim));
+    }
+}
+
+std::unique_ptr<Prim> Composer::composePrim(const std::string& path, const std::vector<Opinion>& opinions, Prim& parent) {
+    auto prim = std::make_unique<Prim>();
+    prim->name = sdfpath::nameOf(path);
+    prim->path = path;
+    prim->parent = &parent;
+    prim->where = opinions.front().spec->where;
+    // "over" only adds opinions: the strongest def or class decides what the prim is.
+    prim->specifier = Specifier::Over;
+    for (const Opinion& opinion : opinions) {
+        if (opinion.spec->specifier == Specifier::Over) continue;
+        prim->specifier = opinion.spec->specifier;
+        break;
+    }
+    for (const Opinion& opinion : opinions) {
+        if (opinion.spec->typeName.empty()) continue;
+        prim->typeName = opinion.spec->typeName;
+        break;
+    }
+
+    std::vector<const ListOp<std::string>*> apiSchemas;
+    SpecsByName<AttributeSpec> attributes;
+    SpecsByName<RelationshipSpec> relationships;
+    for (const Opinion& opinion : opinions) {
+        mergeMetadata(prim->metadata, opinion.spec->metadata);
+        apiSchemas.push_back(&opinion.spec->apiSchemas);
+        for (const auto& [name, spec] : opinion.spec->attributes) attributes[name].emplace_back(&spec, opinion.node);
+        for (const auto& [name, spec] : opinion.spec->relationships) relationships[name].emplace_back(&spec, opinion.node);
+    }
+    prim->apiSchemas = composeListOps(apiSchemas);
+    if (const auto it = prim->metadata.find("kind"); it != prim->metadata.end() && !it->second.strings.empty())
+        prim->kind = it->second.strings.front();
+    if (const auto it = prim->metadata.find("active"); it != prim->metadata.end() && !it->second.numbers.empty())
+        prim->active = it->second.numbers.front() != 0.0;
+    for (const auto& [name, specs] : attributes) prim->attributes.emplace(name, composeAttribute(name, specs));
+    for (const auto& [name, specs] : relationships) prim->relationships.emplace(name, composeRelationship(name, specs));
+    return prim;
+}
+
+}  // namespace obscura::usda

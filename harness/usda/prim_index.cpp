@@ -1,0 +1,279 @@
+#include "harness/usda/prim_index.h"
+
+#include <algorithm>
+
+#include "harness/usda/sdf_path.h"
+
+namespace obscura::usda {
+
+namespace {
+
+constexpr size_t kMaxArcNesting = 128;
+constexpr int kMaxNamespaceDepth = 400;
+// Variant selections can select further variants; bound the rounds in case they keep changing.
+constexpr int kMaxVariantRounds = 64;
+
+template <class F>
+void forEachSpec(const IndexNode& node, F&& f) {
+    for (const Layer* layer : node.stack->layers)
+        if (const PrimSpec* spec = layer->find(node.site)) f(*spec, *layer);
+}
+
+bool hasSpec(const IndexNode& node) {
+    bool found = false;
+    forEachSpec(node, [&](const PrimSpec&, const Layer&) { found = true; });
+    return found;
+}
+
+bool subtreeHasSpec(const IndexNode& node) {
+    if (hasSpec(node)) return true;
+    return std::any_of(node.children.begin(), node.children.end(), subtreeHasSpec);
+}
+
+// The node's subtree as seen from child `name`: every site extended by the name. Nodes with
+// no spec there and nothing beneath are dropped (the root is always kept).
+std::optional<IndexNode> mirror(const IndexNode& node, const std::string& name, bool keepEmpty) {
+    IndexNode out;
+    out.stack = node.stack;
+    out.site = sdfpath::appendChild(node.site, name);
+    out.toRoot = node.toRoot;
+    out.arc = node.arc;
+    out.arcDepth = node.arcDepth;
+    out.variantSet = node.variantSet;
+    out.variant = node.variant;
+    for (const IndexNode& child : node.children)
+        if (auto mirrored = mirror(child, name, false)) out.children.push_back(std::move(*mirrored));
+    if (!keepEmpty && out.children.empty() && !hasSpec(out)) return std::nullopt;
+    return out;
+}
+
+void appendMappings(IndexNode& node, const PathMapping& arcMapping, const std::vector<PathMapping>& outer) {
+    node.toRoot.push_back(arcMapping);
+    node.toRoot.insert(node.toRoot.end(), outer.begin(), outer.end());
+    for (IndexNode& child : node.children) appendMappings(child, arcMapping, outer);
+}
+
+void sortChildren(IndexNode& node) {
+    std::stable_sort(node.children.begin(), node.children.end(), [](const IndexNode& a, const IndexNode& b) {
+        if (a.arc != b.arc) return a.arc < b.arc;
+        return a.arcDepth > b.arcDepth;
+    });
+}
+
+void collectOpinions(const IndexNode& node, std::vector<Opinion>& out) {
+    forEachSpec(node, [&](const PrimSpec& spec, const Layer& layer) { out.push_back(Opinion{&spec, &layer, &node}); });
+    for (const IndexNode& child : node.children) collectOpinions(child, out);
+}
+
+// A reference or payload with its asset path resolved, so that equal arcs written in different
+// layers compare equal in list editing.
+struct ResolvedReference {
+    std::string layerPath;  // empty: internal
+    std::string written;
+    std::string primPath;
+    SourceLocation where;
+    bool operator==(const ResolvedReference& other) const {
+        return layerPath == other.layerPath && primPath == other.primPath;
+    }
+};
+
+}  // namespace
+
+std::vector<Opinion> opinionsOf(const IndexNode& root) {
+    std::vector<Opinion> out;
+    collectOpinions(root, out);
+    return out;
+}
+
+std::string mapToRoot(const IndexNode& node, const std::string& path) {
+    std::string mapped = path;
+    for (const PathMapping& mapping : node.toRoot) mapped = sdfpath::replacePrefix(mapped, mapping.from, mapping.to);
+    return mapped;
+}
+
+const IndexNode& PrimIndexer::index(const LayerStack& stack, const std::string& primPath,
+                                    const SourceLocation& requestedAt) {
+    const Key key{&stack, primPath};
+    if (const auto it = memo_.find(key); it != memo_.end()) return it->second;
+    if (inProgress_.count(key))
+        throw CompositionFailure{Error{requestedAt, "composition cycle: <" + primPath + "> in '" +
+                                                        stack.root().identifier + "' is reached from itself"}};
+    if (inProgress_.size() >= kMaxArcNesting)
+        throw CompositionFailure{Error{requestedAt, "composition arcs nested more than " +
+                                                        std::to_string(kMaxArcNesting) + " deep"}};
+    if (sdfpath::depthOf(primPath) > kMaxNamespaceDepth)
+        throw CompositionFailure{Error{requestedAt, "prims nested more than " + std::to_string(kMaxNamespaceDepth) +
+                                                        " deep under <" + sdfpath::parentOf(primPath) + ">"}};
+    inProgress_.insert(key);
+
+    IndexNode root;
+    const std::string parent = sdfpath::parentOf(primPath);
+    if (parent == "/") {
+        root.stack = &stack;
+        root.site = primPath;
+    } else {
+        root = *mirror(index(stack, parent, requestedAt), sdfpath::nameOf(primPath), true);
+    }
+    std::vector<const IndexNode*> chain;
+    expandArcs(root, chain);
+    selectVariants(root);
+
+    inProgress_.erase(key);
+    return memo_.emplace(key, std::move(root)).first->second;
+}
+
+void PrimIndexer::expandArcs(IndexNode& node, std::vector<const IndexNode*>& chain) {
+    chain.push_back(&node);
+    // Nodes carried over from the parent's index may have arcs authored at their new sites;
+    // subtrees grafted below come complete from index().
+    const size_t carried = node.children.size();
+    for (size_t i = 0; i < carried; ++i) expandArcs(node.children[i], chain);
+
+    const std::string referringPath = sdfpath::stripVariants(node.site);
+    for (const Arc& arc : arcsAuthoredAt(node)) {
+        checkCycle(arc, chain);
+        const IndexNode& target = index(*arc.stack, arc.path, arc.where);
+        if (!subtreeHasSpec(target)) {
+            diagnostics_.warn("unresolvedArc", arc.where,
+                              "<" + arc.path + "> not found in '" + arc.stack->root().identifier + "'; arc ignored");
+            continue;
+        }
+        IndexNode graft = target;
+        appendMappings(graft, PathMapping{arc.path, referringPath}, node.toRoot);
+        graft.arc = arc.type;
+        graft.arcDepth = sdfpath::depthOf(referringPath);
+        node.children.push_back(std::move(graft));
+    }
+    sortChildren(node);
+    chain.pop_back();
+}
+
+std::vector<PrimIndexer::Arc> PrimIndexer::arcsAuthoredAt(const IndexNode& node) {
+    std::vector<ListOp<ResolvedReference>> references, payloads;
+    std::vector<const ListOp<Reference>*> inherits, specializes;
+    forEachSpec(node, [&](const PrimSpec& spec, const Layer& layer) {
+        auto resolveIn = [&](const Reference& ref) {
+            return ResolvedReference{ref.assetPath.empty() ? "" : layers_.resolve(layer, ref.assetPath), ref.assetPath,
+                                     ref.primPath, ref.where};
+        };
+        references.push_back(spec.references.transformed(resolveIn));
+        payloads.push_back(spec.payloads.transformed(resolveIn));
+        inherits.push_back(&spec.inherits);
+        specializes.push_back(&spec.specializes);
+    });
+    auto pointers = [](const std::vector<ListOp<ResolvedReference>>& ops) {
+        std::vector<const ListOp<ResolvedReference>*> out;
+        for (const auto& op : ops) out.push_back(&op);
+        return out;
+    };
+
+    std::vector<Arc> arcs;
+    for (const Reference& ref : composeListOps(inherits))
+        arcs.push_back(Arc{ArcType::Inherit, node.stack, ref.primPath, ref.where});
+    auto addReferences = [&](ArcType type, const std::vector<ListOp<ResolvedReference>>& ops) {
+        for (const ResolvedReference& ref : composeListOps(pointers(ops))) {
+            if (ref.layerPath.empty()) {
+                arcs.push_back(Arc{type, node.stack, ref.primPath, ref.where});
+                continue;
+            }
+            const Layer& layer = layers_.open(ref.layerPath, ref.written, ref.where);
+            const std::string path = ref.primPath.empty() ? defaultPrimOf(layer, ref.where) : ref.primPath;
+            arcs.push_back(Arc{type, &layers_.stackOf(layer), path, ref.where});
+        }
+    };
+    addReferences(ArcType::Reference, references);
+    addReferences(ArcType::Payload, payloads);
+    for (const Reference& ref : composeListOps(specializes))
+        arcs.push_back(Arc{ArcType::Specialize, node.stack, ref.primPath, ref.where});
+    return arcs;
+}
+
+std::string PrimIndexer::defaultPrimOf(const Layer& layer, const SourceLocation& at) {
+    if (const auto it = layer.metadata.find("defaultPrim"); it != layer.metadata.end() && !it->second.strings.empty()) {
+        const std::string& name = it->second.strings.front();
+        return name.starts_with("/") ? name : "/" + name;
+    }
+    if (layer.pseudoRoot.children.empty())
+        throw CompositionFailure{Error{at, "layer '" + layer.identifier + "' has no prim to reference"}};
+    const std::string first = "/" + layer.pseudoRoot.children.front()->name;
+    diagnostics_.warn("noDefaultPrim", at,
+                      "layer '" + layer.identifier + "' has no defaultPrim; referencing its first root prim <" + first + ">");
+    return first;
+}
+
+// Like Pcp: an arc may not target a site that is an ancestor or descendant of (or equal to) a
+// site it is reached through in the same layer stack, or namespace would repeat forever.
+void PrimIndexer::checkCycle(const Arc& arc, const std::vector<const IndexNode*>& chain) const {
+    for (const IndexNode* node : chain) {
+        if (node->stack != arc.stack) continue;
+        const std::string site = sdfpath::stripVariants(node->site);
+        if (sdfpath::hasPrefix(site, arc.path) || sdfpath::hasPrefix(arc.path, site))
+            throw CompositionFailure{Error{arc.where, "composition cycle: <" + site + "> refers to <" + arc.path +
+                                                          "> in '" + arc.stack->root().identifier + "'"}};
+    }
+}
+
+void PrimIndexer::selectVariants(IndexNode& root) {
+    for (int round = 0; round < kMaxVariantRounds; ++round) {
+        std::vector<const IndexNode*> chain;
+        if (!selectOneVariant(root, root, chain)) return;
+    }
+}
+
+// Finds one variant set authored at a node whose selected variant is not (or no longer) in the
+// index and fixes it; the selection is the strongest one anywhere in the prim's index.
+bool PrimIndexer::selectOneVariant(const IndexNode& root, IndexNode& node, std::vector<const IndexNode*>& chain) {
+    chain.push_back(&node);
+    std::map<std::string, SourceLocation> sets;
+    forEachSpec(node, [&](const PrimSpec& spec, const Layer&) {
+        for (const auto& entry : spec.variantSets) sets.emplace(entry.first, spec.where);
+    });
+    for (const auto& [set, where] : sets) {
+        std::string selection;
+        for (const Opinion& opinion : opinionsOf(root)) {
+            const auto it = opinion.spec->variantSelections.find(set);
+            if (it != opinion.spec->variantSelections.end()) {
+                selection = it->second;
+                break;
+            }
+        }
+        const std::string prefix = node.site + "{" + set + "=";
+        const auto existing = std::find_if(node.children.begin(), node.children.end(), [&](const IndexNode& child) {
+            return child.arc == ArcType::Variant && child.site == prefix + child.variant + "}";
+        });
+        if (existing != node.children.end() && existing->variant == selection) continue;
+
+        IndexNode variant;
+        variant.stack = node.stack;
+        variant.site = prefix + selection + "}";
+        variant.toRoot = node.toRoot;
+        variant.arc = ArcType::Variant;
+        variant.arcDepth = sdfpath::depthOf(sdfpath::stripVariants(node.site));
+        variant.variantSet = set;
+        variant.variant = selection;
+        const bool found = !selection.empty() && hasSpec(variant);
+        if (selection.empty()) {
+            diagnostics_.warn("noVariantSelection", where,
+                              "variantSet \"" + set + "\" of <" + sdfpath::stripVariants(node.site) +
+                                  "> has no selection; its variants are ignored");
+        } else if (!found) {
+            diagnostics_.warn("missingVariant", where,
+                              "variant \"" + selection + "\" not found in variantSet \"" + set + "\" of <" +
+                                  sdfpath::stripVariants(node.site) + ">");
+        }
+        if (!found && existing == node.children.end()) continue;
+        if (existing != node.children.end()) node.children.erase(existing);
+        if (found) {
+            expandArcs(variant, chain);
+            node.children.push_back(std::move(variant));
+            sortChildren(node);
+        }
+        return true;
+    }
+    for (IndexNode& child : node.children)
+        if (selectOneVariant(root, child, chain)) return true;
+    chain.pop_back();
+    return false;
+}
+
+}  // namespace obscura::usda

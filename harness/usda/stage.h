@@ -1,0 +1,145 @@
+// A composed USD stage read from USD's text format (.usda): the harness's scene model.
+// Parsing (usda_parser.*) builds layers; composition (stage.cpp) merges sublayers, references
+// and payloads into one prim tree; values are evaluated at a time code as USD does.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <variant>
+#include <vector>
+
+namespace obscura::usda {
+
+// Where something is in a text file; line and column are 1-based.
+struct SourceLocation {
+    std::string file;
+    int line = 0;
+    int column = 0;
+};
+
+// A readable error: "file:line:column: message".
+struct Error {
+    SourceLocation where;
+    std::string message;
+    std::string str() const;
+};
+
+// A value of any USD type, flattened for consumers:
+//  - numbers (bool, ints, floats, doubles, halfs, vectors, colours, quaternions, matrices, and
+//    arrays of those) go to `numbers`, components in file order (quaternions as USD writes them:
+//    real part first), `tupleSize` components per element;
+//  - strings, tokens, asset paths and paths go to `strings`.
+struct Value {
+    std::string typeName;              // USD type name without "[]": "float3", "token", "matrix4d"...
+    bool isArray = false;
+    int tupleSize = 1;                 // 3 for float3, 4 for quatf, 16 for matrix4d
+    std::vector<double> numbers;
+    std::vector<std::string> strings;
+    bool blocked = false;              // authored as None: no value (only seen in timeSamples)
+    size_t size() const;               // element count
+    bool empty() const { return numbers.empty() && strings.empty(); }
+};
+
+struct Attribute {
+    std::string name;                  // "points", "xformOp:translate", "inputs:diffuseColor"
+    std::string typeName;              // as written: "point3f[]", "uniform token"
+    bool isUniform = false;
+    bool isCustom = false;
+    std::optional<Value> defaultValue;
+    std::map<double, Value> timeSamples;
+    std::optional<std::string> connection;        // target path of `.connect`, e.g. "/M/S.outputs:rgb"
+    std::map<std::string, Value> metadata;        // interpolation, elementSize, ...
+    SourceLocation where;
+
+    bool isAnimated() const { return timeSamples.size() > 1; }
+    // The value at a time code: time samples win over the default; linear interpolation for
+    // numeric types, slerp for quaternions, held (the earlier sample) for everything else.
+    std::optional<Value> evaluate(double time) const;
+};
+
+struct Relationship {
+    std::string name;
+    std::vector<std::string> targets;  // absolute prim (or property) paths
+};
+
+enum class Specifier { Def, Over, Class };
+
+struct Prim {
+    std::string name;
+    std::string path;                  // "/World/Mesh"
+    std::string typeName;              // "Mesh", "Xform", "" for typeless
+    Specifier specifier = Specifier::Def;
+    std::string kind;
+    bool active = true;
+    std::vector<std::string> apiSchemas;
+    std::map<std::string, Attribute> attributes;
+    std::map<std::string, Relationship> relationships;
+    std::map<std::string, Value> metadata;
+    Prim* parent = nullptr;
+    std::vector<std::unique_ptr<Prim>> children;
+    SourceLocation where;
+
+    const Attribute* attribute(const std::string& attrName) const;
+    const Relationship* relationship(const std::string& relName) const;
+};
+
+struct StageMetadata {
+    std::string upAxis = "Y";
+    double metersPerUnit = 0.01;
+    double timeCodesPerSecond = 24.0;
+    double framesPerSecond = 24.0;
+    std::optional<double> startTimeCode;
+    std::optional<double> endTimeCode;
+    std::string defaultPrim;
+    std::string doc;
+};
+
+// Diagnostics that are not errors (unknown types, unsupported features): one per kind.
+struct Warning {
+    SourceLocation where;
+    std::string message;
+};
+
+class Stage {
+public:
+    // Parse the root layer and everything it sublayers, references and payloads (asset paths
+    // relative to the layer that names them), and compose one prim tree.
+    static std::variant<std::unique_ptr<Stage>, Error> open(const std::filesystem::path& file);
+    // Same from text in memory (references resolve relative to `virtualPath`'s folder).
+    static std::variant<std::unique_ptr<Stage>, Error> openFromString(const std::string& text,
+                                                                       const std::string& virtualPath);
+
+    const StageMetadata& metadata() const { return metadata_; }
+    const Prim& pseudoRoot() const { return *root_; }
+    const Prim* find(const std::string& path) const;
+    // Every defined (specifier Def), active prim, depth-first, parents before children;
+    // `class` prims and their descendants are excluded.
+    std::vector<const Prim*> prims() const;
+    const std::vector<Warning>& warnings() const { return warnings_; }
+
+    // Local transform of a prim from its xformOps and xformOpOrder at `time` (USD convention:
+    // row-major, row vectors, translation in [12..14]); `resetsXformStack` reports
+    // "!resetXformStack!".
+    std::array<double, 16> localTransform(const Prim& prim, double time, bool* resetsXformStack = nullptr) const;
+    // Product of local transforms up to the root (honouring resetXformStack).
+    std::array<double, 16> worldTransform(const Prim& prim, double time) const;
+    // The time codes at which any xformOp of the prim or its ancestors is sampled (sorted).
+    std::vector<double> transformSampleTimes(const Prim& prim) const;
+    // Computed visibility: "invisible" on the prim or any ancestor at `time`.
+    bool isVisible(const Prim& prim, double time) const;
+
+private:
+    Stage();
+    friend class Composer;
+    StageMetadata metadata_;
+    std::unique_ptr<Prim> root_;
+    std::vector<Warning> warnings_;
+    std::unordered_map<std::string, const Prim*> primsByPath_;
+};
+
+}  // namespace obscura::usda

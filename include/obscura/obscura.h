@@ -1,0 +1,344 @@
+/*
+ * Obscura — public C ABI of the render delegate plugin.
+ *
+ * This is the only header a host compiles against. It is C99 and C++ compatible, carries no
+ * STL type, no exception and no Vulkan handle. A host loads the plugin library (found through
+ * plugInfo.json, see docs/INTEGRATION.md), looks up the single exported symbol
+ * `obscuraGetApi` and asks for the function table of the ABI major version it was built for.
+ *
+ * Model (Hydra's): the host inserts prims by type and path, marks them dirty with dirty bits and,
+ * on render, the delegate pulls the values of dirty prims through the scene-delegate callback
+ * table the host supplied. A render pass draws a camera into render buffers (AOVs) that the
+ * host maps for reading.
+ *
+ * Conventions
+ *  - Every function returns an ObscuraStatus; on failure obscuraGetLastError-style
+ *    `lastError(delegate)` returns a readable message (per delegate; per thread for calls that
+ *    have no delegate yet).
+ *  - Extensible structs start with `sType`, `pNext`, `structSize` (Vulkan style). Published
+ *    structs never change; new fields arrive as new chained structs, new functions as a new
+ *    table version. A host sets structSize = sizeof(struct) as it was compiled.
+ *  - Matrices are 16 doubles in USD's GfMatrix4d convention: row-major, row vectors
+ *    (p' = p * M), translation in elements 12, 13, 14.
+ *  - Paths are absolute prim paths ("/World/Mesh"), UTF-8, NUL-terminated.
+ *
+ * Thread-safety
+ *  - `obscuraGetApi` and the table's `enumerateDevices` may be called from any thread.
+ *  - Calls on one delegate must be serialised by the host (one thread at a time). Different
+ *    delegates are independent and may be used concurrently from different threads.
+ *  - Scene-delegate callbacks are invoked only on the thread that called `render`, unless the
+ *    host sets OBSCURA_SCENE_DELEGATE_THREAD_SAFE in ObscuraSceneDelegate::flags.
+ *  - Log callbacks may be invoked from the calling thread only.
+ */
+#ifndef OBSCURA_OBSCURA_H
+#define OBSCURA_OBSCURA_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(_WIN32)
+#define OBSCURA_EXPORT __declspec(dllexport)
+#else
+#define OBSCURA_EXPORT __attribute__((visibility("default")))
+#endif
+
+#define OBSCURA_ABI_VERSION_MAJOR 1
+#define OBSCURA_ABI_VERSION_MINOR 0
+
+/* ---------------------------------------------------------------------------------------------
+ * Status codes
+ * ------------------------------------------------------------------------------------------- */
+typedef enum ObscuraStatus {
+    OBSCURA_OK = 0,
+    OBSCURA_ERROR_INVALID_ARGUMENT = 1,  /* null pointer, bad struct size, malformed value */
+    OBSCURA_ERROR_UNSUPPORTED_VERSION = 2,/* ABI major version not provided by this plugin */
+    OBSCURA_ERROR_NOT_FOUND = 3,         /* no prim / setting / AOV of that name */
+    OBSCURA_ERROR_ALREADY_EXISTS = 4,    /* insertPrim on a path already in use */
+    OBSCURA_ERROR_UNKNOWN_TYPE = 5,      /* prim type not supported (see plugInfo.json) */
+    OBSCURA_ERROR_BAD_PRIM_DATA = 6,     /* render succeeded but some prims were skipped */
+    OBSCURA_ERROR_DEVICE = 7,            /* Vulkan device missing or lost */
+    OBSCURA_ERROR_VALIDATION = 8,        /* validation layer reported an error (OBSCURA_VALIDATION=1) */
+    OBSCURA_ERROR_OUT_OF_MEMORY = 9,
+    OBSCURA_ERROR_INVALID_STATE = 10,    /* e.g. map of a buffer never rendered, render without camera */
+    OBSCURA_ERROR_INTERNAL = 11          /* a bug: please report with the message */
+} ObscuraStatus;
+
+/* ---------------------------------------------------------------------------------------------
+ * Values exchanged with the scene delegate and render settings
+ * ------------------------------------------------------------------------------------------- */
+typedef enum ObscuraValueType {
+    OBSCURA_VALUE_NONE = 0,
+    OBSCURA_VALUE_BOOL = 1,        /* int32_t, 0 or 1 */
+    OBSCURA_VALUE_INT = 2,         /* int32_t */
+    OBSCURA_VALUE_FLOAT = 3,       /* float */
+    OBSCURA_VALUE_DOUBLE = 4,      /* double */
+    OBSCURA_VALUE_FLOAT2 = 5,      /* float[2] */
+    OBSCURA_VALUE_FLOAT3 = 6,      /* float[3] (point3f, vector3f, normal3f, color3f) */
+    OBSCURA_VALUE_FLOAT4 = 7,      /* float[4] */
+    OBSCURA_VALUE_INT2 = 8,        /* int32_t[2] */
+    OBSCURA_VALUE_MATRIX4D = 9,    /* double[16], see convention above */
+    OBSCURA_VALUE_TOKEN = 10,      /* const char* (token, string, asset path) */
+    OBSCURA_VALUE_PATH = 11        /* const char* (prim path; relationship target) */
+} ObscuraValueType;
+
+/*
+ * A value: `count` elements of `type` at `data`. count == 1 for a scalar; an array attribute
+ * (points, faceVertexIndices...) has count = number of elements and isArray = 1.
+ * For TOKEN and PATH, data points to an array of `count` const char* pointers.
+ * Lifetime: memory the host returns from a callback must stay valid until the next callback
+ * on the same delegate or until the render call returns, whichever comes first; the delegate
+ * copies what it keeps.
+ */
+typedef struct ObscuraValue {
+    ObscuraValueType type;
+    int32_t isArray;
+    size_t count;
+    const void* data;
+} ObscuraValue;
+
+/* Interpolation of a primvar (as UsdGeomPrimvar). Returned by getPrimvarInterpolation. */
+typedef enum ObscuraInterpolation {
+    OBSCURA_INTERPOLATION_CONSTANT = 0,
+    OBSCURA_INTERPOLATION_UNIFORM = 1,
+    OBSCURA_INTERPOLATION_VARYING = 2,
+    OBSCURA_INTERPOLATION_VERTEX = 3,
+    OBSCURA_INTERPOLATION_FACE_VARYING = 4
+} ObscuraInterpolation;
+
+/* ---------------------------------------------------------------------------------------------
+ * Prim types and dirty bits
+ *
+ * Prim type names (tokens): "mesh" (rprim); "camera", "distantLight", "sphereLight",
+ * "material" (sprims); "renderBuffer" (bprim). The schema reference (docs/schemas.md) lists
+ * every attribute, its type, default, unit and whether it may be time-sampled.
+ * ------------------------------------------------------------------------------------------- */
+typedef uint32_t ObscuraDirtyBits;
+#define OBSCURA_DIRTY_CLEAN        0x0000u
+#define OBSCURA_DIRTY_TRANSFORM    0x0001u  /* transform (sampled over the shutter) */
+#define OBSCURA_DIRTY_POINTS       0x0002u  /* points */
+#define OBSCURA_DIRTY_TOPOLOGY     0x0004u  /* faceVertexCounts, faceVertexIndices, orientation */
+#define OBSCURA_DIRTY_NORMALS      0x0008u  /* normals */
+#define OBSCURA_DIRTY_PRIMVAR      0x0010u  /* primvars:* */
+#define OBSCURA_DIRTY_MATERIAL_ID  0x0020u  /* material:binding */
+#define OBSCURA_DIRTY_PARAMS       0x0040u  /* camera, light, material, render buffer parameters */
+#define OBSCURA_DIRTY_VISIBILITY   0x0080u  /* visibility */
+#define OBSCURA_DIRTY_DOUBLE_SIDED 0x0100u  /* doubleSided */
+#define OBSCURA_DIRTY_ALL          0xFFFFFFFFu
+
+/* ---------------------------------------------------------------------------------------------
+ * Extensible structure types
+ * ------------------------------------------------------------------------------------------- */
+typedef enum ObscuraStructureType {
+    OBSCURA_STRUCTURE_TYPE_DELEGATE_CREATE_INFO = 1,
+    OBSCURA_STRUCTURE_TYPE_SCENE_DELEGATE = 2,
+    OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC = 3,
+    OBSCURA_STRUCTURE_TYPE_MAPPED_BUFFER = 4,
+    OBSCURA_STRUCTURE_TYPE_DEVICE_INFO = 5,
+    OBSCURA_STRUCTURE_TYPE_PASS_TIMING = 6,
+    OBSCURA_STRUCTURE_TYPE_RENDER_STATS = 7
+} ObscuraStructureType;
+
+typedef struct ObscuraDelegate_T* ObscuraDelegate;
+
+typedef enum ObscuraLogLevel {
+    OBSCURA_LOG_DEBUG = 0,
+    OBSCURA_LOG_INFO = 1,
+    OBSCURA_LOG_WARNING = 2,
+    OBSCURA_LOG_ERROR = 3
+} ObscuraLogLevel;
+
+typedef void (*PFN_obscuraLog)(void* userData, ObscuraLogLevel level, const char* message);
+
+/* Creation of a delegate. */
+typedef struct ObscuraDelegateCreateInfo {
+    ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_DELEGATE_CREATE_INFO */
+    const void* pNext;
+    uint32_t structSize;
+    const char* device;             /* NULL: OBSCURA_DEVICE or best device; else name substring or index */
+    int32_t validation;             /* -1: from OBSCURA_VALIDATION; 0 off; 1 on, errors fail render */
+    PFN_obscuraLog log;             /* may be NULL: messages go to stderr at WARNING and above */
+    void* logUserData;
+} ObscuraDelegateCreateInfo;
+
+/* Scene delegate: the callbacks through which sync pulls dirty prim data from the host. */
+#define OBSCURA_SCENE_DELEGATE_THREAD_SAFE 0x1u
+
+/* Return OBSCURA_OK and fill *out, or OBSCURA_ERROR_NOT_FOUND when the attribute is not
+ * authored (the delegate then uses the schema default). `time` is in the host's time codes. */
+typedef ObscuraStatus (*PFN_obscuraGetValue)(void* userData, const char* primPath,
+                                             const char* attribute, double time, ObscuraValue* out);
+/* Interpolation of a primvar or of normals; NOT_FOUND means the schema's default. */
+typedef ObscuraStatus (*PFN_obscuraGetInterpolation)(void* userData, const char* primPath,
+                                                     const char* attribute, ObscuraInterpolation* out);
+/* Sample the prim's world transform over [time0, time1] (like HdSceneDelegate::SampleTransform):
+ * write at most maxSamples (time, matrix) pairs, sorted by time, and the number written to
+ * *sampleCount. A prim without animation returns one sample. */
+typedef ObscuraStatus (*PFN_obscuraSampleTransform)(void* userData, const char* primPath,
+                                                    double time0, double time1, uint32_t maxSamples,
+                                                    double* sampleTimes, double* matrices,
+                                                    uint32_t* sampleCount);
+
+typedef struct ObscuraSceneDelegate {
+    ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_SCENE_DELEGATE */
+    const void* pNext;
+    uint32_t structSize;
+    uint32_t flags;                 /* OBSCURA_SCENE_DELEGATE_THREAD_SAFE */
+    void* userData;
+    PFN_obscuraGetValue getValue;
+    PFN_obscuraGetInterpolation getInterpolation;   /* may be NULL: schema defaults */
+    PFN_obscuraSampleTransform sampleTransform;
+} ObscuraSceneDelegate;
+
+/* An AOV binding: render `aov` into the render buffer prim at `renderBufferPath`. AOVs:
+ *   "color"   float32Vec4  linear, premultiplied RGBA, exposure applied (alpha 0 where nothing drew)
+ *   "depth"   float32      clip-space depth in [0,1] (1 where nothing drew), as Hydra's depth AOV
+ *   "normal"  float32Vec3  eye-space shading normal (Hydra's Neye); 0 where nothing drew
+ *   "albedo"  float32Vec3  base colour of the surface
+ *   "primId"  int32        id of the prim (see getPrimId), -1 where nothing drew
+ *   "display" unorm8Vec4   display-referred colour after the view transform (for PNG and viewports)
+ * The render buffer's format must match the AOV's format above. */
+typedef struct ObscuraAovBinding {
+    const char* aov;
+    const char* renderBufferPath;
+} ObscuraAovBinding;
+
+typedef struct ObscuraRenderPassDesc {
+    ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC */
+    const void* pNext;
+    uint32_t structSize;
+    const char* cameraPath;         /* a "camera" prim */
+    int32_t viewport[4];            /* x, y, width, height in pixels of the render buffers */
+    double time;                    /* time code at which dirty prims are synced */
+    uint32_t aovBindingCount;
+    const ObscuraAovBinding* aovBindings;
+} ObscuraRenderPassDesc;
+
+typedef enum ObscuraFormat {
+    OBSCURA_FORMAT_UNKNOWN = 0,
+    OBSCURA_FORMAT_FLOAT32_VEC4 = 1,   /* RGBA float */
+    OBSCURA_FORMAT_FLOAT32_VEC3 = 2,   /* XYZ float */
+    OBSCURA_FORMAT_FLOAT32 = 3,        /* one float */
+    OBSCURA_FORMAT_INT32 = 4,          /* one int32 */
+    OBSCURA_FORMAT_UNORM8_VEC4 = 5     /* RGBA 8-bit, display-referred */
+} ObscuraFormat;
+
+/* A mapped render buffer: rows top to bottom, `rowStride` bytes apart. Valid until unmap. */
+typedef struct ObscuraMappedBuffer {
+    ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_MAPPED_BUFFER */
+    const void* pNext;
+    uint32_t structSize;
+    uint32_t width;
+    uint32_t height;
+    ObscuraFormat format;
+    size_t rowStride;
+    const void* data;
+} ObscuraMappedBuffer;
+
+typedef struct ObscuraDeviceInfo {
+    ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_DEVICE_INFO */
+    const void* pNext;
+    uint32_t structSize;
+    char name[256];
+    char driver[256];
+    uint32_t apiVersion;            /* VK_MAKE_API_VERSION packing */
+    int32_t isDiscrete;
+    int32_t isCpu;
+    uint32_t maxMsaaSamples;
+} ObscuraDeviceInfo;
+
+/* Per-pass GPU timing of the last render, from timestamp queries. */
+typedef struct ObscuraPassTiming {
+    ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_PASS_TIMING */
+    const void* pNext;
+    uint32_t structSize;
+    char pass[64];
+    double milliseconds;
+} ObscuraPassTiming;
+
+/* Counters of the last render. */
+typedef struct ObscuraRenderStats {
+    ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_RENDER_STATS */
+    const void* pNext;
+    uint32_t structSize;
+    uint32_t primsSynced;           /* prims whose Sync ran in the last render */
+    uint32_t primsSkipped;          /* prims currently skipped because of bad data */
+    uint32_t validationErrors;      /* validation messages of error severity so far */
+    uint32_t converged;             /* 1 when another render of an unchanged scene adds nothing */
+    uint64_t trianglesDrawn;
+    char deviceName[256];           /* the Vulkan device this delegate renders with */
+} ObscuraRenderStats;
+
+/* ---------------------------------------------------------------------------------------------
+ * The function table, version 1.0
+ * ------------------------------------------------------------------------------------------- */
+typedef struct ObscuraApiV1 {
+    uint32_t structSize;
+    uint16_t versionMajor;
+    uint16_t versionMinor;
+
+    /* Create a delegate (owns a Vulkan device). Several may live in one process. */
+    ObscuraStatus (*createDelegate)(const ObscuraDelegateCreateInfo* info, ObscuraDelegate* outDelegate);
+    /* Destroy a delegate and every prim and buffer it holds. NULL is ignored. */
+    ObscuraStatus (*destroyDelegate)(ObscuraDelegate delegate);
+    /* Message of the last failed call on `delegate` (NULL: the last failed call on this thread
+     * that had no delegate). Valid until the next call on that delegate. Never NULL. */
+    const char* (*lastError)(ObscuraDelegate delegate);
+
+    /* Install the scene delegate (copied). Must be called before the first render. */
+    ObscuraStatus (*setSceneDelegate)(ObscuraDelegate delegate, const ObscuraSceneDelegate* sceneDelegate);
+
+    /* Insert a prim of `type` at `path`; it starts fully dirty. */
+    ObscuraStatus (*insertPrim)(ObscuraDelegate delegate, const char* type, const char* path);
+    /* Remove a prim; its GPU resources are released at the end of the next frame. */
+    ObscuraStatus (*removePrim)(ObscuraDelegate delegate, const char* path);
+    /* OR dirty bits into a prim; the next render syncs it. */
+    ObscuraStatus (*markDirty)(ObscuraDelegate delegate, const char* path, ObscuraDirtyBits bits);
+
+    /* Set a render setting by name (see `obscura info` for the list). A NULL value resets it. */
+    ObscuraStatus (*setRenderSetting)(ObscuraDelegate delegate, const char* key, const ObscuraValue* value);
+
+    /* Sync dirty prims at desc->time, then render the camera into the bound render buffers.
+     * Returns OBSCURA_ERROR_BAD_PRIM_DATA when some prims were skipped (the image is still
+     * rendered without them; messages went to the log). */
+    ObscuraStatus (*render)(ObscuraDelegate delegate, const ObscuraRenderPassDesc* desc);
+
+    /* Map a render buffer for reading; the pointer stays valid until unmapRenderBuffer or the
+     * next render. */
+    ObscuraStatus (*mapRenderBuffer)(ObscuraDelegate delegate, const char* path, ObscuraMappedBuffer* out);
+    ObscuraStatus (*unmapRenderBuffer)(ObscuraDelegate delegate, const char* path);
+
+    /* Per-pass GPU timings of the last render: with timings == NULL writes the count. */
+    ObscuraStatus (*getPassTimings)(ObscuraDelegate delegate, ObscuraPassTiming* timings, uint32_t* count);
+    ObscuraStatus (*getRenderStats)(ObscuraDelegate delegate, ObscuraRenderStats* out);
+
+    /* Vulkan devices visible to the plugin: with devices == NULL writes the count. */
+    ObscuraStatus (*enumerateDevices)(ObscuraDeviceInfo* devices, uint32_t* count);
+    /* The integer a prim writes into the primId AOV (stable for the prim's lifetime; -1 is
+     * "nothing"). OBSCURA_ERROR_NOT_FOUND for unknown paths and for prims that draw nothing. */
+    ObscuraStatus (*getPrimId)(ObscuraDelegate delegate, const char* path, int32_t* outId);
+
+    /* Render settings: name i (0-based) of the settings this plugin understands, with a short
+     * description; OBSCURA_ERROR_NOT_FOUND past the end. Strings are static. */
+    ObscuraStatus (*describeRenderSetting)(uint32_t index, const char** name, const char** description);
+} ObscuraApiV1;
+
+/*
+ * The one exported entry point. Returns in *outTable a pointer to a static function table whose
+ * major version equals `versionMajor` and whose minor version is >= `versionMinor`; the table's
+ * first member is its size. OBSCURA_ERROR_UNSUPPORTED_VERSION (and *outTable = NULL) for any
+ * other request. Thread-safe.
+ */
+OBSCURA_EXPORT ObscuraStatus obscuraGetApi(uint32_t versionMajor, uint32_t versionMinor, const void** outTable);
+typedef ObscuraStatus (*PFN_obscuraGetApi)(uint32_t versionMajor, uint32_t versionMinor, const void** outTable);
+
+#define OBSCURA_GET_API_SYMBOL "obscuraGetApi"
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* OBSCURA_OBSCURA_H */

@@ -1,0 +1,74 @@
+#include "passes/aov_readback.h"
+
+namespace obscura::passes {
+namespace {
+
+struct PackPush {
+    uint32_t aov;
+    uint32_t width;
+    uint32_t height;
+};
+
+gpu::ComputePipelineDesc describeAovPackPipeline() {
+    return {"aov_pack.comp",
+            {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+             {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+             {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+             {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+             {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+             {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+            sizeof(PackPush)};
+}
+
+}  // namespace
+
+void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                        const GBuffer& gb, gpu::ImageHandle hdrColor, gpu::ImageHandle display,
+                        const std::vector<AovRequest>& requests) {
+    if (requests.empty()) return;
+    std::vector<gpu::BufferHandle> outputs;
+    for (const auto& r : requests) {
+        outputs.push_back(graph.importBuffer("aov", r.destination));
+        graph.markOutput(outputs.back());
+    }
+    const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("aov_pack", describeAovPackPipeline);
+    gpu::Device& device = pipelines.device();
+    graph.addPass(
+        "aov_readback", gpu::PassKind::Compute,
+        [&](gpu::FrameGraph::PassBuilder& pass) {
+            pass.read(gb.depth, gpu::Usage::SampledCompute);
+            pass.read(gb.normalRoughness, gpu::Usage::SampledCompute);
+            pass.read(gb.albedoMetallic, gpu::Usage::SampledCompute);
+            pass.read(gb.instance, gpu::Usage::SampledCompute);
+            pass.read(hdrColor, gpu::Usage::StorageImageRead);
+            pass.read(display, gpu::Usage::StorageImageRead);
+            for (auto h : outputs) pass.write(h, gpu::Usage::StorageBufferWrite);
+        },
+        [&device, &pipeline, &scene, gb, hdrColor, display, outputs, requests](VkCommandBuffer cmd,
+                                                                               const gpu::PassResources& res) {
+            VkSampler nearest = device.nearestClampSampler();
+            for (size_t i = 0; i < requests.size(); ++i) {
+                gpu::DescriptorWriter(device, pipeline)
+                    .buffer(0, scene.camera->buffer)
+                    .buffer(1, scene.instances->buffer)
+                    .sampled(2, res.view(gb.depth), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
+                    .sampled(3, res.view(gb.normalRoughness), nearest)
+                    .sampled(4, res.view(gb.albedoMetallic), nearest)
+                    .sampled(5, res.view(gb.instance), nearest)
+                    .storageImage(6, res.view(hdrColor))
+                    .storageImage(7, res.view(display))
+                    .buffer(8, res.buffer(outputs[i]))
+                    .buffer(9, res.buffer(outputs[i]))
+                    .bind(cmd);
+                PackPush push{static_cast<uint32_t>(requests[i].aov), scene.width, scene.height};
+                vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+                gpu::dispatch2D(cmd, scene.width, scene.height);
+            }
+        });
+}
+
+}  // namespace obscura::passes

@@ -1,0 +1,22 @@
+// AOV readback (frame step 13): packs frame resources into the render buffers the host maps,
+// following Hydra's AOV conventions (include/obscura/obscura.h).
+#pragma once
+
+#include "passes/gbuffer.h"
+
+#include <vector>
+
+namespace obscura::passes {
+
+enum class Aov : uint32_t { Color = 0, Depth = 1, Normal = 2, Albedo = 3, PrimId = 4, Display = 5 };
+
+struct AovRequest {
+    Aov aov;
+    gpu::BufferPtr destination;  // host-visible; width * height elements of the AOV's format
+};
+
+void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                        const GBuffer& gbuffer, gpu::ImageHandle hdrColor, gpu::ImageHandle display,
+                        const std::vector<AovRequest>& requests);
+
+}  // namespace obscura::passes

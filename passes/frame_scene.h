@@ -1,0 +1,28 @@
+// What the delegate hands to the passes for one frame: GPU buffers of the synced scene and the
+// list of draws. Passes read it; they never see prims.
+#pragma once
+
+#include "gpu/device.h"
+
+#include <vector>
+
+namespace obscura::passes {
+
+struct Draw {
+    gpu::BufferPtr vertices;
+    gpu::BufferPtr indices;   // uint32
+    uint32_t indexCount = 0;
+    uint32_t instanceIndex = 0;
+};
+
+struct FrameScene {
+    gpu::BufferPtr camera;     // CameraData (uniform)
+    gpu::BufferPtr instances;  // InstanceData[] (storage)
+    gpu::BufferPtr materials;  // MaterialData[] (storage)
+    gpu::BufferPtr lights;     // LightBufferHeader + LightData[] (storage)
+    std::vector<Draw> draws;
+    uint32_t width = 0;
+    uint32_t height = 0;
+};
+
+}  // namespace obscura::passes

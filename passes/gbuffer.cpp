@@ -1,0 +1,72 @@
+#include "passes/gbuffer.h"
+
+#include "passes/frame_data.h"
+
+#include <cstddef>
+
+namespace obscura::passes {
+namespace {
+
+gpu::GraphicsPipelineDesc describeGBufferPipeline() {
+    gpu::GraphicsPipelineDesc d;
+    d.vertexShader = "gbuffer.vert";
+    d.fragmentShader = "gbuffer.frag";
+    d.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                  {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                  {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
+    d.pushConstantSize = sizeof(uint32_t);
+    d.vertexStride = sizeof(Vertex);
+    d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+                          {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+                          {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, color)}};
+    d.colorFormats = {kNormalRoughnessFormat, kAlbedoMetallicFormat, kInstanceFormat};
+    d.depthFormat = kDepthFormat;
+    return d;
+}
+
+}  // namespace
+
+GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                       const gpu::ImagePtr& bestFitNormals) {
+    auto image = [&](const char* name, VkFormat format) {
+        gpu::ImageDesc desc;
+        desc.format = format;
+        desc.width = scene.width;
+        desc.height = scene.height;
+        return graph.createImage(name, desc);
+    };
+    GBuffer gb{image("gbuffer.depth", kDepthFormat), image("gbuffer.normalRoughness", kNormalRoughnessFormat),
+               image("gbuffer.albedoMetallic", kAlbedoMetallicFormat), image("gbuffer.instance", kInstanceFormat)};
+    const gpu::Pipeline& pipeline =
+        pipelines.get<gpu::GraphicsPipelineDesc>("gbuffer", describeGBufferPipeline);
+    gpu::Device& device = pipelines.device();
+
+    graph.addPass(
+        "gbuffer", gpu::PassKind::Raster,
+        [&](gpu::FrameGraph::PassBuilder& pass) {
+            pass.depthStencilAttachment(gb.depth, VkClearDepthStencilValue{1.0f, 0});
+            pass.colorAttachment(gb.normalRoughness, VkClearColorValue{{0.5f, 0.5f, 1.0f, 1.0f}});
+            pass.colorAttachment(gb.albedoMetallic, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
+            pass.colorAttachment(gb.instance, VkClearColorValue{.uint32 = {0, 0, 0, 0}});
+        },
+        [&device, &pipeline, &scene, bestFitNormals](VkCommandBuffer cmd, const gpu::PassResources&) {
+            gpu::DescriptorWriter(device, pipeline)
+                .buffer(0, scene.camera->buffer)
+                .buffer(1, scene.instances->buffer)
+                .buffer(2, scene.materials->buffer)
+                .sampled(3, bestFitNormals->view, device.nearestClampSampler())
+                .bind(cmd);
+            for (const Draw& draw : scene.draws) {
+                VkDeviceSize offset = 0;
+                vkCmdBindVertexBuffers(cmd, 0, 1, &draw.vertices->buffer, &offset);
+                vkCmdBindIndexBuffer(cmd, draw.indices->buffer, 0, VK_INDEX_TYPE_UINT32);
+                vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                                   sizeof(uint32_t), &draw.instanceIndex);
+                vkCmdDrawIndexed(cmd, draw.indexCount, 1, 0, 0, 0);
+            }
+        });
+    return gb;
+}
+
+}  // namespace obscura::passes

@@ -1,0 +1,59 @@
+#include "passes/lighting.h"
+
+namespace obscura::passes {
+namespace {
+
+gpu::ComputePipelineDesc describeLightingPipeline() {
+    return {"lighting.comp",
+            {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+             {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+             {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+             {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+             {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+            0};
+}
+
+}  // namespace
+
+gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                                 const GBuffer& gb) {
+    gpu::ImageDesc desc;
+    desc.format = kLightAccumulationFormat;
+    desc.width = scene.width;
+    desc.height = scene.height;
+    gpu::ImageHandle accumulation = graph.createImage("lightAccumulation", desc);
+    const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("lighting", describeLightingPipeline);
+    gpu::Device& device = pipelines.device();
+
+    graph.addPass(
+        "lighting", gpu::PassKind::Compute,
+        [&](gpu::FrameGraph::PassBuilder& pass) {
+            pass.read(gb.depth, gpu::Usage::SampledCompute);
+            pass.read(gb.normalRoughness, gpu::Usage::SampledCompute);
+            pass.read(gb.albedoMetallic, gpu::Usage::SampledCompute);
+            pass.read(gb.instance, gpu::Usage::SampledCompute);
+            pass.write(accumulation, gpu::Usage::StorageImageWrite);
+        },
+        [&device, &pipeline, &scene, gb, accumulation](VkCommandBuffer cmd, const gpu::PassResources& res) {
+            VkSampler nearest = device.nearestClampSampler();
+            gpu::DescriptorWriter(device, pipeline)
+                .buffer(0, scene.camera->buffer)
+                .buffer(1, scene.instances->buffer)
+                .buffer(2, scene.materials->buffer)
+                .buffer(3, scene.lights->buffer)
+                .sampled(4, res.view(gb.depth), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
+                .sampled(5, res.view(gb.normalRoughness), nearest)
+                .sampled(6, res.view(gb.albedoMetallic), nearest)
+                .sampled(7, res.view(gb.instance), nearest)
+                .storageImage(8, res.view(accumulation))
+                .bind(cmd);
+            gpu::dispatch2D(cmd, scene.width, scene.height);
+        });
+    return accumulation;
+}
+
+}  // namespace obscura::passes

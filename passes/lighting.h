@@ -1,0 +1,14 @@
+// Deferred lighting (frame step 7, pixel frequency): a compute pass over the G-buffer that
+// writes the light accumulation buffer.
+#pragma once
+
+#include "passes/gbuffer.h"
+
+namespace obscura::passes {
+
+constexpr VkFormat kLightAccumulationFormat = VK_FORMAT_B10G11R11_UFLOAT_PACK32;
+
+gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                                 const GBuffer& gbuffer);
+
+}  // namespace obscura::passes

@@ -1,0 +1,60 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// AOV readback: converts one frame resource into the host's render buffer layout (Hydra's AOV
+// conventions, see include/obscura/obscura.h), written straight into host-visible memory.
+#extension GL_EXT_scalar_block_layout : require
+#include "common/frame_data.glsl"
+#include "common/best_fit_normals.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+const uint AOV_COLOR = 0u;
+const uint AOV_DEPTH = 1u;
+const uint AOV_NORMAL = 2u;
+const uint AOV_ALBEDO = 3u;
+const uint AOV_PRIM_ID = 4u;
+const uint AOV_DISPLAY = 5u;
+
+layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
+layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
+layout(set = 0, binding = 2) uniform sampler2D depthTexture;
+layout(set = 0, binding = 3) uniform sampler2D normalRoughnessTexture;
+layout(set = 0, binding = 4) uniform sampler2D albedoMetallicTexture;
+layout(set = 0, binding = 5) uniform usampler2D instanceTexture;
+layout(set = 0, binding = 6, r11f_g11f_b10f) uniform readonly image2D hdrColor;
+layout(set = 0, binding = 7, rgba8) uniform readonly image2D displayColor;
+layout(set = 0, binding = 8, scalar) writeonly buffer Floats { float floats[]; };
+layout(set = 0, binding = 9, scalar) writeonly buffer Words { uint words[]; };
+
+layout(push_constant) uniform Push {
+    uint aov;
+    uint width;
+    uint height;
+} push;
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (pixel.x >= int(push.width) || pixel.y >= int(push.height)) return;
+    uint index = uint(pixel.y) * push.width + uint(pixel.x);
+    uint instanceId = texelFetch(instanceTexture, pixel, 0).r;
+    bool covered = instanceId != 0u;
+    if (push.aov == AOV_COLOR) {
+        vec3 c = imageLoad(hdrColor, pixel).rgb;
+        float a = covered ? 1.0 : 0.0;
+        for (uint i = 0u; i < 3u; ++i) floats[index * 4u + i] = c[i];
+        floats[index * 4u + 3u] = a;
+    } else if (push.aov == AOV_DEPTH) {
+        floats[index] = texelFetch(depthTexture, pixel, 0).r;
+    } else if (push.aov == AOV_NORMAL) {
+        vec3 n = covered ? normalize(mat3(camera.view) * decodeBestFitNormal(texelFetch(normalRoughnessTexture, pixel, 0).xyz))
+                         : vec3(0.0);
+        for (uint i = 0u; i < 3u; ++i) floats[index * 3u + i] = n[i];
+    } else if (push.aov == AOV_ALBEDO) {
+        vec3 a = covered ? texelFetch(albedoMetallicTexture, pixel, 0).rgb : vec3(0.0);
+        for (uint i = 0u; i < 3u; ++i) floats[index * 3u + i] = a[i];
+    } else if (push.aov == AOV_PRIM_ID) {
+        words[index] = uint(covered ? instances[instanceId - 1u].primId : -1);
+    } else if (push.aov == AOV_DISPLAY) {
+        words[index] = packUnorm4x8(imageLoad(displayColor, pixel));
+    }
+}

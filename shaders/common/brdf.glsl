@@ -1,0 +1,33 @@
+// Microfacet BRDF: GGX distribution (Walter et al. 2007), height-correlated Smith visibility
+// (Heitz 2014), Schlick Fresnel; Lambert diffuse. Seed 004 "Physically-based BRDFs" asks for a
+// normalised, energy-consistent specular lobe; GGX is its modern form.
+#ifndef OBSCURA_BRDF_GLSL
+#define OBSCURA_BRDF_GLSL
+
+const float PI = 3.14159265358979;
+
+float ggxDistribution(float NdotH, float alpha) {
+    float a2 = alpha * alpha;
+    float d = NdotH * NdotH * (a2 - 1.0) + 1.0;
+    return a2 / (PI * d * d);
+}
+
+float smithVisibilityHeightCorrelated(float NdotV, float NdotL, float alpha) {
+    float a2 = alpha * alpha;
+    float gv = NdotL * sqrt(NdotV * NdotV * (1.0 - a2) + a2);
+    float gl = NdotV * sqrt(NdotL * NdotL * (1.0 - a2) + a2);
+    return 0.5 / max(gv + gl, 1e-7);
+}
+
+vec3 fresnelSchlick(vec3 f0, float VdotH) {
+    float f = pow(1.0 - VdotH, 5.0);
+    return f0 + (1.0 - f0) * f;
+}
+
+// Roughness as authored (perceptual) to GGX alpha; clamped to keep highlights finite in 11-bit floats.
+float alphaFromRoughness(float roughness) {
+    float r = clamp(roughness, 0.045, 1.0);
+    return r * r;
+}
+
+#endif

@@ -1,0 +1,45 @@
+// Data shared by the passes of a frame; mirrors passes/frame_data.h (std430 / std140 layouts).
+#ifndef OBSCURA_FRAME_DATA_GLSL
+#define OBSCURA_FRAME_DATA_GLSL
+
+struct CameraData {
+    mat4 view;
+    mat4 projection;
+    mat4 viewProjection;
+    mat4 inverseViewProjection;
+    vec4 position;       // world-space eye, w unused
+    vec2 resolution;     // render size in pixels
+    float exposureScale; // 2^(camera exposure + render setting exposure): pre-exposed accumulation
+    float pad0;
+};
+
+// One per drawn rprim.
+struct InstanceData {
+    mat4 model;
+    mat4 normalMatrix;   // inverse transpose of model's upper 3x3, in a mat4
+    uint materialIndex;
+    int primId;
+    uint flags;          // bit 0: double-sided, bit 1: use vertex colour (no bound material)
+    uint pad0;
+};
+
+struct MaterialData {
+    vec4 diffuseRoughness;  // rgb diffuseColor, a roughness
+    vec4 emissiveMetallic;  // rgb emissiveColor, a metallic
+    vec4 opacityPad;        // x opacity
+};
+
+const uint LIGHT_DISTANT = 0u;
+const uint LIGHT_SPHERE = 1u;
+
+struct LightData {
+    vec4 positionType;      // xyz world position (sphere), w type
+    vec4 directionAngle;    // xyz direction the light travels (distant), w half-angle in radians
+    vec4 radiance;          // rgb emitted radiance incl. intensity, exposure, colour, normalize; a radius
+    vec4 factors;           // x diffuse, y specular multipliers
+};
+
+const uint INSTANCE_DOUBLE_SIDED = 1u;
+const uint INSTANCE_VERTEX_COLOR = 2u;
+
+#endif

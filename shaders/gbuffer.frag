@@ -1,0 +1,35 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// G-buffer pass, fragment stage: the thin G-buffer of seed 004 ("G-Buffer layout"):
+//   RT0 RGBA8  best-fit normal (24 bits) + roughness (8 bits)
+//   RT1 RGBA8 sRGB  albedo + metallic
+//   RT2 R32UI  instance index + 1 (0: nothing drawn) for per-prim data and the primId AOV
+#include "common/frame_data.glsl"
+#include "common/best_fit_normals.glsl"
+
+layout(location = 0) in vec3 inNormal;
+layout(location = 1) in vec3 inColor;
+layout(location = 2) in vec3 inWorldPosition;
+
+layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
+layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
+layout(set = 0, binding = 2, std430) readonly buffer Materials { MaterialData materials[]; };
+layout(set = 0, binding = 3) uniform sampler2D fittingScale;
+
+layout(push_constant) uniform Push { uint instanceIndex; } push;
+
+layout(location = 0) out vec4 outNormalRoughness;
+layout(location = 1) out vec4 outAlbedoMetallic;
+layout(location = 2) out uint outInstance;
+
+void main() {
+    InstanceData inst = instances[push.instanceIndex];
+    MaterialData mat = materials[inst.materialIndex];
+    vec3 n = normalize(inNormal);
+    // Double-sided surfaces face the viewer; single-sided ones keep their orientation.
+    if ((inst.flags & INSTANCE_DOUBLE_SIDED) != 0u && !gl_FrontFacing) n = -n;
+    vec3 albedo = (inst.flags & INSTANCE_VERTEX_COLOR) != 0u ? inColor : mat.diffuseRoughness.rgb;
+    outNormalRoughness = vec4(encodeBestFitNormal(n, fittingScale), mat.diffuseRoughness.a);
+    outAlbedoMetallic = vec4(albedo, mat.emissiveMetallic.a);
+    outInstance = push.instanceIndex + 1u;
+}

@@ -1,0 +1,26 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// G-buffer pass, vertex stage: world transform from the instance buffer.
+#include "common/frame_data.glsl"
+
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec3 inColor;
+
+layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
+layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
+
+layout(push_constant) uniform Push { uint instanceIndex; } push;
+
+layout(location = 0) out vec3 outNormal;
+layout(location = 1) out vec3 outColor;
+layout(location = 2) out vec3 outWorldPosition;
+
+void main() {
+    InstanceData inst = instances[push.instanceIndex];
+    vec4 world = inst.model * vec4(inPosition, 1.0);
+    outWorldPosition = world.xyz;
+    outNormal = mat3(inst.normalMatrix) * inNormal;
+    outColor = inColor;
+    gl_Position = camera.viewProjection * world;
+}

@@ -1,0 +1,120 @@
+// Analytic lighting: a Lambert plane's radiance under a distant and a sphere light equals what
+// the BRDF predicts (albedo / pi * irradiance * cos) within 1%, plus one step of the
+// B10G11R11 accumulation format (1.6% for R and G, 3.1% for B). The albedo is a value 8-bit
+// sRGB holds exactly, so the G-buffer adds no error of its own.
+#include "tests/delegate/render_fixture.h"
+
+#include <gtest/gtest.h>
+
+namespace obscura::test {
+namespace {
+
+constexpr double kCameraDistance = 5.0;
+constexpr float kFocalLength = 50.0f, kAperture = 20.955f;
+const double kTanHalfFov = (kAperture / 2.0) / kFocalLength;
+const float kAlbedo = srgb8Exact(188);  // 0.5029
+
+struct Scene {
+    TestHost host;
+    Scene() {
+        host.addCamera("/Camera", translation(0, 0, kCameraDistance), kFocalLength, kAperture);
+        addMaterial(host, "/Looks/Grey", {kAlbedo, kAlbedo, kAlbedo});
+        addPlane(host, "/Plane", "/Looks/Grey");
+        host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+    }
+    std::vector<float> renderColor() {
+        EXPECT_EQ(host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_OK) << host.lastError();
+        EXPECT_TRUE(host.loggedErrors().empty()) << host.loggedErrors().front();
+        return host.readFloats("/Buffers/color");
+    }
+};
+
+void expectRadiance(const std::vector<float>& color, int x, int y, std::array<double, 3> expected) {
+    const float* p = &color[(size_t(y) * kWidth + x) * 4];
+    const int mantissa[3] = {6, 6, 5};
+    for (int c = 0; c < 3; ++c) {
+        double e = expected[c];
+        EXPECT_NEAR(p[c], e, 0.01 * e + smallFloatStep(float(e), mantissa[c]))
+            << "pixel (" << x << ", " << y << ") channel " << c;
+    }
+    EXPECT_EQ(p[3], 1.0f);
+}
+
+TEST(LightingAnalytic, LambertPlaneUnderDistantLight) {
+    Scene s;
+    const double irradiance = 3.0;  // normalized distant light: intensity is the illuminance
+    const double theta = 30.0 * kPi / 180.0;
+    s.host.addPrim("distantLight", "/Sun",
+                   {{"inputs:intensity", HostValue::floatValue(float(irradiance))},
+                    {"inputs:normalize", HostValue::boolean(true)},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   lightPointingAlong({std::sin(theta), 0.0, -std::cos(theta)}));
+    auto color = s.renderColor();
+    double radiance = kAlbedo / kPi * irradiance * std::cos(theta);
+    for (auto [x, y] : {std::pair{32, 32}, {5, 7}, {60, 50}}) expectRadiance(color, x, y, {radiance, radiance, radiance});
+}
+
+TEST(LightingAnalytic, DistantLightSolidAngleWhenNotNormalized) {
+    Scene s;
+    // UsdLux: without normalize the intensity is radiance over the sun's disc.
+    const double angle = 2.0 * kPi / 180.0, intensity = 5000.0;
+    s.host.addPrim("distantLight", "/Sun",
+                   {{"inputs:intensity", HostValue::floatValue(float(intensity))},
+                    {"inputs:angle", HostValue::floatValue(2.0f)},
+                    {"inputs:color", HostValue::float3(1.0f, 0.5f, 0.25f)},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   lightPointingAlong({0, 0, -1}));
+    auto color = s.renderColor();
+    double irradiance = intensity * 2.0 * kPi * (1.0 - std::cos(angle / 2.0));
+    double r = kAlbedo / kPi * irradiance;
+    expectRadiance(color, 32, 32, {r, r * 0.5, r * 0.25});
+}
+
+TEST(LightingAnalytic, LambertPlaneUnderSphereLight) {
+    Scene s;
+    const double height = 2.0, radius = 0.1, radiance = 400.0;
+    s.host.addPrim("sphereLight", "/Bulb",
+                   {{"inputs:intensity", HostValue::floatValue(float(radiance))},
+                    {"inputs:radius", HostValue::floatValue(float(radius))},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   translation(0, 0, height));
+    auto color = s.renderColor();
+    // A sphere fully above the horizon: E = pi L (r/d)^2 cos(theta).
+    for (auto [x, y] : {std::pair{32, 32}, {10, 20}, {50, 60}}) {
+        auto p = planePointAtPixel(x, y, kCameraDistance, kTanHalfFov);
+        double d2 = p[0] * p[0] + p[1] * p[1] + height * height;
+        double cosTheta = height / std::sqrt(d2);
+        double e = kPi * radiance * radius * radius / d2 * cosTheta;
+        double l = kAlbedo / kPi * e;
+        expectRadiance(color, x, y, {l, l, l});
+    }
+}
+
+TEST(LightingAnalytic, EmissionAddsToReflectedLight) {
+    TestHost host;
+    host.addCamera("/Camera", translation(0, 0, kCameraDistance), kFocalLength, kAperture);
+    addMaterial(host, "/Looks/Glow", {0.5f, 0.5f, 0.5f}, 1.0f, 0.0f, {0.25f, 0.5f, 1.0f});
+    addPlane(host, "/Plane", "/Looks/Glow");
+    host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+    ASSERT_EQ(host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_OK) << host.lastError();
+    auto color = host.readFloats("/Buffers/color");
+    expectRadiance(color, 32, 32, {0.25, 0.5, 1.0});
+}
+
+TEST(LightingAnalytic, ExposureScalesTheColorAov) {
+    Scene s;
+    s.host.addPrim("distantLight", "/Sun",
+                   {{"inputs:intensity", HostValue::floatValue(1.0f)},
+                    {"inputs:normalize", HostValue::boolean(true)},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   lightPointingAlong({0, 0, -1}));
+    double stops = 2.0;
+    ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &stops};
+    ASSERT_EQ(s.host.api().setRenderSetting(s.host.delegate(), "exposure", &v), OBSCURA_OK);
+    auto color = s.renderColor();
+    double r = kAlbedo / kPi * 4.0;
+    expectRadiance(color, 32, 32, {r, r, r});
+}
+
+}  // namespace
+}  // namespace obscura::test

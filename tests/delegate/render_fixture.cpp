@@ -1,0 +1,57 @@
+#include "tests/delegate/render_fixture.h"
+
+namespace obscura::test {
+
+Matrix lightPointingAlong(std::array<double, 3> d) {
+    double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (auto& c : d) c /= len;
+    // Local Z axis = -direction; build an orthonormal basis around it (rows are the images of
+    // the local axes in the row-vector convention).
+    std::array<double, 3> z = {-d[0], -d[1], -d[2]};
+    std::array<double, 3> up = std::fabs(z[1]) < 0.9 ? std::array<double, 3>{0, 1, 0} : std::array<double, 3>{1, 0, 0};
+    std::array<double, 3> x = {up[1] * z[2] - up[2] * z[1], up[2] * z[0] - up[0] * z[2], up[0] * z[1] - up[1] * z[0]};
+    double xl = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    for (auto& c : x) c /= xl;
+    std::array<double, 3> y = {z[1] * x[2] - z[2] * x[1], z[2] * x[0] - z[0] * x[2], z[0] * x[1] - z[1] * x[0]};
+    return {x[0], x[1], x[2], 0, y[0], y[1], y[2], 0, z[0], z[1], z[2], 0, 0, 0, 0, 1};
+}
+
+void addPlane(TestHost& host, const std::string& path, const std::string& material, double half, Matrix transform) {
+    float h = float(half);
+    std::map<std::string, HostValue> values = {
+        {"points", HostValue::points({{-h, -h, 0}, {h, -h, 0}, {h, h, 0}, {-h, h, 0}})},
+        {"faceVertexCounts", HostValue::intArray({4})},
+        {"faceVertexIndices", HostValue::intArray({0, 1, 2, 3})},
+    };
+    if (!material.empty()) values["material:binding"] = HostValue::path(material);
+    host.addPrim("mesh", path, values, transform);
+}
+
+void addMaterial(TestHost& host, const std::string& path, std::array<float, 3> diffuse, float roughness,
+                 float metallic, std::array<float, 3> emissive) {
+    host.addPrim("material", path,
+                 {{"inputs:diffuseColor", HostValue::float3(diffuse[0], diffuse[1], diffuse[2])},
+                  {"inputs:roughness", HostValue::floatValue(roughness)},
+                  {"inputs:metallic", HostValue::floatValue(metallic)},
+                  {"inputs:emissiveColor", HostValue::float3(emissive[0], emissive[1], emissive[2])}});
+}
+
+float smallFloatStep(float v, int mantissaBits) {
+    if (v <= 0.0f) return 0.0f;
+    int exponent = 0;
+    std::frexp(v, &exponent);  // v = m * 2^exponent, m in [0.5, 1)
+    return std::ldexp(1.0f, exponent - 1 - mantissaBits);
+}
+
+float srgb8Exact(int code) {
+    double c = code / 255.0;
+    return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+}
+
+std::array<double, 3> planePointAtPixel(int x, int y, double distance, double tanHalfFov) {
+    double ndcX = (x + 0.5) / kWidth * 2.0 - 1.0;
+    double ndcY = 1.0 - (y + 0.5) / kHeight * 2.0;  // row 0 is the top of the image
+    return {ndcX * tanHalfFov * distance, ndcY * tanHalfFov * distance, 0.0};
+}
+
+}  // namespace obscura::test

@@ -1,0 +1,37 @@
+// Shared scene pieces for delegate tests: a camera looking down -Z at a plane, lights and
+// materials, and the helpers that turn pixels into the analytic expectations.
+#pragma once
+
+#include "tests/support/test_host.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace obscura::test {
+
+constexpr int kWidth = 64;
+constexpr int kHeight = 64;
+constexpr double kPi = std::numbers::pi;
+
+// Rotation taking the light's local -Z axis (its emission direction) onto `direction`.
+Matrix lightPointingAlong(std::array<double, 3> direction);
+
+// A unit-normal quad of half-size `half` at z = 0 facing +Z, with a material bound.
+void addPlane(TestHost& host, const std::string& path, const std::string& material, double half = 10.0,
+              Matrix transform = identity());
+void addMaterial(TestHost& host, const std::string& path, std::array<float, 3> diffuse, float roughness = 1.0f,
+                 float metallic = 0.0f, std::array<float, 3> emissive = {0, 0, 0});
+
+// One step of a B10G11R11_UFLOAT channel at `v` (mantissa bits: 6 for R and G, 5 for B). The
+// accumulation buffer holds radiance to this step; conversion may round or truncate (both are
+// allowed by Vulkan), so analytic expectations get this much slack on top of their tolerance.
+float smallFloatStep(float v, int mantissaBits);
+
+// A linear value that 8-bit sRGB storage (the albedo G-buffer target) holds exactly.
+float srgb8Exact(int code);
+
+// World-space point on the z = 0 plane seen through the centre of pixel (x, y) by a camera at
+// (0, 0, distance) looking down -Z with the given tan of the half field of view.
+std::array<double, 3> planePointAtPixel(int x, int y, double distance, double tanHalfFov);
+
+}  // namespace obscura::test
