@@ -211,7 +211,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         if (rb->width() != width || rb->height() != height)
             throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, std::string(b.renderBufferPath) +
                                                                " does not match the viewport size"};
-        requests.push_back({info->aov, rb->storage(*device_)});
+        requests.push_back({info->aov, rb->storage(*device_), rb->deviceStaging(*device_)});
         targets.push_back(rb);
     }
     if (width == 0 || height == 0) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "empty viewport and no render buffers"};

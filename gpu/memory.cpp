@@ -94,6 +94,7 @@ Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsag
     a.memory = b.memory;
     a.size = req.size;
     a.mapped = b.mapped ? static_cast<char*>(b.mapped) + a.offset : nullptr;
+    a.flags = properties_.memoryTypes[b.memoryType].propertyFlags;
     b.used += req.size;
     inUse_ += req.size;
     return a;

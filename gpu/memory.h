@@ -18,6 +18,7 @@ struct Allocation {
     VkDeviceSize size = 0;
     void* mapped = nullptr;     // host pointer at `offset` for host-visible memory
     uint32_t block = UINT32_MAX;
+    VkMemoryPropertyFlags flags = 0;  // of the memory type it lives in
     explicit operator bool() const { return memory != VK_NULL_HANDLE; }
 };
 

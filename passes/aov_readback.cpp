@@ -30,10 +30,19 @@ void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const 
                         const GBuffer& gb, gpu::ImageHandle hdrColor, gpu::ImageHandle display,
                         const std::vector<AovRequest>& requests) {
     if (requests.empty()) return;
-    std::vector<gpu::BufferHandle> outputs;
+    // The pack writes `targets`; where a device-local staging buffer exists, a copy pass then
+    // moves it to the host-visible destination.
+    std::vector<gpu::BufferHandle> targets, copySources, copyDestinations;
     for (const auto& r : requests) {
-        outputs.push_back(graph.importBuffer("aov", r.destination));
-        graph.markOutput(outputs.back());
+        gpu::BufferHandle destination = graph.importBuffer("aov", r.destination);
+        graph.markOutput(destination);
+        if (r.deviceStaging) {
+            targets.push_back(graph.importBuffer("aov.staging", r.deviceStaging));
+            copySources.push_back(targets.back());
+            copyDestinations.push_back(destination);
+        } else {
+            targets.push_back(destination);
+        }
     }
     const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("aov_pack", describeAovPackPipeline);
     gpu::Device& device = pipelines.device();
@@ -46,9 +55,9 @@ void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const 
             pass.read(gb.instance, gpu::Usage::SampledCompute);
             pass.read(hdrColor, gpu::Usage::StorageImageRead);
             pass.read(display, gpu::Usage::StorageImageRead);
-            for (auto h : outputs) pass.write(h, gpu::Usage::StorageBufferWrite);
+            for (auto h : targets) pass.write(h, gpu::Usage::StorageBufferWrite);
         },
-        [&device, &pipeline, &scene, gb, hdrColor, display, outputs, requests](VkCommandBuffer cmd,
+        [&device, &pipeline, &scene, gb, hdrColor, display, targets, requests](VkCommandBuffer cmd,
                                                                                const gpu::PassResources& res) {
             VkSampler nearest = device.nearestClampSampler();
             for (size_t i = 0; i < requests.size(); ++i) {
@@ -61,12 +70,27 @@ void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const 
                     .sampled(5, res.view(gb.instance), nearest)
                     .storageImage(6, res.view(hdrColor))
                     .storageImage(7, res.view(display))
-                    .buffer(8, res.buffer(outputs[i]))
-                    .buffer(9, res.buffer(outputs[i]))
+                    .buffer(8, res.buffer(targets[i]))
+                    .buffer(9, res.buffer(targets[i]))
                     .bind(cmd);
                 PackPush push{static_cast<uint32_t>(requests[i].aov), scene.width, scene.height};
                 vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
                 gpu::dispatch2D(cmd, scene.width, scene.height);
+            }
+        });
+    if (copySources.empty()) return;
+    graph.addPass(
+        "aov_copy", gpu::PassKind::Transfer,
+        [&](gpu::FrameGraph::PassBuilder& pass) {
+            for (size_t i = 0; i < copySources.size(); ++i) {
+                pass.read(copySources[i], gpu::Usage::TransferSrc);
+                pass.write(copyDestinations[i], gpu::Usage::TransferDst);
+            }
+        },
+        [copySources, copyDestinations](VkCommandBuffer cmd, const gpu::PassResources& res) {
+            for (size_t i = 0; i < copySources.size(); ++i) {
+                VkBufferCopy region{0, 0, res.bufferSize(copySources[i])};
+                vkCmdCopyBuffer(cmd, res.buffer(copySources[i]), res.buffer(copyDestinations[i]), 1, &region);
             }
         });
 }

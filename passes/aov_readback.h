@@ -13,6 +13,7 @@ enum class Aov : uint32_t { Color = 0, Depth = 1, Normal = 2, Albedo = 3, PrimId
 struct AovRequest {
     Aov aov;
     gpu::BufferPtr destination;  // host-visible; width * height elements of the AOV's format
+    gpu::BufferPtr deviceStaging;  // optional device-local twin: packed there, then copied
 };
 
 void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,

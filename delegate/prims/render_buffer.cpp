@@ -40,9 +40,20 @@ void RenderBuffer::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
 const gpu::BufferPtr& RenderBuffer::storage(gpu::Device& device) {
     VkDeviceSize size = VkDeviceSize(width_) * height_ * bytesPerPixel();
     if (!storage_ || storage_->size != size)
-        storage_ = device.createBuffer(size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUsage::Readback,
-                                       path().c_str());
+        storage_ = device.createBuffer(size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                       gpu::MemoryUsage::Readback, path().c_str());
     return storage_;
+}
+
+const gpu::BufferPtr& RenderBuffer::deviceStaging(gpu::Device& device) {
+    const gpu::BufferPtr& host = storage(device);
+    if (host->allocation.flags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) {
+        staging_.reset();
+    } else if (!staging_ || staging_->size != host->size) {
+        staging_ = device.createBuffer(host->size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                       gpu::MemoryUsage::DeviceLocal, path().c_str());
+    }
+    return staging_;
 }
 
 }  // namespace obscura::delegate

@@ -15,6 +15,10 @@ public:
     size_t bytesPerPixel() const;
     // (Re)allocates the storage when the size or format changed.
     const gpu::BufferPtr& storage(gpu::Device& device);
+    // Where the GPU writes the AOV when the host-visible storage is not device-local (discrete
+    // GPUs): shader writes go to video memory and one copy moves them to the host, instead of
+    // every shader write crossing the bus. Null when the storage itself is device-local.
+    const gpu::BufferPtr& deviceStaging(gpu::Device& device);
     bool rendered() const { return rendered_; }
     void setRendered(bool r) { rendered_ = r; }
     bool mapped = false;
@@ -24,6 +28,7 @@ private:
     uint32_t width_ = 0, height_ = 0;
     ObscuraFormat format_ = OBSCURA_FORMAT_FLOAT32_VEC4;
     gpu::BufferPtr storage_;
+    gpu::BufferPtr staging_;
     bool rendered_ = false;
 };
 

@@ -9,6 +9,8 @@ namespace obscura::usda {
 namespace {
 
 constexpr size_t kMaxArcNesting = 128;
+// References fanning out at every level grow an index exponentially; fail instead of hanging.
+constexpr size_t kMaxIndexNodes = 10000;
 constexpr int kMaxNamespaceDepth = 400;
 // Variant selections can select further variants; bound the rounds in case they keep changing.
 constexpr int kMaxVariantRounds = 64;
@@ -58,6 +60,12 @@ void sortChildren(IndexNode& node) {
         if (a.arc != b.arc) return a.arc < b.arc;
         return a.arcDepth > b.arcDepth;
     });
+}
+
+size_t nodeCount(const IndexNode& node) {
+    size_t count = 1;
+    for (const IndexNode& child : node.children) count += nodeCount(child);
+    return count;
 }
 
 void collectOpinions(const IndexNode& node, std::vector<Opinion>& out) {
@@ -117,6 +125,9 @@ const IndexNode& PrimIndexer::index(const LayerStack& stack, const std::string& 
     std::vector<const IndexNode*> chain;
     expandArcs(root, chain);
     selectVariants(root);
+    if (nodeCount(root) > kMaxIndexNodes)
+        throw CompositionFailure{Error{requestedAt, "more than " + std::to_string(kMaxIndexNodes) +
+                                                        " composition arcs contribute to <" + primPath + ">"}};
 
     inProgress_.erase(key);
     return memo_.emplace(key, std::move(root)).first->second;

@@ -1,5 +1,5 @@
 // A composed USD stage read from USD's text format (.usda): the harness's scene model.
-// Parsing (usda_parser.*) builds layers; composition (stage.cpp) merges sublayers, references
+// Parsing (usda_parser.*) builds layers; composition (composer.*, prim_index.*) merges sublayers, references
 // and payloads into one prim tree; values are evaluated at a time code as USD does.
 #pragma once
 

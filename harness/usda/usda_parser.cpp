@@ -1,8 +1,7 @@
 #include "harness/usda/usda_parser.h"
 
-#include <array>
-
 #include "harness/usda/sdf_path.h"
+#include "harness/usda/usda_keywords.h"
 
 namespace obscura::usda {
 
@@ -10,26 +9,6 @@ namespace {
 
 // Deeper prim/variant/dictionary nesting than this is rejected rather than recursed into.
 constexpr int kMaxNesting = 200;
-
-constexpr std::array<std::string_view, 5> kListOpWords = {"prepend", "append", "add", "delete", "reorder"};
-
-std::optional<ListOpKind> listOpKind(const Token& token) {
-    constexpr std::array kinds = {ListOpKind::Prepend, ListOpKind::Append, ListOpKind::Add, ListOpKind::Delete,
-                                  ListOpKind::Reorder};
-    for (size_t i = 0; i < kListOpWords.size(); ++i)
-        if (token.isWord(kListOpWords[i])) return kinds[i];
-    return std::nullopt;
-}
-
-// Words that start statements or qualify declarations; they cannot be type names.
-bool isKeyword(std::string_view word) {
-    constexpr std::array<std::string_view, 16> kKeywords = {
-        "def",    "over",    "class", "variantSet", "rel",  "custom", "uniform", "varying",
-        "config", "prepend", "append", "add",       "delete", "reorder", "None",  "dictionary"};
-    for (const std::string_view keyword : kKeywords)
-        if (word == keyword) return true;
-    return false;
-}
 
 bool isPrimKeyword(const Token& token) {
     return token.isWord("def") || token.isWord("over") || token.isWord("class");
@@ -336,108 +315,6 @@ std::string Parser::parseVariantSet(PrimSpec& prim) {
     }
     take();
     return setName;
-}
-
-// ---- Properties --------------------------------------------------------------------------------
-
-std::string Parser::parseProperty(PrimSpec& prim, std::optional<Token> listOpToken) {
-    if (!listOpToken && listOpKind(peek())) listOpToken = take();
-    const bool custom = acceptWord("custom");
-    bool uniform = false;
-    if (peek().isWord("uniform") || peek().isWord("config")) {
-        take();
-        uniform = true;
-    } else {
-        acceptWord("varying");
-    }
-    std::string name;
-    if (acceptWord("rel")) {
-        parseRelationship(prim, listOpToken, custom, name);
-    } else {
-        parseAttribute(prim, listOpToken, custom, uniform, name);
-    }
-    return name;
-}
-
-void Parser::parseAttribute(PrimSpec& prim, const std::optional<Token>& listOpToken, bool custom, bool uniform,
-                            std::string& name) {
-    const Token typeToken = take();
-    if (typeToken.kind != TokenKind::Identifier || isKeyword(typeToken.text))
-        fail(typeToken, "expected an attribute type or 'rel', found " + describe(typeToken));
-    const ValueType* type = findValueType(typeToken.text);
-    if (!type) fail(typeToken, "unknown attribute type '" + std::string(typeToken.text) + "'");
-    bool isArray = false;
-    if (accept('[')) {
-        expect(']', "after '" + std::string(type->name) + "['");
-        isArray = true;
-    }
-    const std::string typeName = (uniform ? "uniform " : "") + std::string(type->name) + (isArray ? "[]" : "");
-    const Token nameToken = take();
-    if (nameToken.kind != TokenKind::Identifier)
-        fail(nameToken, "expected an attribute name after type '" + typeName + "', found " + describe(nameToken));
-    name = nameToken.text;
-    if (prim.relationships.count(name)) fail(nameToken, "'" + name + "' is already a relationship of " + primPathText());
-
-    AttributeSpec& attr = prim.attributes[name];
-    if (attr.type && attr.typeName != typeName)
-        fail(typeToken, "attribute '" + name + "' redeclared as '" + typeName + "' (was '" + attr.typeName + "')");
-    attr.typeName = typeName;
-    attr.type = type;
-    attr.isArray = isArray;
-    attr.isUniform = uniform;
-    attr.isCustom = attr.isCustom || custom;
-    attr.where = where(nameToken);
-
-    if (accept('.')) {
-        const Token field = take();
-        if (field.isWord("timeSamples")) {
-            if (listOpToken) fail(*listOpToken, "time samples cannot be list-edited");
-            expect('=', "after '" + name + ".timeSamples'");
-            attr.timeSamples = parseTimeSamples(*type, isArray);
-        } else if (field.isWord("connect")) {
-            expect('=', "after '" + name + ".connect'");
-            const ListOpKind op = listOpToken ? *listOpKind(*listOpToken) : ListOpKind::Explicit;
-            std::vector<std::string> targets;
-            parseListOf("connections", op == ListOpKind::Explicit, [&] { targets.push_back(parsePath("connections")); });
-            attr.connections.set(op, std::move(targets));
-        } else {
-            fail(field, "expected 'timeSamples' or 'connect' after '" + name + ".', found " + describe(field));
-        }
-        return;
-    }
-    if (listOpToken)
-        fail(*listOpToken, "'" + std::string(listOpToken->text) +
-                               "' applies only to relationships and attribute connections ('.connect')");
-    if (accept('=')) {
-        attr.defaultValue = acceptWord("None") ? blockedValue(*type, isArray) : parseTypedValue(*type, isArray);
-    } else if (!peek().isPunct('(') && !atStatementEnd()) {
-        fail(peek(), "expected '=' or '(' after attribute name '" + name + "', found " + describe(peek()));
-    }
-    if (peek().isPunct('('))
-        parseMetadataBlock("attribute '" + name + "'", [&] { parseMetadataItem(attr.metadata, nullptr); });
-}
-
-void Parser::parseRelationship(PrimSpec& prim, const std::optional<Token>& listOpToken, bool custom,
-                               std::string& name) {
-    const Token nameToken = take();
-    if (nameToken.kind != TokenKind::Identifier)
-        fail(nameToken, "expected a relationship name after 'rel', found " + describe(nameToken));
-    name = nameToken.text;
-    if (prim.attributes.count(name)) fail(nameToken, "'" + name + "' is already an attribute of " + primPathText());
-    RelationshipSpec& rel = prim.relationships[name];
-    rel.isCustom = rel.isCustom || custom;
-    rel.where = where(nameToken);
-    if (accept('=')) {
-        const ListOpKind op = listOpToken ? *listOpKind(*listOpToken) : ListOpKind::Explicit;
-        std::vector<std::string> targets;
-        parseListOf("relationship targets", op == ListOpKind::Explicit,
-                    [&] { targets.push_back(parsePath("relationship targets")); });
-        rel.targets.set(op, std::move(targets));
-    } else if (!peek().isPunct('(') && !atStatementEnd()) {
-        fail(peek(), "expected '=' or '(' after relationship name '" + name + "', found " + describe(peek()));
-    }
-    if (peek().isPunct('('))
-        parseMetadataBlock("relationship '" + name + "'", [&] { parseMetadataItem(rel.metadata, nullptr); });
 }
 
 }  // namespace obscura::usda

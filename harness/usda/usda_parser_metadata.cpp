@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "harness/usda/sdf_path.h"
+#include "harness/usda/usda_keywords.h"
 #include "harness/usda/usda_parser.h"
 
 namespace obscura::usda {
@@ -70,20 +71,10 @@ void Parser::parseMetadataItem(std::map<std::string, Value>& metadata, const Spe
         return;
     }
     std::optional<Token> listOpToken;
-    static constexpr std::array<std::pair<std::string_view, ListOpKind>, 5> kOps = {{
-        {"prepend", ListOpKind::Prepend},
-        {"append", ListOpKind::Append},
-        {"add", ListOpKind::Add},
-        {"delete", ListOpKind::Delete},
-        {"reorder", ListOpKind::Reorder},
-    }};
     ListOpKind op = ListOpKind::Explicit;
-    for (const auto& [word, kind] : kOps) {
-        if (peek().isWord(word)) {
-            listOpToken = take();
-            op = kind;
-            break;
-        }
+    if (const std::optional<ListOpKind> kind = listOpKind(peek())) {
+        listOpToken = take();
+        op = *kind;
     }
     const Token key = take();
     if (key.kind != TokenKind::Identifier) fail(key, "expected a metadata name, found " + describe(key));

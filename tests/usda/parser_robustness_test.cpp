@@ -132,5 +132,19 @@ TEST(ParserRobustness, DeepValueAndDictionaryNestingIsAnError) {
     EXPECT_FALSE(openSafely(arrays));
 }
 
+TEST(ParserRobustness, ExponentialReferenceFanOutFailsInsteadOfHanging) {
+    // Every level references both prims of the next: 2^30 paths to the bottom.
+    std::string text = "#usda 1.0\n";
+    for (int level = 0; level < 30; ++level) {
+        const std::string next = std::to_string(level + 1);
+        for (const char* side : {"a", "b"})
+            text += "def \"L" + std::to_string(level) + side + "\" (\n    references = [</L" + next + "a>, </L" + next +
+                    "b>]\n)\n{\n}\n";
+    }
+    text += "def \"L30a\"\n{\n}\ndef \"L30b\"\n{\n}\n";
+    const Error error = test::openError(text, "fuzz.usda");
+    EXPECT_NE(error.message.find("composition arcs contribute"), std::string::npos) << error.str();
+}
+
 }  // namespace
 }  // namespace obscura::usda

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Runs on the GPU machine, from the repository root, after bench/pack-for-gpu.sh ran here:
+# installs the carried Vulkan loader and GL dispatch libraries, then benchmarks each scene.
+# Usage: bench/gpu-bench.sh [FRAMES] [WIDTH] [HEIGHT] [SCENE...]
+set -euo pipefail
+frames=${1:-200}; width=${2:-1920}; height=${3:-1080}; shift $(( $# < 3 ? $# : 3 ))
+scenes=("$@"); [ ${#scenes[@]} -gt 0 ] || scenes=(scenes/demo.usda)
+for f in gpu-debs/*.deb; do dpkg -x "$f" /; done
+ldconfig
+export OBSCURA_PLUGINPATH=$PWD/gpu-pack/obscura
+gpu-pack/run obscura info
+for scene in "${scenes[@]}"; do
+  gpu-pack/run obscura bench "$scene" --frames "$frames" --width "$width" --height "$height"
+  gpu-pack/run obscura bench "$scene" --frames "$frames" --width "$width" --height "$height" --json
+done

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Builds here and packs what `obscura bench` needs on a GPU machine without packages:
+#   gpu-pack/  the harness, the plugin folder (plugInfo.json + library) and every shared library
+#              they load (see pack-with-libs.sh), with gpu-pack/run to start them;
+#   gpu-debs/  the Vulkan loader and the GL dispatch libraries the NVIDIA Vulkan driver needs.
+# Both folders are ignored by git. Usage: bench/pack-for-gpu.sh PACK_TOOL
+# (PACK_TOOL: the pack-with-libs.sh script of the workplace).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+pack_tool=${1:?usage: $0 path/to/pack-with-libs.sh}
+"$root/scripts/build.sh" -DOBSCURA_BUILD_TESTS=OFF >/dev/null
+rm -rf "$root/gpu-pack" "$root/gpu-debs"
+"$pack_tool" "$root/gpu-pack" "$root/build/bin/obscura" "$root/build/plugin/obscura/libobscuraDelegate.so" \
+  "$root/build/plugin/obscura"
+mkdir -p "$root/gpu-debs"
+(cd "$root/gpu-debs" && apt-get download libvulkan1 libglvnd0 libglx0 libegl1 libgl1 libopengl0 libgles2 >/dev/null)
+echo "packed gpu-pack/ and gpu-debs/"
