@@ -8,10 +8,12 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 pack_tool=${1:?usage: $0 path/to/pack-with-libs.sh}
-"$root/scripts/build.sh" -DOBSCURA_BUILD_TESTS=OFF >/dev/null
+# A build folder of its own, so the test build's settings stay as they are.
+export OBSCURA_BUILD_DIR=$root/build-gpu
+"$root/scripts/build.sh" -DOBSCURA_BUILD_TESTS=OFF -DCMAKE_BUILD_TYPE=Release >/dev/null
 rm -rf "$root/gpu-pack" "$root/gpu-debs"
-"$pack_tool" "$root/gpu-pack" "$root/build/bin/obscura" "$root/build/plugin/obscura/libobscuraDelegate.so" \
-  "$root/build/plugin/obscura"
+"$pack_tool" "$root/gpu-pack" "$OBSCURA_BUILD_DIR/bin/obscura" \
+  "$OBSCURA_BUILD_DIR/plugin/obscura/libobscuraDelegate.so" "$OBSCURA_BUILD_DIR/plugin/obscura"
 mkdir -p "$root/gpu-debs"
 (cd "$root/gpu-debs" && apt-get download libvulkan1 libglvnd0 libglx0 libegl1 libgl1 libopengl0 libgles2 >/dev/null)
 echo "packed gpu-pack/ and gpu-debs/"

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# The harness's command-line contract (DESIGN.md): outputs, exit codes and error messages.
+# usage: cli_test.sh OBSCURA_EXE SOURCE_DIR FAKE_PLUGIN_DIR
+set -u
+obscura=$1; src=$2; fake_plugin=$3
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+export OBSCURA_VALIDATION=1
+pass=0; fail=0
+check() {  # check NAME EXPECTED_CODE ACTUAL_CODE [OUTPUT_FILE PATTERN]
+    local name=$1 want=$2 got=$3
+    if [ "$got" != "$want" ]; then
+        echo "FAIL $name: exit $got, expected $want"; [ -n "${4:-}" ] && sed 's/^/    /' "$4"; fail=$((fail + 1)); return
+    fi
+    if [ -n "${4:-}" ] && ! grep -qE "$5" "$4"; then
+        echo "FAIL $name: output lacks /$5/:"; sed 's/^/    /' "$4"; fail=$((fail + 1)); return
+    fi
+    echo "ok   $name"; pass=$((pass + 1))
+}
+
+"$obscura" render "$src/scenes/demo.usda" -o "$tmp/demo.exr" --width 96 --height 54 \
+    --aov color,depth,normal,albedo,primId >"$tmp/out" 2>&1
+check "render demo to EXR" 0 $?
+"$obscura" render "$src/scenes/demo.usda" -o "$tmp/demo.png" --width 96 --height 54 >"$tmp/out" 2>&1
+check "render demo to PNG" 0 $?
+[ -s "$tmp/demo.png" ] && [ -s "$tmp/demo.exr" ]; check "both files written" 0 $?
+if command -v exrheader >/dev/null; then
+    exrheader "$tmp/demo.exr" >"$tmp/header" 2>&1
+    check "EXR has the AOV channels" 0 $? "$tmp/header" 'primId\.id.*' 
+    grep -qE '^ +Z, ' "$tmp/header" && grep -q 'normal.X' "$tmp/header" && grep -q 'albedo.R' "$tmp/header"
+    check "EXR names Z, normal and albedo layers" 0 $?
+fi
+
+"$obscura" render "$src/scenes/demo.usda" -o "$tmp/frame.####.png" --frames 1-2 --width 32 --height 18 >"$tmp/out" 2>&1
+check "frame sequence" 0 $? "$tmp/out" 'frame 2 \(2/2\)'
+[ -s "$tmp/frame.0001.png" ] && [ -s "$tmp/frame.0002.png" ]; check "#### becomes the frame number" 0 $?
+
+"$obscura" compare "$tmp/demo.exr" "$tmp/demo.exr" --psnr-min 60 --ssim-min 0.999 >"$tmp/out" 2>&1
+check "compare identical images" 0 $? "$tmp/out" 'psnr inf'
+"$obscura" render "$src/scenes/demo.usda" -o "$tmp/dim.exr" --width 96 --height 54 --set exposure=-2 >"$tmp/out" 2>&1
+check "render with --set" 0 $?
+"$obscura" compare "$tmp/demo.exr" "$tmp/dim.exr" --psnr-min 60 --diff "$tmp/diff.png" >"$tmp/out" 2>&1
+check "compare below threshold exits 1" 1 $? "$tmp/out" 'below threshold'
+[ -s "$tmp/diff.png" ]; check "diff image written" 0 $?
+
+"$obscura" render "$src/tests/harness/data/malformed.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
+check "malformed scene names file:line:column" 3 $? "$tmp/out" 'malformed\.usda:7:[0-9]+'
+"$obscura" render "$src/tests/harness/data/bad_prims.usda" -o "$tmp/bad.png" --width 64 --height 64 >"$tmp/out" 2>&1
+check "bad prims exit 3" 3 $? "$tmp/out" 'NaNPoints.*NaN'
+grep -q 'IndexOutOfRange' "$tmp/out"; check "every bad prim is reported" 0 $?
+grep -q "prim type 'Cube' is not supported" "$tmp/out"; check "unsupported prim types warned once" 0 $?
+[ -s "$tmp/bad.png" ]; check "the rest still renders" 0 $?
+"$obscura" render "$src/tests/harness/data/no_camera.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
+check "scene without camera" 3 $? "$tmp/out" 'no camera'
+"$obscura" render "$tmp/does-not-exist.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
+check "missing scene file" 3 $? "$tmp/out" 'does-not-exist'
+"$obscura" render "$src/scenes/demo.usda" -o "$tmp/x.tiff" >"$tmp/out" 2>&1
+check "unknown output type is a usage error" 2 $?
+"$obscura" render "$src/scenes/demo.usda" -o "$tmp/x.png" --set noSuchSetting=1 >"$tmp/out" 2>&1
+check "unknown setting is a usage error" 2 $? "$tmp/out" 'noSuchSetting'
+"$obscura" frobnicate >"$tmp/out" 2>&1
+check "unknown command is a usage error" 2 $?
+
+# A harness copied away from its plugin, with no search path: a clear failure, exit 4.
+mkdir -p "$tmp/lonely/bin" && cp "$obscura" "$tmp/lonely/bin/"
+OBSCURA_PLUGINPATH= "$tmp/lonely/bin/obscura" render "$src/scenes/demo.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
+check "missing plugin" 4 $? "$tmp/out" 'no renderer plugin found'
+# A plugin that only speaks ABI 2: refused by version negotiation, exit 4.
+OBSCURA_PLUGINPATH="$fake_plugin" "$tmp/lonely/bin/obscura" render "$src/scenes/demo.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
+check "ABI mismatch" 4 $? "$tmp/out" 'does not provide ABI 1\.0'
+OBSCURA_PLUGINPATH="$(dirname "$obscura")/../plugin" "$tmp/lonely/bin/obscura" info >"$tmp/out" 2>&1
+check "OBSCURA_PLUGINPATH finds the plugin" 0 $? "$tmp/out" 'loaded: Obscura, ABI 1\.0'
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
