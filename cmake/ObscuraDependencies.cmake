@@ -7,8 +7,19 @@ find_package(OpenEXR REQUIRED)
 find_package(Imath REQUIRED)
 find_package(PNG REQUIRED)
 find_package(fmt REQUIRED)
+find_package(assimp REQUIRED)          # glTF, FBX and OBJ scenes, converted to USD text
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET GLOBAL stb)
+# OpenSubdiv's CPU library. Not find_package(OpenSubdiv): Debian's OpenSubdivConfig lists static
+# libraries the package does not ship, which makes the call a hard error.
+find_library(OSD_CPU_LIBRARY osdCPU REQUIRED)
+find_path(OSD_INCLUDE_DIR opensubdiv/far/topologyRefiner.h REQUIRED)
+add_library(OpenSubdiv::osdCPU UNKNOWN IMPORTED GLOBAL)
+set_target_properties(OpenSubdiv::osdCPU PROPERTIES
+  IMPORTED_LOCATION ${OSD_CPU_LIBRARY}
+  INTERFACE_INCLUDE_DIRECTORIES ${OSD_INCLUDE_DIR})
+# Debian's OpenColorIO CMake config is unusable; its pkg-config file works.
+pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET GLOBAL OpenColorIO>=2.1)
 if(OBSCURA_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()

@@ -27,9 +27,9 @@ template <typename F>
 ObscuraStatus guarded(std::string* errorSink, F&& body) {
     std::string& sink = errorSink ? *errorSink : tlsLastError;
     try {
-        ObscuraStatus s = body();
-        if (s == OBSCURA_OK) sink.clear();
-        return s;
+        // Success leaves the message of the last failure in place (errno-like), so a host may
+        // read it after further calls.
+        return body();
     } catch (const ApiError& e) {
         sink = e.message;
         return e.status;

@@ -1,5 +1,6 @@
 #include "delegate/frame_scene_builder.h"
 
+#include "delegate/prims/instancer.h"
 #include "delegate/prims/light.h"
 #include "delegate/prims/material.h"
 #include "delegate/prims/mesh.h"
@@ -75,26 +76,58 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         }
     }
 
+    // Prototype meshes draw only through their instancers.
+    std::vector<const Instancer*> instancers;
+    for (const auto& [path, prim] : in.prims)
+        if (auto* inst = dynamic_cast<const Instancer*>(prim.get()); inst && !inst->skipped() && inst->visible())
+            instancers.push_back(inst);
+    auto isPrototype = [&](const std::string& path) {
+        for (const Instancer* inst : instancers)
+            if (inst->prototypeOf(path) >= 0) return true;
+        return false;
+    };
+
     std::vector<passes::InstanceData> instances;
-    for (const auto& [path, prim] : in.prims) {
-        auto* mesh = dynamic_cast<const Mesh*>(prim.get());
-        if (!mesh || mesh->skipped() || !mesh->drawable()) continue;
+    auto record = [&](const Mesh& mesh, const Matrix4d& model) {
         passes::InstanceData inst{};
-        inst.model = toFloats<passes::Mat4>(mesh->transform());
-        inst.normalMatrix = toFloats<passes::Mat4>(normalMatrix(mesh->transform()));
-        inst.primId = mesh->primId();
+        inst.model = toFloats<passes::Mat4>(model);
+        inst.normalMatrix = toFloats<passes::Mat4>(normalMatrix(model));
+        inst.primId = mesh.primId();
         inst.materialIndex = 0;
-        if (mesh->materialPath()) {
-            auto it = materialIndex.find(*mesh->materialPath());
+        if (mesh.materialPath()) {
+            auto it = materialIndex.find(*mesh.materialPath());
             if (it != materialIndex.end()) inst.materialIndex = it->second;
         }
         // UsdPreviewSurface wins over displayColor; without a material, displayColor is the
         // surface colour (as Hydra's fallback material).
         if (inst.materialIndex == 0) inst.flags |= passes::kInstanceVertexColor;
-        if (mesh->doubleSided()) inst.flags |= passes::kInstanceDoubleSided;
-        scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
-                               static_cast<uint32_t>(instances.size())});
+        if (mesh.doubleSided()) inst.flags |= passes::kInstanceDoubleSided;
         instances.push_back(inst);
+    };
+    auto drawable = [](const Prim& prim) -> const Mesh* {
+        auto* mesh = dynamic_cast<const Mesh*>(&prim);
+        return mesh && !mesh->skipped() && mesh->drawable() ? mesh : nullptr;
+    };
+    for (const auto& [path, prim] : in.prims) {
+        const Mesh* mesh = drawable(*prim);
+        if (!mesh || isPrototype(path)) continue;
+        scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
+                               static_cast<uint32_t>(instances.size()), 1});
+        record(*mesh, mesh->transform());
+    }
+    // One draw per (instancer, prototype mesh): the mesh's transform relative to the instancer,
+    // then each instance's transform.
+    for (const Instancer* inst : instancers) {
+        for (const auto& [path, prim] : in.prims) {
+            const Mesh* mesh = drawable(*prim);
+            int proto = mesh ? inst->prototypeOf(path) : -1;
+            if (proto < 0) continue;
+            const auto& placements = inst->instancesOf(size_t(proto));
+            if (placements.empty()) continue;
+            scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
+                                   static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(placements.size())});
+            for (const Matrix4d& placement : placements) record(*mesh, multiply(mesh->transform(), placement));
+        }
     }
     passes::LightBufferHeader header{static_cast<uint32_t>(lights.size()), {0, 0, 0}};
     scene.instances = uploadRecords(device, nullptr, 0, instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instances");

@@ -8,6 +8,7 @@
 #include "passes/lighting.h"
 #include "passes/tonemap.h"
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -108,7 +109,10 @@ void RenderDelegate::setSceneDelegate(const ObscuraSceneDelegate& sd) {
     if (!sd.getValue) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "ObscuraSceneDelegate.getValue is required"};
     sceneDelegate_ = sd;
     hasSceneDelegate_ = true;
-    for (auto& [path, prim] : prims_) prim->markDirty(OBSCURA_DIRTY_ALL);
+    for (auto& [path, prim] : prims_) {
+        prim->markDirty(OBSCURA_DIRTY_ALL);
+        dirty_.insert(prim.get());
+    }
 }
 
 void RenderDelegate::insertPrim(const std::string& type, const std::string& path) {
@@ -124,38 +128,48 @@ void RenderDelegate::insertPrim(const std::string& type, const std::string& path
     else if (type == "sphereLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Sphere);
     else if (type == "material") prim = std::make_unique<Material>(path, *schema);
     else if (type == "renderBuffer") prim = std::make_unique<RenderBuffer>(path, *schema);
+    else if (type == "instancer") prim = std::make_unique<Instancer>(path, *schema);
     else throw ApiError{OBSCURA_ERROR_UNKNOWN_TYPE, "prim type '" + type + "' has a schema but no implementation"};
+    dirty_.insert(prim.get());
     prims_.emplace(path, std::move(prim));
 }
 
 void RenderDelegate::removePrim(const std::string& path) {
     // GPU resources the prim owns are retired: they die at the end of the next frame.
-    if (!prims_.erase(path)) throw ApiError{OBSCURA_ERROR_NOT_FOUND, "no prim at " + path};
+    auto it = prims_.find(path);
+    if (it == prims_.end()) throw ApiError{OBSCURA_ERROR_NOT_FOUND, "no prim at " + path};
+    dirty_.erase(it->second.get());
+    prims_.erase(it);
 }
 
 void RenderDelegate::markDirty(const std::string& path, ObscuraDirtyBits bits) {
     auto it = prims_.find(path);
     if (it == prims_.end()) throw ApiError{OBSCURA_ERROR_NOT_FOUND, "no prim at " + path};
     it->second->markDirty(bits);
+    if (bits != OBSCURA_DIRTY_CLEAN) dirty_.insert(it->second.get());
 }
 
 void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue* value) {
+    double previousRefineLevel = settings_.number("refineLevel");
     std::string problem = settings_.set(key, value);
     if (!problem.empty())
         throw ApiError{findRenderSetting(key) ? OBSCURA_ERROR_INVALID_ARGUMENT : OBSCURA_ERROR_NOT_FOUND, problem};
+    // A new refinement level re-refines every mesh (Hydra's display-style change).
+    if (settings_.number("refineLevel") != previousRefineLevel)
+        for (auto& [path, prim] : prims_)
+            if (dynamic_cast<Mesh*>(prim.get())) markDirty(path, OBSCURA_DIRTY_TOPOLOGY);
 }
 
 void RenderDelegate::sync(double time, const Camera* camera) {
     primsSynced_ = 0;
     // The camera's shutter decides the interval transforms are sampled over; sync it first.
-    std::vector<Prim*> dirty;
-    for (auto& [path, prim] : prims_)
-        if (prim->dirtyBits() != OBSCURA_DIRTY_CLEAN) dirty.push_back(prim.get());
-    std::stable_sort(dirty.begin(), dirty.end(), [camera](Prim* a, Prim* b) {
+    std::vector<Prim*> dirty(dirty_.begin(), dirty_.end());
+    dirty_.clear();
+    std::sort(dirty.begin(), dirty.end(), [camera](Prim* a, Prim* b) {
         int oa = a == camera ? -1 : syncOrder(*a), ob = b == camera ? -1 : syncOrder(*b);
-        return oa < ob;
+        return oa != ob ? oa < ob : a->path() < b->path();
     });
-    SyncContext ctx{sceneDelegate_, *device_, time, time, time};
+    SyncContext ctx{sceneDelegate_, *device_, time, time, time, static_cast<int>(settings_.number("refineLevel"))};
     auto takeShutter = [&] {
         if (!camera || camera->skipped()) return;
         ctx.shutterOpen = time + camera->params().shutterOpen;
@@ -184,7 +198,10 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (desc.aovBindingCount > 0 && !desc.aovBindings)
         throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "aovBindings is NULL but aovBindingCount is not 0"};
 
+    auto syncStart = std::chrono::steady_clock::now();
     sync(desc.time, camera);
+    auto syncEnd = std::chrono::steady_clock::now();
+    syncMilliseconds_ = std::chrono::duration<double, std::milli>(syncEnd - syncStart).count();
     if (camera->skipped()) throw ApiError{OBSCURA_ERROR_BAD_PRIM_DATA, "camera " + camera->problem()};
 
     // Bind render buffers; they all share the viewport's size.
@@ -218,7 +235,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
 
     passes::FrameScene scene = buildFrameScene(*device_, {prims_, *camera, width, height, settings_.number("exposure")});
     trianglesDrawn_ = 0;
-    for (const auto& d : scene.draws) trianglesDrawn_ += d.indexCount / 3;
+    for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
 
     // The frame (DESIGN.md "The frame"): G-buffer, lighting, tone mapping, AOV readback.
     gpu::FrameGraph graph;
@@ -231,6 +248,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     device_->context().submitAndWait([&](VkCommandBuffer cmd) {
         timestamps_->reset(cmd);
         graph.execute(*transients_, cmd, timestamps_.get());
+        frameSetupMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - syncEnd).count();
     });
     timings_ = timestamps_->resolve();
     device_->endFrame();
@@ -275,6 +293,8 @@ ObscuraRenderStats RenderDelegate::stats() const {
     s.validationErrors = device_->context().validationErrorCount();
     s.converged = 1;  // a single deferred frame: nothing accumulates yet
     s.trianglesDrawn = trianglesDrawn_;
+    s.syncMilliseconds = syncMilliseconds_;
+    s.frameSetupMilliseconds = frameSetupMilliseconds_;
     std::snprintf(s.deviceName, sizeof(s.deviceName), "%s", device_->context().summary().name.c_str());
     return s;
 }

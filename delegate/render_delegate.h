@@ -3,6 +3,7 @@
 #pragma once
 
 #include "delegate/prims/camera.h"
+#include "delegate/prims/instancer.h"
 #include "delegate/prims/light.h"
 #include "delegate/prims/material.h"
 #include "delegate/prims/mesh.h"
@@ -15,6 +16,7 @@
 #include <obscura/obscura.h>
 
 #include <map>
+#include <set>
 #include <memory>
 #include <string>
 #include <vector>
@@ -66,12 +68,16 @@ private:
     ObscuraSceneDelegate sceneDelegate_{};
     bool hasSceneDelegate_ = false;
     std::map<std::string, std::unique_ptr<Prim>> prims_;
+    // Prims with dirty bits: sync visits these only, so its cost follows what changed.
+    std::set<Prim*> dirty_;
     int32_t nextPrimId_ = 0;
     RenderSettings settings_;
 
     std::vector<gpu::PassTime> timings_;
     uint32_t primsSynced_ = 0;
     uint64_t trianglesDrawn_ = 0;
+    double syncMilliseconds_ = 0.0;
+    double frameSetupMilliseconds_ = 0.0;
     std::string lastError_;
 };
 

@@ -9,6 +9,9 @@ namespace {
 const RenderSettingInfo kSettings[] = {
     {"exposure", "exposure adjustment in stops, added to the camera's exposure (float, default 0)",
      OBSCURA_VALUE_FLOAT, 0.0},
+    {"refineLevel", "subdivision level of catmullClark/loop/bilinear meshes, 0-6; a mesh's obscura:refineLevel "
+                    "overrides it (int, default 2)",
+     OBSCURA_VALUE_INT, 2.0},
 };
 
 }  // namespace

@@ -101,6 +101,14 @@ std::optional<std::string> SceneAccess::getPath(const char* name) {
     return std::string(static_cast<const char* const*>(v->data)[0]);
 }
 
+std::vector<std::string> SceneAccess::getPathArray(const char* name) {
+    auto v = fetch(attribute(name));
+    std::vector<std::string> out;
+    if (v)
+        for (size_t i = 0; i < v->count; ++i) out.emplace_back(static_cast<const char* const*>(v->data)[i]);
+    return out;
+}
+
 std::optional<std::vector<int32_t>> SceneAccess::getIntArray(const char* name) {
     auto v = fetch(attribute(name));
     if (!v) return std::nullopt;
@@ -111,7 +119,10 @@ std::optional<std::vector<int32_t>> SceneAccess::getIntArray(const char* name) {
 std::optional<std::vector<float>> SceneAccess::getFloatArray(const char* name) {
     auto v = fetch(attribute(name));
     if (!v) return std::nullopt;
-    size_t components = v->type == OBSCURA_VALUE_FLOAT3 ? 3 : v->type == OBSCURA_VALUE_FLOAT2 ? 2 : 1;
+    size_t components = v->type == OBSCURA_VALUE_FLOAT4   ? 4
+                        : v->type == OBSCURA_VALUE_FLOAT3 ? 3
+                        : v->type == OBSCURA_VALUE_FLOAT2 ? 2
+                                                          : 1;
     std::vector<float> out(v->count * components);
     for (size_t i = 0; i < out.size(); ++i) out[i] = static_cast<float>(numberAt(*v, i));
     return out;

@@ -42,6 +42,7 @@ public:
     std::array<int32_t, 2> getInt2(const char* name);
     std::string getToken(const char* name);
     std::optional<std::string> getPath(const char* name);  // empty when unauthored
+    std::vector<std::string> getPathArray(const char* name);  // empty when unauthored
     // Arrays: nullopt when not authored.
     std::optional<std::vector<int32_t>> getIntArray(const char* name);
     std::optional<std::vector<float>> getFloatArray(const char* name);  // float[] and floatN[] flattened

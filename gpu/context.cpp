@@ -2,6 +2,8 @@
 
 #include "gpu/vk_check.h"
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
@@ -138,7 +140,23 @@ void Context::log(LogLevel level, const std::string& message) const {
     if (log_) log_(level, message);
 }
 
+// LeakSanitizer walks allocation stacks at exit; when the loader has unloaded lavapipe (and the
+// LLVM it links) at vkDestroyInstance those frames point into unmapped code and every one-time
+// allocation of the driver reads as a leak. Sanitized builds keep the driver and the validation
+// layer resident so the suppressions in tests/lsan.supp can name them.
+static void pinDriversForLeakChecking() {
+#if defined(__SANITIZE_ADDRESS__)
+    static const bool pinned = [] {
+        dlopen("libvulkan_lvp.so", RTLD_NOW | RTLD_NODELETE);
+        dlopen("libVkLayer_khronos_validation.so", RTLD_NOW | RTLD_NODELETE);
+        return true;
+    }();
+    (void)pinned;
+#endif
+}
+
 Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
+    pinDriversForLeakChecking();
     std::unique_ptr<Context> ctx(new Context());
     ctx->log_ = options.log;
     bool validation = options.validation;

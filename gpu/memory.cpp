@@ -48,15 +48,27 @@ uint32_t MemoryAllocator::findMemoryType(uint32_t typeBits, MemoryUsage usage) c
     return fallback;
 }
 
+void MemoryAllocator::Block::addRange(VkDeviceSize offset, VkDeviceSize rangeSize) {
+    freeRanges[offset] = rangeSize;
+    bySize.insert({rangeSize, offset});
+}
+
+void MemoryAllocator::Block::removeRange(std::map<VkDeviceSize, VkDeviceSize>::iterator it) {
+    bySize.erase({it->second, it->first});
+    freeRanges.erase(it);
+}
+
 bool MemoryAllocator::tryPlace(Block& block, const VkMemoryRequirements& req, VkDeviceSize* offset) {
-    for (auto it = block.freeRanges.begin(); it != block.freeRanges.end(); ++it) {
-        VkDeviceSize start = alignUp(it->first, req.alignment);
-        VkDeviceSize end = it->first + it->second;
+    // Best fit: the smallest ranges that can hold the request; a range of size + alignment - 1
+    // always can, smaller ones only if their start happens to be aligned.
+    for (auto candidate = block.bySize.lower_bound({req.size, 0}); candidate != block.bySize.end(); ++candidate) {
+        VkDeviceSize rangeStart = candidate->second, rangeSize = candidate->first;
+        VkDeviceSize start = alignUp(rangeStart, req.alignment);
+        VkDeviceSize end = rangeStart + rangeSize;
         if (start + req.size > end) continue;
-        VkDeviceSize rangeStart = it->first;
-        block.freeRanges.erase(it);
-        if (start > rangeStart) block.freeRanges[rangeStart] = start - rangeStart;
-        if (start + req.size < end) block.freeRanges[start + req.size] = end - (start + req.size);
+        block.removeRange(block.freeRanges.find(rangeStart));
+        if (start > rangeStart) block.addRange(rangeStart, start - rangeStart);
+        if (start + req.size < end) block.addRange(start + req.size, end - (start + req.size));
         *offset = start;
         return true;
     }
@@ -85,7 +97,7 @@ Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsag
         vkCheck(vkAllocateMemory(device_, &ai, nullptr, &block->memory), "vkAllocateMemory");
         if (properties_.memoryTypes[type].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)
             vkCheck(vkMapMemory(device_, block->memory, 0, VK_WHOLE_SIZE, 0, &block->mapped), "vkMapMemory");
-        block->freeRanges[0] = block->size;
+        block->addRange(0, block->size);
         if (!tryPlace(*block, req, &a.offset)) throw DeviceError("allocation larger than its own block");
         blocks_.push_back(std::move(block));
         a.block = static_cast<uint32_t>(blocks_.size() - 1);
@@ -105,21 +117,22 @@ void MemoryAllocator::free(const Allocation& a) {
     Block& b = *blocks_.at(a.block);
     b.used -= a.size;
     inUse_ -= a.size;
-    auto [it, inserted] = b.freeRanges.emplace(a.offset, a.size);
-    (void)inserted;
-    // Coalesce with the following and the preceding free range.
-    auto next = std::next(it);
-    if (next != b.freeRanges.end() && it->first + it->second == next->first) {
-        it->second += next->second;
-        b.freeRanges.erase(next);
-    }
-    if (it != b.freeRanges.begin()) {
-        auto prev = std::prev(it);
-        if (prev->first + prev->second == it->first) {
-            prev->second += it->second;
-            b.freeRanges.erase(it);
+    // Coalesce with the preceding and the following free range.
+    VkDeviceSize offset = a.offset, size = a.size;
+    auto next = b.freeRanges.lower_bound(offset);
+    if (next != b.freeRanges.begin()) {
+        auto prev = std::prev(next);
+        if (prev->first + prev->second == offset) {
+            offset = prev->first;
+            size += prev->second;
+            b.removeRange(prev);
         }
     }
+    if (next != b.freeRanges.end() && a.offset + a.size == next->first) {
+        size += next->second;
+        b.removeRange(next);
+    }
+    b.addRange(offset, size);
 }
 
 }  // namespace obscura::gpu

@@ -1,5 +1,6 @@
 // Sub-allocation of device memory: a few large VkDeviceMemory blocks per memory type, carved
-// with a first-fit free list that coalesces on free. Buffers (linear) and images (optimal tiling)
+// best-fit from free ranges indexed by size (O(log n) per allocation with tens of thousands of
+// live resources) and coalesced on free. Buffers (linear) and images (optimal tiling)
 // use separate blocks so bufferImageGranularity never matters. Host-visible blocks stay mapped.
 #pragma once
 
@@ -7,6 +8,7 @@
 
 #include <cstdint>
 #include <map>
+#include <set>
 #include <memory>
 #include <vector>
 
@@ -55,6 +57,9 @@ private:
         ResourceTiling tiling = ResourceTiling::Linear;
         void* mapped = nullptr;
         std::map<VkDeviceSize, VkDeviceSize> freeRanges;  // offset -> size
+        std::set<std::pair<VkDeviceSize, VkDeviceSize>> bySize;  // (size, offset) of the same ranges
+        void addRange(VkDeviceSize offset, VkDeviceSize size);
+        void removeRange(std::map<VkDeviceSize, VkDeviceSize>::iterator it);
         VkDeviceSize used = 0;
     };
     uint32_t findMemoryType(uint32_t typeBits, MemoryUsage usage) const;

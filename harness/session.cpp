@@ -1,6 +1,7 @@
 #include "harness/session.h"
 
 #include "harness/exit_codes.h"
+#include "harness/import/assimp_to_usda.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -33,7 +34,17 @@ void Session::logToStderr(void* user, ObscuraLogLevel level, const char* message
 
 std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::string& scenePath) {
     std::unique_ptr<Session> s(new Session());
-    auto opened = usda::Stage::open(scenePath);
+    // glTF, FBX and OBJ arrive through Assimp as a USD layer: one scene model for every format.
+    std::variant<std::unique_ptr<usda::Stage>, usda::Error> opened = usda::Error{};
+    if (isAssimpFormat(scenePath)) {
+        auto imported = importWithAssimp(scenePath);
+        if (auto* error = std::get_if<ImportError>(&imported)) return SessionError{kExitBadInput, error->message};
+        for (const auto& w : std::get<ImportResult>(imported).warnings)
+            std::fprintf(stderr, "obscura: warning: %s: %s\n", scenePath.c_str(), w.c_str());
+        opened = usda::Stage::openFromString(std::get<ImportResult>(imported).usda, scenePath);
+    } else {
+        opened = usda::Stage::open(scenePath);
+    }
     if (auto* error = std::get_if<usda::Error>(&opened)) return SessionError{kExitBadInput, error->str()};
     s->stage_ = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));
     for (const auto& w : s->stage_->warnings())

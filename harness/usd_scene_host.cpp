@@ -1,5 +1,7 @@
 #include "harness/usd_scene_host.h"
 
+#include "harness/usda/matrix4.h"
+
 #include <algorithm>
 #include <cstring>
 
@@ -13,6 +15,7 @@ const std::map<std::string, std::string> kPrimTypes = {
     {"DistantLight", "distantLight"},
     {"SphereLight", "sphereLight"},
     {"Material", "material"},
+    {"PointInstancer", "instancer"},
 };
 
 // Types that organise a scene and are not drawn themselves.
@@ -20,7 +23,10 @@ const std::set<std::string> kStructuralTypes = {"", "Xform", "Scope", "Shader", 
                                                 "RenderSettings", "RenderProduct", "RenderVar"};
 
 ObscuraDirtyBits dirtyBitFor(const std::string& attribute) {
-    if (attribute == "points") return OBSCURA_DIRTY_POINTS;
+    if (attribute == "points" || attribute == "positions" || attribute == "orientations" || attribute == "scales")
+        return OBSCURA_DIRTY_POINTS;
+    if (attribute == "protoIndices") return OBSCURA_DIRTY_TOPOLOGY;
+    if (attribute == "invisibleIds") return OBSCURA_DIRTY_VISIBILITY;
     if (attribute == "normals") return OBSCURA_DIRTY_NORMALS;
     if (attribute.rfind("primvars:", 0) == 0) return OBSCURA_DIRTY_PRIMVAR;
     if (attribute == "faceVertexCounts" || attribute == "faceVertexIndices") return OBSCURA_DIRTY_TOPOLOGY;
@@ -69,6 +75,11 @@ ObscuraStatus UsdSceneHost::populate(const ObscuraApiV1& api, ObscuraDelegate de
                 continue;
             }
             surfaces_[prim->path] = shader;
+        }
+        if (it->second == "instancer") {
+            if (const usda::Relationship* protos = prim->relationship("prototypes"))
+                for (const auto& root : protos->targets)
+                    if (const usda::Prim* r = stage_.find(root)) prototypeRoots_[root] = r->parent;
         }
         ObscuraStatus s = api.insertPrim(delegate, it->second.c_str(), prim->path.c_str());
         if (s != OBSCURA_OK) return s;
@@ -199,6 +210,15 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         *out = {OBSCURA_VALUE_TOKEN, 0, 1, stringPointers_.data()};
         return OBSCURA_OK;
     }
+    if (attribute == "prototypes") {
+        const usda::Relationship* rel = prim->relationship("prototypes");
+        if (!rel) return OBSCURA_ERROR_NOT_FOUND;
+        strings_ = rel->targets;
+        stringPointers_.clear();
+        for (const auto& t : strings_) stringPointers_.push_back(t.c_str());
+        *out = {OBSCURA_VALUE_PATH, 1, strings_.size(), stringPointers_.data()};
+        return OBSCURA_OK;
+    }
     if (attribute == "material:binding") {
         // Bindings are inherited down the namespace: the nearest ancestor's binding applies.
         for (const usda::Prim* p = prim; p; p = p->parent) {
@@ -223,6 +243,14 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     // A declared but valueless attribute is unauthored; an empty array is an authored value.
     if (!value || (value->empty() && !value->isArray)) return OBSCURA_ERROR_NOT_FOUND;
     return fill(*value, out);
+}
+
+const usda::Prim* UsdSceneHost::prototypeSpace(const usda::Prim& prim) const {
+    for (const usda::Prim* p = &prim; p; p = p->parent) {
+        auto it = prototypeRoots_.find(p->path);
+        if (it != prototypeRoots_.end()) return it->second;
+    }
+    return nullptr;
 }
 
 ObscuraStatus UsdSceneHost::getValueThunk(void* user, const char* path, const char* attribute, double time,
@@ -261,9 +289,12 @@ ObscuraStatus UsdSceneHost::sampleTransformThunk(void* user, const char* path, d
     if (sampleTimes.size() > maxSamples) {
         sampleTimes.erase(sampleTimes.begin() + (maxSamples - 1), sampleTimes.end() - 1);
     }
+    // Prototype meshes are placed relative to their prototype's space; instances do the rest.
+    const usda::Prim* space = self->prototypeSpace(*prim);
     for (size_t i = 0; i < sampleTimes.size(); ++i) {
         times[i] = sampleTimes[i];
         auto m = self->stage_.worldTransform(*prim, sampleTimes[i]);
+        if (space) m = usda::matrix4::multiply(m, usda::matrix4::inverse(self->stage_.worldTransform(*space, sampleTimes[i])));
         std::copy(m.begin(), m.end(), matrices + 16 * i);
     }
     *count = static_cast<uint32_t>(sampleTimes.size());

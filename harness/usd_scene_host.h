@@ -55,6 +55,10 @@ private:
     ObscuraSceneDelegate sceneDelegate_{};
     std::map<std::string, std::string> primTypes_;        // delegate path -> delegate type
     std::map<std::string, const usda::Prim*> surfaces_;   // material path -> UsdPreviewSurface shader
+    // PointInstancer prototype roots -> the prim whose space instances live in (the root's
+    // parent: USD includes the root's own transform in each instance, not its ancestors').
+    std::map<std::string, const usda::Prim*> prototypeRoots_;
+    const usda::Prim* prototypeSpace(const usda::Prim& prim) const;
     struct RenderBufferDesc {
         int width, height;
         std::string format;

@@ -12,7 +12,8 @@ struct Draw {
     gpu::BufferPtr vertices;
     gpu::BufferPtr indices;   // uint32
     uint32_t indexCount = 0;
-    uint32_t instanceIndex = 0;
+    uint32_t instanceIndex = 0;  // first InstanceData record of the draw
+    uint32_t instanceCount = 1;  // consecutive records, one per GPU instance
 };
 
 struct FrameScene {

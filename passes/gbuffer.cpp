@@ -63,7 +63,7 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const F
                 vkCmdBindIndexBuffer(cmd, draw.indices->buffer, 0, VK_INDEX_TYPE_UINT32);
                 vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                                    sizeof(uint32_t), &draw.instanceIndex);
-                vkCmdDrawIndexed(cmd, draw.indexCount, 1, 0, 0, 0);
+                vkCmdDrawIndexed(cmd, draw.indexCount, draw.instanceCount, 0, 0, 0);
             }
         });
     return gb;

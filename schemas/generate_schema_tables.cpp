@@ -60,6 +60,8 @@ constexpr std::array kTypes{
     TypeInfo{"float[]", "FloatArray", Kind::Array, 0, false},
     TypeInfo{"float2[]", "Float2Array", Kind::Array, 0, false},
     TypeInfo{"float3[]", "Float3Array", Kind::Array, 0, false},
+    TypeInfo{"float4[]", "Float4Array", Kind::Array, 0, false},
+    TypeInfo{"path[]", "PathArray", Kind::Array, 0, false},
 };
 
 // Dirty-bit names of the JSON files and the OBSCURA_DIRTY_* macros they stand for.

@@ -31,6 +31,8 @@ Shape shapeOf(AttrType type) {
     case AttrType::FloatArray: return {OBSCURA_VALUE_FLOAT, OBSCURA_VALUE_DOUBLE, true};
     case AttrType::Float2Array: return {OBSCURA_VALUE_FLOAT2, OBSCURA_VALUE_NONE, true};
     case AttrType::Float3Array: return {OBSCURA_VALUE_FLOAT3, OBSCURA_VALUE_NONE, true};
+    case AttrType::Float4Array: return {OBSCURA_VALUE_FLOAT4, OBSCURA_VALUE_NONE, true};
+    case AttrType::PathArray: return {OBSCURA_VALUE_PATH, OBSCURA_VALUE_NONE, true};
     }
     return {OBSCURA_VALUE_NONE, OBSCURA_VALUE_NONE, false};
 }
@@ -163,6 +165,8 @@ const char* typeName(AttrType type) {
     case AttrType::FloatArray: return "float[]";
     case AttrType::Float2Array: return "float2[]";
     case AttrType::Float3Array: return "float3[]";
+    case AttrType::Float4Array: return "float4[]";
+    case AttrType::PathArray: return "path[]";
     }
     return "unknown";
 }

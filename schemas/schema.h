@@ -29,7 +29,9 @@ enum class AttrType {
     IntArray,
     FloatArray,
     Float2Array,
-    Float3Array
+    Float3Array,
+    Float4Array,
+    PathArray
 };
 
 // The JSON spelling of a type: "bool", "float3[]", "matrix4d"...

@@ -5,8 +5,8 @@ packages=(
   cmake ninja-build g++ pkg-config python3
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-dev glslang-tools spirv-tools
-  libopenexr-dev openexr libimath-dev libpng-dev libstb-dev
-  nlohmann-json3-dev libcli11-dev libgtest-dev
+  libopenexr-dev openexr libimath-dev libpng-dev libstb-dev libopencolorio-dev
+  nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev libosd-dev libassimp-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -10,20 +10,19 @@
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inColor;
 layout(location = 2) in vec3 inWorldPosition;
+layout(location = 3) flat in uint inInstance;
 
 layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Materials { MaterialData materials[]; };
 layout(set = 0, binding = 3) uniform sampler2D fittingScale;
 
-layout(push_constant) uniform Push { uint instanceIndex; } push;
-
 layout(location = 0) out vec4 outNormalRoughness;
 layout(location = 1) out vec4 outAlbedoMetallic;
 layout(location = 2) out uint outInstance;
 
 void main() {
-    InstanceData inst = instances[push.instanceIndex];
+    InstanceData inst = instances[inInstance];
     MaterialData mat = materials[inst.materialIndex];
     vec3 n = normalize(inNormal);
     // Double-sided surfaces face the viewer; single-sided ones keep their orientation.
@@ -31,5 +30,5 @@ void main() {
     vec3 albedo = (inst.flags & INSTANCE_VERTEX_COLOR) != 0u ? inColor : mat.diffuseRoughness.rgb;
     outNormalRoughness = vec4(encodeBestFitNormal(n, fittingScale), mat.diffuseRoughness.a);
     outAlbedoMetallic = vec4(albedo, mat.emissiveMetallic.a);
-    outInstance = push.instanceIndex + 1u;
+    outInstance = inInstance + 1u;
 }

@@ -15,9 +15,12 @@ layout(push_constant) uniform Push { uint instanceIndex; } push;
 layout(location = 0) out vec3 outNormal;
 layout(location = 1) out vec3 outColor;
 layout(location = 2) out vec3 outWorldPosition;
+layout(location = 3) flat out uint outInstance;
 
 void main() {
-    InstanceData inst = instances[push.instanceIndex];
+    // One record per GPU instance, consecutive from the draw's first record.
+    outInstance = push.instanceIndex + uint(gl_InstanceIndex);
+    InstanceData inst = instances[outInstance];
     vec4 world = inst.model * vec4(inPosition, 1.0);
     outWorldPosition = world.xyz;
     outNormal = mat3(inst.normalMatrix) * inNormal;

@@ -26,6 +26,16 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         input_.faceVertexCounts = s.getIntArray("faceVertexCounts").value_or(std::vector<int32_t>{});
         input_.faceVertexIndices = s.getIntArray("faceVertexIndices").value_or(std::vector<int32_t>{});
         input_.leftHanded = s.getToken("orientation") == "leftHanded";
+        scheme_ = parseSubdivisionScheme(s.getToken("subdivisionScheme"));
+        tags_.interpolateBoundary = s.getToken("interpolateBoundary");
+        tags_.faceVaryingLinearInterpolation = s.getToken("faceVaryingLinearInterpolation");
+        tags_.creaseIndices = s.getIntArray("creaseIndices").value_or(std::vector<int32_t>{});
+        tags_.creaseLengths = s.getIntArray("creaseLengths").value_or(std::vector<int32_t>{});
+        tags_.creaseSharpnesses = s.getFloatArray("creaseSharpnesses").value_or(std::vector<float>{});
+        tags_.cornerIndices = s.getIntArray("cornerIndices").value_or(std::vector<int32_t>{});
+        tags_.cornerSharpnesses = s.getFloatArray("cornerSharpnesses").value_or(std::vector<float>{});
+        tags_.holeIndices = s.getIntArray("holeIndices").value_or(std::vector<int32_t>{});
+        refineLevelOverride_ = s.getInt("obscura:refineLevel");
     }
     if (bits & OBSCURA_DIRTY_NORMALS) {
         input_.normals.reset();
@@ -36,7 +46,13 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         if (auto c = s.getFloatArray("primvars:displayColor"))
             input_.displayColor = MeshPrimvar{std::move(*c), s.interpolation("primvars:displayColor")};
     }
-    auto built = buildMeshGeometry(input_);
+    // Subdivision surfaces are refined with OpenSubdiv; the cache keeps the refiner while only
+    // points change (animated meshes).
+    int level = refineLevelOverride_ >= 0 ? refineLevelOverride_ : ctx.refineLevel;
+    std::variant<MeshInput, std::string> refined = input_;
+    if (scheme_ != SubdivisionScheme::None && level > 0) refined = subdivision_.refine(input_, scheme_, tags_, level);
+    if (auto* problem = std::get_if<std::string>(&refined)) throw PrimDataError(s.path() + ": " + *problem);
+    auto built = buildMeshGeometry(std::get<MeshInput>(refined));
     if (auto* problem = std::get_if<std::string>(&built)) throw PrimDataError(s.path() + ": " + *problem);
     auto& geometry = std::get<MeshGeometry>(built);
     warnings_ = geometry.warnings;

@@ -4,6 +4,7 @@
 
 #include "delegate/mesh_builder.h"
 #include "delegate/prims/prim.h"
+#include "delegate/subdivision.h"
 #include "gpu/device.h"
 
 namespace obscura::delegate {
@@ -30,6 +31,10 @@ private:
 
     int32_t primId_;
     MeshInput input_;
+    SubdivisionScheme scheme_ = SubdivisionScheme::CatmullClark;
+    SubdivisionTags tags_;
+    int refineLevelOverride_ = -1;
+    SubdivisionCache subdivision_;
     Matrix4d transform_ = kIdentity;
     std::vector<TransformSample> shutterTransforms_;  // for motion blur
     bool doubleSided_ = false;

@@ -20,6 +20,7 @@ struct SyncContext {
     double time;
     double shutterOpen;   // absolute time codes of the camera's shutter
     double shutterClose;
+    int refineLevel;      // render setting; meshes may override it
 };
 
 class Prim {

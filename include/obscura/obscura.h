@@ -270,6 +270,8 @@ typedef struct ObscuraRenderStats {
     uint32_t converged;             /* 1 when another render of an unchanged scene adds nothing */
     uint64_t trianglesDrawn;
     char deviceName[256];           /* the Vulkan device this delegate renders with */
+    double syncMilliseconds;        /* CPU time of the last render's sync (pulls, rebuilds, uploads) */
+    double frameSetupMilliseconds;  /* CPU time packing per-frame records and recording the frame */
 } ObscuraRenderStats;
 
 /* ---------------------------------------------------------------------------------------------

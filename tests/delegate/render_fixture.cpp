@@ -22,6 +22,7 @@ void addPlane(TestHost& host, const std::string& path, const std::string& materi
         {"points", HostValue::points({{-h, -h, 0}, {h, -h, 0}, {h, h, 0}, {-h, h, 0}})},
         {"faceVertexCounts", HostValue::intArray({4})},
         {"faceVertexIndices", HostValue::intArray({0, 1, 2, 3})},
+        {"subdivisionScheme", HostValue::token("none")},
     };
     if (!material.empty()) values["material:binding"] = HostValue::path(material);
     host.addPrim("mesh", path, values, transform);

@@ -35,7 +35,8 @@ const AttributeSchema& attr(const char* prim, const char* name) {
 TEST(SchemaTables, EveryPrimTypeIsFound) {
     const std::pair<const char*, const char*> expected[] = {
         {"mesh", "rprim"},     {"camera", "sprim"},   {"distantLight", "sprim"},
-        {"sphereLight", "sprim"}, {"material", "sprim"}, {"renderBuffer", "bprim"}};
+        {"sphereLight", "sprim"}, {"material", "sprim"}, {"renderBuffer", "bprim"},
+        {"instancer", "rprim"}};
     EXPECT_EQ(primSchemas().size(), std::size(expected));
     for (const auto& [name, category] : expected) {
         const PrimSchema* prim = findPrimSchema(name);

@@ -1,7 +1,5 @@
 #include "tests/support/test_host.h"
 
-#include <gtest/gtest.h>
-
 #include <cstring>
 #include <stdexcept>
 
@@ -46,6 +44,22 @@ HostValue HostValue::token(const std::string& t) {
 HostValue HostValue::path(const std::string& p) {
     HostValue h = token(p);
     h.type = OBSCURA_VALUE_PATH;
+    return h;
+}
+HostValue HostValue::paths(const std::vector<std::string>& p) {
+    HostValue h;
+    h.type = OBSCURA_VALUE_PATH;
+    h.isArray = true;
+    h.count = p.size();
+    h.strings = p;
+    return h;
+}
+HostValue HostValue::float4Array(const std::vector<std::array<float, 4>>& v) {
+    HostValue h;
+    h.type = OBSCURA_VALUE_FLOAT4;
+    h.isArray = true;
+    h.count = v.size();
+    for (const auto& e : v) h.floats.insert(h.floats.end(), e.begin(), e.end());
     return h;
 }
 HostValue HostValue::points(const std::vector<std::array<float, 3>>& p) {

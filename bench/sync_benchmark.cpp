@@ -1,0 +1,118 @@
+// Incremental sync, measured (Google Benchmark): a scene of 10,000 mesh prims and 1,000,000
+// triangles; the initial sync, then re-syncs after changing one transform, one material, and
+// after adding and removing one prim. Reported times are the delegate's own CPU time for sync
+// (ObscuraRenderStats::syncMilliseconds) and, separately, for packing the frame's records.
+#include "tests/support/test_host.h"
+
+#include <benchmark/benchmark.h>
+
+#include <memory>
+
+namespace obscura::test {
+namespace {
+
+constexpr int kPrims = 10000;
+constexpr int kQuadsPerSide = 7;
+
+// A 7x7 grid of quads (98 triangles) plus one more quad: 100 triangles per prim.
+std::map<std::string, HostValue> gridMesh(const std::string& material) {
+    std::vector<std::array<float, 3>> points;
+    for (int y = 0; y <= kQuadsPerSide; ++y)
+        for (int x = 0; x <= kQuadsPerSide; ++x) points.push_back({float(x) * 0.1f, float(y) * 0.1f, 0.0f});
+    std::vector<int32_t> counts, indices;
+    auto quad = [&](int a, int b, int c, int d) {
+        counts.push_back(4);
+        indices.insert(indices.end(), {a, b, c, d});
+    };
+    const int row = kQuadsPerSide + 1;
+    for (int y = 0; y < kQuadsPerSide; ++y)
+        for (int x = 0; x < kQuadsPerSide; ++x) quad(y * row + x, y * row + x + 1, (y + 1) * row + x + 1, (y + 1) * row + x);
+    quad(0, 1, row + 1, row);
+    return {{"points", HostValue::points(points)},
+            {"faceVertexCounts", HostValue::intArray(counts)},
+            {"faceVertexIndices", HostValue::intArray(indices)},
+            {"subdivisionScheme", HostValue::token("none")},
+            {"material:binding", HostValue::path(material)}};
+}
+
+struct BigScene {
+    std::unique_ptr<TestHost> host = std::make_unique<TestHost>(false);
+    BigScene() {
+        host->addCamera("/Camera", translation(0, 0, 200));
+        for (int m = 0; m < 10; ++m) host->addPrim("material", "/Looks/M" + std::to_string(m), {});
+        host->addPrim("distantLight", "/Sun", {});
+        host->addRenderBuffer("/Buffers/color", "float32Vec4", 16, 16);
+        for (int i = 0; i < kPrims; ++i)
+            host->addPrim("mesh", "/Meshes/M" + std::to_string(i), gridMesh("/Looks/M" + std::to_string(i % 10)),
+                          translation(i % 100 - 50, i / 100 - 50, 0));
+    }
+    ObscuraRenderStats render() {
+        if (host->render("/Camera", {{"color", "/Buffers/color"}}) != OBSCURA_OK) throw std::runtime_error(host->lastError());
+        ObscuraRenderStats s{};
+        s.structSize = sizeof(s);
+        host->api().getRenderStats(host->delegate(), &s);
+        return s;
+    }
+};
+
+void report(benchmark::State& state, const ObscuraRenderStats& s) {
+    state.SetIterationTime(s.syncMilliseconds / 1000.0);
+    state.counters["sync_ms"] = s.syncMilliseconds;
+    state.counters["frame_setup_ms"] = s.frameSetupMilliseconds;
+    state.counters["prims_synced"] = s.primsSynced;
+    state.counters["triangles"] = double(s.trianglesDrawn);
+}
+
+void InitialSync(benchmark::State& state) {
+    for (auto _ : state) {
+        state.PauseTiming();
+        BigScene scene;
+        state.ResumeTiming();
+        report(state, scene.render());
+    }
+}
+
+void ResyncOneTransform(benchmark::State& state) {
+    BigScene scene;
+    scene.render();
+    int i = 0;
+    for (auto _ : state) {
+        scene.host->setTransform("/Meshes/M7", translation(i++ % 7, 0, 0));
+        scene.host->api().markDirty(scene.host->delegate(), "/Meshes/M7", OBSCURA_DIRTY_TRANSFORM);
+        report(state, scene.render());
+    }
+}
+
+void ResyncOneMaterial(benchmark::State& state) {
+    BigScene scene;
+    scene.render();
+    int i = 0;
+    for (auto _ : state) {
+        scene.host->set("/Looks/M3", "inputs:roughness", HostValue::floatValue(float(i++ % 10) / 10.0f));
+        scene.host->api().markDirty(scene.host->delegate(), "/Looks/M3", OBSCURA_DIRTY_PARAMS);
+        report(state, scene.render());
+    }
+}
+
+void AddAndRemoveOnePrim(benchmark::State& state) {
+    BigScene scene;
+    scene.render();
+    int i = 0;
+    for (auto _ : state) {
+        std::string path = "/Extra/E" + std::to_string(i++);
+        scene.host->addPrim("mesh", path, gridMesh("/Looks/M0"));
+        report(state, scene.render());
+        scene.host->api().removePrim(scene.host->delegate(), path.c_str());
+        scene.render();
+    }
+}
+
+BENCHMARK(InitialSync)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(ResyncOneTransform)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(20);
+BENCHMARK(ResyncOneMaterial)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(20);
+BENCHMARK(AddAndRemoveOnePrim)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(20);
+
+}  // namespace
+}  // namespace obscura::test
+
+BENCHMARK_MAIN();

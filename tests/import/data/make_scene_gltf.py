@@ -1,0 +1,161 @@
+#!/usr/bin/env python3
+"""Writes the glTF 2.0 test scenes of tests/import, their buffers embedded as base64:
+scene.gltf, a small scene using every feature the importer maps, and nonfinite.gltf, whose binary
+data holds NaN and infinity where the importer must drop them.
+
+Run from this folder: python3 make_scene_gltf.py. The values here are the ones import_test.cpp expects.
+"""
+import base64
+import json
+import math
+import re
+import struct
+import zlib
+
+FLOAT, USHORT = 5126, 5123
+
+
+class Buffer:
+    def __init__(self):
+        self.data = bytearray()
+        self.views, self.accessors = [], []
+
+    def add(self, fmt, values, component, kind, count, target=None, bounds=False):
+        while len(self.data) % 4:
+            self.data.append(0)
+        raw = struct.pack("<" + fmt * len(values), *values)
+        view = {"buffer": 0, "byteOffset": len(self.data), "byteLength": len(raw)}
+        if target:
+            view["target"] = target
+        self.views.append(view)
+        self.data += raw
+        accessor = {"bufferView": len(self.views) - 1, "componentType": component, "count": count, "type": kind}
+        if bounds:
+            width = len(values) // count
+            columns = [values[i::width] for i in range(width)]
+            accessor["min"] = [min(c) for c in columns]
+            accessor["max"] = [max(c) for c in columns]
+        self.accessors.append(accessor)
+        return len(self.accessors) - 1
+
+
+def png_1x1(rgb):
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+    header = struct.pack(">IIBBBBB", 1, 1, 8, 2, 0, 0, 0)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(bytes([0, *rgb])))
+            + chunk(b"IEND", b""))
+
+
+def quat(axis, degrees):
+    s = math.sin(math.radians(degrees) / 2)
+    return [axis[0] * s, axis[1] * s, axis[2] * s, math.cos(math.radians(degrees) / 2)]
+
+
+buf = Buffer()
+# A unit-square quad in the XY plane facing +Z; glTF texture coordinates have their origin top-left.
+positions = [-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0]
+normals = [0, 0, 1] * 4
+uvs = [0, 1, 1, 1, 1, 0, 0, 0]
+colors = [1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1, 1, 1, 1, 1]
+position = buf.add("f", positions, FLOAT, "VEC3", 4, 34962, bounds=True)
+normal = buf.add("f", normals, FLOAT, "VEC3", 4, 34962)
+uv = buf.add("f", uvs, FLOAT, "VEC2", 4, 34962)
+color = buf.add("f", colors, FLOAT, "VEC4", 4, 34962)
+indices = buf.add("H", [0, 1, 2, 0, 2, 3], USHORT, "SCALAR", 6, 34963)
+# Three loose points: a primitive the converter drops.
+point_positions = buf.add("f", [0, 0, 0, 1, 0, 0, 0, 1, 0], FLOAT, "VEC3", 3, 34962, bounds=True)
+# "Parent" moves from x = 1 to x = 3 over one second.
+times = buf.add("f", [0, 1], FLOAT, "SCALAR", 2, bounds=True)
+moves = buf.add("f", [1, 0, 0, 3, 0, 0], FLOAT, "VEC3", 2)
+
+scene = {
+    "asset": {"version": "2.0", "generator": "Obscura tests/import/data/make_scene_gltf.py"},
+    "extensionsUsed": ["KHR_lights_punctual"],
+    "scene": 0,
+    "scenes": [{"nodes": [0, 3, 4, 5, 6, 7, 8, 9]}],
+    "nodes": [
+        {"name": "Root Group", "translation": [0, 0, -1], "rotation": quat([0, 1, 0], 90), "children": [1]},
+        {"name": "Parent", "translation": [1, 0, 0], "children": [2]},
+        {"name": "Child", "translation": [0, 0, 2], "mesh": 0},
+        {"name": "Main Camera", "translation": [0, 1, 5], "camera": 0},
+        {"name": "Sun", "rotation": quat([1, 0, 0], -90), "extensions": {"KHR_lights_punctual": {"light": 0}}},
+        {"name": "Bulb", "translation": [0, 3, 0], "extensions": {"KHR_lights_punctual": {"light": 1}}},
+        {"name": "Ortho", "translation": [0, 0, 10], "camera": 1},
+        {"name": "Spot", "translation": [0, 4, 0], "extensions": {"KHR_lights_punctual": {"light": 2}}},
+        {"name": "Dup"},
+        {"name": "Dup"},
+    ],
+    "meshes": [{"name": "Quad", "primitives": [
+        {"attributes": {"POSITION": position, "NORMAL": normal, "TEXCOORD_0": uv, "COLOR_0": color},
+         "indices": indices, "material": 0},
+        {"attributes": {"POSITION": point_positions}, "mode": 0, "material": 1},
+    ]}],
+    "materials": [
+        {"name": "Painted Metal", "doubleSided": True, "emissiveFactor": [0.5, 0.25, 0],
+         "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.2, 0.1, 1], "metallicFactor": 0.7,
+                                  "roughnessFactor": 0.3, "baseColorTexture": {"index": 0}}},
+        {"name": "Embedded", "pbrMetallicRoughness": {"baseColorTexture": {"index": 1}}},
+    ],
+    "textures": [{"source": 0}, {"source": 1}],
+    "images": [
+        {"uri": "textures/checker.png"},
+        {"uri": "data:image/png;base64," + base64.b64encode(png_1x1([255, 128, 0])).decode()},
+    ],
+    "cameras": [
+        {"type": "perspective", "perspective": {"yfov": 0.8, "aspectRatio": 1.5, "znear": 0.1, "zfar": 100}},
+        {"type": "orthographic", "orthographic": {"xmag": 2, "ymag": 1, "znear": 0.01, "zfar": 50}},
+    ],
+    "extensions": {"KHR_lights_punctual": {"lights": [
+        {"name": "Sun", "type": "directional", "color": [1, 0.5, 0.25], "intensity": 3},
+        {"name": "Bulb", "type": "point", "color": [1, 1, 1], "intensity": 20},
+        {"name": "Spot", "type": "spot", "intensity": 5, "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}},
+    ]}},
+    "animations": [{"name": "Move",
+                    "samplers": [{"input": times, "output": moves, "interpolation": "LINEAR"}],
+                    "channels": [{"sampler": 0, "target": {"node": 1, "path": "translation"}}]}],
+}
+
+
+
+def embed(gltf, buffer):
+    gltf["accessors"] = buffer.accessors
+    gltf["bufferViews"] = buffer.views
+    gltf["buffers"] = [{"byteLength": len(buffer.data),
+                        "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(buffer.data)).decode()}]
+
+
+def write(path, gltf):
+    text = json.dumps(gltf, indent=1)
+    # Lists of numbers on one line keep the file readable.
+    text = re.sub(r"\[[-0-9.e,\s]*\]", lambda m: " ".join(m.group(0).split()), text)
+    with open(path, "w") as out:
+        out.write(text + "\n")
+
+
+embed(scene, buf)
+write("scene.gltf", scene)
+
+nan, inf = float("nan"), float("inf")
+bad = Buffer()
+triangle = bad.add("f", [0, 0, 0, 1, 0, 0, 0, 1, 0], FLOAT, "VEC3", 3, 34962, bounds=True)
+bad_normals = bad.add("f", [0, 0, 1, nan, 0, 1, 0, 0, 1], FLOAT, "VEC3", 3, 34962)
+bad_uvs = bad.add("f", [0, 0, inf, 0, 0, 1], FLOAT, "VEC2", 3, 34962)
+bad_points = bad.add("f", [0, 0, 0, nan, 0, 0, 0, 1, 0], FLOAT, "VEC3", 3, 34962)
+bad.accessors[bad_points].update({"min": [0, 0, 0], "max": [0, 1, 0]})
+key_times = bad.add("f", [0, 1], FLOAT, "SCALAR", 2, bounds=True)
+key_moves = bad.add("f", [0, 0, 0, nan, 0, 0], FLOAT, "VEC3", 2)
+nonfinite = {
+    "asset": {"version": "2.0", "generator": "Obscura tests/import/data/make_scene_gltf.py"},
+    "scene": 0,
+    "scenes": [{"nodes": [0]}],
+    "nodes": [{"name": "Holder", "mesh": 0}],
+    "meshes": [{"name": "Broken", "primitives": [
+        {"attributes": {"POSITION": triangle, "NORMAL": bad_normals, "TEXCOORD_0": bad_uvs}},
+        {"attributes": {"POSITION": bad_points}},
+    ]}],
+    "animations": [{"samplers": [{"input": key_times, "output": key_moves}],
+                    "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}]}],
+}
+embed(nonfinite, bad)
+write("nonfinite.gltf", nonfinite)
