@@ -83,6 +83,7 @@ RenderDelegate::~RenderDelegate() {
     vkDeviceWaitIdle(device_->vk());
     prims_.clear();
     bestFitNormals_.reset();
+    grading_ = passes::ColorGradingLut();
     timestamps_.reset();
     transients_.reset();
     pipelines_.reset();
@@ -233,6 +234,11 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     }
     if (width == 0 || height == 0) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "empty viewport and no render buffers"};
 
+    passes::ColorLutRequest colour{settings_.token("ocio:config"), settings_.token("ocio:display"),
+                                   settings_.token("ocio:view"), settings_.token("ocio:look")};
+    if (std::string problem = grading_.update(*device_, colour); !problem.empty())
+        throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "colour management: " + problem};
+
     passes::FrameScene scene = buildFrameScene(*device_, {prims_, *camera, width, height, settings_.number("exposure")});
     trianglesDrawn_ = 0;
     for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
@@ -241,7 +247,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     gpu::FrameGraph graph;
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
     gpu::ImageHandle hdr = passes::addLightingPass(graph, *pipelines_, scene, gbuffer);
-    gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, gbuffer.instance);
+    gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, gbuffer.instance, grading_);
     passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, display, requests);
     graph.compile();
 

@@ -11,6 +11,7 @@
 #include "delegate/render_settings.h"
 #include "gpu/frame_graph.h"
 #include "gpu/timestamps.h"
+#include "passes/color_grading_lut.h"
 #include "passes/pipeline_cache.h"
 
 #include <obscura/obscura.h>
@@ -64,6 +65,7 @@ private:
     std::unique_ptr<gpu::TransientImagePool> transients_;
     std::unique_ptr<gpu::Timestamps> timestamps_;
     gpu::ImagePtr bestFitNormals_;
+    passes::ColorGradingLut grading_;
 
     ObscuraSceneDelegate sceneDelegate_{};
     bool hasSceneDelegate_ = false;

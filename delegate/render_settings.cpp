@@ -12,6 +12,13 @@ const RenderSettingInfo kSettings[] = {
     {"refineLevel", "subdivision level of catmullClark/loop/bilinear meshes, 0-6; a mesh's obscura:refineLevel "
                     "overrides it (int, default 2)",
      OBSCURA_VALUE_INT, 2.0},
+    {"ocio:config", "OpenColorIO config file (token; default: $OCIO, else the built-in ACES-based config)",
+     OBSCURA_VALUE_TOKEN, 0.0},
+    {"ocio:display", "OCIO display (token; default: the config's default display)", OBSCURA_VALUE_TOKEN, 0.0},
+    {"ocio:view", "OCIO view (token; default: the display's default view, Filmic in the built-in config)",
+     OBSCURA_VALUE_TOKEN, 0.0},
+    {"ocio:look", "OCIO looks, comma-separated, replacing the view's own (token; default: none)",
+     OBSCURA_VALUE_TOKEN, 0.0},
 };
 
 }  // namespace
@@ -31,10 +38,18 @@ std::string RenderSettings::set(const std::string& name, const ObscuraValue* val
     if (!info) return "unknown render setting '" + name + "' (see `obscura info`)";
     if (!value) {
         numbers_.erase(name);
+        tokens_.erase(name);
         ++version_;
         return {};
     }
     if (value->isArray || value->count != 1 || !value->data) return name + ": expected one value";
+    if (info->type == OBSCURA_VALUE_TOKEN) {
+        const char* const* text = static_cast<const char* const*>(value->data);
+        if (value->type != OBSCURA_VALUE_TOKEN || !text[0]) return name + ": expected a token";
+        tokens_[name] = text[0];
+        ++version_;
+        return {};
+    }
     double v = 0;
     switch (value->type) {
         case OBSCURA_VALUE_FLOAT: v = *static_cast<const float*>(value->data); break;
@@ -47,6 +62,11 @@ std::string RenderSettings::set(const std::string& name, const ObscuraValue* val
     numbers_[name] = v;
     ++version_;
     return {};
+}
+
+std::string RenderSettings::token(const std::string& name) const {
+    auto it = tokens_.find(name);
+    return it == tokens_.end() ? std::string() : it->second;
 }
 
 double RenderSettings::number(const std::string& name) const {

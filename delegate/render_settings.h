@@ -26,10 +26,12 @@ public:
     // Stores a value after checking its type; returns a reason on failure. nullptr resets.
     std::string set(const std::string& name, const ObscuraValue* value);
     double number(const std::string& name) const;
+    std::string token(const std::string& name) const;  // "" when unset
     uint64_t version() const { return version_; }
 
 private:
     std::map<std::string, double> numbers_;
+    std::map<std::string, std::string> tokens_;
     uint64_t version_ = 0;
 };
 

@@ -109,9 +109,9 @@ ImagePtr Device::createImage(const ImageDesc& desc, const char* debugName) {
     auto* img = new Image();
     img->desc = desc;
     VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    ii.imageType = VK_IMAGE_TYPE_2D;
+    ii.imageType = desc.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
     ii.format = desc.format;
-    ii.extent = {desc.width, desc.height, 1};
+    ii.extent = {desc.width, desc.height, desc.depth};
     ii.mipLevels = desc.mipLevels;
     ii.arrayLayers = 1;
     ii.samples = desc.samples;
@@ -127,7 +127,7 @@ ImagePtr Device::createImage(const ImageDesc& desc, const char* debugName) {
 
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vi.image = img->image;
-    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vi.viewType = desc.depth > 1 ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
     vi.format = desc.format;
     // A depth/stencil view for sampling must name one aspect; attachments use the same view
     // (dynamic rendering accepts a depth-only view of a depth/stencil image for both aspects).
@@ -195,7 +195,7 @@ ImagePtr Device::createTextureWithData(const ImageDesc& descIn, const void* pixe
         vkCmdPipelineBarrier2(cmd, &dep);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        region.imageExtent = {desc.width, desc.height, 1};
+        region.imageExtent = {desc.width, desc.height, desc.depth};
         vkCmdCopyBufferToImage(cmd, staging->buffer, image->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
         b.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
         b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;

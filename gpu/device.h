@@ -26,6 +26,7 @@ struct ImageDesc {
     VkFormat format = VK_FORMAT_UNDEFINED;
     uint32_t width = 0;
     uint32_t height = 0;
+    uint32_t depth = 1;  // > 1: a 3D image (colour lookup tables)
     uint32_t mipLevels = 1;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     VkImageUsageFlags usage = 0;

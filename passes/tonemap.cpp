@@ -2,8 +2,18 @@
 
 namespace obscura::passes {
 
+namespace {
+// Mirrors color_lut.cpp's shaper so the shader encodes exactly what the lattice was baked on.
+struct TonemapPush {
+    float shaperMinStops;
+    float shaperRangeStops;
+    float middleGrey;
+    float lutSize;
+};
+}  // namespace
+
 gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                gpu::ImageHandle hdrColor, gpu::ImageHandle coverage) {
+                                gpu::ImageHandle hdrColor, gpu::ImageHandle coverage, const ColorGradingLut& grading) {
     gpu::ImageDesc desc;
     desc.format = kDisplayFormat;
     desc.width = scene.width;
@@ -13,8 +23,9 @@ gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines
         return gpu::ComputePipelineDesc{"tonemap.comp",
                                         {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                                          {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                                         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
-                                        0};
+                                         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                         {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+                                        sizeof(TonemapPush)};
     });
     gpu::Device& device = pipelines.device();
     graph.addPass(
@@ -24,12 +35,18 @@ gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines
             pass.read(coverage, gpu::Usage::SampledCompute);
             pass.write(display, gpu::Usage::StorageImageWrite);
         },
-        [&device, &pipeline, &scene, hdrColor, coverage, display](VkCommandBuffer cmd, const gpu::PassResources& res) {
+        [&device, &pipeline, &scene, &grading, hdrColor, coverage, display](VkCommandBuffer cmd,
+                                                                             const gpu::PassResources& res) {
             gpu::DescriptorWriter(device, pipeline)
                 .storageImage(0, res.view(hdrColor))
                 .storageImage(1, res.view(display))
                 .sampled(2, res.view(coverage), device.nearestClampSampler())
+                .sampled(3, grading.texture()->view, device.linearClampSampler())
                 .bind(cmd);
+            const ColorLut& lut = grading.lut();
+            TonemapPush push{lut.shaperMinStops, lut.shaperMaxStops - lut.shaperMinStops, kShaperMiddleGrey,
+                             float(lut.size)};
+            vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
             gpu::dispatch2D(cmd, scene.width, scene.height);
         });
     return display;

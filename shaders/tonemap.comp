@@ -1,21 +1,31 @@
 #version 460
-// Tone mapping to display: filmic curve (ACES fit, Narkowicz 2015) and the sRGB transfer
-// function, written to an 8-bit image. The accumulation is already exposed.
+// Frame step 12: exposed scene-linear colour through the display/view transform baked into a 3D
+// LUT (seed 004 "Color grading"; Selan 2007, GPU Gems 3 ch. 24): a log2 shaper maps the HDR range
+// onto the lattice, one trilinear lookup applies the whole OCIO processor, the result is clamped
+// to the display range and written as 8 bits.
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 0, r11f_g11f_b10f) uniform readonly image2D hdrColor;
 layout(set = 0, binding = 1, rgba8) uniform writeonly image2D displayColor;
 layout(set = 0, binding = 2) uniform usampler2D instanceTexture;
+layout(set = 0, binding = 3) uniform sampler3D gradingLut;
 
-vec3 acesFilmic(vec3 x) {
-    const float a = 2.51, b = 0.03, c = 2.43, d = 0.59, e = 0.14;
-    return clamp((x * (a * x + b)) / (x * (c * x + d) + e), 0.0, 1.0);
-}
+layout(push_constant) uniform Push {
+    float shaperMinStops;
+    float shaperRangeStops;
+    float middleGrey;
+    float lutSize;
+} push;
 
-vec3 srgbEncode(vec3 linear) {
-    bvec3 low = lessThanEqual(linear, vec3(0.0031308));
-    vec3 hi = 1.055 * pow(linear, vec3(1.0 / 2.4)) - 0.055;
-    return mix(hi, linear * 12.92, low);
+// passes/color_lut.cpp shaperEncode: log2 stops around middle grey, with a linear toe that is the
+// tangent from the origin (so 0 maps to 0 without a kink).
+vec3 shaperEncode(vec3 x) {
+    const float ln2 = 0.69314718;
+    float toeSlope = 1.0 / (push.shaperRangeStops * ln2);
+    float toeEnd = push.middleGrey * exp2(push.shaperMinStops + 1.0 / ln2);
+    vec3 logPart = (log2(max(x, vec3(1e-30)) / push.middleGrey) - push.shaperMinStops) / push.shaperRangeStops;
+    vec3 toePart = x * toeSlope / toeEnd;
+    return clamp(mix(logPart, toePart, lessThan(x, vec3(toeEnd))), 0.0, 1.0);
 }
 
 void main() {
@@ -23,6 +33,9 @@ void main() {
     ivec2 size = imageSize(displayColor);
     if (any(greaterThanEqual(pixel, size))) return;
     vec3 hdr = imageLoad(hdrColor, pixel).rgb;
+    // Lattice points sit at texel centres: scale and offset so 0 and 1 hit the first and last.
+    vec3 coordinate = shaperEncode(hdr) * ((push.lutSize - 1.0) / push.lutSize) + 0.5 / push.lutSize;
+    vec3 display = clamp(textureLod(gradingLut, coordinate, 0.0).rgb, 0.0, 1.0);
     float alpha = texelFetch(instanceTexture, pixel, 0).r != 0u ? 1.0 : 0.0;
-    imageStore(displayColor, pixel, vec4(srgbEncode(acesFilmic(hdr)), alpha));
+    imageStore(displayColor, pixel, vec4(display, alpha));
 }

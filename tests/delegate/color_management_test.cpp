@@ -1,0 +1,67 @@
+// The display AOV goes through the OCIO view transform baked into a 3D LUT: compared with OCIO's
+// own CPU processor on colours the accumulation format stores exactly.
+#include "passes/color_lut.h"
+#include "tests/delegate/render_fixture.h"
+
+#include <gtest/gtest.h>
+
+namespace obscura::test {
+namespace {
+
+struct EmissivePlane {
+    TestHost host;
+    explicit EmissivePlane(std::array<float, 3> radiance) {
+        host.addCamera("/Camera", translation(0, 0, 5));
+        addMaterial(host, "/Looks/Glow", {0, 0, 0}, 1.0f, 0.0f, radiance);
+        addPlane(host, "/Plane", "/Looks/Glow");
+        host.addRenderBuffer("/Buffers/display", "unorm8Vec4", kWidth, kHeight);
+    }
+    void setToken(const char* key, const char* value) {
+        ObscuraValue v{OBSCURA_VALUE_TOKEN, 0, 1, &value};
+        ASSERT_EQ(host.api().setRenderSetting(host.delegate(), key, &v), OBSCURA_OK) << host.lastError();
+    }
+    std::array<float, 4> centre() {
+        EXPECT_EQ(host.render("/Camera", {{"display", "/Buffers/display"}}), OBSCURA_OK) << host.lastError();
+        ObscuraMappedBuffer m{OBSCURA_STRUCTURE_TYPE_MAPPED_BUFFER, nullptr, sizeof(m)};
+        EXPECT_EQ(host.api().mapRenderBuffer(host.delegate(), "/Buffers/display", &m), OBSCURA_OK);
+        const auto* p = static_cast<const uint8_t*>(m.data) + (32 * kWidth + 32) * 4;
+        std::array<float, 4> out{p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f, p[3] / 255.0f};
+        host.api().unmapRenderBuffer(host.delegate(), "/Buffers/display");
+        return out;
+    }
+};
+
+// 8-bit output rounding plus the LUT's measured interpolation error (color_lut_test).
+void expectDisplay(const std::array<float, 4>& got, const std::array<float, 3>& want, float lutTolerance) {
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], lutTolerance + 0.5f / 255.0f) << "channel " << c;
+    EXPECT_EQ(got[3], 1.0f);
+}
+
+TEST(ColorManagement, StandardViewIsTheSrgbEncoding) {
+    // 0.1875 and 0.75 are exact in B10G11R11.
+    EmissivePlane scene({0.1875f, 0.75f, 0.1875f});
+    scene.setToken("ocio:view", "Standard");
+    auto reference = std::get<std::array<float, 3>>(passes::applyViewTransform({"", "", "Standard", ""}, {0.1875f, 0.75f, 0.1875f}));
+    auto got = scene.centre();
+    EXPECT_NEAR(reference[0], 0.4706f, 0.002f) << "sRGB(0.1875)";
+    expectDisplay(got, reference, 0.006f);
+}
+
+TEST(ColorManagement, DefaultFilmicViewMatchesOcio) {
+    for (float v : {0.1875f, 0.75f, 3.0f}) {
+        EmissivePlane scene({v, v * 0.5f, v * 0.25f});
+        auto reference = std::get<std::array<float, 3>>(passes::applyViewTransform({}, {v, v * 0.5f, v * 0.25f}));
+        for (auto& r : reference) r = std::clamp(r, 0.0f, 1.0f);
+        expectDisplay(scene.centre(), reference, 0.02f);
+    }
+}
+
+TEST(ColorManagement, UnknownViewIsRefusedWithTheValidNames) {
+    EmissivePlane scene({0.5f, 0.5f, 0.5f});
+    scene.setToken("ocio:view", "Cinematic");
+    EXPECT_EQ(scene.host.render("/Camera", {{"display", "/Buffers/display"}}), OBSCURA_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(scene.host.lastError().find("Filmic"), std::string::npos) << scene.host.lastError();
+}
+
+}  // namespace
+}  // namespace obscura::test
