@@ -127,6 +127,7 @@ void RenderDelegate::insertPrim(const std::string& type, const std::string& path
     else if (type == "camera") prim = std::make_unique<Camera>(path, *schema);
     else if (type == "distantLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Distant);
     else if (type == "sphereLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Sphere);
+    else if (type == "domeLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Dome);
     else if (type == "material") prim = std::make_unique<Material>(path, *schema);
     else if (type == "renderBuffer") prim = std::make_unique<RenderBuffer>(path, *schema);
     else if (type == "instancer") prim = std::make_unique<Instancer>(path, *schema);
@@ -184,6 +185,8 @@ void RenderDelegate::sync(double time, const Camera* camera) {
         if (prim->skipped()) log(OBSCURA_LOG_ERROR, "skipped prim " + prim->problem());
         if (auto* mesh = dynamic_cast<Mesh*>(prim))
             for (const auto& w : mesh->warnings()) log(OBSCURA_LOG_WARNING, mesh->path() + ": " + w);
+        if (auto* light = dynamic_cast<Light*>(prim); light && !light->warning().empty())
+            log(OBSCURA_LOG_WARNING, light->path() + ": " + light->warning());
     }
     // All uploads of this sync go to the GPU in one submission.
     device_->flushUploads();

@@ -40,14 +40,18 @@ std::variant<std::vector<double>, std::string> frameList(const RenderOptions& o,
     return std::vector<double>{meta.startTimeCode.value_or(0.0)};
 }
 
-DepthConversion depthConversion(const usda::Stage& stage, const std::string& cameraPath, double time) {
+DepthConversion depthConversion(const UsdSceneHost& host, const std::string& cameraPath, double time) {
     DepthConversion c;
-    const usda::Prim* cam = stage.find(cameraPath);
-    if (!cam) return c;
-    if (const auto* a = cam->attribute("clippingRange"))
-        if (auto v = a->evaluate(time); v && v->numbers.size() == 2) c.nearClip = v->numbers[0], c.farClip = v->numbers[1];
-    if (const auto* a = cam->attribute("projection"))
-        if (auto v = a->evaluate(time); v && !v->strings.empty()) c.orthographic = v->strings[0] == "orthographic";
+    ObscuraValue value{};
+    const ObscuraSceneDelegate& sd = host.sceneDelegate();
+    if (sd.getValue(sd.userData, cameraPath.c_str(), "clippingRange", time, &value) == OBSCURA_OK &&
+        value.type == OBSCURA_VALUE_FLOAT2) {
+        c.nearClip = static_cast<const float*>(value.data)[0];
+        c.farClip = static_cast<const float*>(value.data)[1];
+    }
+    if (sd.getValue(sd.userData, cameraPath.c_str(), "projection", time, &value) == OBSCURA_OK &&
+        value.type == OBSCURA_VALUE_TOKEN)
+        c.orthographic = std::string(static_cast<const char* const*>(value.data)[0]) == "orthographic";
     return c;
 }
 
@@ -73,15 +77,16 @@ int runRender(const RenderOptions& o) {
         std::fprintf(stderr, "obscura: %s\n", problem->message.c_str());
         return problem->exitCode;
     }
-    std::string camera = o.camera.empty() ? session.host().defaultCamera() : o.camera;
-    if (camera.empty()) {
-        std::fprintf(stderr, "obscura: %s has no camera (UsdGeomCamera); add one or pass --camera\n", o.scene.c_str());
-        return kExitBadInput;
-    }
     auto frames = frameList(o, session.stage().metadata());
     if (auto* problem = std::get_if<std::string>(&frames)) {
         std::fprintf(stderr, "obscura: %s\n", problem->c_str());
         return kExitUsage;
+    }
+    std::string camera = o.camera.empty() ? session.host().defaultCamera() : o.camera;
+    if (camera.empty()) {
+        camera = session.host().addFramingCamera(session.api(), session.delegate(), std::get<std::vector<double>>(frames).front());
+        std::fprintf(stderr, "obscura: warning: %s has no camera; framing the scene's bounds from the front\n",
+                     o.scene.c_str());
     }
 
     std::vector<std::string> aovs = png ? std::vector<std::string>{"display"}
@@ -120,7 +125,7 @@ int runRender(const RenderOptions& o) {
         }
         std::string path = framePath(o.output, frame);
         std::string problem = png ? writePngDisplay(path, mapped[0].buffer)
-                                  : writeExrAovs(path, mapped, depthConversion(session.stage(), camera, frame));
+                                  : writeExrAovs(path, mapped, depthConversion(session.host(), camera, frame));
         for (const auto& b : buffers) session.api().unmapRenderBuffer(session.delegate(), b.c_str());
         if (!problem.empty()) {
             std::fprintf(stderr, "obscura: cannot write %s: %s\n", path.c_str(), problem.c_str());

@@ -3,6 +3,7 @@
 #include "harness/usda/matrix4.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace obscura::harness {
@@ -14,6 +15,7 @@ const std::map<std::string, std::string> kPrimTypes = {
     {"Camera", "camera"},
     {"DistantLight", "distantLight"},
     {"SphereLight", "sphereLight"},
+    {"DomeLight", "domeLight"},
     {"Material", "material"},
     {"PointInstancer", "instancer"},
 };
@@ -128,6 +130,44 @@ std::string UsdSceneHost::defaultCamera() const {
     return {};
 }
 
+std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDelegate delegate, double time) {
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (const usda::Prim* prim : stage_.prims()) {
+        if (prim->typeName != "Mesh" || prototypeSpace(*prim)) continue;
+        const usda::Attribute* points = prim->attribute("points");
+        auto value = points ? points->evaluate(time) : std::nullopt;
+        if (!value || value->tupleSize != 3) continue;
+        auto m = stage_.worldTransform(*prim, time);
+        for (size_t i = 0; i + 2 < value->numbers.size(); i += 3) {
+            const double* p = &value->numbers[i];
+            for (int c = 0; c < 3; ++c) {
+                double w = p[0] * m[size_t(c)] + p[1] * m[size_t(4 + c)] + p[2] * m[size_t(8 + c)] + m[size_t(12 + c)];
+                if (!std::isfinite(w)) continue;
+                lo[c] = std::min(lo[c], w);
+                hi[c] = std::max(hi[c], w);
+            }
+        }
+    }
+    double centre[3], radius = 0;
+    for (int c = 0; c < 3; ++c) {
+        if (lo[c] > hi[c]) lo[c] = hi[c] = 0;  // nothing to frame: look at the origin
+        centre[c] = 0.5 * (lo[c] + hi[c]);
+        radius += 0.25 * (hi[c] - lo[c]) * (hi[c] - lo[c]);
+    }
+    radius = std::max(std::sqrt(radius), 1e-3);
+    // The schema's default lens: 50 mm, 15.2908 mm vertical aperture; the bounding sphere fits
+    // the narrower (vertical) field of view.
+    double halfFov = std::atan(15.2908 / 2.0 / 50.0);
+    double distance = radius / std::sin(halfFov);
+    FramingCamera cam{"/ObscuraFramingCamera", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, centre[0], centre[1], centre[2] + distance, 1},
+                      {float(std::max(distance - 2.0 * radius, distance * 1e-3)), float(distance + 2.0 * radius)}};
+    bool exists = framingCamera_.has_value();
+    framingCamera_ = cam;
+    if (!exists) api.insertPrim(delegate, "camera", cam.path.c_str());
+    else api.markDirty(delegate, cam.path.c_str(), OBSCURA_DIRTY_ALL);
+    return cam.path;
+}
+
 const usda::Attribute* UsdSceneHost::resolveAttribute(const std::string& path, const std::string& attribute) const {
     auto surface = surfaces_.find(path);
     if (surface != surfaces_.end()) return surface->second->attribute(attribute);
@@ -201,6 +241,12 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
             return OBSCURA_OK;
         }
         return OBSCURA_ERROR_NOT_FOUND;
+    }
+    if (framingCamera_ && path == framingCamera_->path) {
+        if (attribute != "clippingRange") return OBSCURA_ERROR_NOT_FOUND;  // schema defaults
+        floats_.assign(framingCamera_->clippingRange, framingCamera_->clippingRange + 2);
+        *out = {OBSCURA_VALUE_FLOAT2, 0, 1, floats_.data()};
+        return OBSCURA_OK;
     }
     const usda::Prim* prim = stage_.find(path);
     if (!prim) return OBSCURA_ERROR_NOT_FOUND;
@@ -279,6 +325,12 @@ ObscuraStatus UsdSceneHost::sampleTransformThunk(void* user, const char* path, d
                                                  uint32_t maxSamples, double* times, double* matrices,
                                                  uint32_t* count) {
     auto* self = static_cast<UsdSceneHost*>(user);
+    if (self->framingCamera_ && path == self->framingCamera_->path && maxSamples > 0) {
+        times[0] = t0;
+        std::copy(self->framingCamera_->transform.begin(), self->framingCamera_->transform.end(), matrices);
+        *count = 1;
+        return OBSCURA_OK;
+    }
     const usda::Prim* prim = self->stage_.find(path);
     if (!prim || maxSamples == 0) return OBSCURA_ERROR_NOT_FOUND;
     // The interval's ends and every authored sample time strictly inside it.

@@ -7,7 +7,9 @@
 
 #include <obscura/obscura.h>
 
+#include <array>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -35,6 +37,9 @@ public:
 
     // The first camera of the stage, or "" if there is none.
     std::string defaultCamera() const;
+    // For scenes without a camera (typical of OBJ files): inserts a camera that frames the
+    // bounds of every mesh at `time` from the front (+Z), as usdview's free camera does.
+    std::string addFramingCamera(const ObscuraApiV1& api, ObscuraDelegate delegate, double time);
     const usda::Stage& stage() const { return stage_; }
     const std::vector<HostMessage>& messages() const { return messages_; }
 
@@ -64,6 +69,12 @@ private:
         std::string format;
     };
     std::map<std::string, RenderBufferDesc> renderBuffers_;
+    struct FramingCamera {
+        std::string path;
+        std::array<double, 16> transform;
+        float clippingRange[2];
+    };
+    std::optional<FramingCamera> framingCamera_;
     std::set<std::string> warned_;
     std::vector<HostMessage> messages_;
     // Storage that backs the last value returned (valid until the next callback, per the ABI).

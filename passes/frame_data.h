@@ -40,7 +40,7 @@ struct alignas(16) MaterialData {
 };
 static_assert(sizeof(MaterialData) == 48);
 
-enum class LightType : uint32_t { Distant = 0, Sphere = 1 };
+enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2 };
 
 struct alignas(16) LightData {
     std::array<float, 4> positionType;

@@ -154,6 +154,12 @@ def Xform "World"
         uniform token[] xformOpOrder = ["xformOp:rotateXYZ"]
     }}
 
+    def DomeLight "Sky"
+    {{
+        float inputs:intensity = 0.35
+        color3f inputs:color = (0.75, 0.85, 1.0)
+    }}
+
     def SphereLight "Bulb"
     {{
         float inputs:radius = 10

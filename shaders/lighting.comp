@@ -69,12 +69,13 @@ void main() {
     vec3 radiance = mat.emissiveMetallic.rgb;
     for (uint i = 0u; i < lightCount; ++i) {
         LightData light = lights[i];
-        if (uint(light.positionType.w) == LIGHT_DISTANT) {
+        uint type = uint(light.positionType.w);
+        if (type == LIGHT_DISTANT) {
             // UsdLux: irradiance = radiance x solid angle of the disc (precomputed on the host).
             vec3 L = -light.directionAngle.xyz;
             radiance += shade(N, V, L, light.radiance.rgb, sin(light.directionAngle.w), am.rgb, am.a, nr.a,
                               light.factors.xy);
-        } else {
+        } else if (type == LIGHT_SPHERE) {
             vec3 toLight = light.positionType.xyz - P;
             float d2 = max(dot(toLight, toLight), 1e-8);
             float d = sqrt(d2);
@@ -83,8 +84,17 @@ void main() {
             // A uniform sphere of radiance L_e and radius r fully above the horizon gives
             // E = pi * L_e * (r/d)^2 * cos(theta); a point light (r folded in) follows the same law.
             vec3 irradiance = PI * light.radiance.rgb * (r * r) / d2;
-            float sinHalfAngle = clamp(r / d, 0.0, 1.0);
+            // treatAsPoint keeps the power but not the lobe widening of an extended source.
+            float sinHalfAngle = light.factors.z > 0.0 ? 0.0 : clamp(r / d, 0.0, 1.0);
             radiance += shade(N, V, L, irradiance, sinHalfAngle, am.rgb, am.a, nr.a, light.factors.xy);
+        } else if (type == LIGHT_DOME) {
+            // A constant environment: Lambert integrates to albedo * L; GGX through the split-sum
+            // pre-integration (environmentBrdf).
+            vec3 f0 = mix(vec3(0.04), am.rgb, am.a);
+            vec2 scaleBias = environmentBrdf(nr.a, max(dot(N, V), 1e-4));
+            vec3 diffuse = (1.0 - am.a) * am.rgb;
+            vec3 specular = f0 * scaleBias.x + scaleBias.y;
+            radiance += (diffuse * light.factors.x + specular * light.factors.y) * light.radiance.rgb;
         }
     }
     imageStore(lightAccumulation, pixel, vec4(radiance * camera.exposureScale, 1.0));

@@ -1,8 +1,8 @@
-// DistantLight and SphereLight sprims (UsdLux). Radiometric conventions (DESIGN.md):
+// DistantLight, SphereLight and DomeLight sprims (UsdLux). Radiometric conventions (docs/ARCHITECTURE.md):
 // inputs:intensity * 2^inputs:exposure * inputs:color is the emitted radiance; a distant light's
 // irradiance at normal incidence is that radiance times the solid angle of its disc
 // (2 pi (1 - cos(angle / 2))), or the intensity itself when inputs:normalize is on; a normalized
-// sphere light divides its radiance by its surface area.
+// sphere light divides its radiance by its surface area; a dome is constant radiance all around.
 #pragma once
 
 #include "delegate/prims/prim.h"
@@ -16,6 +16,7 @@ public:
         : Prim(std::move(path), schema), type_(type) {}
     bool visible() const { return visible_; }
     const passes::LightData& data() const { return data_; }
+    const std::string& warning() const { return warning_; }
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
@@ -23,6 +24,11 @@ private:
     Matrix4d transform_ = kIdentity;
     passes::LightData data_{};
     bool visible_ = true;
+    std::string warning_;
 };
+
+// Linear Rec.709 colour of a black body at `kelvin`, scaled to luminance 1 (UsdLux
+// colorTemperature: the light's colour is multiplied by it).
+std::array<float, 3> blackbodyColor(double kelvin);
 
 }  // namespace obscura::delegate

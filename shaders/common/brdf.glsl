@@ -30,4 +30,14 @@ float alphaFromRoughness(float roughness) {
     return r * r;
 }
 
+// Pre-integrated GGX for a uniform environment: scale and bias of F0 (Karis 2014, "Physically
+// based shading on mobile", the analytic fit of the split-sum DFG term).
+vec2 environmentBrdf(float roughness, float NdotV) {
+    const vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022);
+    const vec4 c1 = vec4(1.0, 0.0425, 1.04, -0.04);
+    vec4 r = roughness * c0 + c1;
+    float a004 = min(r.x * r.x, exp2(-9.28 * NdotV)) * r.x + r.y;
+    return vec2(-1.04, 1.04) * a004 + r.zw;
+}
+
 #endif

@@ -31,6 +31,7 @@ struct MaterialData {
 
 const uint LIGHT_DISTANT = 0u;
 const uint LIGHT_SPHERE = 1u;
+const uint LIGHT_DOME = 2u;
 
 struct LightData {
     vec4 positionType;      // xyz world position (sphere), w type

@@ -118,3 +118,48 @@ TEST(LightingAnalytic, ExposureScalesTheColorAov) {
 
 }  // namespace
 }  // namespace obscura::test
+
+namespace obscura::test {
+namespace {
+
+TEST(LightingAnalytic, ConstantDomeGivesAlbedoTimesRadiance) {
+    Scene s;
+    // Lambert under a uniform environment of radiance L: integral of (a/pi) L cos = a L.
+    const double radiance = 1.5;
+    s.host.addPrim("domeLight", "/Sky",
+                   {{"inputs:intensity", HostValue::floatValue(float(radiance))},
+                    {"inputs:color", HostValue::float3(1.0f, 0.5f, 0.25f)},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}});
+    auto color = s.renderColor();
+    double l = kAlbedo * radiance;
+    for (auto [x, y] : {std::pair{32, 32}, {3, 60}}) expectRadiance(color, x, y, {l, l * 0.5, l * 0.25});
+}
+
+TEST(LightingAnalytic, ColorTemperatureTintsTheLight) {
+    Scene s;
+    s.host.addPrim("distantLight", "/Sun",
+                   {{"inputs:intensity", HostValue::floatValue(3.0f)},
+                    {"inputs:normalize", HostValue::boolean(true)},
+                    {"inputs:enableColorTemperature", HostValue::boolean(true)},
+                    {"inputs:colorTemperature", HostValue::floatValue(3000.0f)},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   lightPointingAlong({0, 0, -1}));
+    auto color = s.renderColor();
+    const float* p = &color[(32 * kWidth + 32) * 4];
+    // The Planckian locus at 3000 K has CIE 1931 chromaticity (0.4369, 0.4041) (published tables);
+    // its linear Rec.709 colour at luminance 1 is what the light's colour is multiplied by.
+    const double x = 0.4369, y = 0.4041, X = x / y, Z = (1 - x - y) / y;
+    double rgb[3] = {3.2404542 * X - 1.5371385 - 0.4985314 * Z, -0.9692660 * X + 1.8760108 + 0.0415560 * Z,
+                     0.0556434 * X - 0.2040259 + 1.0572252 * Z};
+    double luminance = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+    double e = kAlbedo / kPi * 3.0;
+    const int mantissa[3] = {6, 6, 5};
+    for (int c = 0; c < 3; ++c) {
+        double want = e * rgb[c] / luminance;
+        EXPECT_NEAR(p[c], want, 0.01 * want + smallFloatStep(float(want), mantissa[c])) << "channel " << c;
+    }
+    EXPECT_NEAR(0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2], e, 0.03 * e) << "luminance is kept";
+}
+
+}  // namespace
+}  // namespace obscura::test

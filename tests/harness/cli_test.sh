@@ -49,8 +49,9 @@ check "bad prims exit 3" 3 $? "$tmp/out" 'NaNPoints.*NaN'
 grep -q 'IndexOutOfRange' "$tmp/out"; check "every bad prim is reported" 0 $?
 grep -q "prim type 'Cube' is not supported" "$tmp/out"; check "unsupported prim types warned once" 0 $?
 [ -s "$tmp/bad.png" ]; check "the rest still renders" 0 $?
-"$obscura" render "$src/tests/harness/data/no_camera.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
-check "scene without camera" 3 $? "$tmp/out" 'no camera'
+"$obscura" render "$src/tests/harness/data/no_camera.usda" -o "$tmp/x.exr" --aov color,depth >"$tmp/out" 2>&1
+check "scene without camera is framed" 0 $? "$tmp/out" 'no camera; framing'
+
 "$obscura" render "$tmp/does-not-exist.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
 check "missing scene file" 3 $? "$tmp/out" 'does-not-exist'
 "$obscura" render "$src/scenes/demo.usda" -o "$tmp/x.tiff" >"$tmp/out" 2>&1
