@@ -61,6 +61,13 @@ check "unknown setting is a usage error" 2 $? "$tmp/out" 'noSuchSetting'
 "$obscura" frobnicate >"$tmp/out" 2>&1
 check "unknown command is a usage error" 2 $?
 
+OBSCURA_DEVICE=llvmpipe "$obscura" render "$src/scenes/demo.usda" -o "$tmp/x.png" --width 16 --height 16 >"$tmp/out" 2>&1
+check "OBSCURA_DEVICE picks a device by name" 0 $?
+OBSCURA_DEVICE=0 "$obscura" render "$src/scenes/demo.usda" -o "$tmp/x.png" --width 16 --height 16 >"$tmp/out" 2>&1
+check "OBSCURA_DEVICE picks a device by index" 0 $?
+OBSCURA_DEVICE=no-such-gpu "$obscura" render "$src/scenes/demo.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
+check "an unknown OBSCURA_DEVICE is a device failure" 4 $? "$tmp/out" "no Vulkan device matches 'no-such-gpu'"
+
 # A harness copied away from its plugin, with no search path: a clear failure, exit 4.
 mkdir -p "$tmp/lonely/bin" && cp "$obscura" "$tmp/lonely/bin/"
 OBSCURA_PLUGINPATH= "$tmp/lonely/bin/obscura" render "$src/scenes/demo.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
