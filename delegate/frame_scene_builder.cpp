@@ -6,6 +6,7 @@
 #include "delegate/prims/mesh.h"
 #include "passes/frame_data.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -63,7 +64,13 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     // Materials: index 0 is the fallback for meshes without a (valid) binding.
     std::vector<passes::MaterialData> materials(1);
     materials[0].diffuseRoughness = {0.18f, 0.18f, 0.18f, 0.5f};
-    materials[0].opacityPad = {1.0f, 0, 0, 0};
+    materials[0].opacity = {1.0f, 0, 0, 0};
+    // Material textures: element 0 (all white) serves untextured materials.
+    passes::MaterialTextures white;
+    white.images.fill(in.textures.white());
+    white.samplers.fill(in.textures.sampler(WrapMode::Repeat, WrapMode::Repeat));
+    scene.materialTextures = {white};
+    std::map<std::string, uint32_t> texturesOfMaterial;
     std::map<std::string, uint32_t> materialIndex;
     std::vector<passes::LightData> lights;
     for (const auto& [path, prim] : in.prims) {
@@ -71,6 +78,16 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         if (auto* m = dynamic_cast<const Material*>(prim.get())) {
             materialIndex[path] = static_cast<uint32_t>(materials.size());
             materials.push_back(m->data());
+            passes::MaterialTextures textures = white;
+            for (uint32_t slot = 0; slot < passes::kMaterialTextureSlots; ++slot)
+                if (const auto& bound = m->textures()[slot]) {
+                    textures.images[slot] = bound->texture->image;
+                    textures.samplers[slot] = bound->sampler;
+                }
+            if (std::any_of(m->textures().begin(), m->textures().end(), [](const auto& t) { return t.has_value(); })) {
+                texturesOfMaterial[path] = static_cast<uint32_t>(scene.materialTextures.size());
+                scene.materialTextures.push_back(textures);
+            }
         } else if (auto* l = dynamic_cast<const Light*>(prim.get())) {
             if (l->visible()) lights.push_back(l->data());
         }
@@ -104,6 +121,12 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         if (mesh.doubleSided()) inst.flags |= passes::kInstanceDoubleSided;
         instances.push_back(inst);
     };
+    // A draw's instances share its mesh's material, and so its textures.
+    auto texturesOf = [&](const Mesh& mesh) -> uint32_t {
+        if (!mesh.materialPath()) return 0;
+        auto it = texturesOfMaterial.find(*mesh.materialPath());
+        return it == texturesOfMaterial.end() ? 0 : it->second;
+    };
     auto drawable = [](const Prim& prim) -> const Mesh* {
         auto* mesh = dynamic_cast<const Mesh*>(&prim);
         return mesh && !mesh->skipped() && mesh->drawable() ? mesh : nullptr;
@@ -112,7 +135,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         const Mesh* mesh = drawable(*prim);
         if (!mesh || isPrototype(path)) continue;
         scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
-                               static_cast<uint32_t>(instances.size()), 1});
+                               static_cast<uint32_t>(instances.size()), 1, texturesOf(*mesh)});
         record(*mesh, mesh->transform());
     }
     // One draw per (instancer, prototype mesh): the mesh's transform relative to the instancer,
@@ -125,7 +148,8 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
             const auto& placements = inst->instancesOf(size_t(proto));
             if (placements.empty()) continue;
             scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
-                                   static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(placements.size())});
+                                   static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(placements.size()),
+                                   texturesOf(*mesh)});
             for (const Matrix4d& placement : placements) record(*mesh, multiply(mesh->transform(), placement));
         }
     }

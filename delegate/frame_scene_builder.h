@@ -4,6 +4,7 @@
 
 #include "delegate/prims/camera.h"
 #include "delegate/prims/prim.h"
+#include "delegate/texture_cache.h"
 #include "passes/frame_scene.h"
 
 #include <map>
@@ -18,6 +19,7 @@ struct FrameSceneInputs {
     uint32_t width;
     uint32_t height;
     double exposureStops;  // render setting, added to the camera's exposure
+    TextureCache& textures;
 };
 
 passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs);

@@ -55,8 +55,8 @@ std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh)
     auto usable = [&](const std::optional<MeshPrimvar>& pv, const char* name) -> const MeshPrimvar* {
         if (!pv) return nullptr;
         size_t expected = primvarElementCount(mesh, pv->interpolation);
-        if (pv->values.size() != expected * 3) {
-            out.warnings.push_back(std::string(name) + " has " + std::to_string(pv->values.size() / 3) +
+        if (pv->values.size() != expected * pv->components) {
+            out.warnings.push_back(std::string(name) + " has " + std::to_string(pv->values.size() / pv->components) +
                                    " elements but its interpolation needs " + std::to_string(expected) + "; ignored");
             return nullptr;
         }
@@ -64,6 +64,7 @@ std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh)
     };
     const MeshPrimvar* normals = usable(mesh.normals, "normals");
     const MeshPrimvar* colors = usable(mesh.displayColor, "primvars:displayColor");
+    const MeshPrimvar* st = usable(mesh.st, "primvars:st");
 
     // Smooth vertex normals when none are authored: area-weighted sum of face normals (the
     // cross products of a fan are twice the triangle areas).
@@ -106,6 +107,7 @@ std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh)
             const float kGrey = 0.18f;
             for (int j = 0; j < 3; ++j)
                 v.color[j] = colors ? colors->values[3 * primvarIndex(colors->interpolation, f, fv, pi) + size_t(j)] : kGrey;
+            for (int j = 0; j < 2 && st; ++j) v.uv[j] = st->values[2 * primvarIndex(st->interpolation, f, fv, pi) + size_t(j)];
             out.vertices.push_back(v);
         }
         // Fan triangulation; left-handed meshes wind the other way.

@@ -14,8 +14,9 @@
 namespace obscura::delegate {
 
 struct MeshPrimvar {
-    std::vector<float> values;  // 3 components per element
+    std::vector<float> values;  // `components` per element
     ObscuraInterpolation interpolation = OBSCURA_INTERPOLATION_VERTEX;
+    size_t components = 3;
 };
 
 struct MeshInput {
@@ -25,6 +26,7 @@ struct MeshInput {
     bool leftHanded = false;
     std::optional<MeshPrimvar> normals;
     std::optional<MeshPrimvar> displayColor;
+    std::optional<MeshPrimvar> st;  // texture coordinates, 2 components
 };
 
 struct MeshGeometry {

@@ -76,13 +76,25 @@ RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
     transients_ = std::make_unique<gpu::TransientImagePool>(*device_);
     timestamps_ = std::make_unique<gpu::Timestamps>(*device_);
     bestFitNormals_ = passes::createBestFitNormalsTexture(*device_);
+    // With SSAO off the lighting pass reads one unoccluded texel.
+    const uint8_t open = 255;
+    const float farDepth = 0.0f;
+    gpu::ImageDesc one;
+    one.width = one.height = 1;
+    one.format = passes::kSsaoAccessibilityFormat;
+    unoccluded_.accessibility = device_->createTextureWithData(one, &open, sizeof(open), "ssao off");
+    one.format = passes::kSsaoDepthFormat;
+    unoccluded_.halfDepth = device_->createTextureWithData(one, &farDepth, sizeof(farDepth), "ssao off depth");
+    textures_ = std::make_unique<TextureCache>(*device_, options.log);
     log(OBSCURA_LOG_INFO, "device: " + device_->context().summary().name);
 }
 
 RenderDelegate::~RenderDelegate() {
     vkDeviceWaitIdle(device_->vk());
     prims_.clear();
+    textures_.reset();
     bestFitNormals_.reset();
+    unoccluded_ = {};
     grading_ = passes::ColorGradingLut();
     timestamps_.reset();
     transients_.reset();
@@ -171,7 +183,8 @@ void RenderDelegate::sync(double time, const Camera* camera) {
         int oa = a == camera ? -1 : syncOrder(*a), ob = b == camera ? -1 : syncOrder(*b);
         return oa != ob ? oa < ob : a->path() < b->path();
     });
-    SyncContext ctx{sceneDelegate_, *device_, time, time, time, static_cast<int>(settings_.number("refineLevel"))};
+    SyncContext ctx{sceneDelegate_, *device_, time, time, time, static_cast<int>(settings_.number("refineLevel")),
+                    *textures_};
     auto takeShutter = [&] {
         if (!camera || camera->skipped()) return;
         ctx.shutterOpen = time + camera->params().shutterOpen;
@@ -185,6 +198,8 @@ void RenderDelegate::sync(double time, const Camera* camera) {
         if (prim->skipped()) log(OBSCURA_LOG_ERROR, "skipped prim " + prim->problem());
         if (auto* mesh = dynamic_cast<Mesh*>(prim))
             for (const auto& w : mesh->warnings()) log(OBSCURA_LOG_WARNING, mesh->path() + ": " + w);
+        if (auto* material = dynamic_cast<Material*>(prim))
+            for (const auto& w : material->warnings()) log(OBSCURA_LOG_WARNING, material->path() + ": " + w);
         if (auto* light = dynamic_cast<Light*>(prim); light && !light->warning().empty())
             log(OBSCURA_LOG_WARNING, light->path() + ": " + light->warning());
     }
@@ -242,14 +257,25 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (std::string problem = grading_.update(*device_, colour); !problem.empty())
         throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "colour management: " + problem};
 
-    passes::FrameScene scene = buildFrameScene(*device_, {prims_, *camera, width, height, settings_.number("exposure")});
+    passes::FrameScene scene =
+        buildFrameScene(*device_, {prims_, *camera, width, height, settings_.number("exposure"), *textures_});
     trianglesDrawn_ = 0;
     for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
 
     // The frame (DESIGN.md "The frame"): G-buffer, lighting, tone mapping, AOV readback.
     gpu::FrameGraph graph;
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
-    gpu::ImageHandle hdr = passes::addLightingPass(graph, *pipelines_, scene, gbuffer);
+    passes::SsaoResult ambient;
+    if (settings_.number("ssao") != 0.0) {
+        // The radius is authored in metres; the passes work in scene units (USD metersPerUnit).
+        passes::SsaoSettings ssao{float(settings_.number("ssao:radius") / settings_.number("metersPerUnit")),
+                                  float(settings_.number("ssao:intensity"))};
+        ambient = passes::addSsaoPasses(graph, *pipelines_, scene, gbuffer, ssao);
+    } else {
+        ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
+                   graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
+    }
+    gpu::ImageHandle hdr = passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient);
     gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, gbuffer.instance, grading_);
     passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, display, requests);
     graph.compile();

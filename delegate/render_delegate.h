@@ -9,6 +9,7 @@
 #include "delegate/prims/mesh.h"
 #include "delegate/prims/render_buffer.h"
 #include "delegate/render_settings.h"
+#include "delegate/texture_cache.h"
 #include "gpu/frame_graph.h"
 #include "gpu/timestamps.h"
 #include "passes/color_grading_lut.h"
@@ -65,6 +66,10 @@ private:
     std::unique_ptr<gpu::TransientImagePool> transients_;
     std::unique_ptr<gpu::Timestamps> timestamps_;
     gpu::ImagePtr bestFitNormals_;
+    struct {
+        gpu::ImagePtr accessibility, halfDepth;
+    } unoccluded_;
+    std::unique_ptr<TextureCache> textures_;
     passes::ColorGradingLut grading_;
 
     ObscuraSceneDelegate sceneDelegate_{};

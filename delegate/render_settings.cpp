@@ -12,6 +12,11 @@ const RenderSettingInfo kSettings[] = {
     {"refineLevel", "subdivision level of catmullClark/loop/bilinear meshes, 0-6; a mesh's obscura:refineLevel "
                     "overrides it (int, default 2)",
      OBSCURA_VALUE_INT, 2.0},
+    {"ssao", "screen-space ambient occlusion on environment light (bool, default on)", OBSCURA_VALUE_BOOL, 1.0},
+    {"ssao:radius", "ambient occlusion radius in metres (float, default 0.5)", OBSCURA_VALUE_FLOAT, 0.5},
+    {"ssao:intensity", "ambient occlusion strength, 0-1 (float, default 1)", OBSCURA_VALUE_FLOAT, 1.0},
+    {"metersPerUnit", "the scene's metres per unit, as USD's stage metadata; hosts set it (float, default 0.01)",
+     OBSCURA_VALUE_FLOAT, 0.01},
     {"ocio:config", "OpenColorIO config file (token; default: $OCIO, else the built-in ACES-based config)",
      OBSCURA_VALUE_TOKEN, 0.0},
     {"ocio:display", "OCIO display (token; default: the config's default display)", OBSCURA_VALUE_TOKEN, 0.0},

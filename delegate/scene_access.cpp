@@ -79,6 +79,15 @@ std::array<float, 3> SceneAccess::getFloat3(const char* name) {
     return r;
 }
 
+std::array<float, 4> SceneAccess::getFloat4(const char* name) {
+    const auto& a = attribute(name);
+    auto v = fetch(a);
+    std::array<float, 4> r{};
+    for (size_t i = 0; i < 4; ++i)
+        r[i] = static_cast<float>(v ? numberAt(*v, i) : (a.defaultCount > i ? a.defaultNumbers[i] : 0.0));
+    return r;
+}
+
 std::array<int32_t, 2> SceneAccess::getInt2(const char* name) {
     const auto& a = attribute(name);
     auto v = fetch(a);

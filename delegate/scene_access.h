@@ -39,6 +39,7 @@ public:
     float getFloat(const char* name) { return static_cast<float>(getDouble(name)); }
     std::array<float, 2> getFloat2(const char* name);
     std::array<float, 3> getFloat3(const char* name);
+    std::array<float, 4> getFloat4(const char* name);
     std::array<int32_t, 2> getInt2(const char* name);
     std::string getToken(const char* name);
     std::optional<std::string> getPath(const char* name);  // empty when unauthored

@@ -27,16 +27,18 @@ struct Float3 {
     }
 };
 
-std::vector<Float3> toFloat3(const std::vector<float>& values) {
-    std::vector<Float3> out(values.size() / 3);
-    for (size_t i = 0; i < out.size(); ++i) out[i].v = {values[3 * i], values[3 * i + 1], values[3 * i + 2]};
+// Primvars of fewer components (st) travel in the first ones, the rest zero.
+std::vector<Float3> toFloat3(const std::vector<float>& values, size_t components = 3) {
+    std::vector<Float3> out(values.size() / components);
+    for (size_t i = 0; i < out.size(); ++i)
+        for (size_t j = 0; j < components; ++j) out[i].v[j] = values[components * i + j];
     return out;
 }
 
-std::vector<float> toFloats(const std::vector<Float3>& values) {
+std::vector<float> toFloats(const std::vector<Float3>& values, size_t components = 3) {
     std::vector<float> out;
-    out.reserve(values.size() * 3);
-    for (const Float3& value : values) out.insert(out.end(), value.v.begin(), value.v.end());
+    out.reserve(values.size() * components);
+    for (const Float3& value : values) out.insert(out.end(), value.v.begin(), value.v.begin() + long(components));
     return out;
 }
 
@@ -164,7 +166,7 @@ bool isFaceVarying(const std::optional<MeshPrimvar>& primvar) {
 
 // A primvar is refined only when its element count fits its interpolation on the input mesh.
 bool fitsMesh(const MeshInput& mesh, const std::optional<MeshPrimvar>& primvar) {
-    return primvar && primvar->values.size() == 3 * primvarElementCount(mesh, primvar->interpolation);
+    return primvar && primvar->values.size() == primvar->components * primvarElementCount(mesh, primvar->interpolation);
 }
 
 // Everything the refiner is built from: equal keys give the same refined topology.
@@ -175,14 +177,17 @@ struct TopologyKey {
     SubdivisionScheme scheme = SubdivisionScheme::None;
     SubdivisionTags tags;
     int level = 0;
-    bool faceVaryingChannel = false;  // displayColor is face-varying: the refiner carries its channel
+    // displayColor or st is face-varying: the refiner carries a face-varying channel. Both have a
+    // value per face-vertex (the host expands indexed primvars), so one channel serves both.
+    bool faceVaryingChannel = false;
 
     bool operator==(const TopologyKey&) const = default;
 };
 
 TopologyKey makeKey(const MeshInput& mesh, SubdivisionScheme scheme, const SubdivisionTags& tags, int level) {
     return {mesh.faceVertexCounts, mesh.faceVertexIndices, mesh.points.size() / 3, mesh.leftHanded, scheme, tags, level,
-            isFaceVarying(mesh.displayColor) && fitsMesh(mesh, mesh.displayColor)};
+            (isFaceVarying(mesh.displayColor) && fitsMesh(mesh, mesh.displayColor)) ||
+                (isFaceVarying(mesh.st) && fitsMesh(mesh, mesh.st))};
 }
 
 // USD's creases are runs of consecutive vertices: a run of n vertices makes n - 1 crease edges,
@@ -345,21 +350,28 @@ std::vector<float> limitNormals(const Far::TopologyRefiner& refiner, const std::
     return normals;
 }
 
-MeshPrimvar refineDisplayColor(const SubdivisionTopology& topology, const MeshPrimvar& color) {
-    MeshPrimvar out{{}, color.interpolation};
-    switch (color.interpolation) {
-        case OBSCURA_INTERPOLATION_CONSTANT: out.values = color.values; break;
+MeshPrimvar refinePrimvar(const SubdivisionTopology& topology, const MeshPrimvar& primvar) {
+    const size_t n = primvar.components;
+    MeshPrimvar out{{}, primvar.interpolation, n};
+    switch (primvar.interpolation) {
+        case OBSCURA_INTERPOLATION_CONSTANT: out.values = primvar.values; break;
         case OBSCURA_INTERPOLATION_UNIFORM:
-            for (int32_t face : topology.baseFace)
-                out.values.insert(out.values.end(), color.values.begin() + 3 * face, color.values.begin() + 3 * face + 3);
+            for (int32_t face : topology.baseFace) {
+                const auto first = primvar.values.begin() + long(n * size_t(face));
+                out.values.insert(out.values.end(), first, first + long(n));
+            }
             break;
         case OBSCURA_INTERPOLATION_FACE_VARYING: {
-            const std::vector<Float3> values = refineFaceVaryingData(*topology.refiner, toFloat3(color.values));
-            for (int32_t value : topology.cornerValues)
-                out.values.insert(out.values.end(), values[size_t(value)].v.begin(), values[size_t(value)].v.end());
+            const std::vector<Float3> values = refineFaceVaryingData(*topology.refiner, toFloat3(primvar.values, n));
+            for (int32_t value : topology.cornerValues) {
+                const auto& v = values[size_t(value)].v;
+                out.values.insert(out.values.end(), v.begin(), v.begin() + long(n));
+            }
             break;
         }
-        default: out.values = toFloats(refineVertexData(*topology.refiner, toFloat3(color.values), color.interpolation)); break;
+        default:
+            out.values = toFloats(refineVertexData(*topology.refiner, toFloat3(primvar.values, n), primvar.interpolation), n);
+            break;
     }
     return out;
 }
@@ -372,7 +384,8 @@ MeshInput evaluate(const SubdivisionTopology& topology, const MeshInput& mesh) {
     out.faceVertexIndices = topology.faceVertexIndices;
     out.leftHanded = false;
     out.normals = MeshPrimvar{limitNormals(*topology.refiner, points), OBSCURA_INTERPOLATION_VERTEX};
-    if (fitsMesh(mesh, mesh.displayColor)) out.displayColor = refineDisplayColor(topology, *mesh.displayColor);
+    if (fitsMesh(mesh, mesh.displayColor)) out.displayColor = refinePrimvar(topology, *mesh.displayColor);
+    if (fitsMesh(mesh, mesh.st)) out.st = refinePrimvar(topology, *mesh.st);
     return out;
 }
 

@@ -43,9 +43,11 @@ inline constexpr int kMaxRefineLevel = 6;
 //   wound counter-clockwise: leftHanded is false even for a left-handed input;
 // - normals: limit-surface normals, vertex interpolated. Authored normals are ignored, as
 //   UsdGeomMesh specifies for subdivision surfaces;
-// - displayColor: refined by its interpolation (constant kept, uniform copied from the parent
-//   face, vertex/varying/faceVarying interpolated). One whose element count does not fit its
-//   interpolation on the input mesh is dropped: check it with primvarElementCount to warn.
+// - displayColor and st: refined by their interpolation (constant kept, uniform copied from the
+//   parent face, vertex/varying/faceVarying interpolated). One whose element count does not fit
+//   its interpolation on the input mesh is dropped: check it with primvarElementCount to warn.
+//   Face-varying values are not shared between faces (hosts expand indexed primvars), so each
+//   face refines its own values with the face-varying boundary rules.
 // Returns the reason for topology or tags that USD's validation (PxOsdMeshTopologyValidation)
 // or OpenSubdiv rejects. Non-manifold edges are not an error: OpenSubdiv refines them as sharp.
 std::variant<MeshInput, std::string> refineMesh(const MeshInput& mesh, SubdivisionScheme scheme,
@@ -57,7 +59,7 @@ struct SubdivisionTopology;
 
 // refineMesh for a mesh refined again and again: keeps OpenSubdiv's topology refiner between
 // calls and rebuilds it only when what it was built from changed (the face counts and indices,
-// point count, orientation, scheme, tags, level, or whether displayColor is face-varying), so
+// point count, orientation, scheme, tags, level, or whether displayColor or st is face-varying), so
 // animated points re-evaluate without rebuilding topology.
 class SubdivisionCache {
 public:

@@ -72,7 +72,20 @@ int typeRank(VkPhysicalDevice pd) {
     }
 }
 
-bool supportsVulkan13Features(VkPhysicalDevice pd) {
+bool hasExtension(VkPhysicalDevice pd, const char* name) {
+    uint32_t count = 0;
+    vkEnumerateDeviceExtensionProperties(pd, nullptr, &count, nullptr);
+    std::vector<VkExtensionProperties> extensions(count);
+    vkEnumerateDeviceExtensionProperties(pd, nullptr, &count, extensions.data());
+    for (const auto& e : extensions)
+        if (std::strcmp(e.extensionName, name) == 0) return true;
+    return false;
+}
+
+// Vulkan 1.3 features, and push descriptors for per-draw material textures (arrays of samplers
+// indexed per draw would need shaderSampledImageArrayDynamicIndexing, which lavapipe lacks).
+bool meetsRequirements(VkPhysicalDevice pd) {
+    if (!hasExtension(pd, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) return false;
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13};
     vkGetPhysicalDeviceFeatures2(pd, &f);
@@ -85,15 +98,16 @@ bool supportsVulkan13Features(VkPhysicalDevice pd) {
 Result<VkPhysicalDevice> pickDevice(const std::vector<VkPhysicalDevice>& devices, const std::string& selector) {
     std::vector<VkPhysicalDevice> usable;
     for (VkPhysicalDevice pd : devices)
-        if (supportsVulkan13Features(pd)) usable.push_back(pd);
-    if (usable.empty()) return Failure{"no Vulkan 1.3 device with dynamic rendering and synchronization2"};
+        if (meetsRequirements(pd)) usable.push_back(pd);
+    if (usable.empty())
+        return Failure{"no Vulkan 1.3 device with dynamic rendering, synchronization2 and VK_KHR_push_descriptor"};
     if (!selector.empty()) {
         char* end = nullptr;
         unsigned long index = std::strtoul(selector.c_str(), &end, 10);
         if (end && *end == '\0') {
             if (index >= devices.size()) return Failure{"device index " + selector + " out of range"};
-            if (!supportsVulkan13Features(devices[index]))
-                return Failure{"device " + selector + " lacks Vulkan 1.3 features"};
+            if (!meetsRequirements(devices[index]))
+                return Failure{"device " + selector + " lacks Vulkan 1.3 features or VK_KHR_push_descriptor"};
             return devices[index];
         }
         for (VkPhysicalDevice pd : usable)
@@ -219,13 +233,21 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     features.features.sampleRateShading = supported.sampleRateShading;
     features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
     features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
+    // Material textures are filtered anisotropically where the device can.
+    features.features.samplerAnisotropy = supported.samplerAnisotropy;
+    ctx->enabledFeatures_ = features.features;
 
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;
+    const char* deviceExtensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    dci.enabledExtensionCount = 1;
+    dci.ppEnabledExtensionNames = deviceExtensions;
     r = vkCreateDevice(ctx->physical_, &dci, nullptr, &ctx->device_);
     if (r != VK_SUCCESS) return Failure{std::string("vkCreateDevice failed: ") + vkResultName(r)};
     vkGetDeviceQueue(ctx->device_, ctx->queueFamily_, 0, &ctx->queue_);
+    ctx->cmdPushDescriptorSet_ = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
+        vkGetDeviceProcAddr(ctx->device_, "vkCmdPushDescriptorSetKHR"));
 
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -237,6 +259,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
 }
 
 Result<std::vector<PhysicalDeviceSummary>> Context::enumerate() {
+    pinDriversForLeakChecking();
     VkInstance instance = VK_NULL_HANDLE;
     VkResult r = createInstance(false, nullptr, &instance);
     if (r != VK_SUCCESS) return Failure{std::string("vkCreateInstance failed: ") + vkResultName(r)};

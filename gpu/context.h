@@ -44,6 +44,10 @@ public:
     VkQueue queue() const { return queue_; }
     uint32_t queueFamily() const { return queueFamily_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
+    // The core features the device was created with (each one the passes use, where supported).
+    const VkPhysicalDeviceFeatures& enabledFeatures() const { return enabledFeatures_; }
+    // VK_KHR_push_descriptor, which every device Obscura picks has.
+    PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet() const { return cmdPushDescriptorSet_; }
     const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
     const PhysicalDeviceSummary& summary() const { return summary_; }
     bool validationEnabled() const { return messenger_ != VK_NULL_HANDLE; }
@@ -76,6 +80,8 @@ private:
     VkQueue queue_ = VK_NULL_HANDLE;
     uint32_t queueFamily_ = 0;
     VkPhysicalDeviceProperties properties_{};
+    VkPhysicalDeviceFeatures enabledFeatures_{};
+    PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet_ = nullptr;
     VkPhysicalDeviceMemoryProperties memoryProperties_{};
     PhysicalDeviceSummary summary_;
     VkCommandPool commandPool_ = VK_NULL_HANDLE;

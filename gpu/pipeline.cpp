@@ -19,7 +19,7 @@ VkShaderModule Pipeline::loadModule(const std::string& name) {
 }
 
 void Pipeline::createLayout(const std::vector<BindingDesc>& bindings, uint32_t pushConstantSize,
-                            VkShaderStageFlags stages) {
+                            VkShaderStageFlags stages, uint32_t pushedSamplers) {
     bindings_ = bindings;
     std::vector<VkDescriptorSetLayoutBinding> vkBindings;
     for (const auto& b : bindings) vkBindings.push_back({b.binding, b.type, 1, stages, nullptr});
@@ -27,10 +27,24 @@ void Pipeline::createLayout(const std::vector<BindingDesc>& bindings, uint32_t p
     li.bindingCount = static_cast<uint32_t>(vkBindings.size());
     li.pBindings = vkBindings.data();
     vkCheck(vkCreateDescriptorSetLayout(device_.vk(), &li, nullptr, &setLayout_), "vkCreateDescriptorSetLayout");
+    std::vector<VkDescriptorSetLayout> setLayouts = {setLayout_};
+    pushedSamplers_ = pushedSamplers;
+    if (pushedSamplers > 0) {
+        std::vector<VkDescriptorSetLayoutBinding> pushed;
+        for (uint32_t b = 0; b < pushedSamplers; ++b)
+            pushed.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr});
+        VkDescriptorSetLayoutCreateInfo pushInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+        pushInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+        pushInfo.bindingCount = pushedSamplers;
+        pushInfo.pBindings = pushed.data();
+        vkCheck(vkCreateDescriptorSetLayout(device_.vk(), &pushInfo, nullptr, &pushSetLayout_),
+                "vkCreateDescriptorSetLayout");
+        setLayouts.push_back(pushSetLayout_);
+    }
     VkPushConstantRange range{stages, 0, pushConstantSize};
     VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    pli.setLayoutCount = 1;
-    pli.pSetLayouts = &setLayout_;
+    pli.setLayoutCount = static_cast<uint32_t>(setLayouts.size());
+    pli.pSetLayouts = setLayouts.data();
     pli.pushConstantRangeCount = pushConstantSize ? 1 : 0;
     pli.pPushConstantRanges = &range;
     vkCheck(vkCreatePipelineLayout(device_.vk(), &pli, nullptr, &layout_), "vkCreatePipelineLayout");
@@ -51,7 +65,8 @@ Pipeline::Pipeline(Device& device, const ComputePipelineDesc& desc) : device_(de
 
 Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(device) {
     bindPoint_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    createLayout(desc.bindings, desc.pushConstantSize, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
+    createLayout(desc.bindings, desc.pushConstantSize, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                 desc.pushedSamplers);
     VkShaderModule vs = loadModule(desc.vertexShader);
     VkShaderModule fs = loadModule(desc.fragmentShader);
     VkPipelineShaderStageCreateInfo stages[2] = {
@@ -122,10 +137,12 @@ Pipeline::~Pipeline() {
     VkPipeline p = pipeline_;
     VkPipelineLayout l = layout_;
     VkDescriptorSetLayout s = setLayout_;
-    device_.retire([d, p, l, s] {
+    VkDescriptorSetLayout pushed = pushSetLayout_;
+    device_.retire([d, p, l, s, pushed] {
         vkDestroyPipeline(d, p, nullptr);
         vkDestroyPipelineLayout(d, l, nullptr);
         vkDestroyDescriptorSetLayout(d, s, nullptr);
+        vkDestroyDescriptorSetLayout(d, pushed, nullptr);
     });
 }
 
@@ -183,6 +200,24 @@ void DescriptorWriter::bind(VkCommandBuffer cmd) {
     vkUpdateDescriptorSets(device_.vk(), static_cast<uint32_t>(writes_.size()), writes_.data(), 0, nullptr);
     vkCmdBindPipeline(cmd, pipeline_.bindPoint(), pipeline_.vk());
     vkCmdBindDescriptorSets(cmd, pipeline_.bindPoint(), pipeline_.layout(), 0, 1, &set, 0, nullptr);
+}
+
+void pushSampledImages(Device& device, VkCommandBuffer cmd, const Pipeline& pipeline,
+                       const std::vector<VkDescriptorImageInfo>& images) {
+    if (images.size() != pipeline.pushedSamplers())
+        throw DeviceError("the pipeline pushes " + std::to_string(pipeline.pushedSamplers()) + " samplers, not " +
+                          std::to_string(images.size()));
+    std::vector<VkWriteDescriptorSet> writes;
+    for (uint32_t b = 0; b < images.size(); ++b) {
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstBinding = b;
+        w.descriptorCount = 1;
+        w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        w.pImageInfo = &images[b];
+        writes.push_back(w);
+    }
+    device.context().cmdPushDescriptorSet()(cmd, pipeline.bindPoint(), pipeline.layout(), 1,
+                                            static_cast<uint32_t>(writes.size()), writes.data());
 }
 
 void dispatch2D(VkCommandBuffer cmd, uint32_t width, uint32_t height, uint32_t groupSize) {

@@ -24,6 +24,9 @@ struct GraphicsPipelineDesc {
     std::string vertexShader;
     std::string fragmentShader;
     std::vector<BindingDesc> bindings;
+    // Set 1: this many combined image samplers (bindings 0..n-1) that change per draw, pushed with
+    // pushSampledImages (VK_KHR_push_descriptor) instead of allocated.
+    uint32_t pushedSamplers = 0;
     uint32_t pushConstantSize = 0;
     uint32_t vertexStride = 0;
     std::vector<VertexAttribute> vertexAttributes;
@@ -54,15 +57,19 @@ public:
     VkDescriptorSetLayout setLayout() const { return setLayout_; }
     VkPipelineBindPoint bindPoint() const { return bindPoint_; }
     const std::vector<BindingDesc>& bindings() const { return bindings_; }
+    uint32_t pushedSamplers() const { return pushedSamplers_; }
 
 private:
-    void createLayout(const std::vector<BindingDesc>& bindings, uint32_t pushConstantSize, VkShaderStageFlags stages);
+    void createLayout(const std::vector<BindingDesc>& bindings, uint32_t pushConstantSize, VkShaderStageFlags stages,
+                      uint32_t pushedSamplers = 0);
     VkShaderModule loadModule(const std::string& name);
 
     Device& device_;
     VkPipeline pipeline_ = VK_NULL_HANDLE;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout pushSetLayout_ = VK_NULL_HANDLE;
+    uint32_t pushedSamplers_ = 0;
     VkPipelineBindPoint bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
     std::vector<BindingDesc> bindings_;
 };
@@ -87,6 +94,11 @@ private:
     std::vector<VkDescriptorBufferInfo> buffers_;
     std::vector<uint32_t> written_;
 };
+
+// Pushes set 1 of a graphics pipeline: one combined image sampler (SHADER_READ_ONLY_OPTIMAL) per
+// GraphicsPipelineDesc::pushedSamplers, for the draws recorded after it.
+void pushSampledImages(Device& device, VkCommandBuffer cmd, const Pipeline& pipeline,
+                       const std::vector<VkDescriptorImageInfo>& images);
 
 // Dispatch enough 8x8 groups to cover width x height.
 void dispatch2D(VkCommandBuffer cmd, uint32_t width, uint32_t height, uint32_t groupSize = 8);

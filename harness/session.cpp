@@ -60,6 +60,11 @@ std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::st
     if (s->api().createDelegate(&info, &s->delegate_) != OBSCURA_OK)
         return SessionError{kExitPluginOrDevice, std::string("cannot create a delegate: ") + s->api().lastError(nullptr)};
 
+    // The scene's units, for settings given in metres (ssao:radius).
+    double metersPerUnit = s->stage_->metadata().metersPerUnit;
+    ObscuraValue units{OBSCURA_VALUE_DOUBLE, 0, 1, &metersPerUnit};
+    s->api().setRenderSetting(s->delegate_, "metersPerUnit", &units);
+
     s->host_ = std::make_unique<UsdSceneHost>(*s->stage_);
     if (s->api().setSceneDelegate(s->delegate_, &s->host_->sceneDelegate()) != OBSCURA_OK ||
         s->host_->populate(s->api(), s->delegate_) != OBSCURA_OK)

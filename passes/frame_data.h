@@ -33,12 +33,39 @@ struct alignas(16) InstanceData {
 };
 static_assert(sizeof(InstanceData) == 144);
 
+// Which texture channel a material input reads: the UsdUVTexture output connected to it.
+enum class TextureChannel : uint32_t { R = 0, G = 1, B = 2, A = 3, Rgb = 4 };
+
+// A UsdUVTexture feeding one material input: input = texel * scale + bias (UsdPreviewSurface
+// spec, "UsdUVTexture": https://openusd.org/release/spec_usdpreviewsurface.html).
+struct alignas(16) MaterialTexture {
+    std::array<float, 4> scale{1.0f, 1.0f, 1.0f, 1.0f};
+    std::array<float, 4> bias{};
+    uint32_t sampled = 0;  // 1: the input reads the draw's texture of its slot, 0: its constant
+    uint32_t channel = uint32_t(TextureChannel::R);
+    uint32_t pad0 = 0;
+    uint32_t pad1 = 0;
+};
+static_assert(sizeof(MaterialTexture) == 48);
+
+// The inputs the G-buffer pass samples, each from its own binding of descriptor set 1; textured
+// emission is constant per material (its texture's average): the lighting pass has no texture
+// coordinates.
+enum MaterialTextureSlot : uint32_t {
+    kTextureDiffuse = 0,
+    kTextureRoughness = 1,
+    kTextureMetallic = 2,
+    kTextureOpacity = 3,
+    kMaterialTextureSlots = 4
+};
+
 struct alignas(16) MaterialData {
     std::array<float, 4> diffuseRoughness;
     std::array<float, 4> emissiveMetallic;
-    std::array<float, 4> opacityPad;
+    std::array<float, 4> opacity;  // x opacity, y opacityThreshold
+    std::array<MaterialTexture, kMaterialTextureSlots> textures;
 };
-static_assert(sizeof(MaterialData) == 48);
+static_assert(sizeof(MaterialData) == 48 + 4 * 48);
 
 enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2 };
 
@@ -61,7 +88,8 @@ struct Vertex {
     float position[3];
     float normal[3];
     float color[3];
+    float uv[2];  // primvars:st as authored (origin at the bottom left); the shader flips v
 };
-static_assert(sizeof(Vertex) == 36);
+static_assert(sizeof(Vertex) == 44);
 
 }  // namespace obscura::passes

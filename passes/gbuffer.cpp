@@ -15,11 +15,13 @@ gpu::GraphicsPipelineDesc describeGBufferPipeline() {
                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
+    d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
     d.pushConstantSize = sizeof(uint32_t);
     d.vertexStride = sizeof(Vertex);
     d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
                           {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
-                          {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, color)}};
+                          {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, color)},
+                          {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)}};
     d.colorFormats = {kNormalRoughnessFormat, kAlbedoMetallicFormat, kInstanceFormat};
     d.depthFormat = kDepthFormat;
     return d;
@@ -57,7 +59,18 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const F
                 .buffer(2, scene.materials->buffer)
                 .sampled(3, bestFitNormals->view, device.nearestClampSampler())
                 .bind(cmd);
+            const MaterialTextures* pushed = nullptr;
             for (const Draw& draw : scene.draws) {
+                // Textures change per material: pushed, not allocated (VK_KHR_push_descriptor).
+                const MaterialTextures& textures = scene.materialTextures[draw.textures];
+                if (&textures != pushed) {
+                    std::vector<VkDescriptorImageInfo> images;
+                    for (uint32_t slot = 0; slot < kMaterialTextureSlots; ++slot)
+                        images.push_back({textures.samplers[slot], textures.images[slot]->view,
+                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+                    gpu::pushSampledImages(device, cmd, pipeline, images);
+                    pushed = &textures;
+                }
                 VkDeviceSize offset = 0;
                 vkCmdBindVertexBuffers(cmd, 0, 1, &draw.vertices->buffer, &offset);
                 vkCmdBindIndexBuffer(cmd, draw.indices->buffer, 0, VK_INDEX_TYPE_UINT32);

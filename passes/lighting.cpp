@@ -13,14 +13,16 @@ gpu::ComputePipelineDesc describeLightingPipeline() {
              {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
              {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
              {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+             {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+             {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
             0};
 }
 
 }  // namespace
 
 gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                 const GBuffer& gb) {
+                                 const GBuffer& gb, const SsaoResult& ambient) {
     gpu::ImageDesc desc;
     desc.format = kLightAccumulationFormat;
     desc.width = scene.width;
@@ -36,9 +38,11 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipeline
             pass.read(gb.normalRoughness, gpu::Usage::SampledCompute);
             pass.read(gb.albedoMetallic, gpu::Usage::SampledCompute);
             pass.read(gb.instance, gpu::Usage::SampledCompute);
+            pass.read(ambient.accessibility, gpu::Usage::SampledCompute);
+            pass.read(ambient.halfDepth, gpu::Usage::SampledCompute);
             pass.write(accumulation, gpu::Usage::StorageImageWrite);
         },
-        [&device, &pipeline, &scene, gb, accumulation](VkCommandBuffer cmd, const gpu::PassResources& res) {
+        [&device, &pipeline, &scene, gb, ambient, accumulation](VkCommandBuffer cmd, const gpu::PassResources& res) {
             VkSampler nearest = device.nearestClampSampler();
             gpu::DescriptorWriter(device, pipeline)
                 .buffer(0, scene.camera->buffer)
@@ -50,6 +54,8 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipeline
                 .sampled(6, res.view(gb.albedoMetallic), nearest)
                 .sampled(7, res.view(gb.instance), nearest)
                 .storageImage(8, res.view(accumulation))
+                .sampled(9, res.view(ambient.accessibility), nearest)
+                .sampled(10, res.view(ambient.halfDepth), nearest)
                 .bind(cmd);
             gpu::dispatch2D(cmd, scene.width, scene.height);
         });

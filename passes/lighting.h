@@ -3,12 +3,15 @@
 #pragma once
 
 #include "passes/gbuffer.h"
+#include "passes/ssao.h"
 
 namespace obscura::passes {
 
 constexpr VkFormat kLightAccumulationFormat = VK_FORMAT_B10G11R11_UFLOAT_PACK32;
 
+// `ambient` is the SSAO result (ssao.h), applied to environment (dome) light only, as seed 004
+// asks of ambient occlusion.
 gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                 const GBuffer& gbuffer);
+                                 const GBuffer& gbuffer, const SsaoResult& ambient);
 
 }  // namespace obscura::passes

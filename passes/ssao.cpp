@@ -5,6 +5,10 @@
 namespace obscura::passes {
 namespace {
 
+// rgb: the G-buffer's best-fit normal of the pixel whose depth a half-resolution texel took; a:
+// which pixel of the 2x2 that was (shaders/ssao_downsample.comp).
+constexpr VkFormat kSsaoNormalFormat = kNormalRoughnessFormat;
+
 // Mirrors the push constants of shaders/ssao_obscurance.comp.
 struct ObscurancePush {
     std::array<uint32_t, kSsaoPatternSide * kSsaoPatternSide> pattern;

@@ -13,8 +13,6 @@ namespace obscura::passes {
 // encoding over USD's default clipping range (1 to 1e6) is far too coarse for depths compared to a
 // fraction of the sampling radius, so depth keeps 32-bit float and the blur fetches twice.
 constexpr VkFormat kSsaoDepthFormat = VK_FORMAT_R32_SFLOAT;
-// The G-buffer's best-fit normal texel of the pixel whose depth the half-resolution texel took.
-constexpr VkFormat kSsaoNormalFormat = kNormalRoughnessFormat;
 // Ambient accessibility, 1 = unoccluded.
 constexpr VkFormat kSsaoAccessibilityFormat = VK_FORMAT_R8_UNORM;
 

@@ -8,6 +8,7 @@
 #include "common/frame_data.glsl"
 #include "common/brdf.glsl"
 #include "common/best_fit_normals.glsl"
+#include "common/ssao_upsample.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -20,6 +21,8 @@ layout(set = 0, binding = 5) uniform sampler2D normalRoughnessTexture;
 layout(set = 0, binding = 6) uniform sampler2D albedoMetallicTexture;
 layout(set = 0, binding = 7) uniform usampler2D instanceTexture;
 layout(set = 0, binding = 8, r11f_g11f_b10f) uniform writeonly image2D lightAccumulation;
+layout(set = 0, binding = 9) uniform sampler2D ambientAccessibility;
+layout(set = 0, binding = 10) uniform sampler2D ambientHalfDepth;
 
 vec3 worldPositionFromDepth(ivec2 pixel, float depth) {
     vec2 ndc = (vec2(pixel) + 0.5) / camera.resolution * 2.0 - 1.0;
@@ -67,6 +70,8 @@ void main() {
     vec3 V = normalize(camera.position.xyz - P);
 
     vec3 radiance = mat.emissiveMetallic.rgb;
+    float ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel,
+                                              linearDepthFromDevice(camera.projection, depth));
     for (uint i = 0u; i < lightCount; ++i) {
         LightData light = lights[i];
         uint type = uint(light.positionType.w);
@@ -94,7 +99,7 @@ void main() {
             vec2 scaleBias = environmentBrdf(nr.a, max(dot(N, V), 1e-4));
             vec3 diffuse = (1.0 - am.a) * am.rgb;
             vec3 specular = f0 * scaleBias.x + scaleBias.y;
-            radiance += (diffuse * light.factors.x + specular * light.factors.y) * light.radiance.rgb;
+            radiance += ambientAccess * (diffuse * light.factors.x + specular * light.factors.y) * light.radiance.rgb;
         }
     }
     imageStore(lightAccumulation, pixel, vec4(radiance * camera.exposureScale, 1.0));

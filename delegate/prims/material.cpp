@@ -4,16 +4,41 @@
 
 namespace obscura::delegate {
 
-void Material::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
+void Material::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     if (!(bits & OBSCURA_DIRTY_PARAMS)) return;
     auto diffuse = s.getFloat3("inputs:diffuseColor");
     auto emissive = s.getFloat3("inputs:emissiveColor");
     float roughness = std::clamp(s.getFloat("inputs:roughness"), 0.0f, 1.0f);
     float metallic = std::clamp(s.getFloat("inputs:metallic"), 0.0f, 1.0f);
     float opacity = std::clamp(s.getFloat("inputs:opacity"), 0.0f, 1.0f);
+    float opacityThreshold = std::clamp(s.getFloat("inputs:opacityThreshold"), 0.0f, 1.0f);
     data_.diffuseRoughness = {diffuse[0], diffuse[1], diffuse[2], roughness};
     data_.emissiveMetallic = {emissive[0], emissive[1], emissive[2], metallic};
-    data_.opacityPad = {opacity, 0.0f, 0.0f, 0.0f};
+    data_.opacity = {opacity, opacityThreshold, 0.0f, 0.0f};
+    readTextures(s, ctx);
+}
+
+// UsdUVTexture networks the host flattened into obscura:<input>:* (UsdPreviewSurface spec).
+void Material::readTextures(SceneAccess& s, SyncContext& ctx) {
+    warnings_.clear();
+    const char* const sampled[passes::kMaterialTextureSlots] = {"diffuseColor", "roughness", "metallic", "opacity"};
+    const BoundTexture* first = nullptr;
+    for (uint32_t slot = 0; slot < passes::kMaterialTextureSlots; ++slot) {
+        textures_[slot] = readBoundTexture(s, ctx.textures, sampled[slot], warnings_);
+        data_.textures[slot] = textures_[slot] ? textures_[slot]->params : passes::MaterialTexture{};
+        if (!textures_[slot]) continue;
+        if (!first) first = &*textures_[slot];
+        else if (textures_[slot]->stPrimvar != first->stPrimvar)
+            warnings_.push_back("inputs:" + std::string(sampled[slot]) + " reads primvar '" + textures_[slot]->stPrimvar +
+                                "' and another input '" + first->stPrimvar +
+                                "': meshes carry one set of texture coordinates (primvars:st), used by all");
+    }
+    // Emission is added by the lighting pass, which has no texture coordinates (the G-buffer
+    // keeps none): a textured emissiveColor is the texture's average colour, its 1x1 mip.
+    if (auto emissive = readBoundTexture(s, ctx.textures, "emissiveColor", warnings_)) {
+        std::array<float, 3> average = averageColor(*emissive);
+        std::copy(average.begin(), average.end(), data_.emissiveMetallic.begin());
+    }
 }
 
 }  // namespace obscura::delegate

@@ -1,8 +1,14 @@
 // The material sprim: the UsdPreviewSurface inputs the host flattened from its shading network.
 #pragma once
 
+#include "delegate/material_texture.h"
 #include "delegate/prims/prim.h"
 #include "passes/frame_data.h"
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace obscura::delegate {
 
@@ -10,10 +16,17 @@ class Material final : public Prim {
 public:
     using Prim::Prim;
     const passes::MaterialData& data() const { return data_; }
+    // Textures of the inputs the G-buffer pass samples, in passes::MaterialTextureSlot order;
+    // empty where the input is constant.
+    const std::array<std::optional<BoundTexture>, passes::kMaterialTextureSlots>& textures() const { return textures_; }
+    const std::vector<std::string>& warnings() const { return warnings_; }
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
+    void readTextures(SceneAccess& scene, SyncContext& ctx);
     passes::MaterialData data_{};
+    std::array<std::optional<BoundTexture>, passes::kMaterialTextureSlots> textures_;
+    std::vector<std::string> warnings_;
 };
 
 }  // namespace obscura::delegate

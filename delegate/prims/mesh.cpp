@@ -45,6 +45,9 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         input_.displayColor.reset();
         if (auto c = s.getFloatArray("primvars:displayColor"))
             input_.displayColor = MeshPrimvar{std::move(*c), s.interpolation("primvars:displayColor")};
+        input_.st.reset();
+        if (auto st = s.getFloatArray("primvars:st"))
+            input_.st = MeshPrimvar{std::move(*st), s.interpolation("primvars:st"), 2};
     }
     // Subdivision surfaces are refined with OpenSubdiv; the cache keeps the refiner while only
     // points change (animated meshes).

@@ -14,6 +14,8 @@ class Device;
 
 namespace obscura::delegate {
 
+class TextureCache;
+
 struct SyncContext {
     const ObscuraSceneDelegate& sceneDelegate;
     gpu::Device& device;
@@ -21,6 +23,7 @@ struct SyncContext {
     double shutterOpen;   // absolute time codes of the camera's shutter
     double shutterClose;
     int refineLevel;      // render setting; meshes may override it
+    TextureCache& textures;
 };
 
 class Prim {

@@ -23,10 +23,29 @@ struct InstanceData {
     uint pad0;
 };
 
+const uint TEXTURE_CHANNEL_RGB = 4u;  // else 0..3: r, g, b, a
+
+// A UsdUVTexture feeding one material input: input = texel * scale + bias.
+struct MaterialTexture {
+    vec4 scale;
+    vec4 bias;
+    uint sampled;           // 1: the input reads the draw's texture of its slot, 0: its constant
+    uint channel;           // r, g, b, a (0..3) or TEXTURE_CHANNEL_RGB
+    uint pad0;
+    uint pad1;
+};
+
+const uint TEXTURE_DIFFUSE = 0u;
+const uint TEXTURE_ROUGHNESS = 1u;
+const uint TEXTURE_METALLIC = 2u;
+const uint TEXTURE_OPACITY = 3u;
+const uint MATERIAL_TEXTURE_SLOTS = 4u;
+
 struct MaterialData {
     vec4 diffuseRoughness;  // rgb diffuseColor, a roughness
-    vec4 emissiveMetallic;  // rgb emissiveColor, a metallic
-    vec4 opacityPad;        // x opacity
+    vec4 emissiveMetallic;  // rgb emissiveColor (textured: the texture's average), a metallic
+    vec4 opacity;           // x opacity, y opacityThreshold
+    MaterialTexture textures[MATERIAL_TEXTURE_SLOTS];
 };
 
 const uint LIGHT_DISTANT = 0u;

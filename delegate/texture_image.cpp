@@ -1,0 +1,168 @@
+#include "delegate/texture_image.h"
+
+#include <Imath/half.h>
+#include <OpenEXR/ImfArray.h>
+#include <OpenEXR/ImfRgbaFile.h>
+#include <OpenEXR/ImfTestFile.h>
+#include <stb_image.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <exception>
+#include <memory>
+
+namespace obscura::delegate {
+namespace {
+
+struct StbFree {
+    void operator()(void* p) const { stbi_image_free(p); }
+};
+
+std::string stbReason() {
+    const char* reason = stbi_failure_reason();
+    return reason ? reason : "unknown error";
+}
+
+// IEC 61966-2-1 transfer functions.
+float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+float linearToSrgb(float l) { return l <= 0.0031308f ? l * 12.92f : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f; }
+
+const std::array<float, 256>& srgbTable() {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        for (size_t i = 0; i < t.size(); ++i) t[i] = srgbToLinear(float(i) / 255.0f);
+        return t;
+    }();
+    return table;
+}
+
+size_t bytesPerTexel(VkFormat format) { return format == VK_FORMAT_R16G16B16A16_SFLOAT ? 8 : 4; }
+
+// Texel channel as a sampler returns it (alpha is linear in sRGB formats).
+float readChannel(const std::byte* texel, VkFormat format, size_t channel) {
+    if (format == VK_FORMAT_R16G16B16A16_SFLOAT) {
+        Imath::half h;
+        std::memcpy(&h, texel + 2 * channel, sizeof(h));
+        return float(h);
+    }
+    auto code = static_cast<uint8_t>(texel[channel]);
+    return format == VK_FORMAT_R8G8B8A8_SRGB && channel < 3 ? srgbTable()[code] : float(code) / 255.0f;
+}
+
+void writeChannel(std::byte* texel, VkFormat format, size_t channel, float value) {
+    if (format == VK_FORMAT_R16G16B16A16_SFLOAT) {
+        Imath::half h(value);
+        std::memcpy(texel + 2 * channel, &h, sizeof(h));
+        return;
+    }
+    float encoded = format == VK_FORMAT_R8G8B8A8_SRGB && channel < 3 ? linearToSrgb(value) : value;
+    texel[channel] = std::byte(static_cast<uint8_t>(std::lround(std::clamp(encoded, 0.0f, 1.0f) * 255.0f)));
+}
+
+std::array<float, 4> averageOf(const gpu::MipLevel& level, VkFormat format) {
+    std::array<double, 4> sum{};
+    const size_t stride = bytesPerTexel(format);
+    for (size_t offset = 0; offset < level.bytes.size(); offset += stride)
+        for (size_t c = 0; c < 4; ++c) sum[c] += readChannel(&level.bytes[offset], format, c);
+    const double count = double(level.bytes.size() / stride);
+    return {float(sum[0] / count), float(sum[1] / count), float(sum[2] / count), float(sum[3] / count)};
+}
+
+// Half floats hold up to 65504; larger radiance saturates there instead of becoming infinite
+// (which filtering would spread), and NaN becomes 0.
+Imath::half toHalf(float v) {
+    constexpr float kMaxHalf = 65504.0f;
+    return Imath::half(std::isnan(v) ? 0.0f : std::clamp(v, -kMaxHalf, kMaxHalf));
+}
+
+gpu::MipLevel halfLevel(uint32_t width, uint32_t height, const Imath::half* rgba) {
+    gpu::MipLevel level{width, height, std::vector<std::byte>(size_t(width) * height * 8)};
+    std::memcpy(level.bytes.data(), rgba, level.bytes.size());
+    return level;
+}
+
+std::variant<TextureImage, std::string> decodeExr(const std::string& path) {
+    try {
+        // RgbaInputFile fills channels the file lacks (alpha 1, luminance-only files as grey).
+        Imf::RgbaInputFile file(path.c_str());
+        const Imath::Box2i window = file.dataWindow();
+        const auto width = static_cast<uint32_t>(window.max.x - window.min.x + 1);
+        const auto height = static_cast<uint32_t>(window.max.y - window.min.y + 1);
+        Imf::Array2D<Imf::Rgba> pixels(height, width);
+        file.setFrameBuffer(&pixels[0][0] - ptrdiff_t(window.min.x) - ptrdiff_t(window.min.y) * ptrdiff_t(width), 1, width);
+        file.readPixels(window.min.y, window.max.y);
+        std::vector<Imath::half> rgba;
+        rgba.reserve(size_t(width) * height * 4);
+        for (uint32_t y = 0; y < height; ++y)
+            for (uint32_t x = 0; x < width; ++x) {
+                const Imf::Rgba& p = pixels[y][x];
+                for (Imath::half c : {p.r, p.g, p.b, p.a}) rgba.push_back(toHalf(float(c)));
+            }
+        TextureImage image{VK_FORMAT_R16G16B16A16_SFLOAT, halfLevel(width, height, rgba.data()), {}};
+        image.average = averageOf(image.level0, image.format);
+        return image;
+    } catch (const std::exception& e) {
+        return std::string("cannot read OpenEXR file: ") + e.what();
+    }
+}
+
+std::variant<TextureImage, std::string> decodeHdr(const std::string& path) {
+    int width = 0, height = 0, channels = 0;
+    std::unique_ptr<float, StbFree> data(stbi_loadf(path.c_str(), &width, &height, &channels, 4));
+    if (!data) return "cannot read image: " + stbReason();
+    std::vector<Imath::half> rgba(size_t(width) * size_t(height) * 4);
+    std::transform(data.get(), data.get() + rgba.size(), rgba.begin(), toHalf);
+    TextureImage image{VK_FORMAT_R16G16B16A16_SFLOAT, halfLevel(uint32_t(width), uint32_t(height), rgba.data()), {}};
+    image.average = averageOf(image.level0, image.format);
+    return image;
+}
+
+std::variant<TextureImage, std::string> decode8Bit(const std::string& path, SourceColorSpace colorSpace) {
+    int width = 0, height = 0, fileChannels = 0;
+    std::unique_ptr<stbi_uc, StbFree> data(stbi_load(path.c_str(), &width, &height, &fileChannels, 4));
+    if (!data) return "cannot read image: " + stbReason();
+    const bool srgb = colorSpace == SourceColorSpace::Srgb ||
+                      (colorSpace == SourceColorSpace::Auto && (fileChannels == 3 || fileChannels == 4));
+    TextureImage image;
+    image.format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+    image.level0 = {uint32_t(width), uint32_t(height), std::vector<std::byte>(size_t(width) * size_t(height) * 4)};
+    std::memcpy(image.level0.bytes.data(), data.get(), image.level0.bytes.size());
+    image.average = averageOf(image.level0, image.format);
+    return image;
+}
+
+}  // namespace
+
+SourceColorSpace parseSourceColorSpace(const std::string& token) {
+    if (token == "sRGB") return SourceColorSpace::Srgb;
+    if (token == "raw") return SourceColorSpace::Raw;
+    return SourceColorSpace::Auto;
+}
+
+std::variant<TextureImage, std::string> decodeTextureFile(const std::string& path, SourceColorSpace colorSpace) {
+    if (Imf::isOpenExrFile(path.c_str())) return decodeExr(path);
+    if (stbi_is_hdr(path.c_str())) return decodeHdr(path);
+    return decode8Bit(path, colorSpace);
+}
+
+gpu::MipLevel downsample(const gpu::MipLevel& level, VkFormat format) {
+    const size_t stride = bytesPerTexel(format);
+    gpu::MipLevel out{std::max(level.width / 2, 1u), std::max(level.height / 2, 1u), {}};
+    out.bytes.resize(size_t(out.width) * out.height * stride);
+    auto texel = [&](uint32_t x, uint32_t y) {
+        return &level.bytes[(size_t(std::min(y, level.height - 1)) * level.width + std::min(x, level.width - 1)) * stride];
+    };
+    for (uint32_t y = 0; y < out.height; ++y)
+        for (uint32_t x = 0; x < out.width; ++x)
+            for (size_t c = 0; c < 4; ++c) {
+                float sum = readChannel(texel(2 * x, 2 * y), format, c) + readChannel(texel(2 * x + 1, 2 * y), format, c) +
+                            readChannel(texel(2 * x, 2 * y + 1), format, c) +
+                            readChannel(texel(2 * x + 1, 2 * y + 1), format, c);
+                writeChannel(&out.bytes[(size_t(y) * out.width + x) * stride], format, c, 0.25f * sum);
+            }
+    return out;
+}
+
+}  // namespace obscura::delegate

@@ -1,0 +1,36 @@
+// Texture files decoded for the GPU, pure CPU code: 8-bit images (PNG, JPEG, TGA, BMP, ...
+// through stb_image) become RGBA8, sRGB-encoded or linear; float images (Radiance HDR through
+// stb_image, OpenEXR) become RGBA16F. Also the CPU mip filter for formats the GPU cannot blit.
+#pragma once
+
+#include "gpu/texture_upload.h"
+
+#include <array>
+#include <string>
+#include <variant>
+
+namespace obscura::delegate {
+
+// UsdUVTexture inputs:sourceColorSpace.
+enum class SourceColorSpace { Auto, Srgb, Raw };
+SourceColorSpace parseSourceColorSpace(const std::string& token);
+
+struct TextureImage {
+    VkFormat format = VK_FORMAT_UNDEFINED;  // R8G8B8A8_SRGB, R8G8B8A8_UNORM or R16G16B16A16_SFLOAT
+    gpu::MipLevel level0;
+    // Mean RGBA of what a sampler returns (linear values: sRGB texels are decoded first), the
+    // value of the 1x1 mip of an ideal box-filtered chain.
+    std::array<float, 4> average{};
+};
+
+// Reads an image file. sRGB decoding applies to 8-bit files only: Srgb always, Auto for files of
+// 3 or 4 channels (grey and grey+alpha stay linear, as OpenUSD's HioImage decides for "auto");
+// float files are linear whatever is asked. 16-bit PNGs are reduced to 8 bits. Returns the reason
+// when the file cannot be read.
+std::variant<TextureImage, std::string> decodeTextureFile(const std::string& path, SourceColorSpace colorSpace);
+
+// The next mip level of `level` (a 2x2 box, in linear space for sRGB formats; an odd last row or
+// column is dropped, a side of 1 stays 1).
+gpu::MipLevel downsample(const gpu::MipLevel& level, VkFormat format);
+
+}  // namespace obscura::delegate
