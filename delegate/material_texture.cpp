@@ -16,23 +16,23 @@ passes::TextureChannel parseChannel(const std::string& token) {
 std::optional<BoundTexture> readBoundTexture(SceneAccess& scene, TextureCache& cache, const std::string& input,
                                              std::vector<std::string>& warnings) {
     const std::string prefix = "obscura:" + input + ":";
-    auto read = [&](const char* field) { return prefix + field; };
-    const std::string file = scene.getToken(read("file").c_str());
+    auto attribute = [&](const char* field) { return prefix + field; };
+    const std::string file = scene.getToken(attribute("file").c_str());
     if (file.empty()) return std::nullopt;
-    auto loaded = cache.get(file, parseSourceColorSpace(scene.getToken(read("sourceColorSpace").c_str())));
+    auto loaded = cache.get(file, parseSourceColorSpace(scene.getToken(attribute("sourceColorSpace").c_str())));
     if (auto* problem = std::get_if<std::string>(&loaded)) {
         warnings.push_back("inputs:" + input + ": texture " + file + ": " + *problem + "; its constant value is used");
         return std::nullopt;
     }
     BoundTexture bound;
     bound.texture = std::get<TexturePtr>(loaded);
-    bound.sampler = cache.sampler(parseWrapMode(scene.getToken(read("wrapS").c_str())),
-                                  parseWrapMode(scene.getToken(read("wrapT").c_str())));
-    bound.params.scale = scene.getFloat4(read("scale").c_str());
-    bound.params.bias = scene.getFloat4(read("bias").c_str());
-    bound.params.channel = uint32_t(parseChannel(scene.getToken(read("channel").c_str())));
+    bound.sampler = cache.sampler(parseWrapMode(scene.getToken(attribute("wrapS").c_str())),
+                                  parseWrapMode(scene.getToken(attribute("wrapT").c_str())));
+    bound.params.scale = scene.getFloat4(attribute("scale").c_str());
+    bound.params.bias = scene.getFloat4(attribute("bias").c_str());
+    bound.params.channel = uint32_t(parseChannel(scene.getToken(attribute("channel").c_str())));
     bound.params.sampled = 1;
-    bound.stPrimvar = scene.getToken(read("st").c_str());
+    bound.stPrimvar = scene.getToken(attribute("st").c_str());
     return bound;
 }
 

@@ -71,8 +71,8 @@ std::variant<TexturePtr, std::string> TextureCache::get(const std::string& file,
     textures_[key] = texture;
     log_(LogLevel::Info, "loaded texture " + file + " (" + std::to_string(desc.width) + "x" +
                              std::to_string(desc.height) + " " + formatName(desc.format) + ", " +
-                             std::to_string(desc.mipLevels) + " mip levels " + (blit ? "blitted" : "filtered on the CPU") +
-                             ")");
+                             std::to_string(desc.mipLevels) + " mip levels " +
+                             (blit ? "blitted" : "filtered on the CPU") + ")");
     return texture;
 }
 

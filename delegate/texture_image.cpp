@@ -91,7 +91,8 @@ std::variant<TextureImage, std::string> decodeExr(const std::string& path) {
         const auto width = static_cast<uint32_t>(window.max.x - window.min.x + 1);
         const auto height = static_cast<uint32_t>(window.max.y - window.min.y + 1);
         Imf::Array2D<Imf::Rgba> pixels(height, width);
-        file.setFrameBuffer(&pixels[0][0] - ptrdiff_t(window.min.x) - ptrdiff_t(window.min.y) * ptrdiff_t(width), 1, width);
+        file.setFrameBuffer(&pixels[0][0] - ptrdiff_t(window.min.x) - ptrdiff_t(window.min.y) * ptrdiff_t(width), 1,
+                            width);
         file.readPixels(window.min.y, window.max.y);
         std::vector<Imath::half> rgba;
         rgba.reserve(size_t(width) * height * 4);
@@ -152,12 +153,14 @@ gpu::MipLevel downsample(const gpu::MipLevel& level, VkFormat format) {
     gpu::MipLevel out{std::max(level.width / 2, 1u), std::max(level.height / 2, 1u), {}};
     out.bytes.resize(size_t(out.width) * out.height * stride);
     auto texel = [&](uint32_t x, uint32_t y) {
-        return &level.bytes[(size_t(std::min(y, level.height - 1)) * level.width + std::min(x, level.width - 1)) * stride];
+        return &level.bytes[(size_t(std::min(y, level.height - 1)) * level.width + std::min(x, level.width - 1)) *
+                            stride];
     };
     for (uint32_t y = 0; y < out.height; ++y)
         for (uint32_t x = 0; x < out.width; ++x)
             for (size_t c = 0; c < 4; ++c) {
-                float sum = readChannel(texel(2 * x, 2 * y), format, c) + readChannel(texel(2 * x + 1, 2 * y), format, c) +
+                float sum = readChannel(texel(2 * x, 2 * y), format, c) +
+                            readChannel(texel(2 * x + 1, 2 * y), format, c) +
                             readChannel(texel(2 * x, 2 * y + 1), format, c) +
                             readChannel(texel(2 * x + 1, 2 * y + 1), format, c);
                 writeChannel(&out.bytes[(size_t(y) * out.width + x) * stride], format, c, 0.25f * sum);

@@ -13,7 +13,8 @@ int32_t levelSize(uint32_t base, uint32_t level) { return static_cast<int32_t>(s
 
 VkImageMemoryBarrier2 levelBarrier(VkImage image, uint32_t level, VkImageLayout from, VkImageLayout to) {
     VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    b.srcStageMask = from == VK_IMAGE_LAYOUT_UNDEFINED ? VK_PIPELINE_STAGE_2_NONE : VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    b.srcStageMask =
+        from == VK_IMAGE_LAYOUT_UNDEFINED ? VK_PIPELINE_STAGE_2_NONE : VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
     b.srcAccessMask = from == VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL ? VK_ACCESS_2_TRANSFER_WRITE_BIT : VK_ACCESS_2_NONE;
     b.dstStageMask = to == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL ? VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT
                                                                     : VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
@@ -63,7 +64,8 @@ ImagePtr createMipmappedTexture(Device& device, const ImageDesc& descIn, const s
     std::vector<VkBufferImageCopy> copies;
     VkDeviceSize offset = 0;
     for (uint32_t i = 0; i < given; ++i) {
-        std::memcpy(static_cast<std::byte*>(staging->mapped()) + offset, levels[i].bytes.data(), levels[i].bytes.size());
+        std::memcpy(static_cast<std::byte*>(staging->mapped()) + offset, levels[i].bytes.data(),
+                    levels[i].bytes.size());
         VkBufferImageCopy region{};
         region.bufferOffset = offset;
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, i, 0, 1};
@@ -75,7 +77,8 @@ ImagePtr createMipmappedTexture(Device& device, const ImageDesc& descIn, const s
     device.context().submitAndWait([&](VkCommandBuffer cmd) {
         std::vector<VkImageMemoryBarrier2> toDst;
         for (uint32_t i = 0; i < desc.mipLevels; ++i)
-            toDst.push_back(levelBarrier(image->image, i, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL));
+            toDst.push_back(
+                levelBarrier(image->image, i, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL));
         barrier(cmd, toDst);
         vkCmdCopyBufferToImage(cmd, staging->buffer, image->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                static_cast<uint32_t>(copies.size()), copies.data());

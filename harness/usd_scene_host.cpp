@@ -1,5 +1,6 @@
 #include "harness/usd_scene_host.h"
 
+#include "harness/shading_network.h"
 #include "harness/usda/matrix4.h"
 
 #include <algorithm>
@@ -38,6 +39,28 @@ ObscuraDirtyBits dirtyBitFor(const std::string& attribute) {
 }
 
 bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+// UsdGeomPrimvar::ComputeFlattened: element i of the result is values[indices[i]]. Returns the
+// problem when an index is out of range.
+std::string flattenIndexed(usda::Value& value, const usda::Value& indices) {
+    const size_t count = value.size();
+    const size_t width = value.numbers.empty() ? 1 : size_t(value.tupleSize);
+    usda::Value flat = value;
+    flat.numbers.clear();
+    flat.strings.clear();
+    for (size_t i = 0; i < indices.numbers.size(); ++i) {
+        const double index = indices.numbers[i];
+        if (!(index >= 0 && index < double(count)))
+            return "indices[" + std::to_string(i) + "] = " + std::to_string(int64_t(index)) + " is outside the " +
+                   std::to_string(count) + " values";
+        const size_t first = size_t(index) * width;
+        if (value.numbers.empty()) flat.strings.push_back(value.strings[size_t(index)]);
+        else flat.numbers.insert(flat.numbers.end(), value.numbers.begin() + long(first),
+                                 value.numbers.begin() + long(first + width));
+    }
+    value = std::move(flat);
+    return {};
+}
 
 }  // namespace
 
@@ -99,8 +122,13 @@ ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDele
         ObscuraDirtyBits bits = 0;
         if (!stage_.transformSampleTimes(*prim).empty()) bits |= OBSCURA_DIRTY_TRANSFORM;
         const usda::Prim* valuesFrom = type == "material" ? surfaces_.at(path) : prim;
-        for (const auto& [name, attr] : valuesFrom->attributes)
+        for (const auto& [name, attr] : valuesFrom->attributes) {
             if (attr.isAnimated()) bits |= dirtyBitFor(name);
+            // A texture's inputs are parameters of the material it feeds.
+            if (auto texture = type == "material" ? textureConnection(stage_, attr) : std::nullopt)
+                for (const auto& [textureInput, textureAttr] : texture->texture->attributes)
+                    if (textureAttr.isAnimated()) bits |= OBSCURA_DIRTY_PARAMS;
+        }
         if (bits) {
             ObscuraStatus s = api.markDirty(delegate, path.c_str(), bits);
             if (s != OBSCURA_OK) return s;
@@ -173,6 +201,14 @@ const usda::Attribute* UsdSceneHost::resolveAttribute(const std::string& path, c
     if (surface != surfaces_.end()) return surface->second->attribute(attribute);
     const usda::Prim* prim = stage_.find(path);
     if (!prim) return nullptr;
+    // A mesh's texture coordinates are the primvar its material's textures read (the varname of
+    // their UsdPrimvarReader_float2), served under the delegate's one name.
+    if (attribute == "primvars:st" && prim->typeName == "Mesh") {
+        auto material = boundMaterial(*prim);
+        auto bound = material ? surfaces_.find(*material) : surfaces_.end();
+        std::string primvar = bound != surfaces_.end() ? texturePrimvar(stage_, *bound->second) : "st";
+        return prim->attribute("primvars:" + primvar);
+    }
     if (const usda::Attribute* a = prim->attribute(attribute)) return a;
     // UsdLux before 21.02 named light inputs without the "inputs:" prefix.
     if (startsWith(attribute, "inputs:")) return prim->attribute(attribute.substr(7));
@@ -266,21 +302,23 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         return OBSCURA_OK;
     }
     if (attribute == "material:binding") {
-        // Bindings are inherited down the namespace: the nearest ancestor's binding applies.
-        for (const usda::Prim* p = prim; p; p = p->parent) {
-            const usda::Relationship* rel = p->relationship("material:binding");
-            if (rel && !rel->targets.empty()) {
-                strings_ = {rel->targets.front()};
-                stringPointers_ = {strings_[0].c_str()};
-                *out = {OBSCURA_VALUE_PATH, 0, 1, stringPointers_.data()};
-                return OBSCURA_OK;
-            }
-        }
-        return OBSCURA_ERROR_NOT_FOUND;
+        auto material = boundMaterial(*prim);
+        if (!material) return OBSCURA_ERROR_NOT_FOUND;
+        strings_ = {*material};
+        stringPointers_ = {strings_[0].c_str()};
+        *out = {OBSCURA_VALUE_PATH, 0, 1, stringPointers_.data()};
+        return OBSCURA_OK;
+    }
+    auto surface = surfaces_.find(path);
+    if (surface != surfaces_.end() && startsWith(attribute, "obscura:")) {
+        auto texture = flattenedTextureAttribute(stage_, *surface->second, attribute, time);
+        return texture ? fill(*texture, out) : OBSCURA_ERROR_NOT_FOUND;
     }
     const usda::Attribute* a = resolveAttribute(path, attribute);
     if (!a) return OBSCURA_ERROR_NOT_FOUND;
-    if (a->connection) {
+    // Textures on the inputs the delegate textures arrive as obscura:<input>:* (above).
+    bool textured = surface != surfaces_.end() && isTexturableInput(attribute) && textureConnection(stage_, *a);
+    if (a->connection && !textured) {
         warnOnce("connection:" + path + attribute,
                  path + ": " + attribute + " is connected to a shading network, which is not supported yet; "
                                            "its authored value or the default is used");
@@ -288,7 +326,23 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     auto value = a->evaluate(time);
     // A declared but valueless attribute is unauthored; an empty array is an authored value.
     if (!value || (value->empty() && !value->isArray)) return OBSCURA_ERROR_NOT_FOUND;
+    const usda::Attribute* indices = startsWith(a->name, "primvars:") ? prim->attribute(a->name + ":indices") : nullptr;
+    if (auto indexValues = indices ? indices->evaluate(time) : std::nullopt) {
+        if (std::string problem = flattenIndexed(*value, *indexValues); !problem.empty()) {
+            warnOnce("indices:" + path + a->name, path + ": " + a->name + ":" + problem);
+            return OBSCURA_ERROR_INVALID_ARGUMENT;
+        }
+    }
     return fill(*value, out);
+}
+
+std::optional<std::string> UsdSceneHost::boundMaterial(const usda::Prim& prim) const {
+    // Bindings are inherited down the namespace: the nearest ancestor's binding applies.
+    for (const usda::Prim* p = &prim; p; p = p->parent) {
+        const usda::Relationship* rel = p->relationship("material:binding");
+        if (rel && !rel->targets.empty()) return rel->targets.front();
+    }
+    return std::nullopt;
 }
 
 const usda::Prim* UsdSceneHost::prototypeSpace(const usda::Prim& prim) const {

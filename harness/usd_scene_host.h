@@ -64,6 +64,8 @@ private:
     // parent: USD includes the root's own transform in each instance, not its ancestors').
     std::map<std::string, const usda::Prim*> prototypeRoots_;
     const usda::Prim* prototypeSpace(const usda::Prim& prim) const;
+    // The material bound to a prim or its nearest ancestor with a binding.
+    std::optional<std::string> boundMaterial(const usda::Prim& prim) const;
     struct RenderBufferDesc {
         int width, height;
         std::string format;

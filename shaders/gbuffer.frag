@@ -56,7 +56,8 @@ void main() {
     // UsdPreviewSurface opacityThreshold: above 0, opacity is a cut-out mask. Discarded last, so
     // every implicit-LOD sample above runs in uniform control flow.
     float threshold = mat.opacity.y;
-    if (threshold > 0.0 && scalarInput(mat.opacity.x, mat.textures[TEXTURE_OPACITY], opacityTexture) < threshold) discard;
+    float opacity = threshold > 0.0 ? scalarInput(mat.opacity.x, mat.textures[TEXTURE_OPACITY], opacityTexture) : 1.0;
+    if (opacity < threshold) discard;
     outNormalRoughness = vec4(encodeBestFitNormal(n, fittingScale), roughness);
     outAlbedoMetallic = vec4(albedo, metallic);
     outInstance = inInstance + 1u;

@@ -29,8 +29,8 @@ void Material::readTextures(SceneAccess& s, SyncContext& ctx) {
         if (!textures_[slot]) continue;
         if (!first) first = &*textures_[slot];
         else if (textures_[slot]->stPrimvar != first->stPrimvar)
-            warnings_.push_back("inputs:" + std::string(sampled[slot]) + " reads primvar '" + textures_[slot]->stPrimvar +
-                                "' and another input '" + first->stPrimvar +
+            warnings_.push_back("inputs:" + std::string(sampled[slot]) + " reads primvar '" +
+                                textures_[slot]->stPrimvar + "' and another input '" + first->stPrimvar +
                                 "': meshes carry one set of texture coordinates (primvars:st), used by all");
     }
     // Emission is added by the lighting pass, which has no texture coordinates (the G-buffer

@@ -78,5 +78,11 @@ check "ABI mismatch" 4 $? "$tmp/out" 'does not provide ABI 1\.0'
 OBSCURA_PLUGINPATH="$(dirname "$obscura")/../plugin" "$tmp/lonely/bin/obscura" info >"$tmp/out" 2>&1
 check "OBSCURA_PLUGINPATH finds the plugin" 0 $? "$tmp/out" 'loaded: Obscura, ABI 1\.0'
 
+# A UsdUVTexture network (Material -> UsdPreviewSurface <- UsdUVTexture <- UsdPrimvarReader_float2);
+# delegate_tests (TexturedUsda) checks its pixels.
+"$obscura" render "$src/tests/harness/data/textured.usda" -o "$tmp/textured.exr" --width 32 --height 32 \
+    --aov albedo >"$tmp/out" 2>&1
+check "textured scene renders to EXR" 0 $?
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -112,7 +112,10 @@ TestHost::~TestHost() {
 }
 
 void TestHost::logThunk(void* user, ObscuraLogLevel level, const char* message) {
-    if (level == OBSCURA_LOG_ERROR) static_cast<TestHost*>(user)->errors_.push_back(message);
+    auto* self = static_cast<TestHost*>(user);
+    if (level == OBSCURA_LOG_ERROR) self->errors_.push_back(message);
+    if (level == OBSCURA_LOG_WARNING) self->warnings_.push_back(message);
+    if (level == OBSCURA_LOG_INFO) self->infos_.push_back(message);
 }
 
 void TestHost::addPrim(const std::string& type, const std::string& path, std::map<std::string, HostValue> values,

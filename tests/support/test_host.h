@@ -72,6 +72,8 @@ public:
 
     std::string lastError() const { return api().lastError(delegate_); }
     const std::vector<std::string>& loggedErrors() const { return errors_; }
+    const std::vector<std::string>& loggedWarnings() const { return warnings_; }
+    const std::vector<std::string>& loggedInfos() const { return infos_; }
     // getValue callbacks per prim path since the last reset.
     std::map<std::string, int> getValueCalls;
     void resetCounters() { getValueCalls.clear(); }
@@ -92,6 +94,8 @@ private:
     std::map<std::string, std::map<std::string, ObscuraInterpolation>> interpolations_;
     std::map<std::string, Matrix> transforms_;
     std::vector<std::string> errors_;
+    std::vector<std::string> warnings_;
+    std::vector<std::string> infos_;
     std::vector<const char*> stringPointers_;
 };
 

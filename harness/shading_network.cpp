@@ -1,0 +1,128 @@
+#include "harness/shading_network.h"
+
+#include <array>
+#include <filesystem>
+#include <string_view>
+#include <utility>
+
+namespace obscura::harness {
+namespace {
+
+constexpr std::array<std::string_view, 5> kTexturableInputs = {"inputs:diffuseColor", "inputs:emissiveColor",
+                                                               "inputs:roughness", "inputs:metallic", "inputs:opacity"};
+constexpr std::array<std::string_view, 5> kTextureOutputs = {"r", "g", "b", "a", "rgb"};
+// Connections between inputs are followed this far (a cycle is an authoring error).
+constexpr int kMaxConnectionDepth = 16;
+
+// "/Material/Texture.outputs:rgb" -> the prim and the property. Prim names never hold a '.'.
+std::pair<std::string, std::string> splitPropertyPath(const std::string& path) {
+    const auto dot = path.find('.');
+    if (dot == std::string::npos) return {path, ""};
+    return {path.substr(0, dot), path.substr(dot + 1)};
+}
+
+std::string shaderId(const usda::Prim& prim) {
+    const usda::Attribute* id = prim.attribute("info:id");
+    auto value = id ? id->evaluate(0) : std::nullopt;
+    return value && !value->strings.empty() ? value->strings[0] : "";
+}
+
+// The value of a shader input at `time`, following its connection to another input (a Material's
+// or NodeGraph's interface) when it has one; `from` receives the attribute that held the value.
+std::optional<usda::Value> evaluateInput(const usda::Stage& stage, const usda::Prim& prim, const std::string& name,
+                                         double time, const usda::Attribute** from = nullptr) {
+    const usda::Attribute* attribute = prim.attribute(name);
+    for (int depth = 0; attribute && attribute->connection && depth < kMaxConnectionDepth; ++depth) {
+        auto [sourcePath, property] = splitPropertyPath(*attribute->connection);
+        const usda::Prim* source = stage.find(sourcePath);
+        const usda::Attribute* next =
+            source && property.rfind("inputs:", 0) == 0 ? source->attribute(property) : nullptr;
+        if (!next) break;
+        attribute = next;
+    }
+    if (!attribute) return std::nullopt;
+    auto value = attribute->evaluate(time);
+    if (!value || value->empty()) return std::nullopt;
+    if (from) *from = attribute;
+    return value;
+}
+
+usda::Value tokenValue(std::string text) {
+    usda::Value value;
+    value.typeName = "token";
+    value.strings = {std::move(text)};
+    return value;
+}
+
+// inputs:varname of the UsdPrimvarReader_float2 connected to the texture's inputs:st.
+std::optional<std::string> readerPrimvar(const usda::Stage& stage, const usda::Prim& texture) {
+    const usda::Attribute* st = texture.attribute("inputs:st");
+    if (!st || !st->connection) return std::nullopt;
+    const usda::Prim* reader = stage.find(splitPropertyPath(*st->connection).first);
+    if (!reader || shaderId(*reader) != "UsdPrimvarReader_float2") return std::nullopt;
+    // varname names a primvar, not something that varies over time.
+    auto name = evaluateInput(stage, *reader, "inputs:varname", 0.0);
+    if (!name || name->strings.empty() || name->strings[0].empty()) return std::nullopt;
+    return name->strings[0];
+}
+
+}  // namespace
+
+bool isTexturableInput(const std::string& input) {
+    for (std::string_view name : kTexturableInputs)
+        if (name == input) return true;
+    return false;
+}
+
+std::optional<TextureConnection> textureConnection(const usda::Stage& stage, const usda::Attribute& input) {
+    if (!input.connection) return std::nullopt;
+    auto [shaderPath, output] = splitPropertyPath(*input.connection);
+    const usda::Prim* shader = stage.find(shaderPath);
+    if (!shader || shaderId(*shader) != "UsdUVTexture" || output.rfind("outputs:", 0) != 0) return std::nullopt;
+    std::string channel = output.substr(8);
+    for (std::string_view known : kTextureOutputs)
+        if (known == channel) return TextureConnection{shader, channel};
+    return std::nullopt;
+}
+
+std::optional<usda::Value> flattenedTextureAttribute(const usda::Stage& stage, const usda::Prim& surface,
+                                                     const std::string& attribute, double time) {
+    constexpr std::string_view kPrefix = "obscura:";
+    const auto lastColon = attribute.rfind(':');
+    if (attribute.rfind(kPrefix, 0) != 0 || lastColon <= kPrefix.size()) return std::nullopt;
+    const std::string input = "inputs:" + attribute.substr(kPrefix.size(), lastColon - kPrefix.size());
+    const std::string field = attribute.substr(lastColon + 1);
+    const usda::Attribute* connected = isTexturableInput(input) ? surface.attribute(input) : nullptr;
+    auto connection = connected ? textureConnection(stage, *connected) : std::nullopt;
+    if (!connection) return std::nullopt;
+    const usda::Prim& texture = *connection->texture;
+
+    if (field == "channel") return tokenValue(connection->channel);
+    if (field == "st") {
+        auto primvar = readerPrimvar(stage, texture);
+        return primvar ? std::optional(tokenValue(*primvar)) : std::nullopt;
+    }
+    if (field == "file") {
+        // Asset paths are anchored to the layer that authored them (USD's ArDefaultResolver).
+        const usda::Attribute* from = nullptr;
+        auto asset = evaluateInput(stage, texture, "inputs:file", time, &from);
+        if (!asset || asset->strings.empty() || asset->strings[0].empty()) return std::nullopt;
+        std::filesystem::path path = asset->strings[0];
+        if (path.is_relative()) path = std::filesystem::path(from->where.file).parent_path() / path;
+        return tokenValue(std::filesystem::absolute(path).lexically_normal().string());
+    }
+    if (field == "wrapS" || field == "wrapT" || field == "scale" || field == "bias" || field == "sourceColorSpace")
+        return evaluateInput(stage, texture, "inputs:" + field, time);
+    return std::nullopt;
+}
+
+std::string texturePrimvar(const usda::Stage& stage, const usda::Prim& surface) {
+    for (std::string_view input : kTexturableInputs) {
+        const usda::Attribute* connected = surface.attribute(std::string(input));
+        auto connection = connected ? textureConnection(stage, *connected) : std::nullopt;
+        if (connection) return readerPrimvar(stage, *connection->texture).value_or("st");
+    }
+    return "st";
+}
+
+}  // namespace obscura::harness

@@ -1,0 +1,36 @@
+// UsdShade networks flattened for the delegate: the UsdUVTexture connected to a UsdPreviewSurface
+// input (and the UsdPrimvarReader_float2 feeding the texture's st) is served as the material's
+// obscura:<input>:* attributes (schemas/material.json). UsdPreviewSurface spec:
+// https://openusd.org/release/spec_usdpreviewsurface.html
+#pragma once
+
+#include "harness/usda/stage.h"
+
+#include <optional>
+#include <string>
+
+namespace obscura::harness {
+
+// The surface inputs the delegate reads textures for.
+bool isTexturableInput(const std::string& input);  // "inputs:diffuseColor", ...
+
+// The UsdUVTexture shader a surface input is connected to, with the output it reads (r, g, b, a
+// or rgb); nullopt when the input is connected to anything else, or not connected.
+struct TextureConnection {
+    const usda::Prim* texture = nullptr;
+    std::string channel;
+};
+std::optional<TextureConnection> textureConnection(const usda::Stage& stage, const usda::Attribute& input);
+
+// The value of "obscura:<input>:<field>" for a UsdPreviewSurface shader at `time`; nullopt when
+// the input has no texture or the field is not authored (the schema default applies). Texture
+// inputs connected to other inputs (a material's interface) take their value from there; a
+// relative inputs:file is resolved against the folder of the layer that authored it.
+std::optional<usda::Value> flattenedTextureAttribute(const usda::Stage& stage, const usda::Prim& surface,
+                                                     const std::string& attribute, double time);
+
+// The primvar the shader's textures look up (inputs:varname of the UsdPrimvarReader_float2
+// connected to the first textured input's inputs:st), or "st".
+std::string texturePrimvar(const usda::Stage& stage, const usda::Prim& surface);
+
+}  // namespace obscura::harness

@@ -1,0 +1,382 @@
+// UsdUVTexture textures end to end through the ABI: image files written here, bound to material
+// inputs through the obscura:<input>:* attributes, looked up with the mesh's primvars:st, and
+// read back from the albedo, color and primId AOVs. The camera sees exactly the unit st square
+// of a plane, so pixel (x, y) shows st ((x + 0.5) / 64, 1 - (y + 0.5) / 64) times the st range.
+#include "harness/image/exr_writer.h"
+#include "harness/image/png_io.h"
+#include "tests/delegate/render_fixture.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <functional>
+
+namespace obscura::test {
+namespace {
+
+constexpr double kDistance = 5.0;
+constexpr float kFocalLength = 50.0f, kAperture = 20.955f;
+const float kHalf = float(kAperture / 2.0 / kFocalLength * kDistance);  // the plane fills the view
+
+using Rgb8 = std::array<uint8_t, 3>;
+// The test image's four blocks: top left, top right, bottom left, bottom right.
+constexpr std::array<Rgb8, 4> kBlocks = {{{200, 40, 40}, {40, 200, 40}, {40, 40, 200}, {220, 220, 60}}};
+
+HostValue float4(float x, float y, float z, float w) {
+    HostValue h;
+    h.type = OBSCURA_VALUE_FLOAT4;
+    h.floats = {x, y, z, w};
+    return h;
+}
+
+HostValue float2Array(const std::vector<std::array<float, 2>>& values) {
+    HostValue h;
+    h.type = OBSCURA_VALUE_FLOAT2;
+    h.isArray = true;
+    h.count = values.size();
+    for (const auto& v : values) h.floats.insert(h.floats.end(), v.begin(), v.end());
+    return h;
+}
+
+// A material whose `input` reads `file`, with further obscura:<input>:<field> values.
+std::map<std::string, HostValue> textured(const std::string& input, const std::string& file,
+                                          const std::map<std::string, HostValue>& fields = {}) {
+    std::map<std::string, HostValue> values = {{"obscura:" + input + ":file", HostValue::token(file)}};
+    for (const auto& [field, value] : fields) values["obscura:" + input + ":" + field] = value;
+    return values;
+}
+
+float srgbEncode(float v) { return v <= 0.0031308f ? v * 12.92f : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f; }
+
+// One step of the 8-bit sRGB albedo target at `linear`: the storage's rounding.
+float srgbStep(float linear) {
+    int code = std::clamp(int(std::lround(srgbEncode(std::clamp(linear, 0.0f, 1.0f)) * 255.0f)), 0, 254);
+    return srgb8Exact(code + 1) - srgb8Exact(code);
+}
+
+std::array<float, 3> decoded(Rgb8 c) { return {srgb8Exact(c[0]), srgb8Exact(c[1]), srgb8Exact(c[2])}; }
+std::array<float, 3> raw(Rgb8 c) { return {c[0] / 255.0f, c[1] / 255.0f, c[2] / 255.0f}; }
+
+class TextureTest : public ::testing::Test {
+protected:
+    TextureTest() {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = std::filesystem::temp_directory_path() /
+               ("obscura_texture_" + std::string(info->name()) + "_" + std::to_string(getpid()));
+        std::filesystem::create_directories(dir_);
+        host.addCamera("/Camera", translation(0, 0, kDistance), kFocalLength, kAperture);
+        for (const char* aov : {"albedo", "color"})
+            host.addRenderBuffer(std::string("/Buffers/") + aov,
+                                 std::string("float32Vec") + (aov[0] == 'a' ? "3" : "4"), kWidth, kHeight);
+        host.addRenderBuffer("/Buffers/primId", "int32", kWidth, kHeight);
+    }
+    ~TextureTest() override { std::filesystem::remove_all(dir_); }
+
+    // An RGB PNG of `size` x `size` texels coloured by texel(x, y), row 0 at the top.
+    std::string writePng(const std::string& name, int size, const std::function<Rgb8(int, int)>& texel) {
+        std::vector<uint8_t> bytes;
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                Rgb8 c = texel(x, y);
+                bytes.insert(bytes.end(), c.begin(), c.end());
+            }
+        std::string path = (dir_ / name).string();
+        auto written = image::writePng(path, size, size, image::PngFormat::Rgb, bytes.data(), size_t(size) * 3);
+        EXPECT_FALSE(image::isError(written)) << image::errorOf(written);
+        return path;
+    }
+    // 8x8 texels in four 4x4 blocks: bilinear lookups inside a block see only its colour.
+    std::string writeBlocks(const std::string& name, const std::array<Rgb8, 4>& blocks = kBlocks) {
+        return writePng(name, 8, [&](int x, int y) { return blocks[size_t(y / 4 * 2 + x / 4)]; });
+    }
+
+    // A square plane at z = 0 (by default exactly the camera's view) with st from 0 to stMax.
+    void addPlane(const std::string& path, const std::string& material, float stMax = 1.0f, double centreX = 0.0,
+                  float half = kHalf, std::map<std::string, HostValue> extra = {}) {
+        extra["points"] = HostValue::points({{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}});
+        extra["faceVertexCounts"] = HostValue::intArray({4});
+        extra["faceVertexIndices"] = HostValue::intArray({0, 1, 2, 3});
+        extra.emplace("subdivisionScheme", HostValue::token("none"));
+        extra["primvars:st"] = float2Array({{0, 0}, {stMax, 0}, {stMax, stMax}, {0, stMax}});
+        extra["material:binding"] = HostValue::path(material);
+        host.addPrim("mesh", path, extra, translation(centreX, 0, 0));
+    }
+
+    void render() {
+        ASSERT_EQ(
+            host.render("/Camera",
+                        {{"albedo", "/Buffers/albedo"}, {"color", "/Buffers/color"}, {"primId", "/Buffers/primId"}}),
+            OBSCURA_OK)
+            << host.lastError();
+        ASSERT_TRUE(host.loggedErrors().empty()) << host.loggedErrors().front();
+        albedo = host.readFloats("/Buffers/albedo");
+        color = host.readFloats("/Buffers/color");
+        primIds = host.readInts("/Buffers/primId");
+    }
+    void markDirty(const std::string& path, ObscuraDirtyBits bits = OBSCURA_DIRTY_PARAMS) {
+        ASSERT_EQ(host.api().markDirty(host.delegate(), path.c_str(), bits), OBSCURA_OK);
+    }
+
+    void expectAlbedo(int x, int y, std::array<float, 3> expected, const std::string& what = "") {
+        const float* p = &albedo[(size_t(y) * kWidth + size_t(x)) * 3];
+        for (size_t c = 0; c < 3; ++c)
+            EXPECT_NEAR(p[c], expected[c], srgbStep(expected[c]) + 1e-4f)
+                << what << " pixel (" << x << ", " << y << ") channel " << c;
+    }
+    const float* colorAt(int x, int y) const { return &color[(size_t(y) * kWidth + size_t(x)) * 4]; }
+
+    size_t loadsOf(const std::string& file) const {
+        return size_t(std::count_if(host.loggedInfos().begin(), host.loggedInfos().end(), [&](const std::string& m) {
+            return m.rfind("loaded texture " + file + " ", 0) == 0;
+        }));
+    }
+
+    std::filesystem::path dir_;
+    TestHost host;
+    std::vector<float> albedo, color;
+    std::vector<int32_t> primIds;
+};
+
+TEST_F(TextureTest, EachQuadrantShowsItsBlock) {
+    std::string file = writeBlocks("blocks.png");
+    host.addPrim("material", "/Looks/M", textured("diffuseColor", file));
+    addPlane("/Plane", "/Looks/M");
+    render();
+    // An RGB PNG in "auto" is sRGB-encoded: the albedo is each block's decoded colour.
+    for (int y : {8, 16, 23})
+        for (int x : {8, 16, 23}) {
+            expectAlbedo(x, y, decoded(kBlocks[0]), "top left");
+            expectAlbedo(x + 32, y, decoded(kBlocks[1]), "top right");
+            expectAlbedo(x, y + 32, decoded(kBlocks[2]), "bottom left");
+            expectAlbedo(x + 32, y + 32, decoded(kBlocks[3]), "bottom right");
+        }
+    EXPECT_EQ(loadsOf(file), 1u);
+}
+
+// The block a lookup at (s, t) lands in under a UsdUVTexture wrap mode, or -1 for black.
+int expectedBlock(double s, double t, const std::string& wrap) {
+    auto fold = [&](double c) {
+        if (wrap == "repeat") return c - std::floor(c);
+        if (wrap == "clamp") return std::clamp(c, 0.0, 1.0);
+        double m = std::fmod(c, 2.0);  // mirror: period 2, the second copy reversed
+        return m > 1.0 ? 2.0 - m : m;
+    };
+    if (wrap == "black" && (s < 0 || s > 1 || t < 0 || t > 1)) return -1;
+    double u = fold(s), v = 1.0 - fold(t);  // image rows run down from t = 1
+    return (v < 0.5 ? 0 : 2) + (u < 0.5 ? 0 : 1);
+}
+
+TEST_F(TextureTest, WrapModesOutsideTheUnitSquare) {
+    std::string file = writeBlocks("blocks.png");
+    host.addPrim("material", "/Looks/M", textured("diffuseColor", file));
+    addPlane("/Plane", "/Looks/M", 2.0f);
+    for (std::string wrap : {"repeat", "clamp", "mirror", "black"}) {
+        host.set("/Looks/M", "obscura:diffuseColor:wrapS", HostValue::token(wrap));
+        host.set("/Looks/M", "obscura:diffuseColor:wrapT", HostValue::token(wrap));
+        markDirty("/Looks/M");
+        render();
+        // The centres of 16-pixel cells: st in [0, 2] over 64 pixels puts them mid-block.
+        for (int y = 8; y < kHeight; y += 16)
+            for (int x = 8; x < kWidth; x += 16) {
+                int block = expectedBlock((x + 0.5) / 32.0, 2.0 - (y + 0.5) / 32.0, wrap);
+                expectAlbedo(x, y, block < 0 ? std::array<float, 3>{0, 0, 0} : decoded(kBlocks[size_t(block)]), wrap);
+            }
+    }
+    // Repeat shows the pattern twice across: the top-left block again at the second cell pair.
+    EXPECT_EQ(expectedBlock(40.5 / 32.0, 2.0 - 8.5 / 32.0, "repeat"), 0);
+}
+
+TEST_F(TextureTest, ScaleAndBiasTransformTheTexel) {
+    std::string file = writeBlocks("blocks.png");
+    host.addPrim("material", "/Looks/M",
+                 textured("diffuseColor", file,
+                          {{"sourceColorSpace", HostValue::token("raw")},
+                           {"scale", float4(0.5f, 2.0f, 1.0f, 1.0f)},
+                           {"bias", float4(0.1f, -0.1f, 0.05f, 0.0f)}}));
+    addPlane("/Plane", "/Looks/M");
+    render();
+    // UsdUVTexture: out = texel * scale + bias, per channel.
+    for (size_t block = 0; block < 4; ++block) {
+        auto t = raw(kBlocks[block]);
+        std::array<float, 3> expected = {t[0] * 0.5f + 0.1f, std::min(t[1] * 2.0f - 0.1f, 1.0f), t[2] + 0.05f};
+        expectAlbedo(block % 2 ? 48 : 16, block < 2 ? 16 : 48, expected, "block " + std::to_string(block));
+    }
+}
+
+TEST_F(TextureTest, SourceColorSpaceDecidesHowTexelsDecode) {
+    std::string file = writePng("grey.png", 4, [](int, int) { return Rgb8{128, 64, 200}; });
+    const float half = kHalf / 3.0f;
+    const std::array<std::string, 3> spaces = {"sRGB", "raw", "auto"};
+    for (size_t i = 0; i < spaces.size(); ++i) {
+        std::string material = "/Looks/" + spaces[i];
+        host.addPrim("material", material,
+                     textured("diffuseColor", file, {{"sourceColorSpace", HostValue::token(spaces[i])}}));
+        addPlane("/Plane" + spaces[i], material, 1.0f, (double(i) - 1.0) * 2.0 * half, half);
+    }
+    render();
+    expectAlbedo(10, 32, decoded({128, 64, 200}), "sRGB");  // the sRGB curve: 128 -> 0.216
+    expectAlbedo(32, 32, raw({128, 64, 200}), "raw");       // linear: 128 -> 0.502
+    expectAlbedo(53, 32, decoded({128, 64, 200}), "auto");  // an 8-bit RGB file is sRGB
+    EXPECT_EQ(loadsOf(file), 3u) << "one texture per colour space";
+}
+
+TEST_F(TextureTest, ScalarTexturesMatchTheirConstants) {
+    // 51 / 255 = 0.2 exactly: a texture of it must light exactly as the constant 0.2.
+    std::string file = writePng("point2.png", 4, [](int, int) { return Rgb8{51, 51, 51}; });
+    std::string white = writePng("white.png", 4, [](int, int) { return Rgb8{255, 255, 255}; });
+    // Straight down: the plane's centre mirrors the light into the camera, where the specular
+    // lobe's peak (1 / (pi alpha^2) for GGX) depends most on roughness.
+    host.addPrim("distantLight", "/Sun",
+                 {{"inputs:intensity", HostValue::floatValue(2.0f)}, {"inputs:normalize", HostValue::boolean(true)}},
+                 lightPointingAlong({0.0, 0.0, -1.0}));
+    addMaterial(host, "/Looks/M", {0.5f, 0.5f, 0.5f}, 1.0f, 0.0f);
+    addPlane("/Plane", "/Looks/M");
+    struct Case {
+        std::string input;
+        std::string file;
+        float textured;  // the texture's value
+        float other;     // a constant that looks different
+    };
+    for (const Case& c : {Case{"roughness", file, 0.2f, 1.0f}, Case{"metallic", white, 1.0f, 0.0f}}) {
+        auto centreWith = [&](const std::string& textureFile, float constant) {
+            host.set("/Looks/M", "obscura:" + c.input + ":file", HostValue::token(textureFile));
+            host.set("/Looks/M", "obscura:" + c.input + ":sourceColorSpace", HostValue::token("raw"));
+            host.set("/Looks/M", "inputs:" + c.input, HostValue::floatValue(constant));
+            markDirty("/Looks/M");
+            render();
+            const float* p = colorAt(32, 32);
+            return std::array<float, 3>{p[0], p[1], p[2]};
+        };
+        auto texturedColour = centreWith(c.file, c.other);  // the texture wins over the constant
+        auto constantColour = centreWith("", c.textured);
+        auto otherColour = centreWith("", c.other);
+        for (size_t ch = 0; ch < 3; ++ch) {
+            float e = constantColour[ch];
+            EXPECT_NEAR(texturedColour[ch], e, 0.01f * e + smallFloatStep(e, 5)) << c.input;
+            EXPECT_GT(std::fabs(otherColour[ch] - e), 0.1f * e) << c.input << " made no difference";
+        }
+    }
+}
+
+TEST_F(TextureTest, OpacityTextureCutsOutBelowTheThreshold) {
+    std::string file = writePng("mask.png", 8, [](int x, int) { return x < 4 ? Rgb8{0, 0, 0} : Rgb8{255, 255, 255}; });
+    std::map<std::string, HostValue> values =
+        textured("opacity", file, {{"sourceColorSpace", HostValue::token("raw")}});
+    values["inputs:opacityThreshold"] = HostValue::floatValue(0.5f);
+    host.addPrim("material", "/Looks/M", values);
+    addPlane("/Plane", "/Looks/M");
+    render();
+    int32_t plane = -1;
+    ASSERT_EQ(host.api().getPrimId(host.delegate(), "/Plane", &plane), OBSCURA_OK);
+    for (int y : {4, 32, 60}) {
+        EXPECT_EQ(primIds[size_t(y) * kWidth + 10], -1) << "transparent half drawn at row " << y;
+        EXPECT_EQ(primIds[size_t(y) * kWidth + 54], plane) << "opaque half missing at row " << y;
+    }
+}
+
+TEST_F(TextureTest, EmissiveTextureEmitsItsAverage) {
+    // Left half red, right half blue, raw: the average is (0.5, 0, 0.5); scale 2 makes it (1, 0, 1).
+    std::string file = writePng("glow.png", 8, [](int x, int) { return x < 4 ? Rgb8{255, 0, 0} : Rgb8{0, 0, 255}; });
+    std::map<std::string, HostValue> values =
+        textured("emissiveColor", file, {{"sourceColorSpace", HostValue::token("raw")}, {"scale", float4(2, 2, 2, 1)}});
+    values["inputs:diffuseColor"] = HostValue::float3(0, 0, 0);
+    host.addPrim("material", "/Looks/M", values);
+    addPlane("/Plane", "/Looks/M");
+    render();
+    for (int x : {10, 54}) {
+        const float* p = colorAt(x, 32);
+        EXPECT_NEAR(p[0], 1.0f, 0.01f + smallFloatStep(1.0f, 6)) << "x " << x;
+        EXPECT_NEAR(p[1], 0.0f, 1e-4f) << "x " << x;
+        EXPECT_NEAR(p[2], 1.0f, 0.01f + smallFloatStep(1.0f, 5)) << "x " << x;
+    }
+}
+
+TEST_F(TextureTest, MissingFileWarnsAndKeepsTheConstant) {
+    std::string missing = (dir_ / "no-such-texture.png").string();
+    std::map<std::string, HostValue> values = textured("diffuseColor", missing);
+    float grey = srgb8Exact(150);
+    values["inputs:diffuseColor"] = HostValue::float3(grey, grey, grey);
+    host.addPrim("material", "/Looks/M", values);
+    addPlane("/Plane", "/Looks/M");
+    render();
+    expectAlbedo(32, 32, {grey, grey, grey});
+    bool warned = std::any_of(host.loggedWarnings().begin(), host.loggedWarnings().end(),
+                              [&](const std::string& w) { return w.find(missing) != std::string::npos; });
+    EXPECT_TRUE(warned) << "no warning names " << missing;
+}
+
+TEST_F(TextureTest, MaterialsSharingAFileLoadItOnce) {
+    std::string file = writeBlocks("blocks.png");
+    host.addPrim("material", "/Looks/A", textured("diffuseColor", file));
+    host.addPrim("material", "/Looks/B", textured("diffuseColor", file, {{"wrapS", HostValue::token("clamp")}}));
+    addPlane("/Left", "/Looks/A", 1.0f, -kHalf / 2.0, kHalf / 2.0f);
+    addPlane("/Right", "/Looks/B", 1.0f, kHalf / 2.0, kHalf / 2.0f);
+    render();
+    EXPECT_EQ(loadsOf(file), 1u);
+    // Both draw the whole texture in their half of the view.
+    expectAlbedo(8, 40, decoded(kBlocks[2]), "left plane");
+    expectAlbedo(56, 24, decoded(kBlocks[1]), "right plane");
+}
+
+TEST_F(TextureTest, OpenExrTexturesAreLinearHalfFloats) {
+    const std::array<std::array<float, 4>, 4> blocks = {
+        {{0.25f, 0.5f, 0.75f, 1}, {1.0f, 0.5f, 0.0f, 1}, {0.05f, 0.1f, 0.2f, 1}, {0.6f, 0.6f, 0.6f, 1}}};
+    std::vector<float> texels;
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            const auto& b = blocks[size_t(y / 4 * 2 + x / 4)];
+            texels.insert(texels.end(), b.begin(), b.end());
+        }
+    std::string file = (dir_ / "blocks.exr").string();
+    image::ExrLayer layer{
+        "", {"R", "G", "B", "A"}, image::ExrLayer::PixelType::Half, texels.data(), 8 * 4 * sizeof(float)};
+    ASSERT_FALSE(image::isError(image::writeExr(file, 8, 8, {layer})));
+    host.addPrim("material", "/Looks/M",
+                 textured("diffuseColor", file, {{"sourceColorSpace", HostValue::token("sRGB")}}));
+    addPlane("/Plane", "/Looks/M");
+    render();
+    for (size_t block = 0; block < 4; ++block)
+        expectAlbedo(block % 2 ? 48 : 16, block < 2 ? 16 : 48, {blocks[block][0], blocks[block][1], blocks[block][2]},
+                     "block " + std::to_string(block));
+    ASSERT_EQ(loadsOf(file), 1u);
+}
+
+TEST_F(TextureTest, MinifiedTextureAveragesInLinearSpace) {
+    // A one-texel black and white checker, 256 texels over 64 pixels: each pixel's footprint
+    // covers 4x4 texels, whose average in linear space is 0.5 (sRGB code 188); averaging the
+    // sRGB codes instead would give 0.216. (Mip 2 holds exactly these averages; lavapipe's
+    // anisotropic filter reaches the same value from mip 0, so gpu_tests checks the mips.)
+    std::string file = writePng("fine.png", 256, [](int x, int y) {
+        return (x + y) % 2 ? Rgb8{255, 255, 255} : Rgb8{0, 0, 0};
+    });
+    host.addPrim("material", "/Looks/M", textured("diffuseColor", file));
+    addPlane("/Plane", "/Looks/M");
+    render();
+    for (int y : {12, 40})
+        for (int x : {20, 50})
+            for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(albedo[(size_t(y) * kWidth + size_t(x)) * 3 + c], 0.5f, 0.03f);
+    EXPECT_EQ(loadsOf(file), 1u);
+}
+
+TEST_F(TextureTest, SubdividedMeshesKeepTheirTextureCoordinates) {
+    std::string file = writeBlocks("blocks.png");
+    host.addPrim("material", "/Looks/M", textured("diffuseColor", file));
+    HostValue level;
+    level.type = OBSCURA_VALUE_INT;
+    level.ints = {2};
+    addPlane("/Plane", "/Looks/M", 1.0f, 0.0, kHalf,
+             {{"subdivisionScheme", HostValue::token("catmullClark")}, {"obscura:refineLevel", level}});
+    host.setInterpolation("/Plane", "primvars:st", OBSCURA_INTERPOLATION_FACE_VARYING);
+    render();
+    // The refined quad keeps its sharp corners and straight boundary: each block stays in its
+    // quadrant (checked away from the borders, where refinement may shift st slightly).
+    expectAlbedo(14, 14, decoded(kBlocks[0]), "top left");
+    expectAlbedo(50, 14, decoded(kBlocks[1]), "top right");
+    expectAlbedo(14, 50, decoded(kBlocks[2]), "bottom left");
+    expectAlbedo(50, 50, decoded(kBlocks[3]), "bottom right");
+}
+
+}  // namespace
+}  // namespace obscura::test
