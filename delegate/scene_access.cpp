@@ -61,41 +61,20 @@ double SceneAccess::getDouble(const char* name) {
     return v ? numberAt(*v, 0) : (a.defaultCount ? a.defaultNumbers[0] : 0.0);
 }
 
-std::array<float, 2> SceneAccess::getFloat2(const char* name) {
+template <typename T, size_t N>
+std::array<T, N> SceneAccess::getTuple(const char* name) {
     const auto& a = attribute(name);
     auto v = fetch(a);
-    std::array<float, 2> r{};
-    for (size_t i = 0; i < 2; ++i)
-        r[i] = static_cast<float>(v ? numberAt(*v, i) : (a.defaultCount > i ? a.defaultNumbers[i] : 0.0));
+    std::array<T, N> r{};
+    for (size_t i = 0; i < N; ++i)
+        r[i] = static_cast<T>(v ? numberAt(*v, i) : (a.defaultCount > i ? a.defaultNumbers[i] : 0.0));
     return r;
 }
 
-std::array<float, 3> SceneAccess::getFloat3(const char* name) {
-    const auto& a = attribute(name);
-    auto v = fetch(a);
-    std::array<float, 3> r{};
-    for (size_t i = 0; i < 3; ++i)
-        r[i] = static_cast<float>(v ? numberAt(*v, i) : (a.defaultCount > i ? a.defaultNumbers[i] : 0.0));
-    return r;
-}
-
-std::array<float, 4> SceneAccess::getFloat4(const char* name) {
-    const auto& a = attribute(name);
-    auto v = fetch(a);
-    std::array<float, 4> r{};
-    for (size_t i = 0; i < 4; ++i)
-        r[i] = static_cast<float>(v ? numberAt(*v, i) : (a.defaultCount > i ? a.defaultNumbers[i] : 0.0));
-    return r;
-}
-
-std::array<int32_t, 2> SceneAccess::getInt2(const char* name) {
-    const auto& a = attribute(name);
-    auto v = fetch(a);
-    std::array<int32_t, 2> r{};
-    for (size_t i = 0; i < 2; ++i)
-        r[i] = static_cast<int32_t>(v ? numberAt(*v, i) : (a.defaultCount > i ? a.defaultNumbers[i] : 0.0));
-    return r;
-}
+std::array<float, 2> SceneAccess::getFloat2(const char* name) { return getTuple<float, 2>(name); }
+std::array<float, 3> SceneAccess::getFloat3(const char* name) { return getTuple<float, 3>(name); }
+std::array<float, 4> SceneAccess::getFloat4(const char* name) { return getTuple<float, 4>(name); }
+std::array<int32_t, 2> SceneAccess::getInt2(const char* name) { return getTuple<int32_t, 2>(name); }
 
 std::string SceneAccess::getToken(const char* name) {
     const auto& a = attribute(name);

@@ -56,6 +56,9 @@ public:
     uint32_t callbackCount() const { return callbacks_; }
 
 private:
+    // A fixed-size numeric value (float2/3/4, int2), or the schema default.
+    template <typename T, size_t N>
+    std::array<T, N> getTuple(const char* name);
     // The host's value, checked against the schema; nullopt when not authored.
     std::optional<ObscuraValue> fetch(const schema::AttributeSchema& attribute);
     const schema::AttributeSchema& attribute(const char* name) const;
