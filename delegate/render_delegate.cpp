@@ -86,6 +86,7 @@ RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
     one.format = passes::kSsaoDepthFormat;
     unoccluded_.halfDepth = device_->createTextureWithData(one, &farDepth, sizeof(farDepth), "ssao off depth");
     textures_ = std::make_unique<TextureCache>(*device_, options.log);
+    geometry_ = std::make_unique<GeometryCache>(*device_);
     log(OBSCURA_LOG_INFO, "device: " + device_->context().summary().name);
 }
 
@@ -93,6 +94,7 @@ RenderDelegate::~RenderDelegate() {
     vkDeviceWaitIdle(device_->vk());
     prims_.clear();
     textures_.reset();
+    geometry_.reset();
     bestFitNormals_.reset();
     unoccluded_ = {};
     grading_ = passes::ColorGradingLut();
@@ -184,7 +186,7 @@ void RenderDelegate::sync(double time, const Camera* camera) {
         return oa != ob ? oa < ob : a->path() < b->path();
     });
     SyncContext ctx{sceneDelegate_, *device_, time, time, time, static_cast<int>(settings_.number("refineLevel")),
-                    *textures_};
+                    *textures_, *geometry_};
     auto takeShutter = [&] {
         if (!camera || camera->skipped()) return;
         ctx.shutterOpen = time + camera->params().shutterOpen;
@@ -329,6 +331,7 @@ ObscuraRenderStats RenderDelegate::stats() const {
     s.converged = 1;  // a single deferred frame: nothing accumulates yet
     s.trianglesDrawn = trianglesDrawn_;
     s.syncMilliseconds = syncMilliseconds_;
+    s.geometryBytes = geometry_->residentBytes();
     s.frameSetupMilliseconds = frameSetupMilliseconds_;
     std::snprintf(s.deviceName, sizeof(s.deviceName), "%s", device_->context().summary().name.c_str());
     return s;

@@ -2,6 +2,7 @@
 // prims from the host's scene delegate), and the frame (building the frame graph of passes).
 #pragma once
 
+#include "delegate/geometry_cache.h"
 #include "delegate/prims/camera.h"
 #include "delegate/prims/instancer.h"
 #include "delegate/prims/light.h"
@@ -70,6 +71,7 @@ private:
         gpu::ImagePtr accessibility, halfDepth;
     } unoccluded_;
     std::unique_ptr<TextureCache> textures_;
+    std::unique_ptr<GeometryCache> geometry_;
     passes::ColorGradingLut grading_;
 
     ObscuraSceneDelegate sceneDelegate_{};

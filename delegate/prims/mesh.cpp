@@ -60,10 +60,9 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     auto& geometry = std::get<MeshGeometry>(built);
     warnings_ = geometry.warnings;
     indexCount_ = static_cast<uint32_t>(geometry.indices.size());
-    vertices_ = ctx.device.createBufferWithData(geometry.vertices.data(), geometry.vertices.size() * sizeof(passes::Vertex),
-                                                VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, s.path().c_str());
-    indices_ = ctx.device.createBufferWithData(geometry.indices.data(), geometry.indices.size() * sizeof(uint32_t),
-                                               VK_BUFFER_USAGE_INDEX_BUFFER_BIT, s.path().c_str());
+    SharedGeometry shared = ctx.geometry.get(geometry.vertices, geometry.indices, s.path().c_str());
+    vertices_ = std::move(shared.vertices);
+    indices_ = std::move(shared.indices);
 }
 
 }  // namespace obscura::delegate

@@ -2,6 +2,7 @@
 // and uploaded as one vertex and one index buffer.
 #pragma once
 
+#include "delegate/geometry_cache.h"
 #include "delegate/mesh_builder.h"
 #include "delegate/prims/prim.h"
 #include "delegate/subdivision.h"

@@ -15,6 +15,7 @@ class Device;
 namespace obscura::delegate {
 
 class TextureCache;
+class GeometryCache;
 
 struct SyncContext {
     const ObscuraSceneDelegate& sceneDelegate;
@@ -24,6 +25,7 @@ struct SyncContext {
     double shutterClose;
     int refineLevel;      // render setting; meshes may override it
     TextureCache& textures;
+    GeometryCache& geometry;
 };
 
 class Prim {

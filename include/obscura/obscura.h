@@ -272,6 +272,7 @@ typedef struct ObscuraRenderStats {
     char deviceName[256];           /* the Vulkan device this delegate renders with */
     double syncMilliseconds;        /* CPU time of the last render's sync (pulls, rebuilds, uploads) */
     double frameSetupMilliseconds;  /* CPU time packing per-frame records and recording the frame */
+    uint64_t geometryBytes;         /* vertex + index data on the GPU; identical meshes share one copy */
 } ObscuraRenderStats;
 
 /* ---------------------------------------------------------------------------------------------

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
 #include <thread>
 
 namespace obscura::test {
@@ -102,6 +103,46 @@ TEST(Delegates, SeveralLiveAndRenderOnTheirOwnThreads) {
     EXPECT_EQ(a, OBSCURA_OK);
     EXPECT_EQ(b, OBSCURA_OK);
     EXPECT_EQ(first.host.readFloats("/Buffers/color"), second.host.readFloats("/Buffers/color"));
+}
+
+}  // namespace
+}  // namespace obscura::test
+
+namespace obscura::test {
+namespace {
+
+uint64_t geometryBytes(TestHost& host) {
+    ObscuraRenderStats s{};
+    s.structSize = sizeof(s);
+    host.api().getRenderStats(host.delegate(), &s);
+    return s.geometryBytes;
+}
+
+TEST(SharedGeometry, IdenticalMeshesAreStoredOnce) {
+    TestHost host;
+    host.addCamera("/Camera", translation(0, 0, 30));
+    host.addRenderBuffer("/Buffers/id", "int32", kWidth, kHeight);
+    addPlane(host, "/Copy0", "", 0.5, translation(-4, 3.5, 0));
+    ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}}), OBSCURA_OK) << host.lastError();
+    const uint64_t one = geometryBytes(host);
+    ASSERT_GT(one, 0u);
+    // Repeated references of one asset: same points and topology, other transforms.
+    for (int i = 1; i < 50; ++i) addPlane(host, "/Copy" + std::to_string(i), "", 0.5, translation(-4 + (i % 9), i / 9 - 3, 0));
+    ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}}), OBSCURA_OK) << host.lastError();
+    EXPECT_EQ(geometryBytes(host), one);
+    // Every copy still draws where its own transform puts it.
+    auto ids = host.readInts("/Buffers/id");
+    std::set<int32_t> seen(ids.begin(), ids.end());
+    EXPECT_EQ(seen.size(), 51u) << "50 copies and the background";
+    // A copy whose points change gets its own storage; the others keep sharing.
+    host.set("/Copy7", "points", HostValue::points({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}));
+    host.api().markDirty(host.delegate(), "/Copy7", OBSCURA_DIRTY_POINTS);
+    ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}}), OBSCURA_OK);
+    EXPECT_EQ(geometryBytes(host), 2 * one);
+    // Removing every copy but one releases the shared storage only when the last user goes.
+    for (int i = 1; i < 50; ++i) host.api().removePrim(host.delegate(), ("/Copy" + std::to_string(i)).c_str());
+    ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}}), OBSCURA_OK);
+    EXPECT_EQ(geometryBytes(host), one);
 }
 
 }  // namespace
