@@ -63,9 +63,7 @@ TEST(Instancing, InstancesAreDrawnWhereUsdPlacesThem) {
     // Instance 3 is invisible; prototypes draw nothing at their own place.
     EXPECT_EQ(at(ids, 0.5, 0.0), -1);
     EXPECT_EQ(at(ids, 0.05, 0.05), -1);
-    ObscuraRenderStats stats{};
-    stats.structSize = sizeof(stats);
-    s.host.api().getRenderStats(s.host.delegate(), &stats);
+    ObscuraRenderStats stats = renderStats(s.host);
     EXPECT_EQ(stats.trianglesDrawn, 6u) << "3 visible instances of 2-triangle meshes";
 }
 
@@ -81,9 +79,7 @@ TEST(Instancing, ManyInstancesShareOneMesh) {
     s.host.set("/Instancer", "scales", HostValue::points({}));
     s.host.set("/Instancer", "invisibleIds", HostValue::intArray({}));
     auto ids = s.render();
-    ObscuraRenderStats stats{};
-    stats.structSize = sizeof(stats);
-    s.host.api().getRenderStats(s.host.delegate(), &stats);
+    ObscuraRenderStats stats = renderStats(s.host);
     EXPECT_EQ(stats.trianglesDrawn, uint64_t(n) * 2);
     EXPECT_EQ(at(ids, 0.0, 0.0), s.square);
 }

@@ -16,6 +16,13 @@ Matrix lightPointingAlong(std::array<double, 3> d) {
     return {x[0], x[1], x[2], 0, y[0], y[1], y[2], 0, z[0], z[1], z[2], 0, 0, 0, 0, 1};
 }
 
+ObscuraRenderStats renderStats(TestHost& host) {
+    ObscuraRenderStats s{};
+    s.structSize = sizeof(s);
+    host.api().getRenderStats(host.delegate(), &s);
+    return s;
+}
+
 void addPlane(TestHost& host, const std::string& path, const std::string& material, double half, Matrix transform) {
     float h = float(half);
     std::map<std::string, HostValue> values = {

@@ -16,6 +16,9 @@ constexpr double kPi = std::numbers::pi;
 // Rotation taking the light's local -Z axis (its emission direction) onto `direction`.
 Matrix lightPointingAlong(std::array<double, 3> direction);
 
+// The delegate's counters after the last render.
+ObscuraRenderStats renderStats(TestHost& host);
+
 // A unit-normal quad of half-size `half` at z = 0 facing +Z, with a material bound.
 void addPlane(TestHost& host, const std::string& path, const std::string& material, double half = 10.0,
               Matrix transform = identity());

@@ -22,12 +22,7 @@ struct TwoPlanes {
         host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
     }
     ObscuraStatus render() { return host.render("/Camera", {{"color", "/Buffers/color"}}); }
-    uint32_t synced() {
-        ObscuraRenderStats s{};
-        s.structSize = sizeof(s);
-        host.api().getRenderStats(host.delegate(), &s);
-        return s.primsSynced;
-    }
+    uint32_t synced() { return renderStats(host).primsSynced; }
 };
 
 TEST(Sync, FirstRenderPullsEverythingThenNothing) {
@@ -111,12 +106,7 @@ TEST(Delegates, SeveralLiveAndRenderOnTheirOwnThreads) {
 namespace obscura::test {
 namespace {
 
-uint64_t geometryBytes(TestHost& host) {
-    ObscuraRenderStats s{};
-    s.structSize = sizeof(s);
-    host.api().getRenderStats(host.delegate(), &s);
-    return s.geometryBytes;
-}
+uint64_t geometryBytes(TestHost& host) { return renderStats(host).geometryBytes; }
 
 TEST(SharedGeometry, IdenticalMeshesAreStoredOnce) {
     TestHost host;
