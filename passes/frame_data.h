@@ -14,12 +14,13 @@ struct alignas(16) CameraData {
     Mat4 projection;
     Mat4 viewProjection;
     Mat4 inverseViewProjection;
+    Mat4 inverseProjection;
     std::array<float, 4> position;
     std::array<float, 2> resolution;
     float exposureScale;
     float pad0;
 };
-static_assert(sizeof(CameraData) == 4 * 64 + 16 + 16);
+static_assert(sizeof(CameraData) == 5 * 64 + 16 + 16);
 
 enum InstanceFlags : uint32_t { kInstanceDoubleSided = 1u, kInstanceVertexColor = 2u };
 
@@ -67,15 +68,18 @@ struct alignas(16) MaterialData {
 };
 static_assert(sizeof(MaterialData) == 48 + 4 * 48);
 
-enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2 };
+enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4 };
 
 struct alignas(16) LightData {
     std::array<float, 4> positionType;
     std::array<float, 4> directionAngle;
     std::array<float, 4> radiance;
-    std::array<float, 4> factors;
+    std::array<float, 4> factors;  // z treatAsPoint, w influence range
+    std::array<float, 4> axisX;
+    std::array<float, 4> axisY;
+    std::array<float, 4> shaping;
 };
-static_assert(sizeof(LightData) == 64);
+static_assert(sizeof(LightData) == 7 * 16);
 
 // Header of the light buffer: the count, padded to the first LightData.
 struct alignas(16) LightBufferHeader {
