@@ -2,7 +2,8 @@
 """Writes many_lights_16.usda, many_lights_128.usda and many_lights_1024.usda: one 80 m field
 with 400 props, lit by N small local lights (sphere, rect and disk, a quarter of them spots)
 for the tiled light culling benchmark. The lights are dim and close to the ground, so each one's
-influence range (see docs/ARCHITECTURE.md) is 5-10 m and tiles keep different lists."""
+influence range (see docs/ARCHITECTURE.md; the camera's exposure of 3 stops widens it to 15-30 m)
+still leaves tiles with different lists."""
 import math
 import random
 
@@ -103,6 +104,12 @@ def Xform "World"
         }}
     }}
 
+    def DomeLight "Sky"
+    {{
+        float inputs:intensity = 0.03
+        color3f inputs:color = (0.6, 0.7, 1.0)
+    }}
+
     def Scope "Lights"
     {{{lights}    }}
 
@@ -112,6 +119,7 @@ def Xform "World"
         float horizontalAperture = 36
         float verticalAperture = 24
         float2 clippingRange = (0.5, 500)
+        float exposure = 3
         double3 xformOp:translate = (0, 18, 48)
         float xformOp:rotateX = -28
         uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
