@@ -64,9 +64,11 @@ struct alignas(16) MaterialData {
     std::array<float, 4> diffuseRoughness;
     std::array<float, 4> emissiveMetallic;
     std::array<float, 4> opacity;  // x opacity, y opacityThreshold
+    std::array<float, 4> specularIor{0.0f, 0.0f, 0.0f, 1.5f};  // rgb specularColor, a ior
+    std::array<float, 4> clearcoat{};  // x clearcoat, y clearcoatRoughness, z 1 for the specular workflow
     std::array<MaterialTexture, kMaterialTextureSlots> textures;
 };
-static_assert(sizeof(MaterialData) == 48 + 4 * 48);
+static_assert(sizeof(MaterialData) == 80 + 4 * 48);
 
 enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4 };
 

@@ -107,12 +107,10 @@ void main() {
     vec4 nr = texelFetch(normalRoughnessTexture, pixel, 0);
     vec4 am = texelFetch(albedoMetallicTexture, pixel, 0);
     vec2 ndc = (vec2(pixel) + 0.5) / camera.resolution * 2.0 - 1.0;
-    SurfacePoint s;
+    SurfacePoint s = surfaceFromMaterial(mat, am.rgb, am.a);
     s.P = unproject(camera.inverseViewProjection, ndc, depth);
     s.N = decodeBestFitNormal(nr.xyz);
     s.V = normalize(camera.position.xyz - s.P);
-    s.albedo = am.rgb;
-    s.metallic = am.a;
     s.roughness = nr.a;
     s.ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel,
                                           linearDepthFromDevice(camera.projection, depth));

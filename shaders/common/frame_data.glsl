@@ -46,6 +46,8 @@ struct MaterialData {
     vec4 diffuseRoughness;  // rgb diffuseColor, a roughness
     vec4 emissiveMetallic;  // rgb emissiveColor (textured: the texture's average), a metallic
     vec4 opacity;           // x opacity, y opacityThreshold
+    vec4 specularIor;       // rgb specularColor (specular workflow), a ior
+    vec4 clearcoat;         // x clearcoat, y clearcoatRoughness, z 1 for the specular workflow
     MaterialTexture textures[MATERIAL_TEXTURE_SLOTS];
 };
 

@@ -11,37 +11,67 @@ struct SurfacePoint {
     vec3 P;           // world position
     vec3 N;           // unit normal
     vec3 V;           // unit direction to the eye
-    vec3 albedo;
-    float metallic;
+    vec3 diffuse;     // diffuse albedo (metallic workflow: diffuseColor x (1 - metallic))
+    vec3 f0;          // specular reflectance at normal incidence
     float roughness;  // perceptual, as authored
+    float clearcoat;  // UsdPreviewSurface's second specular lobe: weight and roughness
+    float clearcoatRoughness;
     float ambientAccess;  // SSAO: applied to the dome only (seed 004, "SSAO": ambient light only)
 };
 
-vec3 diffuseBrdf(SurfacePoint s) {
-    return (1.0 - s.metallic) * s.albedo / PI;
+// UsdPreviewSurface (https://openusd.org/release/spec_usdpreviewsurface.html): the metallic
+// workflow reflects ((ior - 1) / (ior + 1))^2 at normal incidence as a dielectric and its base
+// colour as a metal; the specular workflow takes specularColor as F0 and keeps diffuseColor whole.
+SurfacePoint surfaceFromMaterial(MaterialData mat, vec3 baseColor, float metallic) {
+    SurfacePoint s;
+    float r = (mat.specularIor.a - 1.0) / (mat.specularIor.a + 1.0);
+    bool specularWorkflow = mat.clearcoat.z > 0.5;
+    s.f0 = specularWorkflow ? mat.specularIor.rgb : mix(vec3(r * r), baseColor, metallic);
+    s.diffuse = specularWorkflow ? baseColor : (1.0 - metallic) * baseColor;
+    s.clearcoat = mat.clearcoat.x;
+    s.clearcoatRoughness = mat.clearcoat.y;
+    return s;
 }
 
-// GGX specular BRDF for light from L. A source of angular radius asin(sinHalfAngle) widens the
-// lobe; the (alpha / alpha')^2 factor keeps its energy (Karis 2013, "sphere light normalisation").
-vec3 specularBrdf(SurfacePoint s, vec3 L, float sinHalfAngle) {
+const float CLEARCOAT_F0 = 0.04;  // the coat is a dielectric of ior 1.5
+
+vec3 diffuseBrdf(SurfacePoint s) {
+    return s.diffuse / PI;
+}
+
+// GGX lobe for light from L. A source of angular radius asin(sinHalfAngle) widens the lobe; the
+// (alpha / alpha')^2 factor keeps its energy (Karis 2013, "sphere light normalisation").
+vec3 ggxLobe(SurfacePoint s, vec3 L, float sinHalfAngle, float roughness, vec3 f0) {
     float NdotL = max(dot(s.N, L), 0.0);
     float NdotV = max(dot(s.N, s.V), 1e-4);
     vec3 H = normalize(L + s.V);
     float NdotH = max(dot(s.N, H), 0.0);
     float VdotH = max(dot(s.V, H), 0.0);
-    float alpha = alphaFromRoughness(s.roughness);
+    float alpha = alphaFromRoughness(roughness);
     float alphaWide = clamp(alpha + 0.5 * sinHalfAngle, 0.0, 1.0);
     float energy = (alpha * alpha) / (alphaWide * alphaWide);
-    vec3 f0 = mix(vec3(0.04), s.albedo, s.metallic);
     return ggxDistribution(NdotH, alphaWide) * energy * smithVisibilityHeightCorrelated(NdotV, NdotL, alpha) *
            fresnelSchlick(f0, VdotH);
+}
+
+// What the coat lets through to the base layer (its Fresnel reflection seen from the eye).
+float clearcoatTransmission(SurfacePoint s) {
+    return 1.0 - s.clearcoat * fresnelSchlick(vec3(CLEARCOAT_F0), max(dot(s.N, s.V), 0.0)).x;
+}
+
+// Base and coat specular lobes, the base already attenuated by the coat.
+vec3 specularBrdf(SurfacePoint s, vec3 L, float sinHalfAngle) {
+    vec3 base = ggxLobe(s, L, sinHalfAngle, s.roughness, s.f0) * clearcoatTransmission(s);
+    if (s.clearcoat <= 0.0) return base;
+    return base + s.clearcoat * ggxLobe(s, L, sinHalfAngle, s.clearcoatRoughness, vec3(CLEARCOAT_F0));
 }
 
 // A small source of irradiance `irradiance` (at normal incidence) in direction L.
 vec3 reflectFromDirection(SurfacePoint s, vec3 L, vec3 irradiance, float sinHalfAngle, vec2 factors) {
     float NdotL = dot(s.N, L);
     if (NdotL <= 0.0) return vec3(0.0);
-    return (diffuseBrdf(s) * factors.x + specularBrdf(s, L, sinHalfAngle) * factors.y) * irradiance * NdotL;
+    return (diffuseBrdf(s) * clearcoatTransmission(s) * factors.x + specularBrdf(s, L, sinHalfAngle) * factors.y) *
+           irradiance * NdotL;
 }
 
 // UsdLuxShapingAPI: the cone cuts emission beyond its angle off the axis and fades it over the
@@ -144,7 +174,7 @@ vec3 reflectFromAreaLight(SurfacePoint s, LightData light) {
         0.5 * max(dot(s.N, belowHorizon ? winding * vectorFormFactor(clipToHorizon(poly, s.N)) : formFactor), 0.0);
     float shaping = shapingAttenuation(light, normalize(toPoint));
     vec3 radiance = light.radiance.rgb * shaping;
-    vec3 result = diffuseBrdf(s) * light.factors.x * radiance * diffuseIrradiance;
+    vec3 result = diffuseBrdf(s) * clearcoatTransmission(s) * light.factors.x * radiance * diffuseIrradiance;
 
     // Representative point: where the mirror direction meets the light's plane, clamped to the shape.
     vec3 R = reflect(-s.V, s.N);
@@ -188,11 +218,13 @@ vec3 reflectFromLight(SurfacePoint s, LightData light) {
     }
     if (type == LIGHT_RECT || type == LIGHT_DISK) return reflectFromAreaLight(s, light);
     // LIGHT_DOME, a constant environment: Lambert integrates to albedo * L; GGX through the
-    // split-sum pre-integration (environmentBrdf).
-    vec3 f0 = mix(vec3(0.04), s.albedo, s.metallic);
-    vec2 scaleBias = environmentBrdf(s.roughness, max(dot(s.N, s.V), 1e-4));
-    vec3 diffuse = (1.0 - s.metallic) * s.albedo;
-    vec3 specular = f0 * scaleBias.x + scaleBias.y;
+    // split-sum pre-integration (environmentBrdf), for the base and the coat.
+    float NdotV = max(dot(s.N, s.V), 1e-4);
+    vec2 base = environmentBrdf(s.roughness, NdotV);
+    vec2 coat = environmentBrdf(s.clearcoatRoughness, NdotV);
+    float transmission = clearcoatTransmission(s);
+    vec3 specular = (s.f0 * base.x + base.y) * transmission + s.clearcoat * (CLEARCOAT_F0 * coat.x + coat.y);
+    vec3 diffuse = s.diffuse * transmission;
     return s.ambientAccess * (diffuse * light.factors.x + specular * light.factors.y) * light.radiance.rgb;
 }
 

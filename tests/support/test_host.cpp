@@ -35,6 +35,12 @@ HostValue HostValue::boolean(bool v) {
     h.ints = {v ? 1 : 0};
     return h;
 }
+HostValue HostValue::intValue(int32_t v) {
+    HostValue h;
+    h.type = OBSCURA_VALUE_INT;
+    h.ints = {v};
+    return h;
+}
 HostValue HostValue::token(const std::string& t) {
     HostValue h;
     h.type = OBSCURA_VALUE_TOKEN;
