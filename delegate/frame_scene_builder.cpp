@@ -38,7 +38,7 @@ Matrix4d normalMatrix(const Matrix4d& model) {
 
 }  // namespace
 
-passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& in) {
+passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& in, FrameSceneShortfalls& shortfalls) {
     passes::FrameScene scene;
     scene.width = in.width;
     scene.height = in.height;
@@ -73,6 +73,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     std::map<std::string, uint32_t> texturesOfMaterial;
     std::map<std::string, uint32_t> materialIndex;
     std::vector<passes::LightData> lights;
+    std::vector<bool> lightCastsShadows;
     for (const auto& [path, prim] : in.prims) {
         if (prim->skipped()) continue;
         if (auto* m = dynamic_cast<const Material*>(prim.get())) {
@@ -89,7 +90,10 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
                 scene.materialTextures.push_back(textures);
             }
         } else if (auto* l = dynamic_cast<const Light*>(prim.get())) {
-            if (l->visible()) lights.push_back(l->data());
+            if (l->visible()) {
+                lights.push_back(l->data());
+                lightCastsShadows.push_back(l->castsShadows());
+            }
         }
     }
 
@@ -105,6 +109,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     };
 
     std::vector<passes::InstanceData> instances;
+    std::vector<Aabb> drawBounds;  // world bounds of each draw, all its instances
     auto record = [&](const Mesh& mesh, const Matrix4d& model) {
         passes::InstanceData inst{};
         inst.model = toFloats<passes::Mat4>(model);
@@ -137,6 +142,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
                                static_cast<uint32_t>(instances.size()), 1, texturesOf(*mesh)});
         record(*mesh, mesh->transform());
+        drawBounds.push_back(transformAabb(mesh->localBounds(), mesh->transform()));
     }
     // One draw per (instancer, prototype mesh): the mesh's transform relative to the instancer,
     // then each instance's transform.
@@ -150,9 +156,25 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
             scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
                                    static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(placements.size()),
                                    texturesOf(*mesh)});
-            for (const Matrix4d& placement : placements) record(*mesh, multiply(mesh->transform(), placement));
+            Aabb bounds;
+            for (const Matrix4d& placement : placements) {
+                Matrix4d model = multiply(mesh->transform(), placement);
+                record(*mesh, model);
+                bounds.merge(transformAabb(mesh->localBounds(), model));
+            }
+            drawBounds.push_back(bounds);
         }
     }
+    // Shadow maps: the views of every shadow-casting light, and each light's place among them.
+    ShadowedCamera shadowed{view, projection};
+    ShadowAtlasBuild shadows = buildShadowAtlas(
+        {in.shadows, shadowed, cam.params().clippingRange[0], cam.params().clippingRange[1], drawBounds}, lights,
+        lightCastsShadows);
+    shortfalls.lightsWithoutShadowRoom = shadows.lightsLeftUnshadowed;
+    scene.shadows = std::move(shadows.atlas);
+    scene.shadows.records =
+        uploadRecords(device, nullptr, 0, shadows.records, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "shadow views");
+
     passes::LightBufferHeader header{static_cast<uint32_t>(lights.size()), {0, 0, 0}};
     scene.instances = uploadRecords(device, nullptr, 0, instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instances");
     scene.materials = uploadRecords(device, nullptr, 0, materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials");

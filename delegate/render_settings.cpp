@@ -1,6 +1,7 @@
 #include "delegate/render_settings.h"
 
 #include <cmath>
+#include <cstdio>
 #include <iterator>
 
 namespace obscura::delegate {
@@ -15,6 +16,12 @@ const RenderSettingInfo kSettings[] = {
     {"ssao", "screen-space ambient occlusion on environment light (bool, default on)", OBSCURA_VALUE_BOOL, 1.0},
     {"ssao:radius", "ambient occlusion radius in metres (float, default 0.5)", OBSCURA_VALUE_FLOAT, 0.5},
     {"ssao:intensity", "ambient occlusion strength, 0-1 (float, default 1)", OBSCURA_VALUE_FLOAT, 1.0},
+    {"shadows", "shadow maps: cascaded for distant lights, cube maps for sphere lights, for every light whose "
+                "inputs:shadow:enable is on (bool, default on)",
+     OBSCURA_VALUE_BOOL, 1.0},
+    {"shadows:resolution", "side of one shadow map (a cascade, a cube face) in texels, 64-4096 (int, default 1024)",
+     OBSCURA_VALUE_INT, 1024.0, 64.0, 4096.0},
+    {"shadows:cascades", "cascades per distant light, 1-4 (int, default 4)", OBSCURA_VALUE_INT, 4.0, 1.0, 4.0},
     {"metersPerUnit", "the scene's metres per unit, as USD's stage metadata; hosts set it (float, default 0.01)",
      OBSCURA_VALUE_FLOAT, 0.01},
     {"ocio:config", "OpenColorIO config file (token; default: $OCIO, else the built-in ACES-based config)",
@@ -64,6 +71,11 @@ std::string RenderSettings::set(const std::string& name, const ObscuraValue* val
         default: return name + ": expected a number";
     }
     if (!std::isfinite(v)) return name + ": value is not finite";
+    if (v < info->minimum || v > info->maximum) {
+        char range[96];
+        std::snprintf(range, sizeof(range), "%g is outside %g..%g", v, info->minimum, info->maximum);
+        return name + ": " + range;
+    }
     numbers_[name] = v;
     ++version_;
     return {};

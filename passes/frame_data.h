@@ -74,8 +74,22 @@ struct alignas(16) LightData {
     std::array<float, 4> directionAngle;
     std::array<float, 4> radiance;
     std::array<float, 4> factors;
+    // x: the light's first ShadowViewData record, y: how many (cascades, or 6 cube faces); y = 0
+    // when the light casts no shadow.
+    std::array<uint32_t, 4> shadow;
 };
-static_assert(sizeof(LightData) == 64);
+static_assert(sizeof(LightData) == 80);
+
+// One view of the shadow atlas as the lighting pass reads it (passes/frame_scene.h ShadowMapView).
+struct alignas(16) ShadowViewData {
+    // World -> atlas: x/w and y/w are atlas texel coordinates, z/w the depth the map stores.
+    Mat4 worldToAtlas;
+    std::array<float, 4> tileRect;  // first and last texel of the view's tile: x0, y0, x1, y1
+    // x: world size of one texel (perspective views: at distance 1 along the view axis);
+    // y: cascades: the view distance where the cascade ends.
+    std::array<float, 4> params;
+};
+static_assert(sizeof(ShadowViewData) == 96);
 
 // Header of the light buffer: the count, padded to the first LightData.
 struct alignas(16) LightBufferHeader {

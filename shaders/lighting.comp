@@ -1,8 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Deferred lighting, pixel frequency, in compute (screen-space passes run on every GPU core).
-// Reads the thin G-buffer, accumulates Lambert + GGX for distant and sphere lights plus emission
-// into B10G11R11_UFLOAT, pre-exposed by the camera's exposure (seed 004 "HDR": keep the
+// Reads the thin G-buffer, accumulates Lambert + GGX for distant and sphere lights (shadowed
+// through the shadow atlas, per pixel) plus emission into B10G11R11_UFLOAT, pre-exposed by the camera's exposure (seed 004 "HDR": keep the
 // accumulation in a range the small float format holds well).
 #extension GL_EXT_scalar_block_layout : require
 #include "common/frame_data.glsl"
@@ -23,6 +23,10 @@ layout(set = 0, binding = 7) uniform usampler2D instanceTexture;
 layout(set = 0, binding = 8, r11f_g11f_b10f) uniform writeonly image2D lightAccumulation;
 layout(set = 0, binding = 9) uniform sampler2D ambientAccessibility;
 layout(set = 0, binding = 10) uniform sampler2D ambientHalfDepth;
+layout(set = 0, binding = 11, std430) readonly buffer ShadowViews { ShadowViewData shadowViews[]; };
+layout(set = 0, binding = 12) uniform sampler2D shadowAtlas;
+
+#include "common/shadow_sampling.glsl"
 
 vec3 worldPositionFromDepth(ivec2 pixel, float depth) {
     vec2 ndc = (vec2(pixel) + 0.5) / camera.resolution * 2.0 - 1.0;
@@ -70,16 +74,19 @@ void main() {
     vec3 V = normalize(camera.position.xyz - P);
 
     vec3 radiance = mat.emissiveMetallic.rgb;
-    float ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel,
-                                              linearDepthFromDevice(camera.projection, depth));
+    float viewDistance = linearDepthFromDevice(camera.projection, depth);
+    float ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel, viewDistance);
     for (uint i = 0u; i < lightCount; ++i) {
         LightData light = lights[i];
         uint type = uint(light.positionType.w);
         if (type == LIGHT_DISTANT) {
             // UsdLux: irradiance = radiance x solid angle of the disc (precomputed on the host).
             vec3 L = -light.directionAngle.xyz;
-            radiance += shade(N, V, L, light.radiance.rgb, sin(light.directionAngle.w), am.rgb, am.a, nr.a,
-                              light.factors.xy);
+            vec3 reflected = shade(N, V, L, light.radiance.rgb, sin(light.directionAngle.w), am.rgb, am.a, nr.a,
+                                   light.factors.xy);
+            if (any(greaterThan(reflected, vec3(0.0))))
+                reflected *= distantLightVisibility(light.shadow, P, N, viewDistance);
+            radiance += reflected;
         } else if (type == LIGHT_SPHERE) {
             vec3 toLight = light.positionType.xyz - P;
             float d2 = max(dot(toLight, toLight), 1e-8);
@@ -91,7 +98,10 @@ void main() {
             vec3 irradiance = PI * light.radiance.rgb * (r * r) / d2;
             // treatAsPoint keeps the power but not the lobe widening of an extended source.
             float sinHalfAngle = light.factors.z > 0.0 ? 0.0 : clamp(r / d, 0.0, 1.0);
-            radiance += shade(N, V, L, irradiance, sinHalfAngle, am.rgb, am.a, nr.a, light.factors.xy);
+            vec3 reflected = shade(N, V, L, irradiance, sinHalfAngle, am.rgb, am.a, nr.a, light.factors.xy);
+            if (any(greaterThan(reflected, vec3(0.0))))
+                reflected *= sphereLightVisibility(light.shadow, P, N, light.positionType.xyz);
+            radiance += reflected;
         } else if (type == LIGHT_DOME) {
             // A constant environment: Lambert integrates to albedo * L; GGX through the split-sum
             // pre-integration (environmentBrdf).

@@ -57,6 +57,14 @@ struct LightData {
     vec4 directionAngle;    // xyz direction the light travels (distant), w half-angle in radians
     vec4 radiance;          // rgb emitted radiance incl. intensity, exposure, colour, normalize; a radius
     vec4 factors;           // x diffuse, y specular multipliers
+    uvec4 shadow;           // x first ShadowViewData record, y their count (0: casts no shadow)
+};
+
+// One view of the shadow atlas: a cascade of a distant light or a cube face of a sphere light.
+struct ShadowViewData {
+    mat4 worldToAtlas;      // world -> clip whose x/w, y/w are atlas texel coordinates, z/w depth
+    vec4 tileRect;          // first and last texel of the view's tile: x0, y0, x1, y1
+    vec4 params;            // x world size of a texel (perspective: at distance 1), y cascade's far end
 };
 
 const uint INSTANCE_DOUBLE_SIDED = 1u;

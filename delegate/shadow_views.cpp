@@ -1,0 +1,126 @@
+#include "delegate/shadow_views.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace obscura::delegate {
+namespace {
+
+// Weight of the logarithmic split against the uniform one (Zhang et al. 2006 suggest a blend;
+// 0.75 keeps the first cascade a useful size with a near plane close to the camera).
+constexpr double kCascadeSplitLambda = 0.75;
+
+// The filter of the lookup (shadow_sampling.glsl) reads up to 2.5 texels from the sample; cube
+// faces extend their field of view by 3 texels so no face needs its neighbour's texels.
+constexpr uint32_t kCubeGuardTexels = 3;
+
+// Row-vector matrix from a view's clip space to atlas texels within its tile: the viewport
+// transform of the tile (x0 + (ndc + 1) size / 2), kept homogeneous so that the lookup divides
+// by w once.
+Matrix4d clipToAtlas(uint32_t x0, uint32_t y0, uint32_t size) {
+    Matrix4d m = kIdentity;
+    double half = 0.5 * double(size);
+    m[0] = half;
+    m[5] = half;
+    m[12] = double(x0) + half;
+    m[13] = double(y0) + half;
+    return m;
+}
+
+struct PendingView {
+    Matrix4d viewProjection;
+    double texelWorldSize;
+    double cascadeEnd;  // cascades only, else 0
+};
+
+// Where the camera's cascades end: the farthest scene point ahead of the camera, rounded up to
+// a quarter-octave step from the near plane. A continuous fit would change every cascade's size
+// whenever the camera moves; the steps keep them constant except at rare jumps (stability).
+double cascadeRangeEnd(const ShadowedCamera& camera, double near, double far, const Aabb& scene) {
+    double deepest = 0.0;
+    for (const Vec3d& corner : scene.corners()) deepest = std::max(deepest, -transformPoint(corner, camera.view)[2]);
+    if (deepest <= near) return near;  // nothing in front of the camera
+    double steps = std::ceil(4.0 * std::log2(deepest / near));
+    return std::min(far, near * std::exp2(steps / 4.0));
+}
+
+}  // namespace
+
+ShadowAtlasBuild buildShadowAtlas(const ShadowInputs& in, std::vector<passes::LightData>& lights,
+                                  const std::vector<bool>& castsShadows) {
+    ShadowAtlasBuild build;
+    for (auto& light : lights) light.shadow = {0, 0, 0, 0};
+    Aabb scene;
+    for (const Aabb& box : in.drawBounds) scene.merge(box);
+    if (!in.settings.enabled || scene.empty()) return build;
+
+    const uint32_t resolution = in.settings.resolution;
+    const uint32_t tilesPerSide = std::max(1u, kMaxShadowAtlasSide / resolution);
+    const uint32_t maxViews = tilesPerSide * tilesPerSide;
+    const double cascadeEnd = cascadeRangeEnd(in.camera, in.cameraNear, in.cameraFar, scene);
+    std::vector<double> splits;
+    if (cascadeEnd > in.cameraNear)
+        splits = cascadeSplits(in.cameraNear, cascadeEnd, in.settings.cascades, kCascadeSplitLambda);
+
+    std::vector<PendingView> views;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        if (!castsShadows[i]) continue;
+        passes::LightData& light = lights[i];
+        auto type = passes::LightType(uint32_t(light.positionType[3]));
+        std::vector<PendingView> lightViews;
+        if (type == passes::LightType::Distant && !splits.empty()) {
+            Vec3d direction = {light.directionAngle[0], light.directionAngle[1], light.directionAngle[2]};
+            for (size_t c = 0; c + 1 < splits.size(); ++c) {
+                Cascade cascade = fitStableCascade(in.camera, splits[c], splits[c + 1], direction, scene, resolution);
+                lightViews.push_back({cascade.viewProjection, cascade.texelWorldSize, splits[c + 1]});
+            }
+        } else if (type == passes::LightType::Sphere) {
+            Vec3d position = {light.positionType[0], light.positionType[1], light.positionType[2]};
+            double far = 0.0;
+            for (const Vec3d& corner : scene.corners()) {
+                Vec3d d = {corner[0] - position[0], corner[1] - position[1], corner[2] - position[2]};
+                far = std::max(far, length(d));
+            }
+            // Depth precision of a perspective map falls with near/far; the light's own radius is a
+            // natural near plane (nothing inside the emitter casts onto what it lights).
+            double radius = light.radiance[3];
+            double near = std::clamp(radius, 1e-3 * far, 0.5 * far);
+            for (const ShadowProjection& face : cubeFaceProjections(position, near, far, resolution, kCubeGuardTexels))
+                lightViews.push_back({face.viewProjection, face.texelWorldSize, 0.0});
+        }
+        if (lightViews.empty()) continue;
+        if (views.size() + lightViews.size() > maxViews) {
+            ++build.lightsLeftUnshadowed;
+            continue;
+        }
+        light.shadow = {uint32_t(views.size()), uint32_t(lightViews.size()), 0, 0};
+        views.insert(views.end(), lightViews.begin(), lightViews.end());
+    }
+    if (views.empty()) return build;
+
+    // Tiles in rows, as square an atlas as the count allows.
+    const uint32_t count = uint32_t(views.size());
+    const uint32_t columns = uint32_t(std::ceil(std::sqrt(double(count))));
+    const uint32_t rows = (count + columns - 1) / columns;
+    build.atlas.width = columns * resolution;
+    build.atlas.height = rows * resolution;
+    for (uint32_t v = 0; v < count; ++v) {
+        const PendingView& pending = views[v];
+        passes::ShadowMapView view;
+        view.viewProjection = toFloats<passes::Mat4>(pending.viewProjection);
+        view.x = (v % columns) * resolution;
+        view.y = (v / columns) * resolution;
+        view.size = resolution;
+        for (uint32_t d = 0; d < in.drawBounds.size(); ++d)
+            if (!outsideClipVolume(in.drawBounds[d], pending.viewProjection)) view.draws.push_back(d);
+        passes::ShadowViewData record{};
+        record.worldToAtlas = toFloats<passes::Mat4>(multiply(pending.viewProjection, clipToAtlas(view.x, view.y, view.size)));
+        record.tileRect = {float(view.x), float(view.y), float(view.x + view.size - 1), float(view.y + view.size - 1)};
+        record.params = {float(pending.texelWorldSize), float(pending.cascadeEnd), 0.0f, 0.0f};
+        build.records.push_back(record);
+        build.atlas.views.push_back(std::move(view));
+    }
+    return build;
+}
+
+}  // namespace obscura::delegate

@@ -1,0 +1,73 @@
+// Shadow lookups, per pixel (seed 000 "Deferred MSAA \ performance shortcuts": sun shadows are
+// computed at pixel frequency): choose a light's view in the shadow atlas (a cascade by view
+// distance, a cube face by the major axis), offset the receiver along its normal, and filter.
+//
+// The includer declares, before including this file:
+//   ShadowViewData shadowViews[]   the frame's views (a storage buffer, frame_data.glsl)
+//   sampler2D shadowAtlas          the atlas (passes/shadow_maps.h), read with texelFetch
+#ifndef OBSCURA_SHADOW_SAMPLING_GLSL
+#define OBSCURA_SHADOW_SAMPLING_GLSL
+
+// Normal offset (Holbein 2011, "Normal offset shadows"): the receiver moves along its normal by
+// this many texels of its view before the lookup, which removes the acne that depth bias alone
+// leaves on surfaces at grazing angles to the light; the rasteriser's slope-scaled bias
+// (passes/shadow_maps.cpp) covers the filter's footprint.
+const float SHADOW_NORMAL_OFFSET_TEXELS = 1.5;
+
+// Percentage-closer filtering (Reeves et al. 1987) with a 3x3-texel box that slides with the
+// sample: over the 4x4 texels it touches, the edge texels weigh by how much of them the box
+// covers (bilinear weights), so the result changes smoothly as the receiver moves. Each texel is
+// compared in the shader: lavapipe offers no linear filtering of depth formats, so no hardware
+// comparison filtering, and fetches beat filtered reads there (TOOLCHAIN.md).
+// atlasPosition: atlas texel coordinates and the receiver's depth; tileRect: the view's tile.
+float percentageCloserFilter(vec3 atlasPosition, vec4 tileRect) {
+    vec2 position = atlasPosition.xy - 0.5;  // texel centres at whole numbers
+    vec2 base = floor(position);
+    vec2 f = position - base;
+    vec4 weightX = vec4(1.0 - f.x, 1.0, 1.0, f.x);
+    vec4 weightY = vec4(1.0 - f.y, 1.0, 1.0, f.y);
+    ivec2 first = ivec2(tileRect.xy), last = ivec2(tileRect.zw);
+    float lit = 0.0;
+    for (int j = 0; j < 4; ++j) {
+        for (int i = 0; i < 4; ++i) {
+            ivec2 texel = clamp(ivec2(base) + ivec2(i - 1, j - 1), first, last);
+            float occluder = texelFetch(shadowAtlas, texel, 0).r;
+            lit += weightX[i] * weightY[j] * (atlasPosition.z <= occluder ? 1.0 : 0.0);
+        }
+    }
+    return lit / 9.0;
+}
+
+// Fraction of the light reaching `position` through view `view`, sampled at the receiver moved
+// `normalOffset` world units along `normal`.
+float viewVisibility(uint view, vec3 position, vec3 normal, float normalOffset) {
+    vec4 clip = shadowViews[view].worldToAtlas * vec4(position + normal * normalOffset, 1.0);
+    return percentageCloserFilter(clip.xyz / clip.w, shadowViews[view].tileRect);
+}
+
+// A distant light's cascades (shadow.x first view, shadow.y count): the first cascade whose range
+// holds the pixel's view distance; beyond the last one the light is unshadowed.
+float distantLightVisibility(uvec4 shadow, vec3 position, vec3 normal, float viewDistance) {
+    for (uint c = 0u; c < shadow.y; ++c) {
+        uint view = shadow.x + c;
+        if (viewDistance <= shadowViews[view].params.y)
+            return viewVisibility(view, position, normal, shadowViews[view].params.x * SHADOW_NORMAL_OFFSET_TEXELS);
+    }
+    return 1.0;
+}
+
+// A sphere light's cube faces (+X, -X, +Y, -Y, +Z, -Z from shadow.x): the face of the major
+// axis of the direction from the light; a texel's world size grows with the distance along it.
+float sphereLightVisibility(uvec4 shadow, vec3 position, vec3 normal, vec3 lightPosition) {
+    if (shadow.y == 0u) return 1.0;
+    vec3 d = position - lightPosition;
+    vec3 a = abs(d);
+    uint face = a.x >= a.y && a.x >= a.z ? (d.x > 0.0 ? 0u : 1u)
+              : a.y >= a.z               ? (d.y > 0.0 ? 2u : 3u)
+                                         : (d.z > 0.0 ? 4u : 5u);
+    uint view = shadow.x + face;
+    float distance = max(a.x, max(a.y, a.z));
+    return viewVisibility(view, position, normal, shadowViews[view].params.x * distance * SHADOW_NORMAL_OFFSET_TEXELS);
+}
+
+#endif
