@@ -132,6 +132,12 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         auto it = texturesOfMaterial.find(*mesh.materialPath());
         return it == texturesOfMaterial.end() ? 0 : it->second;
     };
+    // Cut-outs (opacityThreshold) discard texels in the G-buffer and the shadow maps alike.
+    auto hasCutout = [&](const Mesh& mesh) {
+        if (!mesh.materialPath()) return false;
+        auto it = materialIndex.find(*mesh.materialPath());
+        return it != materialIndex.end() && materials[it->second].opacity[1] > 0.0f;
+    };
     auto drawable = [](const Prim& prim) -> const Mesh* {
         auto* mesh = dynamic_cast<const Mesh*>(&prim);
         return mesh && !mesh->skipped() && mesh->drawable() ? mesh : nullptr;
@@ -140,7 +146,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         const Mesh* mesh = drawable(*prim);
         if (!mesh || isPrototype(path)) continue;
         scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
-                               static_cast<uint32_t>(instances.size()), 1, texturesOf(*mesh)});
+                               static_cast<uint32_t>(instances.size()), 1, texturesOf(*mesh), hasCutout(*mesh)});
         record(*mesh, mesh->transform());
         drawBounds.push_back(transformAabb(mesh->localBounds(), mesh->transform()));
     }
@@ -155,7 +161,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
             if (placements.empty()) continue;
             scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
                                    static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(placements.size()),
-                                   texturesOf(*mesh)});
+                                   texturesOf(*mesh), hasCutout(*mesh)});
             Aabb bounds;
             for (const Matrix4d& placement : placements) {
                 Matrix4d model = multiply(mesh->transform(), placement);

@@ -18,6 +18,7 @@ struct Draw {
     uint32_t instanceIndex = 0;  // first InstanceData record of the draw
     uint32_t instanceCount = 1;  // consecutive records, one per GPU instance
     uint32_t textures = 0;       // the draw's MaterialTextures in FrameScene::materialTextures
+    bool opacityCutout = false;  // its material has an opacityThreshold: some texels are absent
 };
 
 // The textures a material samples, one per MaterialTextureSlot, white where the input is
