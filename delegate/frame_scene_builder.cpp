@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <tuple>
 #include <vector>
 
 namespace obscura::delegate {
@@ -54,10 +56,13 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     cd.projection = toFloats<passes::Mat4>(projection);
     cd.viewProjection = toFloats<passes::Mat4>(viewProjection);
     cd.inverseViewProjection = toFloats<passes::Mat4>(inverseViewProjection);
+    Matrix4d inverseProjection = kIdentity;
+    invert(projection, inverseProjection);
+    cd.inverseProjection = toFloats<passes::Mat4>(inverseProjection);
     Vec3d eye = transformPoint({0, 0, 0}, cam.params().cameraToWorld);
     cd.position = {float(eye[0]), float(eye[1]), float(eye[2]), 1.0f};
     cd.resolution = {float(in.width), float(in.height)};
-    cd.exposureScale = float(std::exp2(cam.params().exposure + in.exposureStops));
+    cd.exposureScale = float(cam.linearExposureScale() * std::exp2(in.exposureStops));
     scene.camera = device.createBuffer(sizeof(cd), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "camera");
     std::memcpy(scene.camera->mapped(), &cd, sizeof(cd));
 
@@ -91,7 +96,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
             }
         } else if (auto* l = dynamic_cast<const Light*>(prim.get())) {
             if (l->visible()) {
-                lights.push_back(l->data());
+                lights.push_back(withInfluenceRange(l->data(), cd.exposureScale));
                 lightCastsShadows.push_back(l->castsShadows());
             }
         }
@@ -142,13 +147,31 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         auto* mesh = dynamic_cast<const Mesh*>(&prim);
         return mesh && !mesh->skipped() && mesh->drawable() ? mesh : nullptr;
     };
+    // Meshes with the same geometry (repeated references share buffers through the geometry
+    // cache) and the same textures become one instanced draw, in the order they first appear.
+    std::vector<std::vector<const Mesh*>> batches;
+    std::map<std::tuple<const void*, const void*, uint32_t, bool>, size_t> batchOf;
     for (const auto& [path, prim] : in.prims) {
         const Mesh* mesh = drawable(*prim);
         if (!mesh || isPrototype(path)) continue;
-        scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
-                               static_cast<uint32_t>(instances.size()), 1, texturesOf(*mesh), hasCutout(*mesh)});
-        record(*mesh, mesh->transform());
-        drawBounds.push_back(transformAabb(mesh->localBounds(), mesh->transform()));
+        // Opaque and cut-out draws stay apart: the shadow maps rasterise them differently.
+        auto key = std::make_tuple(static_cast<const void*>(mesh->vertices().get()),
+                                   static_cast<const void*>(mesh->indices().get()), texturesOf(*mesh), hasCutout(*mesh));
+        auto [it, added] = batchOf.emplace(key, batches.size());
+        if (added) batches.emplace_back();
+        batches[it->second].push_back(mesh);
+    }
+    for (const auto& batch : batches) {
+        const Mesh& first = *batch.front();
+        scene.draws.push_back({first.vertices(), first.indices(), first.indexCount(),
+                               static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(batch.size()),
+                               texturesOf(first), hasCutout(first)});
+        Aabb bounds;
+        for (const Mesh* mesh : batch) {
+            record(*mesh, mesh->transform());
+            bounds.merge(transformAabb(mesh->localBounds(), mesh->transform()));
+        }
+        drawBounds.push_back(bounds);
     }
     // One draw per (instancer, prototype mesh): the mesh's transform relative to the instancer,
     // then each instance's transform.

@@ -142,6 +142,8 @@ void RenderDelegate::insertPrim(const std::string& type, const std::string& path
     else if (type == "camera") prim = std::make_unique<Camera>(path, *schema);
     else if (type == "distantLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Distant);
     else if (type == "sphereLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Sphere);
+    else if (type == "rectLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Rect);
+    else if (type == "diskLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Disk);
     else if (type == "domeLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Dome);
     else if (type == "material") prim = std::make_unique<Material>(path, *schema);
     else if (type == "renderBuffer") prim = std::make_unique<RenderBuffer>(path, *schema);
@@ -287,7 +289,10 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
                    graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
     }
-    gpu::ImageHandle hdr = passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas);
+    gpu::ImageHandle hdr =
+        passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas,
+                                settings_.number("lighting:halfFloat") != 0.0 ? passes::LightAccumulation::HalfFloat
+                                                                              : passes::LightAccumulation::SmallFloat);
     gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, gbuffer.instance, grading_);
     passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, display, requests);
     graph.compile();

@@ -16,10 +16,15 @@ const RenderSettingInfo kSettings[] = {
     {"ssao", "screen-space ambient occlusion on environment light (bool, default on)", OBSCURA_VALUE_BOOL, 1.0},
     {"ssao:radius", "ambient occlusion radius in metres (float, default 0.5)", OBSCURA_VALUE_FLOAT, 0.5},
     {"ssao:intensity", "ambient occlusion strength, 0-1 (float, default 1)", OBSCURA_VALUE_FLOAT, 1.0},
-    {"shadows", "shadow maps: cascaded for distant lights, cube maps for sphere lights, for every light whose "
-                "inputs:shadow:enable is on (bool, default on)",
+    {"lighting:halfFloat", "accumulate lighting in RGBA16F instead of B10G11R11_UFLOAT: about 2^-11 relative "
+                           "precision instead of 2^-7..2^-6, twice the bandwidth (bool, default off)",
+     OBSCURA_VALUE_BOOL, 0.0},
+    {"shadows", "shadow maps: cascaded for distant lights, cube maps (or one spot map inside a ShapingAPI cone) "
+                "for sphere, rect and disk lights, for every light whose inputs:shadow:enable is on "
+                "(bool, default on)",
      OBSCURA_VALUE_BOOL, 1.0},
-    {"shadows:resolution", "side of one shadow map (a cascade, a cube face) in texels, 64-4096 (int, default 1024)",
+    {"shadows:resolution", "side of one shadow map (a cascade, a cube face, a spot map) in texels, 64-4096 "
+                           "(int, default 1024)",
      OBSCURA_VALUE_INT, 1024.0, 64.0, 4096.0},
     {"shadows:cascades", "cascades per distant light, 1-4 (int, default 4)", OBSCURA_VALUE_INT, 4.0, 1.0, 4.0},
     {"metersPerUnit", "the scene's metres per unit, as USD's stage metadata; hosts set it (float, default 0.01)",

@@ -42,6 +42,26 @@ double farthestCorner(const std::array<Vec3d, 8>& corners, const Vec3d& center) 
     return std::sqrt(r2);
 }
 
+// A square perspective view from `position` along the unit `forward` (with `up` perpendicular to
+// it) whose inner resolution - 2 guard texels span the half-angle whose tangent is `tanInner`.
+ShadowProjection perspectiveView(const Vec3d& position, const Vec3d& forward, const Vec3d& up, double tanInner,
+                                 double near, double far, uint32_t resolution, uint32_t guardTexels) {
+    double tanHalf = tanInner * double(resolution) / double(resolution - 2 * guardTexels);
+    // Perspective with the distance along the view axis as w; depth 0 at near, 1 at far.
+    Matrix4d perspective{};
+    perspective[0] = 1.0 / tanHalf;
+    perspective[5] = 1.0 / tanHalf;
+    perspective[10] = far / (far - near);
+    perspective[11] = 1.0;
+    perspective[14] = -near * far / (far - near);
+    Matrix4d view = basisMatrix(cross(up, forward), up, forward);
+    Vec3d t = transformPoint(position, view);
+    view[12] = -t[0];
+    view[13] = -t[1];
+    view[14] = -t[2];
+    return {multiply(view, perspective), 2.0 * tanHalf / double(resolution)};
+}
+
 }  // namespace
 
 std::vector<double> cascadeSplits(double near, double far, uint32_t count, double lambda) {
@@ -133,29 +153,20 @@ Cascade fitStableCascade(const ShadowedCamera& camera, double sliceNear, double 
 
 std::array<ShadowProjection, 6> cubeFaceProjections(const Vec3d& position, double near, double far,
                                                      uint32_t resolution, uint32_t guardTexels) {
-    // tan of the half field of view: the inner resolution - 2 guard texels span 90 degrees.
-    double tanHalf = double(resolution) / double(resolution - 2 * guardTexels);
     const std::array<Vec3d, 6> forward = {Vec3d{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     const std::array<Vec3d, 6> up = {Vec3d{0, 1, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 1}, {0, 1, 0}, {0, 1, 0}};
-    // Perspective with the distance along the face's axis as w; depth 0 at near, 1 at far.
-    Matrix4d perspective{};
-    perspective[0] = 1.0 / tanHalf;
-    perspective[5] = 1.0 / tanHalf;
-    perspective[10] = far / (far - near);
-    perspective[11] = 1.0;
-    perspective[14] = -near * far / (far - near);
     std::array<ShadowProjection, 6> faces{};
-    for (size_t f = 0; f < 6; ++f) {
-        Vec3d right = cross(up[f], forward[f]);
-        Matrix4d view = basisMatrix(right, up[f], forward[f]);
-        Vec3d t = transformPoint(position, view);
-        view[12] = -t[0];
-        view[13] = -t[1];
-        view[14] = -t[2];
-        faces[f].viewProjection = multiply(view, perspective);
-        faces[f].texelWorldSize = 2.0 * tanHalf / double(resolution);
-    }
+    for (size_t f = 0; f < 6; ++f)
+        faces[f] = perspectiveView(position, forward[f], up[f], 1.0, near, far, resolution, guardTexels);
     return faces;
+}
+
+ShadowProjection spotProjection(const Vec3d& position, const Vec3d& axis, double halfAngle, double near, double far,
+                                uint32_t resolution, uint32_t guardTexels) {
+    Vec3d forward = normalized(axis);
+    Vec3d reference = std::abs(forward[1]) < 0.99 ? Vec3d{0, 1, 0} : Vec3d{1, 0, 0};
+    Vec3d up = normalized(cross(forward, cross(reference, forward)));
+    return perspectiveView(position, forward, up, std::tan(halfAngle), near, far, resolution, guardTexels);
 }
 
 }  // namespace obscura::delegate

@@ -64,4 +64,9 @@ Cascade fitStableCascade(const ShadowedCamera& camera, double sliceNear, double 
 std::array<ShadowProjection, 6> cubeFaceProjections(const Vec3d& position, double near, double far,
                                                      uint32_t resolution, uint32_t guardTexels);
 
+// One perspective map looking along `axis` from `position` whose field of view holds the cone of
+// half-angle `halfAngle` (radians, below 90 degrees) with `guardTexels` texels to spare on every side.
+ShadowProjection spotProjection(const Vec3d& position, const Vec3d& axis, double halfAngle, double near, double far,
+                                uint32_t resolution, uint32_t guardTexels);
+
 }  // namespace obscura::delegate

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace obscura::delegate {
 namespace {
@@ -11,8 +12,14 @@ namespace {
 constexpr double kCascadeSplitLambda = 0.75;
 
 // The filter of the lookup (shadow_sampling.glsl) reads up to 2.5 texels from the sample; cube
-// faces extend their field of view by 3 texels so no face needs its neighbour's texels.
-constexpr uint32_t kCubeGuardTexels = 3;
+// faces and spot maps extend their field of view by 3 texels so no lookup inside the face (or
+// the cone) needs texels beyond the map.
+constexpr uint32_t kGuardTexels = 3;
+
+// A ShapingAPI cone up to this half-angle gets one perspective map; wider cones get a cube. At
+// 60 degrees the map's texels on the axis are tan(60°) = 1.7 times a cube face's; wider, one
+// map spreads too thin (and reaches 180 degrees at a 90-degree cone).
+constexpr double kSpotMapMaxCone = std::numbers::pi / 3.0;
 
 // Row-vector matrix from a view's clip space to atlas texels within its tile: the viewport
 // transform of the tile (x0 + (ndc + 1) size / 2), kept homogeneous so that the lookup divides
@@ -68,32 +75,50 @@ ShadowAtlasBuild buildShadowAtlas(const ShadowInputs& in, std::vector<passes::Li
         passes::LightData& light = lights[i];
         auto type = passes::LightType(uint32_t(light.positionType[3]));
         std::vector<PendingView> lightViews;
+        passes::ShadowProjection projection = passes::ShadowProjection::Cascades;
         if (type == passes::LightType::Distant && !splits.empty()) {
             Vec3d direction = {light.directionAngle[0], light.directionAngle[1], light.directionAngle[2]};
             for (size_t c = 0; c + 1 < splits.size(); ++c) {
                 Cascade cascade = fitStableCascade(in.camera, splits[c], splits[c + 1], direction, scene, resolution);
                 lightViews.push_back({cascade.viewProjection, cascade.texelWorldSize, splits[c + 1]});
             }
-        } else if (type == passes::LightType::Sphere) {
+        } else if (type == passes::LightType::Sphere || type == passes::LightType::Rect ||
+                   type == passes::LightType::Disk) {
             Vec3d position = {light.positionType[0], light.positionType[1], light.positionType[2]};
             double far = 0.0;
             for (const Vec3d& corner : scene.corners()) {
                 Vec3d d = {corner[0] - position[0], corner[1] - position[1], corner[2] - position[2]};
                 far = std::max(far, length(d));
             }
-            // Depth precision of a perspective map falls with near/far; the light's own radius is a
-            // natural near plane (nothing inside the emitter casts onto what it lights).
-            double radius = light.radiance[3];
-            double near = std::clamp(radius, 1e-3 * far, 0.5 * far);
-            for (const ShadowProjection& face : cubeFaceProjections(position, near, far, resolution, kCubeGuardTexels))
-                lightViews.push_back({face.viewProjection, face.texelWorldSize, 0.0});
+            // Nothing beyond the light's influence range receives its light.
+            if (light.factors[3] > 0.0f) far = std::min(far, double(light.factors[3]));
+            if (far <= 0.0) continue;
+            // Depth precision of a perspective map falls with near/far; the emitter's size is a
+            // natural near plane (occluders closer to the light's centre than that are beside or
+            // inside the emitter, and cast no sensible point-light shadow).
+            double emitterSize = type == passes::LightType::Sphere
+                                     ? double(light.radiance[3])
+                                     : std::min(std::hypot(light.axisX[0], light.axisX[1], light.axisX[2]),
+                                                std::hypot(light.axisY[0], light.axisY[1], light.axisY[2]));
+            double near = std::clamp(emitterSize, 1e-3 * far, 0.5 * far);
+            double cone = light.shaping[0];
+            if (cone <= kSpotMapMaxCone) {
+                Vec3d axis = {light.directionAngle[0], light.directionAngle[1], light.directionAngle[2]};
+                ShadowProjection spot = spotProjection(position, axis, cone, near, far, resolution, kGuardTexels);
+                lightViews.push_back({spot.viewProjection, spot.texelWorldSize, 0.0});
+                projection = passes::ShadowProjection::Spot;
+            } else {
+                for (const ShadowProjection& face : cubeFaceProjections(position, near, far, resolution, kGuardTexels))
+                    lightViews.push_back({face.viewProjection, face.texelWorldSize, 0.0});
+                projection = passes::ShadowProjection::Cube;
+            }
         }
         if (lightViews.empty()) continue;
         if (views.size() + lightViews.size() > maxViews) {
             ++build.lightsLeftUnshadowed;
             continue;
         }
-        light.shadow = {uint32_t(views.size()), uint32_t(lightViews.size()), 0, 0};
+        light.shadow = {uint32_t(views.size()), uint32_t(lightViews.size()), uint32_t(projection), 0};
         views.insert(views.end(), lightViews.begin(), lightViews.end());
     }
     if (views.empty()) return build;

@@ -14,12 +14,13 @@ struct alignas(16) CameraData {
     Mat4 projection;
     Mat4 viewProjection;
     Mat4 inverseViewProjection;
+    Mat4 inverseProjection;
     std::array<float, 4> position;
     std::array<float, 2> resolution;
     float exposureScale;
     float pad0;
 };
-static_assert(sizeof(CameraData) == 4 * 64 + 16 + 16);
+static_assert(sizeof(CameraData) == 5 * 64 + 16 + 16);
 
 enum InstanceFlags : uint32_t { kInstanceDoubleSided = 1u, kInstanceVertexColor = 2u };
 
@@ -67,18 +68,25 @@ struct alignas(16) MaterialData {
 };
 static_assert(sizeof(MaterialData) == 48 + 4 * 48);
 
-enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2 };
+enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4 };
 
 struct alignas(16) LightData {
     std::array<float, 4> positionType;
     std::array<float, 4> directionAngle;
     std::array<float, 4> radiance;
-    std::array<float, 4> factors;
-    // x: the light's first ShadowViewData record, y: how many (cascades, or 6 cube faces); y = 0
-    // when the light casts no shadow.
+    std::array<float, 4> factors;  // z treatAsPoint, w influence range
+    std::array<float, 4> axisX;
+    std::array<float, 4> axisY;
+    std::array<float, 4> shaping;
+    // x: the light's first ShadowViewData record, y: how many, z: their ShadowProjection;
+    // y = 0 when the light casts no shadow.
     std::array<uint32_t, 4> shadow;
 };
-static_assert(sizeof(LightData) == 80);
+static_assert(sizeof(LightData) == 8 * 16);
+
+// How a light's shadow views cover it: the cascades of a distant light, the six cube faces
+// (+X, -X, +Y, -Y, +Z, -Z) around a local light, or one perspective map along a spot's axis.
+enum class ShadowProjection : uint32_t { Cascades = 0, Cube = 1, Spot = 2 };
 
 // One view of the shadow atlas as the lighting pass reads it (passes/frame_scene.h ShadowMapView).
 struct alignas(16) ShadowViewData {

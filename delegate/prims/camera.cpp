@@ -1,5 +1,7 @@
 #include "delegate/prims/camera.h"
 
+#include <cmath>
+
 namespace obscura::delegate {
 
 void Camera::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
@@ -21,13 +23,26 @@ void Camera::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
         p.shutterOpen = s.getDouble("shutter:open");
         p.shutterClose = s.getDouble("shutter:close");
         p.exposure = s.getDouble("exposure");
+        p.exposureTime = s.getDouble("exposure:time");
+        p.exposureIso = s.getDouble("exposure:iso");
+        p.exposureFStop = s.getDouble("exposure:fStop");
+        p.exposureResponsivity = s.getDouble("exposure:responsivity");
         p.apertureBlades = s.getInt("obscura:apertureBlades");
         p.apertureRotation = s.getDouble("obscura:apertureRotation");
         if (p.focalLength <= 0 || p.horizontalAperture <= 0 || p.verticalAperture <= 0)
             throw PrimDataError(s.path() + ": focalLength and apertures must be positive");
         if (!(p.clippingRange[0] > 0 && p.clippingRange[1] > p.clippingRange[0]))
             throw PrimDataError(s.path() + ": clippingRange must satisfy 0 < near < far");
+        if (!(p.exposureFStop > 0) || p.exposureTime < 0 || p.exposureIso < 0 || p.exposureResponsivity < 0)
+            throw PrimDataError(s.path() + ": exposure:fStop must be positive and exposure:time, exposure:iso, "
+                                           "exposure:responsivity not negative");
     }
+}
+
+double Camera::linearExposureScale() const {
+    const CameraParams& p = params_;
+    return p.exposureTime * p.exposureIso * std::exp2(p.exposure) * p.exposureResponsivity /
+           (100.0 * p.exposureFStop * p.exposureFStop);
 }
 
 Matrix4d Camera::viewMatrix() const {

@@ -7,9 +7,10 @@ struct CameraData {
     mat4 projection;
     mat4 viewProjection;
     mat4 inverseViewProjection;
+    mat4 inverseProjection;
     vec4 position;       // world-space eye, w unused
     vec2 resolution;     // render size in pixels
-    float exposureScale; // 2^(camera exposure + render setting exposure): pre-exposed accumulation
+    float exposureScale; // camera exposure (UsdGeomCamera linear scale) x 2^(render setting exposure): pre-exposed accumulation
     float pad0;
 };
 
@@ -51,22 +52,30 @@ struct MaterialData {
 const uint LIGHT_DISTANT = 0u;
 const uint LIGHT_SPHERE = 1u;
 const uint LIGHT_DOME = 2u;
+const uint LIGHT_RECT = 3u;
+const uint LIGHT_DISK = 4u;
 
 struct LightData {
-    vec4 positionType;      // xyz world position (sphere), w type
-    vec4 directionAngle;    // xyz direction the light travels (distant), w half-angle in radians
-    vec4 radiance;          // rgb emitted radiance incl. intensity, exposure, colour, normalize; a radius
-    vec4 factors;           // x diffuse, y specular multipliers
-    uvec4 shadow;           // x first ShadowViewData record, y their count (0: casts no shadow)
+    vec4 positionType;      // xyz world position (sphere, rect and disk centre), w type
+    vec4 directionAngle;    // xyz emission axis: the light's local -Z in world space; w half-angle in radians (distant)
+    vec4 radiance;          // rgb emitted radiance incl. intensity, exposure, colour, normalize; a radius (sphere)
+    vec4 factors;           // x diffuse, y specular multipliers; z 1 for treatAsPoint; w influence range (local lights)
+    vec4 axisX;             // xyz rect: half the width along local X; disk: the radius along local X (world space)
+    vec4 axisY;             // xyz rect: half the height along local Y; disk: the radius along local Y
+    vec4 shaping;           // ShapingAPI: x cone angle, y angle where the soft fade starts (radians), z focus; w unused
+    uvec4 shadow;           // x first ShadowViewData record, y their count (0: casts no shadow), z SHADOW_*
 };
 
-// One view of the shadow atlas: a cascade of a distant light or a cube face of a sphere light.
+const uint SHADOW_CASCADES = 0u;  // a distant light's cascades, by view distance
+const uint SHADOW_CUBE = 1u;      // six faces around a local light: +X, -X, +Y, -Y, +Z, -Z
+const uint SHADOW_SPOT = 2u;      // one perspective map along the light's axis (a ShapingAPI cone)
+
+// One view of the shadow atlas: a cascade, a cube face or a spot map.
 struct ShadowViewData {
     mat4 worldToAtlas;      // world -> clip whose x/w, y/w are atlas texel coordinates, z/w depth
     vec4 tileRect;          // first and last texel of the view's tile: x0, y0, x1, y1
     vec4 params;            // x world size of a texel (perspective: at distance 1), y cascade's far end
 };
-
 const uint INSTANCE_DOUBLE_SIDED = 1u;
 const uint INSTANCE_VERTEX_COLOR = 2u;
 

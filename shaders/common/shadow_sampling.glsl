@@ -1,10 +1,11 @@
 // Shadow lookups, per pixel (seed 000 "Deferred MSAA \ performance shortcuts": sun shadows are
 // computed at pixel frequency): choose a light's view in the shadow atlas (a cascade by view
-// distance, a cube face by the major axis), offset the receiver along its normal, and filter.
+// distance, a cube face by the major axis, a spot's one map), offset the receiver along its
+// normal, and filter.
 //
 // The includer declares, before including this file:
 //   ShadowViewData shadowViews[]   the frame's views (a storage buffer, frame_data.glsl)
-//   sampler2D shadowAtlas          the atlas (passes/shadow_maps.h), read with texelFetch
+//   sampler2D shadowAtlas          the atlas (passes/shadow_maps.h) with a nearest-filtering sampler
 #ifndef OBSCURA_SHADOW_SAMPLING_GLSL
 #define OBSCURA_SHADOW_SAMPLING_GLSL
 
@@ -54,7 +55,7 @@ float viewVisibility(uint view, vec3 position, vec3 normal, float normalOffset) 
 
 // A distant light's cascades (shadow.x first view, shadow.y count): the first cascade whose range
 // holds the pixel's view distance; beyond the last one the light is unshadowed.
-float distantLightVisibility(uvec4 shadow, vec3 position, vec3 normal, float viewDistance) {
+float cascadeVisibility(uvec4 shadow, vec3 position, vec3 normal, float viewDistance) {
     for (uint c = 0u; c < shadow.y; ++c) {
         uint view = shadow.x + c;
         if (viewDistance <= shadowViews[view].params.y)
@@ -63,10 +64,9 @@ float distantLightVisibility(uvec4 shadow, vec3 position, vec3 normal, float vie
     return 1.0;
 }
 
-// A sphere light's cube faces (+X, -X, +Y, -Y, +Z, -Z from shadow.x): the face of the major
-// axis of the direction from the light; a texel's world size grows with the distance along it.
-float sphereLightVisibility(uvec4 shadow, vec3 position, vec3 normal, vec3 lightPosition) {
-    if (shadow.y == 0u) return 1.0;
+// A local light's cube faces (+X, -X, +Y, -Y, +Z, -Z from shadow.x): the face of the major axis
+// of the direction from the light; a texel's world size grows with the distance along it.
+float cubeVisibility(uvec4 shadow, vec3 position, vec3 normal, vec3 lightPosition) {
     vec3 d = position - lightPosition;
     vec3 a = abs(d);
     uint face = a.x >= a.y && a.x >= a.z ? (d.x > 0.0 ? 0u : 1u)
@@ -75,6 +75,22 @@ float sphereLightVisibility(uvec4 shadow, vec3 position, vec3 normal, vec3 light
     uint view = shadow.x + face;
     float distance = max(a.x, max(a.y, a.z));
     return viewVisibility(view, position, normal, shadowViews[view].params.x * distance * SHADOW_NORMAL_OFFSET_TEXELS);
+}
+
+// A spot light's one map along its axis.
+float spotVisibility(uvec4 shadow, vec3 position, vec3 normal, vec3 lightPosition, vec3 axis) {
+    float distance = max(dot(position - lightPosition, axis), 0.0);
+    return viewVisibility(shadow.x, position, normal, shadowViews[shadow.x].params.x * distance * SHADOW_NORMAL_OFFSET_TEXELS);
+}
+
+// Fraction of `light` reaching a surface point (world position and unit normal, view distance
+// along the camera's axis); 1 for lights without shadow views.
+float shadowVisibility(LightData light, vec3 position, vec3 normal, float viewDistance) {
+    uvec4 shadow = light.shadow;
+    if (shadow.y == 0u) return 1.0;
+    if (shadow.z == SHADOW_CASCADES) return cascadeVisibility(shadow, position, normal, viewDistance);
+    if (shadow.z == SHADOW_CUBE) return cubeVisibility(shadow, position, normal, light.positionType.xyz);
+    return spotVisibility(shadow, position, normal, light.positionType.xyz, light.directionAngle.xyz);
 }
 
 #endif

@@ -138,12 +138,13 @@ struct ShadowScene {
             return LightAtPoint{scale(d, -1.0), 1e30, irradiance * -d[2]};
         };
     }
-    void addSphereLight(Vec3 position, double radius, double radiance) {
-        host.addPrim("sphereLight", "/Bulb",
-                     {{"inputs:intensity", HostValue::floatValue(float(radiance))},
-                      {"inputs:radius", HostValue::floatValue(float(radius))},
-                      {"inputs:specular", HostValue::floatValue(0.0f)}},
-                     translation(position[0], position[1], position[2]));
+    // A sphere light; `extra` may shape it into a spot (its cone must hold every point checked).
+    void addSphereLight(Vec3 position, double radius, double radiance, std::map<std::string, HostValue> extra = {}) {
+        std::map<std::string, HostValue> values = {{"inputs:intensity", HostValue::floatValue(float(radiance))},
+                                                   {"inputs:radius", HostValue::floatValue(float(radius))},
+                                                   {"inputs:specular", HostValue::floatValue(0.0f)}};
+        values.insert(extra.begin(), extra.end());
+        host.addPrim("sphereLight", "/Bulb", values, translation(position[0], position[1], position[2]));
         light = [position, radius, radiance](Vec3 p) {
             Vec3 to = {position[0] - p[0], position[1] - p[1], position[2] - p[2]};
             double d2 = to[0] * to[0] + to[1] * to[1] + to[2] * to[2], d = std::sqrt(d2);
@@ -196,9 +197,11 @@ struct Verdict {
     double worstLit = 0.0;       // largest error of a lit pixel, relative to its analytic value
 };
 
-// Checks every ground pixel the CPU classifies; `region` limits the count to some pixels.
-Verdict checkPixels(const ShadowScene& s, const ShadowScene::Render& r,
-                    const std::function<bool(Vec3)>& region = [](Vec3) { return true; }) {
+// Checks every ground pixel the CPU classifies against the lit radiance `expected(x, y)` (by
+// default the analytic Lambert value); `region` limits the check to some ground points.
+using Expectation = std::function<double(int, int)>;
+Verdict checkPixels(const ShadowScene& s, const ShadowScene::Render& r, const std::function<bool(Vec3)>& region,
+                    const Expectation& expectedLit) {
     Verdict v;
     for (int y = 0; y < s.camera.height; ++y)
         for (int x = 0; x < s.camera.width; ++x) {
@@ -207,7 +210,7 @@ Verdict checkPixels(const ShadowScene& s, const ShadowScene::Render& r,
             auto verdict = s.classify(x, y);
             auto g = s.camera.ground(x + 0.5, y + 0.5);
             if (!verdict || !region(*g)) continue;
-            double expected = s.expectedLit(x, y);
+            double expected = expectedLit(x, y);
             double red = r.color[i * 4];
             if (*verdict) {
                 ++v.shadowedPixels;
@@ -221,6 +224,11 @@ Verdict checkPixels(const ShadowScene& s, const ShadowScene::Render& r,
             }
         }
     return v;
+}
+
+Verdict checkPixels(const ShadowScene& s, const ShadowScene::Render& r,
+                    const std::function<bool(Vec3)>& region = [](Vec3) { return true; }) {
+    return checkPixels(s, r, region, [&s](int x, int y) { return s.expectedLit(x, y); });
 }
 
 void print(const char* name, const Verdict& v) {
@@ -352,6 +360,51 @@ TEST(Shadows, SphereLightShadowsTheGround) {
     s.addSphereLight({1.5, 0.0, 3.0}, 0.01, 40000.0);
     Verdict v = checkPixels(s, s.render());
     print("sphere light, box", v);
+    EXPECT_GT(v.shadowedPixels, 150);
+    EXPECT_GT(v.litPixels, 1500);
+}
+
+TEST(Shadows, SpotLightShadowsTheGround) {
+    // The sphere light of SphereLightShadowsTheGround, shaped into a 50-degree cone pointing down:
+    // one perspective map instead of a cube. Every visible ground point lies within 43 degrees of
+    // the axis, where the cone leaves the light unchanged.
+    ShadowScene s(topDownCamera(), 10.0, -10.0, 10.0);
+    s.addOccluder("/Box", {{0.25, -0.25, 1.0}, {0.75, 0.25, 1.1}});
+    s.addSphereLight({1.5, 0.0, 3.0}, 0.01, 40000.0,
+                     {{"inputs:shaping:cone:angle", HostValue::floatValue(50.0f)},
+                      {"inputs:shaping:cone:softness", HostValue::floatValue(0.0f)}});
+    Verdict v = checkPixels(s, s.render());
+    print("spot light (50-degree cone), box", v);
+    EXPECT_GT(v.shadowedPixels, 150);
+    EXPECT_GT(v.litPixels, 1500);
+}
+
+TEST(Shadows, RectLightShadowsTheGround) {
+    // A small rectangle facing down 3 units up: a cube of maps around its centre. Its lit pixels
+    // must keep the radiance they have with the box hidden (the area-light shading is
+    // area_light_test.cpp's), its shadowed ones lose it.
+    ShadowScene s(topDownCamera(), 10.0, -10.0, 10.0);
+    s.addOccluder("/Box", {{0.25, -0.25, 1.0}, {0.75, 0.25, 1.1}});
+    const Vec3 centre = {1.5, 0.0, 3.0};
+    s.host.addPrim("rectLight", "/Panel",
+                   {{"inputs:intensity", HostValue::floatValue(40000.0f)},
+                    {"inputs:width", HostValue::floatValue(0.02f)},
+                    {"inputs:height", HostValue::floatValue(0.02f)},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   translation(centre[0], centre[1], centre[2]));
+    // Classification treats the small rectangle as a point at its centre.
+    s.light = [centre](Vec3 p) {
+        Vec3 to = {centre[0] - p[0], centre[1] - p[1], centre[2] - p[2]};
+        double d = std::sqrt(to[0] * to[0] + to[1] * to[1] + to[2] * to[2]);
+        return LightAtPoint{scale(to, 1.0 / d), d, 0.0};
+    };
+    auto r = s.render();
+    s.host.set("/Box", "visibility", HostValue::token("invisible"));
+    ASSERT_EQ(s.host.api().markDirty(s.host.delegate(), "/Box", OBSCURA_DIRTY_VISIBILITY), OBSCURA_OK);
+    auto unoccluded = s.render();
+    Verdict v = checkPixels(s, r, [](Vec3) { return true; },
+                            [&](int x, int y) { return double(unoccluded.color[(size_t(y) * kWidth + x) * 4]); });
+    print("rect light, box", v);
     EXPECT_GT(v.shadowedPixels, 150);
     EXPECT_GT(v.litPixels, 1500);
 }

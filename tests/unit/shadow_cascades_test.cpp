@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -157,6 +158,31 @@ TEST(ShadowCascades, CubeFacesCoverEveryDirectionWithAGuardBand) {
         EXPECT_GT(c[2] / c[3], 0.0);
         EXPECT_LT(c[2] / c[3], 1.0);
     }
+}
+
+TEST(ShadowCascades, SpotMapHoldsItsConeWithAGuardBand) {
+    const Vec3d light = {1, 2, 3}, axis = normalized({0.2, -1.0, 0.4});
+    const double halfAngle = 40.0 * std::numbers::pi / 180.0;
+    const uint32_t guard = 3;
+    ShadowProjection spot = spotProjection(light, axis, halfAngle, 0.1, 50.0, 512, guard);
+    const double inner = double(512 - 2 * guard) / 512.0;
+    Matrix4d rotation = lightSpaceRotation(axis);  // rows: a basis with z along the axis
+    Vec3d x = {rotation[0], rotation[4], rotation[8]}, y = {rotation[1], rotation[5], rotation[9]};
+    double widest = 0.0;
+    for (int i = 0; i < 360; ++i) {
+        // Directions on the cone's rim: the farthest from the axis the light reaches.
+        double phi = i * std::numbers::pi / 180.0;
+        Vec3d d;
+        for (size_t c = 0; c < 3; ++c)
+            d[c] = std::cos(halfAngle) * axis[c] + std::sin(halfAngle) * (std::cos(phi) * x[c] + std::sin(phi) * y[c]);
+        auto clip = clipOf({light[0] + 7 * d[0], light[1] + 7 * d[1], light[2] + 7 * d[2]}, spot.viewProjection);
+        ASSERT_GT(clip[3], 0.0);
+        widest = std::max({widest, std::abs(clip[0] / clip[3]), std::abs(clip[1] / clip[3])});
+        EXPECT_GT(clip[2] / clip[3], 0.0);
+        EXPECT_LT(clip[2] / clip[3], 1.0);
+    }
+    EXPECT_LE(widest, inner + 1e-12);
+    EXPECT_GT(widest, 0.95 * inner) << "the map wastes texels beyond the cone";
 }
 
 TEST(ShadowCascades, ClipVolumeTestCullsOnlyBoxesOutsideTheView) {
