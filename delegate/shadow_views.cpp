@@ -51,6 +51,26 @@ double cascadeRangeEnd(const ShadowedCamera& camera, double near, double far, co
     return std::min(far, near * std::exp2(steps / 4.0));
 }
 
+// The order in which shadow-casting lights claim atlas tiles, for when not all fit: distant
+// lights first (they light everything), then local lights by how close their influence sphere
+// comes to the camera.
+std::vector<size_t> shadowPriority(const std::vector<passes::LightData>& lights, const std::vector<bool>& castsShadows,
+                                   const ShadowedCamera& camera) {
+    Matrix4d viewToWorld = kIdentity;
+    invert(camera.view, viewToWorld);
+    Vec3d eye = transformPoint({0, 0, 0}, viewToWorld);
+    auto gap = [&](const passes::LightData& light) {
+        if (passes::LightType(uint32_t(light.positionType[3])) == passes::LightType::Distant) return -1e30;
+        Vec3d d = {light.positionType[0] - eye[0], light.positionType[1] - eye[1], light.positionType[2] - eye[2]};
+        return length(d) - double(light.factors[3]);
+    };
+    std::vector<size_t> order;
+    for (size_t i = 0; i < lights.size(); ++i)
+        if (castsShadows[i]) order.push_back(i);
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return gap(lights[a]) < gap(lights[b]); });
+    return order;
+}
+
 }  // namespace
 
 ShadowAtlasBuild buildShadowAtlas(const ShadowInputs& in, std::vector<passes::LightData>& lights,
@@ -70,8 +90,7 @@ ShadowAtlasBuild buildShadowAtlas(const ShadowInputs& in, std::vector<passes::Li
         splits = cascadeSplits(in.cameraNear, cascadeEnd, in.settings.cascades, kCascadeSplitLambda);
 
     std::vector<PendingView> views;
-    for (size_t i = 0; i < lights.size(); ++i) {
-        if (!castsShadows[i]) continue;
+    for (size_t i : shadowPriority(lights, castsShadows, in.camera)) {
         passes::LightData& light = lights[i];
         auto type = passes::LightType(uint32_t(light.positionType[3]));
         std::vector<PendingView> lightViews;

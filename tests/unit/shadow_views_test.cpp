@@ -75,18 +75,22 @@ TEST(ShadowViews, EachLightTypeGetsItsViews) {
     using P = passes::ShadowProjection;
     const std::array<std::pair<uint32_t, P>, 6> expected = {{{4, P::Cascades}, {6, P::Cube}, {1, P::Spot},
                                                             {6, P::Cube}, {6, P::Cube}, {0, P::Cascades}}};
-    uint32_t first = 0;
+    std::set<uint32_t> claimed;  // every view belongs to exactly one light
     for (size_t i = 0; i < lights.size(); ++i) {
         EXPECT_EQ(lights[i].shadow[1], expected[i].first) << "light " << i;
         if (expected[i].first == 0) continue;
-        EXPECT_EQ(lights[i].shadow[0], first) << "light " << i;
         EXPECT_EQ(lights[i].shadow[2], uint32_t(expected[i].second)) << "light " << i;
-        first += expected[i].first;
+        for (uint32_t v = lights[i].shadow[0]; v < lights[i].shadow[0] + lights[i].shadow[1]; ++v)
+            EXPECT_TRUE(claimed.insert(v).second) << "view " << v;
     }
+    EXPECT_EQ(claimed.size(), 23u);
+    EXPECT_EQ(*claimed.rbegin(), 22u);
     EXPECT_EQ(b.atlas.views.size(), 23u);
     EXPECT_EQ(b.records.size(), 23u);
     EXPECT_EQ(b.lightsLeftUnshadowed, 0u);
-    // Cascades end in increasing view distances; perspective views leave that field 0.
+    // The distant light claims first; its cascades end in increasing view distances, perspective
+    // views leave that field 0.
+    EXPECT_EQ(lights[0].shadow[0], 0u);
     for (uint32_t c = 1; c < 4; ++c) EXPECT_LT(b.records[c - 1].params[1], b.records[c].params[1]);
     EXPECT_EQ(b.records[4].params[1], 0.0f);
 }
@@ -143,6 +147,21 @@ TEST(ShadowViews, AFullAtlasLeavesLaterLightsUnshadowed) {
     EXPECT_EQ(lights[0].shadow[1], 3u);
     EXPECT_EQ(lights[1].shadow[1], 0u) << "six faces do not fit beside three cascades";
     EXPECT_EQ(lights[2].shadow[1], 1u) << "a later light that fits still gets its map";
+    EXPECT_EQ(b.lightsLeftUnshadowed, 1u);
+}
+
+TEST(ShadowViews, LightsNearerTheCameraClaimTilesFirst) {
+    Fixture f;
+    f.settings.resolution = 2048;  // 4 x 4 tiles: two cubes fit, three do not
+    std::vector<passes::LightData> lights = {localLight({0, 5, -300}), localLight({0, 5, 0}), localLight({1, 5, 5})};
+    lights[0].factors[3] = 10.0f;  // influence ranges: the far light's sphere stays far from the camera
+    lights[1].factors[3] = 10.0f;
+    lights[2].factors[3] = 10.0f;
+    ShadowAtlasBuild b = f.build(lights);
+    EXPECT_EQ(lights[0].shadow[1], 0u) << "the farthest light loses its shadow";
+    EXPECT_EQ(lights[1].shadow[1], 6u);
+    EXPECT_EQ(lights[2].shadow[1], 6u);
+    EXPECT_EQ(lights[2].shadow[0], 0u) << "the nearest light's views come first";
     EXPECT_EQ(b.lightsLeftUnshadowed, 1u);
 }
 
