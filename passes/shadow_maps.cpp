@@ -48,6 +48,7 @@ void recordViews(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& 
         VkViewport viewport{float(view.x), float(view.y), float(view.size), float(view.size), 0.0f, 1.0f};
         VkRect2D tile{{int32_t(view.x), int32_t(view.y)}, {view.size, view.size}};
         ShadowDepthPush push{view.viewProjection, 0};
+        bool inTile = false;
         for (uint32_t index : view.draws) {
             const Draw& draw = scene.draws[index];
             if (draw.opacityCutout != cutout) continue;
@@ -64,8 +65,11 @@ void recordViews(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& 
                                        {{textures.samplers[kTextureOpacity], textures.images[kTextureOpacity]->view,
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}});
             }
-            vkCmdSetViewport(cmd, 0, 1, &viewport);
-            vkCmdSetScissor(cmd, 0, 1, &tile);
+            if (!inTile) {
+                vkCmdSetViewport(cmd, 0, 1, &viewport);
+                vkCmdSetScissor(cmd, 0, 1, &tile);
+                inTile = true;
+            }
             push.instanceIndex = draw.instanceIndex;
             VkDeviceSize offset = 0;
             vkCmdBindVertexBuffers(cmd, 0, 1, &draw.vertices->buffer, &offset);
