@@ -4,6 +4,7 @@
 
 #include "delegate/prims/camera.h"
 #include "delegate/prims/prim.h"
+#include "delegate/shadow_views.h"
 #include "delegate/texture_cache.h"
 #include "passes/frame_scene.h"
 
@@ -20,8 +21,14 @@ struct FrameSceneInputs {
     uint32_t height;
     double exposureStops;  // render setting, added to the camera's exposure
     TextureCache& textures;
+    const ShadowSettings& shadows;
 };
 
-passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs);
+// What the frame could not honour, for the delegate to report.
+struct FrameSceneShortfalls {
+    uint32_t lightsWithoutShadowRoom = 0;  // shadow-casting lights the atlas had no room for
+};
+
+passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs, FrameSceneShortfalls& shortfalls);
 
 }  // namespace obscura::delegate

@@ -6,6 +6,7 @@
 #include "passes/best_fit_normals.h"
 #include "passes/gbuffer.h"
 #include "passes/lighting.h"
+#include "passes/shadow_maps.h"
 #include "passes/tonemap.h"
 
 #include <chrono>
@@ -262,13 +263,22 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (std::string problem = grading_.update(*device_, colour); !problem.empty())
         throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "colour management: " + problem};
 
-    passes::FrameScene scene =
-        buildFrameScene(*device_, {prims_, *camera, width, height, settings_.number("exposure"), *textures_});
+    ShadowSettings shadows{settings_.number("shadows") != 0.0, uint32_t(settings_.number("shadows:resolution")),
+                           uint32_t(settings_.number("shadows:cascades"))};
+    FrameSceneShortfalls shortfalls;
+    passes::FrameScene scene = buildFrameScene(
+        *device_, {prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows}, shortfalls);
+    if (shortfalls.lightsWithoutShadowRoom != lightsWithoutShadowRoom_ && shortfalls.lightsWithoutShadowRoom > 0)
+        log(OBSCURA_LOG_WARNING, std::to_string(shortfalls.lightsWithoutShadowRoom) +
+                                     " light(s) cast no shadow: the shadow atlas is full (lower shadows:resolution)");
+    lightsWithoutShadowRoom_ = shortfalls.lightsWithoutShadowRoom;
     trianglesDrawn_ = 0;
     for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
 
-    // The frame (DESIGN.md "The frame"): G-buffer, lighting, tone mapping, AOV readback.
+    // The frame (DESIGN.md "The frame"): shadow maps, G-buffer, SSAO, lighting, tone mapping,
+    // AOV readback.
     gpu::FrameGraph graph;
+    gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
     passes::SsaoResult ambient;
     const bool ssaoOn = settings_.number("ssao") != 0.0;
@@ -291,7 +301,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
                    graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
     }
     gpu::ImageHandle hdr =
-        passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient,
+        passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas,
                                 settings_.number("lighting:halfFloat") != 0.0 ? passes::LightAccumulation::HalfFloat
                                                                               : passes::LightAccumulation::SmallFloat);
     gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, gbuffer.instance, grading_);
