@@ -47,7 +47,8 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
 
     const Camera& cam = in.camera;
     Matrix4d view = cam.viewMatrix();
-    Matrix4d projection = cam.projectionMatrix(double(in.width) / double(in.height));
+    Matrix4d unjitteredProjection = cam.projectionMatrix(double(in.width) / double(in.height));
+    Matrix4d projection = multiply(unjitteredProjection, in.clipJitter);
     Matrix4d viewProjection = multiply(view, projection);
     Matrix4d inverseViewProjection = kIdentity;
     invert(viewProjection, inverseViewProjection);
@@ -195,7 +196,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         }
     }
     // Shadow maps: the views of every shadow-casting light, and each light's place among them.
-    ShadowedCamera shadowed{view, projection};
+    ShadowedCamera shadowed{view, unjitteredProjection};
     ShadowAtlasBuild shadows = buildShadowAtlas(
         {in.shadows, shadowed, cam.params().clippingRange[0], cam.params().clippingRange[1], drawBounds}, lights,
         lightCastsShadows);

@@ -22,6 +22,10 @@ struct FrameSceneInputs {
     double exposureStops;  // render setting, added to the camera's exposure
     TextureCache& textures;
     const ShadowSettings& shadows;
+    // Temporal AA's sub-pixel shift, applied after the camera's projection for everything that
+    // rasterises or reads the G-buffer (CameraData); shadow cascades keep the unjittered frustum,
+    // so their texel grids do not move with the jitter.
+    Matrix4d clipJitter = kIdentity;
 };
 
 // What the frame could not honour, for the delegate to report.

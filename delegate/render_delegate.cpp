@@ -99,6 +99,7 @@ RenderDelegate::~RenderDelegate() {
     bestFitNormals_.reset();
     unoccluded_ = {};
     ssaoHistory_ = {};
+    temporalAaHistory_ = {};
     grading_ = passes::ColorGradingLut();
     timestamps_.reset();
     transients_.reset();
@@ -126,6 +127,7 @@ void RenderDelegate::setSceneDelegate(const ObscuraSceneDelegate& sd) {
     if (!sd.getValue) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "ObscuraSceneDelegate.getValue is required"};
     sceneDelegate_ = sd;
     hasSceneDelegate_ = true;
+    ++sceneVersion_;
     for (auto& [path, prim] : prims_) {
         prim->markDirty(OBSCURA_DIRTY_ALL);
         dirty_.insert(prim.get());
@@ -152,6 +154,7 @@ void RenderDelegate::insertPrim(const std::string& type, const std::string& path
     else throw ApiError{OBSCURA_ERROR_UNKNOWN_TYPE, "prim type '" + type + "' has a schema but no implementation"};
     dirty_.insert(prim.get());
     prims_.emplace(path, std::move(prim));
+    ++sceneVersion_;
 }
 
 void RenderDelegate::removePrim(const std::string& path) {
@@ -160,13 +163,17 @@ void RenderDelegate::removePrim(const std::string& path) {
     if (it == prims_.end()) throw ApiError{OBSCURA_ERROR_NOT_FOUND, "no prim at " + path};
     dirty_.erase(it->second.get());
     prims_.erase(it);
+    ++sceneVersion_;
 }
 
 void RenderDelegate::markDirty(const std::string& path, ObscuraDirtyBits bits) {
     auto it = prims_.find(path);
     if (it == prims_.end()) throw ApiError{OBSCURA_ERROR_NOT_FOUND, "no prim at " + path};
     it->second->markDirty(bits);
-    if (bits != OBSCURA_DIRTY_CLEAN) dirty_.insert(it->second.get());
+    if (bits != OBSCURA_DIRTY_CLEAN) {
+        dirty_.insert(it->second.get());
+        ++sceneVersion_;
+    }
 }
 
 void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue* value) {
@@ -263,11 +270,27 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (std::string problem = grading_.update(*device_, colour); !problem.empty())
         throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "colour management: " + problem};
 
+    // Temporal AA picks this frame's jitter before the scene's camera constants are packed.
+    Matrix4d view = camera->viewMatrix(), projection = camera->projectionMatrix(double(width) / double(height));
+    std::optional<TemporalAaStep> temporalAa;
+    passes::TemporalAaSettings temporalAaSettings{
+        settings_.token("taa:mode") == "2tx" ? passes::TemporalAaMode::Smaa2tx : passes::TemporalAaMode::Smaa1tx,
+        float(settings_.number("taa:kLowFreq")), float(settings_.number("taa:kHighFreq"))};
+    if (settings_.number("taa") != 0.0) {
+        temporalAa = temporalAccumulation_.next({desc.cameraPath, width, height, settings_.version()},
+                                                sceneVersion_, temporalAaSettings.mode,
+                                                uint32_t(settings_.number("taa:frames")), view, projection);
+    } else {
+        temporalAccumulation_.reset();
+    }
+
     ShadowSettings shadows{settings_.number("shadows") != 0.0, uint32_t(settings_.number("shadows:resolution")),
                            uint32_t(settings_.number("shadows:cascades"))};
     FrameSceneShortfalls shortfalls;
-    passes::FrameScene scene = buildFrameScene(
-        *device_, {prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows}, shortfalls);
+    passes::FrameScene scene = buildFrameScene(*device_,
+                                               {prims_, *camera, width, height, settings_.number("exposure"),
+                                                *textures_, shadows, temporalAa ? temporalAa->clipJitter : kIdentity},
+                                               shortfalls);
     if (shortfalls.lightsWithoutShadowRoom != lightsWithoutShadowRoom_ && shortfalls.lightsWithoutShadowRoom > 0)
         log(OBSCURA_LOG_WARNING, std::to_string(shortfalls.lightsWithoutShadowRoom) +
                                      " light(s) cast no shadow: the shadow atlas is full (lower shadows:resolution)");
@@ -275,14 +298,13 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     trianglesDrawn_ = 0;
     for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
 
-    // The frame (DESIGN.md "The frame"): shadow maps, G-buffer, SSAO, lighting, tone mapping,
-    // AOV readback.
+    // The frame (DESIGN.md "The frame"): shadow maps, G-buffer, SSAO, lighting, temporal AA, tone
+    // mapping, AOV readback.
     gpu::FrameGraph graph;
     gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
     passes::SsaoResult ambient;
     const bool ssaoOn = settings_.number("ssao") != 0.0;
-    Matrix4d view = camera->viewMatrix(), projection = camera->projectionMatrix(double(width) / double(height));
     if (ssaoOn) {
         // The radius is authored in metres; the passes work in scene units (USD metersPerUnit).
         passes::SsaoSettings ssao{float(settings_.number("ssao:radius") / settings_.number("metersPerUnit")),
@@ -304,10 +326,15 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas,
                                 settings_.number("lighting:halfFloat") != 0.0 ? passes::LightAccumulation::HalfFloat
                                                                               : passes::LightAccumulation::SmallFloat);
+    if (temporalAa)
+        hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, temporalAaSettings, temporalAa->pass,
+                                        temporalAaHistory_);
     gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, gbuffer.instance, grading_);
     passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, display, requests);
     graph.compile();
-    if (ssaoOn) passes::keepSsaoHistory(graph, ambient, ssaoHistory_);
+    if (ssaoOn) passes::keepSsaoHistory(graph, ssaoHistory_);
+    if (temporalAa) passes::keepTemporalAaHistory(graph, temporalAaHistory_);
+    converged_ = !temporalAa || temporalAa->converged;
     ssaoHistoryFrame_ = {ssaoOn, view, projection, width, height, settings_.version()};
 
     device_->context().submitAndWait([&](VkCommandBuffer cmd) {
@@ -356,7 +383,7 @@ ObscuraRenderStats RenderDelegate::stats() const {
     s.primsSynced = primsSynced_;
     for (const auto& [path, prim] : prims_) s.primsSkipped += prim->skipped() ? 1u : 0u;
     s.validationErrors = device_->context().validationErrorCount();
-    s.converged = 1;  // a single deferred frame: nothing accumulates yet
+    s.converged = converged_ ? 1u : 0u;
     s.trianglesDrawn = trianglesDrawn_;
     s.syncMilliseconds = syncMilliseconds_;
     s.geometryBytes = geometry_->residentBytes();

@@ -10,12 +10,14 @@
 #include "delegate/prims/mesh.h"
 #include "delegate/prims/render_buffer.h"
 #include "delegate/render_settings.h"
+#include "delegate/temporal_accumulation.h"
 #include "delegate/texture_cache.h"
 #include "gpu/frame_graph.h"
 #include "gpu/timestamps.h"
 #include "passes/color_grading_lut.h"
 #include "passes/pipeline_cache.h"
 #include "passes/ssao.h"
+#include "passes/temporal_aa.h"
 
 #include <obscura/obscura.h>
 
@@ -80,6 +82,10 @@ private:
         uint32_t width = 0, height = 0;
         uint64_t settingsVersion = 0;
     } ssaoHistoryFrame_;
+    // Temporal AA: its history images and the bookkeeping that decides how each frame uses them.
+    passes::TemporalAaHistory temporalAaHistory_;
+    TemporalAccumulation temporalAccumulation_;
+    bool converged_ = true;  // the last render's, for ObscuraRenderStats
     std::unique_ptr<TextureCache> textures_;
     std::unique_ptr<GeometryCache> geometry_;
     passes::ColorGradingLut grading_;
@@ -89,6 +95,8 @@ private:
     std::map<std::string, std::unique_ptr<Prim>> prims_;
     // Prims with dirty bits: sync visits these only, so its cost follows what changed.
     std::set<Prim*> dirty_;
+    // Counts insertions, removals and dirty marks: temporal AA restarts its mean when it moves.
+    uint64_t sceneVersion_ = 0;
     int32_t nextPrimId_ = 0;
     RenderSettings settings_;
 

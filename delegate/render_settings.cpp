@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <string_view>
 
 namespace obscura::delegate {
 namespace {
@@ -27,6 +28,25 @@ const RenderSettingInfo kSettings[] = {
                            "(int, default 1024)",
      OBSCURA_VALUE_INT, 1024.0, 64.0, 4096.0},
     {"shadows:cascades", "cascades per distant light, 1-4 (int, default 4)", OBSCURA_VALUE_INT, 4.0, 1.0, 4.0},
+    {"taa", "temporal anti-aliasing (seed 000 SMAA 1TX): the projection jitters by a sub-pixel offset each frame and "
+            "an accumulation buffer, reprojected and clamped to the current frame's neighbourhood, gathers the "
+            "offsets; a still image accumulates taa:frames frames and then reports converged (bool, default on)",
+     OBSCURA_VALUE_BOOL, 1.0},
+    {"taa:frames", "frames a still image accumulates (1TX): the jitter cycles through this many offsets of the "
+                   "Halton (2, 3) sequence, each weighted equally; `obscura render` renders until converged, "
+                   "1-1024 (int, default 16)",
+     OBSCURA_VALUE_INT, 16.0, 1.0, 1024.0},
+    {"taa:mode", "1tx: SMAA 1TX accumulation with neighbourhood clamp; 2tx: SMAA 2TX, two frames (2x jitter) "
+                 "blended by velocity, no clamp (token, default 1tx)",
+     OBSCURA_VALUE_TOKEN, 0.0, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+     "1tx|2tx"},
+    {"taa:kLowFreq", "SMAA 1TX K_lowfreq: while the scene changes, where a pixel matches its neighbours the history "
+                     "weighs 1 / K (1 keeps the clamped history alone), at least 1 (float, default 2)",
+     OBSCURA_VALUE_FLOAT, 2.0, 1.0},
+    {"taa:kHighFreq", "SMAA 1TX K_hifreq: the same where a pixel differs from its neighbours by 1 or more (edges); "
+                      "lower keeps edges anti-aliased in motion, higher keeps them sharper, at least 1 "
+                      "(float, default 1.25)",
+     OBSCURA_VALUE_FLOAT, 1.25, 1.0},
     {"metersPerUnit", "the scene's metres per unit, as USD's stage metadata; hosts set it (float, default 0.01)",
      OBSCURA_VALUE_FLOAT, 0.01},
     {"ocio:config", "OpenColorIO config file (token; default: $OCIO, else the built-in ACES-based config)",
@@ -37,6 +57,15 @@ const RenderSettingInfo kSettings[] = {
     {"ocio:look", "OCIO looks, comma-separated, replacing the view's own (token; default: none)",
      OBSCURA_VALUE_TOKEN, 0.0},
 };
+
+bool isTokenChoice(std::string_view choices, std::string_view token) {
+    for (size_t start = 0;;) {
+        size_t end = choices.find('|', start);
+        if (choices.substr(start, end - start) == token) return true;
+        if (end == std::string_view::npos) return false;
+        start = end + 1;
+    }
+}
 
 }  // namespace
 
@@ -63,6 +92,8 @@ std::string RenderSettings::set(const std::string& name, const ObscuraValue* val
     if (info->type == OBSCURA_VALUE_TOKEN) {
         const char* const* text = static_cast<const char* const*>(value->data);
         if (value->type != OBSCURA_VALUE_TOKEN || !text[0]) return name + ": expected a token";
+        if (info->tokenChoices && !isTokenChoice(info->tokenChoices, text[0]))
+            return name + ": '" + text[0] + "' is not one of " + info->tokenChoices;
         tokens_[name] = text[0];
         ++version_;
         return {};

@@ -20,6 +20,8 @@ struct RenderSettingInfo {
     // Numbers outside [minimum, maximum] are refused with a reason (none given: any finite value).
     double minimum = -std::numeric_limits<double>::infinity();
     double maximum = std::numeric_limits<double>::infinity();
+    // Tokens: the accepted values, '|'-separated (none given: any token).
+    const char* tokenChoices = nullptr;
 };
 
 const RenderSettingInfo* findRenderSetting(const std::string& name);

@@ -55,6 +55,26 @@ DepthConversion depthConversion(const UsdSceneHost& host, const std::string& cam
     return c;
 }
 
+// A progressive render (temporal AA accumulating a still, ObscuraRenderStats::converged) runs until
+// it converges; the delegate converges after at most taa:frames + 1 renders (the maximum setting,
+// plus the frame that looks through the pixel centres), so this bound only guards against a
+// plugin that never does.
+constexpr int kMaxRendersPerFrame = 1025;
+
+ObscuraStatus renderUntilConverged(Session& session, const ObscuraRenderPassDesc& desc) {
+    ObscuraStatus status = OBSCURA_OK;
+    for (int render = 0; render < kMaxRendersPerFrame; ++render) {
+        status = session.api().render(session.delegate(), &desc);
+        if (status != OBSCURA_OK && status != OBSCURA_ERROR_BAD_PRIM_DATA) return status;
+        ObscuraRenderStats stats{};
+        stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
+        stats.structSize = sizeof(stats);
+        if (session.api().getRenderStats(session.delegate(), &stats) != OBSCURA_OK || stats.converged) return status;
+    }
+    std::fprintf(stderr, "obscura: warning: the image did not converge in %d renders\n", kMaxRendersPerFrame);
+    return status;
+}
+
 }  // namespace
 
 int runRender(const RenderOptions& o) {
@@ -104,7 +124,9 @@ int runRender(const RenderOptions& o) {
         ObscuraRenderPassDesc desc{OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC, nullptr, sizeof(ObscuraRenderPassDesc),
                                    camera.c_str(), {0, 0, o.width, o.height}, frame,
                                    static_cast<uint32_t>(bindings.size()), bindings.data()};
-        ObscuraStatus status = session.api().render(session.delegate(), &desc);
+        // Each frame of a sequence converges too: the first render of a frame syncs what changed
+        // (the history is reprojected), the following ones accumulate the still.
+        ObscuraStatus status = renderUntilConverged(session, desc);
         if (status == OBSCURA_ERROR_BAD_PRIM_DATA) {
             exitCode = kExitBadInput;  // the frame still renders without the bad prims
         } else if (status != OBSCURA_OK) {

@@ -17,7 +17,7 @@ gpu::ComputePipelineDesc describeAovPackPipeline() {
              {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
              {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
              {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+             {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
              {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
              {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
              {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
@@ -53,7 +53,7 @@ void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const 
             pass.read(gb.normalRoughness, gpu::Usage::SampledCompute);
             pass.read(gb.albedoMetallic, gpu::Usage::SampledCompute);
             pass.read(gb.instance, gpu::Usage::SampledCompute);
-            pass.read(hdrColor, gpu::Usage::StorageImageRead);
+            pass.read(hdrColor, gpu::Usage::SampledCompute);
             pass.read(display, gpu::Usage::StorageImageRead);
             for (auto h : targets) pass.write(h, gpu::Usage::StorageBufferWrite);
         },
@@ -68,7 +68,7 @@ void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const 
                     .sampled(3, res.view(gb.normalRoughness), nearest)
                     .sampled(4, res.view(gb.albedoMetallic), nearest)
                     .sampled(5, res.view(gb.instance), nearest)
-                    .storageImage(6, res.view(hdrColor))
+                    .sampled(6, res.view(hdrColor), nearest)
                     .storageImage(7, res.view(display))
                     .buffer(8, res.buffer(targets[i]))
                     .buffer(9, res.buffer(targets[i]))

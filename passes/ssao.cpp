@@ -159,45 +159,23 @@ gpu::ImageHandle addBlurPass(gpu::FrameGraph& graph, PipelineCache& pipelines, c
 }
 
 // Temporal accumulation with reprojection (shaders/ssao_temporal.comp): writes this frame's history
-// pair from the noisy obscurance and last frame's pair.
-void addTemporalPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                     const HalfResolutionGeometry& half, gpu::ImageHandle noisy, SsaoHistory& history,
-                     SsaoResult& result) {
+// images from the noisy obscurance and last frame's; returns the accumulated accessibility.
+gpu::ImageHandle addTemporalPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                                 const HalfResolutionGeometry& half, gpu::ImageHandle noisy, SsaoHistory& history) {
     gpu::Device& device = pipelines.device();
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     gpu::ImageDesc accessibilityDesc = halfResolution(scene, kSsaoHistoryFormat);
     gpu::ImageDesc depthDesc = halfResolution(scene, kSsaoDepthFormat);
     accessibilityDesc.usage = depthDesc.usage = usage;
-    for (uint32_t i = 0; i < 2; ++i)
-        if (!history.accessibility[i] || history.accessibility[i]->desc.width != accessibilityDesc.width ||
-            history.accessibility[i]->desc.height != accessibilityDesc.height) {
-            history.accessibility[i] = device.createImage(accessibilityDesc, "ssaoHistory");
-            history.depth[i] = device.createImage(depthDesc, "ssaoHistoryDepth");
-            history.accessibilityLayout[i] = history.depthLayout[i] = VK_IMAGE_LAYOUT_UNDEFINED;
-            history.valid = false;
-        }
-    uint32_t read = history.written, write = 1 - history.written;
-    // A history never written is still read (a binding needs a resource): it must be in a
-    // shader-readable layout, and historyValid = 0 keeps its contents out.
-    bool readable = history.accessibilityLayout[read] != VK_IMAGE_LAYOUT_UNDEFINED;
-    TemporalPush push{history.viewToPreviousView, float(kSsaoHistoryFrames), history.valid && readable ? 1u : 0u};
-    gpu::ImageHandle previous = graph.importImage("ssaoHistory.previous", history.accessibility[read],
-                                                  history.accessibilityLayout[read]);
-    gpu::ImageHandle previousDepth =
-        graph.importImage("ssaoHistoryDepth.previous", history.depth[read], history.depthLayout[read]);
-    gpu::ImageHandle accumulated =
-        graph.importImage("ssaoHistory", history.accessibility[write], history.accessibilityLayout[write]);
-    gpu::ImageHandle accumulatedDepth =
-        graph.importImage("ssaoHistoryDepth", history.depth[write], history.depthLayout[write]);
-    result.historyAccessibility[read] = previous;
-    result.historyDepth[read] = previousDepth;
-    result.historyAccessibility[write] = accumulated;
-    result.historyDepth[write] = accumulatedDepth;
-    history.written = write;
+    bool created = history.accessibility.ensure(device, accessibilityDesc, "ssaoHistory");
+    created = history.depth.ensure(device, depthDesc, "ssaoHistoryDepth") || created;
+    if (created) history.valid = false;
+    gpu::HistoryImages::Imported accessibility = history.accessibility.import(graph, "ssaoHistory");
+    gpu::HistoryImages::Imported depth = history.depth.import(graph, "ssaoHistoryDepth");
+    TemporalPush push{history.viewToPreviousView, float(kSsaoHistoryFrames),
+                      history.valid && accessibility.previousWritten ? 1u : 0u};
+    gpu::ImageHandle previous = accessibility.previous, previousDepth = depth.previous;
     ++history.frame;
-    // Next frame reads what this one writes, so the graph keeps both.
-    graph.markOutput(accumulated);
-    graph.markOutput(accumulatedDepth);
 
     const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("ssao_temporal", [] {
         return gpu::ComputePipelineDesc{"ssao_temporal.comp",
@@ -211,7 +189,7 @@ void addTemporalPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const Fra
                                          {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
                                         sizeof(TemporalPush)};
     });
-    gpu::ImageHandle out = accumulated, outDepth = accumulatedDepth;
+    gpu::ImageHandle out = accessibility.current, outDepth = depth.current;
     graph.addPass(
         "ssao_temporal", gpu::PassKind::Compute,
         [&](gpu::FrameGraph::PassBuilder& pass) {
@@ -240,6 +218,7 @@ void addTemporalPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const Fra
             const gpu::ImageDesc& size = res.desc(out);
             gpu::dispatch2D(cmd, size.width, size.height);
         });
+    return out;
 }
 
 }  // namespace
@@ -249,20 +228,18 @@ SsaoResult addSsaoPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const
     HalfResolutionGeometry half = addDownsamplePass(graph, pipelines, scene, gbuffer);
     gpu::ImageHandle noisy = addObscurancePass(graph, pipelines, scene, half, settings, history.frame);
     SsaoResult result;
-    addTemporalPass(graph, pipelines, scene, half, noisy, history, result);
-    gpu::ImageHandle horizontal = addBlurPass(graph, pipelines, scene, "ssao_blur_horizontal",
-                                              result.historyAccessibility[history.written], half.depth, {{1, 0}});
+    gpu::ImageHandle accumulated = addTemporalPass(graph, pipelines, scene, half, noisy, history);
+    gpu::ImageHandle horizontal =
+        addBlurPass(graph, pipelines, scene, "ssao_blur_horizontal", accumulated, half.depth, {{1, 0}});
     result.accessibility =
         addBlurPass(graph, pipelines, scene, "ssao_blur_vertical", horizontal, half.depth, {{0, 1}});
     result.halfDepth = half.depth;
     return result;
 }
 
-void keepSsaoHistory(const gpu::FrameGraph& graph, const SsaoResult& result, SsaoHistory& history) {
-    for (uint32_t i = 0; i < 2; ++i) {
-        history.accessibilityLayout[i] = graph.finalLayout(result.historyAccessibility[i]);
-        history.depthLayout[i] = graph.finalLayout(result.historyDepth[i]);
-    }
+void keepSsaoHistory(const gpu::FrameGraph& graph, SsaoHistory& history) {
+    history.accessibility.keep(graph);
+    history.depth.keep(graph);
 }
 
 }  // namespace obscura::passes

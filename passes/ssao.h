@@ -4,6 +4,7 @@
 // (shaders/common/ssao_upsample.glsl).
 #pragma once
 
+#include "gpu/history_images.h"
 #include "passes/gbuffer.h"
 
 namespace obscura::passes {
@@ -25,17 +26,13 @@ struct SsaoSettings {
     float intensity = 1.0f;  // scales the occlusion: accessibility = 1 - intensity * occlusion
 };
 
-// The temporal accumulation's history (an explicit history input, STYLE.md): two pairs of
-// persistent images, one read as last frame's and one written; the caller keeps it across frames,
-// says whether last frame's pair is usable (same size, projection and settings) and how this
-// frame's view space maps to last frame's.
+// The temporal accumulation's history (an explicit history input, STYLE.md): persistent
+// ping-pong images; the caller keeps it across frames, says whether last frame's images are usable
+// (same size, projection and settings) and how this frame's view space maps to last frame's.
 struct SsaoHistory {
-    std::array<gpu::ImagePtr, 2> accessibility;  // kSsaoHistoryFormat
-    std::array<gpu::ImagePtr, 2> depth;          // kSsaoDepthFormat
-    std::array<VkImageLayout, 2> accessibilityLayout{VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_UNDEFINED};
-    std::array<VkImageLayout, 2> depthLayout{VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_UNDEFINED};
-    uint32_t written = 0;    // the pair the last frame wrote
-    bool valid = false;      // set by the caller: last frame's pair may be reprojected
+    gpu::HistoryImages accessibility;  // kSsaoHistoryFormat
+    gpu::HistoryImages depth;          // kSsaoDepthFormat
+    bool valid = false;      // set by the caller: last frame's images may be reprojected
     Mat4 viewToPreviousView{};  // set by the caller (column-major, as the shader reads it)
     uint64_t frame = 0;      // turns the sample pattern
 };
@@ -45,15 +42,12 @@ struct SsaoHistory {
 struct SsaoResult {
     gpu::ImageHandle accessibility;  // kSsaoAccessibilityFormat
     gpu::ImageHandle halfDepth;      // kSsaoDepthFormat, the depths the accessibility belongs to
-    // The history images as imported this frame, [pair index], for keepSsaoHistory.
-    std::array<gpu::ImageHandle, 2> historyAccessibility;
-    std::array<gpu::ImageHandle, 2> historyDepth;
 };
 
 SsaoResult addSsaoPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                          const GBuffer& gbuffer, const SsaoSettings& settings, SsaoHistory& history);
 
-// After the graph is compiled: records the layouts this frame leaves both history pairs in.
-void keepSsaoHistory(const gpu::FrameGraph& graph, const SsaoResult& result, SsaoHistory& history);
+// After the graph is compiled: records the layouts this frame leaves the history images in.
+void keepSsaoHistory(const gpu::FrameGraph& graph, SsaoHistory& history);
 
 }  // namespace obscura::passes

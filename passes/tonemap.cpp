@@ -21,7 +21,7 @@ gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines
     gpu::ImageHandle display = graph.createImage("display", desc);
     const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("tonemap", [] {
         return gpu::ComputePipelineDesc{"tonemap.comp",
-                                        {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                                        {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                          {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                                          {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                          {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
@@ -31,14 +31,14 @@ gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines
     graph.addPass(
         "tonemap", gpu::PassKind::Compute,
         [&](gpu::FrameGraph::PassBuilder& pass) {
-            pass.read(hdrColor, gpu::Usage::StorageImageRead);
+            pass.read(hdrColor, gpu::Usage::SampledCompute);
             pass.read(coverage, gpu::Usage::SampledCompute);
             pass.write(display, gpu::Usage::StorageImageWrite);
         },
         [&device, &pipeline, &scene, &grading, hdrColor, coverage, display](VkCommandBuffer cmd,
                                                                              const gpu::PassResources& res) {
             gpu::DescriptorWriter(device, pipeline)
-                .storageImage(0, res.view(hdrColor))
+                .sampled(0, res.view(hdrColor), device.nearestClampSampler())
                 .storageImage(1, res.view(display))
                 .sampled(2, res.view(coverage), device.nearestClampSampler())
                 .sampled(3, grading.texture()->view, device.linearClampSampler())

@@ -21,7 +21,7 @@ layout(set = 0, binding = 2) uniform sampler2D depthTexture;
 layout(set = 0, binding = 3) uniform sampler2D normalRoughnessTexture;
 layout(set = 0, binding = 4) uniform sampler2D albedoMetallicTexture;
 layout(set = 0, binding = 5) uniform usampler2D instanceTexture;
-layout(set = 0, binding = 6, r11f_g11f_b10f) uniform readonly image2D hdrColor;
+layout(set = 0, binding = 6) uniform sampler2D hdrColor;  // any float format: light accumulation or TAA
 layout(set = 0, binding = 7, rgba8) uniform readonly image2D displayColor;
 layout(set = 0, binding = 8, scalar) writeonly buffer Floats { float floats[]; };
 layout(set = 0, binding = 9, scalar) writeonly buffer Words { uint words[]; };
@@ -39,7 +39,7 @@ void main() {
     uint instanceId = texelFetch(instanceTexture, pixel, 0).r;
     bool covered = instanceId != 0u;
     if (push.aov == AOV_COLOR) {
-        vec3 c = imageLoad(hdrColor, pixel).rgb;
+        vec3 c = texelFetch(hdrColor, pixel, 0).rgb;
         float a = covered ? 1.0 : 0.0;
         for (uint i = 0u; i < 3u; ++i) floats[index * 4u + i] = c[i];
         floats[index * 4u + 3u] = a;

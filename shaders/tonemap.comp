@@ -5,7 +5,7 @@
 // to the display range and written as 8 bits.
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(set = 0, binding = 0, r11f_g11f_b10f) uniform readonly image2D hdrColor;
+layout(set = 0, binding = 0) uniform sampler2D hdrColor;  // any float format: light accumulation or TAA
 layout(set = 0, binding = 1, rgba8) uniform writeonly image2D displayColor;
 layout(set = 0, binding = 2) uniform usampler2D instanceTexture;
 layout(set = 0, binding = 3) uniform sampler3D gradingLut;
@@ -32,7 +32,7 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(displayColor);
     if (any(greaterThanEqual(pixel, size))) return;
-    vec3 hdr = imageLoad(hdrColor, pixel).rgb;
+    vec3 hdr = texelFetch(hdrColor, pixel, 0).rgb;
     // Lattice points sit at texel centres: scale and offset so 0 and 1 hit the first and last.
     vec3 coordinate = shaperEncode(hdr) * ((push.lutSize - 1.0) / push.lutSize) + 0.5 / push.lutSize;
     vec3 display = clamp(textureLod(gradingLut, coordinate, 0.0).rgb, 0.0, 1.0);

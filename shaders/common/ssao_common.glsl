@@ -3,13 +3,7 @@
 #ifndef OBSCURA_SSAO_COMMON_GLSL
 #define OBSCURA_SSAO_COMMON_GLSL
 
-// Distance along the view axis (the camera looks down -z) of a device depth. Solves
-// depth = (A z + B) / (C z + D) for the view-space z, which covers the perspective and the
-// orthographic projections of delegate/prims/camera.cpp alike.
-float linearDepthFromDevice(mat4 projection, float depth) {
-    float a = projection[2][2], b = projection[3][2], c = projection[2][3], d = projection[3][3];
-    return (b - depth * d) / (a - depth * c);
-}
+#include "common/view_depth.glsl"
 
 // View-space position seen at normalised device coordinates `ndc` at `linearDepth`. USD cameras
 // have no skew: clip x depends on view x and z only, clip y on view y and z only.

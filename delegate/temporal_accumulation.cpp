@@ -1,0 +1,53 @@
+#include "delegate/temporal_accumulation.h"
+
+#include <algorithm>
+
+namespace obscura::delegate {
+
+TemporalAaStep TemporalAccumulation::next(const TemporalAaKey& key, uint64_t sceneVersion, passes::TemporalAaMode mode,
+                                          uint32_t frames, const Matrix4d& view, const Matrix4d& projection) {
+    const bool twoFrame = mode == passes::TemporalAaMode::Smaa2tx;
+    const uint32_t framesToConverge = twoFrame ? passes::kSmaa2txFrames : std::max(frames, 1u);
+    const bool valid = last_ && *last_ == key;
+    const bool sceneChanged = sceneVersion != lastSceneVersion_;
+    frame_ = valid ? frame_ + 1 : 0;
+
+    TemporalAaStep step;
+    step.pass.historyValid = valid;
+    step.pass.framesToConverge = framesToConverge;
+    // A settled 1TX still (the mean is complete and nothing changed) keeps its colour and looks
+    // through the pixel centres.
+    const bool settled = valid && !sceneChanged && held_ >= framesToConverge && !twoFrame;
+    if (!settled)
+        step.jitter = passes::temporalAaJitter(mode, uint32_t(frame_ % framesToConverge), framesToConverge);
+    if (!valid || sceneChanged) {
+        step.pass.heldFrames = 0;
+        held_ = 1;
+    } else {
+        step.pass.heldFrames = held_;
+        held_ = std::min(held_ + 1, framesToConverge);
+    }
+    step.converged = held_ >= framesToConverge && (twoFrame || (step.jitter[0] == 0.0 && step.jitter[1] == 0.0));
+
+    step.clipJitter[12] = 2.0 * step.jitter[0] / key.width;
+    step.clipJitter[13] = 2.0 * step.jitter[1] / key.height;
+    if (valid) {
+        // The G-buffer was rendered with the jittered projection; last frame's image is taken
+        // unjittered, then this frame's jitter is added back: an unchanged camera maps every pixel
+        // onto itself, whichever offsets the two frames had.
+        Matrix4d currentClipToWorld = kIdentity;
+        invert(multiply(view, multiply(projection, step.clipJitter)), currentClipToWorld);
+        step.pass.currentClipToPreviousClip = toFloats<passes::Mat4>(
+            multiply(currentClipToWorld, multiply(multiply(lastView_, lastProjection_), step.clipJitter)));
+        step.pass.currentClipToPreviousView = toFloats<passes::Mat4>(multiply(currentClipToWorld, lastView_));
+    } else {
+        step.pass.currentClipToPreviousClip = step.pass.currentClipToPreviousView = toFloats<passes::Mat4>(kIdentity);
+    }
+    last_ = key;
+    lastView_ = view;
+    lastProjection_ = projection;
+    lastSceneVersion_ = sceneVersion;
+    return step;
+}
+
+}  // namespace obscura::delegate

@@ -1,0 +1,56 @@
+// Temporal anti-aliasing from frame to frame (passes/temporal_aa.h): whether the history may be
+// reused, which sub-pixel jitter a frame takes, how its pixels map onto last frame's, and when a
+// still image has converged. Bookkeeping only, no GPU: the delegate asks it once per frame.
+#pragma once
+
+#include "delegate/matrix.h"
+#include "passes/temporal_aa.h"
+
+#include <array>
+#include <optional>
+#include <string>
+
+namespace obscura::delegate {
+
+// What a frame's history was rendered with. Any difference resets the history, as hdEmbree
+// restarts its accumulation: a camera cut (another camera prim), a resize, a render setting
+// changed (the settings' version counter).
+struct TemporalAaKey {
+    std::string camera;
+    uint32_t width = 0;
+    uint32_t height = 0;
+    uint64_t settingsVersion = 0;
+    bool operator==(const TemporalAaKey&) const = default;
+};
+
+struct TemporalAaStep {
+    passes::TemporalAaFrame pass;       // for addTemporalAaPass
+    std::array<double, 2> jitter{};     // pixels, x right, y down
+    Matrix4d clipJitter = kIdentity;    // applied after the camera's projection: clip x += 2 jitter_x / width * w ...
+    // Another render of the unchanged scene would add nothing: the accumulation holds taa:frames
+    // frames (1TX) or both frames (2TX), and (1TX) this frame looked through the pixel centres, so
+    // the depth, normal and id AOVs are the unjittered ones.
+    bool converged = false;
+};
+
+class TemporalAccumulation {
+public:
+    // `sceneVersion`: the delegate's counter of prim insertions, removals and dirty marks (the
+    // camera's among them); when it moved, the history is reprojected and blended by the slide's
+    // weights rather than averaged. `frames`: taa:frames. `view` and `projection`: the camera's,
+    // unjittered (row-vector convention).
+    TemporalAaStep next(const TemporalAaKey& key, uint64_t sceneVersion, passes::TemporalAaMode mode, uint32_t frames,
+                        const Matrix4d& view, const Matrix4d& projection);
+    // Temporal AA is off: the next frame starts afresh.
+    void reset() { last_.reset(); }
+
+private:
+    std::optional<TemporalAaKey> last_;
+    Matrix4d lastView_ = kIdentity;
+    Matrix4d lastProjection_ = kIdentity;
+    uint64_t lastSceneVersion_ = 0;
+    uint64_t frame_ = 0;  // frames since the history was reset: the jitter sequence's index
+    uint32_t held_ = 0;   // frames the history holds as an equal-weight mean
+};
+
+}  // namespace obscura::delegate

@@ -1,0 +1,124 @@
+#include "passes/temporal_aa.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace obscura::passes {
+namespace {
+
+// The 2TX weight's K (seed 000: w = 0.5 max(0, 1 - K sqrt(| |v_c| - |v_p| |))) for velocities in
+// pixels: a change of one pixel in the velocity's length drops the last frame entirely. (SMAA's
+// own scale, 30 for velocities in texture coordinates, does nearly the same at 1080p: 0.91.)
+constexpr float kSmaa2txVelocityWeight = 1.0f;
+
+// Mirrors TemporalAaConstants in shaders/common/temporal_aa_common.glsl (std140).
+struct TemporalAaConstants {
+    Mat4 currentClipToPreviousClip;
+    Mat4 currentClipToPreviousView;
+    std::array<float, 4> weights;    // x K_lowfreq, y K_hifreq, z 2TX's velocity weight
+    std::array<uint32_t, 4> frames;  // x history valid, y held frames, z frames to converge
+};
+static_assert(sizeof(TemporalAaConstants) == 2 * 64 + 32);
+
+// Van der Corput: the digits of `index` in `base`, mirrored about the radix point.
+double radicalInverse(uint32_t index, uint32_t base) {
+    double inverse = 0.0, digitWeight = 1.0 / base;
+    for (; index > 0; index /= base, digitWeight /= base) inverse += digitWeight * (index % base);
+    return inverse;
+}
+
+// [0, 1) rotated by half and centred: 0 -> 0, values stay in [-0.5, 0.5).
+double centredRotation(double unit) { return unit + 0.5 - std::floor(unit + 0.5) - 0.5; }
+
+}  // namespace
+
+std::array<double, 2> temporalAaJitter(TemporalAaMode mode, uint32_t index, uint32_t count) {
+    if (mode == TemporalAaMode::Smaa2tx) return index % kSmaa2txFrames == 0 ? std::array{0.25, 0.25} : std::array{-0.25, -0.25};
+    uint32_t i = count > 0 ? index % count : 0;
+    return {centredRotation(radicalInverse(i, 2)), centredRotation(radicalInverse(i, 3))};
+}
+
+gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                                   const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
+                                   const TemporalAaSettings& settings, const TemporalAaFrame& frame,
+                                   TemporalAaHistory& history) {
+    gpu::Device& device = pipelines.device();
+    gpu::ImageDesc colorDesc;
+    colorDesc.format = kTemporalAaColorFormat;
+    colorDesc.width = scene.width;
+    colorDesc.height = scene.height;
+    colorDesc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    gpu::ImageDesc depthDesc = colorDesc;
+    depthDesc.format = kTemporalAaDepthFormat;
+    // New images (first use, resize) hold nothing: previousWritten says so.
+    history.color.ensure(device, colorDesc, "temporalAaHistory");
+    history.depth.ensure(device, depthDesc, "temporalAaHistoryDepth");
+    gpu::HistoryImages::Imported color = history.color.import(graph, "temporalAaHistory");
+    gpu::HistoryImages::Imported depth = history.depth.import(graph, "temporalAaHistoryDepth");
+
+    TemporalAaConstants constants{frame.currentClipToPreviousClip,
+                                  frame.currentClipToPreviousView,
+                                  {settings.kLowFreq, settings.kHighFreq, kSmaa2txVelocityWeight, 0.0f},
+                                  {frame.historyValid && color.previousWritten ? 1u : 0u,
+                                   frame.heldFrames, frame.framesToConverge, 0u}};
+    gpu::BufferPtr constantBuffer = device.createBuffer(sizeof(constants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                                        gpu::MemoryUsage::Upload, "temporalAaConstants");
+    std::memcpy(constantBuffer->mapped(), &constants, sizeof(constants));
+
+    // 1TX's result is its accumulation; 2TX keeps the raw frame as history and resolves apart.
+    const bool twoFrame = settings.mode == TemporalAaMode::Smaa2tx;
+    gpu::ImageHandle resolved = color.current;
+    if (twoFrame) {
+        gpu::ImageDesc resolvedDesc = colorDesc;
+        resolvedDesc.usage = 0;
+        resolved = graph.createImage("temporalAaResolved", resolvedDesc);
+    }
+    std::vector<gpu::BindingDesc> bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                              {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                              {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                              {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                              {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                              {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                              {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                                              {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+    if (twoFrame) bindings.push_back({8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+    const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>(
+        twoFrame ? "temporal_aa_2tx" : "temporal_aa", [&] {
+            return gpu::ComputePipelineDesc{twoFrame ? "temporal_aa_2tx.comp" : "temporal_aa.comp", bindings, 0};
+        });
+    graph.addPass(
+        twoFrame ? "temporal_aa_2tx" : "temporal_aa", gpu::PassKind::Compute,
+        [&](gpu::FrameGraph::PassBuilder& pass) {
+            pass.read(hdrColor, gpu::Usage::SampledCompute);
+            pass.read(gbuffer.depth, gpu::Usage::SampledCompute);
+            pass.read(color.previous, gpu::Usage::SampledCompute);
+            pass.read(depth.previous, gpu::Usage::SampledCompute);
+            pass.write(color.current, gpu::Usage::StorageImageWrite);
+            pass.write(depth.current, gpu::Usage::StorageImageWrite);
+            if (twoFrame) pass.write(resolved, gpu::Usage::StorageImageWrite);
+        },
+        [&device, &pipeline, &scene, gbuffer, hdrColor, color, depth, resolved, twoFrame,
+         constantBuffer](VkCommandBuffer cmd, const gpu::PassResources& res) {
+            VkSampler nearest = device.nearestClampSampler();
+            gpu::DescriptorWriter writer(device, pipeline);
+            writer.buffer(0, scene.camera->buffer)
+                .buffer(1, constantBuffer->buffer)
+                .sampled(2, res.view(hdrColor), nearest)
+                .sampled(3, res.view(gbuffer.depth), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
+                .sampled(4, res.view(color.previous), device.linearClampSampler())
+                .sampled(5, res.view(depth.previous), nearest)
+                .storageImage(6, res.view(color.current))
+                .storageImage(7, res.view(depth.current));
+            if (twoFrame) writer.storageImage(8, res.view(resolved));
+            writer.bind(cmd);
+            gpu::dispatch2D(cmd, scene.width, scene.height);
+        });
+    return resolved;
+}
+
+void keepTemporalAaHistory(const gpu::FrameGraph& graph, TemporalAaHistory& history) {
+    history.color.keep(graph);
+    history.depth.keep(graph);
+}
+
+}  // namespace obscura::passes

@@ -1,0 +1,74 @@
+// Temporal anti-aliasing (frame step 9): SMAA 1TX (seed 000 "SMAA 1TX: a more robust temporal
+// AA"), an accumulation buffer reprojected through the camera's motion, clamped to the current
+// frame's neighbourhood and blended by the slide's high/low-frequency weights; or, as the
+// alternative mode, the SMAA 2TX two-frame blend weighted by velocity (seed 000 "Temporal SSAA /
+// SMAA 2TX/4X review"). It runs on the pre-exposed HDR light accumulation, before depth of field,
+// motion blur and tone mapping; the projection is jittered by temporalAaJitter() each frame.
+#pragma once
+
+#include "gpu/history_images.h"
+#include "passes/gbuffer.h"
+
+#include <array>
+
+namespace obscura::passes {
+
+enum class TemporalAaMode { Smaa1tx, Smaa2tx };
+
+// History colour: the 1TX accumulation, or 2TX's last frame (alpha: its velocity length in pixels).
+// Accumulating 1/n of a sample needs more mantissa than B10G11R11 has (seed 004 "HDR").
+constexpr VkFormat kTemporalAaColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+// Linear view depth of the frame that wrote the history (scene units, as SSAO keeps it).
+constexpr VkFormat kTemporalAaDepthFormat = VK_FORMAT_R32_SFLOAT;
+
+// The sub-pixel offset (pixels, x right and y down, each in [-0.5, 0.5)) of the projection for
+// frame `index` of a cycle of `count` frames. 1TX: the first `count` points of the Halton (2, 3)
+// sequence, rotated by half a pixel (Cranley-Patterson) so that frame 0 looks through the pixel
+// centre: every frame after a reset is the unjittered image, and the base-2 coordinate puts one
+// sample in each of `count` columns when `count` is a power of two. 2TX: the 2x pattern of seed
+// 000's SMAA 2TX (D3D's standard 2x MSAA positions, +-1/4 pixel on the diagonal).
+std::array<double, 2> temporalAaJitter(TemporalAaMode mode, uint32_t index, uint32_t count);
+
+// Frames the 2TX blend holds: the current one and the last.
+constexpr uint32_t kSmaa2txFrames = 2;
+
+struct TemporalAaSettings {
+    TemporalAaMode mode = TemporalAaMode::Smaa1tx;
+    // The slide's weights (1TX): history weight = saturate(1 / lerp(kLowFreq, kHighFreq, w_k)).
+    float kLowFreq = 1.0f;
+    float kHighFreq = 1.0f;
+};
+
+// What the delegate decided for this frame (delegate/temporal_accumulation.h), in the shader's
+// layout: matrices column-major.
+struct TemporalAaFrame {
+    bool historyValid = false;  // last frame's history may be read at all
+    // Frames the history holds as an equal-weight mean of an unchanged scene seen by an unchanged
+    // camera; this frame adds its own with weight 1 / (heldFrames + 1), no reprojection, no clamp.
+    // 0: something changed: the history is reprojected, clamped and blended by the slide's weights.
+    uint32_t heldFrames = 0;
+    // The mean stops growing at this many frames (render setting taa:frames): a converged still.
+    uint32_t framesToConverge = 1;
+    // This frame's clip space (jittered) to last frame's clip space (unjittered) with this frame's
+    // jitter added back, so that an unchanged camera maps every pixel onto itself.
+    Mat4 currentClipToPreviousClip{};
+    Mat4 currentClipToPreviousView{};  // this frame's clip space to last frame's view space
+};
+
+// The history (an explicit history input, STYLE.md): persistent images the delegate keeps.
+struct TemporalAaHistory {
+    gpu::HistoryImages color;  // kTemporalAaColorFormat
+    gpu::HistoryImages depth;  // kTemporalAaDepthFormat
+};
+
+// Returns the anti-aliased HDR colour (kTemporalAaColorFormat; in 1TX the history written this
+// frame itself). `hdrColor` is the light accumulation, rendered with the jittered projection.
+gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                                   const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
+                                   const TemporalAaSettings& settings, const TemporalAaFrame& frame,
+                                   TemporalAaHistory& history);
+
+// After the graph is compiled: records the layouts this frame leaves the history images in.
+void keepTemporalAaHistory(const gpu::FrameGraph& graph, TemporalAaHistory& history);
+
+}  // namespace obscura::passes

@@ -1,0 +1,118 @@
+// Shared by the temporal anti-aliasing shaders (passes/temporal_aa.cpp): SMAA 1TX
+// (temporal_aa.comp) and SMAA 2TX (temporal_aa_2tx.comp). Bindings 0-7 are common; the history
+// images are written here, one texel per pixel.
+#ifndef OBSCURA_TEMPORAL_AA_COMMON_GLSL
+#define OBSCURA_TEMPORAL_AA_COMMON_GLSL
+
+#include "common/frame_data.glsl"
+#include "common/view_depth.glsl"
+
+// Mirrors TemporalAaConstants in passes/temporal_aa.cpp.
+struct TemporalAaConstants {
+    mat4 currentClipToPreviousClip;  // this frame's clip (jittered) -> last frame's, this frame's jitter added back
+    mat4 currentClipToPreviousView;  // this frame's clip -> last frame's view space
+    vec4 weights;                    // x K_lowfreq, y K_hifreq (1TX); z K of the 2TX velocity weight
+    uvec4 frames;                    // x 1: the history may be read; y frames it holds (0: changed); z frames to converge
+};
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
+layout(set = 0, binding = 1, std140) uniform Constants { TemporalAaConstants taa; };
+layout(set = 0, binding = 2) uniform sampler2D currentColor;   // the light accumulation (nearest)
+layout(set = 0, binding = 3) uniform sampler2D currentDepth;   // the G-buffer's device depth (nearest)
+layout(set = 0, binding = 4) uniform sampler2D previousColor;  // last frame's history colour (bilinear)
+layout(set = 0, binding = 5) uniform sampler2D previousDepth;  // last frame's linear view depth (nearest)
+layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D historyColor;
+layout(set = 0, binding = 7, r32f) uniform writeonly image2D historyDepth;
+
+bool historyReadable() { return taa.frames.x != 0u; }
+
+// A history depth may differ from the one expected by this much (relative) and still hold the
+// same surface: float rounding through two matrices, not geometry.
+const float TEMPORAL_AA_DEPTH_TOLERANCE = 0.01;
+
+struct Reprojection {
+    vec2 position;  // where the pixel's surface point lay in last frame's image, pixels (centres at +0.5)
+    bool valid;     // on screen then, and the history there holds this surface
+};
+
+// The front-most depth of the 3x3 pixels around `pixel`, and where it lies. Reprojecting with the
+// nearest surface's motion (Karis 2014, "High quality temporal supersampling") moves a silhouette's
+// background pixels with the object in front, so the history they take is not what the object
+// covered last frame.
+struct NearestSurface {
+    ivec2 pixel;
+    float deviceDepth;
+};
+
+NearestSurface nearestSurface(ivec2 pixel, ivec2 size) {
+    NearestSurface nearest = NearestSurface(pixel, texelFetch(currentDepth, pixel, 0).r);
+    const ivec2 cross[4] = ivec2[4](ivec2(-1, -1), ivec2(1, -1), ivec2(-1, 1), ivec2(1, 1));
+    for (int i = 0; i < 4; ++i) {
+        ivec2 neighbour = clamp(pixel + cross[i], ivec2(0), size - 1);
+        float depth = texelFetch(currentDepth, neighbour, 0).r;
+        if (depth < nearest.deviceDepth) nearest = NearestSurface(neighbour, depth);
+    }
+    return nearest;
+}
+
+// Camera motion from depth: the pixel's surface point (the nearest of its neighbourhood's) through
+// last frame's camera. Objects that moved on their own are caught by the depth test: the history
+// is rejected where the depth expected there lies outside the range of the 3x3 depths last frame
+// stored around it. A range, not the nearest texel's depth, because the sub-pixel jitter moves
+// silhouettes from frame to frame (either side of an edge may be what a texel saw), and a surface
+// seen at a grazing angle changes depth quickly across a pixel; a disocclusion, or an object that
+// arrived, lies outside it. Colour changes are the neighbourhood clamp's to handle (the callers).
+Reprojection reproject(ivec2 pixel, ivec2 size) {
+    NearestSurface surface = nearestSurface(pixel, size);
+    vec4 clip = vec4((vec2(surface.pixel) + 0.5) / vec2(size) * 2.0 - 1.0, surface.deviceDepth, 1.0);
+    vec4 previousClip = taa.currentClipToPreviousClip * clip;
+    Reprojection r;
+    r.position = (previousClip.xy / previousClip.w * 0.5 + 0.5) * vec2(size) + vec2(pixel - surface.pixel);
+    r.valid = previousClip.w > 0.0 && all(greaterThanEqual(r.position, vec2(0.0))) && all(lessThan(r.position, vec2(size)));
+    if (!r.valid) return r;
+    vec4 previousView = taa.currentClipToPreviousView * clip;
+    float expected = -previousView.z / previousView.w;
+    ivec2 centre = ivec2(floor(r.position));
+    float nearest = 3.4e38, farthest = 0.0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            float held = texelFetch(previousDepth, clamp(centre + ivec2(dx, dy), ivec2(0), size - 1), 0).r;
+            nearest = min(nearest, held);
+            farthest = max(farthest, held);
+        }
+    r.valid = expected >= nearest * (1.0 - TEMPORAL_AA_DEPTH_TOLERANCE) &&
+              expected <= farthest * (1.0 + TEMPORAL_AA_DEPTH_TOLERANCE);
+    return r;
+}
+
+// The history at a reprojected position through a Catmull-Rom filter (4x4 texels): a bilinear fetch
+// blurs by up to half a pixel every frame the camera moves, and the accumulation compounds it;
+// Catmull-Rom interpolates without that loss. Its negative lobes may overshoot at edges, which the
+// neighbourhood clamp (1TX) takes back into range.
+vec4 sampleHistory(vec2 position, ivec2 size) {
+    vec2 centre = position - 0.5;
+    ivec2 base = ivec2(floor(centre));
+    vec2 t = centre - vec2(base);
+    // Catmull-Rom weights of the texels at -1, 0, 1, 2 from base, for fractions t.
+    vec2 w0 = t * (-0.5 + t * (1.0 - 0.5 * t));
+    vec2 w1 = 1.0 + t * t * (-2.5 + 1.5 * t);
+    vec2 w2 = t * (0.5 + t * (2.0 - 1.5 * t));
+    vec2 w3 = t * t * (-0.5 + 0.5 * t);
+    vec2 weights[4] = vec2[4](w0, w1, w2, w3);
+    vec4 sum = vec4(0.0);
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            ivec2 texel = clamp(base + ivec2(i - 1, j - 1), ivec2(0), size - 1);
+            sum += weights[i].x * weights[j].y * texelFetch(previousColor, texel, 0);
+        }
+    return sum;
+}
+
+// This frame's depth along the view axis, which the next frame's depth test expects.
+void storeHistoryDepth(ivec2 pixel, float deviceDepth) {
+    imageStore(historyDepth, pixel, vec4(linearDepthFromDevice(camera.projection, deviceDepth)));
+}
+
+#endif
