@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace obscura::delegate {
 
@@ -27,6 +28,7 @@ struct FrameSceneInputs {
 // What the frame could not honour, for the delegate to report.
 struct FrameSceneShortfalls {
     uint32_t lightsWithoutShadowRoom = 0;  // shadow-casting lights the atlas had no room for
+    std::vector<std::string> unclippedLights;  // lights whose clip volume could not be used, and why
 };
 
 passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs, FrameSceneShortfalls& shortfalls);
