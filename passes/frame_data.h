@@ -57,7 +57,8 @@ enum MaterialTextureSlot : uint32_t {
     kTextureRoughness = 1,
     kTextureMetallic = 2,
     kTextureOpacity = 3,
-    kMaterialTextureSlots = 4
+    kTextureNormal = 4,  // tangent space, UsdPreviewSurface `normal`
+    kMaterialTextureSlots = 5
 };
 
 struct alignas(16) MaterialData {
@@ -68,7 +69,7 @@ struct alignas(16) MaterialData {
     std::array<float, 4> clearcoat{};  // x clearcoat, y clearcoatRoughness, z 1 for the specular workflow
     std::array<MaterialTexture, kMaterialTextureSlots> textures;
 };
-static_assert(sizeof(MaterialData) == 80 + 4 * 48);
+static_assert(sizeof(MaterialData) == 80 + 5 * 48);
 
 enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4 };
 
@@ -113,7 +114,10 @@ struct Vertex {
     float normal[3];
     float color[3];
     float uv[2];  // primvars:st as authored (origin at the bottom left); the shader flips v
+    // Direction of increasing u on the surface (xyz) and the bitangent's handedness (w = +-1):
+    // the frame tangent-space normal maps are read in.
+    float tangent[4];
 };
-static_assert(sizeof(Vertex) == 44);
+static_assert(sizeof(Vertex) == 60);
 
 }  // namespace obscura::passes

@@ -40,7 +40,8 @@ const uint TEXTURE_DIFFUSE = 0u;
 const uint TEXTURE_ROUGHNESS = 1u;
 const uint TEXTURE_METALLIC = 2u;
 const uint TEXTURE_OPACITY = 3u;
-const uint MATERIAL_TEXTURE_SLOTS = 4u;
+const uint TEXTURE_NORMAL = 4u;
+const uint MATERIAL_TEXTURE_SLOTS = 5u;
 
 struct MaterialData {
     vec4 diffuseRoughness;  // rgb diffuseColor, a roughness
