@@ -3,6 +3,7 @@
 #pragma once
 
 #include "delegate/prims/camera.h"
+#include "delegate/prims/light.h"
 #include "delegate/prims/prim.h"
 #include "delegate/texture_cache.h"
 #include "passes/frame_scene.h"
@@ -10,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace obscura::delegate {
 
@@ -20,7 +22,14 @@ struct FrameSceneInputs {
     uint32_t height;
     double exposureStops;  // render setting, added to the camera's exposure
     TextureCache& textures;
+    // The dome that lights through its texture (environmentDome()), or null.
+    const Light* environmentDome;
 };
+
+// The first visible dome with a texture, in path order: the one the environment maps are made
+// from. Further textured domes go to `ignored` (they light with their constant colour).
+const Light* environmentDome(const std::map<std::string, std::unique_ptr<Prim>>& prims,
+                             std::vector<std::string>& ignored);
 
 passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs);
 

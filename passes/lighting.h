@@ -2,6 +2,7 @@
 // writes the light accumulation buffer.
 #pragma once
 
+#include "passes/environment_prefilter.h"
 #include "passes/gbuffer.h"
 #include "passes/ssao.h"
 
@@ -12,9 +13,11 @@ namespace obscura::passes {
 enum class LightAccumulation { SmallFloat, HalfFloat };
 
 // `ambient` is the SSAO result (ssao.h), applied to environment (dome) light only, as seed 004
-// asks of ambient occlusion.
+// asks of ambient occlusion. `environment` holds the textured dome's prefiltered maps
+// (environment_prefilter.h; placeholders when the scene has none).
 gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                                  const GBuffer& gbuffer, const SsaoResult& ambient,
+                                 const EnvironmentLighting& environment,
                                  LightAccumulation accumulation = LightAccumulation::SmallFloat);
 
 }  // namespace obscura::passes

@@ -10,6 +10,7 @@
 #include "common/light_evaluation.glsl"
 #include "common/best_fit_normals.glsl"
 #include "common/ssao_upsample.glsl"
+#include "common/environment_map.glsl"
 
 const uint TILE_SIZE = 16u;
 const uint MAX_TILE_LIGHTS = 1024u;  // lights beyond this many in one tile are dropped
@@ -27,6 +28,10 @@ layout(set = 0, binding = 7) uniform usampler2D instanceTexture;
 layout(set = 0, binding = 8) uniform writeonly image2D lightAccumulation;
 layout(set = 0, binding = 9) uniform sampler2D ambientAccessibility;
 layout(set = 0, binding = 10) uniform sampler2D ambientHalfDepth;
+// The textured dome (a 1x1 black image and zero coefficients without one).
+layout(set = 0, binding = 11, std140) uniform Environment { EnvironmentData environment; };
+layout(set = 0, binding = 12, std430) readonly buffer EnvironmentIrradiance { vec4 irradianceSh[SH_COEFFICIENTS]; };
+layout(set = 0, binding = 13) uniform sampler2D prefilteredEnvironment;
 
 shared uint tileMinDepthBits;
 shared uint tileMaxDepthBits;
@@ -38,6 +43,24 @@ shared vec3 tileBoxMax;
 vec3 unproject(mat4 inverseMatrix, vec2 ndc, float depth) {
     vec4 p = inverseMatrix * vec4(ndc, depth, 1.0);
     return p.xyz / p.w;
+}
+
+// The textured dome seen from s: SH irradiance around N, the prefiltered chain along the mirror
+// direction at the lobes' roughness (the split sum's N = V = R lookup), in the dome's frame.
+EnvironmentSample sampleEnvironment(SurfacePoint s) {
+    if (environment.params.x < 0.5) return EnvironmentSample(vec3(1.0), vec3(1.0), vec3(1.0));
+    mat3 toDome = mat3(environment.worldToDome);
+    vec3 N = normalize(toDome * s.N);
+    vec3 R = normalize(toDome * reflect(-s.V, s.N));
+    vec2 uv = latlongUv(R);
+    float lastLevel = float(textureQueryLevels(prefilteredEnvironment) - 1);
+    EnvironmentSample e;
+    e.diffuse = shIrradiance(irradianceSh, N) / PI;
+    e.specular = textureLod(prefilteredEnvironment, uv, prefilteredLod(s.roughness, lastLevel)).rgb;
+    e.coat = s.clearcoat > 0.0
+        ? textureLod(prefilteredEnvironment, uv, prefilteredLod(s.clearcoatRoughness, lastLevel)).rgb
+        : vec3(0.0);
+    return e;
 }
 
 bool isLocal(LightData light) {
@@ -114,6 +137,7 @@ void main() {
     s.roughness = nr.a;
     s.ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel,
                                           linearDepthFromDevice(camera.projection, depth));
+    s.environment = sampleEnvironment(s);
 
     vec3 radiance = mat.emissiveMetallic.rgb;
     uint count = min(tileLightCount, MAX_TILE_LIGHTS);
