@@ -99,6 +99,7 @@ RenderDelegate::~RenderDelegate() {
     geometry_.reset();
     bestFitNormals_.reset();
     unoccluded_ = {};
+    ssaoHistory_ = {};
     grading_ = passes::ColorGradingLut();
     timestamps_.reset();
     transients_.reset();
@@ -279,11 +280,21 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     gpu::FrameGraph graph;
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
     passes::SsaoResult ambient;
-    if (settings_.number("ssao") != 0.0) {
+    const bool ssaoOn = settings_.number("ssao") != 0.0;
+    Matrix4d view = camera->viewMatrix(), projection = camera->projectionMatrix(double(width) / double(height));
+    if (ssaoOn) {
         // The radius is authored in metres; the passes work in scene units (USD metersPerUnit).
         passes::SsaoSettings ssao{float(settings_.number("ssao:radius") / settings_.number("metersPerUnit")),
                                   float(settings_.number("ssao:intensity"))};
-        ambient = passes::addSsaoPasses(graph, *pipelines_, scene, gbuffer, ssao);
+        // The history reprojects through the camera's motion; anything else that changes what a
+        // texel means (size, projection, settings) restarts it.
+        auto& last = ssaoHistoryFrame_;
+        ssaoHistory_.valid = last.valid && last.width == width && last.height == height &&
+                             last.projection == projection && last.settingsVersion == settings_.version();
+        Matrix4d inverseView = kIdentity;
+        invert(view, inverseView);
+        ssaoHistory_.viewToPreviousView = toFloats<passes::Mat4>(multiply(inverseView, last.view));
+        ambient = passes::addSsaoPasses(graph, *pipelines_, scene, gbuffer, ssao, ssaoHistory_);
     } else {
         ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
                    graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
@@ -298,6 +309,8 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, display, requests);
     graph.compile();
     environment_->frameCompiled(graph);
+    if (ssaoOn) passes::keepSsaoHistory(graph, ambient, ssaoHistory_);
+    ssaoHistoryFrame_ = {ssaoOn, view, projection, width, height, settings_.version()};
 
     device_->context().submitAndWait([&](VkCommandBuffer cmd) {
         timestamps_->reset(cmd);

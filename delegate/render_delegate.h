@@ -16,6 +16,7 @@
 #include "gpu/timestamps.h"
 #include "passes/color_grading_lut.h"
 #include "passes/pipeline_cache.h"
+#include "passes/ssao.h"
 
 #include <obscura/obscura.h>
 
@@ -71,6 +72,15 @@ private:
     struct {
         gpu::ImagePtr accessibility, halfDepth;
     } unoccluded_;
+    // SSAO's temporal accumulation: the history and what it was rendered with, to reproject it or
+    // reset it (size, projection, settings).
+    passes::SsaoHistory ssaoHistory_;
+    struct {
+        bool valid = false;
+        Matrix4d view = kIdentity, projection = kIdentity;
+        uint32_t width = 0, height = 0;
+        uint64_t settingsVersion = 0;
+    } ssaoHistoryFrame_;
     std::unique_ptr<TextureCache> textures_;
     std::unique_ptr<GeometryCache> geometry_;
     std::unique_ptr<EnvironmentCache> environment_;
