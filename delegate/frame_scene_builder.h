@@ -5,6 +5,7 @@
 #include "delegate/prims/camera.h"
 #include "delegate/prims/light.h"
 #include "delegate/prims/prim.h"
+#include "delegate/shadow_views.h"
 #include "delegate/texture_cache.h"
 #include "passes/frame_scene.h"
 
@@ -22,6 +23,7 @@ struct FrameSceneInputs {
     uint32_t height;
     double exposureStops;  // render setting, added to the camera's exposure
     TextureCache& textures;
+    const ShadowSettings& shadows;
     // The dome that lights through its texture (environmentDome()), or null.
     const Light* environmentDome;
 };
@@ -31,6 +33,11 @@ struct FrameSceneInputs {
 const Light* environmentDome(const std::map<std::string, std::unique_ptr<Prim>>& prims,
                              std::vector<std::string>& ignored);
 
-passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs);
+// What the frame could not honour, for the delegate to report.
+struct FrameSceneShortfalls {
+    uint32_t lightsWithoutShadowRoom = 0;  // shadow-casting lights the atlas had no room for
+};
+
+passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs, FrameSceneShortfalls& shortfalls);
 
 }  // namespace obscura::delegate

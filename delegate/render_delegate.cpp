@@ -6,6 +6,7 @@
 #include "passes/best_fit_normals.h"
 #include "passes/gbuffer.h"
 #include "passes/lighting.h"
+#include "passes/shadow_maps.h"
 #include "passes/tonemap.h"
 
 #include <chrono>
@@ -271,13 +272,23 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
             log(OBSCURA_LOG_WARNING, path + ": only one textured dome is supported (" + dome->path() +
                                          " lights the scene); this one uses its constant colour");
     ignoredDomes_ = std::move(ignoredDomes);
-    passes::FrameScene scene =
-        buildFrameScene(*device_, {prims_, *camera, width, height, settings_.number("exposure"), *textures_, dome});
+    ShadowSettings shadows{settings_.number("shadows") != 0.0, uint32_t(settings_.number("shadows:resolution")),
+                           uint32_t(settings_.number("shadows:cascades"))};
+    FrameSceneShortfalls shortfalls;
+    passes::FrameScene scene = buildFrameScene(
+        *device_, {prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows, dome},
+        shortfalls);
+    if (shortfalls.lightsWithoutShadowRoom != lightsWithoutShadowRoom_ && shortfalls.lightsWithoutShadowRoom > 0)
+        log(OBSCURA_LOG_WARNING, std::to_string(shortfalls.lightsWithoutShadowRoom) +
+                                     " light(s) cast no shadow: the shadow atlas is full (lower shadows:resolution)");
+    lightsWithoutShadowRoom_ = shortfalls.lightsWithoutShadowRoom;
     trianglesDrawn_ = 0;
     for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
 
-    // The frame (DESIGN.md "The frame"): G-buffer, lighting, tone mapping, AOV readback.
+    // The frame (DESIGN.md "The frame"): shadow maps, G-buffer, SSAO, lighting, tone mapping,
+    // AOV readback.
     gpu::FrameGraph graph;
+    gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
     passes::SsaoResult ambient;
     const bool ssaoOn = settings_.number("ssao") != 0.0;
@@ -302,7 +313,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     passes::EnvironmentLighting environment =
         environment_->addToFrame(graph, *pipelines_, dome ? dome->environment() : nullptr);
     gpu::ImageHandle hdr =
-        passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, environment,
+        passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas, environment,
                                 settings_.number("lighting:halfFloat") != 0.0 ? passes::LightAccumulation::HalfFloat
                                                                               : passes::LightAccumulation::SmallFloat);
     gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, gbuffer.instance, grading_);

@@ -99,6 +99,7 @@ private:
     std::vector<gpu::PassTime> timings_;
     uint32_t primsSynced_ = 0;
     uint64_t trianglesDrawn_ = 0;
+    uint32_t lightsWithoutShadowRoom_ = 0;  // last frame's, so the warning is logged once per change
     double syncMilliseconds_ = 0.0;
     double frameSetupMilliseconds_ = 0.0;
     std::string lastError_;

@@ -4,6 +4,7 @@
 
 #include <obscura/obscura.h>
 
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -16,6 +17,9 @@ struct RenderSettingInfo {
     const char* description;
     ObscuraValueType type;
     double defaultNumber;
+    // Numbers outside [minimum, maximum] are refused with a reason (none given: any finite value).
+    double minimum = -std::numeric_limits<double>::infinity();
+    double maximum = std::numeric_limits<double>::infinity();
 };
 
 const RenderSettingInfo* findRenderSetting(const std::string& name);

@@ -18,16 +18,19 @@ gpu::ComputePipelineDesc describeLightingPipeline() {
              {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
              {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
              {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {11, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-             {12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-             {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+             {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+             {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {13, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+             {14, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+             {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
             0};
 }
 
 }  // namespace
 
 gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                 const GBuffer& gb, const SsaoResult& ambient, const EnvironmentLighting& environment,
+                                 const GBuffer& gb, const SsaoResult& ambient, gpu::ImageHandle shadowAtlas,
+                                 const EnvironmentLighting& environment,
                                  LightAccumulation format) {
     gpu::ImageDesc desc;
     desc.format = format == LightAccumulation::HalfFloat ? VK_FORMAT_R16G16B16A16_SFLOAT
@@ -47,11 +50,13 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipeline
             pass.read(gb.instance, gpu::Usage::SampledCompute);
             pass.read(ambient.accessibility, gpu::Usage::SampledCompute);
             pass.read(ambient.halfDepth, gpu::Usage::SampledCompute);
+            pass.read(shadowAtlas, gpu::Usage::SampledCompute);
             pass.read(environment.prefiltered, gpu::Usage::SampledCompute);
             pass.read(environment.irradiance, gpu::Usage::StorageBufferRead);
             pass.write(accumulation, gpu::Usage::StorageImageWrite);
         },
-        [&device, &pipeline, &scene, gb, ambient, environment, accumulation](VkCommandBuffer cmd, const gpu::PassResources& res) {
+        [&device, &pipeline, &scene, gb, ambient, shadowAtlas, environment, accumulation](
+            VkCommandBuffer cmd, const gpu::PassResources& res) {
             VkSampler nearest = device.nearestClampSampler();
             gpu::DescriptorWriter(device, pipeline)
                 .buffer(0, scene.camera->buffer)
@@ -65,9 +70,11 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipeline
                 .storageImage(8, res.view(accumulation))
                 .sampled(9, res.view(ambient.accessibility), nearest)
                 .sampled(10, res.view(ambient.halfDepth), nearest)
-                .buffer(11, scene.environment->buffer)
-                .buffer(12, res.buffer(environment.irradiance))
-                .sampled(13, res.view(environment.prefiltered), environment.sampler)
+                .buffer(11, scene.shadows.records->buffer)
+                .sampled(12, res.view(shadowAtlas), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
+                .buffer(13, scene.environment->buffer)
+                .buffer(14, res.buffer(environment.irradiance))
+                .sampled(15, res.view(environment.prefiltered), environment.sampler)
                 .bind(cmd);
             gpu::dispatch2D(cmd, scene.width, scene.height, kLightingTileSize);
         });

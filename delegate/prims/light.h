@@ -19,6 +19,7 @@ public:
     Light(std::string path, const schema::PrimSchema& schema, passes::LightType type)
         : Prim(std::move(path), schema), type_(type) {}
     bool visible() const { return visible_; }
+    bool castsShadows() const { return castsShadows_; }  // inputs:shadow:enable (UsdLuxShadowAPI)
     const passes::LightData& data() const { return data_; }
     const std::string& warning() const { return warning_; }
     // A dome's latlong radiance texture; null for a constant dome (no file, a file that cannot be
@@ -33,6 +34,7 @@ private:
     passes::LightData data_{};
     TexturePtr environment_;
     bool visible_ = true;
+    bool castsShadows_ = true;
     std::string warning_;
 };
 
