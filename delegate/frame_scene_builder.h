@@ -36,6 +36,7 @@ const Light* environmentDome(const std::map<std::string, std::unique_ptr<Prim>>&
 // What the frame could not honour, for the delegate to report.
 struct FrameSceneShortfalls {
     uint32_t lightsWithoutShadowRoom = 0;  // shadow-casting lights the atlas had no room for
+    std::vector<std::string> unclippedLights;  // lights whose clip volume could not be used, and why
 };
 
 passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs, FrameSceneShortfalls& shortfalls);

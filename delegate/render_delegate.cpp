@@ -1,5 +1,7 @@
 #include "delegate/render_delegate.h"
 
+#include "passes/clip_volumes.h"
+
 #include "delegate/frame_scene_builder.h"
 #include "gpu/vk_check.h"
 #include "passes/aov_readback.h"
@@ -282,14 +284,18 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         log(OBSCURA_LOG_WARNING, std::to_string(shortfalls.lightsWithoutShadowRoom) +
                                      " light(s) cast no shadow: the shadow atlas is full (lower shadows:resolution)");
     lightsWithoutShadowRoom_ = shortfalls.lightsWithoutShadowRoom;
+    if (shortfalls.unclippedLights != unclippedLights_)
+        for (const auto& problem : shortfalls.unclippedLights) log(OBSCURA_LOG_WARNING, problem);
+    unclippedLights_ = shortfalls.unclippedLights;
     trianglesDrawn_ = 0;
     for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
 
-    // The frame (DESIGN.md "The frame"): shadow maps, G-buffer, SSAO, lighting, tone mapping,
-    // AOV readback.
+    // The frame (DESIGN.md "The frame"): shadow maps, G-buffer, clip volumes into stencil, SSAO,
+    // lighting, tone mapping, AOV readback.
     gpu::FrameGraph graph;
     gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
+    passes::addClipVolumePass(graph, *pipelines_, scene, gbuffer);
     passes::SsaoResult ambient;
     const bool ssaoOn = settings_.number("ssao") != 0.0;
     Matrix4d view = camera->viewMatrix(), projection = camera->projectionMatrix(double(width) / double(height));

@@ -100,6 +100,7 @@ private:
     uint32_t primsSynced_ = 0;
     uint64_t trianglesDrawn_ = 0;
     uint32_t lightsWithoutShadowRoom_ = 0;  // last frame's, so the warning is logged once per change
+    std::vector<std::string> unclippedLights_;  // likewise
     double syncMilliseconds_ = 0.0;
     double frameSetupMilliseconds_ = 0.0;
     std::string lastError_;

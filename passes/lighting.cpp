@@ -20,9 +20,10 @@ gpu::ComputePipelineDesc describeLightingPipeline() {
              {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
              {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
              {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {13, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-             {14, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-             {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+             {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {14, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+             {15, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+             {16, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
             0};
 }
 
@@ -72,9 +73,10 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipeline
                 .sampled(10, res.view(ambient.halfDepth), nearest)
                 .buffer(11, scene.shadows.records->buffer)
                 .sampled(12, res.view(shadowAtlas), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
-                .buffer(13, scene.environment->buffer)
-                .buffer(14, res.buffer(environment.irradiance))
-                .sampled(15, res.view(environment.prefiltered), environment.sampler)
+                .sampled(13, res.stencilView(gb.depth), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
+                .buffer(14, scene.environment->buffer)
+                .buffer(15, res.buffer(environment.irradiance))
+                .sampled(16, res.view(environment.prefiltered), environment.sampler)
                 .bind(cmd);
             gpu::dispatch2D(cmd, scene.width, scene.height, kLightingTileSize);
         });

@@ -31,10 +31,12 @@ layout(set = 0, binding = 9) uniform sampler2D ambientAccessibility;
 layout(set = 0, binding = 10) uniform sampler2D ambientHalfDepth;
 layout(set = 0, binding = 11, std430) readonly buffer ShadowViews { ShadowViewData shadowViews[]; };
 layout(set = 0, binding = 12) uniform sampler2D shadowAtlas;
+// The G-buffer's stencil: bits 0x01..0x40 mark surfaces inside the clip volumes (clip_volumes.cpp).
+layout(set = 0, binding = 13) uniform usampler2D clipStencil;
 // The textured dome (a 1x1 black image and zero coefficients without one).
-layout(set = 0, binding = 13, std140) uniform Environment { EnvironmentData environment; };
-layout(set = 0, binding = 14, std430) readonly buffer EnvironmentIrradiance { vec4 irradianceSh[SH_COEFFICIENTS]; };
-layout(set = 0, binding = 15) uniform sampler2D prefilteredEnvironment;
+layout(set = 0, binding = 14, std140) uniform Environment { EnvironmentData environment; };
+layout(set = 0, binding = 15, std430) readonly buffer EnvironmentIrradiance { vec4 irradianceSh[SH_COEFFICIENTS]; };
+layout(set = 0, binding = 16) uniform sampler2D prefilteredEnvironment;
 
 #include "common/shadow_sampling.glsl"
 
@@ -145,9 +147,12 @@ void main() {
     s.environment = sampleEnvironment(s);
 
     vec3 radiance = mat.emissiveMetallic.rgb;
+    uint insideClipVolumes = texelFetch(clipStencil, pixel, 0).r;
     uint count = min(tileLightCount, MAX_TILE_LIGHTS);
     for (uint i = 0u; i < count; ++i) {
         LightData light = lights[tileLights[i]];
+        // A clipped light reaches only surfaces inside its volume (seed 004 "clip volumes").
+        if (light.shadow.w != 0u && (insideClipVolumes & light.shadow.w) == 0u) continue;
         vec3 reflected = reflectFromLight(s, light);
         // Shadow lookups only where the light reaches the surface at all.
         if (light.shadow.y > 0u && any(greaterThan(reflected, vec3(0.0))))

@@ -20,6 +20,8 @@ public:
         : Prim(std::move(path), schema), type_(type) {}
     bool visible() const { return visible_; }
     bool castsShadows() const { return castsShadows_; }  // inputs:shadow:enable (UsdLuxShadowAPI)
+    // obscura:clipVolume: the mesh the light is clipped to (passes/clip_volumes.h), if any.
+    const std::optional<std::string>& clipVolume() const { return clipVolume_; }
     const passes::LightData& data() const { return data_; }
     const std::string& warning() const { return warning_; }
     // A dome's latlong radiance texture; null for a constant dome (no file, a file that cannot be
@@ -35,6 +37,7 @@ private:
     TexturePtr environment_;
     bool visible_ = true;
     bool castsShadows_ = true;
+    std::optional<std::string> clipVolume_;
     std::string warning_;
 };
 
