@@ -90,12 +90,14 @@ RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
     unoccluded_.halfDepth = device_->createTextureWithData(one, &farDepth, sizeof(farDepth), "ssao off depth");
     textures_ = std::make_unique<TextureCache>(*device_, options.log);
     geometry_ = std::make_unique<GeometryCache>(*device_);
+    environment_ = std::make_unique<EnvironmentCache>(*device_, textures_->sampler(WrapMode::Repeat, WrapMode::Clamp));
     log(OBSCURA_LOG_INFO, "device: " + device_->context().summary().name);
 }
 
 RenderDelegate::~RenderDelegate() {
     vkDeviceWaitIdle(device_->vk());
     prims_.clear();
+    environment_.reset();
     textures_.reset();
     geometry_.reset();
     bestFitNormals_.reset();
@@ -265,11 +267,19 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (std::string problem = grading_.update(*device_, colour); !problem.empty())
         throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "colour management: " + problem};
 
+    std::vector<std::string> ignoredDomes;
+    const Light* dome = environmentDome(prims_, ignoredDomes);
+    if (ignoredDomes != ignoredDomes_)
+        for (const auto& path : ignoredDomes)
+            log(OBSCURA_LOG_WARNING, path + ": only one textured dome is supported (" + dome->path() +
+                                         " lights the scene); this one uses its constant colour");
+    ignoredDomes_ = std::move(ignoredDomes);
     ShadowSettings shadows{settings_.number("shadows") != 0.0, uint32_t(settings_.number("shadows:resolution")),
                            uint32_t(settings_.number("shadows:cascades"))};
     FrameSceneShortfalls shortfalls;
     passes::FrameScene scene = buildFrameScene(
-        *device_, {prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows}, shortfalls);
+        *device_, {prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows, dome},
+        shortfalls);
     if (shortfalls.lightsWithoutShadowRoom != lightsWithoutShadowRoom_ && shortfalls.lightsWithoutShadowRoom > 0)
         log(OBSCURA_LOG_WARNING, std::to_string(shortfalls.lightsWithoutShadowRoom) +
                                      " light(s) cast no shadow: the shadow atlas is full (lower shadows:resolution)");
@@ -306,13 +316,16 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
                    graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
     }
+    passes::EnvironmentLighting environment =
+        environment_->addToFrame(graph, *pipelines_, dome ? dome->environment() : nullptr);
     gpu::ImageHandle hdr =
-        passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas,
+        passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas, environment,
                                 settings_.number("lighting:halfFloat") != 0.0 ? passes::LightAccumulation::HalfFloat
                                                                               : passes::LightAccumulation::SmallFloat);
     gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, gbuffer.instance, grading_);
     passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, display, requests);
     graph.compile();
+    environment_->frameCompiled(graph);
     if (ssaoOn) passes::keepSsaoHistory(graph, ambient, ssaoHistory_);
     ssaoHistoryFrame_ = {ssaoOn, view, projection, width, height, settings_.version()};
 

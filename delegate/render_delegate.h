@@ -2,6 +2,7 @@
 // prims from the host's scene delegate), and the frame (building the frame graph of passes).
 #pragma once
 
+#include "delegate/environment_cache.h"
 #include "delegate/geometry_cache.h"
 #include "delegate/prims/camera.h"
 #include "delegate/prims/instancer.h"
@@ -82,6 +83,9 @@ private:
     } ssaoHistoryFrame_;
     std::unique_ptr<TextureCache> textures_;
     std::unique_ptr<GeometryCache> geometry_;
+    std::unique_ptr<EnvironmentCache> environment_;
+    // Textured domes beyond the first, last frame: warned about when the list changes.
+    std::vector<std::string> ignoredDomes_;
     passes::ColorGradingLut grading_;
 
     ObscuraSceneDelegate sceneDelegate_{};

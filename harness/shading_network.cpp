@@ -104,17 +104,20 @@ std::optional<usda::Value> flattenedTextureAttribute(const usda::Stage& stage, c
         return primvar ? std::optional(tokenValue(*primvar)) : std::nullopt;
     }
     if (field == "file") {
-        // Asset paths are anchored to the layer that authored them (USD's ArDefaultResolver).
         const usda::Attribute* from = nullptr;
         auto asset = evaluateInput(stage, texture, "inputs:file", time, &from);
         if (!asset || asset->strings.empty() || asset->strings[0].empty()) return std::nullopt;
-        std::filesystem::path path = asset->strings[0];
-        if (path.is_relative()) path = std::filesystem::path(from->where.file).parent_path() / path;
-        return tokenValue(std::filesystem::absolute(path).lexically_normal().string());
+        return tokenValue(resolveAssetPath(asset->strings[0], *from));
     }
     if (field == "wrapS" || field == "wrapT" || field == "scale" || field == "bias" || field == "sourceColorSpace")
         return evaluateInput(stage, texture, "inputs:" + field, time);
     return std::nullopt;
+}
+
+std::string resolveAssetPath(const std::string& asset, const usda::Attribute& attribute) {
+    std::filesystem::path path = asset;
+    if (path.is_relative()) path = std::filesystem::path(attribute.where.file).parent_path() / path;
+    return std::filesystem::absolute(path).lexically_normal().string();
 }
 
 std::string texturePrimvar(const usda::Stage& stage, const usda::Prim& surface) {

@@ -77,7 +77,7 @@ struct alignas(16) LightData {
     std::array<float, 4> positionType;
     std::array<float, 4> directionAngle;
     std::array<float, 4> radiance;
-    std::array<float, 4> factors;  // z treatAsPoint, w influence range
+    std::array<float, 4> factors;  // z treatAsPoint (sphere) or textured (dome), w influence range
     std::array<float, 4> axisX;
     std::array<float, 4> axisY;
     std::array<float, 4> shaping;
@@ -101,6 +101,12 @@ struct alignas(16) ShadowViewData {
     std::array<float, 4> params;
 };
 static_assert(sizeof(ShadowViewData) == 96);
+
+struct alignas(16) EnvironmentData {
+    Mat4 worldToDome;
+    std::array<float, 4> params;  // x 1 when a textured dome lights the scene
+};
+static_assert(sizeof(EnvironmentData) == 80);
 
 // Header of the light buffer: the count, padded to the first LightData.
 struct alignas(16) LightBufferHeader {
