@@ -3,6 +3,7 @@
 #pragma once
 
 #include "delegate/prims/camera.h"
+#include "delegate/prims/light.h"
 #include "delegate/prims/prim.h"
 #include "delegate/shadow_views.h"
 #include "delegate/texture_cache.h"
@@ -11,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace obscura::delegate {
 
@@ -22,15 +24,23 @@ struct FrameSceneInputs {
     double exposureStops;  // render setting, added to the camera's exposure
     TextureCache& textures;
     const ShadowSettings& shadows;
+    // The dome that lights through its texture (environmentDome()), or null.
+    const Light* environmentDome;
     // Temporal AA's sub-pixel shift, applied after the camera's projection for everything that
     // rasterises or reads the G-buffer (CameraData); shadow cascades keep the unjittered frustum,
     // so their texel grids do not move with the jitter.
     Matrix4d clipJitter = kIdentity;
 };
 
+// The first visible dome with a texture, in path order: the one the environment maps are made
+// from. Further textured domes go to `ignored` (they light with their constant colour).
+const Light* environmentDome(const std::map<std::string, std::unique_ptr<Prim>>& prims,
+                             std::vector<std::string>& ignored);
+
 // What the frame could not honour, for the delegate to report.
 struct FrameSceneShortfalls {
     uint32_t lightsWithoutShadowRoom = 0;  // shadow-casting lights the atlas had no room for
+    std::vector<std::string> unclippedLights;  // lights whose clip volume could not be used, and why
 };
 
 passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs, FrameSceneShortfalls& shortfalls);

@@ -1,5 +1,7 @@
 #include "delegate/render_delegate.h"
 
+#include "passes/clip_volumes.h"
+
 #include "delegate/frame_scene_builder.h"
 #include "gpu/vk_check.h"
 #include "passes/aov_readback.h"
@@ -88,12 +90,14 @@ RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
     unoccluded_.halfDepth = device_->createTextureWithData(one, &farDepth, sizeof(farDepth), "ssao off depth");
     textures_ = std::make_unique<TextureCache>(*device_, options.log);
     geometry_ = std::make_unique<GeometryCache>(*device_);
+    environment_ = std::make_unique<EnvironmentCache>(*device_, textures_->sampler(WrapMode::Repeat, WrapMode::Clamp));
     log(OBSCURA_LOG_INFO, "device: " + device_->context().summary().name);
 }
 
 RenderDelegate::~RenderDelegate() {
     vkDeviceWaitIdle(device_->vk());
     prims_.clear();
+    environment_.reset();
     textures_.reset();
     geometry_.reset();
     bestFitNormals_.reset();
@@ -284,25 +288,37 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         temporalAccumulation_.reset();
     }
 
+    std::vector<std::string> ignoredDomes;
+    const Light* dome = environmentDome(prims_, ignoredDomes);
+    if (ignoredDomes != ignoredDomes_)
+        for (const auto& path : ignoredDomes)
+            log(OBSCURA_LOG_WARNING, path + ": only one textured dome is supported (" + dome->path() +
+                                         " lights the scene); this one uses its constant colour");
+    ignoredDomes_ = std::move(ignoredDomes);
     ShadowSettings shadows{settings_.number("shadows") != 0.0, uint32_t(settings_.number("shadows:resolution")),
                            uint32_t(settings_.number("shadows:cascades"))};
     FrameSceneShortfalls shortfalls;
-    passes::FrameScene scene = buildFrameScene(*device_,
-                                               {prims_, *camera, width, height, settings_.number("exposure"),
-                                                *textures_, shadows, temporalAa ? temporalAa->clipJitter : kIdentity},
-                                               shortfalls);
+    passes::FrameScene scene =
+        buildFrameScene(*device_,
+                        {prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows, dome,
+                         temporalAa ? temporalAa->clipJitter : kIdentity},
+                        shortfalls);
     if (shortfalls.lightsWithoutShadowRoom != lightsWithoutShadowRoom_ && shortfalls.lightsWithoutShadowRoom > 0)
         log(OBSCURA_LOG_WARNING, std::to_string(shortfalls.lightsWithoutShadowRoom) +
                                      " light(s) cast no shadow: the shadow atlas is full (lower shadows:resolution)");
     lightsWithoutShadowRoom_ = shortfalls.lightsWithoutShadowRoom;
+    if (shortfalls.unclippedLights != unclippedLights_)
+        for (const auto& problem : shortfalls.unclippedLights) log(OBSCURA_LOG_WARNING, problem);
+    unclippedLights_ = shortfalls.unclippedLights;
     trianglesDrawn_ = 0;
     for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
 
-    // The frame (DESIGN.md "The frame"): shadow maps, G-buffer, SSAO, lighting, temporal AA, tone
-    // mapping, AOV readback.
+    // The frame (DESIGN.md "The frame"): shadow maps, G-buffer, clip volumes into stencil, SSAO,
+    // lighting, temporal AA, tone mapping, AOV readback.
     gpu::FrameGraph graph;
     gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
+    passes::addClipVolumePass(graph, *pipelines_, scene, gbuffer);
     passes::SsaoResult ambient;
     const bool ssaoOn = settings_.number("ssao") != 0.0;
     if (ssaoOn) {
@@ -322,8 +338,10 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
                    graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
     }
+    passes::EnvironmentLighting environment =
+        environment_->addToFrame(graph, *pipelines_, dome ? dome->environment() : nullptr);
     gpu::ImageHandle hdr =
-        passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas,
+        passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas, environment,
                                 settings_.number("lighting:halfFloat") != 0.0 ? passes::LightAccumulation::HalfFloat
                                                                               : passes::LightAccumulation::SmallFloat);
     if (temporalAa)
@@ -332,6 +350,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, gbuffer.instance, grading_);
     passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, display, requests);
     graph.compile();
+    environment_->frameCompiled(graph);
     if (ssaoOn) passes::keepSsaoHistory(graph, ssaoHistory_);
     if (temporalAa) passes::keepTemporalAaHistory(graph, temporalAaHistory_);
     converged_ = !temporalAa || temporalAa->converged;

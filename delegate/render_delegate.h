@@ -2,6 +2,7 @@
 // prims from the host's scene delegate), and the frame (building the frame graph of passes).
 #pragma once
 
+#include "delegate/environment_cache.h"
 #include "delegate/geometry_cache.h"
 #include "delegate/prims/camera.h"
 #include "delegate/prims/instancer.h"
@@ -88,6 +89,9 @@ private:
     bool converged_ = true;  // the last render's, for ObscuraRenderStats
     std::unique_ptr<TextureCache> textures_;
     std::unique_ptr<GeometryCache> geometry_;
+    std::unique_ptr<EnvironmentCache> environment_;
+    // Textured domes beyond the first, last frame: warned about when the list changes.
+    std::vector<std::string> ignoredDomes_;
     passes::ColorGradingLut grading_;
 
     ObscuraSceneDelegate sceneDelegate_{};
@@ -104,6 +108,7 @@ private:
     uint32_t primsSynced_ = 0;
     uint64_t trianglesDrawn_ = 0;
     uint32_t lightsWithoutShadowRoom_ = 0;  // last frame's, so the warning is logged once per change
+    std::vector<std::string> unclippedLights_;  // likewise
     double syncMilliseconds_ = 0.0;
     double frameSetupMilliseconds_ = 0.0;
     std::string lastError_;

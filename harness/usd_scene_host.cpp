@@ -303,6 +303,14 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         *out = {OBSCURA_VALUE_PATH, 1, strings_.size(), stringPointers_.data()};
         return OBSCURA_OK;
     }
+    if (attribute == "obscura:clipVolume") {
+        const usda::Relationship* rel = prim->relationship(attribute);
+        if (!rel || rel->targets.empty()) return OBSCURA_ERROR_NOT_FOUND;
+        strings_ = {rel->targets.front()};
+        stringPointers_ = {strings_[0].c_str()};
+        *out = {OBSCURA_VALUE_PATH, 0, 1, stringPointers_.data()};
+        return OBSCURA_OK;
+    }
     if (attribute == "material:binding") {
         auto material = boundMaterial(*prim);
         if (!material) return OBSCURA_ERROR_NOT_FOUND;
@@ -328,6 +336,10 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     auto value = a->evaluate(time);
     // A declared but valueless attribute is unauthored; an empty array is an authored value.
     if (!value || (value->empty() && !value->isArray)) return OBSCURA_ERROR_NOT_FOUND;
+    // Hosts resolve asset paths (a dome's inputs:texture:file).
+    if (value->typeName == "asset")
+        for (auto& asset : value->strings)
+            if (!asset.empty()) asset = resolveAssetPath(asset, *a);
     const usda::Attribute* indices = startsWith(a->name, "primvars:") ? prim->attribute(a->name + ":indices") : nullptr;
     if (auto indexValues = indices ? indices->evaluate(time) : std::nullopt) {
         if (std::string problem = flattenIndexed(*value, *indexValues); !problem.empty()) {
