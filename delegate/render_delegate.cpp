@@ -347,8 +347,10 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (temporalAa)
         hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, temporalAaSettings, temporalAa->pass,
                                         temporalAaHistory_);
-    gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, gbuffer.instance, grading_);
-    passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, display, requests);
+    const passes::HdrAlpha hdrAlpha = temporalAa ? passes::HdrAlpha::Coverage : passes::HdrAlpha::None;
+    gpu::ImageHandle display =
+        passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance, grading_);
+    passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, hdrAlpha, display, requests);
     graph.compile();
     environment_->frameCompiled(graph);
     if (ssaoOn) passes::keepSsaoHistory(graph, ssaoHistory_);

@@ -7,6 +7,7 @@ struct PackPush {
     uint32_t aov;
     uint32_t width;
     uint32_t height;
+    uint32_t alphaIsCoverage;
 };
 
 gpu::ComputePipelineDesc describeAovPackPipeline() {
@@ -27,8 +28,8 @@ gpu::ComputePipelineDesc describeAovPackPipeline() {
 }  // namespace
 
 void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                        const GBuffer& gb, gpu::ImageHandle hdrColor, gpu::ImageHandle display,
-                        const std::vector<AovRequest>& requests) {
+                        const GBuffer& gb, gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha,
+                        gpu::ImageHandle display, const std::vector<AovRequest>& requests) {
     if (requests.empty()) return;
     // The pack writes `targets`; where a device-local staging buffer exists, a copy pass then
     // moves it to the host-visible destination.
@@ -57,8 +58,8 @@ void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const 
             pass.read(display, gpu::Usage::StorageImageRead);
             for (auto h : targets) pass.write(h, gpu::Usage::StorageBufferWrite);
         },
-        [&device, &pipeline, &scene, gb, hdrColor, display, targets, requests](VkCommandBuffer cmd,
-                                                                               const gpu::PassResources& res) {
+        [&device, &pipeline, &scene, gb, hdrColor, hdrAlpha, display, targets, requests](
+            VkCommandBuffer cmd, const gpu::PassResources& res) {
             VkSampler nearest = device.nearestClampSampler();
             for (size_t i = 0; i < requests.size(); ++i) {
                 gpu::DescriptorWriter(device, pipeline)
@@ -73,7 +74,8 @@ void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const 
                     .buffer(8, res.buffer(targets[i]))
                     .buffer(9, res.buffer(targets[i]))
                     .bind(cmd);
-                PackPush push{static_cast<uint32_t>(requests[i].aov), scene.width, scene.height};
+                PackPush push{static_cast<uint32_t>(requests[i].aov), scene.width, scene.height,
+                              hdrAlpha == HdrAlpha::Coverage ? 1u : 0u};
                 vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
                 gpu::dispatch2D(cmd, scene.width, scene.height);
             }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "passes/gbuffer.h"
+#include "passes/hdr_color.h"
 
 #include <vector>
 
@@ -16,8 +17,9 @@ struct AovRequest {
     gpu::BufferPtr deviceStaging;  // optional device-local twin: packed there, then copied
 };
 
+// The colour AOV's alpha is `hdrColor`'s where that holds coverage, else the G-buffer's coverage.
 void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                        const GBuffer& gbuffer, gpu::ImageHandle hdrColor, gpu::ImageHandle display,
-                        const std::vector<AovRequest>& requests);
+                        const GBuffer& gbuffer, gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha,
+                        gpu::ImageHandle display, const std::vector<AovRequest>& requests);
 
 }  // namespace obscura::passes

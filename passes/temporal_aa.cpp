@@ -32,6 +32,10 @@ double centredRotation(double unit) { return unit + 0.5 - std::floor(unit + 0.5)
 
 }  // namespace
 
+VkFormat temporalAaDepthFormat(TemporalAaMode mode) {
+    return mode == TemporalAaMode::Smaa2tx ? VK_FORMAT_R32G32_SFLOAT : VK_FORMAT_R32_SFLOAT;
+}
+
 std::array<double, 2> temporalAaJitter(TemporalAaMode mode, uint32_t index, uint32_t count) {
     if (mode == TemporalAaMode::Smaa2tx) return index % kSmaa2txFrames == 0 ? std::array{0.25, 0.25} : std::array{-0.25, -0.25};
     uint32_t i = count > 0 ? index % count : 0;
@@ -49,7 +53,7 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
     colorDesc.height = scene.height;
     colorDesc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     gpu::ImageDesc depthDesc = colorDesc;
-    depthDesc.format = kTemporalAaDepthFormat;
+    depthDesc.format = temporalAaDepthFormat(settings.mode);
     // New images (first use, resize) hold nothing: previousWritten says so.
     history.color.ensure(device, colorDesc, "temporalAaHistory");
     history.depth.ensure(device, depthDesc, "temporalAaHistoryDepth");

@@ -15,11 +15,9 @@ namespace obscura::passes {
 
 enum class TemporalAaMode { Smaa1tx, Smaa2tx };
 
-// History colour: the 1TX accumulation, or 2TX's last frame (alpha: its velocity length in pixels).
+// History colour, premultiplied, with coverage in alpha: the 1TX accumulation, or 2TX's last frame.
 // Accumulating 1/n of a sample needs more mantissa than B10G11R11 has (seed 004 "HDR").
 constexpr VkFormat kTemporalAaColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-// Linear view depth of the frame that wrote the history (scene units, as SSAO keeps it).
-constexpr VkFormat kTemporalAaDepthFormat = VK_FORMAT_R32_SFLOAT;
 
 // The sub-pixel offset (pixels, x right and y down, each in [-0.5, 0.5)) of the projection for
 // frame `index` of a cycle of `count` frames. 1TX: the first `count` points of the Halton (2, 3)
@@ -31,6 +29,10 @@ std::array<double, 2> temporalAaJitter(TemporalAaMode mode, uint32_t index, uint
 
 // Frames the 2TX blend holds: the current one and the last.
 constexpr uint32_t kSmaa2txFrames = 2;
+
+// Beside the history colour: the linear view depth of the frame that wrote it (scene units, as
+// SSAO keeps it) and, for 2TX, that frame's velocity length in pixels.
+VkFormat temporalAaDepthFormat(TemporalAaMode mode);
 
 struct TemporalAaSettings {
     TemporalAaMode mode = TemporalAaMode::Smaa1tx;
@@ -58,11 +60,12 @@ struct TemporalAaFrame {
 // The history (an explicit history input, STYLE.md): persistent images the delegate keeps.
 struct TemporalAaHistory {
     gpu::HistoryImages color;  // kTemporalAaColorFormat
-    gpu::HistoryImages depth;  // kTemporalAaDepthFormat
+    gpu::HistoryImages depth;  // temporalAaDepthFormat(mode)
 };
 
-// Returns the anti-aliased HDR colour (kTemporalAaColorFormat; in 1TX the history written this
-// frame itself). `hdrColor` is the light accumulation, rendered with the jittered projection.
+// Returns the anti-aliased HDR colour (kTemporalAaColorFormat, coverage in alpha; in 1TX the
+// history written this frame itself). `hdrColor` is the light accumulation, rendered with the
+// jittered projection.
 gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                                    const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
                                    const TemporalAaSettings& settings, const TemporalAaFrame& frame,

@@ -9,11 +9,13 @@ struct TonemapPush {
     float shaperRangeStops;
     float middleGrey;
     float lutSize;
+    uint32_t alphaIsCoverage;
 };
 }  // namespace
 
 gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                gpu::ImageHandle hdrColor, gpu::ImageHandle coverage, const ColorGradingLut& grading) {
+                                gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha, gpu::ImageHandle coverage,
+                                const ColorGradingLut& grading) {
     gpu::ImageDesc desc;
     desc.format = kDisplayFormat;
     desc.width = scene.width;
@@ -35,7 +37,7 @@ gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines
             pass.read(coverage, gpu::Usage::SampledCompute);
             pass.write(display, gpu::Usage::StorageImageWrite);
         },
-        [&device, &pipeline, &scene, &grading, hdrColor, coverage, display](VkCommandBuffer cmd,
+        [&device, &pipeline, &scene, &grading, hdrColor, hdrAlpha, coverage, display](VkCommandBuffer cmd,
                                                                              const gpu::PassResources& res) {
             gpu::DescriptorWriter(device, pipeline)
                 .sampled(0, res.view(hdrColor), device.nearestClampSampler())
@@ -45,7 +47,7 @@ gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines
                 .bind(cmd);
             const ColorLut& lut = grading.lut();
             TonemapPush push{lut.shaperMinStops, lut.shaperMaxStops - lut.shaperMinStops, kShaperMiddleGrey,
-                             float(lut.size)};
+                             float(lut.size), hdrAlpha == HdrAlpha::Coverage ? 1u : 0u};
             vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
             gpu::dispatch2D(cmd, scene.width, scene.height);
         });

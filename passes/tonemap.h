@@ -4,12 +4,16 @@
 
 #include "passes/color_grading_lut.h"
 #include "passes/gbuffer.h"
+#include "passes/hdr_color.h"
 
 namespace obscura::passes {
 
 constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;
 
+// The display image's alpha is `hdrColor`'s alpha where that holds coverage, else `coverage`'s (the
+// G-buffer's instance target: 1 where something drew).
 gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                gpu::ImageHandle hdrColor, gpu::ImageHandle coverage, const ColorGradingLut& grading);
+                                gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha, gpu::ImageHandle coverage,
+                                const ColorGradingLut& grading);
 
 }  // namespace obscura::passes

@@ -30,6 +30,7 @@ layout(push_constant) uniform Push {
     uint aov;
     uint width;
     uint height;
+    uint alphaIsCoverage;  // passes/hdr_color.h
 } push;
 
 void main() {
@@ -39,8 +40,9 @@ void main() {
     uint instanceId = texelFetch(instanceTexture, pixel, 0).r;
     bool covered = instanceId != 0u;
     if (push.aov == AOV_COLOR) {
-        vec3 c = texelFetch(hdrColor, pixel, 0).rgb;
-        float a = covered ? 1.0 : 0.0;
+        vec4 hdr = texelFetch(hdrColor, pixel, 0);
+        vec3 c = hdr.rgb;
+        float a = push.alphaIsCoverage != 0u ? hdr.a : covered ? 1.0 : 0.0;
         for (uint i = 0u; i < 3u; ++i) floats[index * 4u + i] = c[i];
         floats[index * 4u + 3u] = a;
     } else if (push.aov == AOV_DEPTH) {

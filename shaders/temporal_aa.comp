@@ -16,24 +16,27 @@
 // moves, so there is nothing to reproject or clamp: the clamp would only bias sub-pixel features.
 #include "common/temporal_aa_common.glsl"
 
-// The slide's cross: the four diagonal neighbours, and the pixel itself, so that a feature thinner
-// than the cross's reach (a one-pixel line) keeps its accumulated colour where this frame's sample
-// hit it, rather than being clamped to its background.
+layout(set = 0, binding = 7, r32f) uniform writeonly image2D historyDepth;
+
+// The clamp's extent and the slide's w_k over the cross. The pixel itself joins the extent, so
+// that a feature thinner than the cross's reach (a one-pixel line) keeps its accumulated colour
+// where this frame's sample hit it, rather than being clamped to its background.
 struct Neighbourhood {
-    vec3 minimum;
-    vec3 maximum;
-    vec3 highFrequency;  // w_k
+    vec4 minimum;
+    vec4 maximum;
+    vec4 highFrequency;  // w_k
 };
 
-Neighbourhood crossNeighbourhood(ivec2 pixel, ivec2 size, vec3 centre) {
-    vec3 tl = texelFetch(currentColor, clamp(pixel + ivec2(-1, -1), ivec2(0), size - 1), 0).rgb;
-    vec3 tr = texelFetch(currentColor, clamp(pixel + ivec2(1, -1), ivec2(0), size - 1), 0).rgb;
-    vec3 bl = texelFetch(currentColor, clamp(pixel + ivec2(-1, 1), ivec2(0), size - 1), 0).rgb;
-    vec3 br = texelFetch(currentColor, clamp(pixel + ivec2(1, 1), ivec2(0), size - 1), 0).rgb;
-    Neighbourhood n;
-    n.minimum = min(min(min(tl, tr), min(bl, br)), centre);
-    n.maximum = max(max(max(tl, tr), max(bl, br)), centre);
-    n.highFrequency = abs((tl + tr + bl + br) * 0.25 - centre);
+Neighbourhood crossNeighbourhood(ivec2 pixel, ivec2 size, vec4 centre, CrossDepths depths) {
+    Neighbourhood n = Neighbourhood(centre, centre, vec4(0.0));
+    vec4 sum = vec4(0.0);
+    for (int i = 1; i < CROSS_TAPS; ++i) {
+        vec4 c = currentSample(crossPixel(pixel, i, size), depths.depth[i]);
+        n.minimum = min(n.minimum, c);
+        n.maximum = max(n.maximum, c);
+        sum += c;
+    }
+    n.highFrequency = abs(sum * 0.25 - centre);
     return n;
 }
 
@@ -42,26 +45,26 @@ void main() {
     ivec2 size = imageSize(historyColor);
     if (any(greaterThanEqual(pixel, size))) return;
     float deviceDepth = texelFetch(currentDepth, pixel, 0).r;
-    vec3 current = texelFetch(currentColor, pixel, 0).rgb;
-    storeHistoryDepth(pixel, deviceDepth);
+    vec4 current = currentSample(pixel, deviceDepth);
+    imageStore(historyDepth, pixel, vec4(linearDepthFromDevice(camera.projection, deviceDepth)));
 
-    vec3 result = current;
+    vec4 result = current;
     uint heldFrames = taa.frames.y, framesToConverge = taa.frames.z;
     if (historyReadable() && heldFrames > 0u) {
         // An unchanged scene: the running mean, which stops at taa:frames (a converged still).
         float historyWeight = heldFrames >= framesToConverge ? 1.0 : float(heldFrames) / float(heldFrames + 1u);
-        result = mix(current, texelFetch(previousColor, pixel, 0).rgb, historyWeight);
+        result = mix(current, texelFetch(previousColor, pixel, 0), historyWeight);
     } else if (historyReadable()) {
-        Reprojection r = reproject(pixel, size);
+        CrossDepths depths = loadCrossDepths(pixel, size);
+        Reprojection r = reproject(pixel, size, depths);
         if (r.valid) {
-            Neighbourhood n = crossNeighbourhood(pixel, size, current);
-            vec3 accumulated = clamp(sampleHistory(r.position, size).rgb, n.minimum, n.maximum);
+            Neighbourhood n = crossNeighbourhood(pixel, size, current, depths);
+            vec4 accumulated = clamp(sampleHistory(r.position, size), n.minimum, n.maximum);
             // w_k is a difference of pre-exposed radiance, display-referred near 1 like the
             // slide's; clamped so that an HDR edge does not extrapolate past K_hifreq.
-            vec3 k = mix(vec3(taa.weights.x), vec3(taa.weights.y), clamp(n.highFrequency, 0.0, 1.0));
-            vec3 historyWeight = clamp(1.0 / k, 0.0, 1.0);
-            result = mix(current, accumulated, historyWeight);
+            vec4 k = mix(vec4(taa.weights.x), vec4(taa.weights.y), clamp(n.highFrequency, 0.0, 1.0));
+            result = mix(current, accumulated, clamp(1.0 / k, 0.0, 1.0));
         }
     }
-    imageStore(historyColor, pixel, vec4(result, 1.0));
+    imageStore(historyColor, pixel, result);
 }

@@ -15,6 +15,7 @@ layout(push_constant) uniform Push {
     float shaperRangeStops;
     float middleGrey;
     float lutSize;
+    uint alphaIsCoverage;  // passes/hdr_color.h
 } push;
 
 // passes/color_lut.cpp shaperEncode: log2 stops around middle grey, with a linear toe that is the
@@ -32,10 +33,11 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(displayColor);
     if (any(greaterThanEqual(pixel, size))) return;
-    vec3 hdr = texelFetch(hdrColor, pixel, 0).rgb;
+    vec4 hdrSample = texelFetch(hdrColor, pixel, 0);
+    vec3 hdr = hdrSample.rgb;
     // Lattice points sit at texel centres: scale and offset so 0 and 1 hit the first and last.
     vec3 coordinate = shaperEncode(hdr) * ((push.lutSize - 1.0) / push.lutSize) + 0.5 / push.lutSize;
     vec3 display = clamp(textureLod(gradingLut, coordinate, 0.0).rgb, 0.0, 1.0);
-    float alpha = texelFetch(instanceTexture, pixel, 0).r != 0u ? 1.0 : 0.0;
+    float alpha = push.alphaIsCoverage != 0u ? hdrSample.a : texelFetch(instanceTexture, pixel, 0).r != 0u ? 1.0 : 0.0;
     imageStore(displayColor, pixel, vec4(display, alpha));
 }

@@ -1,6 +1,8 @@
 // Shared by the temporal anti-aliasing shaders (passes/temporal_aa.cpp): SMAA 1TX
 // (temporal_aa.comp) and SMAA 2TX (temporal_aa_2tx.comp). Bindings 0-7 are common; the history
-// images are written here, one texel per pixel.
+// images are written one texel per pixel. Colours carry coverage in alpha (1 where the G-buffer
+// holds a surface, 0 where nothing drew), accumulated like the colour, so the premultiplied
+// colour and its alpha stay consistent at anti-aliased silhouettes.
 #ifndef OBSCURA_TEMPORAL_AA_COMMON_GLSL
 #define OBSCURA_TEMPORAL_AA_COMMON_GLSL
 
@@ -21,12 +23,33 @@ layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
 layout(set = 0, binding = 1, std140) uniform Constants { TemporalAaConstants taa; };
 layout(set = 0, binding = 2) uniform sampler2D currentColor;   // the light accumulation (nearest)
 layout(set = 0, binding = 3) uniform sampler2D currentDepth;   // the G-buffer's device depth (nearest)
-layout(set = 0, binding = 4) uniform sampler2D previousColor;  // last frame's history colour (bilinear)
-layout(set = 0, binding = 5) uniform sampler2D previousDepth;  // last frame's linear view depth (nearest)
+layout(set = 0, binding = 4) uniform sampler2D previousColor;  // last frame's history colour (texelFetch)
+layout(set = 0, binding = 5) uniform sampler2D previousDepth;  // x: last frame's linear view depth (nearest)
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D historyColor;
-layout(set = 0, binding = 7, r32f) uniform writeonly image2D historyDepth;
 
 bool historyReadable() { return taa.frames.x != 0u; }
+
+// The pixel and the slide's cross around it: its four diagonal neighbours (c_TL, c_TR, c_BL, c_BR).
+const int CROSS_TAPS = 5;
+const ivec2 CROSS[CROSS_TAPS] = ivec2[CROSS_TAPS](ivec2(0, 0), ivec2(-1, -1), ivec2(1, -1), ivec2(-1, 1), ivec2(1, 1));
+
+ivec2 crossPixel(ivec2 pixel, int tap, ivec2 size) { return clamp(pixel + CROSS[tap], ivec2(0), size - 1); }
+
+// This frame's device depths over the cross (the G-buffer clears to 1, the far plane).
+struct CrossDepths {
+    float depth[CROSS_TAPS];
+};
+
+CrossDepths loadCrossDepths(ivec2 pixel, ivec2 size) {
+    CrossDepths d;
+    for (int i = 0; i < CROSS_TAPS; ++i) d.depth[i] = texelFetch(currentDepth, crossPixel(pixel, i, size), 0).r;
+    return d;
+}
+
+// This frame's colour at `pixel`, with coverage in alpha.
+vec4 currentSample(ivec2 pixel, float deviceDepth) {
+    return vec4(texelFetch(currentColor, pixel, 0).rgb, deviceDepth < 1.0 ? 1.0 : 0.0);
+}
 
 // A history depth may differ from the one expected by this much (relative) and still hold the
 // same surface: float rounding through two matrices, not geometry.
@@ -37,52 +60,38 @@ struct Reprojection {
     bool valid;     // on screen then, and the history there holds this surface
 };
 
-// The front-most depth of the 3x3 pixels around `pixel`, and where it lies. Reprojecting with the
-// nearest surface's motion (Karis 2014, "High quality temporal supersampling") moves a silhouette's
-// background pixels with the object in front, so the history they take is not what the object
-// covered last frame.
-struct NearestSurface {
-    ivec2 pixel;
-    float deviceDepth;
-};
-
-NearestSurface nearestSurface(ivec2 pixel, ivec2 size) {
-    NearestSurface nearest = NearestSurface(pixel, texelFetch(currentDepth, pixel, 0).r);
-    const ivec2 cross[4] = ivec2[4](ivec2(-1, -1), ivec2(1, -1), ivec2(-1, 1), ivec2(1, 1));
-    for (int i = 0; i < 4; ++i) {
-        ivec2 neighbour = clamp(pixel + cross[i], ivec2(0), size - 1);
-        float depth = texelFetch(currentDepth, neighbour, 0).r;
-        if (depth < nearest.deviceDepth) nearest = NearestSurface(neighbour, depth);
-    }
-    return nearest;
-}
-
-// Camera motion from depth: the pixel's surface point (the nearest of its neighbourhood's) through
-// last frame's camera. Objects that moved on their own are caught by the depth test: the history
-// is rejected where the depth expected there lies outside the range of the 3x3 depths last frame
-// stored around it. A range, not the nearest texel's depth, because the sub-pixel jitter moves
-// silhouettes from frame to frame (either side of an edge may be what a texel saw), and a surface
-// seen at a grazing angle changes depth quickly across a pixel; a disocclusion, or an object that
-// arrived, lies outside it. Colour changes are the neighbourhood clamp's to handle (the callers).
-Reprojection reproject(ivec2 pixel, ivec2 size) {
-    NearestSurface surface = nearestSurface(pixel, size);
-    vec4 clip = vec4((vec2(surface.pixel) + 0.5) / vec2(size) * 2.0 - 1.0, surface.deviceDepth, 1.0);
+// Camera motion from depth: the surface point through last frame's camera. The depth is the
+// front-most of the cross's: reprojecting with the nearest surface's motion (Karis 2014, "High
+// quality temporal supersampling") moves a silhouette's background pixels with the object in
+// front of them, so they do not take what that object covered last frame. Objects that moved on
+// their own are caught by the depth test: the history is rejected where the depth expected there
+// lies outside the range of the 3x3 depths last frame stored around it. A range, not the nearest
+// texel's depth, because the sub-pixel jitter moves silhouettes from frame to frame (either side
+// of an edge may be what a texel saw), and a surface seen at a grazing angle changes depth
+// quickly across a pixel; a disocclusion, or an object that arrived, lies outside it. Colour
+// changes are the neighbourhood clamp's to handle (temporal_aa.comp).
+Reprojection reproject(ivec2 pixel, ivec2 size, CrossDepths depths) {
+    int nearest = 0;
+    for (int i = 1; i < CROSS_TAPS; ++i)
+        if (depths.depth[i] < depths.depth[nearest]) nearest = i;
+    ivec2 surfacePixel = crossPixel(pixel, nearest, size);
+    vec4 clip = vec4((vec2(surfacePixel) + 0.5) / vec2(size) * 2.0 - 1.0, depths.depth[nearest], 1.0);
     vec4 previousClip = taa.currentClipToPreviousClip * clip;
     Reprojection r;
-    r.position = (previousClip.xy / previousClip.w * 0.5 + 0.5) * vec2(size) + vec2(pixel - surface.pixel);
+    r.position = (previousClip.xy / previousClip.w * 0.5 + 0.5) * vec2(size) + vec2(pixel - surfacePixel);
     r.valid = previousClip.w > 0.0 && all(greaterThanEqual(r.position, vec2(0.0))) && all(lessThan(r.position, vec2(size)));
     if (!r.valid) return r;
     vec4 previousView = taa.currentClipToPreviousView * clip;
     float expected = -previousView.z / previousView.w;
     ivec2 centre = ivec2(floor(r.position));
-    float nearest = 3.4e38, farthest = 0.0;
+    float closest = 3.4e38, farthest = 0.0;
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
             float held = texelFetch(previousDepth, clamp(centre + ivec2(dx, dy), ivec2(0), size - 1), 0).r;
-            nearest = min(nearest, held);
+            closest = min(closest, held);
             farthest = max(farthest, held);
         }
-    r.valid = expected >= nearest * (1.0 - TEMPORAL_AA_DEPTH_TOLERANCE) &&
+    r.valid = expected >= closest * (1.0 - TEMPORAL_AA_DEPTH_TOLERANCE) &&
               expected <= farthest * (1.0 + TEMPORAL_AA_DEPTH_TOLERANCE);
     return r;
 }
@@ -96,11 +105,8 @@ vec4 sampleHistory(vec2 position, ivec2 size) {
     ivec2 base = ivec2(floor(centre));
     vec2 t = centre - vec2(base);
     // Catmull-Rom weights of the texels at -1, 0, 1, 2 from base, for fractions t.
-    vec2 w0 = t * (-0.5 + t * (1.0 - 0.5 * t));
-    vec2 w1 = 1.0 + t * t * (-2.5 + 1.5 * t);
-    vec2 w2 = t * (0.5 + t * (2.0 - 1.5 * t));
-    vec2 w3 = t * t * (-0.5 + 0.5 * t);
-    vec2 weights[4] = vec2[4](w0, w1, w2, w3);
+    vec2 weights[4] = vec2[4](t * (-0.5 + t * (1.0 - 0.5 * t)), 1.0 + t * t * (-2.5 + 1.5 * t),
+                              t * (0.5 + t * (2.0 - 1.5 * t)), t * t * (-0.5 + 0.5 * t));
     vec4 sum = vec4(0.0);
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) {
@@ -108,11 +114,6 @@ vec4 sampleHistory(vec2 position, ivec2 size) {
             sum += weights[i].x * weights[j].y * texelFetch(previousColor, texel, 0);
         }
     return sum;
-}
-
-// This frame's depth along the view axis, which the next frame's depth test expects.
-void storeHistoryDepth(ivec2 pixel, float deviceDepth) {
-    imageStore(historyDepth, pixel, vec4(linearDepthFromDevice(camera.projection, deviceDepth)));
 }
 
 #endif
