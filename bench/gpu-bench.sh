@@ -12,4 +12,6 @@ gpu-pack/run obscura info
 for scene in "${scenes[@]}"; do
   gpu-pack/run obscura bench "$scene" --frames "$frames" --width "$width" --height "$height"
   gpu-pack/run obscura bench "$scene" --frames "$frames" --width "$width" --height "$height" --json
+  # Temporal AA as under camera motion (reprojection, clamp) rather than settled into a still.
+  gpu-pack/run obscura bench "$scene" --frames "$frames" --width "$width" --height "$height" --changing-camera
 done

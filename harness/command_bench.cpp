@@ -53,6 +53,7 @@ int runBench(const BenchOptions& o) {
     std::map<std::string, double> warmupOnly;
     std::vector<std::string> warmupOrder;
     for (int i = 0; i < kWarmup + o.frames; ++i) {
+        if (o.changingCamera) session.api().markDirty(session.delegate(), camera.c_str(), OBSCURA_DIRTY_TRANSFORM);
         ObscuraStatus s = session.api().render(session.delegate(), &desc);
         if (s != OBSCURA_OK && s != OBSCURA_ERROR_BAD_PRIM_DATA) {
             std::fprintf(stderr, "obscura: render failed: %s\n", session.lastError().c_str());

@@ -33,6 +33,9 @@ struct BenchOptions {
     int width = 1920;
     int height = 1080;
     bool json = false;
+    // Mark the camera changed before every frame (it does not move): temporal passes then work as
+    // under camera motion (temporal AA reprojects and clamps) instead of settling into a still.
+    bool changingCamera = false;
     std::vector<std::string> settings;
 };
 

@@ -41,6 +41,8 @@ int main(int argc, char** argv) {
     b->add_option("--width", bench.width, "image width")->check(CLI::PositiveNumber);
     b->add_option("--height", bench.height, "image height")->check(CLI::PositiveNumber);
     b->add_flag("--json", bench.json, "machine-readable output");
+    b->add_flag("--changing-camera", bench.changingCamera,
+                "mark the camera changed every frame: temporal AA measured as under camera motion");
     b->add_option("--set", bench.settings, "render setting key=value (repeatable)");
 
     try {

@@ -37,7 +37,8 @@ VkFormat temporalAaDepthFormat(TemporalAaMode mode) {
 }
 
 std::array<double, 2> temporalAaJitter(TemporalAaMode mode, uint32_t index, uint32_t count) {
-    if (mode == TemporalAaMode::Smaa2tx) return index % kSmaa2txFrames == 0 ? std::array{0.25, 0.25} : std::array{-0.25, -0.25};
+    if (mode == TemporalAaMode::Smaa2tx)
+        return index % kSmaa2txFrames == 0 ? std::array{0.25, 0.25} : std::array{-0.25, -0.25};
     uint32_t i = count > 0 ? index % count : 0;
     return {centredRotation(radicalInverse(i, 2)), centredRotation(radicalInverse(i, 3))};
 }
@@ -69,8 +70,12 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
                                                         gpu::MemoryUsage::Upload, "temporalAaConstants");
     std::memcpy(constantBuffer->mapped(), &constants, sizeof(constants));
 
-    // 1TX's result is its accumulation; 2TX keeps the raw frame as history and resolves apart.
+    // 1TX's result is its accumulation; 2TX keeps the raw frame as history and resolves apart. An
+    // unchanged scene runs the still's plain running mean, its own shader: lavapipe pays for both
+    // sides of a branch, even a uniform one.
     const bool twoFrame = settings.mode == TemporalAaMode::Smaa2tx;
+    const bool still = !twoFrame && constants.frames[0] != 0 && frame.heldFrames > 0;
+    const char* variant = twoFrame ? "temporal_aa_2tx" : still ? "temporal_aa_still" : "temporal_aa";
     gpu::ImageHandle resolved = color.current;
     if (twoFrame) {
         gpu::ImageDesc resolvedDesc = colorDesc;
@@ -87,11 +92,9 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
                                               {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
     if (twoFrame) bindings.push_back({8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
     const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>(
-        twoFrame ? "temporal_aa_2tx" : "temporal_aa", [&] {
-            return gpu::ComputePipelineDesc{twoFrame ? "temporal_aa_2tx.comp" : "temporal_aa.comp", bindings, 0};
-        });
+        variant, [&] { return gpu::ComputePipelineDesc{std::string(variant) + ".comp", bindings, 0}; });
     graph.addPass(
-        twoFrame ? "temporal_aa_2tx" : "temporal_aa", gpu::PassKind::Compute,
+        variant, gpu::PassKind::Compute,
         [&](gpu::FrameGraph::PassBuilder& pass) {
             pass.read(hdrColor, gpu::Usage::SampledCompute);
             pass.read(gbuffer.depth, gpu::Usage::SampledCompute);
@@ -109,7 +112,7 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
                 .buffer(1, constantBuffer->buffer)
                 .sampled(2, res.view(hdrColor), nearest)
                 .sampled(3, res.view(gbuffer.depth), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
-                .sampled(4, res.view(color.previous), device.linearClampSampler())
+                .sampled(4, res.view(color.previous), nearest)
                 .sampled(5, res.view(depth.previous), nearest)
                 .storageImage(6, res.view(color.current))
                 .storageImage(7, res.view(depth.current));

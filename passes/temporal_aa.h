@@ -34,11 +34,12 @@ constexpr uint32_t kSmaa2txFrames = 2;
 // SSAO keeps it) and, for 2TX, that frame's velocity length in pixels.
 VkFormat temporalAaDepthFormat(TemporalAaMode mode);
 
+// Render settings taa:mode, taa:kLowFreq, taa:kHighFreq.
 struct TemporalAaSettings {
-    TemporalAaMode mode = TemporalAaMode::Smaa1tx;
+    TemporalAaMode mode;
     // The slide's weights (1TX): history weight = saturate(1 / lerp(kLowFreq, kHighFreq, w_k)).
-    float kLowFreq = 1.0f;
-    float kHighFreq = 1.0f;
+    float kLowFreq;
+    float kHighFreq;
 };
 
 // What the delegate decided for this frame (delegate/temporal_accumulation.h), in the shader's

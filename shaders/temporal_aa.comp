@@ -8,12 +8,8 @@
 //   w_rgb = clamp(1 / (K_lowfreq (1 - w_k) + K_hifreq w_k), 0, 1)
 //   c = c_M (1 - w_rgb) + c_acc w_rgb
 // (slides "SMAA 1TX (2)" and "(3)"; seed 003 typesets the same). It tracks the signal, not the
-// geometry, so lights, materials and transparents that change do not ghost.
-// While the scene and the camera stay unchanged, the history holds an equal-weight mean of the
-// frames since and each frame adds its own with weight 1 / (n + 1), up to taa:frames: the jitter
-// sequence then covers the pixel and a still converges to the box-filtered supersampled image
-// (the slide's exponential weights would forever favour the latest few jitter offsets). Nothing
-// moves, so there is nothing to reproject or clamp: the clamp would only bias sub-pixel features.
+// geometry, so lights, materials and transparents that change do not ghost. This runs in frames
+// where something changed; while nothing does, temporal_aa_still.comp averages the jittered frames.
 #include "common/temporal_aa_common.glsl"
 
 layout(set = 0, binding = 7, r32f) uniform writeonly image2D historyDepth;
@@ -49,12 +45,7 @@ void main() {
     imageStore(historyDepth, pixel, vec4(linearDepthFromDevice(camera.projection, deviceDepth)));
 
     vec4 result = current;
-    uint heldFrames = taa.frames.y, framesToConverge = taa.frames.z;
-    if (historyReadable() && heldFrames > 0u) {
-        // An unchanged scene: the running mean, which stops at taa:frames (a converged still).
-        float historyWeight = heldFrames >= framesToConverge ? 1.0 : float(heldFrames) / float(heldFrames + 1u);
-        result = mix(current, texelFetch(previousColor, pixel, 0), historyWeight);
-    } else if (historyReadable()) {
+    if (historyReadable()) {
         CrossDepths depths = loadCrossDepths(pixel, size);
         Reprojection r = reproject(pixel, size, depths);
         if (r.valid) {

@@ -270,6 +270,34 @@ TEST(TemporalAa, ALightSwitchedOffLeavesNothingBehind) {
     EXPECT_FALSE(renderStats(s.host).converged);
 }
 
+TEST(TemporalAa, AChangedMaterialShowsAtOnce) {
+    LitPlaneScene s;  // a sphere light close above the plane: shading that varies across it
+    s.host.addPrim("sphereLight", "/Bulb",
+                   {{"inputs:intensity", HostValue::floatValue(60.0f)}, {"inputs:radius", HostValue::floatValue(0.1f)}},
+                   translation(0.3, 0.2, 1.0));
+    s.renderColor();
+    while (!renderStats(s.host).converged) s.renderColor();
+    // The grey plane turns red: the next frame against a render of the red plane without history.
+    s.host.set("/Looks/Grey", "inputs:diffuseColor", HostValue::float3(0.8f, 0.1f, 0.05f));
+    ASSERT_EQ(s.host.api().markDirty(s.host.delegate(), "/Looks/Grey", OBSCURA_DIRTY_PARAMS), OBSCURA_OK);
+    std::vector<float> changed = s.renderColor();
+    setBool(s.host, "taa", false);
+    std::vector<float> fresh = s.renderColor();
+    // Shading moves with the jitter, the colour's hue must not: green over red is the red
+    // material's 1/8 wherever the plane is lit and the grey's 1 before. What remains of the grey's
+    // hue is what the per-channel clamp lets through: the neighbourhood's range, a few percent per
+    // pixel where the bulb's light falls off fastest.
+    float lingering = 0.0f;
+    for (size_t p = 0; p < size_t(kWidth) * kHeight; ++p)
+        if (fresh[p * 4] > 0.01f) {
+            float freshHue = fresh[p * 4 + 1] / fresh[p * 4], hue = changed[p * 4 + 1] / changed[p * 4];
+            lingering = std::max(lingering, (hue - freshHue) / (1.0f - freshHue));
+        }
+    std::printf("a material turned from grey to red: the next frame keeps at most %.4f of the grey's hue\n",
+                lingering);
+    EXPECT_LT(lingering, 0.03f);
+}
+
 // The camera pans 0.45 pixels right and 0.2 down a frame: every frame is reprojected through the
 // camera's motion (the nearest surface's, at silhouettes), clamped and blended by the slide's
 // weights; each is measured against the supersampled image of the same view.

@@ -58,6 +58,10 @@ check "missing scene file" 3 $? "$tmp/out" 'does-not-exist'
 check "unknown output type is a usage error" 2 $?
 "$obscura" render "$src/scenes/demo.usda" -o "$tmp/x.png" --set noSuchSetting=1 >"$tmp/out" 2>&1
 check "unknown setting is a usage error" 2 $? "$tmp/out" 'noSuchSetting'
+"$obscura" render "$src/scenes/demo.usda" -o "$tmp/x.png" --width 32 --height 18 --set taa:mode=3tx >"$tmp/out" 2>&1
+check "a bad setting value names the accepted ones" 2 $? "$tmp/out" "taa:mode: '3tx' is not one of 1tx.2tx"
+"$obscura" render "$src/scenes/demo.usda" -o "$tmp/aa2.exr" --width 32 --height 18 --set taa:mode=2tx >"$tmp/out" 2>&1
+check "render with SMAA 2TX" 0 $?
 "$obscura" frobnicate >"$tmp/out" 2>&1
 check "unknown command is a usage error" 2 $?
 
