@@ -44,8 +44,18 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     scene.height = in.height;
 
     const Camera& cam = in.camera;
+    double aspect = double(in.width) / double(in.height);
     Matrix4d view = cam.viewMatrix();
-    Matrix4d projection = cam.projectionMatrix(double(in.width) / double(in.height));
+    Matrix4d projection = cam.projectionMatrix(aspect);
+    Matrix4d cameraToWorld = cam.params().cameraToWorld;
+    if (in.sample) {
+        view = cam.viewMatrix(in.sample->lensOffset, in.sample->time);
+        std::array<double, 2> ndcJitter{2.0 * in.sample->pixelJitter[0] / in.width,
+                                        2.0 * in.sample->pixelJitter[1] / in.height};
+        projection = cam.projectionMatrix(aspect, in.sample->lensOffset, ndcJitter);
+        invert(view, cameraToWorld);
+    }
+    auto transformOf = [&](const Mesh& mesh) { return in.sample ? mesh.transformAt(in.sample->time) : mesh.transform(); };
     Matrix4d viewProjection = multiply(view, projection);
     Matrix4d inverseViewProjection = kIdentity;
     invert(viewProjection, inverseViewProjection);
@@ -54,7 +64,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     cd.projection = toFloats<passes::Mat4>(projection);
     cd.viewProjection = toFloats<passes::Mat4>(viewProjection);
     cd.inverseViewProjection = toFloats<passes::Mat4>(inverseViewProjection);
-    Vec3d eye = transformPoint({0, 0, 0}, cam.params().cameraToWorld);
+    Vec3d eye = transformPoint({0, 0, 0}, cameraToWorld);
     cd.position = {float(eye[0]), float(eye[1]), float(eye[2]), 1.0f};
     cd.resolution = {float(in.width), float(in.height)};
     cd.exposureScale = float(std::exp2(cam.params().exposure + in.exposureStops));
@@ -136,7 +146,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         if (!mesh || isPrototype(path)) continue;
         scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
                                static_cast<uint32_t>(instances.size()), 1, texturesOf(*mesh)});
-        record(*mesh, mesh->transform());
+        record(*mesh, transformOf(*mesh));
     }
     // One draw per (instancer, prototype mesh): the mesh's transform relative to the instancer,
     // then each instance's transform.
@@ -150,7 +160,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
             scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
                                    static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(placements.size()),
                                    texturesOf(*mesh)});
-            for (const Matrix4d& placement : placements) record(*mesh, multiply(mesh->transform(), placement));
+            for (const Matrix4d& placement : placements) record(*mesh, multiply(transformOf(*mesh), placement));
         }
     }
     passes::LightBufferHeader header{static_cast<uint32_t>(lights.size()), {0, 0, 0}};

@@ -7,11 +7,21 @@
 #include "delegate/texture_cache.h"
 #include "passes/frame_scene.h"
 
+#include <array>
 #include <map>
+#include <optional>
 #include <memory>
 #include <string>
 
 namespace obscura::delegate {
+
+// Where on the lens, when in the shutter and where within the pixel a reference sub-frame looks
+// from (Camera::viewMatrix / projectionMatrix with a lens offset).
+struct FrameSample {
+    double time;                        // absolute time code, within the camera's shutter
+    std::array<double, 2> lensOffset;   // camera space, scene units
+    std::array<double, 2> pixelJitter;  // pixels
+};
 
 struct FrameSceneInputs {
     const std::map<std::string, std::unique_ptr<Prim>>& prims;
@@ -20,6 +30,7 @@ struct FrameSceneInputs {
     uint32_t height;
     double exposureStops;  // render setting, added to the camera's exposure
     TextureCache& textures;
+    std::optional<FrameSample> sample = std::nullopt;  // none: the pinhole camera at the frame's time
 };
 
 passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs);

@@ -2,8 +2,11 @@
 
 #include "delegate/frame_scene_builder.h"
 #include "gpu/vk_check.h"
+#include "delegate/reference_frames.h"
+#include "passes/accumulate.h"
 #include "passes/aov_readback.h"
 #include "passes/best_fit_normals.h"
+#include "passes/depth_of_field.h"
 #include "passes/gbuffer.h"
 #include "passes/lighting.h"
 #include "passes/tonemap.h"
@@ -97,6 +100,7 @@ RenderDelegate::~RenderDelegate() {
     geometry_.reset();
     bestFitNormals_.reset();
     unoccluded_ = {};
+    accumulation_ = {};
     grading_ = passes::ColorGradingLut();
     timestamps_.reset();
     transients_.reset();
@@ -204,6 +208,8 @@ void RenderDelegate::sync(double time, const Camera* camera) {
             for (const auto& w : material->warnings()) log(OBSCURA_LOG_WARNING, material->path() + ": " + w);
         if (auto* light = dynamic_cast<Light*>(prim); light && !light->warning().empty())
             log(OBSCURA_LOG_WARNING, light->path() + ": " + light->warning());
+        if (auto* cam = dynamic_cast<Camera*>(prim); cam && !cam->warning().empty())
+            log(OBSCURA_LOG_WARNING, cam->path() + ": " + cam->warning());
     }
     // All uploads of this sync go to the GPU in one submission.
     device_->flushUploads();
@@ -259,37 +265,40 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (std::string problem = grading_.update(*device_, colour); !problem.empty())
         throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "colour management: " + problem};
 
-    passes::FrameScene scene =
-        buildFrameScene(*device_, {prims_, *camera, width, height, settings_.number("exposure"), *textures_});
+    FrameSceneInputs frame{prims_, *camera, width, height, settings_.number("exposure"), *textures_};
+    // The `dof` setting turns the lens off for the post-process and the reference alike.
+    passes::ThinLens lens = settings_.number("dof") != 0.0 ? camera->thinLens(double(width) / double(height))
+                                                           : passes::ThinLens{};
+    uint32_t referenceSubFrames = static_cast<uint32_t>(settings_.number("reference"));
+    if (referenceSubFrames > 0) accumulateReference(frame, lens, referenceSubFrames, desc.time);
+
+    passes::FrameScene scene = buildFrameScene(*device_, frame);
     trianglesDrawn_ = 0;
     for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
 
-    // The frame (DESIGN.md "The frame"): G-buffer, lighting, tone mapping, AOV readback.
+    // The frame (DESIGN.md "The frame"): G-buffer, lighting, depth of field, tone mapping, AOV
+    // readback. In reference mode the accumulated sub-frames replace lighting and depth of field;
+    // the other AOVs come from the pinhole camera.
     gpu::FrameGraph graph;
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
-    passes::SsaoResult ambient;
-    if (settings_.number("ssao") != 0.0) {
-        // The radius is authored in metres; the passes work in scene units (USD metersPerUnit).
-        passes::SsaoSettings ssao{float(settings_.number("ssao:radius") / settings_.number("metersPerUnit")),
-                                  float(settings_.number("ssao:intensity"))};
-        ambient = passes::addSsaoPasses(graph, *pipelines_, scene, gbuffer, ssao);
+    gpu::ImageHandle hdr;
+    if (referenceSubFrames > 0) {
+        gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
+        hdr = passes::addAccumulationResolvePass(graph, *pipelines_, sum, passes::kLightAccumulationFormat);
     } else {
-        ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
-                   graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
+        hdr = addLighting(graph, scene, gbuffer);
+        if (passes::hasDepthOfField(lens)) {
+            const CameraParams& p = camera->params();
+            passes::DepthOfFieldSettings dof{
+                passes::cocFromDepth(lens, p.clippingRange[0], p.clippingRange[1], double(width)),
+                camera->apertureShape(), static_cast<int>(settings_.number("dof:taps"))};
+            hdr = passes::addDepthOfFieldPasses(graph, *pipelines_, scene, gbuffer, hdr, dof);
+        }
     }
-    gpu::ImageHandle hdr = passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient);
     gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, gbuffer.instance, grading_);
     passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, display, requests);
-    graph.compile();
-
-    device_->context().submitAndWait([&](VkCommandBuffer cmd) {
-        timestamps_->reset(cmd);
-        graph.execute(*transients_, cmd, timestamps_.get());
-        frameSetupMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - syncEnd).count();
-    });
-    timings_ = timestamps_->resolve();
-    device_->endFrame();
-    transients_->endFrame();
+    executeFrame(graph);
+    frameSetupMilliseconds_ = std::chrono::duration<double, std::milli>(frameRecorded_ - syncEnd).count();
     for (RenderBuffer* rb : targets) rb->setRendered(true);
 
     if (failOnValidation_ && device_->context().validationErrorCount() > 0)
@@ -301,6 +310,68 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
             return OBSCURA_ERROR_BAD_PRIM_DATA;
         }
     return OBSCURA_OK;
+}
+
+gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
+                                             const passes::GBuffer& gbuffer) {
+    passes::SsaoResult ambient;
+    if (settings_.number("ssao") != 0.0) {
+        // The radius is authored in metres; the passes work in scene units (USD metersPerUnit).
+        passes::SsaoSettings ssao{float(settings_.number("ssao:radius") / settings_.number("metersPerUnit")),
+                                  float(settings_.number("ssao:intensity"))};
+        ambient = passes::addSsaoPasses(graph, *pipelines_, scene, gbuffer, ssao);
+    } else {
+        ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
+                   graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
+    }
+    return passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient);
+}
+
+void RenderDelegate::executeFrame(gpu::FrameGraph& graph) {
+    graph.compile();
+    device_->context().submitAndWait([&](VkCommandBuffer cmd) {
+        timestamps_->reset(cmd);
+        graph.execute(*transients_, cmd, timestamps_.get());
+        frameRecorded_ = std::chrono::steady_clock::now();
+    });
+    timings_ = timestamps_->resolve();
+    device_->endFrame();
+    transients_->endFrame();
+}
+
+void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const passes::ThinLens& lens, uint32_t count,
+                                         double time) {
+    const gpu::ImageDesc* current = accumulation_.image ? &accumulation_.image->desc : nullptr;
+    if (!current || current->width != frame.width || current->height != frame.height) {
+        gpu::ImageDesc desc;
+        desc.format = passes::kAccumulationFormat;
+        desc.width = frame.width;
+        desc.height = frame.height;
+        desc.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+        accumulation_ = {device_->createImage(desc, "reference accumulation"), VK_IMAGE_LAYOUT_UNDEFINED};
+    }
+    // Without depth of field the lens is a pinhole: every sub-frame looks from its centre.
+    bool lensBlur = passes::hasDepthOfField(lens);
+    double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
+    const CameraParams& camera = frame.camera.params();
+    double open = time + camera.shutterOpen, close = time + camera.shutterClose;
+    std::vector<ReferenceSubFrame> subFrames =
+        referenceSubFrames(count, lensBlur ? frame.camera.apertureShape() : passes::ApertureShape{});
+    for (size_t k = 0; k < subFrames.size(); ++k) {
+        const ReferenceSubFrame& sub = subFrames[k];
+        FrameSceneInputs inputs = frame;
+        inputs.sample = FrameSample{open + sub.shutter * (close - open),
+                                    {sub.aperture[0] * apertureRadius, sub.aperture[1] * apertureRadius},
+                                    sub.pixelJitter};
+        passes::FrameScene scene = buildFrameScene(*device_, inputs);
+        gpu::FrameGraph graph;
+        passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
+        gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer);
+        gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
+        passes::addAccumulatePass(graph, *pipelines_, hdr, sum, float(sub.weight), k == 0);
+        executeFrame(graph);
+        accumulation_.layout = graph.finalLayout(sum);
+    }
 }
 
 void RenderDelegate::map(const std::string& path, ObscuraMappedBuffer& out) {

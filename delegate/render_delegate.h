@@ -2,6 +2,7 @@
 // prims from the host's scene delegate), and the frame (building the frame graph of passes).
 #pragma once
 
+#include "delegate/frame_scene_builder.h"
 #include "delegate/geometry_cache.h"
 #include "delegate/prims/camera.h"
 #include "delegate/prims/instancer.h"
@@ -14,10 +15,12 @@
 #include "gpu/frame_graph.h"
 #include "gpu/timestamps.h"
 #include "passes/color_grading_lut.h"
+#include "passes/gbuffer.h"
 #include "passes/pipeline_cache.h"
 
 #include <obscura/obscura.h>
 
+#include <chrono>
 #include <map>
 #include <set>
 #include <memory>
@@ -56,6 +59,14 @@ public:
 
 private:
     void sync(double time, const Camera* camera);
+    // SSAO and deferred lighting of `scene` into the light accumulation.
+    gpu::ImageHandle addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
+                                 const passes::GBuffer& gbuffer);
+    // Compiles, records and submits one frame graph, and waits for it.
+    void executeFrame(gpu::FrameGraph& graph);
+    // Reference mode: `count` sub-frames of `frame` sampling `lens`'s aperture, the shutter and the
+    // pixel, summed into accumulation_.
+    void accumulateReference(const FrameSceneInputs& frame, const passes::ThinLens& lens, uint32_t count, double time);
     template <typename T>
     T* find(const std::string& path) const;
 
@@ -70,6 +81,10 @@ private:
     struct {
         gpu::ImagePtr accessibility, halfDepth;
     } unoccluded_;
+    struct {
+        gpu::ImagePtr image;
+        VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    } accumulation_;  // reference mode's running sum (passes/accumulate.h)
     std::unique_ptr<TextureCache> textures_;
     std::unique_ptr<GeometryCache> geometry_;
     passes::ColorGradingLut grading_;
@@ -87,6 +102,7 @@ private:
     uint64_t trianglesDrawn_ = 0;
     double syncMilliseconds_ = 0.0;
     double frameSetupMilliseconds_ = 0.0;
+    std::chrono::steady_clock::time_point frameRecorded_;
     std::string lastError_;
 };
 

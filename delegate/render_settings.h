@@ -4,6 +4,7 @@
 
 #include <obscura/obscura.h>
 
+#include <cmath>
 #include <map>
 #include <optional>
 #include <string>
@@ -16,6 +17,9 @@ struct RenderSettingInfo {
     const char* description;
     ObscuraValueType type;
     double defaultNumber;
+    // Numbers outside [minimum, maximum] are refused; int settings also refuse fractions.
+    double minimum = -HUGE_VAL;
+    double maximum = HUGE_VAL;
 };
 
 const RenderSettingInfo* findRenderSetting(const std::string& name);

@@ -46,6 +46,11 @@ double circleOfConfusionDiameter(const ThinLens& lens, double distance) {
     return std::fabs(F * D / (D - F) - F * P / (P - F)) * (D - F) / (lens.fStop * D);
 }
 
+double accumulationApertureDiameter(const ThinLens& lens) {
+    if (!hasDepthOfField(lens)) return 0.0;
+    return apertureDiameter(lens) * lens.focusDistance / (lens.focusDistance - lens.focalLength);
+}
+
 CocFromDepth cocFromDepth(const ThinLens& lens, double nearClip, double farClip, double imageWidthPixels) {
     if (!hasDepthOfField(lens)) return {};
     double F = lens.focalLength, P = lens.focusDistance, A = apertureDiameter(lens);

@@ -28,6 +28,12 @@ double apertureDiameter(const ThinLens& lens);
 //   CoC = |F D / (D - F) - F P / (P - F)| * (D - F) / (f D).
 double circleOfConfusionDiameter(const ThinLens& lens, double distance);
 
+// The lens diameter of an accumulation-buffer camera (pinholes spread over the lens, projecting
+// onto a film at the focal length, the focus plane held fixed: the reference mode) whose blur is
+// the CoC above. Potmesil's CoC lies on a film at the image distance I = F P / (P - F), while USD
+// fixes the field of view by F alone (no focus breathing), so the pinholes spread over A I / F.
+double accumulationApertureDiameter(const ThinLens& lens);
+
 // The slide's simplification CoC = |A F (P - D) / (D (P - F))| is affine in 1/D, and a perspective
 // depth buffer is affine in 1/D too (1/D = 1/near + depth * (1/far - 1/near)), so the signed CoC
 // radius in pixels is one multiply-add per pixel: radius = depth * scale + bias ("folds down into

@@ -29,6 +29,25 @@ float farCocWeight(float halfResolutionCoc, float pixelCoc) {
     return max(1.0 - abs(halfResolutionCoc - pixelCoc) / max(0.5 * pixelCoc, 1.0), 0.0);
 }
 
+// What a near pixel hides. Its own light is in the near field already (scattered over its CoC),
+// so what shows through where that field is thin is the scene behind it, which one layer of
+// colour does not hold; the sharp pixels where its blur ends, in eight directions, stand in for
+// it, those not in the near field themselves. None: deep inside a near object, where the near
+// field covers all. (Blurring the far ones among them as well was measured to make no difference.)
+vec3 hiddenBehindNearPixel(ivec2 pixel, float nearRadius) {
+    ivec2 lastPixel = imageSize(outputColor) - 1;
+    vec3 sum = vec3(0.0);
+    float count = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        float angle = float(i) * (DOF_PI / 4.0);
+        ivec2 neighbour = clamp(pixel + ivec2(round(nearRadius * vec2(cos(angle), sin(angle)))), ivec2(0), lastPixel);
+        if (fieldBlend(signedCocRadius(texelFetch(depthTexture, neighbour, 0).r)) > 0.0) continue;
+        sum += texelFetch(lightAccumulation, neighbour, 0).rgb;
+        count += 1.0;
+    }
+    return count > 0.0 ? sum / count : vec3(0.0);
+}
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, imageSize(outputColor)))) return;
@@ -44,7 +63,8 @@ void main() {
     BicubicTaps taps = bicubicBSplineTaps((vec2(pixel) + 0.5) * 0.5, halfSize);
 
     vec3 colour = sharp;
-    float farRadius = max(-signedCocRadius(texelFetch(depthTexture, pixel, 0).r), 0.0);
+    float coc = signedCocRadius(texelFetch(depthTexture, pixel, 0).r);
+    float farRadius = max(-coc, 0.0);
     float farBlend = fieldBlend(farRadius);
     if (farBlend > 0.0) {
         vec4 bilateral = vec4(0.0), plain = vec4(0.0);
@@ -61,6 +81,8 @@ void main() {
     if (tile.x > sharpRadius) {
         vec4 near = vec4(0.0);
         for (int i = 0; i < 4; ++i) near += taps.weight[i] * textureLod(nearField, taps.uv[i], 0.0);
+        float nearSelf = fieldBlend(coc);
+        if (nearSelf > 0.0) colour = mix(colour, hiddenBehindNearPixel(pixel, coc), nearSelf);
         colour = colour * (1.0 - near.a) + near.rgb;
     }
     imageStore(outputColor, pixel, vec4(colour, 0.0));

@@ -45,10 +45,12 @@ void main() {
     float farRadius = texelFetch(halfCoc, texel, 0).y * maxRadius;
     float nearRadius = texelFetch(neighbourhoodCoc, texel / DOF_TILE_SIZE, 0).x * maxRadius;
 
-    vec4 far = farRadius > sharpRadius ? unionOfTaps(farGathered, centre, inverseSize, farRadius * fillScale, -1.0)
-                                       : texelFetch(farGathered, texel, 0);
-    vec4 near = nearRadius > sharpRadius ? unionOfTaps(nearGathered, centre, inverseSize, nearRadius * fillScale, 1.0)
-                                         : texelFetch(nearGathered, texel, 0);
+    vec4 far = farRadius > sharpRadius
+                   ? unionOfTaps(farGathered, centre, inverseSize, kernelRadius(farRadius) * fillScale, -1.0)
+                   : texelFetch(farGathered, texel, 0);
+    vec4 near = nearRadius > sharpRadius
+                    ? unionOfTaps(nearGathered, centre, inverseSize, kernelRadius(nearRadius) * fillScale, 1.0)
+                    : texelFetch(nearGathered, texel, 0);
     imageStore(nearField, texel, near);
     imageStore(farField, texel, far);
 }

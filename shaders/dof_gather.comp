@@ -51,8 +51,9 @@ void main() {
     if (coc.y > sharpRadius) {
         vec4 sum = vec4(0.0);
         float area = 0.0;
+        float kernel = kernelRadius(coc.y);
         for (int i = 0; i < tapCount; ++i) {
-            vec2 offset = taps[i].xy * coc.y;
+            vec2 offset = taps[i].xy * kernel;
             vec2 uv = (centre - apertureToTexels(offset)) * inverseSize;
             float fraction = textureLod(halfCoc, uv, 0.0).y;
             float reach = clamp(fraction * maxRadius - length(offset) + 0.5, 0.0, 1.0);
@@ -64,27 +65,33 @@ void main() {
 
     vec4 near = vec4(0.0);
     if (tile.x > sharpRadius) {
+        // Each tap stands for a ring of the kernel as wide as the rings are apart (2R/N): a sample
+        // reaching partway into that ring counts partly, so a coverage of whole rings does not
+        // round the disc of a smaller CoC down.
+        float kernel = kernelRadius(tile.x);
+        float ringWidth = max(2.0 * kernel / float(dof.tapsPerSide), 1.0);
         float area = 0.0;
         for (int i = 0; i < tapCount; ++i) {
-            vec2 offset = taps[i].xy * tile.x;
-            vec2 uv = (centre + apertureToTexels(offset)) * inverseSize;
-            float fraction = textureLod(halfCoc, uv, 0.0).x;
-            float radius = fraction * maxRadius;
+            vec2 offset = taps[i].xy * kernel;
+            vec2 position = centre + apertureToTexels(offset);
             area += taps[i].z;
+            // The spread depends on the CoC non-linearly, so it comes from the texel under the tap;
+            // the bilinear fetches give the colour and how much of the footprint is near field.
+            float nearest = texelFetch(halfCoc, clamp(ivec2(floor(position)), ivec2(0), size - 1), 0).x;
+            float radius = nearest * maxRadius;
             float isNear = fieldBlend(2.0 * radius);
             if (isNear == 0.0) continue;
-            float reach = clamp(radius - length(offset) + 0.5, 0.0, 1.0);
+            vec2 uv = position * inverseSize;
+            float fraction = textureLod(halfCoc, uv, 0.0).x;
+            float coverage = min(fraction / nearest, 1.0);
+            float reach = clamp((radius - length(offset)) / ringWidth + 0.5, 0.0, 1.0);
             float spread = tile.x / radius;
-            float weight = taps[i].z * isNear * reach * spread * spread;
+            float weight = taps[i].z * isNear * reach * spread * spread * coverage;
             near += weight * vec4(textureLod(nearLayer, uv, 0.0).rgb / fraction, 1.0);
         }
         near /= area;
-        if (near.a > 0.0) {
-            // Overlapping spreads saturate; a near texel is covered by its own field as far as
-            // it belongs to it (the non-linear blend of dof_composite).
-            float coverage = max(min(near.a, 1.0), fieldBlend(2.0 * coc.x));
-            near = vec4(near.rgb / near.a * coverage, coverage);
-        }
+        // Where spreads overlap the field is opaque: coverage saturates, the colour keeps its mix.
+        if (near.a > 1.0) near /= near.a;
     }
     imageStore(nearField, texel, near);
     imageStore(farField, texel, far);

@@ -43,6 +43,13 @@ float signedCocRadius(float depth) {
     return clamp(depth * dof.cocScale + dof.cocBias, -dof.maxRadius, dof.maxRadius);
 }
 
+// The radius the gather spreads its taps over for a CoC radius, both in half-resolution texels.
+// The half-resolution chain blurs by itself: the 2x2 downscale, the bilinear taps and the bicubic
+// B-spline upscale add a variance of 1/12 + 1/6 + 1/3 texel^2 per axis (7/12). A disc of radius R
+// has R^2 / 4, so the kernel shrinks to keep the CoC's second moment.
+const float DOF_CHAIN_VARIANCE = 7.0 / 12.0;
+float kernelRadius(float cocRadius) { return sqrt(max(cocRadius * cocRadius - 4.0 * DOF_CHAIN_VARIANCE, 0.0)); }
+
 // Centre of cell `index` (row-major) of a side x side grid over [-1, 1]^2: the square kernel.
 vec2 squareGridCell(int index, int side) {
     ivec2 cell = ivec2(index % side, index / side);

@@ -11,6 +11,12 @@ HostValue HostValue::floatValue(float v) {
     h.floats = {v};
     return h;
 }
+HostValue HostValue::intValue(int32_t v) {
+    HostValue h;
+    h.type = OBSCURA_VALUE_INT;
+    h.ints = {v};
+    return h;
+}
 HostValue HostValue::float3(float x, float y, float z) {
     HostValue h;
     h.type = OBSCURA_VALUE_FLOAT3;

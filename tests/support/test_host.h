@@ -27,6 +27,7 @@ struct HostValue {
     size_t count = 1;
 
     static HostValue floatValue(float v);
+    static HostValue intValue(int32_t v);
     static HostValue float3(float x, float y, float z);
     static HostValue float2(float x, float y);
     static HostValue int2(int32_t x, int32_t y);
