@@ -20,8 +20,9 @@ struct ReferenceSubFrame {
 
 // `count` deterministic, stratified sub-frames: the aperture from a Hammersley set ((k + 0.5) / N
 // and the base-2 radical inverse) over the square, mapped with the same concentric + n-gon mapping
-// as the depth-of-field taps; the shutter and the jitter from the radical inverses in bases 3, 5
-// and 7, so no dimension repeats another's pattern.
+// as the depth-of-field taps; the shutter from a golden-ratio rank-1 lattice (each 1/N of the
+// interval once); the jitter from the radical inverses in bases 3 and 5, so no dimension repeats
+// another's pattern.
 std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::ApertureShape& aperture);
 
 }  // namespace obscura::delegate
