@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <tuple>
 #include <vector>
 
 namespace obscura::delegate {
@@ -64,10 +66,13 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     cd.projection = toFloats<passes::Mat4>(projection);
     cd.viewProjection = toFloats<passes::Mat4>(viewProjection);
     cd.inverseViewProjection = toFloats<passes::Mat4>(inverseViewProjection);
+    Matrix4d inverseProjection = kIdentity;
+    invert(projection, inverseProjection);
+    cd.inverseProjection = toFloats<passes::Mat4>(inverseProjection);
     Vec3d eye = transformPoint({0, 0, 0}, cameraToWorld);
     cd.position = {float(eye[0]), float(eye[1]), float(eye[2]), 1.0f};
     cd.resolution = {float(in.width), float(in.height)};
-    cd.exposureScale = float(std::exp2(cam.params().exposure + in.exposureStops));
+    cd.exposureScale = float(cam.linearExposureScale() * std::exp2(in.exposureStops));
     scene.camera = device.createBuffer(sizeof(cd), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "camera");
     std::memcpy(scene.camera->mapped(), &cd, sizeof(cd));
 
@@ -99,7 +104,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
                 scene.materialTextures.push_back(textures);
             }
         } else if (auto* l = dynamic_cast<const Light*>(prim.get())) {
-            if (l->visible()) lights.push_back(l->data());
+            if (l->visible()) lights.push_back(withInfluenceRange(l->data(), cd.exposureScale));
         }
     }
 
@@ -141,12 +146,25 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         auto* mesh = dynamic_cast<const Mesh*>(&prim);
         return mesh && !mesh->skipped() && mesh->drawable() ? mesh : nullptr;
     };
+    // Meshes with the same geometry (repeated references share buffers through the geometry
+    // cache) and the same textures become one instanced draw, in the order they first appear.
+    std::vector<std::vector<const Mesh*>> batches;
+    std::map<std::tuple<const void*, const void*, uint32_t>, size_t> batchOf;
     for (const auto& [path, prim] : in.prims) {
         const Mesh* mesh = drawable(*prim);
         if (!mesh || isPrototype(path)) continue;
-        scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
-                               static_cast<uint32_t>(instances.size()), 1, texturesOf(*mesh)});
-        record(*mesh, transformOf(*mesh));
+        auto key = std::make_tuple(static_cast<const void*>(mesh->vertices().get()),
+                                   static_cast<const void*>(mesh->indices().get()), texturesOf(*mesh));
+        auto [it, added] = batchOf.emplace(key, batches.size());
+        if (added) batches.emplace_back();
+        batches[it->second].push_back(mesh);
+    }
+    for (const auto& batch : batches) {
+        const Mesh& first = *batch.front();
+        scene.draws.push_back({first.vertices(), first.indices(), first.indexCount(),
+                               static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(batch.size()),
+                               texturesOf(first)});
+        for (const Mesh* mesh : batch) record(*mesh, transformOf(*mesh));
     }
     // One draw per (instancer, prototype mesh): the mesh's transform relative to the instancer,
     // then each instance's transform.

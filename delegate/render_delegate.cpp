@@ -145,6 +145,8 @@ void RenderDelegate::insertPrim(const std::string& type, const std::string& path
     else if (type == "camera") prim = std::make_unique<Camera>(path, *schema);
     else if (type == "distantLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Distant);
     else if (type == "sphereLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Sphere);
+    else if (type == "rectLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Rect);
+    else if (type == "diskLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Disk);
     else if (type == "domeLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Dome);
     else if (type == "material") prim = std::make_unique<Material>(path, *schema);
     else if (type == "renderBuffer") prim = std::make_unique<RenderBuffer>(path, *schema);
@@ -284,7 +286,10 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     gpu::ImageHandle hdr;
     if (referenceSubFrames > 0) {
         gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
-        hdr = passes::addAccumulationResolvePass(graph, *pipelines_, sum, passes::kLightAccumulationFormat);
+        hdr = passes::addAccumulationResolvePass(graph, *pipelines_, sum,
+                                                 lightAccumulation() == passes::LightAccumulation::HalfFloat
+                                                     ? VK_FORMAT_R16G16B16A16_SFLOAT
+                                                     : VK_FORMAT_B10G11R11_UFLOAT_PACK32);
     } else {
         hdr = addLighting(graph, scene, gbuffer);
         if (passes::hasDepthOfField(lens)) {
@@ -324,7 +329,12 @@ gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passe
         ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
                    graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
     }
-    return passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient);
+    return passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, lightAccumulation());
+}
+
+passes::LightAccumulation RenderDelegate::lightAccumulation() const {
+    return settings_.number("lighting:halfFloat") != 0.0 ? passes::LightAccumulation::HalfFloat
+                                                         : passes::LightAccumulation::SmallFloat;
 }
 
 void RenderDelegate::executeFrame(gpu::FrameGraph& graph) {

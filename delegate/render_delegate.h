@@ -16,6 +16,7 @@
 #include "gpu/timestamps.h"
 #include "passes/color_grading_lut.h"
 #include "passes/gbuffer.h"
+#include "passes/lighting.h"
 #include "passes/pipeline_cache.h"
 
 #include <obscura/obscura.h>
@@ -62,6 +63,8 @@ private:
     // SSAO and deferred lighting of `scene` into the light accumulation.
     gpu::ImageHandle addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
                                  const passes::GBuffer& gbuffer);
+    // The light accumulation's format (render setting lighting:halfFloat).
+    passes::LightAccumulation lightAccumulation() const;
     // Compiles, records and submits one frame graph, and waits for it.
     void executeFrame(gpu::FrameGraph& graph);
     // Reference mode: `count` sub-frames of `frame` sampling `lens`'s aperture, the shutter and the

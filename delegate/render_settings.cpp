@@ -16,6 +16,9 @@ const RenderSettingInfo kSettings[] = {
     {"ssao", "screen-space ambient occlusion on environment light (bool, default on)", OBSCURA_VALUE_BOOL, 1.0},
     {"ssao:radius", "ambient occlusion radius in metres (float, default 0.5)", OBSCURA_VALUE_FLOAT, 0.5},
     {"ssao:intensity", "ambient occlusion strength, 0-1 (float, default 1)", OBSCURA_VALUE_FLOAT, 1.0},
+    {"lighting:halfFloat", "accumulate lighting in RGBA16F instead of B10G11R11_UFLOAT: about 2^-11 relative "
+                           "precision instead of 2^-7..2^-6, twice the bandwidth (bool, default off)",
+     OBSCURA_VALUE_BOOL, 0.0},
     {"metersPerUnit", "the scene's metres per unit, as USD's stage metadata; hosts set it (float, default 0.01)",
      OBSCURA_VALUE_FLOAT, 0.01},
     {"dof", "depth of field from the camera's lens (focalLength, fStop, focusDistance, obscura:apertureBlades, "

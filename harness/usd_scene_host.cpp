@@ -16,6 +16,8 @@ const std::map<std::string, std::string> kPrimTypes = {
     {"Camera", "camera"},
     {"DistantLight", "distantLight"},
     {"SphereLight", "sphereLight"},
+    {"RectLight", "rectLight"},
+    {"DiskLight", "diskLight"},
     {"DomeLight", "domeLight"},
     {"Material", "material"},
     {"PointInstancer", "instancer"},

@@ -15,7 +15,7 @@ void addAccumulatePass(gpu::FrameGraph& graph, PipelineCache& pipelines, gpu::Im
                        gpu::ImageHandle accumulation, float weight, bool first) {
     const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("accumulate", [] {
         return gpu::ComputePipelineDesc{"accumulate.comp",
-                                        {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+                                        {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
                                         sizeof(AccumulatePush)};
     });
     gpu::Device& device = pipelines.device();
@@ -23,13 +23,13 @@ void addAccumulatePass(gpu::FrameGraph& graph, PipelineCache& pipelines, gpu::Im
     graph.addPass(
         "accumulate", gpu::PassKind::Compute,
         [&](gpu::FrameGraph::PassBuilder& pass) {
-            pass.read(hdrColor, gpu::Usage::StorageImageRead);
+            pass.read(hdrColor, gpu::Usage::SampledCompute);
             if (!first) pass.read(accumulation, gpu::Usage::StorageImageRead);
             pass.write(accumulation, gpu::Usage::StorageImageWrite);
         },
         [&device, &pipeline, hdrColor, accumulation, push](VkCommandBuffer cmd, const gpu::PassResources& res) {
             gpu::DescriptorWriter(device, pipeline)
-                .storageImage(0, res.view(hdrColor))
+                .sampled(0, res.view(hdrColor), device.nearestClampSampler())
                 .storageImage(1, res.view(accumulation))
                 .bind(cmd);
             vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);

@@ -34,7 +34,7 @@ struct DepthOfFieldSettings {
 // 2N half-resolution texels they lie about one texel apart, which bilinear fetches still join.
 double maxDofRadiusPixels(int tapsPerSide);
 
-// Reads the light accumulation (kLightAccumulationFormat, pre-exposed) and the G-buffer depth;
+// Reads the light accumulation (pre-exposed, either format of lighting.h) and the G-buffer depth;
 // returns a new image of the same format with depth of field, which tone mapping reads.
 gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                                        const GBuffer& gbuffer, gpu::ImageHandle hdrColor,

@@ -14,12 +14,13 @@ struct alignas(16) CameraData {
     Mat4 projection;
     Mat4 viewProjection;
     Mat4 inverseViewProjection;
+    Mat4 inverseProjection;
     std::array<float, 4> position;
     std::array<float, 2> resolution;
     float exposureScale;
     float pad0;
 };
-static_assert(sizeof(CameraData) == 4 * 64 + 16 + 16);
+static_assert(sizeof(CameraData) == 5 * 64 + 16 + 16);
 
 enum InstanceFlags : uint32_t { kInstanceDoubleSided = 1u, kInstanceVertexColor = 2u };
 
@@ -63,19 +64,24 @@ struct alignas(16) MaterialData {
     std::array<float, 4> diffuseRoughness;
     std::array<float, 4> emissiveMetallic;
     std::array<float, 4> opacity;  // x opacity, y opacityThreshold
+    std::array<float, 4> specularIor{0.0f, 0.0f, 0.0f, 1.5f};  // rgb specularColor, a ior
+    std::array<float, 4> clearcoat{};  // x clearcoat, y clearcoatRoughness, z 1 for the specular workflow
     std::array<MaterialTexture, kMaterialTextureSlots> textures;
 };
-static_assert(sizeof(MaterialData) == 48 + 4 * 48);
+static_assert(sizeof(MaterialData) == 80 + 4 * 48);
 
-enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2 };
+enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4 };
 
 struct alignas(16) LightData {
     std::array<float, 4> positionType;
     std::array<float, 4> directionAngle;
     std::array<float, 4> radiance;
-    std::array<float, 4> factors;
+    std::array<float, 4> factors;  // z treatAsPoint, w influence range
+    std::array<float, 4> axisX;
+    std::array<float, 4> axisY;
+    std::array<float, 4> shaping;
 };
-static_assert(sizeof(LightData) == 64);
+static_assert(sizeof(LightData) == 7 * 16);
 
 // Header of the light buffer: the count, padded to the first LightData.
 struct alignas(16) LightBufferHeader {

@@ -3,6 +3,8 @@
 namespace obscura::passes {
 namespace {
 
+constexpr uint32_t kLightingTileSize = 16;  // lighting.comp's TILE_SIZE: one workgroup culls lights per tile
+
 gpu::ComputePipelineDesc describeLightingPipeline() {
     return {"lighting.comp",
             {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
@@ -22,9 +24,10 @@ gpu::ComputePipelineDesc describeLightingPipeline() {
 }  // namespace
 
 gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                 const GBuffer& gb, const SsaoResult& ambient) {
+                                 const GBuffer& gb, const SsaoResult& ambient, LightAccumulation format) {
     gpu::ImageDesc desc;
-    desc.format = kLightAccumulationFormat;
+    desc.format = format == LightAccumulation::HalfFloat ? VK_FORMAT_R16G16B16A16_SFLOAT
+                                                         : VK_FORMAT_B10G11R11_UFLOAT_PACK32;
     desc.width = scene.width;
     desc.height = scene.height;
     gpu::ImageHandle accumulation = graph.createImage("lightAccumulation", desc);
@@ -57,7 +60,7 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipeline
                 .sampled(9, res.view(ambient.accessibility), nearest)
                 .sampled(10, res.view(ambient.halfDepth), nearest)
                 .bind(cmd);
-            gpu::dispatch2D(cmd, scene.width, scene.height);
+            gpu::dispatch2D(cmd, scene.width, scene.height, kLightingTileSize);
         });
     return accumulation;
 }

@@ -7,11 +7,14 @@
 
 namespace obscura::passes {
 
-constexpr VkFormat kLightAccumulationFormat = VK_FORMAT_B10G11R11_UFLOAT_PACK32;
+// Seed 004 "HDR": the light accumulation fits 32 bits per pixel in B10G11R11_UFLOAT; RGBA16F is
+// the higher-precision alternative (render setting lighting:halfFloat).
+enum class LightAccumulation { SmallFloat, HalfFloat };
 
 // `ambient` is the SSAO result (ssao.h), applied to environment (dome) light only, as seed 004
 // asks of ambient occlusion.
 gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                 const GBuffer& gbuffer, const SsaoResult& ambient);
+                                 const GBuffer& gbuffer, const SsaoResult& ambient,
+                                 LightAccumulation accumulation = LightAccumulation::SmallFloat);
 
 }  // namespace obscura::passes

@@ -4,7 +4,8 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 0, rgba32f) uniform readonly image2D accumulation;
-layout(set = 0, binding = 1, r11f_g11f_b10f) uniform writeonly image2D resolved;
+// The light accumulation's format, whichever it is (lighting:halfFloat): written without one.
+layout(set = 0, binding = 1) uniform writeonly image2D resolved;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);

@@ -20,7 +20,8 @@ layout(set = 0, binding = 2) uniform sampler2D nearField;
 layout(set = 0, binding = 3) uniform sampler2D farField;
 layout(set = 0, binding = 4) uniform sampler2D halfCoc;
 layout(set = 0, binding = 5) uniform sampler2D neighbourhoodCoc;
-layout(set = 0, binding = 6, r11f_g11f_b10f) uniform writeonly image2D outputColor;
+// The light accumulation's format, whichever it is (lighting:halfFloat): written without one.
+layout(set = 0, binding = 6) uniform writeonly image2D outputColor;
 
 // Weight of a half-resolution far CoC against the pixel's: 1 when equal, falling to 0 at a
 // difference of half the pixel's CoC (relative, so it reads the same at every blur size), and at

@@ -1,16 +1,19 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Deferred lighting, pixel frequency, in compute (screen-space passes run on every GPU core).
-// Reads the thin G-buffer, accumulates Lambert + GGX for distant and sphere lights plus emission
-// into B10G11R11_UFLOAT, pre-exposed by the camera's exposure (seed 004 "HDR": keep the
-// accumulation in a range the small float format holds well).
+// Tiled light culling (Andersson 2011, "DirectX 11 rendering in Battlefield 3"): each 16x16 tile
+// bounds its pixels' depths, keeps the local lights whose influence sphere touches that box, then
+// every pixel shades with its tile's list. Accumulates into B10G11R11_UFLOAT, pre-exposed by the
+// camera's exposure (seed 004 "HDR": keep the accumulation in a range the small float format holds).
 #extension GL_EXT_scalar_block_layout : require
 #include "common/frame_data.glsl"
-#include "common/brdf.glsl"
+#include "common/light_evaluation.glsl"
 #include "common/best_fit_normals.glsl"
 #include "common/ssao_upsample.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+const uint TILE_SIZE = 16u;
+const uint MAX_TILE_LIGHTS = 1024u;  // lights beyond this many in one tile are dropped
+layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 
 layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
@@ -20,87 +23,100 @@ layout(set = 0, binding = 4) uniform sampler2D depthTexture;
 layout(set = 0, binding = 5) uniform sampler2D normalRoughnessTexture;
 layout(set = 0, binding = 6) uniform sampler2D albedoMetallicTexture;
 layout(set = 0, binding = 7) uniform usampler2D instanceTexture;
-layout(set = 0, binding = 8, r11f_g11f_b10f) uniform writeonly image2D lightAccumulation;
+// B10G11R11_UFLOAT or RGBA16F (render setting lighting:halfFloat): written without a format.
+layout(set = 0, binding = 8) uniform writeonly image2D lightAccumulation;
 layout(set = 0, binding = 9) uniform sampler2D ambientAccessibility;
 layout(set = 0, binding = 10) uniform sampler2D ambientHalfDepth;
 
-vec3 worldPositionFromDepth(ivec2 pixel, float depth) {
-    vec2 ndc = (vec2(pixel) + 0.5) / camera.resolution * 2.0 - 1.0;
-    vec4 p = camera.inverseViewProjection * vec4(ndc, depth, 1.0);
+shared uint tileMinDepthBits;
+shared uint tileMaxDepthBits;
+shared uint tileLightCount;
+shared uint tileLights[MAX_TILE_LIGHTS];
+shared vec3 tileBoxMin;
+shared vec3 tileBoxMax;
+
+vec3 unproject(mat4 inverseMatrix, vec2 ndc, float depth) {
+    vec4 p = inverseMatrix * vec4(ndc, depth, 1.0);
     return p.xyz / p.w;
 }
 
-// Radiance reflected towards V from a light of irradiance `irradiance` (at normal incidence)
-// arriving from L, for a light of angular radius `sinHalfAngle` seen from the point.
-vec3 shade(vec3 N, vec3 V, vec3 L, vec3 irradiance, float sinHalfAngle, vec3 albedo, float metallic,
-           float roughness, vec2 factors) {
-    float NdotL = dot(N, L);
-    if (NdotL <= 0.0) return vec3(0.0);
-    float NdotV = max(dot(N, V), 1e-4);
-    vec3 H = normalize(L + V);
-    float NdotH = max(dot(N, H), 0.0);
-    float VdotH = max(dot(V, H), 0.0);
-    float alpha = alphaFromRoughness(roughness);
-    // Area lights widen the lobe (Karis 2013, "sphere light normalisation"): energy is
-    // conserved by the (alpha / alpha')^2 factor.
-    float alphaWide = clamp(alpha + 0.5 * sinHalfAngle, 0.0, 1.0);
-    float energy = (alpha * alpha) / (alphaWide * alphaWide);
-    vec3 f0 = mix(vec3(0.04), albedo, metallic);
-    vec3 specular = ggxDistribution(NdotH, alphaWide) * energy *
-                    smithVisibilityHeightCorrelated(NdotV, NdotL, alpha) * fresnelSchlick(f0, VdotH);
-    vec3 diffuse = (1.0 - metallic) * albedo / PI;
-    return (diffuse * factors.x + specular * factors.y) * irradiance * NdotL;
+bool isLocal(LightData light) {
+    uint type = uint(light.positionType.w);
+    return type != LIGHT_DISTANT && type != LIGHT_DOME;
+}
+
+// Sphere against the tile's view-space box (tighter than the four side planes for thin tiles).
+bool touchesTile(LightData light) {
+    if (!isLocal(light)) return true;
+    vec3 centre = (camera.view * vec4(light.positionType.xyz, 1.0)).xyz;
+    vec3 nearest = clamp(centre, tileBoxMin, tileBoxMax);
+    vec3 d = centre - nearest;
+    return dot(d, d) <= light.factors.w * light.factors.w;
 }
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, ivec2(camera.resolution)))) return;
-    uint instanceId = texelFetch(instanceTexture, pixel, 0).r;
+    bool inside = all(lessThan(pixel, ivec2(camera.resolution)));
+    uint instanceId = inside ? texelFetch(instanceTexture, pixel, 0).r : 0u;
+    float depth = inside ? texelFetch(depthTexture, pixel, 0).r : 1.0;
+
+    if (gl_LocalInvocationIndex == 0u) {
+        tileMinDepthBits = floatBitsToUint(1.0);
+        tileMaxDepthBits = 0u;
+        tileLightCount = 0u;
+    }
+    barrier();
+    // Depths are non-negative, so their bit patterns order like the floats.
+    if (instanceId != 0u) {
+        atomicMin(tileMinDepthBits, floatBitsToUint(depth));
+        atomicMax(tileMaxDepthBits, floatBitsToUint(depth));
+    }
+    barrier();
+    bool tileHasSurface = tileMinDepthBits <= tileMaxDepthBits;
+    if (gl_LocalInvocationIndex == 0u && tileHasSurface) {
+        vec2 tileMin = vec2(gl_WorkGroupID.xy * TILE_SIZE) / camera.resolution * 2.0 - 1.0;
+        vec2 tileMax = vec2((gl_WorkGroupID.xy + 1u) * TILE_SIZE) / camera.resolution * 2.0 - 1.0;
+        float depths[2] = float[2](uintBitsToFloat(tileMinDepthBits), uintBitsToFloat(tileMaxDepthBits));
+        vec3 lo = vec3(1e30), hi = vec3(-1e30);
+        for (int i = 0; i < 8; ++i) {
+            vec2 ndc = vec2((i & 1) != 0 ? tileMax.x : tileMin.x, (i & 2) != 0 ? tileMax.y : tileMin.y);
+            vec3 corner = unproject(camera.inverseProjection, ndc, depths[i >> 2]);
+            lo = min(lo, corner);
+            hi = max(hi, corner);
+        }
+        tileBoxMin = lo;
+        tileBoxMax = hi;
+    }
+    barrier();
+    if (tileHasSurface) {
+        for (uint i = gl_LocalInvocationIndex; i < lightCount; i += TILE_SIZE * TILE_SIZE) {
+            if (!touchesTile(lights[i])) continue;
+            uint slot = atomicAdd(tileLightCount, 1u);
+            if (slot < MAX_TILE_LIGHTS) tileLights[slot] = i;
+        }
+    }
+    barrier();
+    if (!inside) return;
     if (instanceId == 0u) {
         imageStore(lightAccumulation, pixel, vec4(0.0));
         return;
     }
+
     InstanceData inst = instances[instanceId - 1u];
     MaterialData mat = materials[inst.materialIndex];
-    float depth = texelFetch(depthTexture, pixel, 0).r;
     vec4 nr = texelFetch(normalRoughnessTexture, pixel, 0);
     vec4 am = texelFetch(albedoMetallicTexture, pixel, 0);
-    vec3 N = decodeBestFitNormal(nr.xyz);
-    vec3 P = worldPositionFromDepth(pixel, depth);
-    vec3 V = normalize(camera.position.xyz - P);
+    vec2 ndc = (vec2(pixel) + 0.5) / camera.resolution * 2.0 - 1.0;
+    SurfacePoint s = surfaceFromMaterial(mat, am.rgb, am.a);
+    s.P = unproject(camera.inverseViewProjection, ndc, depth);
+    s.N = decodeBestFitNormal(nr.xyz);
+    s.V = normalize(camera.position.xyz - s.P);
+    s.roughness = nr.a;
+    s.ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel,
+                                          linearDepthFromDevice(camera.projection, depth));
 
     vec3 radiance = mat.emissiveMetallic.rgb;
-    float ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel,
-                                              linearDepthFromDevice(camera.projection, depth));
-    for (uint i = 0u; i < lightCount; ++i) {
-        LightData light = lights[i];
-        uint type = uint(light.positionType.w);
-        if (type == LIGHT_DISTANT) {
-            // UsdLux: irradiance = radiance x solid angle of the disc (precomputed on the host).
-            vec3 L = -light.directionAngle.xyz;
-            radiance += shade(N, V, L, light.radiance.rgb, sin(light.directionAngle.w), am.rgb, am.a, nr.a,
-                              light.factors.xy);
-        } else if (type == LIGHT_SPHERE) {
-            vec3 toLight = light.positionType.xyz - P;
-            float d2 = max(dot(toLight, toLight), 1e-8);
-            float d = sqrt(d2);
-            vec3 L = toLight / d;
-            float r = light.radiance.a;
-            // A uniform sphere of radiance L_e and radius r fully above the horizon gives
-            // E = pi * L_e * (r/d)^2 * cos(theta); a point light (r folded in) follows the same law.
-            vec3 irradiance = PI * light.radiance.rgb * (r * r) / d2;
-            // treatAsPoint keeps the power but not the lobe widening of an extended source.
-            float sinHalfAngle = light.factors.z > 0.0 ? 0.0 : clamp(r / d, 0.0, 1.0);
-            radiance += shade(N, V, L, irradiance, sinHalfAngle, am.rgb, am.a, nr.a, light.factors.xy);
-        } else if (type == LIGHT_DOME) {
-            // A constant environment: Lambert integrates to albedo * L; GGX through the split-sum
-            // pre-integration (environmentBrdf).
-            vec3 f0 = mix(vec3(0.04), am.rgb, am.a);
-            vec2 scaleBias = environmentBrdf(nr.a, max(dot(N, V), 1e-4));
-            vec3 diffuse = (1.0 - am.a) * am.rgb;
-            vec3 specular = f0 * scaleBias.x + scaleBias.y;
-            radiance += ambientAccess * (diffuse * light.factors.x + specular * light.factors.y) * light.radiance.rgb;
-        }
-    }
+    uint count = min(tileLightCount, MAX_TILE_LIGHTS);
+    for (uint i = 0u; i < count; ++i) radiance += reflectFromLight(s, lights[tileLights[i]]);
     imageStore(lightAccumulation, pixel, vec4(radiance * camera.exposureScale, 1.0));
 }

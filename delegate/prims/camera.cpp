@@ -1,6 +1,7 @@
 #include "delegate/prims/camera.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace obscura::delegate {
 
@@ -19,12 +20,19 @@ void Camera::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
         p.shutterOpen = s.getDouble("shutter:open");
         p.shutterClose = s.getDouble("shutter:close");
         p.exposure = s.getDouble("exposure");
+        p.exposureTime = s.getDouble("exposure:time");
+        p.exposureIso = s.getDouble("exposure:iso");
+        p.exposureFStop = s.getDouble("exposure:fStop");
+        p.exposureResponsivity = s.getDouble("exposure:responsivity");
         p.apertureBlades = s.getInt("obscura:apertureBlades");
         p.apertureRotation = s.getDouble("obscura:apertureRotation");
         if (p.focalLength <= 0 || p.horizontalAperture <= 0 || p.verticalAperture <= 0)
             throw PrimDataError(s.path() + ": focalLength and apertures must be positive");
         if (!(p.clippingRange[0] > 0 && p.clippingRange[1] > p.clippingRange[0]))
             throw PrimDataError(s.path() + ": clippingRange must satisfy 0 < near < far");
+        if (!(p.exposureFStop > 0) || p.exposureTime < 0 || p.exposureIso < 0 || p.exposureResponsivity < 0)
+            throw PrimDataError(s.path() + ": exposure:fStop must be positive and exposure:time, exposure:iso, "
+                                           "exposure:responsivity not negative");
         if (p.fStop < 0 || p.focusDistance < 0)
             throw PrimDataError(s.path() + ": fStop and focusDistance must not be negative");
         if (p.apertureBlades < 0 || p.apertureBlades == 1 || p.apertureBlades == 2)
@@ -42,6 +50,12 @@ void Camera::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
         if (params_.shutterClose > params_.shutterOpen)
             shutterTransforms_ = s.sampleTransform(s.time() + params_.shutterOpen, s.time() + params_.shutterClose);
     }
+}
+
+double Camera::linearExposureScale() const {
+    const CameraParams& p = params_;
+    return p.exposureTime * p.exposureIso * std::exp2(p.exposure) * p.exposureResponsivity /
+           (100.0 * p.exposureFStop * p.exposureFStop);
 }
 
 Matrix4d Camera::viewMatrix() const {

@@ -21,6 +21,10 @@ struct CameraParams {
     double shutterOpen = 0.0;
     double shutterClose = 0.0;
     double exposure = 0.0;
+    double exposureTime = 1.0;       // physical exposure (UsdGeomCamera exposure:*)
+    double exposureIso = 100.0;
+    double exposureFStop = 1.0;
+    double exposureResponsivity = 1.0;
     int32_t apertureBlades = 0;
     double apertureRotation = 0.0;
 };
@@ -37,6 +41,10 @@ public:
     // whole authored aperture stays visible, as usdview's default).
     Matrix4d viewMatrix() const;
     Matrix4d projectionMatrix(double imageAspect) const;
+
+    // UsdGeomCamera's linear exposure scale: time x ISO x 2^exposure x responsivity /
+    // (100 x fStop^2) (the photographic exposure H ~ t S / N^2, normalised to 1 at the defaults).
+    double linearExposureScale() const;
 
     // The lens for depth of field (passes/thin_lens.h): scene units, the film gate conformed to the
     // image aspect. Orthographic cameras have no lens (fStop 0).

@@ -38,21 +38,67 @@ void Light::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
         d.positionType = {0, 0, 0, float(passes::LightType::Distant)};
         d.directionAngle = {float(dir[0]), float(dir[1]), float(dir[2]), float(angle / 2.0)};
     } else {
-        // The radius scales with the transform (largest axis scale).
-        double axisScale = std::max({length(transformDirection({1, 0, 0}, transform_)),
-                                     length(transformDirection({0, 1, 0}, transform_)),
-                                     length(transformDirection({0, 0, 1}, transform_))});
-        double radius = s.getDouble("inputs:radius") * axisScale;
-        if (radius <= 0) throw PrimDataError(s.path() + ": inputs:radius must be positive");
-        if (normalize) scale = 1.0 / (4.0 * pi * radius * radius);
+        // UsdLux lights emit along their local -Z axis; the transform's scale scales their size.
+        Vec3d axis = normalized(transformDirection({0, 0, -1}, transform_));
         Vec3d pos = transformPoint({0, 0, 0}, transform_);
-        d.positionType = {float(pos[0]), float(pos[1]), float(pos[2]), float(passes::LightType::Sphere)};
-        d.directionAngle = {0, 0, 0, 0};
-        d.factors[2] = s.getBool("treatAsPoint") ? 1.0f : 0.0f;
-        d.radiance[3] = float(radius);
+        Vec3d localX = transformDirection({1, 0, 0}, transform_), localY = transformDirection({0, 1, 0}, transform_);
+        d.positionType = {float(pos[0]), float(pos[1]), float(pos[2]), float(type_)};
+        d.directionAngle = {float(axis[0]), float(axis[1]), float(axis[2]), 0.0f};
+        double area = 0.0;
+        if (type_ == passes::LightType::Sphere) {
+            double axisScale = std::max({length(localX), length(localY), length(transformDirection({0, 0, 1}, transform_))});
+            double radius = s.getDouble("inputs:radius") * axisScale;
+            if (radius <= 0) throw PrimDataError(s.path() + ": inputs:radius must be positive");
+            area = 4.0 * pi * radius * radius;
+            d.factors[2] = s.getBool("treatAsPoint") ? 1.0f : 0.0f;
+            d.radiance[3] = float(radius);
+        } else {
+            // The disk's (or rectangle's) half extents along its local X and Y, in world space.
+            double halfX = 0.0, halfY = 0.0;
+            if (type_ == passes::LightType::Rect) {
+                halfX = 0.5 * s.getDouble("inputs:width");
+                halfY = 0.5 * s.getDouble("inputs:height");
+                if (halfX <= 0 || halfY <= 0) throw PrimDataError(s.path() + ": inputs:width and inputs:height must be positive");
+                area = 4.0 * halfX * halfY * length(localX) * length(localY);
+            } else {
+                halfX = halfY = s.getDouble("inputs:radius");
+                if (halfX <= 0) throw PrimDataError(s.path() + ": inputs:radius must be positive");
+                area = pi * halfX * halfY * length(localX) * length(localY);
+            }
+            if (area <= 0) throw PrimDataError(s.path() + ": the transform collapses the light to zero area");
+            d.axisX = {float(localX[0] * halfX), float(localX[1] * halfX), float(localX[2] * halfX), 0.0f};
+            d.axisY = {float(localY[0] * halfY), float(localY[1] * halfY), float(localY[2] * halfY), 0.0f};
+        }
+        if (normalize) scale = 1.0 / area;
+        // ShapingAPI: the fade starts at lerp(softness, cutoff, 0) (UsdLuxShapingAPI).
+        double cone = std::clamp(double(s.getFloat("inputs:shaping:cone:angle")), 0.0, 180.0) * pi / 180.0;
+        double softness = std::clamp(double(s.getFloat("inputs:shaping:cone:softness")), 0.0, 1.0);
+        double focus = std::max(0.0, double(s.getFloat("inputs:shaping:focus")));
+        d.shaping = {float(cone), float(cone * (1.0 - softness)), float(focus), 0.0f};
     }
     for (int i = 0; i < 3; ++i) d.radiance[size_t(i)] = float(intensity * scale * color[size_t(i)]);
     data_ = d;
+}
+
+passes::LightData withInfluenceRange(passes::LightData light, double exposureScale) {
+    auto type = passes::LightType(uint32_t(light.positionType[3]));
+    if (type == passes::LightType::Distant || type == passes::LightType::Dome) return light;
+    // Beyond this distance the light's irradiance, pre-exposed, is below 2^-12 (a quarter of an
+    // 8-bit sRGB step just above black): E <= L * A_projected / d^2, with A_projected = pi r^2
+    // for a sphere and the area for a rectangle or disk.
+    const double threshold = 1.0 / 4096.0;
+    double radiance = std::max({light.radiance[0], light.radiance[1], light.radiance[2]}) * exposureScale;
+    double size = 0.0, projectedArea = 0.0;
+    if (type == passes::LightType::Sphere) {
+        size = light.radiance[3];
+        projectedArea = std::numbers::pi * size * size;
+    } else {
+        Vec3d x{light.axisX[0], light.axisX[1], light.axisX[2]}, y{light.axisY[0], light.axisY[1], light.axisY[2]};
+        size = std::hypot(length(x), length(y));
+        projectedArea = (type == passes::LightType::Rect ? 4.0 : std::numbers::pi) * length(x) * length(y);
+    }
+    light.factors[3] = float(std::max(size, std::sqrt(radiance * projectedArea / threshold)));
+    return light;
 }
 
 std::array<float, 3> blackbodyColor(double kelvin) {

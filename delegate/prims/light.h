@@ -1,8 +1,10 @@
-// DistantLight, SphereLight and DomeLight sprims (UsdLux). Radiometric conventions (docs/ARCHITECTURE.md):
-// inputs:intensity * 2^inputs:exposure * inputs:color is the emitted radiance; a distant light's
-// irradiance at normal incidence is that radiance times the solid angle of its disc
-// (2 pi (1 - cos(angle / 2))), or the intensity itself when inputs:normalize is on; a normalized
-// sphere light divides its radiance by its surface area; a dome is constant radiance all around.
+// DistantLight, SphereLight, RectLight, DiskLight and DomeLight sprims (UsdLux). Radiometric
+// conventions (docs/ARCHITECTURE.md): inputs:intensity * 2^inputs:exposure * inputs:color is the
+// emitted radiance; a distant light's irradiance at normal incidence is that radiance times the
+// solid angle of its disc (2 pi (1 - cos(angle / 2))), or the intensity itself when
+// inputs:normalize is on; normalized sphere, rectangle and disk lights divide their radiance by
+// their surface area; rectangles and disks emit from their front (-Z) face only; a dome is
+// constant radiance all around. ShapingAPI's cone, softness and focus shape the local lights.
 #pragma once
 
 #include "delegate/prims/prim.h"
@@ -26,6 +28,10 @@ private:
     bool visible_ = true;
     std::string warning_;
 };
+
+// The light with its influence range (LightData::factors.w) set for a frame exposed by
+// `exposureScale`: the distance tiled culling bounds it by.
+passes::LightData withInfluenceRange(passes::LightData light, double exposureScale);
 
 // Linear Rec.709 colour of a black body at `kelvin`, scaled to luminance 1 (UsdLux
 // colorTemperature: the light's colour is multiplied by it).

@@ -15,6 +15,13 @@ void Material::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     data_.diffuseRoughness = {diffuse[0], diffuse[1], diffuse[2], roughness};
     data_.emissiveMetallic = {emissive[0], emissive[1], emissive[2], metallic};
     data_.opacity = {opacity, opacityThreshold, 0.0f, 0.0f};
+    auto specular = s.getFloat3("inputs:specularColor");
+    float ior = s.getFloat("inputs:ior");
+    if (!(ior >= 1.0f)) throw PrimDataError(s.path() + ": inputs:ior must be at least 1");
+    data_.specularIor = {specular[0], specular[1], specular[2], ior};
+    data_.clearcoat = {std::clamp(s.getFloat("inputs:clearcoat"), 0.0f, 1.0f),
+                       std::clamp(s.getFloat("inputs:clearcoatRoughness"), 0.0f, 1.0f),
+                       s.getInt("inputs:useSpecularWorkflow") != 0 ? 1.0f : 0.0f, 0.0f};
     readTextures(s, ctx);
 }
 

@@ -112,8 +112,8 @@ typedef enum ObscuraInterpolation {
 /* ---------------------------------------------------------------------------------------------
  * Prim types and dirty bits
  *
- * Prim type names (tokens): "mesh" (rprim); "camera", "distantLight", "sphereLight",
- * "material" (sprims); "renderBuffer" (bprim). The schema reference (docs/schemas.md) lists
+ * Prim type names (tokens): "mesh", "instancer" (rprims); "camera", "distantLight",
+ * "sphereLight", "rectLight", "diskLight", "domeLight", "material" (sprims); "renderBuffer" (bprim). The schema reference (docs/schemas.md) lists
  * every attribute, its type, default, unit and whether it may be time-sampled.
  * ------------------------------------------------------------------------------------------- */
 typedef uint32_t ObscuraDirtyBits;

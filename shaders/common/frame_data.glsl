@@ -7,9 +7,10 @@ struct CameraData {
     mat4 projection;
     mat4 viewProjection;
     mat4 inverseViewProjection;
+    mat4 inverseProjection;
     vec4 position;       // world-space eye, w unused
     vec2 resolution;     // render size in pixels
-    float exposureScale; // 2^(camera exposure + render setting exposure): pre-exposed accumulation
+    float exposureScale; // camera exposure (UsdGeomCamera linear scale) x 2^(render setting exposure): pre-exposed accumulation
     float pad0;
 };
 
@@ -45,20 +46,26 @@ struct MaterialData {
     vec4 diffuseRoughness;  // rgb diffuseColor, a roughness
     vec4 emissiveMetallic;  // rgb emissiveColor (textured: the texture's average), a metallic
     vec4 opacity;           // x opacity, y opacityThreshold
+    vec4 specularIor;       // rgb specularColor (specular workflow), a ior
+    vec4 clearcoat;         // x clearcoat, y clearcoatRoughness, z 1 for the specular workflow
     MaterialTexture textures[MATERIAL_TEXTURE_SLOTS];
 };
 
 const uint LIGHT_DISTANT = 0u;
 const uint LIGHT_SPHERE = 1u;
 const uint LIGHT_DOME = 2u;
+const uint LIGHT_RECT = 3u;
+const uint LIGHT_DISK = 4u;
 
 struct LightData {
-    vec4 positionType;      // xyz world position (sphere), w type
-    vec4 directionAngle;    // xyz direction the light travels (distant), w half-angle in radians
-    vec4 radiance;          // rgb emitted radiance incl. intensity, exposure, colour, normalize; a radius
-    vec4 factors;           // x diffuse, y specular multipliers
+    vec4 positionType;      // xyz world position (sphere, rect and disk centre), w type
+    vec4 directionAngle;    // xyz emission axis: the light's local -Z in world space; w half-angle in radians (distant)
+    vec4 radiance;          // rgb emitted radiance incl. intensity, exposure, colour, normalize; a radius (sphere)
+    vec4 factors;           // x diffuse, y specular multipliers; z 1 for treatAsPoint; w influence range (local lights)
+    vec4 axisX;             // xyz rect: half the width along local X; disk: the radius along local X (world space)
+    vec4 axisY;             // xyz rect: half the height along local Y; disk: the radius along local Y
+    vec4 shaping;           // ShapingAPI: x cone angle, y angle where the soft fade starts (radians), z focus; w unused
 };
-
 const uint INSTANCE_DOUBLE_SIDED = 1u;
 const uint INSTANCE_VERTEX_COLOR = 2u;
 

@@ -9,39 +9,8 @@
 namespace obscura::test {
 namespace {
 
-constexpr double kCameraDistance = 5.0;
-constexpr float kFocalLength = 50.0f, kAperture = 20.955f;
-const double kTanHalfFov = (kAperture / 2.0) / kFocalLength;
-const float kAlbedo = srgb8Exact(188);  // 0.5029
-
-struct Scene {
-    TestHost host;
-    Scene() {
-        host.addCamera("/Camera", translation(0, 0, kCameraDistance), kFocalLength, kAperture);
-        addMaterial(host, "/Looks/Grey", {kAlbedo, kAlbedo, kAlbedo});
-        addPlane(host, "/Plane", "/Looks/Grey");
-        host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
-    }
-    std::vector<float> renderColor() {
-        EXPECT_EQ(host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_OK) << host.lastError();
-        EXPECT_TRUE(host.loggedErrors().empty()) << host.loggedErrors().front();
-        return host.readFloats("/Buffers/color");
-    }
-};
-
-void expectRadiance(const std::vector<float>& color, int x, int y, std::array<double, 3> expected) {
-    const float* p = &color[(size_t(y) * kWidth + x) * 4];
-    const int mantissa[3] = {6, 6, 5};
-    for (int c = 0; c < 3; ++c) {
-        double e = expected[c];
-        EXPECT_NEAR(p[c], e, 0.01 * e + smallFloatStep(float(e), mantissa[c]))
-            << "pixel (" << x << ", " << y << ") channel " << c;
-    }
-    EXPECT_EQ(p[3], 1.0f);
-}
-
 TEST(LightingAnalytic, LambertPlaneUnderDistantLight) {
-    Scene s;
+    LitPlaneScene s;
     const double irradiance = 3.0;  // normalized distant light: intensity is the illuminance
     const double theta = 30.0 * kPi / 180.0;
     s.host.addPrim("distantLight", "/Sun",
@@ -50,12 +19,12 @@ TEST(LightingAnalytic, LambertPlaneUnderDistantLight) {
                     {"inputs:specular", HostValue::floatValue(0.0f)}},
                    lightPointingAlong({std::sin(theta), 0.0, -std::cos(theta)}));
     auto color = s.renderColor();
-    double radiance = kAlbedo / kPi * irradiance * std::cos(theta);
+    double radiance = kLitPlaneAlbedo / kPi * irradiance * std::cos(theta);
     for (auto [x, y] : {std::pair{32, 32}, {5, 7}, {60, 50}}) expectRadiance(color, x, y, {radiance, radiance, radiance});
 }
 
 TEST(LightingAnalytic, DistantLightSolidAngleWhenNotNormalized) {
-    Scene s;
+    LitPlaneScene s;
     // UsdLux: without normalize the intensity is radiance over the sun's disc.
     const double angle = 2.0 * kPi / 180.0, intensity = 5000.0;
     s.host.addPrim("distantLight", "/Sun",
@@ -66,12 +35,12 @@ TEST(LightingAnalytic, DistantLightSolidAngleWhenNotNormalized) {
                    lightPointingAlong({0, 0, -1}));
     auto color = s.renderColor();
     double irradiance = intensity * 2.0 * kPi * (1.0 - std::cos(angle / 2.0));
-    double r = kAlbedo / kPi * irradiance;
+    double r = kLitPlaneAlbedo / kPi * irradiance;
     expectRadiance(color, 32, 32, {r, r * 0.5, r * 0.25});
 }
 
 TEST(LightingAnalytic, LambertPlaneUnderSphereLight) {
-    Scene s;
+    LitPlaneScene s;
     const double height = 2.0, radius = 0.1, radiance = 400.0;
     s.host.addPrim("sphereLight", "/Bulb",
                    {{"inputs:intensity", HostValue::floatValue(float(radiance))},
@@ -81,18 +50,18 @@ TEST(LightingAnalytic, LambertPlaneUnderSphereLight) {
     auto color = s.renderColor();
     // A sphere fully above the horizon: E = pi L (r/d)^2 cos(theta).
     for (auto [x, y] : {std::pair{32, 32}, {10, 20}, {50, 60}}) {
-        auto p = planePointAtPixel(x, y, kCameraDistance, kTanHalfFov);
+        auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
         double d2 = p[0] * p[0] + p[1] * p[1] + height * height;
         double cosTheta = height / std::sqrt(d2);
         double e = kPi * radiance * radius * radius / d2 * cosTheta;
-        double l = kAlbedo / kPi * e;
+        double l = kLitPlaneAlbedo / kPi * e;
         expectRadiance(color, x, y, {l, l, l});
     }
 }
 
 TEST(LightingAnalytic, EmissionAddsToReflectedLight) {
     TestHost host;
-    host.addCamera("/Camera", translation(0, 0, kCameraDistance), kFocalLength, kAperture);
+    host.addCamera("/Camera", translation(0, 0, kLitPlaneCameraDistance), kLitPlaneFocalLength, kLitPlaneAperture);
     addMaterial(host, "/Looks/Glow", {0.5f, 0.5f, 0.5f}, 1.0f, 0.0f, {0.25f, 0.5f, 1.0f});
     addPlane(host, "/Plane", "/Looks/Glow");
     host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
@@ -102,7 +71,7 @@ TEST(LightingAnalytic, EmissionAddsToReflectedLight) {
 }
 
 TEST(LightingAnalytic, ExposureScalesTheColorAov) {
-    Scene s;
+    LitPlaneScene s;
     s.host.addPrim("distantLight", "/Sun",
                    {{"inputs:intensity", HostValue::floatValue(1.0f)},
                     {"inputs:normalize", HostValue::boolean(true)},
@@ -112,7 +81,29 @@ TEST(LightingAnalytic, ExposureScalesTheColorAov) {
     ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &stops};
     ASSERT_EQ(s.host.api().setRenderSetting(s.host.delegate(), "exposure", &v), OBSCURA_OK);
     auto color = s.renderColor();
-    double r = kAlbedo / kPi * 4.0;
+    double r = kLitPlaneAlbedo / kPi * 4.0;
+    expectRadiance(color, 32, 32, {r, r, r});
+}
+
+TEST(LightingAnalytic, PhysicalCameraExposureScalesTheColorAov) {
+    // UsdGeomCamera: time x ISO x 2^exposure x responsivity / (100 x fStop^2) = 0.25 x 400 x 2 x 1.5
+    // / (100 x 0.5^2) = 12, times 2^-1 from the render setting.
+    LitPlaneScene s;
+    s.host.addPrim("distantLight", "/Sun",
+                   {{"inputs:intensity", HostValue::floatValue(0.25f)},
+                    {"inputs:normalize", HostValue::boolean(true)},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   lightPointingAlong({0, 0, -1}));
+    s.host.set("/Camera", "exposure:time", HostValue::floatValue(0.25f));
+    s.host.set("/Camera", "exposure:iso", HostValue::floatValue(400.0f));
+    s.host.set("/Camera", "exposure:fStop", HostValue::floatValue(0.5f));
+    s.host.set("/Camera", "exposure:responsivity", HostValue::floatValue(1.5f));
+    s.host.set("/Camera", "exposure", HostValue::floatValue(1.0f));
+    double stops = -1.0;
+    ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &stops};
+    ASSERT_EQ(s.host.api().setRenderSetting(s.host.delegate(), "exposure", &v), OBSCURA_OK);
+    auto color = s.renderColor();
+    double r = kLitPlaneAlbedo / kPi * 0.25 * 12.0 * 0.5;
     expectRadiance(color, 32, 32, {r, r, r});
 }
 
@@ -123,7 +114,7 @@ namespace obscura::test {
 namespace {
 
 TEST(LightingAnalytic, ConstantDomeGivesAlbedoTimesRadiance) {
-    Scene s;
+    LitPlaneScene s;
     // Lambert under a uniform environment of radiance L: integral of (a/pi) L cos = a L.
     const double radiance = 1.5;
     s.host.addPrim("domeLight", "/Sky",
@@ -131,12 +122,81 @@ TEST(LightingAnalytic, ConstantDomeGivesAlbedoTimesRadiance) {
                     {"inputs:color", HostValue::float3(1.0f, 0.5f, 0.25f)},
                     {"inputs:specular", HostValue::floatValue(0.0f)}});
     auto color = s.renderColor();
-    double l = kAlbedo * radiance;
+    double l = kLitPlaneAlbedo * radiance;
     for (auto [x, y] : {std::pair{32, 32}, {3, 60}}) expectRadiance(color, x, y, {l, l * 0.5, l * 0.25});
 }
 
+// Karis 2014's analytic fit of the split-sum DFG term: the response to a constant environment is
+// L (F0 A + B), the fit the lighting pass uses for domes (brdf.glsl).
+std::array<double, 2> environmentBrdf(double roughness, double NdotV) {
+    const double c0[4] = {-1.0, -0.0275, -0.572, 0.022}, c1[4] = {1.0, 0.0425, 1.04, -0.04};
+    double r[4];
+    for (int i = 0; i < 4; ++i) r[i] = roughness * c0[i] + c1[i];
+    double a004 = std::min(r[0] * r[0], std::exp2(-9.28 * NdotV)) * r[0] + r[1];
+    return {-1.04 * a004 + r[2], 1.04 * a004 + r[3]};
+}
+
+// A black-diffuse plane under a white dome of radiance 1: what reaches the eye is specular only.
+struct SpecularUnderDome {
+    LitPlaneScene s;
+    SpecularUnderDome() {
+        s.host.addPrim("domeLight", "/Sky", {{"inputs:intensity", HostValue::floatValue(1.0f)}});
+        addMaterial(s.host, "/Looks/Coated", {0, 0, 0}, 0.5f);
+        s.host.set("/Plane", "material:binding", HostValue::path("/Looks/Coated"));
+        double off = 0.0;
+        ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &off};
+        EXPECT_EQ(s.host.api().setRenderSetting(s.host.delegate(), "ssao", &v), OBSCURA_OK);
+    }
+    // N.V at a pixel of the plane seen from the camera.
+    static double nDotV(int x, int y) {
+        auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
+        return kLitPlaneCameraDistance / std::sqrt(p[0] * p[0] + p[1] * p[1] + 25.0);
+    }
+};
+
+double schlick(double f0, double cosine) { return f0 + (1 - f0) * std::pow(1 - cosine, 5); }
+
+TEST(Materials, SpecularWorkflowReflectsSpecularColor) {
+    SpecularUnderDome d;
+    d.s.host.set("/Looks/Coated", "inputs:useSpecularWorkflow", HostValue::intValue(1));
+    d.s.host.set("/Looks/Coated", "inputs:specularColor", HostValue::float3(0.5f, 0.25f, 0.0f));
+    d.s.host.set("/Looks/Coated", "inputs:metallic", HostValue::floatValue(1.0f));  // ignored by this workflow
+    auto color = d.s.renderColor();
+    for (auto [x, y] : {std::pair{32, 32}, {5, 50}}) {
+        auto [a, b] = environmentBrdf(0.5, SpecularUnderDome::nDotV(x, y));
+        expectRadiance(color, x, y, {0.5 * a + b, 0.25 * a + b, b});
+    }
+}
+
+TEST(Materials, IorSetsTheDielectricReflectance) {
+    SpecularUnderDome d;
+    d.s.host.set("/Looks/Coated", "inputs:ior", HostValue::floatValue(2.5f));
+    auto color = d.s.renderColor();
+    const double f0 = std::pow((2.5 - 1) / (2.5 + 1), 2);
+    auto [a, b] = environmentBrdf(0.5, SpecularUnderDome::nDotV(32, 32));
+    expectRadiance(color, 32, 32, {f0 * a + b, f0 * a + b, f0 * a + b});
+}
+
+TEST(Materials, ClearcoatAddsAWhiteLobeAndDimsTheBase) {
+    SpecularUnderDome d;
+    d.s.host.set("/Looks/Coated", "inputs:diffuseColor", HostValue::float3(0.5f, 0.0f, 0.0f));
+    d.s.host.set("/Looks/Coated", "inputs:clearcoat", HostValue::floatValue(1.0f));
+    d.s.host.set("/Looks/Coated", "inputs:clearcoatRoughness", HostValue::floatValue(0.2f));
+    auto color = d.s.renderColor();
+    double nv = SpecularUnderDome::nDotV(32, 32);
+    auto [a, b] = environmentBrdf(0.5, nv);
+    auto [ca, cb] = environmentBrdf(0.2, nv);
+    double transmission = 1 - schlick(0.04, nv);
+    double coat = 0.04 * ca + cb, base = (0.04 * a + b) * transmission;
+    const float* p = &color[(32 * kWidth + 32) * 4];
+    // Green and blue see only the lobes; red adds the coat-dimmed diffuse (albedo stored as 8-bit sRGB).
+    expectRadiance(color, 32, 32, {p[0], base + coat, base + coat});
+    double albedo8 = srgb8Exact(int(std::lround(255.0 * (1.055 * std::pow(0.5, 1 / 2.4) - 0.055))));
+    EXPECT_NEAR(p[0], albedo8 * transmission + base + coat, 0.01 * p[0] + smallFloatStep(p[0], 6));
+}
+
 TEST(LightingAnalytic, ColorTemperatureTintsTheLight) {
-    Scene s;
+    LitPlaneScene s;
     s.host.addPrim("distantLight", "/Sun",
                    {{"inputs:intensity", HostValue::floatValue(3.0f)},
                     {"inputs:normalize", HostValue::boolean(true)},
@@ -152,7 +212,7 @@ TEST(LightingAnalytic, ColorTemperatureTintsTheLight) {
     double rgb[3] = {3.2404542 * X - 1.5371385 - 0.4985314 * Z, -0.9692660 * X + 1.8760108 + 0.0415560 * Z,
                      0.0556434 * X - 0.2040259 + 1.0572252 * Z};
     double luminance = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
-    double e = kAlbedo / kPi * 3.0;
+    double e = kLitPlaneAlbedo / kPi * 3.0;
     const int mantissa[3] = {6, 6, 5};
     for (int c = 0; c < 3; ++c) {
         double want = e * rgb[c] / luminance;

@@ -62,4 +62,30 @@ std::array<double, 3> planePointAtPixel(int x, int y, double distance, double ta
     return {ndcX * tanHalfFov * distance, ndcY * tanHalfFov * distance, 0.0};
 }
 
+const float kLitPlaneAlbedo = srgb8Exact(188);
+
+LitPlaneScene::LitPlaneScene() {
+    host.addCamera("/Camera", translation(0, 0, kLitPlaneCameraDistance), kLitPlaneFocalLength, kLitPlaneAperture);
+    addMaterial(host, "/Looks/Grey", {kLitPlaneAlbedo, kLitPlaneAlbedo, kLitPlaneAlbedo});
+    addPlane(host, "/Plane", "/Looks/Grey");
+    host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+}
+
+std::vector<float> LitPlaneScene::renderColor() {
+    EXPECT_EQ(host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_OK) << host.lastError();
+    EXPECT_TRUE(host.loggedErrors().empty()) << host.loggedErrors().front();
+    return host.readFloats("/Buffers/color");
+}
+
+void expectRadiance(const std::vector<float>& color, int x, int y, std::array<double, 3> expected) {
+    const float* p = &color[(size_t(y) * kWidth + x) * 4];
+    const int mantissa[3] = {6, 6, 5};
+    for (int c = 0; c < 3; ++c) {
+        double e = expected[c];
+        EXPECT_NEAR(p[c], e, 0.01 * e + smallFloatStep(float(e), mantissa[c]))
+            << "pixel (" << x << ", " << y << ") channel " << c;
+    }
+    EXPECT_EQ(p[3], 1.0f);
+}
+
 }  // namespace obscura::test

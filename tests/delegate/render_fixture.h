@@ -4,6 +4,8 @@
 
 #include "tests/support/test_host.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
 
@@ -36,5 +38,23 @@ float srgb8Exact(int code);
 // World-space point on the z = 0 plane seen through the centre of pixel (x, y) by a camera at
 // (0, 0, distance) looking down -Z with the given tan of the half field of view.
 std::array<double, 3> planePointAtPixel(int x, int y, double distance, double tanHalfFov);
+
+// A grey Lambert plane (albedo 0.5029, a value 8-bit sRGB holds exactly, so the G-buffer adds no
+// error of its own) at z = 0 facing +Z, seen by a camera at (0, 0, 5) looking down -Z; tests add
+// lights and read the linear colour AOV.
+constexpr double kLitPlaneCameraDistance = 5.0;
+constexpr float kLitPlaneFocalLength = 50.0f, kLitPlaneAperture = 20.955f;
+constexpr double kLitPlaneTanHalfFov = (kLitPlaneAperture / 2.0) / kLitPlaneFocalLength;
+extern const float kLitPlaneAlbedo;
+
+struct LitPlaneScene {
+    TestHost host;
+    LitPlaneScene();
+    std::vector<float> renderColor();
+};
+
+// The pixel's radiance equals `expected` within 1% plus one step of the B10G11R11 accumulation
+// format (mantissa 6, 6, 5 bits: 1.6% for R and G, 3.1% for B).
+void expectRadiance(const std::vector<float>& color, int x, int y, std::array<double, 3> expected);
 
 }  // namespace obscura::test

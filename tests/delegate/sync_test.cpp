@@ -135,5 +135,33 @@ TEST(SharedGeometry, IdenticalMeshesAreStoredOnce) {
     EXPECT_EQ(geometryBytes(host), one);
 }
 
+TEST(SharedGeometry, InstancedCopiesKeepTheirOwnMaterialAndId) {
+    // Repeated references become one instanced draw; each instance still reads its own record.
+    TestHost host;
+    host.addCamera("/Camera", translation(0, 0, 10));
+    host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+    host.addRenderBuffer("/Buffers/id", "int32", kWidth, kHeight);
+    addMaterial(host, "/Looks/Red", {0, 0, 0}, 1.0f, 0.0f, {1.0f, 0.0f, 0.0f});
+    addMaterial(host, "/Looks/Blue", {0, 0, 0}, 1.0f, 0.0f, {0.0f, 0.0f, 1.0f});
+    addPlane(host, "/Left", "/Looks/Red", 0.8, translation(-1, 0, 0));
+    addPlane(host, "/Right", "/Looks/Blue", 0.8, translation(1, 0, 0));
+    ASSERT_EQ(host.render("/Camera", {{"color", "/Buffers/color"}, {"primId", "/Buffers/id"}}), OBSCURA_OK)
+        << host.lastError();
+    auto color = host.readFloats("/Buffers/color");
+    auto ids = host.readInts("/Buffers/id");
+    // The camera sees +-2.1 units at z = 0 across 64 pixels: x = -1 is pixel 16.7, x = +1 pixel 47.3.
+    const float* left = &color[(32 * kWidth + 16) * 4];
+    const float* right = &color[(32 * kWidth + 47) * 4];
+    EXPECT_FLOAT_EQ(left[0], 1.0f);
+    EXPECT_FLOAT_EQ(left[2], 0.0f);
+    EXPECT_FLOAT_EQ(right[0], 0.0f);
+    EXPECT_FLOAT_EQ(right[2], 1.0f);
+    int32_t leftId = 0, rightId = 0;
+    ASSERT_EQ(host.api().getPrimId(host.delegate(), "/Left", &leftId), OBSCURA_OK);
+    ASSERT_EQ(host.api().getPrimId(host.delegate(), "/Right", &rightId), OBSCURA_OK);
+    EXPECT_EQ(ids[32 * kWidth + 16], leftId);
+    EXPECT_EQ(ids[32 * kWidth + 47], rightId);
+}
+
 }  // namespace
 }  // namespace obscura::test

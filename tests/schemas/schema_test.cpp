@@ -36,7 +36,8 @@ TEST(SchemaTables, EveryPrimTypeIsFound) {
     const std::pair<const char*, const char*> expected[] = {
         {"mesh", "rprim"},     {"camera", "sprim"},   {"distantLight", "sprim"},
         {"sphereLight", "sprim"}, {"material", "sprim"}, {"renderBuffer", "bprim"},
-        {"instancer", "rprim"},   {"domeLight", "sprim"}};
+        {"instancer", "rprim"},   {"domeLight", "sprim"},  {"rectLight", "sprim"},
+        {"diskLight", "sprim"}};
     EXPECT_EQ(primSchemas().size(), std::size(expected));
     for (const auto& [name, category] : expected) {
         const PrimSchema* prim = findPrimSchema(name);

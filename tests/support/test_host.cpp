@@ -11,12 +11,6 @@ HostValue HostValue::floatValue(float v) {
     h.floats = {v};
     return h;
 }
-HostValue HostValue::intValue(int32_t v) {
-    HostValue h;
-    h.type = OBSCURA_VALUE_INT;
-    h.ints = {v};
-    return h;
-}
 HostValue HostValue::float3(float x, float y, float z) {
     HostValue h;
     h.type = OBSCURA_VALUE_FLOAT3;
@@ -39,6 +33,12 @@ HostValue HostValue::boolean(bool v) {
     HostValue h;
     h.type = OBSCURA_VALUE_BOOL;
     h.ints = {v ? 1 : 0};
+    return h;
+}
+HostValue HostValue::intValue(int32_t v) {
+    HostValue h;
+    h.type = OBSCURA_VALUE_INT;
+    h.ints = {v};
     return h;
 }
 HostValue HostValue::token(const std::string& t) {

@@ -27,11 +27,11 @@ struct HostValue {
     size_t count = 1;
 
     static HostValue floatValue(float v);
-    static HostValue intValue(int32_t v);
     static HostValue float3(float x, float y, float z);
     static HostValue float2(float x, float y);
     static HostValue int2(int32_t x, int32_t y);
     static HostValue boolean(bool v);
+    static HostValue intValue(int32_t v);
     static HostValue token(const std::string& t);
     static HostValue path(const std::string& p);
     static HostValue paths(const std::vector<std::string>& p);

@@ -1,0 +1,231 @@
+// Radiance one UsdLux light reflects off a G-buffer surface towards the eye. Conventions
+// (docs/ARCHITECTURE.md "Lights"): radiance, irradiance and solid angles follow UsdLux; the
+// host-side packing is delegate/prims/light.cpp.
+#ifndef OBSCURA_LIGHT_EVALUATION_GLSL
+#define OBSCURA_LIGHT_EVALUATION_GLSL
+
+#include "frame_data.glsl"
+#include "brdf.glsl"
+
+struct SurfacePoint {
+    vec3 P;           // world position
+    vec3 N;           // unit normal
+    vec3 V;           // unit direction to the eye
+    vec3 diffuse;     // diffuse albedo (metallic workflow: diffuseColor x (1 - metallic))
+    vec3 f0;          // specular reflectance at normal incidence
+    float roughness;  // perceptual, as authored
+    float clearcoat;  // UsdPreviewSurface's second specular lobe: weight and roughness
+    float clearcoatRoughness;
+    float ambientAccess;  // SSAO: applied to the dome only (seed 004, "SSAO": ambient light only)
+};
+
+// UsdPreviewSurface (https://openusd.org/release/spec_usdpreviewsurface.html): the metallic
+// workflow reflects ((ior - 1) / (ior + 1))^2 at normal incidence as a dielectric and its base
+// colour as a metal; the specular workflow takes specularColor as F0 and keeps diffuseColor whole.
+SurfacePoint surfaceFromMaterial(MaterialData mat, vec3 baseColor, float metallic) {
+    SurfacePoint s;
+    float r = (mat.specularIor.a - 1.0) / (mat.specularIor.a + 1.0);
+    bool specularWorkflow = mat.clearcoat.z > 0.5;
+    s.f0 = specularWorkflow ? mat.specularIor.rgb : mix(vec3(r * r), baseColor, metallic);
+    s.diffuse = specularWorkflow ? baseColor : (1.0 - metallic) * baseColor;
+    s.clearcoat = mat.clearcoat.x;
+    s.clearcoatRoughness = mat.clearcoat.y;
+    return s;
+}
+
+const float CLEARCOAT_F0 = 0.04;  // the coat is a dielectric of ior 1.5
+
+vec3 diffuseBrdf(SurfacePoint s) {
+    return s.diffuse / PI;
+}
+
+// GGX lobe for light from L. A source of angular radius asin(sinHalfAngle) widens the lobe; the
+// (alpha / alpha')^2 factor keeps its energy (Karis 2013, "sphere light normalisation").
+vec3 ggxLobe(SurfacePoint s, vec3 L, float sinHalfAngle, float roughness, vec3 f0) {
+    float NdotL = max(dot(s.N, L), 0.0);
+    float NdotV = max(dot(s.N, s.V), 1e-4);
+    vec3 H = normalize(L + s.V);
+    float NdotH = max(dot(s.N, H), 0.0);
+    float VdotH = max(dot(s.V, H), 0.0);
+    float alpha = alphaFromRoughness(roughness);
+    float alphaWide = clamp(alpha + 0.5 * sinHalfAngle, 0.0, 1.0);
+    float energy = (alpha * alpha) / (alphaWide * alphaWide);
+    return ggxDistribution(NdotH, alphaWide) * energy * smithVisibilityHeightCorrelated(NdotV, NdotL, alpha) *
+           fresnelSchlick(f0, VdotH);
+}
+
+// What the coat lets through to the base layer (its Fresnel reflection seen from the eye).
+float clearcoatTransmission(SurfacePoint s) {
+    return 1.0 - s.clearcoat * fresnelSchlick(vec3(CLEARCOAT_F0), max(dot(s.N, s.V), 0.0)).x;
+}
+
+// Base and coat specular lobes, the base already attenuated by the coat.
+vec3 specularBrdf(SurfacePoint s, vec3 L, float sinHalfAngle) {
+    vec3 base = ggxLobe(s, L, sinHalfAngle, s.roughness, s.f0) * clearcoatTransmission(s);
+    if (s.clearcoat <= 0.0) return base;
+    return base + s.clearcoat * ggxLobe(s, L, sinHalfAngle, s.clearcoatRoughness, vec3(CLEARCOAT_F0));
+}
+
+// A small source of irradiance `irradiance` (at normal incidence) in direction L.
+vec3 reflectFromDirection(SurfacePoint s, vec3 L, vec3 irradiance, float sinHalfAngle, vec2 factors) {
+    float NdotL = dot(s.N, L);
+    if (NdotL <= 0.0) return vec3(0.0);
+    return (diffuseBrdf(s) * clearcoatTransmission(s) * factors.x + specularBrdf(s, L, sinHalfAngle) * factors.y) *
+           irradiance * NdotL;
+}
+
+// UsdLuxShapingAPI: the cone cuts emission beyond its angle off the axis and fades it over the
+// softness fraction inside; focus is a power of the cosine off the axis
+// (https://openusd.org/release/user_guides/schemas/usdLux/ShapingAPI.html). A cone of 90 degrees
+// or more leaves the light unshaped.
+float shapingAttenuation(LightData light, vec3 fromLight) {
+    float cosOffAxis = dot(light.directionAngle.xyz, fromLight);
+    float attenuation = light.shaping.z > 0.0 ? pow(max(cosOffAxis, 0.0), light.shaping.z) : 1.0;
+    float cutoff = light.shaping.x;
+    if (cutoff < 0.5 * PI) {
+        float offAxis = acos(clamp(cosOffAxis, -1.0, 1.0));
+        float smoothStart = light.shaping.y;
+        attenuation *= offAxis > cutoff ? 0.0 : (smoothStart < cutoff ? 1.0 - smoothstep(smoothStart, cutoff, offAxis) : 1.0);
+    }
+    return attenuation;
+}
+
+// --- Polygonal area lights --------------------------------------------------------------------
+// Diffuse: the exact irradiance of a uniform polygon (Lambert 1760; the edge-integral form of
+// Arvo 1995, "Applications of irradiance tensors"): E = L/2 * sum_i theta_i (N . gamma_i), the
+// polygon clipped to the receiver's horizon. Specular: the representative point (Karis 2013,
+// "Real shading in Unreal Engine 4") with the lobe widened by the light's solid angle.
+
+const int AREA_LIGHT_MAX_VERTICES = 18;  // a 16-gon disk, plus one vertex from horizon clipping
+const int DISK_POLYGON_SIDES = 16;
+
+// theta * gamma for the edge (a, b) seen from the origin: the edge's contribution to the vector
+// form factor. atan2 keeps small edges accurate where acos(dot) would not.
+vec3 edgeIntegral(vec3 a, vec3 b) {
+    vec3 c = cross(a, b);
+    float s = length(c);
+    if (s < 1e-12) return vec3(0.0);
+    return c * (atan(s, dot(a, b)) / s);
+}
+
+struct AreaPolygon {
+    vec3 v[AREA_LIGHT_MAX_VERTICES];  // corners relative to the shaded point
+    int count;
+};
+
+AreaPolygon areaLightPolygon(LightData light, vec3 P) {
+    AreaPolygon poly;
+    vec3 centre = light.positionType.xyz - P;
+    if (uint(light.positionType.w) == LIGHT_RECT) {
+        poly.count = 4;
+        poly.v[0] = centre - light.axisX.xyz - light.axisY.xyz;
+        poly.v[1] = centre + light.axisX.xyz - light.axisY.xyz;
+        poly.v[2] = centre + light.axisX.xyz + light.axisY.xyz;
+        poly.v[3] = centre - light.axisX.xyz + light.axisY.xyz;
+    } else {
+        // A regular 16-gon of the disk's area (radius scaled by sqrt(2 pi / (n sin(2 pi / n)))),
+        // so the irradiance of distant points is exact; on the axis it is within 0.004% at any distance.
+        const float areaScale = 1.01300;
+        poly.count = DISK_POLYGON_SIDES;
+        for (int i = 0; i < DISK_POLYGON_SIDES; ++i) {
+            float phi = 2.0 * PI * float(i) / float(DISK_POLYGON_SIDES);
+            poly.v[i] = centre + areaScale * (cos(phi) * light.axisX.xyz + sin(phi) * light.axisY.xyz);
+        }
+    }
+    return poly;
+}
+
+// Sutherland-Hodgman clip against the receiver's horizon plane dot(N, x) = 0.
+AreaPolygon clipToHorizon(AreaPolygon poly, vec3 N) {
+    AreaPolygon clipped;
+    clipped.count = 0;
+    for (int i = 0; i < poly.count; ++i) {
+        vec3 a = poly.v[i];
+        vec3 b = poly.v[(i + 1) % poly.count];
+        float da = dot(N, a), db = dot(N, b);
+        if (da >= 0.0) clipped.v[clipped.count++] = a;
+        if ((da >= 0.0) != (db >= 0.0) && clipped.count < AREA_LIGHT_MAX_VERTICES)
+            clipped.v[clipped.count++] = mix(a, b, da / (da - db));
+    }
+    return clipped;
+}
+
+// sum_i theta_i gamma_i over the polygon's edges (pointing towards the polygon's front side).
+vec3 vectorFormFactor(AreaPolygon poly) {
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < poly.count; ++i)
+        sum += edgeIntegral(normalize(poly.v[i]), normalize(poly.v[(i + 1) % poly.count]));
+    return sum;
+}
+
+vec3 reflectFromAreaLight(SurfacePoint s, LightData light) {
+    vec3 axis = light.directionAngle.xyz;
+    vec3 toPoint = s.P - light.positionType.xyz;
+    if (dot(toPoint, axis) <= 0.0) return vec3(0.0);  // behind the emitting face
+    AreaPolygon poly = areaLightPolygon(light, s.P);
+    // The edge sum points towards the light for one winding; orient it so (a mirroring transform
+    // reverses the corners' order).
+    vec3 formFactor = vectorFormFactor(poly);
+    float winding = dot(formFactor, axis) > 0.0 ? -1.0 : 1.0;
+    formFactor *= winding;
+    bool belowHorizon = false;
+    for (int i = 0; i < poly.count; ++i) belowHorizon = belowHorizon || dot(s.N, poly.v[i]) < 0.0;
+    float diffuseIrradiance =
+        0.5 * max(dot(s.N, belowHorizon ? winding * vectorFormFactor(clipToHorizon(poly, s.N)) : formFactor), 0.0);
+    float shaping = shapingAttenuation(light, normalize(toPoint));
+    vec3 radiance = light.radiance.rgb * shaping;
+    vec3 result = diffuseBrdf(s) * clearcoatTransmission(s) * light.factors.x * radiance * diffuseIrradiance;
+
+    // Representative point: where the mirror direction meets the light's plane, clamped to the shape.
+    vec3 R = reflect(-s.V, s.N);
+    vec3 centre = light.positionType.xyz - s.P;
+    float facing = dot(R, axis);
+    vec3 hit = facing < -1e-4 ? R * (dot(centre, axis) / facing) : R * 1e4;
+    vec3 onPlane = hit - axis * dot(hit - centre, axis) - centre;  // relative to the centre, in the plane
+    vec2 local = vec2(dot(onPlane, light.axisX.xyz) / dot(light.axisX.xyz, light.axisX.xyz),
+                      dot(onPlane, light.axisY.xyz) / dot(light.axisY.xyz, light.axisY.xyz));
+    local = uint(light.positionType.w) == LIGHT_RECT ? clamp(local, -1.0, 1.0) : local / max(1.0, length(local));
+    vec3 L = normalize(centre + local.x * light.axisX.xyz + local.y * light.axisY.xyz);
+    // Irradiance at normal incidence of the whole source: |vector form factor| / 2 (it is L times
+    // the projected solid angle the light subtends when faced head on).
+    float solidAngle = 0.5 * length(formFactor);
+    float sinHalfAngle = clamp(sqrt(solidAngle / PI), 0.0, 1.0);
+    result += specularBrdf(s, L, sinHalfAngle) * light.factors.y * radiance * solidAngle * max(dot(s.N, L), 0.0);
+    return result;
+}
+
+// --- All light types ------------------------------------------------------------------------
+
+vec3 reflectFromLight(SurfacePoint s, LightData light) {
+    uint type = uint(light.positionType.w);
+    if (type == LIGHT_DISTANT) {
+        // UsdLux: irradiance = radiance x solid angle of the disc (precomputed on the host).
+        return reflectFromDirection(s, -light.directionAngle.xyz, light.radiance.rgb, sin(light.directionAngle.w),
+                                    light.factors.xy);
+    }
+    if (type == LIGHT_SPHERE) {
+        vec3 toLight = light.positionType.xyz - s.P;
+        float d2 = max(dot(toLight, toLight), 1e-8);
+        float d = sqrt(d2);
+        vec3 L = toLight / d;
+        float r = light.radiance.a;
+        // A uniform sphere of radiance L_e and radius r fully above the horizon gives
+        // E = pi * L_e * (r/d)^2 * cos(theta); a point light (r folded in) follows the same law.
+        vec3 irradiance = PI * light.radiance.rgb * (r * r) / d2 * shapingAttenuation(light, -L);
+        // treatAsPoint keeps the power but not the lobe widening of an extended source.
+        float sinHalfAngle = light.factors.z > 0.0 ? 0.0 : clamp(r / d, 0.0, 1.0);
+        return reflectFromDirection(s, L, irradiance, sinHalfAngle, light.factors.xy);
+    }
+    if (type == LIGHT_RECT || type == LIGHT_DISK) return reflectFromAreaLight(s, light);
+    // LIGHT_DOME, a constant environment: Lambert integrates to albedo * L; GGX through the
+    // split-sum pre-integration (environmentBrdf), for the base and the coat.
+    float NdotV = max(dot(s.N, s.V), 1e-4);
+    vec2 base = environmentBrdf(s.roughness, NdotV);
+    vec2 coat = environmentBrdf(s.clearcoatRoughness, NdotV);
+    float transmission = clearcoatTransmission(s);
+    vec3 specular = (s.f0 * base.x + base.y) * transmission + s.clearcoat * (CLEARCOAT_F0 * coat.x + coat.y);
+    vec3 diffuse = s.diffuse * transmission;
+    return s.ambientAccess * (diffuse * light.factors.x + specular * light.factors.y) * light.radiance.rgb;
+}
+
+#endif

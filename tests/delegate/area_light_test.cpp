@@ -1,0 +1,225 @@
+// UsdLux area and shaped lights on a Lambert plane against closed-form irradiance: a rectangle
+// and a disk parallel to the plane (configuration factors of a differential area to a parallel
+// rectangle and disk, e.g. Howell's catalogue, cases B-3 and B-4), the ShapingAPI cone and its
+// softness, one-sided emission, normalize; and tiled light culling against the sum of every
+// light's analytic contribution.
+#include "tests/delegate/render_fixture.h"
+
+#include <random>
+
+namespace obscura::test {
+namespace {
+
+// Light pointing straight down (-Z, its default) at (x, y, z).
+Matrix downAt(double x, double y, double z) { return translation(x, y, z); }
+
+// Configuration factor from a point to a parallel rectangle with one corner above it, sides
+// a and b at height h (odd in a and in b, so signed sides add up any placement).
+double cornerFactor(double a, double b, double h) {
+    double A = a / h, B = b / h;
+    double sa = std::sqrt(1 + A * A), sb = std::sqrt(1 + B * B);
+    return (A / sa * std::atan(B / sa) + B / sb * std::atan(A / sb)) / (2 * kPi);
+}
+
+// Irradiance at plane point p from a parallel rectangle of radiance L centred above the origin.
+double rectIrradiance(double radiance, double halfWidth, double halfHeight, double h, std::array<double, 3> p) {
+    double f = 0;
+    for (double sx : {-1.0, 1.0})
+        for (double sy : {-1.0, 1.0}) f += cornerFactor(halfWidth + sx * p[0], halfHeight + sy * p[1], h);
+    return kPi * radiance * f;
+}
+
+// Irradiance from a parallel disk of radius r at height h, the point at radial offset rho.
+double diskIrradiance(double radiance, double r, double h, double rho) {
+    double z = h * h + rho * rho + r * r;
+    return kPi * radiance * 0.5 * (1 - (h * h + rho * rho - r * r) / std::sqrt(z * z - 4 * r * r * rho * rho));
+}
+
+const std::pair<int, int> kPixels[] = {{32, 32}, {10, 20}, {50, 60}, {3, 3}, {62, 40}};
+
+TEST(AreaLight, RectangleMatchesTheParallelRectangleFactor) {
+    LitPlaneScene s;
+    const double radiance = 3.0, halfWidth = 1.0, halfHeight = 0.5, height = 0.75;
+    s.host.addPrim("rectLight", "/Panel",
+                   {{"inputs:intensity", HostValue::floatValue(float(radiance))},
+                    {"inputs:width", HostValue::floatValue(float(2 * halfWidth))},
+                    {"inputs:height", HostValue::floatValue(float(2 * halfHeight))},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   downAt(0, 0, height));
+    auto color = s.renderColor();
+    for (auto [x, y] : kPixels) {
+        auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
+        double l = kLitPlaneAlbedo / kPi * rectIrradiance(radiance, halfWidth, halfHeight, height, p);
+        expectRadiance(color, x, y, {l, l, l});
+    }
+}
+
+TEST(AreaLight, NormalizedRectangleDividesByItsArea) {
+    LitPlaneScene s;
+    const double intensity = 8.0, halfWidth = 0.5, halfHeight = 0.25, height = 1.0, scale = 2.0;
+    // The transform's scale doubles both sides: the area, and so the divisor, is 4x larger.
+    Matrix m = downAt(0, 0, height);
+    m[0] = m[5] = scale;
+    s.host.addPrim("rectLight", "/Panel",
+                   {{"inputs:intensity", HostValue::floatValue(float(intensity))},
+                    {"inputs:width", HostValue::floatValue(float(2 * halfWidth))},
+                    {"inputs:height", HostValue::floatValue(float(2 * halfHeight))},
+                    {"inputs:normalize", HostValue::boolean(true)},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   m);
+    auto color = s.renderColor();
+    double radiance = intensity / (4 * halfWidth * halfHeight * scale * scale);
+    auto p = planePointAtPixel(20, 40, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
+    double l = kLitPlaneAlbedo / kPi * rectIrradiance(radiance, halfWidth * scale, halfHeight * scale, height, p);
+    expectRadiance(color, 20, 40, {l, l, l});
+}
+
+TEST(AreaLight, DiskMatchesTheParallelDiskFactor) {
+    LitPlaneScene s;
+    const double radiance = 2.0, radius = 0.6, height = 0.5;
+    s.host.addPrim("diskLight", "/Disk",
+                   {{"inputs:intensity", HostValue::floatValue(float(radiance))},
+                    {"inputs:radius", HostValue::floatValue(float(radius))},
+                    {"inputs:color", HostValue::float3(1.0f, 0.5f, 0.25f)},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   downAt(0, 0, height));
+    auto color = s.renderColor();
+    for (auto [x, y] : kPixels) {
+        auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
+        double l = kLitPlaneAlbedo / kPi * diskIrradiance(radiance, radius, height, std::hypot(p[0], p[1]));
+        expectRadiance(color, x, y, {l, l * 0.5, l * 0.25});
+    }
+}
+
+TEST(AreaLight, EmitsFromItsFrontFaceOnly) {
+    LitPlaneScene s;
+    Matrix up = downAt(0, 0, 0.5);
+    up[5] = up[10] = -1;  // rotated half a turn about X: emits along +Z, away from the plane
+    s.host.addPrim("rectLight", "/Panel", {{"inputs:intensity", HostValue::floatValue(10.0f)}}, up);
+    s.host.addPrim("diskLight", "/Disk", {{"inputs:intensity", HostValue::floatValue(10.0f)}}, up);
+    auto color = s.renderColor();
+    for (auto [x, y] : kPixels) expectRadiance(color, x, y, {0, 0, 0});
+}
+
+TEST(AreaLight, UprightRectangleIsClippedAtTheHorizon) {
+    // A panel standing upright across the plane, its lower half below the ground, lights the
+    // plane through its upper half only. For a point in front of the panel the clipped polygon's
+    // factor is that of perpendicular rectangles with an edge at the receiver's level (Howell
+    // B-2): F = (atan(w/d) - d/sqrt(d^2+c^2) atan(w/sqrt(d^2+c^2))) / 2pi for each side.
+    LitPlaneScene s;
+    const double radiance = 4.0, halfAcross = 1.5, halfUp = 1.0, distance = 0.6;
+    Matrix m = lightPointingAlong({0, -1, 0});  // emits towards -Y; local X is world Z, local Y world X
+    m[12] = 0, m[13] = distance, m[14] = 0;
+    s.host.addPrim("rectLight", "/Panel",
+                   {{"inputs:intensity", HostValue::floatValue(float(radiance))},
+                    {"inputs:width", HostValue::floatValue(float(2 * halfUp))},
+                    {"inputs:height", HostValue::floatValue(float(2 * halfAcross))},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   m);
+    auto color = s.renderColor();
+    for (int y : {40, 50, 60}) {
+        auto p = planePointAtPixel(32, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
+        double d = distance - p[1], c = halfUp, slant = std::sqrt(d * d + c * c);
+        auto side = [&](double w) { return (std::atan(w / d) - d / slant * std::atan(w / slant)) / (2 * kPi); };
+        double f = side(halfAcross - p[0]) + side(halfAcross + p[0]);
+        double l = kLitPlaneAlbedo * radiance * f;
+        expectRadiance(color, 32, y, {l, l, l});
+    }
+}
+
+TEST(AreaLight, SpotConeCutsAndSoftensTheSphereLight) {
+    const double height = 2.0, radius = 0.05, radiance = 2000.0, cone = 15.0;
+    for (double softness : {0.0, 0.5}) {
+        LitPlaneScene s;
+        s.host.addPrim("sphereLight", "/Spot",
+                       {{"inputs:intensity", HostValue::floatValue(float(radiance))},
+                        {"inputs:radius", HostValue::floatValue(float(radius))},
+                        {"inputs:shaping:cone:angle", HostValue::floatValue(float(cone))},
+                        {"inputs:shaping:cone:softness", HostValue::floatValue(float(softness))},
+                        {"inputs:specular", HostValue::floatValue(0.0f)}},
+                       downAt(0, 0, height));
+        auto color = s.renderColor();
+        for (auto [x, y] : kPixels) {
+            auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
+            double d2 = p[0] * p[0] + p[1] * p[1] + height * height;
+            double cosTheta = height / std::sqrt(d2);
+            double offAxis = std::acos(cosTheta), cutoff = cone * kPi / 180, start = cutoff * (1 - softness);
+            double t = std::clamp((offAxis - start) / (cutoff - start), 0.0, 1.0);
+            double attenuation = offAxis > cutoff ? 0.0 : softness == 0.0 ? 1.0 : 1.0 - t * t * (3 - 2 * t);
+            double l = kLitPlaneAlbedo / kPi * kPi * radiance * radius * radius / d2 * cosTheta * attenuation;
+            expectRadiance(color, x, y, {l, l, l});
+        }
+    }
+}
+
+TEST(AreaLight, FocusNarrowsTheSpread) {
+    LitPlaneScene s;
+    const double height = 1.5, radius = 0.05, radiance = 500.0, focus = 4.0;
+    s.host.addPrim("sphereLight", "/Bulb",
+                   {{"inputs:intensity", HostValue::floatValue(float(radiance))},
+                    {"inputs:radius", HostValue::floatValue(float(radius))},
+                    {"inputs:shaping:focus", HostValue::floatValue(float(focus))},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   downAt(0, 0, height));
+    auto color = s.renderColor();
+    for (auto [x, y] : kPixels) {
+        auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
+        double d2 = p[0] * p[0] + p[1] * p[1] + height * height;
+        double cosTheta = height / std::sqrt(d2);
+        double l = kLitPlaneAlbedo * radiance * radius * radius / d2 * cosTheta * std::pow(cosTheta, focus);
+        expectRadiance(color, x, y, {l, l, l});
+    }
+}
+
+TEST(TiledLightCulling, ManySmallLightsSumLikeEveryLightAtEveryPixel) {
+    // 300 dim lights close to the plane: each one's influence range (where its irradiance bound
+    // L * pi r^2 / d^2 falls to 2^-12) spans a few tiles, so tiles keep different lists. Every
+    // pixel must equal the analytic sum over all lights, less at most the lights culling was
+    // allowed to drop: those whose bound at that pixel is below the threshold.
+    LitPlaneScene s;
+    struct Bulb { double x, y, h, r, radiance; };
+    std::vector<Bulb> bulbs;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> across(-1.2, 1.2), height(0.03, 0.15), level(0.02, 0.06);
+    for (int i = 0; i < 300; ++i) {
+        Bulb b{across(rng), across(rng), height(rng), 0.02, level(rng)};
+        bulbs.push_back(b);
+        s.host.addPrim("sphereLight", "/Bulbs/b" + std::to_string(i),
+                       {{"inputs:intensity", HostValue::floatValue(float(b.radiance))},
+                        {"inputs:radius", HostValue::floatValue(float(b.r))},
+                        {"inputs:specular", HostValue::floatValue(0.0f)}},
+                       translation(b.x, b.y, b.h));
+    }
+    auto color = s.renderColor();
+    const double threshold = 1.0 / 4096.0;
+    int checked = 0, droppable = 0, pairs = 0;
+    double largest = 0;
+    for (int y = 0; y < kHeight; y += 3)
+        for (int x = 0; x < kWidth; x += 3) {
+            auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
+            double e = 0, mayDrop = 0;
+            for (const Bulb& b : bulbs) {
+                double dx = p[0] - b.x, dy = p[1] - b.y, d2 = dx * dx + dy * dy + b.h * b.h;
+                double contribution = kPi * b.radiance * b.r * b.r / d2 * (b.h / std::sqrt(d2));
+                e += contribution;
+                ++pairs;
+                if (kPi * b.radiance * b.r * b.r / d2 < threshold) mayDrop += contribution, ++droppable;
+            }
+            double l = kLitPlaneAlbedo / kPi * e;
+            largest = std::max(largest, l);
+            float got = color[(size_t(y) * kWidth + x) * 4];
+            ASSERT_LE(got, l + 0.01 * l + smallFloatStep(float(l), 6)) << "pixel " << x << ", " << y;
+            ASSERT_GE(got, l - 0.01 * l - smallFloatStep(float(l), 6) - kLitPlaneAlbedo / kPi * mayDrop)
+                << "pixel " << x << ", " << y;
+            ++checked;
+        }
+    EXPECT_GT(checked, 400);
+    // The scene exercises culling: most light-pixel pairs are out of range, yet lights matter.
+    EXPECT_GT(droppable, pairs / 2);
+    EXPECT_GT(largest, 1e-3);
+    std::printf("tiled culling: %d pixels checked, %.0f%% of light-pixel pairs out of range, peak radiance %.4f\n",
+                checked, 100.0 * droppable / pairs, largest);
+}
+
+}  // namespace
+}  // namespace obscura::test
