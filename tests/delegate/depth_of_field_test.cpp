@@ -455,5 +455,20 @@ TEST(DepthOfField, ReferenceConvergesAndIsSharpThroughAPinhole) {
     EXPECT_GT(interior, s.width * s.height / 3);
 }
 
+// Both light accumulation formats (lighting:halfFloat) go through depth of field and the
+// reference mode: the images agree to the small float's precision.
+TEST(DepthOfField, FollowsTheLightAccumulationFormat) {
+    Lens lens = planesLens();
+    DofScene s(lens, kPlanesSize / 2, kPlanesSize / 2);
+    addPlanesScene(s);
+    image::Image smallFloat = s.render(), smallFloatReference = s.renderReference(8);
+    s.setNumber("lighting:halfFloat", 1);
+    image::Image halfFloat = s.render(), halfFloatReference = s.renderReference(8);
+    image::CompareMetrics post = metrics(smallFloat, halfFloat), reference = metrics(smallFloatReference, halfFloatReference);
+    std::printf("B10G11R11 vs RGBA16F: post-process %.2f dB, reference %.2f dB\n", post.psnr, reference.psnr);
+    EXPECT_GT(post.psnr, 40.0);
+    EXPECT_GT(reference.psnr, 40.0);
+}
+
 }  // namespace
 }  // namespace obscura::test
