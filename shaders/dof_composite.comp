@@ -8,6 +8,8 @@
 // * Near field: upscaled "carelessly" with the same bicubic taps, free to bleed over whatever
 //   lies behind, blended by its own coverage (its half-resolution CoC-derived alpha).
 // * Blending is non-linear (fieldBlend, against the "hat of shame" of linear blending).
+// * Under the near field, a near pixel's own sharp colour gives way to an estimate of what it hides
+//   (the seed's near field leaves it; its light is in the near field already).
 // Tiles where nothing is blurred copy the sharp image (dynamic branching on the tile CoC).
 #include "common/dof_common.glsl"
 #include "common/bicubic.glsl"
@@ -39,9 +41,11 @@ vec3 hiddenBehindNearPixel(ivec2 pixel, float nearRadius) {
     ivec2 lastPixel = imageSize(outputColor) - 1;
     vec3 sum = vec3(0.0);
     float count = 0.0;
+    const float d = 0.70710678;
+    const vec2 directions[8] = vec2[](vec2(1, 0), vec2(d, d), vec2(0, 1), vec2(-d, d), vec2(-1, 0), vec2(-d, -d),
+                                      vec2(0, -1), vec2(d, -d));
     for (int i = 0; i < 8; ++i) {
-        float angle = float(i) * (DOF_PI / 4.0);
-        ivec2 neighbour = clamp(pixel + ivec2(round(nearRadius * vec2(cos(angle), sin(angle)))), ivec2(0), lastPixel);
+        ivec2 neighbour = clamp(pixel + ivec2(round(nearRadius * directions[i])), ivec2(0), lastPixel);
         if (fieldBlend(signedCocRadius(texelFetch(depthTexture, neighbour, 0).r)) > 0.0) continue;
         sum += texelFetch(lightAccumulation, neighbour, 0).rgb;
         count += 1.0;

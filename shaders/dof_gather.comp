@@ -2,8 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // Depth of field, step 4: the first pass of the separable flexible filter (seed 000 "A plausible
 // and efficient DOF reconstruction filter"), tapsPerSide^2 taps (7x7) of a square kernel mapped to
-// the aperture ("Sampling"), at half resolution, near and far fields in the same pass with dynamic
-// branching on the tile CoC ("Tile min/max CoC"). The taps are built once per workgroup.
+// the aperture ("Sampling"), at half resolution, near and far fields in the same pass ("Tile
+// min/max CoC"), each branching out where it has nothing to blur: the near field on its tile
+// neighbourhood's CoC, the far field on the texel's own. The taps are built once per workgroup.
 //
 // Far field ("scale kernel size and weight samples with far CoC" [Scheuermann05]): the kernel is
 // the texel's own far CoC; a sample counts where its own blur reaches this texel, weighted by its
