@@ -470,5 +470,40 @@ TEST(DepthOfField, FollowsTheLightAccumulationFormat) {
     EXPECT_GT(reference.psnr, 40.0);
 }
 
+// The reference mode samples time over the camera's shutter: a glowing card whose right edge
+// moves L pixels while the shutter is open leaves a linear ramp L pixels long (a box in time).
+TEST(DepthOfField, ReferenceSamplesTheShutter) {
+    Lens pinhole;
+    constexpr int kSize = 64;
+    const double distance = 10.0, travelPixels = 16.0, units = unitsPerPixel(pinhole, distance, kSize);
+    DofScene s(pinhole, kSize, kSize);
+    HostValue close;
+    close.type = OBSCURA_VALUE_DOUBLE;
+    close.doubles = {1.0};
+    s.host.set("/Camera", "shutter:close", close);  // open at the frame's time 0, closed at 1
+    s.host.api().markDirty(s.host.delegate(), "/Camera", OBSCURA_DIRTY_PARAMS);
+    addMaterial(s.host, "/Glow", {0, 0, 0}, 1.0f, 0.0f, {1.0f, 1.0f, 1.0f});
+    // A card 40 pixels wide whose right edge starts 8 pixels left of the centre.
+    double startX = (-8.0 - 20.0) * units;
+    addPlane(s.host, "/Card", "/Glow", 20.0 * units, translation(startX, 0, -distance));
+    s.host.setTransformMotion("/Card", 0.0, translation(startX, 0, -distance), 1.0,
+                              translation(startX + travelPixels * units, 0, -distance));
+    s.host.api().markDirty(s.host.delegate(), "/Card", OBSCURA_DIRTY_TRANSFORM);
+    image::Image reference = s.renderReference(64);
+    // Along the middle row: where the ramp crosses a quarter and three quarters of the glow.
+    auto crossing = [&](float level) {
+        for (int x = 1; x < kSize; ++x) {
+            float a = reference.at(x - 1, kSize / 2, 1), b = reference.at(x, kSize / 2, 1);
+            if (a >= level && b < level) return x - 0.5 + (a - level) / (a - b);
+        }
+        return -1.0;
+    };
+    double quarter = crossing(0.75f), threeQuarters = crossing(0.25f);
+    std::printf("motion over the shutter: %.1f px; ramp from 75%% to 25%% over %.2f px (half the motion: %.1f)\n",
+                travelPixels, threeQuarters - quarter, travelPixels / 2.0);
+    EXPECT_NEAR(threeQuarters - quarter, travelPixels / 2.0, 1.0);
+    EXPECT_NEAR(0.5 * (quarter + threeQuarters), kSize / 2.0, 1.0) << "the ramp is centred on the mid-shutter edge";
+}
+
 }  // namespace
 }  // namespace obscura::test
