@@ -60,10 +60,6 @@ CocFromDepth cocFromDepth(const ThinLens& lens, double nearClip, double farClip,
     return {k * P * (inverseFar - inverseNear), k * (P * inverseNear - 1.0)};
 }
 
-double fieldOfView(double focalLength, double filmWidth) { return 2.0 * std::atan(filmWidth / (2.0 * focalLength)); }
-
-double focalLengthFromFieldOfView(double theta, double filmWidth) { return 0.5 * filmWidth / std::tan(theta / 2.0); }
-
 ApertureShape apertureShape(int blades, double rotationDegrees, double fStop) {
     ApertureShape shape;
     shape.blades = blades >= 3 ? blades : 0;

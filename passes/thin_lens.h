@@ -45,11 +45,6 @@ struct CocFromDepth {
 };
 CocFromDepth cocFromDepth(const ThinLens& lens, double nearClip, double farClip, double imageWidthPixels);
 
-// The field of view a focal length gives on a film width, and back (seed 000 "Lens review (2)"):
-// theta = 2 atan(width / (2 F)), F = 0.5 width / tan(theta / 2).
-double fieldOfView(double focalLength, double filmWidth);
-double focalLengthFromFieldOfView(double fieldOfView, double filmWidth);
-
 // The diaphragm (seed 000 "Plausible DOF: Bokeh", "Sampling"): `blades` straight blades (0: a
 // circle) rotated by `rotation`, polygonal when stopped down and rounder wide open.
 struct ApertureShape {

@@ -74,13 +74,6 @@ TEST(ThinLens, NoDepthOfFieldWithoutFStopOrFocusBeyondTheFocalLength) {
     EXPECT_FALSE(hasDepthOfField(lens));
 }
 
-TEST(ThinLens, FocalLengthFromFieldOfView) {
-    // USD's default camera: 50 mm on the 20.955 mm Academy aperture, 2 atan(20.955 / 100) = 23.67 degrees.
-    EXPECT_NEAR(fieldOfView(50.0, 20.955) * 180.0 / kPi, 23.670, 0.001);
-    for (double F : {14.0, 35.0, 85.0, 300.0})
-        EXPECT_NEAR(focalLengthFromFieldOfView(fieldOfView(F, 36.0), 36.0), F, 1e-9);
-}
-
 // An accumulation camera's pinholes shift a point at D by a F (1/D - 1/P) on a film at F; with the
 // aperture from accumulationApertureDiameter that blur is Potmesil's CoC.
 TEST(ThinLens, AccumulationCameraBlursByTheThinLensCoc) {
