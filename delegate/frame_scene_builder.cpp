@@ -40,23 +40,24 @@ Matrix4d normalMatrix(const Matrix4d& model) {
 
 }  // namespace
 
+FrameView frameView(const FrameSceneInputs& in) {
+    const Camera& cam = in.camera;
+    double aspect = double(in.width) / double(in.height);
+    if (!in.sample) return {cam.viewMatrix(), cam.projectionMatrix(aspect)};
+    std::array<double, 2> ndcJitter{2.0 * in.sample->pixelJitter[0] / in.width, 2.0 * in.sample->pixelJitter[1] / in.height};
+    return {cam.viewMatrix(in.sample->lensOffset, in.sample->time),
+            cam.projectionMatrix(aspect, in.sample->lensOffset, ndcJitter)};
+}
+
 passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& in) {
     passes::FrameScene scene;
     scene.width = in.width;
     scene.height = in.height;
 
     const Camera& cam = in.camera;
-    double aspect = double(in.width) / double(in.height);
-    Matrix4d view = cam.viewMatrix();
-    Matrix4d projection = cam.projectionMatrix(aspect);
-    Matrix4d cameraToWorld = cam.params().cameraToWorld;
-    if (in.sample) {
-        view = cam.viewMatrix(in.sample->lensOffset, in.sample->time);
-        std::array<double, 2> ndcJitter{2.0 * in.sample->pixelJitter[0] / in.width,
-                                        2.0 * in.sample->pixelJitter[1] / in.height};
-        projection = cam.projectionMatrix(aspect, in.sample->lensOffset, ndcJitter);
-        invert(view, cameraToWorld);
-    }
+    auto [view, projection] = frameView(in);
+    Matrix4d cameraToWorld = kIdentity;
+    invert(view, cameraToWorld);
     auto transformOf = [&](const Mesh& mesh) { return in.sample ? mesh.transformAt(in.sample->time) : mesh.transform(); };
     Matrix4d viewProjection = multiply(view, projection);
     Matrix4d inverseViewProjection = kIdentity;

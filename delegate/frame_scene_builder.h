@@ -33,6 +33,14 @@ struct FrameSceneInputs {
     std::optional<FrameSample> sample = std::nullopt;  // none: the pinhole camera at the frame's time
 };
 
+// World-to-view and view-to-clip (row-vector convention) the frame sees through: the camera's, or
+// the reference sub-frame's.
+struct FrameView {
+    Matrix4d view;
+    Matrix4d projection;
+};
+FrameView frameView(const FrameSceneInputs& inputs);
+
 passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs);
 
 }  // namespace obscura::delegate

@@ -101,6 +101,7 @@ RenderDelegate::~RenderDelegate() {
     bestFitNormals_.reset();
     unoccluded_ = {};
     accumulation_ = {};
+    ssaoHistory_ = {};
     grading_ = passes::ColorGradingLut();
     timestamps_.reset();
     transients_.reset();
@@ -291,7 +292,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
                                                      ? VK_FORMAT_R16G16B16A16_SFLOAT
                                                      : VK_FORMAT_B10G11R11_UFLOAT_PACK32);
     } else {
-        hdr = addLighting(graph, scene, gbuffer);
+        hdr = addLighting(graph, scene, gbuffer, frameView(frame));
         if (passes::hasDepthOfField(lens)) {
             const CameraParams& p = camera->params();
             passes::DepthOfFieldSettings dof{
@@ -318,17 +319,28 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
 }
 
 gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
-                                             const passes::GBuffer& gbuffer) {
+                                             const passes::GBuffer& gbuffer, const FrameView& seen) {
     passes::SsaoResult ambient;
-    if (settings_.number("ssao") != 0.0) {
+    const bool ssaoOn = settings_.number("ssao") != 0.0;
+    if (ssaoOn) {
         // The radius is authored in metres; the passes work in scene units (USD metersPerUnit).
         passes::SsaoSettings ssao{float(settings_.number("ssao:radius") / settings_.number("metersPerUnit")),
                                   float(settings_.number("ssao:intensity"))};
-        ambient = passes::addSsaoPasses(graph, *pipelines_, scene, gbuffer, ssao);
+        // The history reprojects through the camera's motion; anything else that changes what a
+        // texel means (size, projection, settings) restarts it.
+        auto& last = ssaoHistoryFrame_;
+        ssaoHistory_.valid = last.valid && last.width == scene.width && last.height == scene.height &&
+                             last.projection == seen.projection && last.settingsVersion == settings_.version();
+        Matrix4d inverseView = kIdentity;
+        invert(seen.view, inverseView);
+        ssaoHistory_.viewToPreviousView = toFloats<passes::Mat4>(multiply(inverseView, last.view));
+        ambient = passes::addSsaoPasses(graph, *pipelines_, scene, gbuffer, ssao, ssaoHistory_);
+        pendingSsaoHistory_ = ambient;
     } else {
         ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
                    graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
     }
+    ssaoHistoryFrame_ = {ssaoOn, seen.view, seen.projection, scene.width, scene.height, settings_.version()};
     return passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, lightAccumulation());
 }
 
@@ -339,6 +351,8 @@ passes::LightAccumulation RenderDelegate::lightAccumulation() const {
 
 void RenderDelegate::executeFrame(gpu::FrameGraph& graph) {
     graph.compile();
+    if (pendingSsaoHistory_) passes::keepSsaoHistory(graph, *pendingSsaoHistory_, ssaoHistory_);
+    pendingSsaoHistory_.reset();
     device_->context().submitAndWait([&](VkCommandBuffer cmd) {
         timestamps_->reset(cmd);
         graph.execute(*transients_, cmd, timestamps_.get());
@@ -376,7 +390,7 @@ void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const pa
         passes::FrameScene scene = buildFrameScene(*device_, inputs);
         gpu::FrameGraph graph;
         passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
-        gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer);
+        gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, frameView(inputs));
         gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
         passes::addAccumulatePass(graph, *pipelines_, hdr, sum, float(sub.weight), k == 0);
         executeFrame(graph);

@@ -18,6 +18,7 @@
 #include "passes/gbuffer.h"
 #include "passes/lighting.h"
 #include "passes/pipeline_cache.h"
+#include "passes/ssao.h"
 
 #include <obscura/obscura.h>
 
@@ -25,6 +26,7 @@
 #include <map>
 #include <set>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,9 +62,9 @@ public:
 
 private:
     void sync(double time, const Camera* camera);
-    // SSAO and deferred lighting of `scene` into the light accumulation.
+    // SSAO and deferred lighting of `scene`, seen through `seen`, into the light accumulation.
     gpu::ImageHandle addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
-                                 const passes::GBuffer& gbuffer);
+                                 const passes::GBuffer& gbuffer, const FrameView& seen);
     // The light accumulation's format (render setting lighting:halfFloat).
     passes::LightAccumulation lightAccumulation() const;
     // Compiles, records and submits one frame graph, and waits for it.
@@ -88,6 +90,17 @@ private:
         gpu::ImagePtr image;
         VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
     } accumulation_;  // reference mode's running sum (passes/accumulate.h)
+    // SSAO's temporal accumulation: the history and what it was rendered with, to reproject it or
+    // reset it (size, projection, settings).
+    passes::SsaoHistory ssaoHistory_;
+    struct {
+        bool valid = false;
+        Matrix4d view = kIdentity, projection = kIdentity;
+        uint32_t width = 0, height = 0;
+        uint64_t settingsVersion = 0;
+    } ssaoHistoryFrame_;
+    // SSAO of the frame being built, whose history layouts executeFrame keeps once compiled.
+    std::optional<passes::SsaoResult> pendingSsaoHistory_;
     std::unique_ptr<TextureCache> textures_;
     std::unique_ptr<GeometryCache> geometry_;
     passes::ColorGradingLut grading_;

@@ -2,6 +2,8 @@
 
 #include "passes/ssao_pattern.h"
 
+#include <cmath>
+
 namespace obscura::passes {
 namespace {
 
@@ -14,6 +16,14 @@ struct ObscurancePush {
     std::array<uint32_t, kSsaoPatternSide * kSsaoPatternSide> pattern;
     float radius;
     float intensity;
+    std::array<float, 2> frameRotation;
+};
+
+// Mirrors the push constants of shaders/ssao_temporal.comp.
+struct TemporalPush {
+    Mat4 viewToPreviousView;
+    float maxFrames;
+    uint32_t historyValid;
 };
 
 // Mirrors the push constants of shaders/ssao_blur.comp: the texel step between taps.
@@ -74,7 +84,8 @@ HalfResolutionGeometry addDownsamplePass(gpu::FrameGraph& graph, PipelineCache& 
 
 // Volumetric obscurance with 4 samples per half-resolution pixel (shaders/ssao_obscurance.comp).
 gpu::ImageHandle addObscurancePass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                   const HalfResolutionGeometry& half, const SsaoSettings& settings) {
+                                   const HalfResolutionGeometry& half, const SsaoSettings& settings,
+                                   uint64_t frame) {
     gpu::ImageHandle accessibility =
         graph.createImage("ssaoNoisy", halfResolution(scene, kSsaoAccessibilityFormat));
     const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("ssao_obscurance", [] {
@@ -86,7 +97,10 @@ gpu::ImageHandle addObscurancePass(gpu::FrameGraph& graph, PipelineCache& pipeli
                                         sizeof(ObscurancePush)};
     });
     static const auto kPattern = packSsaoSamplePattern(ssaoSamplePattern());
-    ObscurancePush push{kPattern, settings.radius, settings.intensity};
+    // The golden angle turns each frame's pattern away from all earlier ones.
+    const double turn = 2.39996322972865332 * double(frame % 1024);
+    ObscurancePush push{kPattern, settings.radius, settings.intensity,
+                        {float(std::cos(turn)), float(std::sin(turn))}};
     gpu::Device& device = pipelines.device();
     graph.addPass(
         "ssao_obscurance", gpu::PassKind::Compute,
@@ -144,19 +158,111 @@ gpu::ImageHandle addBlurPass(gpu::FrameGraph& graph, PipelineCache& pipelines, c
     return output;
 }
 
+// Temporal accumulation with reprojection (shaders/ssao_temporal.comp): writes this frame's history
+// pair from the noisy obscurance and last frame's pair.
+void addTemporalPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                     const HalfResolutionGeometry& half, gpu::ImageHandle noisy, SsaoHistory& history,
+                     SsaoResult& result) {
+    gpu::Device& device = pipelines.device();
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    gpu::ImageDesc accessibilityDesc = halfResolution(scene, kSsaoHistoryFormat);
+    gpu::ImageDesc depthDesc = halfResolution(scene, kSsaoDepthFormat);
+    accessibilityDesc.usage = depthDesc.usage = usage;
+    for (uint32_t i = 0; i < 2; ++i)
+        if (!history.accessibility[i] || history.accessibility[i]->desc.width != accessibilityDesc.width ||
+            history.accessibility[i]->desc.height != accessibilityDesc.height) {
+            history.accessibility[i] = device.createImage(accessibilityDesc, "ssaoHistory");
+            history.depth[i] = device.createImage(depthDesc, "ssaoHistoryDepth");
+            history.accessibilityLayout[i] = history.depthLayout[i] = VK_IMAGE_LAYOUT_UNDEFINED;
+            history.valid = false;
+        }
+    uint32_t read = history.written, write = 1 - history.written;
+    // A history never written is still read (a binding needs a resource): it must be in a
+    // shader-readable layout, and historyValid = 0 keeps its contents out.
+    bool readable = history.accessibilityLayout[read] != VK_IMAGE_LAYOUT_UNDEFINED;
+    TemporalPush push{history.viewToPreviousView, float(kSsaoHistoryFrames), history.valid && readable ? 1u : 0u};
+    gpu::ImageHandle previous = graph.importImage("ssaoHistory.previous", history.accessibility[read],
+                                                  history.accessibilityLayout[read]);
+    gpu::ImageHandle previousDepth =
+        graph.importImage("ssaoHistoryDepth.previous", history.depth[read], history.depthLayout[read]);
+    gpu::ImageHandle accumulated =
+        graph.importImage("ssaoHistory", history.accessibility[write], history.accessibilityLayout[write]);
+    gpu::ImageHandle accumulatedDepth =
+        graph.importImage("ssaoHistoryDepth", history.depth[write], history.depthLayout[write]);
+    result.historyAccessibility[read] = previous;
+    result.historyDepth[read] = previousDepth;
+    result.historyAccessibility[write] = accumulated;
+    result.historyDepth[write] = accumulatedDepth;
+    history.written = write;
+    ++history.frame;
+    // Next frame reads what this one writes, so the graph keeps both.
+    graph.markOutput(accumulated);
+    graph.markOutput(accumulatedDepth);
+
+    const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("ssao_temporal", [] {
+        return gpu::ComputePipelineDesc{"ssao_temporal.comp",
+                                        {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                         {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                         {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                         {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                         {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                                         {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+                                        sizeof(TemporalPush)};
+    });
+    gpu::ImageHandle out = accumulated, outDepth = accumulatedDepth;
+    graph.addPass(
+        "ssao_temporal", gpu::PassKind::Compute,
+        [&](gpu::FrameGraph::PassBuilder& pass) {
+            pass.read(noisy, gpu::Usage::SampledCompute);
+            pass.read(half.depth, gpu::Usage::SampledCompute);
+            pass.read(half.normal, gpu::Usage::SampledCompute);
+            pass.read(previous, gpu::Usage::SampledCompute);
+            pass.read(previousDepth, gpu::Usage::SampledCompute);
+            pass.write(out, gpu::Usage::StorageImageWrite);
+            pass.write(outDepth, gpu::Usage::StorageImageWrite);
+        },
+        [&device, &pipeline, &scene, half, noisy, previous, previousDepth, out, outDepth,
+         push](VkCommandBuffer cmd, const gpu::PassResources& res) {
+            VkSampler nearest = device.nearestClampSampler();
+            gpu::DescriptorWriter(device, pipeline)
+                .buffer(0, scene.camera->buffer)
+                .sampled(1, res.view(noisy), nearest)
+                .sampled(2, res.view(half.depth), nearest)
+                .sampled(3, res.view(half.normal), nearest)
+                .sampled(4, res.view(previous), nearest)
+                .sampled(5, res.view(previousDepth), nearest)
+                .storageImage(6, res.view(out))
+                .storageImage(7, res.view(outDepth))
+                .bind(cmd);
+            vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+            const gpu::ImageDesc& size = res.desc(out);
+            gpu::dispatch2D(cmd, size.width, size.height);
+        });
+}
+
 }  // namespace
 
 SsaoResult addSsaoPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                         const GBuffer& gbuffer, const SsaoSettings& settings) {
+                         const GBuffer& gbuffer, const SsaoSettings& settings, SsaoHistory& history) {
     HalfResolutionGeometry half = addDownsamplePass(graph, pipelines, scene, gbuffer);
-    gpu::ImageHandle noisy = addObscurancePass(graph, pipelines, scene, half, settings);
-    // XXX: seed 004's temporal accumulation with reprojection is not done yet; it belongs here,
-    // between the obscurance and the blur, taking the previous frame's result as a history input.
-    gpu::ImageHandle horizontal =
-        addBlurPass(graph, pipelines, scene, "ssao_blur_horizontal", noisy, half.depth, {{1, 0}});
-    gpu::ImageHandle accessibility =
+    gpu::ImageHandle noisy = addObscurancePass(graph, pipelines, scene, half, settings, history.frame);
+    SsaoResult result;
+    addTemporalPass(graph, pipelines, scene, half, noisy, history, result);
+    gpu::ImageHandle horizontal = addBlurPass(graph, pipelines, scene, "ssao_blur_horizontal",
+                                              result.historyAccessibility[history.written], half.depth, {{1, 0}});
+    result.accessibility =
         addBlurPass(graph, pipelines, scene, "ssao_blur_vertical", horizontal, half.depth, {{0, 1}});
-    return {accessibility, half.depth};
+    result.halfDepth = half.depth;
+    return result;
+}
+
+void keepSsaoHistory(const gpu::FrameGraph& graph, const SsaoResult& result, SsaoHistory& history) {
+    for (uint32_t i = 0; i < 2; ++i) {
+        history.accessibilityLayout[i] = graph.finalLayout(result.historyAccessibility[i]);
+        history.depthLayout[i] = graph.finalLayout(result.historyDepth[i]);
+    }
 }
 
 }  // namespace obscura::passes

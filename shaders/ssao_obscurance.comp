@@ -9,7 +9,8 @@
 // samples land, a right-angled crease half occluded and a closed pit fully.
 // The samples are two point-symmetric pairs of offsets in the plane through the centre
 // perpendicular to the view axis, turning from pixel to pixel over 4x4 blocks
-// (passes/ssao_pattern.cpp); the blur averages the turns back out.
+// (passes/ssao_pattern.cpp); the blur averages the turns back out, and the whole pattern turns from
+// frame to frame so that the temporal accumulation (ssao_temporal.comp) gathers new directions.
 #include "common/frame_data.glsl"
 #include "common/best_fit_normals.glsl"
 #include "common/ssao_common.glsl"
@@ -25,6 +26,7 @@ layout(push_constant) uniform Push {
     uint pattern[16];  // packSnorm4x8(inner pair, outer pair) per pixel of a 4x4 block, in units of R
     float radius;      // R, scene units
     float intensity;
+    vec2 frameRotation;  // cos, sin: turns the whole pattern from frame to frame for the temporal accumulation
 } push;
 
 // The tangent plane sits this far (in units of R) above the surface: the best-fit normal is off by
@@ -37,12 +39,6 @@ struct Centre {
     vec3 normal;    // view space, on the side the camera sees
 };
 
-// NDC of the full-resolution pixel whose depth and normal `texel` holds (ssao_downsample.comp).
-vec2 heldPixelNdc(ivec2 texel, float storedIndex) {
-    int index = int(round(storedIndex * 3.0));
-    ivec2 pixel = min(texel * 2 + ivec2(index & 1, index >> 1), ivec2(camera.resolution) - 1);
-    return (vec2(pixel) + 0.5) / camera.resolution * 2.0 - 1.0;
-}
 
 // Line integral along the view ray of `texel`: x, the length of the sphere's chord in front of
 // the tangent plane; y, how much of that lies behind the visible surface, in scene units. Zero for
@@ -52,7 +48,7 @@ vec2 heldPixelNdc(ivec2 texel, float storedIndex) {
 // is dropped too, so at grazing views the wall side of a floor-wall crease reads lighter.
 vec2 chordAboveTangentPlane(Centre centre, ivec2 texel) {
     float depth = texelFetch(halfDepthTexture, texel, 0).r;
-    vec2 ndc = heldPixelNdc(texel, texelFetch(halfNormalTexture, texel, 0).a);
+    vec2 ndc = heldPixelNdc(texel, texelFetch(halfNormalTexture, texel, 0).a, camera.resolution);
     vec3 origin = viewPositionFromLinearDepth(camera.projection, ndc, 0.0);
     vec3 surface = viewPositionFromLinearDepth(camera.projection, ndc, depth);
     float hit = distance(surface, origin);
@@ -87,7 +83,7 @@ void main() {
         return;
     }
     vec4 normalTexel = texelFetch(halfNormalTexture, texel, 0);
-    vec2 ndc = heldPixelNdc(texel, normalTexel.a);
+    vec2 ndc = heldPixelNdc(texel, normalTexel.a, camera.resolution);
     Centre centre;
     centre.position = viewPositionFromLinearDepth(camera.projection, ndc, depth);
     vec3 normal = normalize(mat3(camera.view) * decodeBestFitNormal(normalTexel.rgb));
@@ -100,6 +96,7 @@ void main() {
     vec2 chords = vec2(0.0);
     for (int i = 0; i < 4; ++i) {
         vec2 offset = (i < 2 ? pairs.xy : pairs.zw) * ((i & 1) == 0 ? push.radius : -push.radius);
+        offset = mat2(push.frameRotation.x, push.frameRotation.y, -push.frameRotation.y, push.frameRotation.x) * offset;
         vec4 clip = camera.projection * vec4(centre.position + vec3(offset, 0.0), 1.0);
         ivec2 sampleTexel = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * camera.resolution * 0.5));
         if (all(greaterThanEqual(sampleTexel, ivec2(0))) && all(lessThan(sampleTexel, size)))

@@ -21,6 +21,14 @@ vec3 viewPositionFromLinearDepth(mat4 projection, vec2 ndc, float linearDepth) {
     return vec3(xy, z);
 }
 
+// NDC of the full-resolution pixel whose depth and normal a half-resolution texel holds: its index
+// in the 2x2 block is stored as index / 3 (ssao_downsample.comp).
+vec2 heldPixelNdc(ivec2 texel, float storedIndex, vec2 resolution) {
+    int index = int(round(storedIndex * 3.0));
+    ivec2 pixel = min(texel * 2 + ivec2(index & 1, index >> 1), ivec2(resolution) - 1);
+    return (vec2(pixel) + 0.5) / resolution * 2.0 - 1.0;
+}
+
 // Weight of a neighbour in the bilateral blur and upsample by how far its depth lies from the one
 // expected: 1 when equal, falling linearly to 0 at SSAO_DEPTH_TOLERANCE of the reference depth
 // (relative, so that an edge reads the same at every distance).
