@@ -49,7 +49,7 @@ FrameView frameView(const FrameSceneInputs& in) {
             cam.projectionMatrix(aspect, in.sample->lensOffset, ndcJitter)};
 }
 
-passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& in) {
+passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& in, FrameSceneShortfalls& shortfalls) {
     passes::FrameScene scene;
     scene.width = in.width;
     scene.height = in.height;
@@ -89,6 +89,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     std::map<std::string, uint32_t> texturesOfMaterial;
     std::map<std::string, uint32_t> materialIndex;
     std::vector<passes::LightData> lights;
+    std::vector<bool> lightCastsShadows;
     for (const auto& [path, prim] : in.prims) {
         if (prim->skipped()) continue;
         if (auto* m = dynamic_cast<const Material*>(prim.get())) {
@@ -105,7 +106,10 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
                 scene.materialTextures.push_back(textures);
             }
         } else if (auto* l = dynamic_cast<const Light*>(prim.get())) {
-            if (l->visible()) lights.push_back(withInfluenceRange(l->data(), cd.exposureScale));
+            if (l->visible()) {
+                lights.push_back(withInfluenceRange(l->data(), cd.exposureScale));
+                lightCastsShadows.push_back(l->castsShadows());
+            }
         }
     }
 
@@ -121,6 +125,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     };
 
     std::vector<passes::InstanceData> instances;
+    std::vector<Aabb> drawBounds;  // world bounds of each draw, all its instances
     auto record = [&](const Mesh& mesh, const Matrix4d& model) {
         passes::InstanceData inst{};
         inst.model = toFloats<passes::Mat4>(model);
@@ -143,6 +148,12 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         auto it = texturesOfMaterial.find(*mesh.materialPath());
         return it == texturesOfMaterial.end() ? 0 : it->second;
     };
+    // Cut-outs (opacityThreshold) discard texels in the G-buffer and the shadow maps alike.
+    auto hasCutout = [&](const Mesh& mesh) {
+        if (!mesh.materialPath()) return false;
+        auto it = materialIndex.find(*mesh.materialPath());
+        return it != materialIndex.end() && materials[it->second].opacity[1] > 0.0f;
+    };
     auto drawable = [](const Prim& prim) -> const Mesh* {
         auto* mesh = dynamic_cast<const Mesh*>(&prim);
         return mesh && !mesh->skipped() && mesh->drawable() ? mesh : nullptr;
@@ -150,12 +161,13 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     // Meshes with the same geometry (repeated references share buffers through the geometry
     // cache) and the same textures become one instanced draw, in the order they first appear.
     std::vector<std::vector<const Mesh*>> batches;
-    std::map<std::tuple<const void*, const void*, uint32_t>, size_t> batchOf;
+    std::map<std::tuple<const void*, const void*, uint32_t, bool>, size_t> batchOf;
     for (const auto& [path, prim] : in.prims) {
         const Mesh* mesh = drawable(*prim);
         if (!mesh || isPrototype(path)) continue;
+        // Opaque and cut-out draws stay apart: the shadow maps rasterise them differently.
         auto key = std::make_tuple(static_cast<const void*>(mesh->vertices().get()),
-                                   static_cast<const void*>(mesh->indices().get()), texturesOf(*mesh));
+                                   static_cast<const void*>(mesh->indices().get()), texturesOf(*mesh), hasCutout(*mesh));
         auto [it, added] = batchOf.emplace(key, batches.size());
         if (added) batches.emplace_back();
         batches[it->second].push_back(mesh);
@@ -164,8 +176,13 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         const Mesh& first = *batch.front();
         scene.draws.push_back({first.vertices(), first.indices(), first.indexCount(),
                                static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(batch.size()),
-                               texturesOf(first)});
-        for (const Mesh* mesh : batch) record(*mesh, transformOf(*mesh));
+                               texturesOf(first), hasCutout(first)});
+        Aabb bounds;
+        for (const Mesh* mesh : batch) {
+            record(*mesh, transformOf(*mesh));
+            bounds.merge(transformAabb(mesh->localBounds(), transformOf(*mesh)));
+        }
+        drawBounds.push_back(bounds);
     }
     // One draw per (instancer, prototype mesh): the mesh's transform relative to the instancer,
     // then each instance's transform.
@@ -178,10 +195,26 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
             if (placements.empty()) continue;
             scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
                                    static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(placements.size()),
-                                   texturesOf(*mesh)});
-            for (const Matrix4d& placement : placements) record(*mesh, multiply(transformOf(*mesh), placement));
+                                   texturesOf(*mesh), hasCutout(*mesh)});
+            Aabb bounds;
+            for (const Matrix4d& placement : placements) {
+                Matrix4d model = multiply(transformOf(*mesh), placement);
+                record(*mesh, model);
+                bounds.merge(transformAabb(mesh->localBounds(), model));
+            }
+            drawBounds.push_back(bounds);
         }
     }
+    // Shadow maps: the views of every shadow-casting light, and each light's place among them.
+    ShadowedCamera shadowed{view, projection};
+    ShadowAtlasBuild shadows = buildShadowAtlas(
+        {in.shadows, shadowed, cam.params().clippingRange[0], cam.params().clippingRange[1], drawBounds}, lights,
+        lightCastsShadows);
+    shortfalls.lightsWithoutShadowRoom = shadows.lightsLeftUnshadowed;
+    scene.shadows = std::move(shadows.atlas);
+    scene.shadows.records =
+        uploadRecords(device, nullptr, 0, shadows.records, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "shadow views");
+
     passes::LightBufferHeader header{static_cast<uint32_t>(lights.size()), {0, 0, 0}};
     scene.instances = uploadRecords(device, nullptr, 0, instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instances");
     scene.materials = uploadRecords(device, nullptr, 0, materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials");

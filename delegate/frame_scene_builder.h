@@ -4,6 +4,7 @@
 
 #include "delegate/prims/camera.h"
 #include "delegate/prims/prim.h"
+#include "delegate/shadow_views.h"
 #include "delegate/texture_cache.h"
 #include "passes/frame_scene.h"
 
@@ -30,7 +31,13 @@ struct FrameSceneInputs {
     uint32_t height;
     double exposureStops;  // render setting, added to the camera's exposure
     TextureCache& textures;
+    const ShadowSettings& shadows;
     std::optional<FrameSample> sample = std::nullopt;  // none: the pinhole camera at the frame's time
+};
+
+// What the frame could not honour, for the delegate to report.
+struct FrameSceneShortfalls {
+    uint32_t lightsWithoutShadowRoom = 0;  // shadow-casting lights the atlas had no room for
 };
 
 // World-to-view and view-to-clip (row-vector convention) the frame sees through: the camera's, or
@@ -41,6 +48,6 @@ struct FrameView {
 };
 FrameView frameView(const FrameSceneInputs& inputs);
 
-passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs);
+passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs, FrameSceneShortfalls& shortfalls);
 
 }  // namespace obscura::delegate

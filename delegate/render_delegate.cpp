@@ -9,6 +9,7 @@
 #include "passes/depth_of_field.h"
 #include "passes/gbuffer.h"
 #include "passes/lighting.h"
+#include "passes/shadow_maps.h"
 #include "passes/tonemap.h"
 
 #include <chrono>
@@ -268,21 +269,30 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (std::string problem = grading_.update(*device_, colour); !problem.empty())
         throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "colour management: " + problem};
 
-    FrameSceneInputs frame{prims_, *camera, width, height, settings_.number("exposure"), *textures_};
+    ShadowSettings shadows{settings_.number("shadows") != 0.0, uint32_t(settings_.number("shadows:resolution")),
+                           uint32_t(settings_.number("shadows:cascades"))};
+    FrameSceneInputs frame{prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows};
     // The `dof` setting turns the lens off for the post-process and the reference alike.
     passes::ThinLens lens = settings_.number("dof") != 0.0 ? camera->thinLens(double(width) / double(height))
                                                            : passes::ThinLens{};
     uint32_t referenceSubFrames = static_cast<uint32_t>(settings_.number("reference"));
     if (referenceSubFrames > 0) accumulateReference(frame, lens, referenceSubFrames, desc.time);
 
-    passes::FrameScene scene = buildFrameScene(*device_, frame);
+    FrameSceneShortfalls shortfalls;
+    passes::FrameScene scene = buildFrameScene(*device_, frame, shortfalls);
+    if (shortfalls.lightsWithoutShadowRoom != lightsWithoutShadowRoom_ && shortfalls.lightsWithoutShadowRoom > 0)
+        log(OBSCURA_LOG_WARNING, std::to_string(shortfalls.lightsWithoutShadowRoom) +
+                                     " light(s) cast no shadow: the shadow atlas is full (lower shadows:resolution)");
+    lightsWithoutShadowRoom_ = shortfalls.lightsWithoutShadowRoom;
     trianglesDrawn_ = 0;
     for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
 
-    // The frame (DESIGN.md "The frame"): G-buffer, lighting, depth of field, tone mapping, AOV
-    // readback. In reference mode the accumulated sub-frames replace lighting and depth of field;
-    // the other AOVs come from the pinhole camera.
+    // The frame (DESIGN.md "The frame"): shadow maps, G-buffer, SSAO, lighting, depth of field, tone
+    // mapping, AOV readback. In reference mode the accumulated sub-frames replace all between the
+    // G-buffer and tone mapping; the other AOVs come from the pinhole camera.
     gpu::FrameGraph graph;
+    gpu::ImageHandle shadowAtlas;
+    if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
     gpu::ImageHandle hdr;
     if (referenceSubFrames > 0) {
@@ -292,7 +302,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
                                                      ? VK_FORMAT_R16G16B16A16_SFLOAT
                                                      : VK_FORMAT_B10G11R11_UFLOAT_PACK32);
     } else {
-        hdr = addLighting(graph, scene, gbuffer, frameView(frame));
+        hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frameView(frame));
         if (passes::hasDepthOfField(lens)) {
             const CameraParams& p = camera->params();
             passes::DepthOfFieldSettings dof{
@@ -319,7 +329,8 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
 }
 
 gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
-                                             const passes::GBuffer& gbuffer, const FrameView& seen) {
+                                             const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
+                                             const FrameView& seen) {
     passes::SsaoResult ambient;
     const bool ssaoOn = settings_.number("ssao") != 0.0;
     if (ssaoOn) {
@@ -341,7 +352,7 @@ gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passe
                    graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
     }
     ssaoHistoryFrame_ = {ssaoOn, seen.view, seen.projection, scene.width, scene.height, settings_.version()};
-    return passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, lightAccumulation());
+    return passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas, lightAccumulation());
 }
 
 passes::LightAccumulation RenderDelegate::lightAccumulation() const {
@@ -387,10 +398,12 @@ void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const pa
         inputs.sample = FrameSample{open + sub.shutter * (close - open),
                                     {sub.aperture[0] * apertureRadius, sub.aperture[1] * apertureRadius},
                                     sub.pixelJitter};
-        passes::FrameScene scene = buildFrameScene(*device_, inputs);
+        FrameSceneShortfalls shortfalls;  // reported by the frame itself
+        passes::FrameScene scene = buildFrameScene(*device_, inputs, shortfalls);
         gpu::FrameGraph graph;
+        gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
         passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
-        gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, frameView(inputs));
+        gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frameView(inputs));
         gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
         passes::addAccumulatePass(graph, *pipelines_, hdr, sum, float(sub.weight), k == 0);
         executeFrame(graph);

@@ -64,7 +64,7 @@ private:
     void sync(double time, const Camera* camera);
     // SSAO and deferred lighting of `scene`, seen through `seen`, into the light accumulation.
     gpu::ImageHandle addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
-                                 const passes::GBuffer& gbuffer, const FrameView& seen);
+                                 const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas, const FrameView& seen);
     // The light accumulation's format (render setting lighting:halfFloat).
     passes::LightAccumulation lightAccumulation() const;
     // Compiles, records and submits one frame graph, and waits for it.
@@ -116,6 +116,7 @@ private:
     std::vector<gpu::PassTime> timings_;
     uint32_t primsSynced_ = 0;
     uint64_t trianglesDrawn_ = 0;
+    uint32_t lightsWithoutShadowRoom_ = 0;  // last frame's, so the warning is logged once per change
     double syncMilliseconds_ = 0.0;
     double frameSetupMilliseconds_ = 0.0;
     std::chrono::steady_clock::time_point frameRecorded_;

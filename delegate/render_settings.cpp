@@ -19,6 +19,14 @@ const RenderSettingInfo kSettings[] = {
     {"lighting:halfFloat", "accumulate lighting in RGBA16F instead of B10G11R11_UFLOAT: about 2^-11 relative "
                            "precision instead of 2^-7..2^-6, twice the bandwidth (bool, default off)",
      OBSCURA_VALUE_BOOL, 0.0},
+    {"shadows", "shadow maps: cascaded for distant lights, cube maps (or one spot map inside a ShapingAPI cone) "
+                "for sphere, rect and disk lights, for every light whose inputs:shadow:enable is on "
+                "(bool, default on)",
+     OBSCURA_VALUE_BOOL, 1.0},
+    {"shadows:resolution", "side of one shadow map (a cascade, a cube face, a spot map) in texels, 64-4096 "
+                           "(int, default 1024)",
+     OBSCURA_VALUE_INT, 1024.0, 64.0, 4096.0},
+    {"shadows:cascades", "cascades per distant light, 1-4 (int, default 4)", OBSCURA_VALUE_INT, 4.0, 1.0, 4.0},
     {"metersPerUnit", "the scene's metres per unit, as USD's stage metadata; hosts set it (float, default 0.01)",
      OBSCURA_VALUE_FLOAT, 0.01},
     {"dof", "depth of field from the camera's lens (focalLength, fStop, focusDistance, obscura:apertureBlades, "
@@ -80,8 +88,8 @@ std::string RenderSettings::set(const std::string& name, const ObscuraValue* val
     if (!std::isfinite(v)) return name + ": value is not finite";
     if (info->type == OBSCURA_VALUE_INT && v != std::floor(v)) return name + ": expected a whole number";
     if (v < info->minimum || v > info->maximum) {
-        char range[160];
-        std::snprintf(range, sizeof(range), "%g is outside %g to %g", v, info->minimum, info->maximum);
+        char range[96];
+        std::snprintf(range, sizeof(range), "%g is outside %g..%g", v, info->minimum, info->maximum);
         return name + ": " + range;
     }
     numbers_[name] = v;

@@ -4,7 +4,7 @@
 
 #include <obscura/obscura.h>
 
-#include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -17,9 +17,9 @@ struct RenderSettingInfo {
     const char* description;
     ObscuraValueType type;
     double defaultNumber;
-    // Numbers outside [minimum, maximum] are refused; int settings also refuse fractions.
-    double minimum = -HUGE_VAL;
-    double maximum = HUGE_VAL;
+    // Numbers outside [minimum, maximum] are refused with a reason (none given: any finite value).
+    double minimum = -std::numeric_limits<double>::infinity();
+    double maximum = std::numeric_limits<double>::infinity();
 };
 
 const RenderSettingInfo* findRenderSetting(const std::string& name);

@@ -68,7 +68,7 @@ Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(d
     createLayout(desc.bindings, desc.pushConstantSize, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                  desc.pushedSamplers);
     VkShaderModule vs = loadModule(desc.vertexShader);
-    VkShaderModule fs = loadModule(desc.fragmentShader);
+    VkShaderModule fs = desc.fragmentShader.empty() ? VK_NULL_HANDLE : loadModule(desc.fragmentShader);
     VkPipelineShaderStageCreateInfo stages[2] = {
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs, "main", nullptr},
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, fs, "main", nullptr}};
@@ -91,6 +91,9 @@ Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(d
     rs.cullMode = desc.cullMode;
     rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     rs.lineWidth = 1.0f;
+    rs.depthBiasEnable = desc.depthBiasConstant != 0.0f || desc.depthBiasSlope != 0.0f;
+    rs.depthBiasConstantFactor = desc.depthBiasConstant;
+    rs.depthBiasSlopeFactor = desc.depthBiasSlope;
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = desc.samples;
     VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
@@ -115,7 +118,7 @@ Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(d
     rendering.stencilAttachmentFormat = hasStencil(desc.depthFormat) ? desc.depthFormat : VK_FORMAT_UNDEFINED;
 
     VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
-    ci.stageCount = 2;
+    ci.stageCount = fs ? 2 : 1;
     ci.pStages = stages;
     ci.pVertexInputState = &vi;
     ci.pInputAssemblyState = &ia;
@@ -128,7 +131,7 @@ Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(d
     ci.layout = layout_;
     VkResult r = vkCreateGraphicsPipelines(device_.vk(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
     vkDestroyShaderModule(device_.vk(), vs, nullptr);
-    vkDestroyShaderModule(device_.vk(), fs, nullptr);
+    if (fs) vkDestroyShaderModule(device_.vk(), fs, nullptr);
     vkCheck(r, "vkCreateGraphicsPipelines");
 }
 

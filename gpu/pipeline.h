@@ -22,7 +22,7 @@ struct VertexAttribute {
 
 struct GraphicsPipelineDesc {
     std::string vertexShader;
-    std::string fragmentShader;
+    std::string fragmentShader;  // empty: a depth-only pipeline (shadow maps)
     std::vector<BindingDesc> bindings;
     // Set 1: this many combined image samplers (bindings 0..n-1) that change per draw, pushed with
     // pushSampledImages (VK_KHR_push_descriptor) instead of allocated.
@@ -35,6 +35,9 @@ struct GraphicsPipelineDesc {
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     bool depthTest = true;
     bool depthWrite = true;
+    // Rasteriser depth bias (constant and slope-scaled factors); both 0 leave it off.
+    float depthBiasConstant = 0.0f;
+    float depthBiasSlope = 0.0f;
     VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
 };
 

@@ -80,8 +80,26 @@ struct alignas(16) LightData {
     std::array<float, 4> axisX;
     std::array<float, 4> axisY;
     std::array<float, 4> shaping;
+    // x: the light's first ShadowViewData record, y: how many, z: their ShadowProjection;
+    // y = 0 when the light casts no shadow.
+    std::array<uint32_t, 4> shadow;
 };
-static_assert(sizeof(LightData) == 7 * 16);
+static_assert(sizeof(LightData) == 8 * 16);
+
+// How a light's shadow views cover it: the cascades of a distant light, the six cube faces
+// (+X, -X, +Y, -Y, +Z, -Z) around a local light, or one perspective map along a spot's axis.
+enum class ShadowProjection : uint32_t { Cascades = 0, Cube = 1, Spot = 2 };
+
+// One view of the shadow atlas as the lighting pass reads it (passes/frame_scene.h ShadowMapView).
+struct alignas(16) ShadowViewData {
+    // World -> atlas: x/w and y/w are atlas texel coordinates, z/w the depth the map stores.
+    Mat4 worldToAtlas;
+    std::array<float, 4> tileRect;  // first and last texel of the view's tile: x0, y0, x1, y1
+    // x: world size of one texel (perspective views: at distance 1 along the view axis);
+    // y: cascades: the view distance where the cascade ends.
+    std::array<float, 4> params;
+};
+static_assert(sizeof(ShadowViewData) == 96);
 
 // Header of the light buffer: the count, padded to the first LightData.
 struct alignas(16) LightBufferHeader {

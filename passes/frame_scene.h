@@ -18,6 +18,7 @@ struct Draw {
     uint32_t instanceIndex = 0;  // first InstanceData record of the draw
     uint32_t instanceCount = 1;  // consecutive records, one per GPU instance
     uint32_t textures = 0;       // the draw's MaterialTextures in FrameScene::materialTextures
+    bool opacityCutout = false;  // its material has an opacityThreshold: some texels are absent
 };
 
 // The textures a material samples, one per MaterialTextureSlot, white where the input is
@@ -27,6 +28,24 @@ struct MaterialTextures {
     std::array<VkSampler, kMaterialTextureSlots> samplers{};
 };
 
+// One view of the shadow atlas (a cascade of a distant light, a cube face of a sphere light): a
+// square tile the shadow-map pass renders the view's draws into, depth only.
+struct ShadowMapView {
+    Mat4 viewProjection{};        // world -> clip of the view
+    uint32_t x = 0, y = 0;        // the tile's first texel in the atlas
+    uint32_t size = 0;            // the tile's side in texels
+    std::vector<uint32_t> draws;  // indices into FrameScene::draws whose bounds reach the view
+};
+
+// Every shadow map of the frame in one depth image; lights find their views through
+// LightData's shadow field and the ShadowViewData records.
+struct ShadowAtlas {
+    uint32_t width = 1;  // texels; 1x1 (cleared to the far depth) when no light casts shadows
+    uint32_t height = 1;
+    std::vector<ShadowMapView> views;
+    gpu::BufferPtr records;  // ShadowViewData[] (storage), one per view, never empty
+};
+
 struct FrameScene {
     gpu::BufferPtr camera;     // CameraData (uniform)
     gpu::BufferPtr instances;  // InstanceData[] (storage)
@@ -34,6 +53,7 @@ struct FrameScene {
     gpu::BufferPtr lights;     // LightBufferHeader + LightData[] (storage)
     std::vector<MaterialTextures> materialTextures;  // never empty: element 0 is all white
     std::vector<Draw> draws;
+    ShadowAtlas shadows;
     uint32_t width = 0;
     uint32_t height = 0;
 };

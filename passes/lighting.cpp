@@ -17,14 +17,17 @@ gpu::ComputePipelineDesc describeLightingPipeline() {
              {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
              {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
              {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+             {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+             {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
             0};
 }
 
 }  // namespace
 
 gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                 const GBuffer& gb, const SsaoResult& ambient, LightAccumulation format) {
+                                 const GBuffer& gb, const SsaoResult& ambient, gpu::ImageHandle shadowAtlas,
+                                 LightAccumulation format) {
     gpu::ImageDesc desc;
     desc.format = format == LightAccumulation::HalfFloat ? VK_FORMAT_R16G16B16A16_SFLOAT
                                                          : VK_FORMAT_B10G11R11_UFLOAT_PACK32;
@@ -43,9 +46,10 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipeline
             pass.read(gb.instance, gpu::Usage::SampledCompute);
             pass.read(ambient.accessibility, gpu::Usage::SampledCompute);
             pass.read(ambient.halfDepth, gpu::Usage::SampledCompute);
+            pass.read(shadowAtlas, gpu::Usage::SampledCompute);
             pass.write(accumulation, gpu::Usage::StorageImageWrite);
         },
-        [&device, &pipeline, &scene, gb, ambient, accumulation](VkCommandBuffer cmd, const gpu::PassResources& res) {
+        [&device, &pipeline, &scene, gb, ambient, shadowAtlas, accumulation](VkCommandBuffer cmd, const gpu::PassResources& res) {
             VkSampler nearest = device.nearestClampSampler();
             gpu::DescriptorWriter(device, pipeline)
                 .buffer(0, scene.camera->buffer)
@@ -59,6 +63,8 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipeline
                 .storageImage(8, res.view(accumulation))
                 .sampled(9, res.view(ambient.accessibility), nearest)
                 .sampled(10, res.view(ambient.halfDepth), nearest)
+                .buffer(11, scene.shadows.records->buffer)
+                .sampled(12, res.view(shadowAtlas), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
                 .bind(cmd);
             gpu::dispatch2D(cmd, scene.width, scene.height, kLightingTileSize);
         });

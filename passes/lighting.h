@@ -12,9 +12,10 @@ namespace obscura::passes {
 enum class LightAccumulation { SmallFloat, HalfFloat };
 
 // `ambient` is the SSAO result (ssao.h), applied to environment (dome) light only, as seed 004
-// asks of ambient occlusion.
+// asks of ambient occlusion. `shadowAtlas` is the shadow-map pass's atlas (shadow_maps.h),
+// filtered per pixel for each light with shadow views (FrameScene::shadows).
 gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                 const GBuffer& gbuffer, const SsaoResult& ambient,
+                                 const GBuffer& gbuffer, const SsaoResult& ambient, gpu::ImageHandle shadowAtlas,
                                  LightAccumulation accumulation = LightAccumulation::SmallFloat);
 
 }  // namespace obscura::passes

@@ -3,8 +3,9 @@
 // Deferred lighting, pixel frequency, in compute (screen-space passes run on every GPU core).
 // Tiled light culling (Andersson 2011, "DirectX 11 rendering in Battlefield 3"): each 16x16 tile
 // bounds its pixels' depths, keeps the local lights whose influence sphere touches that box, then
-// every pixel shades with its tile's list. Accumulates into B10G11R11_UFLOAT, pre-exposed by the
-// camera's exposure (seed 004 "HDR": keep the accumulation in a range the small float format holds).
+// every pixel shades with its tile's list, each light's share through its shadow maps (per pixel,
+// shadow_sampling.glsl). Accumulates into B10G11R11_UFLOAT, pre-exposed by the camera's exposure
+// (seed 004 "HDR": keep the accumulation in a range the small float format holds).
 #extension GL_EXT_scalar_block_layout : require
 #include "common/frame_data.glsl"
 #include "common/light_evaluation.glsl"
@@ -27,6 +28,10 @@ layout(set = 0, binding = 7) uniform usampler2D instanceTexture;
 layout(set = 0, binding = 8) uniform writeonly image2D lightAccumulation;
 layout(set = 0, binding = 9) uniform sampler2D ambientAccessibility;
 layout(set = 0, binding = 10) uniform sampler2D ambientHalfDepth;
+layout(set = 0, binding = 11, std430) readonly buffer ShadowViews { ShadowViewData shadowViews[]; };
+layout(set = 0, binding = 12) uniform sampler2D shadowAtlas;
+
+#include "common/shadow_sampling.glsl"
 
 shared uint tileMinDepthBits;
 shared uint tileMaxDepthBits;
@@ -112,11 +117,18 @@ void main() {
     s.N = decodeBestFitNormal(nr.xyz);
     s.V = normalize(camera.position.xyz - s.P);
     s.roughness = nr.a;
-    s.ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel,
-                                          linearDepthFromDevice(camera.projection, depth));
+    float viewDistance = linearDepthFromDevice(camera.projection, depth);
+    s.ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel, viewDistance);
 
     vec3 radiance = mat.emissiveMetallic.rgb;
     uint count = min(tileLightCount, MAX_TILE_LIGHTS);
-    for (uint i = 0u; i < count; ++i) radiance += reflectFromLight(s, lights[tileLights[i]]);
+    for (uint i = 0u; i < count; ++i) {
+        LightData light = lights[tileLights[i]];
+        vec3 reflected = reflectFromLight(s, light);
+        // Shadow lookups only where the light reaches the surface at all.
+        if (light.shadow.y > 0u && any(greaterThan(reflected, vec3(0.0))))
+            reflected *= shadowVisibility(light, s.P, s.N, viewDistance);
+        radiance += reflected;
+    }
     imageStore(lightAccumulation, pixel, vec4(radiance * camera.exposureScale, 1.0));
 }

@@ -19,6 +19,7 @@ void Light::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
         auto tint = blackbodyColor(s.getDouble("inputs:colorTemperature"));
         for (size_t i = 0; i < 3; ++i) color[i] *= tint[i];
     }
+    castsShadows_ = type_ != passes::LightType::Dome && s.getBool("inputs:shadow:enable");
     passes::LightData d{};
     d.factors = {s.getFloat("inputs:diffuse"), s.getFloat("inputs:specular"), 0.0f, 0.0f};
     double scale = 1.0;

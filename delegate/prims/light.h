@@ -17,6 +17,7 @@ public:
     Light(std::string path, const schema::PrimSchema& schema, passes::LightType type)
         : Prim(std::move(path), schema), type_(type) {}
     bool visible() const { return visible_; }
+    bool castsShadows() const { return castsShadows_; }  // inputs:shadow:enable (UsdLuxShadowAPI)
     const passes::LightData& data() const { return data_; }
     const std::string& warning() const { return warning_; }
 
@@ -26,6 +27,7 @@ private:
     Matrix4d transform_ = kIdentity;
     passes::LightData data_{};
     bool visible_ = true;
+    bool castsShadows_ = true;
     std::string warning_;
 };
 

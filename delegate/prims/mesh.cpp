@@ -7,6 +7,7 @@ void Mesh::reset() {
     vertices_.reset();
     indices_.reset();
     indexCount_ = 0;
+    localBounds_ = Aabb{};
 }
 
 void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
@@ -60,6 +61,8 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     auto& geometry = std::get<MeshGeometry>(built);
     warnings_ = geometry.warnings;
     indexCount_ = static_cast<uint32_t>(geometry.indices.size());
+    localBounds_ = Aabb{};
+    for (const passes::Vertex& v : geometry.vertices) localBounds_.extend({v.position[0], v.position[1], v.position[2]});
     SharedGeometry shared = ctx.geometry.get(geometry.vertices, geometry.indices, s.path().c_str());
     vertices_ = std::move(shared.vertices);
     indices_ = std::move(shared.indices);

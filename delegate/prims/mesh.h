@@ -2,6 +2,7 @@
 // and uploaded as one vertex and one index buffer.
 #pragma once
 
+#include "delegate/bounds.h"
 #include "delegate/geometry_cache.h"
 #include "delegate/mesh_builder.h"
 #include "delegate/prims/prim.h"
@@ -20,6 +21,7 @@ public:
     const gpu::BufferPtr& vertices() const { return vertices_; }
     const gpu::BufferPtr& indices() const { return indices_; }
     uint32_t indexCount() const { return indexCount_; }
+    const Aabb& localBounds() const { return localBounds_; }  // of the drawn (refined) points
     const Matrix4d& transform() const { return transform_; }
     // The transform at an absolute time within the camera's shutter, between the samples synced
     // over it; a prim with one sample is static.
@@ -49,6 +51,7 @@ private:
     gpu::BufferPtr vertices_;
     gpu::BufferPtr indices_;
     uint32_t indexCount_ = 0;
+    Aabb localBounds_;
     std::vector<std::string> warnings_;
 };
 

@@ -65,6 +65,18 @@ struct LightData {
     vec4 axisX;             // xyz rect: half the width along local X; disk: the radius along local X (world space)
     vec4 axisY;             // xyz rect: half the height along local Y; disk: the radius along local Y
     vec4 shaping;           // ShapingAPI: x cone angle, y angle where the soft fade starts (radians), z focus; w unused
+    uvec4 shadow;           // x first ShadowViewData record, y their count (0: casts no shadow), z SHADOW_*
+};
+
+const uint SHADOW_CASCADES = 0u;  // a distant light's cascades, by view distance
+const uint SHADOW_CUBE = 1u;      // six faces around a local light: +X, -X, +Y, -Y, +Z, -Z
+const uint SHADOW_SPOT = 2u;      // one perspective map along the light's axis (a ShapingAPI cone)
+
+// One view of the shadow atlas: a cascade, a cube face or a spot map.
+struct ShadowViewData {
+    mat4 worldToAtlas;      // world -> clip whose x/w, y/w are atlas texel coordinates, z/w depth
+    vec4 tileRect;          // first and last texel of the view's tile: x0, y0, x1, y1
+    vec4 params;            // x world size of a texel (perspective: at distance 1), y cascade's far end
 };
 const uint INSTANCE_DOUBLE_SIDED = 1u;
 const uint INSTANCE_VERTEX_COLOR = 2u;

@@ -54,7 +54,7 @@ check "depth of field changes the image" 1 $? "$tmp/out" 'below threshold'
 "$obscura" render "$src/scenes/depth_of_field.usda" -o "$tmp/x.exr" --reference -1 >"$tmp/out" 2>&1
 check "negative --reference is a usage error" 2 $?
 "$obscura" render "$src/scenes/depth_of_field.usda" -o "$tmp/x.exr" --set dof:taps=99 >"$tmp/out" 2>&1
-check "dof:taps out of range is a usage error" 2 $? "$tmp/out" 'dof:taps: 99 is outside 3 to 15'
+check "dof:taps out of range is a usage error" 2 $? "$tmp/out" 'dof:taps: 99 is outside 3\.\.15'
 
 "$obscura" render "$src/tests/harness/data/malformed.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
 check "malformed scene names file:line:column" 3 $? "$tmp/out" 'malformed\.usda:7:[0-9]+'

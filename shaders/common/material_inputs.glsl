@@ -1,0 +1,30 @@
+// UsdPreviewSurface inputs read through UsdUVTexture (frame_data.glsl MaterialTexture), shared by
+// the passes that rasterise materials: the G-buffer and the shadow maps' opacity cut-outs.
+#ifndef OBSCURA_MATERIAL_INPUTS_GLSL
+#define OBSCURA_MATERIAL_INPUTS_GLSL
+
+// UsdUVTexture (UsdPreviewSurface spec): texel * scale + bias.
+vec4 sampleTexture(MaterialTexture t, sampler2D tex, vec2 uv) { return texture(tex, uv) * t.scale + t.bias; }
+
+vec3 colorInput(vec3 constant, MaterialTexture t, sampler2D tex, vec2 uv) {
+    if (t.sampled == 0u) return constant;
+    vec4 v = sampleTexture(t, tex, uv);
+    return t.channel == TEXTURE_CHANNEL_RGB ? v.rgb : vec3(v[t.channel]);
+}
+
+// Float inputs fed from the rgb output read its first component.
+float scalarInput(float constant, MaterialTexture t, sampler2D tex, vec2 uv) {
+    if (t.sampled == 0u) return constant;
+    return clamp(sampleTexture(t, tex, uv)[t.channel == TEXTURE_CHANNEL_RGB ? 0u : t.channel], 0.0, 1.0);
+}
+
+// UsdPreviewSurface opacityThreshold: above 0, opacity is a cut-out mask and the surface is absent
+// where opacity falls below the threshold. Callers discard last, so that every implicit-LOD
+// sample runs in uniform control flow.
+bool cutOut(MaterialData mat, sampler2D opacityTexture, vec2 uv) {
+    float threshold = mat.opacity.y;
+    if (threshold <= 0.0) return false;
+    return scalarInput(mat.opacity.x, mat.textures[TEXTURE_OPACITY], opacityTexture, uv) < threshold;
+}
+
+#endif
