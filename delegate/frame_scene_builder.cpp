@@ -4,6 +4,7 @@
 #include "delegate/prims/light.h"
 #include "delegate/prims/material.h"
 #include "delegate/prims/mesh.h"
+#include "passes/clip_volumes.h"
 #include "passes/frame_data.h"
 
 #include <algorithm>
@@ -74,6 +75,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     cd.position = {float(eye[0]), float(eye[1]), float(eye[2]), 1.0f};
     cd.resolution = {float(in.width), float(in.height)};
     cd.exposureScale = float(cam.linearExposureScale() * std::exp2(in.exposureStops));
+    scene.cameraData = cd;
     scene.camera = device.createBuffer(sizeof(cd), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "camera");
     std::memcpy(scene.camera->mapped(), &cd, sizeof(cd));
 
@@ -90,6 +92,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     std::map<std::string, uint32_t> materialIndex;
     std::vector<passes::LightData> lights;
     std::vector<bool> lightCastsShadows;
+    std::vector<const Light*> lightPrims;
     for (const auto& [path, prim] : in.prims) {
         if (prim->skipped()) continue;
         if (auto* m = dynamic_cast<const Material*>(prim.get())) {
@@ -109,6 +112,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
             if (l->visible()) {
                 lights.push_back(withInfluenceRange(l->data(), cd.exposureScale));
                 lightCastsShadows.push_back(l->castsShadows());
+                lightPrims.push_back(l);
             }
         }
     }
@@ -214,6 +218,30 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     scene.shadows = std::move(shadows.atlas);
     scene.shadows.records =
         uploadRecords(device, nullptr, 0, shadows.records, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "shadow views");
+
+    // Clip volumes: each clipped light's mesh gets a stencil bit and an instance record of its own
+    // (the mesh may be invisible: it is drawn only into the stencil).
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const auto& clip = lightPrims[i]->clipVolume();
+        if (!clip) continue;
+        auto it = in.prims.find(*clip);
+        const Mesh* mesh = it == in.prims.end() ? nullptr : dynamic_cast<const Mesh*>(it->second.get());
+        std::string problem = !mesh ? "obscura:clipVolume " + *clip + " is not a mesh"
+                              : mesh->skipped() || !mesh->hasGeometry() ? "clip volume " + *clip + " has no geometry"
+                              : scene.clipVolumes.size() == passes::kMaxClipVolumes
+                                  ? "more than " + std::to_string(passes::kMaxClipVolumes) + " clipped lights"
+                                  : std::string();
+        if (!problem.empty()) {
+            shortfalls.unclippedLights.push_back(lightPrims[i]->path() + ": " + problem + "; the light is not clipped");
+            continue;
+        }
+        uint32_t bit = 1u << scene.clipVolumes.size();
+        scene.clipVolumes.push_back({{mesh->vertices(), mesh->indices(), mesh->indexCount(),
+                                      static_cast<uint32_t>(instances.size()), 1, 0, false},
+                                     bit});
+        record(*mesh, mesh->transform());
+        lights[i].shadow[3] = bit;
+    }
 
     passes::LightBufferHeader header{static_cast<uint32_t>(lights.size()), {0, 0, 0}};
     scene.instances = uploadRecords(device, nullptr, 0, instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instances");

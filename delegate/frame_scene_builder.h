@@ -13,6 +13,7 @@
 #include <optional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace obscura::delegate {
 
@@ -38,6 +39,7 @@ struct FrameSceneInputs {
 // What the frame could not honour, for the delegate to report.
 struct FrameSceneShortfalls {
     uint32_t lightsWithoutShadowRoom = 0;  // shadow-casting lights the atlas had no room for
+    std::vector<std::string> unclippedLights;  // lights whose clip volume could not be used, and why
 };
 
 // World-to-view and view-to-clip (row-vector convention) the frame sees through: the camera's, or

@@ -1,8 +1,10 @@
 #include "delegate/render_delegate.h"
 
+#include "passes/clip_volumes.h"
+
 #include "delegate/frame_scene_builder.h"
-#include "gpu/vk_check.h"
 #include "delegate/reference_frames.h"
+#include "gpu/vk_check.h"
 #include "passes/accumulate.h"
 #include "passes/aov_readback.h"
 #include "passes/best_fit_normals.h"
@@ -284,12 +286,16 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         log(OBSCURA_LOG_WARNING, std::to_string(shortfalls.lightsWithoutShadowRoom) +
                                      " light(s) cast no shadow: the shadow atlas is full (lower shadows:resolution)");
     lightsWithoutShadowRoom_ = shortfalls.lightsWithoutShadowRoom;
+    if (shortfalls.unclippedLights != unclippedLights_)
+        for (const auto& problem : shortfalls.unclippedLights) log(OBSCURA_LOG_WARNING, problem);
+    unclippedLights_ = shortfalls.unclippedLights;
     trianglesDrawn_ = 0;
     for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
 
-    // The frame (DESIGN.md "The frame"): shadow maps, G-buffer, SSAO, lighting, depth of field, tone
-    // mapping, AOV readback. In reference mode the accumulated sub-frames replace all between the
-    // G-buffer and tone mapping; the other AOVs come from the pinhole camera.
+    // The frame (DESIGN.md "The frame"): shadow maps, G-buffer, clip volumes into stencil, SSAO,
+    // lighting, depth of field, tone mapping, AOV readback. In reference mode the accumulated
+    // sub-frames replace all between the G-buffer and tone mapping; the other AOVs come from the
+    // pinhole camera.
     gpu::FrameGraph graph;
     gpu::ImageHandle shadowAtlas;
     if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
@@ -331,6 +337,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
 gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
                                              const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
                                              const FrameView& seen) {
+    passes::addClipVolumePass(graph, *pipelines_, scene, gbuffer);
     passes::SsaoResult ambient;
     const bool ssaoOn = settings_.number("ssao") != 0.0;
     if (ssaoOn) {

@@ -62,7 +62,8 @@ public:
 
 private:
     void sync(double time, const Camera* camera);
-    // SSAO and deferred lighting of `scene`, seen through `seen`, into the light accumulation.
+    // Clip volumes, SSAO and deferred lighting of `scene`, seen through `seen`, into the light
+    // accumulation.
     gpu::ImageHandle addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
                                  const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas, const FrameView& seen);
     // The light accumulation's format (render setting lighting:halfFloat).
@@ -117,6 +118,7 @@ private:
     uint32_t primsSynced_ = 0;
     uint64_t trianglesDrawn_ = 0;
     uint32_t lightsWithoutShadowRoom_ = 0;  // last frame's, so the warning is logged once per change
+    std::vector<std::string> unclippedLights_;  // likewise
     double syncMilliseconds_ = 0.0;
     double frameSetupMilliseconds_ = 0.0;
     std::chrono::steady_clock::time_point frameRecorded_;

@@ -39,6 +39,14 @@ struct GraphicsPipelineDesc {
     float depthBiasConstant = 0.0f;
     float depthBiasSlope = 0.0f;
     VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
+    VkCompareOp depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
+    // Stencil, front and back alike: `passOp` where both tests pass; the write mask is dynamic
+    // state (vkCmdSetStencilWriteMask per draw), the compare mask all bits, the reference 0.
+    struct Stencil {
+        bool enabled = false;
+        VkCompareOp compare = VK_COMPARE_OP_ALWAYS;
+        VkStencilOp passOp = VK_STENCIL_OP_KEEP;
+    } stencil;
 };
 
 struct ComputePipelineDesc {

@@ -303,6 +303,14 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         *out = {OBSCURA_VALUE_PATH, 1, strings_.size(), stringPointers_.data()};
         return OBSCURA_OK;
     }
+    if (attribute == "obscura:clipVolume") {
+        const usda::Relationship* rel = prim->relationship(attribute);
+        if (!rel || rel->targets.empty()) return OBSCURA_ERROR_NOT_FOUND;
+        strings_ = {rel->targets.front()};
+        stringPointers_ = {strings_[0].c_str()};
+        *out = {OBSCURA_VALUE_PATH, 0, 1, stringPointers_.data()};
+        return OBSCURA_OK;
+    }
     if (attribute == "material:binding") {
         auto material = boundMaterial(*prim);
         if (!material) return OBSCURA_ERROR_NOT_FOUND;

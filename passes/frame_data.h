@@ -81,7 +81,7 @@ struct alignas(16) LightData {
     std::array<float, 4> axisY;
     std::array<float, 4> shaping;
     // x: the light's first ShadowViewData record, y: how many, z: their ShadowProjection;
-    // y = 0 when the light casts no shadow.
+    // y = 0 when the light casts no shadow; w: the clip volume's stencil bit (0: unclipped).
     std::array<uint32_t, 4> shadow;
 };
 static_assert(sizeof(LightData) == 8 * 16);

@@ -6,7 +6,6 @@
 #include "passes/frame_data.h"
 
 #include <array>
-
 #include <vector>
 
 namespace obscura::passes {
@@ -46,7 +45,14 @@ struct ShadowAtlas {
     gpu::BufferPtr records;  // ShadowViewData[] (storage), one per view, never empty
 };
 
+// A light's clip volume (passes/clip_volumes.h): a closed mesh rasterised into one stencil bit.
+struct ClipVolume {
+    Draw draw;           // one instance, its record holding the mesh's transform
+    uint32_t stencilBit;  // 0x01..0x40; the light's LightData names the same bit
+};
+
 struct FrameScene {
+    CameraData cameraData{};   // what `camera` holds, for passes that build push constants
     gpu::BufferPtr camera;     // CameraData (uniform)
     gpu::BufferPtr instances;  // InstanceData[] (storage)
     gpu::BufferPtr materials;  // MaterialData[] (storage)
@@ -54,6 +60,7 @@ struct FrameScene {
     std::vector<MaterialTextures> materialTextures;  // never empty: element 0 is all white
     std::vector<Draw> draws;
     ShadowAtlas shadows;
+    std::vector<ClipVolume> clipVolumes;
     uint32_t width = 0;
     uint32_t height = 0;
 };

@@ -19,7 +19,8 @@ gpu::ComputePipelineDesc describeLightingPipeline() {
              {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
              {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
              {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-             {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+             {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
             0};
 }
 
@@ -65,6 +66,7 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipeline
                 .sampled(10, res.view(ambient.halfDepth), nearest)
                 .buffer(11, scene.shadows.records->buffer)
                 .sampled(12, res.view(shadowAtlas), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
+                .sampled(13, res.stencilView(gb.depth), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
                 .bind(cmd);
             gpu::dispatch2D(cmd, scene.width, scene.height, kLightingTileSize);
         });

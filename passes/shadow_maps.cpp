@@ -1,16 +1,9 @@
 #include "passes/shadow_maps.h"
 
-#include "passes/frame_data.h"
-
-#include <cstddef>
+#include "passes/depth_only_draw.h"
 
 namespace obscura::passes {
 namespace {
-
-struct ShadowDepthPush {
-    Mat4 viewProjection;
-    uint32_t instanceIndex;
-};
 
 // Slope-scaled depth bias pushes each stored depth back by twice the depth change across one
 // texel of the surface, which keeps surfaces lit at grazing angles from shadowing themselves
@@ -22,18 +15,12 @@ constexpr float kDepthBiasSlope = 2.0f;
 // Opaque draws write depth with no fragment stage; draws with an opacity cut-out add one that
 // discards the texels the G-buffer discards.
 gpu::GraphicsPipelineDesc describeShadowDepthPipeline(bool cutout) {
-    gpu::GraphicsPipelineDesc d;
-    d.vertexShader = "shadow_depth.vert";
-    d.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+    gpu::GraphicsPipelineDesc d = describeDepthOnlyDraw();
     if (cutout) {
         d.fragmentShader = "shadow_cutout.frag";
         d.bindings.push_back({1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
         d.pushedSamplers = 1;  // set 1: the draw's opacity texture
     }
-    d.pushConstantSize = sizeof(ShadowDepthPush);
-    d.vertexStride = sizeof(Vertex);
-    d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
-                          {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)}};
     d.depthFormat = kShadowAtlasFormat;
     d.depthBiasConstant = kDepthBiasConstant;
     d.depthBiasSlope = kDepthBiasSlope;
@@ -47,7 +34,7 @@ void recordViews(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& 
     for (const ShadowMapView& view : scene.shadows.views) {
         VkViewport viewport{float(view.x), float(view.y), float(view.size), float(view.size), 0.0f, 1.0f};
         VkRect2D tile{{int32_t(view.x), int32_t(view.y)}, {view.size, view.size}};
-        ShadowDepthPush push{view.viewProjection, 0};
+        DepthOnlyPush push{view.viewProjection, 0};
         bool inTile = false;
         for (uint32_t index : view.draws) {
             const Draw& draw = scene.draws[index];
@@ -70,13 +57,7 @@ void recordViews(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& 
                 vkCmdSetScissor(cmd, 0, 1, &tile);
                 inTile = true;
             }
-            push.instanceIndex = draw.instanceIndex;
-            VkDeviceSize offset = 0;
-            vkCmdBindVertexBuffers(cmd, 0, 1, &draw.vertices->buffer, &offset);
-            vkCmdBindIndexBuffer(cmd, draw.indices->buffer, 0, VK_INDEX_TYPE_UINT32);
-            vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                               sizeof(push), &push);
-            vkCmdDrawIndexed(cmd, draw.indexCount, draw.instanceCount, 0, 0, 0);
+            recordDepthOnlyDraw(cmd, pipeline, draw, push);
         }
     }
 }

@@ -30,6 +30,8 @@ layout(set = 0, binding = 9) uniform sampler2D ambientAccessibility;
 layout(set = 0, binding = 10) uniform sampler2D ambientHalfDepth;
 layout(set = 0, binding = 11, std430) readonly buffer ShadowViews { ShadowViewData shadowViews[]; };
 layout(set = 0, binding = 12) uniform sampler2D shadowAtlas;
+// The G-buffer's stencil: bits 0x01..0x40 mark surfaces inside the clip volumes (clip_volumes.cpp).
+layout(set = 0, binding = 13) uniform usampler2D clipStencil;
 
 #include "common/shadow_sampling.glsl"
 
@@ -121,9 +123,12 @@ void main() {
     s.ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel, viewDistance);
 
     vec3 radiance = mat.emissiveMetallic.rgb;
+    uint insideClipVolumes = texelFetch(clipStencil, pixel, 0).r;
     uint count = min(tileLightCount, MAX_TILE_LIGHTS);
     for (uint i = 0u; i < count; ++i) {
         LightData light = lights[tileLights[i]];
+        // A clipped light reaches only surfaces inside its volume (seed 004 "clip volumes").
+        if (light.shadow.w != 0u && (insideClipVolumes & light.shadow.w) == 0u) continue;
         vec3 reflected = reflectFromLight(s, light);
         // Shadow lookups only where the light reaches the surface at all.
         if (light.shadow.y > 0u && any(greaterThan(reflected, vec3(0.0))))

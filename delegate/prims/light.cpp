@@ -20,6 +20,7 @@ void Light::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
         for (size_t i = 0; i < 3; ++i) color[i] *= tint[i];
     }
     castsShadows_ = type_ != passes::LightType::Dome && s.getBool("inputs:shadow:enable");
+    clipVolume_ = s.getPath("obscura:clipVolume");
     passes::LightData d{};
     d.factors = {s.getFloat("inputs:diffuse"), s.getFloat("inputs:specular"), 0.0f, 0.0f};
     double scale = 1.0;

@@ -18,6 +18,8 @@ public:
         : Prim(std::move(path), schema), type_(type) {}
     bool visible() const { return visible_; }
     bool castsShadows() const { return castsShadows_; }  // inputs:shadow:enable (UsdLuxShadowAPI)
+    // obscura:clipVolume: the mesh the light is clipped to (passes/clip_volumes.h), if any.
+    const std::optional<std::string>& clipVolume() const { return clipVolume_; }
     const passes::LightData& data() const { return data_; }
     const std::string& warning() const { return warning_; }
 
@@ -28,6 +30,7 @@ private:
     passes::LightData data_{};
     bool visible_ = true;
     bool castsShadows_ = true;
+    std::optional<std::string> clipVolume_;
     std::string warning_;
 };
 

@@ -17,7 +17,8 @@ public:
         : Prim(std::move(path), schema), primId_(primId) {}
 
     int32_t primId() const { return primId_; }
-    bool drawable() const { return visible_ && vertices_ && indexCount_ > 0; }
+    bool drawable() const { return visible_ && hasGeometry(); }
+    bool hasGeometry() const { return vertices_ && indexCount_ > 0; }  // drawn or not (clip volumes)
     const gpu::BufferPtr& vertices() const { return vertices_; }
     const gpu::BufferPtr& indices() const { return indices_; }
     uint32_t indexCount() const { return indexCount_; }

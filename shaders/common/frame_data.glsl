@@ -65,7 +65,8 @@ struct LightData {
     vec4 axisX;             // xyz rect: half the width along local X; disk: the radius along local X (world space)
     vec4 axisY;             // xyz rect: half the height along local Y; disk: the radius along local Y
     vec4 shaping;           // ShapingAPI: x cone angle, y angle where the soft fade starts (radians), z focus; w unused
-    uvec4 shadow;           // x first ShadowViewData record, y their count (0: casts no shadow), z SHADOW_*
+    uvec4 shadow;           // x first ShadowViewData record, y their count (0: casts no shadow), z SHADOW_*;
+                            // w the clip volume's stencil bit (0: unclipped; passes/clip_volumes.h)
 };
 
 const uint SHADOW_CASCADES = 0u;  // a distant light's cascades, by view distance

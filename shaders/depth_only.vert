@@ -1,8 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Shadow maps, vertex stage: the G-buffer's vertex layout and instance records, projected into
-// one view of the shadow atlas. Opaque draws run this stage alone (depth only); draws with an
-// opacity cut-out add shadow_cutout.frag, which reads the texture coordinates and the instance.
+// Depth-only drawing (passes/depth_only_draw.cpp), vertex stage: the G-buffer's vertex layout and
+// instance records, projected by a pushed view-projection — one view of the shadow atlas, or the
+// camera for clip volumes. Opaque shadow casters and clip volumes run this stage alone; shadow
+// casters with an opacity cut-out add shadow_cutout.frag, which reads the texture coordinates and
+// the instance.
 #include "common/frame_data.glsl"
 
 layout(location = 0) in vec3 inPosition;
@@ -11,7 +13,7 @@ layout(location = 3) in vec2 inSt;
 layout(set = 0, binding = 0, std430) readonly buffer Instances { InstanceData instances[]; };
 
 layout(push_constant) uniform Push {
-    mat4 viewProjection;  // world -> clip of the atlas view being rendered
+    mat4 viewProjection;  // world -> clip of the view being rendered
     uint instanceIndex;   // the draw's first instance record
 } push;
 

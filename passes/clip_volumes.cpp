@@ -1,0 +1,43 @@
+#include "passes/clip_volumes.h"
+
+#include "passes/depth_only_draw.h"
+
+namespace obscura::passes {
+namespace {
+
+// Inside-ness by parity: a closed surface crosses the view ray behind a point an odd number of
+// times exactly when the point is inside it, whatever its shape and wherever the camera is. Every
+// face fragment behind the G-buffer's depth (depth test GREATER, no depth write, no culling)
+// inverts the volume's bit, so the bit ends set for surfaces inside. (The classic stencil light
+// volume needs a convex volume; parity takes concave rooms too.)
+gpu::GraphicsPipelineDesc describeClipVolumePipeline() {
+    gpu::GraphicsPipelineDesc d = describeDepthOnlyDraw();
+    d.depthFormat = kDepthFormat;
+    d.depthWrite = false;
+    d.depthCompare = VK_COMPARE_OP_GREATER;
+    d.stencil = {true, VK_COMPARE_OP_ALWAYS, VK_STENCIL_OP_INVERT};
+    return d;
+}
+
+}  // namespace
+
+gpu::ImageHandle addClipVolumePass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                                   const GBuffer& gbuffer) {
+    if (scene.clipVolumes.empty()) return gbuffer.depth;
+    const gpu::Pipeline& pipeline =
+        pipelines.get<gpu::GraphicsPipelineDesc>("clip_volumes", describeClipVolumePipeline);
+    gpu::Device& device = pipelines.device();
+    graph.addPass(
+        "clip_volumes", gpu::PassKind::Raster,
+        [&](gpu::FrameGraph::PassBuilder& pass) { pass.depthStencilAttachment(gbuffer.depth); },
+        [&device, &pipeline, &scene](VkCommandBuffer cmd, const gpu::PassResources&) {
+            gpu::DescriptorWriter(device, pipeline).buffer(0, scene.instances->buffer).bind(cmd);
+            for (const ClipVolume& volume : scene.clipVolumes) {
+                vkCmdSetStencilWriteMask(cmd, VK_STENCIL_FACE_FRONT_AND_BACK, volume.stencilBit);
+                recordDepthOnlyDraw(cmd, pipeline, volume.draw, {scene.cameraData.viewProjection, 0});
+            }
+        });
+    return gbuffer.depth;
+}
+
+}  // namespace obscura::passes

@@ -1,0 +1,28 @@
+#include "passes/depth_only_draw.h"
+
+#include <cstddef>
+
+namespace obscura::passes {
+
+gpu::GraphicsPipelineDesc describeDepthOnlyDraw() {
+    gpu::GraphicsPipelineDesc d;
+    d.vertexShader = "depth_only.vert";
+    d.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+    d.pushConstantSize = sizeof(DepthOnlyPush);
+    d.vertexStride = sizeof(Vertex);
+    d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+                          {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)}};
+    return d;
+}
+
+void recordDepthOnlyDraw(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, const Draw& draw, DepthOnlyPush push) {
+    push.instanceIndex = draw.instanceIndex;
+    VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &draw.vertices->buffer, &offset);
+    vkCmdBindIndexBuffer(cmd, draw.indices->buffer, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof(push), &push);
+    vkCmdDrawIndexed(cmd, draw.indexCount, draw.instanceCount, 0, 0, 0);
+}
+
+}  // namespace obscura::passes

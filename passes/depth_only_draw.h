@@ -1,0 +1,25 @@
+// Depth-only drawing of FrameScene draws through shaders/depth_only.vert (the G-buffer's vertex
+// layout and instance records, projected by a pushed view-projection): shared by the shadow maps
+// and the clip volumes.
+#pragma once
+
+#include "gpu/pipeline.h"
+#include "passes/frame_data.h"
+#include "passes/frame_scene.h"
+
+namespace obscura::passes {
+
+// Mirrors the push constants of shaders/depth_only.vert.
+struct DepthOnlyPush {
+    Mat4 viewProjection;     // world -> clip
+    uint32_t instanceIndex;  // the draw's first instance record
+};
+
+// Vertex stage, vertex layout, instance buffer at set 0 binding 0 and the push constants;
+// callers add the depth format and tests, and a fragment stage if they need one.
+gpu::GraphicsPipelineDesc describeDepthOnlyDraw();
+
+// Binds the draw's buffers, pushes `push` with the draw's first instance, and draws every instance.
+void recordDepthOnlyDraw(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, const Draw& draw, DepthOnlyPush push);
+
+}  // namespace obscura::passes
