@@ -39,7 +39,34 @@ Matrix4d normalMatrix(const Matrix4d& model) {
     return transpose(inverse);
 }
 
+// The textured dome's frame: world directions into it (the inverse of its transform's rotation;
+// translation and scale mean nothing for a dome at infinity, and normalising the looked-up
+// direction removes the scale).
+passes::EnvironmentData environmentData(const Light* dome) {
+    passes::EnvironmentData data{};
+    data.worldToDome = toFloats<passes::Mat4>(kIdentity);
+    if (!dome) return data;
+    Matrix4d linear = dome->transform();
+    linear[12] = linear[13] = linear[14] = 0.0;
+    Matrix4d inverse = kIdentity;
+    if (invert(linear, inverse)) data.worldToDome = toFloats<passes::Mat4>(inverse);
+    data.params = {1.0f, 0.0f, 0.0f, 0.0f};
+    return data;
+}
+
 }  // namespace
+
+const Light* environmentDome(const std::map<std::string, std::unique_ptr<Prim>>& prims,
+                             std::vector<std::string>& ignored) {
+    const Light* chosen = nullptr;
+    for (const auto& [path, prim] : prims) {
+        auto* light = dynamic_cast<const Light*>(prim.get());
+        if (!light || light->skipped() || !light->visible() || !light->environment()) continue;
+        if (chosen) ignored.push_back(path);
+        else chosen = light;
+    }
+    return chosen;
+}
 
 FrameView frameView(const FrameSceneInputs& in) {
     const Camera& cam = in.camera;
@@ -113,6 +140,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
                 lights.push_back(withInfluenceRange(l->data(), cd.exposureScale));
                 lightCastsShadows.push_back(l->castsShadows());
                 lightPrims.push_back(l);
+                if (l == in.environmentDome) lights.back().factors[2] = 1.0f;
             }
         }
     }
@@ -247,6 +275,10 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     scene.instances = uploadRecords(device, nullptr, 0, instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instances");
     scene.materials = uploadRecords(device, nullptr, 0, materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials");
     scene.lights = uploadRecords(device, &header, sizeof(header), lights, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights");
+    passes::EnvironmentData environment = environmentData(in.environmentDome);
+    scene.environment =
+        device.createBuffer(sizeof(environment), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "environment");
+    std::memcpy(scene.environment->mapped(), &environment, sizeof(environment));
     return scene;
 }
 

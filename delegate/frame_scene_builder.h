@@ -3,6 +3,7 @@
 #pragma once
 
 #include "delegate/prims/camera.h"
+#include "delegate/prims/light.h"
 #include "delegate/prims/prim.h"
 #include "delegate/shadow_views.h"
 #include "delegate/texture_cache.h"
@@ -33,8 +34,15 @@ struct FrameSceneInputs {
     double exposureStops;  // render setting, added to the camera's exposure
     TextureCache& textures;
     const ShadowSettings& shadows;
+    // The dome that lights through its texture (environmentDome()), or null.
+    const Light* environmentDome;
     std::optional<FrameSample> sample = std::nullopt;  // none: the pinhole camera at the frame's time
 };
+
+// The first visible dome with a texture, in path order: the one the environment maps are made
+// from. Further textured domes go to `ignored` (they light with their constant colour).
+const Light* environmentDome(const std::map<std::string, std::unique_ptr<Prim>>& prims,
+                             std::vector<std::string>& ignored);
 
 // What the frame could not honour, for the delegate to report.
 struct FrameSceneShortfalls {

@@ -22,6 +22,25 @@ size_t primvarIndex(ObscuraInterpolation interpolation, size_t face, size_t face
     }
 }
 
+float dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// The vertex's tangent: `sum` made orthogonal to its normal (Gram-Schmidt), w the sign that turns
+// cross(N, T) into the direction of increasing v. Without texture coordinates (or where they do
+// not vary) any direction perpendicular to the normal serves.
+void setTangent(passes::Vertex& v, const V3* sum, const V3* bitangent) {
+    V3 n{v.normal[0], v.normal[1], v.normal[2]};
+    V3 t = sum ? *sum : V3{0, 0, 0};
+    float along = dot(t, n);
+    for (int j = 0; j < 3; ++j) t[j] -= along * n[j];
+    float len = std::sqrt(dot(t, t));
+    if (!(len > 1e-12f)) {
+        t = std::fabs(n[0]) < 0.9f ? cross(n, V3{1, 0, 0}) : cross(n, V3{0, 1, 0});
+        len = std::sqrt(dot(t, t));
+    }
+    for (int j = 0; j < 3; ++j) v.tangent[j] = t[j] / len;
+    v.tangent[3] = bitangent && dot(cross(n, t), *bitangent) < 0.0f ? -1.0f : 1.0f;
+}
+
 }  // namespace
 
 size_t primvarElementCount(const MeshInput& mesh, ObscuraInterpolation interpolation) {
@@ -91,6 +110,44 @@ std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh)
         }
     }
 
+    // Tangents for tangent-space normal maps (Lengyel 2001, "Computing tangent space basis
+    // vectors"): each fan triangle's directions of increasing u and v, summed over the faces that
+    // share a point (area-weighted by construction); made orthogonal to each vertex's normal below.
+    // XXX: points on a texture seam (faceVarying st) average both sides' directions; MikkTSpace
+    // would split them.
+    std::vector<V3> tangentSum, bitangentSum;
+    if (st) {
+        tangentSum.assign(pointCount, V3{0, 0, 0});
+        bitangentSum.assign(pointCount, V3{0, 0, 0});
+        size_t faceBase = 0;
+        for (size_t f = 0; f < mesh.faceVertexCounts.size(); ++f) {
+            size_t count = size_t(mesh.faceVertexCounts[f]);
+            auto corner = [&](size_t k) {
+                size_t fv = faceBase + k, pi = size_t(mesh.faceVertexIndices[fv]);
+                const float* uv = &st->values[2 * primvarIndex(st->interpolation, f, fv, pi)];
+                return std::make_pair(pi, std::array<float, 2>{uv[0], uv[1]});
+            };
+            for (size_t k = 1; k + 1 < count; ++k) {
+                auto [i0, uv0] = corner(0);
+                auto [i1, uv1] = corner(k);
+                auto [i2, uv2] = corner(k + 1);
+                V3 e1 = sub(point(mesh.points, i1), point(mesh.points, i0));
+                V3 e2 = sub(point(mesh.points, i2), point(mesh.points, i0));
+                float du1 = uv1[0] - uv0[0], dv1 = uv1[1] - uv0[1], du2 = uv2[0] - uv0[0], dv2 = uv2[1] - uv0[1];
+                float det = du1 * dv2 - du2 * dv1;
+                if (std::fabs(det) < 1e-20f) continue;
+                V3 t, b;
+                for (int j = 0; j < 3; ++j) {
+                    t[j] = (e1[j] * dv2 - e2[j] * dv1) / det;
+                    b[j] = (e2[j] * du1 - e1[j] * du2) / det;
+                }
+                for (size_t i : {i0, i1, i2})
+                    for (int j = 0; j < 3; ++j) tangentSum[i][j] += t[j], bitangentSum[i][j] += b[j];
+            }
+            faceBase += count;
+        }
+    }
+
     // One vertex per face-vertex keeps face-varying and uniform primvars exact.
     out.vertices.reserve(mesh.faceVertexIndices.size());
     size_t base = 0;
@@ -108,6 +165,7 @@ std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh)
             for (int j = 0; j < 3; ++j)
                 v.color[j] = colors ? colors->values[3 * primvarIndex(colors->interpolation, f, fv, pi) + size_t(j)] : kGrey;
             for (int j = 0; j < 2 && st; ++j) v.uv[j] = st->values[2 * primvarIndex(st->interpolation, f, fv, pi) + size_t(j)];
+            setTangent(v, st ? &tangentSum[pi] : nullptr, st ? &bitangentSum[pi] : nullptr);
             out.vertices.push_back(v);
         }
         // Fan triangulation; left-handed meshes wind the other way.

@@ -93,12 +93,14 @@ RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
     unoccluded_.halfDepth = device_->createTextureWithData(one, &farDepth, sizeof(farDepth), "ssao off depth");
     textures_ = std::make_unique<TextureCache>(*device_, options.log);
     geometry_ = std::make_unique<GeometryCache>(*device_);
+    environment_ = std::make_unique<EnvironmentCache>(*device_, textures_->sampler(WrapMode::Repeat, WrapMode::Clamp));
     log(OBSCURA_LOG_INFO, "device: " + device_->context().summary().name);
 }
 
 RenderDelegate::~RenderDelegate() {
     vkDeviceWaitIdle(device_->vk());
     prims_.clear();
+    environment_.reset();
     textures_.reset();
     geometry_.reset();
     bestFitNormals_.reset();
@@ -271,9 +273,16 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (std::string problem = grading_.update(*device_, colour); !problem.empty())
         throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "colour management: " + problem};
 
+    std::vector<std::string> ignoredDomes;
+    const Light* dome = environmentDome(prims_, ignoredDomes);
+    if (ignoredDomes != ignoredDomes_)
+        for (const auto& path : ignoredDomes)
+            log(OBSCURA_LOG_WARNING, path + ": only one textured dome is supported (" + dome->path() +
+                                         " lights the scene); this one uses its constant colour");
+    ignoredDomes_ = std::move(ignoredDomes);
     ShadowSettings shadows{settings_.number("shadows") != 0.0, uint32_t(settings_.number("shadows:resolution")),
                            uint32_t(settings_.number("shadows:cascades"))};
-    FrameSceneInputs frame{prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows};
+    FrameSceneInputs frame{prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows, dome};
     // The `dof` setting turns the lens off for the post-process and the reference alike.
     passes::ThinLens lens = settings_.number("dof") != 0.0 ? camera->thinLens(double(width) / double(height))
                                                            : passes::ThinLens{};
@@ -308,7 +317,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
                                                      ? VK_FORMAT_R16G16B16A16_SFLOAT
                                                      : VK_FORMAT_B10G11R11_UFLOAT_PACK32);
     } else {
-        hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frameView(frame));
+        hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frame);
         if (passes::hasDepthOfField(lens)) {
             const CameraParams& p = camera->params();
             passes::DepthOfFieldSettings dof{
@@ -336,7 +345,8 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
 
 gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
                                              const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
-                                             const FrameView& seen) {
+                                             const FrameSceneInputs& frame) {
+    FrameView seen = frameView(frame);
     passes::addClipVolumePass(graph, *pipelines_, scene, gbuffer);
     passes::SsaoResult ambient;
     const bool ssaoOn = settings_.number("ssao") != 0.0;
@@ -359,7 +369,12 @@ gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passe
                    graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
     }
     ssaoHistoryFrame_ = {ssaoOn, seen.view, seen.projection, scene.width, scene.height, settings_.version()};
-    return passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas, lightAccumulation());
+    const Light* dome = frame.environmentDome;
+    passes::EnvironmentLighting environment =
+        environment_->addToFrame(graph, *pipelines_, dome ? dome->environment() : nullptr);
+    environmentInFrame_ = true;
+    return passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas, environment,
+                                   lightAccumulation());
 }
 
 passes::LightAccumulation RenderDelegate::lightAccumulation() const {
@@ -369,6 +384,8 @@ passes::LightAccumulation RenderDelegate::lightAccumulation() const {
 
 void RenderDelegate::executeFrame(gpu::FrameGraph& graph) {
     graph.compile();
+    if (environmentInFrame_) environment_->frameCompiled(graph);
+    environmentInFrame_ = false;
     if (pendingSsaoHistory_) passes::keepSsaoHistory(graph, *pendingSsaoHistory_, ssaoHistory_);
     pendingSsaoHistory_.reset();
     device_->context().submitAndWait([&](VkCommandBuffer cmd) {
@@ -410,7 +427,7 @@ void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const pa
         gpu::FrameGraph graph;
         gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
         passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
-        gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frameView(inputs));
+        gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, inputs);
         gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
         passes::addAccumulatePass(graph, *pipelines_, hdr, sum, float(sub.weight), k == 0);
         executeFrame(graph);

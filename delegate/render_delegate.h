@@ -2,6 +2,7 @@
 // prims from the host's scene delegate), and the frame (building the frame graph of passes).
 #pragma once
 
+#include "delegate/environment_cache.h"
 #include "delegate/frame_scene_builder.h"
 #include "delegate/geometry_cache.h"
 #include "delegate/prims/camera.h"
@@ -62,10 +63,11 @@ public:
 
 private:
     void sync(double time, const Camera* camera);
-    // Clip volumes, SSAO and deferred lighting of `scene`, seen through `seen`, into the light
-    // accumulation.
+    // Clip volumes, SSAO, the environment and deferred lighting of `scene` (built from `frame`)
+    // into the light accumulation.
     gpu::ImageHandle addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
-                                 const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas, const FrameView& seen);
+                                 const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
+                                 const FrameSceneInputs& frame);
     // The light accumulation's format (render setting lighting:halfFloat).
     passes::LightAccumulation lightAccumulation() const;
     // Compiles, records and submits one frame graph, and waits for it.
@@ -100,10 +102,15 @@ private:
         uint32_t width = 0, height = 0;
         uint64_t settingsVersion = 0;
     } ssaoHistoryFrame_;
-    // SSAO of the frame being built, whose history layouts executeFrame keeps once compiled.
+    // SSAO of the frame being built, whose history layouts executeFrame keeps once compiled, and
+    // whether it imported the environment maps (whose layouts it keeps too).
     std::optional<passes::SsaoResult> pendingSsaoHistory_;
+    bool environmentInFrame_ = false;
     std::unique_ptr<TextureCache> textures_;
     std::unique_ptr<GeometryCache> geometry_;
+    std::unique_ptr<EnvironmentCache> environment_;
+    // Textured domes beyond the first, last frame: warned about when the list changes.
+    std::vector<std::string> ignoredDomes_;
     passes::ColorGradingLut grading_;
 
     ObscuraSceneDelegate sceneDelegate_{};

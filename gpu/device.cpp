@@ -139,9 +139,16 @@ ImagePtr Device::createImage(const ImageDesc& desc, const char* debugName) {
         vi.subresourceRange.aspectMask = VK_IMAGE_ASPECT_STENCIL_BIT;
         vkCheck(vkCreateImageView(vk(), &vi, nullptr, &img->stencilView), "vkCreateImageView");
     }
+    if ((desc.usage & VK_IMAGE_USAGE_STORAGE_BIT) && desc.mipLevels > 1) {
+        for (uint32_t level = 0; level < desc.mipLevels; ++level) {
+            vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, 0, 1};
+            vkCheck(vkCreateImageView(vk(), &vi, nullptr, &img->levelViews.emplace_back()), "vkCreateImageView");
+        }
+    }
     return ImagePtr(img, [this](Image* p) {
         retire([this, p] {
             vkDestroyImageView(vk(), p->view, nullptr);
+            for (VkImageView level : p->levelViews) vkDestroyImageView(vk(), level, nullptr);
             if (p->stencilView) vkDestroyImageView(vk(), p->stencilView, nullptr);
             vkDestroyImage(vk(), p->image, nullptr);
             memory_->free(p->allocation);

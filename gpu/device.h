@@ -37,6 +37,8 @@ struct Image {
     VkImage image = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;         // all aspects a shader may read (depth only for D/S)
     VkImageView stencilView = VK_NULL_HANDLE;  // stencil aspect of depth/stencil formats
+    // Storage images with mips: one view per level (a storage descriptor names a single level).
+    std::vector<VkImageView> levelViews;
     Allocation allocation;
     ImageDesc desc;
 };

@@ -90,6 +90,9 @@ void TransientImagePool::endFrame() {
 VkImage PassResources::image(ImageHandle h) const { return graph_.images_.at(h.index).image->image; }
 VkImageView PassResources::view(ImageHandle h) const { return graph_.images_.at(h.index).image->view; }
 VkImageView PassResources::stencilView(ImageHandle h) const { return graph_.images_.at(h.index).image->stencilView; }
+VkImageView PassResources::levelView(ImageHandle h, uint32_t level) const {
+    return graph_.images_.at(h.index).image->levelViews.at(level);
+}
 const ImageDesc& PassResources::desc(ImageHandle h) const { return graph_.images_.at(h.index).desc; }
 VkBuffer PassResources::buffer(BufferHandle h) const { return graph_.buffers_.at(h.index).buffer->buffer; }
 VkDeviceSize PassResources::bufferSize(BufferHandle h) const { return graph_.buffers_.at(h.index).buffer->size; }

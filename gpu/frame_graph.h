@@ -69,6 +69,8 @@ public:
     VkImage image(ImageHandle h) const;
     VkImageView view(ImageHandle h) const;
     VkImageView stencilView(ImageHandle h) const;
+    // One mip level of a storage image with mips (Image::levelViews).
+    VkImageView levelView(ImageHandle h, uint32_t level) const;
     const ImageDesc& desc(ImageHandle h) const;
     VkBuffer buffer(BufferHandle h) const;
     VkDeviceSize bufferSize(BufferHandle h) const;

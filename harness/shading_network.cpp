@@ -8,8 +8,9 @@
 namespace obscura::harness {
 namespace {
 
-constexpr std::array<std::string_view, 5> kTexturableInputs = {"inputs:diffuseColor", "inputs:emissiveColor",
-                                                               "inputs:roughness", "inputs:metallic", "inputs:opacity"};
+constexpr std::array<std::string_view, 6> kTexturableInputs = {"inputs:diffuseColor", "inputs:emissiveColor",
+                                                               "inputs:roughness",     "inputs:metallic",
+                                                               "inputs:opacity",       "inputs:normal"};
 constexpr std::array<std::string_view, 5> kTextureOutputs = {"r", "g", "b", "a", "rgb"};
 // Connections between inputs are followed this far (a cycle is an authoring error).
 constexpr int kMaxConnectionDepth = 16;
@@ -103,17 +104,20 @@ std::optional<usda::Value> flattenedTextureAttribute(const usda::Stage& stage, c
         return primvar ? std::optional(tokenValue(*primvar)) : std::nullopt;
     }
     if (field == "file") {
-        // Asset paths are anchored to the layer that authored them (USD's ArDefaultResolver).
         const usda::Attribute* from = nullptr;
         auto asset = evaluateInput(stage, texture, "inputs:file", time, &from);
         if (!asset || asset->strings.empty() || asset->strings[0].empty()) return std::nullopt;
-        std::filesystem::path path = asset->strings[0];
-        if (path.is_relative()) path = std::filesystem::path(from->where.file).parent_path() / path;
-        return tokenValue(std::filesystem::absolute(path).lexically_normal().string());
+        return tokenValue(resolveAssetPath(asset->strings[0], *from));
     }
     if (field == "wrapS" || field == "wrapT" || field == "scale" || field == "bias" || field == "sourceColorSpace")
         return evaluateInput(stage, texture, "inputs:" + field, time);
     return std::nullopt;
+}
+
+std::string resolveAssetPath(const std::string& asset, const usda::Attribute& attribute) {
+    std::filesystem::path path = asset;
+    if (path.is_relative()) path = std::filesystem::path(attribute.where.file).parent_path() / path;
+    return std::filesystem::absolute(path).lexically_normal().string();
 }
 
 std::string texturePrimvar(const usda::Stage& stage, const usda::Prim& surface) {

@@ -29,6 +29,10 @@ std::optional<TextureConnection> textureConnection(const usda::Stage& stage, con
 std::optional<usda::Value> flattenedTextureAttribute(const usda::Stage& stage, const usda::Prim& surface,
                                                      const std::string& attribute, double time);
 
+// An asset path as an absolute file path: relative paths are anchored to the folder of the layer
+// that authored `attribute` (USD's ArDefaultResolver).
+std::string resolveAssetPath(const std::string& asset, const usda::Attribute& attribute);
+
 // The primvar the shader's textures look up (inputs:varname of the UsdPrimvarReader_float2
 // connected to the first textured input's inputs:st), or "st".
 std::string texturePrimvar(const usda::Stage& stage, const usda::Prim& surface);

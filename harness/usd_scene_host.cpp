@@ -336,6 +336,10 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     auto value = a->evaluate(time);
     // A declared but valueless attribute is unauthored; an empty array is an authored value.
     if (!value || (value->empty() && !value->isArray)) return OBSCURA_ERROR_NOT_FOUND;
+    // Hosts resolve asset paths (a dome's inputs:texture:file).
+    if (value->typeName == "asset")
+        for (auto& asset : value->strings)
+            if (!asset.empty()) asset = resolveAssetPath(asset, *a);
     const usda::Attribute* indices = startsWith(a->name, "primvars:") ? prim->attribute(a->name + ":indices") : nullptr;
     if (auto indexValues = indices ? indices->evaluate(time) : std::nullopt) {
         if (std::string problem = flattenIndexed(*value, *indexValues); !problem.empty()) {

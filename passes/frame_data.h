@@ -57,7 +57,8 @@ enum MaterialTextureSlot : uint32_t {
     kTextureRoughness = 1,
     kTextureMetallic = 2,
     kTextureOpacity = 3,
-    kMaterialTextureSlots = 4
+    kTextureNormal = 4,  // tangent space, UsdPreviewSurface `normal`
+    kMaterialTextureSlots = 5
 };
 
 struct alignas(16) MaterialData {
@@ -68,7 +69,7 @@ struct alignas(16) MaterialData {
     std::array<float, 4> clearcoat{};  // x clearcoat, y clearcoatRoughness, z 1 for the specular workflow
     std::array<MaterialTexture, kMaterialTextureSlots> textures;
 };
-static_assert(sizeof(MaterialData) == 80 + 4 * 48);
+static_assert(sizeof(MaterialData) == 80 + 5 * 48);
 
 enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4 };
 
@@ -76,7 +77,7 @@ struct alignas(16) LightData {
     std::array<float, 4> positionType;
     std::array<float, 4> directionAngle;
     std::array<float, 4> radiance;
-    std::array<float, 4> factors;  // z treatAsPoint, w influence range
+    std::array<float, 4> factors;  // z treatAsPoint (sphere) or textured (dome), w influence range
     std::array<float, 4> axisX;
     std::array<float, 4> axisY;
     std::array<float, 4> shaping;
@@ -101,6 +102,12 @@ struct alignas(16) ShadowViewData {
 };
 static_assert(sizeof(ShadowViewData) == 96);
 
+struct alignas(16) EnvironmentData {
+    Mat4 worldToDome;
+    std::array<float, 4> params;  // x 1 when a textured dome lights the scene
+};
+static_assert(sizeof(EnvironmentData) == 80);
+
 // Header of the light buffer: the count, padded to the first LightData.
 struct alignas(16) LightBufferHeader {
     uint32_t count;
@@ -113,7 +120,10 @@ struct Vertex {
     float normal[3];
     float color[3];
     float uv[2];  // primvars:st as authored (origin at the bottom left); the shader flips v
+    // Direction of increasing u on the surface (xyz) and the bitangent's handedness (w = +-1):
+    // the frame tangent-space normal maps are read in.
+    float tangent[4];
 };
-static_assert(sizeof(Vertex) == 44);
+static_assert(sizeof(Vertex) == 60);
 
 }  // namespace obscura::passes

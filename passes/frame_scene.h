@@ -57,6 +57,7 @@ struct FrameScene {
     gpu::BufferPtr instances;  // InstanceData[] (storage)
     gpu::BufferPtr materials;  // MaterialData[] (storage)
     gpu::BufferPtr lights;     // LightBufferHeader + LightData[] (storage)
+    gpu::BufferPtr environment;  // EnvironmentData (uniform)
     std::vector<MaterialTextures> materialTextures;  // never empty: element 0 is all white
     std::vector<Draw> draws;
     ShadowAtlas shadows;

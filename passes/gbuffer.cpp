@@ -21,7 +21,8 @@ gpu::GraphicsPipelineDesc describeGBufferPipeline() {
     d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
                           {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
                           {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, color)},
-                          {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)}};
+                          {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+                          {4, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}};
     d.colorFormats = {kNormalRoughnessFormat, kAlbedoMetallicFormat, kInstanceFormat};
     d.depthFormat = kDepthFormat;
     return d;

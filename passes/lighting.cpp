@@ -20,7 +20,10 @@ gpu::ComputePipelineDesc describeLightingPipeline() {
              {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
              {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
              {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+             {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {14, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+             {15, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+             {16, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
             0};
 }
 
@@ -28,6 +31,7 @@ gpu::ComputePipelineDesc describeLightingPipeline() {
 
 gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                                  const GBuffer& gb, const SsaoResult& ambient, gpu::ImageHandle shadowAtlas,
+                                 const EnvironmentLighting& environment,
                                  LightAccumulation format) {
     gpu::ImageDesc desc;
     desc.format = format == LightAccumulation::HalfFloat ? VK_FORMAT_R16G16B16A16_SFLOAT
@@ -48,9 +52,12 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipeline
             pass.read(ambient.accessibility, gpu::Usage::SampledCompute);
             pass.read(ambient.halfDepth, gpu::Usage::SampledCompute);
             pass.read(shadowAtlas, gpu::Usage::SampledCompute);
+            pass.read(environment.prefiltered, gpu::Usage::SampledCompute);
+            pass.read(environment.irradiance, gpu::Usage::StorageBufferRead);
             pass.write(accumulation, gpu::Usage::StorageImageWrite);
         },
-        [&device, &pipeline, &scene, gb, ambient, shadowAtlas, accumulation](VkCommandBuffer cmd, const gpu::PassResources& res) {
+        [&device, &pipeline, &scene, gb, ambient, shadowAtlas, environment, accumulation](
+            VkCommandBuffer cmd, const gpu::PassResources& res) {
             VkSampler nearest = device.nearestClampSampler();
             gpu::DescriptorWriter(device, pipeline)
                 .buffer(0, scene.camera->buffer)
@@ -67,6 +74,9 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipeline
                 .buffer(11, scene.shadows.records->buffer)
                 .sampled(12, res.view(shadowAtlas), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
                 .sampled(13, res.stencilView(gb.depth), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
+                .buffer(14, scene.environment->buffer)
+                .buffer(15, res.buffer(environment.irradiance))
+                .sampled(16, res.view(environment.prefiltered), environment.sampler)
                 .bind(cmd);
             gpu::dispatch2D(cmd, scene.width, scene.height, kLightingTileSize);
         });

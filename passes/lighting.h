@@ -2,6 +2,7 @@
 // writes the light accumulation buffer.
 #pragma once
 
+#include "passes/environment_prefilter.h"
 #include "passes/gbuffer.h"
 #include "passes/ssao.h"
 
@@ -13,9 +14,12 @@ enum class LightAccumulation { SmallFloat, HalfFloat };
 
 // `ambient` is the SSAO result (ssao.h), applied to environment (dome) light only, as seed 004
 // asks of ambient occlusion. `shadowAtlas` is the shadow-map pass's atlas (shadow_maps.h),
-// filtered per pixel for each light with shadow views (FrameScene::shadows).
+// filtered per pixel for each light with shadow views (FrameScene::shadows). `environment` holds
+// the textured dome's prefiltered maps (environment_prefilter.h; placeholders when the scene has
+// none).
 gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                                  const GBuffer& gbuffer, const SsaoResult& ambient, gpu::ImageHandle shadowAtlas,
+                                 const EnvironmentLighting& environment,
                                  LightAccumulation accumulation = LightAccumulation::SmallFloat);
 
 }  // namespace obscura::passes

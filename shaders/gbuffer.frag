@@ -13,6 +13,7 @@ layout(location = 1) in vec3 inColor;
 layout(location = 2) in vec3 inWorldPosition;
 layout(location = 3) flat in uint inInstance;
 layout(location = 4) in vec2 inUv;
+layout(location = 5) in vec4 inTangent;
 
 layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
@@ -23,6 +24,7 @@ layout(set = 1, binding = 0) uniform sampler2D diffuseTexture;
 layout(set = 1, binding = 1) uniform sampler2D roughnessTexture;
 layout(set = 1, binding = 2) uniform sampler2D metallicTexture;
 layout(set = 1, binding = 3) uniform sampler2D opacityTexture;
+layout(set = 1, binding = 4) uniform sampler2D normalTexture;
 
 layout(location = 0) out vec4 outNormalRoughness;
 layout(location = 1) out vec4 outAlbedoMetallic;
@@ -34,6 +36,7 @@ void main() {
     vec3 n = normalize(inNormal);
     // Double-sided surfaces face the viewer; single-sided ones keep their orientation.
     if ((inst.flags & INSTANCE_DOUBLE_SIDED) != 0u && !gl_FrontFacing) n = -n;
+    n = perturbedNormal(n, inTangent, mat.textures[TEXTURE_NORMAL], normalTexture, inUv);
     vec3 albedo = (inst.flags & INSTANCE_VERTEX_COLOR) != 0u
                       ? inColor
                       : colorInput(mat.diffuseRoughness.rgb, mat.textures[TEXTURE_DIFFUSE], diffuseTexture, inUv);

@@ -11,6 +11,7 @@
 #include "common/light_evaluation.glsl"
 #include "common/best_fit_normals.glsl"
 #include "common/ssao_upsample.glsl"
+#include "common/environment_map.glsl"
 
 const uint TILE_SIZE = 16u;
 const uint MAX_TILE_LIGHTS = 1024u;  // lights beyond this many in one tile are dropped
@@ -32,6 +33,10 @@ layout(set = 0, binding = 11, std430) readonly buffer ShadowViews { ShadowViewDa
 layout(set = 0, binding = 12) uniform sampler2D shadowAtlas;
 // The G-buffer's stencil: bits 0x01..0x40 mark surfaces inside the clip volumes (clip_volumes.cpp).
 layout(set = 0, binding = 13) uniform usampler2D clipStencil;
+// The textured dome (a 1x1 black image and zero coefficients without one).
+layout(set = 0, binding = 14, std140) uniform Environment { EnvironmentData environment; };
+layout(set = 0, binding = 15, std430) readonly buffer EnvironmentIrradiance { vec4 irradianceSh[SH_COEFFICIENTS]; };
+layout(set = 0, binding = 16) uniform sampler2D prefilteredEnvironment;
 
 #include "common/shadow_sampling.glsl"
 
@@ -45,6 +50,24 @@ shared vec3 tileBoxMax;
 vec3 unproject(mat4 inverseMatrix, vec2 ndc, float depth) {
     vec4 p = inverseMatrix * vec4(ndc, depth, 1.0);
     return p.xyz / p.w;
+}
+
+// The textured dome seen from s: SH irradiance around N, the prefiltered chain along the mirror
+// direction at the lobes' roughness (the split sum's N = V = R lookup), in the dome's frame.
+EnvironmentSample sampleEnvironment(SurfacePoint s) {
+    if (environment.params.x < 0.5) return EnvironmentSample(vec3(1.0), vec3(1.0), vec3(1.0));
+    mat3 toDome = mat3(environment.worldToDome);
+    vec3 N = normalize(toDome * s.N);
+    vec3 R = normalize(toDome * reflect(-s.V, s.N));
+    vec2 uv = latlongUv(R);
+    float lastLevel = float(textureQueryLevels(prefilteredEnvironment) - 1);
+    EnvironmentSample e;
+    e.diffuse = shIrradiance(irradianceSh, N) / PI;
+    e.specular = textureLod(prefilteredEnvironment, uv, prefilteredLod(s.roughness, lastLevel)).rgb;
+    e.coat = s.clearcoat > 0.0
+        ? textureLod(prefilteredEnvironment, uv, prefilteredLod(s.clearcoatRoughness, lastLevel)).rgb
+        : vec3(0.0);
+    return e;
 }
 
 bool isLocal(LightData light) {
@@ -121,6 +144,7 @@ void main() {
     s.roughness = nr.a;
     float viewDistance = linearDepthFromDevice(camera.projection, depth);
     s.ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel, viewDistance);
+    s.environment = sampleEnvironment(s);
 
     vec3 radiance = mat.emissiveMetallic.rgb;
     uint insideClipVolumes = texelFetch(clipStencil, pixel, 0).r;

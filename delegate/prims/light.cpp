@@ -6,7 +6,35 @@
 
 namespace obscura::delegate {
 
-void Light::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
+namespace {
+
+// UsdLuxDomeLight inputs:texture:format: "automatic" reads the file as latlong, warning when its
+// shape is not 2:1 (the other layouts are square or 3:4).
+TexturePtr readDomeTexture(SceneAccess& s, TextureCache& textures, std::string& warning) {
+    const std::string file = s.getToken("inputs:texture:file");
+    if (file.empty()) return nullptr;
+    const std::string format = s.getToken("inputs:texture:format");
+    if (format != "automatic" && format != "latlong") {
+        warning = "inputs:texture:format '" + format + "' is not supported (only latlong); the dome uses its constant colour";
+        return nullptr;
+    }
+    // Float files are linear; 8-bit ones are decoded as their channel count suggests.
+    auto loaded = textures.get(file, SourceColorSpace::Auto);
+    if (auto* problem = std::get_if<std::string>(&loaded)) {
+        warning = "cannot read inputs:texture:file " + file + " (" + *problem + "); the dome uses its constant colour";
+        return nullptr;
+    }
+    TexturePtr texture = std::get<TexturePtr>(loaded);
+    const gpu::ImageDesc& desc = texture->image->desc;
+    if (format == "automatic" && desc.width != 2 * desc.height)
+        warning = file + " is " + std::to_string(desc.width) + "x" + std::to_string(desc.height) +
+                  ", not the 2:1 of a latlong map; it is read as one";
+    return texture;
+}
+
+}  // namespace
+
+void Light::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     if (bits & OBSCURA_DIRTY_TRANSFORM) transform_ = s.sampleTransform(s.time(), s.time()).front().matrix;
     if (bits & OBSCURA_DIRTY_VISIBILITY) visible_ = s.getToken("visibility") != "invisible";
     if (!(bits & (OBSCURA_DIRTY_PARAMS | OBSCURA_DIRTY_TRANSFORM))) return;
@@ -26,10 +54,9 @@ void Light::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
     double scale = 1.0;
     warning_.clear();
     if (type_ == passes::LightType::Dome) {
-        // XXX: environment textures (prefiltered specular, convolved diffuse) arrive with the
-        // lighting issue; until then the dome lights with its constant colour.
-        if (!s.getToken("inputs:texture:file").empty())
-            warning_ = "inputs:texture:file is not supported yet; the dome uses its constant colour";
+        // The texture's texels are radiance, scaled like the constant colour (UsdLux); the frame
+        // marks the dome that lights through it (factors.z) and orients it by the transform.
+        environment_ = readDomeTexture(s, ctx.textures, warning_);
         d.positionType = {0, 0, 0, float(passes::LightType::Dome)};
     } else if (type_ == passes::LightType::Distant) {
         double angle = s.getDouble("inputs:angle") * pi / 180.0;

@@ -4,10 +4,12 @@
 // solid angle of its disc (2 pi (1 - cos(angle / 2))), or the intensity itself when
 // inputs:normalize is on; normalized sphere, rectangle and disk lights divide their radiance by
 // their surface area; rectangles and disks emit from their front (-Z) face only; a dome is
-// constant radiance all around. ShapingAPI's cone, softness and focus shape the local lights.
+// constant radiance all around, or its latlong texture's texels times that scale (the texture
+// oriented by the transform). ShapingAPI's cone, softness and focus shape the local lights.
 #pragma once
 
 #include "delegate/prims/prim.h"
+#include "delegate/texture_cache.h"
 #include "passes/frame_data.h"
 
 namespace obscura::delegate {
@@ -22,12 +24,17 @@ public:
     const std::optional<std::string>& clipVolume() const { return clipVolume_; }
     const passes::LightData& data() const { return data_; }
     const std::string& warning() const { return warning_; }
+    // A dome's latlong radiance texture; null for a constant dome (no file, a file that cannot be
+    // read, or a layout other than latlong).
+    const TexturePtr& environment() const { return environment_; }
+    const Matrix4d& transform() const { return transform_; }
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
     passes::LightType type_;
     Matrix4d transform_ = kIdentity;
     passes::LightData data_{};
+    TexturePtr environment_;
     bool visible_ = true;
     bool castsShadows_ = true;
     std::optional<std::string> clipVolume_;

@@ -40,7 +40,8 @@ const uint TEXTURE_DIFFUSE = 0u;
 const uint TEXTURE_ROUGHNESS = 1u;
 const uint TEXTURE_METALLIC = 2u;
 const uint TEXTURE_OPACITY = 3u;
-const uint MATERIAL_TEXTURE_SLOTS = 4u;
+const uint TEXTURE_NORMAL = 4u;
+const uint MATERIAL_TEXTURE_SLOTS = 5u;
 
 struct MaterialData {
     vec4 diffuseRoughness;  // rgb diffuseColor, a roughness
@@ -61,7 +62,8 @@ struct LightData {
     vec4 positionType;      // xyz world position (sphere, rect and disk centre), w type
     vec4 directionAngle;    // xyz emission axis: the light's local -Z in world space; w half-angle in radians (distant)
     vec4 radiance;          // rgb emitted radiance incl. intensity, exposure, colour, normalize; a radius (sphere)
-    vec4 factors;           // x diffuse, y specular multipliers; z 1 for treatAsPoint; w influence range (local lights)
+    vec4 factors;           // x diffuse, y specular multipliers; z sphere: 1 for treatAsPoint, dome: 1 when it lights
+                            // through the environment maps (the textured dome); w influence range (local lights)
     vec4 axisX;             // xyz rect: half the width along local X; disk: the radius along local X (world space)
     vec4 axisY;             // xyz rect: half the height along local Y; disk: the radius along local Y
     vec4 shaping;           // ShapingAPI: x cone angle, y angle where the soft fade starts (radians), z focus; w unused
@@ -79,6 +81,13 @@ struct ShadowViewData {
     vec4 tileRect;          // first and last texel of the view's tile: x0, y0, x1, y1
     vec4 params;            // x world size of a texel (perspective: at distance 1), y cascade's far end
 };
+
+// The textured dome's frame (its prefiltered maps and irradiance coefficients are in it).
+struct EnvironmentData {
+    mat4 worldToDome;       // world directions into the dome's frame: the inverse of its transform
+    vec4 params;            // x 1 when a textured dome lights the scene; yzw unused
+};
+
 const uint INSTANCE_DOUBLE_SIDED = 1u;
 const uint INSTANCE_VERTEX_COLOR = 2u;
 

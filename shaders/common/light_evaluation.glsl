@@ -7,6 +7,15 @@
 #include "frame_data.glsl"
 #include "brdf.glsl"
 
+// The textured dome's radiance as this point sees it, before the light's intensity, exposure and
+// colour: irradiance / pi around N (what a white Lambert surface reflects) and the prefiltered
+// radiance along the mirror direction at the base and coat roughness. A constant dome is 1 in all.
+struct EnvironmentSample {
+    vec3 diffuse;
+    vec3 specular;
+    vec3 coat;
+};
+
 struct SurfacePoint {
     vec3 P;           // world position
     vec3 N;           // unit normal
@@ -17,6 +26,7 @@ struct SurfacePoint {
     float clearcoat;  // UsdPreviewSurface's second specular lobe: weight and roughness
     float clearcoatRoughness;
     float ambientAccess;  // SSAO: applied to the dome only (seed 004, "SSAO": ambient light only)
+    EnvironmentSample environment;  // what the textured dome sends this point, if there is one
 };
 
 // UsdPreviewSurface (https://openusd.org/release/spec_usdpreviewsurface.html): the metallic
@@ -217,14 +227,20 @@ vec3 reflectFromLight(SurfacePoint s, LightData light) {
         return reflectFromDirection(s, L, irradiance, sinHalfAngle, light.factors.xy);
     }
     if (type == LIGHT_RECT || type == LIGHT_DISK) return reflectFromAreaLight(s, light);
-    // LIGHT_DOME, a constant environment: Lambert integrates to albedo * L; GGX through the
-    // split-sum pre-integration (environmentBrdf), for the base and the coat.
+    // LIGHT_DOME: Lambert integrates to albedo x irradiance / pi (albedo x L for a constant
+    // dome); GGX is the split sum (Karis 2013): the prefiltered radiance (L for a constant dome)
+    // times the pre-integrated response (environmentBrdf), for the base and the coat.
+    bool textured = light.factors.z > 0.5;
+    vec3 diffuseRadiance = textured ? s.environment.diffuse : vec3(1.0);
+    vec3 specularRadiance = textured ? s.environment.specular : vec3(1.0);
+    vec3 coatRadiance = textured ? s.environment.coat : vec3(1.0);
     float NdotV = max(dot(s.N, s.V), 1e-4);
     vec2 base = environmentBrdf(s.roughness, NdotV);
     vec2 coat = environmentBrdf(s.clearcoatRoughness, NdotV);
     float transmission = clearcoatTransmission(s);
-    vec3 specular = (s.f0 * base.x + base.y) * transmission + s.clearcoat * (CLEARCOAT_F0 * coat.x + coat.y);
-    vec3 diffuse = s.diffuse * transmission;
+    vec3 specular = (s.f0 * base.x + base.y) * transmission * specularRadiance +
+                    s.clearcoat * (CLEARCOAT_F0 * coat.x + coat.y) * coatRadiance;
+    vec3 diffuse = s.diffuse * transmission * diffuseRadiance;
     return s.ambientAccess * (diffuse * light.factors.x + specular * light.factors.y) * light.radiance.rgb;
 }
 

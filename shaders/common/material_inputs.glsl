@@ -18,6 +18,19 @@ float scalarInput(float constant, MaterialTexture t, sampler2D tex, vec2 uv) {
     return clamp(sampleTexture(t, tex, uv)[t.channel == TEXTURE_CHANNEL_RGB ? 0u : t.channel], 0.0, 1.0);
 }
 
+// UsdPreviewSurface `normal`: a tangent-space normal (the texture's scale and bias map texels to
+// [-1, 1], e.g. scale 2, bias -1), in the frame of the interpolated tangent (direction of
+// increasing u), the bitangent cross(N, T) * handedness and the normal.
+vec3 perturbedNormal(vec3 n, vec4 tangent, MaterialTexture t, sampler2D tex, vec2 uv) {
+    if (t.sampled == 0u) return n;
+    vec3 local = sampleTexture(t, tex, uv).xyz;
+    vec3 T = tangent.xyz - n * dot(n, tangent.xyz);  // re-orthogonalised after interpolation
+    if (dot(T, T) < 1e-12 || dot(local, local) < 1e-12) return n;
+    T = normalize(T);
+    vec3 B = cross(n, T) * (tangent.w < 0.0 ? -1.0 : 1.0);
+    return normalize(T * local.x + B * local.y + n * local.z);
+}
+
 // UsdPreviewSurface opacityThreshold: above 0, opacity is a cut-out mask and the surface is absent
 // where opacity falls below the threshold. Callers discard last, so that every implicit-LOD
 // sample runs in uniform control flow.

@@ -126,16 +126,6 @@ TEST(LightingAnalytic, ConstantDomeGivesAlbedoTimesRadiance) {
     for (auto [x, y] : {std::pair{32, 32}, {3, 60}}) expectRadiance(color, x, y, {l, l * 0.5, l * 0.25});
 }
 
-// Karis 2014's analytic fit of the split-sum DFG term: the response to a constant environment is
-// L (F0 A + B), the fit the lighting pass uses for domes (brdf.glsl).
-std::array<double, 2> environmentBrdf(double roughness, double NdotV) {
-    const double c0[4] = {-1.0, -0.0275, -0.572, 0.022}, c1[4] = {1.0, 0.0425, 1.04, -0.04};
-    double r[4];
-    for (int i = 0; i < 4; ++i) r[i] = roughness * c0[i] + c1[i];
-    double a004 = std::min(r[0] * r[0], std::exp2(-9.28 * NdotV)) * r[0] + r[1];
-    return {-1.04 * a004 + r[2], 1.04 * a004 + r[3]};
-}
-
 // A black-diffuse plane under a white dome of radiance 1: what reaches the eye is specular only.
 struct SpecularUnderDome {
     LitPlaneScene s;

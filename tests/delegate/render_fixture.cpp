@@ -1,5 +1,7 @@
 #include "tests/delegate/render_fixture.h"
 
+#include <algorithm>
+
 namespace obscura::test {
 
 Matrix lightPointingAlong(std::array<double, 3> d) {
@@ -54,6 +56,14 @@ float smallFloatStep(float v, int mantissaBits) {
 float srgb8Exact(int code) {
     double c = code / 255.0;
     return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+}
+
+std::array<double, 2> environmentBrdf(double roughness, double NdotV) {
+    const double c0[4] = {-1.0, -0.0275, -0.572, 0.022}, c1[4] = {1.0, 0.0425, 1.04, -0.04};
+    double r[4];
+    for (int i = 0; i < 4; ++i) r[i] = roughness * c0[i] + c1[i];
+    double a004 = std::min(r[0] * r[0], std::exp2(-9.28 * NdotV)) * r[0] + r[1];
+    return {-1.04 * a004 + r[2], 1.04 * a004 + r[3]};
 }
 
 std::array<double, 3> planePointAtPixel(int x, int y, double distance, double tanHalfFov) {

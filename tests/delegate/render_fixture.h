@@ -35,6 +35,10 @@ float smallFloatStep(float v, int mantissaBits);
 // A linear value that 8-bit sRGB storage (the albedo G-buffer target) holds exactly.
 float srgb8Exact(int code);
 
+// Karis 2014's analytic fit of the split-sum DFG term: the response to a constant environment is
+// L (F0 A + B), the fit the lighting pass uses for domes (brdf.glsl). Returns {A, B}.
+std::array<double, 2> environmentBrdf(double roughness, double NdotV);
+
 // World-space point on the z = 0 plane seen through the centre of pixel (x, y) by a camera at
 // (0, 0, distance) looking down -Z with the given tan of the half field of view.
 std::array<double, 3> planePointAtPixel(int x, int y, double distance, double tanHalfFov);

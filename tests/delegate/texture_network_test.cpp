@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <variant>
 
 namespace obscura::test {
@@ -115,6 +116,19 @@ def Material "M"
     EXPECT_EQ(sd.getValue(sd.userData, "/M", "inputs:specularColor", 0.0, &value), OBSCURA_OK);
     EXPECT_TRUE(scene.warned("inputs:specularColor is connected"));
     EXPECT_EQ(sd.getValue(sd.userData, "/M", "obscura:specularColor:file", 0.0, &value), OBSCURA_ERROR_NOT_FOUND);
+}
+
+TEST(TexturedUsda, DomeTextureFileIsResolvedAgainstItsLayer) {
+    // Hosts resolve asset paths: the delegate gets the file's absolute path.
+    HostedStage scene(usda::Stage::open(OBSCURA_TEST_DATA_DIR "/dome.usda"));
+    const ObscuraSceneDelegate& sd = scene.host->sceneDelegate();
+    ObscuraValue value{};
+    ASSERT_EQ(sd.getValue(sd.userData, "/Sky", "inputs:texture:file", 0.0, &value), OBSCURA_OK);
+    ASSERT_EQ(value.type, OBSCURA_VALUE_TOKEN);
+    std::string file = static_cast<const char* const*>(value.data)[0];
+    EXPECT_EQ(std::filesystem::path(file),
+              std::filesystem::absolute(OBSCURA_TEST_DATA_DIR "/textures/checker.png").lexically_normal());
+    EXPECT_TRUE(std::filesystem::exists(file)) << file;
 }
 
 }  // namespace

@@ -343,6 +343,48 @@ TEST_F(TextureTest, OpenExrTexturesAreLinearHalfFloats) {
     ASSERT_EQ(loadsOf(file), 1u);
 }
 
+TEST_F(TextureTest, NormalMapsTiltTheShadingNormalInTheTangentFrame) {
+    // A constant tangent-space normal tilted 30 degrees towards +u (then towards +v), stored as
+    // it is in a float EXR (scale 1, bias 0). u runs along +X and v along +Y on the plane, so the
+    // shading normal tilts towards +X (+Y): a distant light along that normal gives the full
+    // E albedo / pi, one mirrored about the plane's normal cos 60 of it (unmapped: cos 30 both).
+    const float kAlbedo = srgb8Exact(188);
+    const double tilt = 30.0 * kPi / 180.0;
+    for (int axis = 0; axis < 2; ++axis) {
+        std::array<float, 4> normal{0, 0, float(std::cos(tilt)), 1};
+        normal[size_t(axis)] = float(std::sin(tilt));
+        std::vector<float> texels;
+        for (int i = 0; i < 16; ++i) texels.insert(texels.end(), normal.begin(), normal.end());
+        std::string file = (dir_ / ("normal" + std::to_string(axis) + ".exr")).string();
+        image::ExrLayer layer{"", {"R", "G", "B", "A"}, image::ExrLayer::PixelType::Float, texels.data(),
+                              4 * 4 * sizeof(float)};
+        ASSERT_FALSE(image::isError(image::writeExr(file, 4, 4, {layer})));
+        std::string material = "/Looks/Bumped" + std::to_string(axis), plane = "/Plane" + std::to_string(axis);
+        auto values = textured("normal", file, {{"sourceColorSpace", HostValue::token("raw")},
+                                                {"channel", HostValue::token("rgb")}});
+        values["inputs:diffuseColor"] = HostValue::float3(kAlbedo, kAlbedo, kAlbedo);
+        host.addPrim("material", material, values);
+        addPlane(plane, material);
+        for (double side : {1.0, -1.0}) {
+            std::array<double, 3> towards{0, 0, -std::cos(tilt)};
+            towards[size_t(axis)] = -side * std::sin(tilt);
+            host.addPrim("distantLight", "/Sun",
+                         {{"inputs:intensity", HostValue::floatValue(1.0f)},
+                          {"inputs:normalize", HostValue::boolean(true)},
+                          {"inputs:specular", HostValue::floatValue(0.0f)}},
+                         lightPointingAlong(towards));
+            render();
+            double expected = kAlbedo / kPi * (side > 0 ? 1.0 : std::cos(2 * tilt));
+            const float* p = colorAt(32, 32);
+            // 1% plus a step of the light buffer, plus the 8-bit normal's 0.3 degrees at 60 degrees.
+            double tolerance = 0.01 * expected + smallFloatStep(float(expected), 6) + 0.01 * expected;
+            EXPECT_NEAR(p[0], expected, tolerance) << (axis ? "v" : "u") << " tilt, light " << (side > 0 ? "along" : "mirrored");
+            ASSERT_EQ(host.api().removePrim(host.delegate(), "/Sun"), OBSCURA_OK);
+        }
+        ASSERT_EQ(host.api().removePrim(host.delegate(), plane.c_str()), OBSCURA_OK);
+    }
+}
+
 TEST_F(TextureTest, MinifiedTextureAveragesInLinearSpace) {
     // A one-texel black and white checker, 256 texels over 64 pixels: each pixel's footprint
     // covers 4x4 texels, whose average in linear space is 0.5 (sRGB code 188); averaging the
