@@ -68,15 +68,29 @@ const Light* environmentDome(const std::map<std::string, std::unique_ptr<Prim>>&
     return chosen;
 }
 
+FrameView frameView(const FrameSceneInputs& in) {
+    const Camera& cam = in.camera;
+    double aspect = double(in.width) / double(in.height);
+    if (!in.sample) return {cam.viewMatrix(), cam.projectionMatrix(aspect)};
+    std::array<double, 2> ndcJitter{2.0 * in.sample->pixelJitter[0] / in.width, 2.0 * in.sample->pixelJitter[1] / in.height};
+    return {cam.viewMatrix(in.sample->lensOffset, in.sample->time),
+            cam.projectionMatrix(aspect, in.sample->lensOffset, ndcJitter)};
+}
+
 passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& in, FrameSceneShortfalls& shortfalls) {
     passes::FrameScene scene;
     scene.width = in.width;
     scene.height = in.height;
 
     const Camera& cam = in.camera;
-    Matrix4d view = cam.viewMatrix();
-    Matrix4d unjitteredProjection = cam.projectionMatrix(double(in.width) / double(in.height));
+    // The frame's view (the camera's, or a reference sub-frame's), then temporal AA's jitter for
+    // everything that rasterises or reads the G-buffer; shadow cascades keep the unjittered
+    // frustum, so their texel grids do not move with the jitter.
+    auto [view, unjitteredProjection] = frameView(in);
     Matrix4d projection = multiply(unjitteredProjection, in.clipJitter);
+    Matrix4d cameraToWorld = kIdentity;
+    invert(view, cameraToWorld);
+    auto transformOf = [&](const Mesh& mesh) { return in.sample ? mesh.transformAt(in.sample->time) : mesh.transform(); };
     Matrix4d viewProjection = multiply(view, projection);
     Matrix4d inverseViewProjection = kIdentity;
     invert(viewProjection, inverseViewProjection);
@@ -88,7 +102,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     Matrix4d inverseProjection = kIdentity;
     invert(projection, inverseProjection);
     cd.inverseProjection = toFloats<passes::Mat4>(inverseProjection);
-    Vec3d eye = transformPoint({0, 0, 0}, cam.params().cameraToWorld);
+    Vec3d eye = transformPoint({0, 0, 0}, cameraToWorld);
     cd.position = {float(eye[0]), float(eye[1]), float(eye[2]), 1.0f};
     cd.resolution = {float(in.width), float(in.height)};
     cd.exposureScale = float(cam.linearExposureScale() * std::exp2(in.exposureStops));
@@ -201,8 +215,8 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
                                texturesOf(first), hasCutout(first)});
         Aabb bounds;
         for (const Mesh* mesh : batch) {
-            record(*mesh, mesh->transform());
-            bounds.merge(transformAabb(mesh->localBounds(), mesh->transform()));
+            record(*mesh, transformOf(*mesh));
+            bounds.merge(transformAabb(mesh->localBounds(), transformOf(*mesh)));
         }
         drawBounds.push_back(bounds);
     }
@@ -220,7 +234,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
                                    texturesOf(*mesh), hasCutout(*mesh)});
             Aabb bounds;
             for (const Matrix4d& placement : placements) {
-                Matrix4d model = multiply(mesh->transform(), placement);
+                Matrix4d model = multiply(transformOf(*mesh), placement);
                 record(*mesh, model);
                 bounds.merge(transformAabb(mesh->localBounds(), model));
             }

@@ -9,12 +9,22 @@
 #include "delegate/texture_cache.h"
 #include "passes/frame_scene.h"
 
+#include <array>
 #include <map>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace obscura::delegate {
+
+// Where on the lens, when in the shutter and where within the pixel a reference sub-frame looks
+// from (Camera::viewMatrix / projectionMatrix with a lens offset).
+struct FrameSample {
+    double time;                        // absolute time code, within the camera's shutter
+    std::array<double, 2> lensOffset;   // camera space, scene units
+    std::array<double, 2> pixelJitter;  // pixels
+};
 
 struct FrameSceneInputs {
     const std::map<std::string, std::unique_ptr<Prim>>& prims;
@@ -26,9 +36,11 @@ struct FrameSceneInputs {
     const ShadowSettings& shadows;
     // The dome that lights through its texture (environmentDome()), or null.
     const Light* environmentDome;
-    // Temporal AA's sub-pixel shift, applied after the camera's projection for everything that
-    // rasterises or reads the G-buffer (CameraData); shadow cascades keep the unjittered frustum,
-    // so their texel grids do not move with the jitter.
+    std::optional<FrameSample> sample = std::nullopt;  // none: the pinhole camera at the frame's time
+    // Temporal AA's sub-pixel shift, applied after the projection frameView() gives for everything
+    // that rasterises or reads the G-buffer (CameraData); frameView() and the shadow cascades
+    // keep the unjittered frustum, so SSAO's history check and the cascades' texel grids do not
+    // move with the jitter. Identity for reference sub-frames, which jitter through `sample`.
     Matrix4d clipJitter = kIdentity;
 };
 
@@ -42,6 +54,14 @@ struct FrameSceneShortfalls {
     uint32_t lightsWithoutShadowRoom = 0;  // shadow-casting lights the atlas had no room for
     std::vector<std::string> unclippedLights;  // lights whose clip volume could not be used, and why
 };
+
+// World-to-view and view-to-clip (row-vector convention) the frame sees through: the camera's, or
+// the reference sub-frame's.
+struct FrameView {
+    Matrix4d view;
+    Matrix4d projection;
+};
+FrameView frameView(const FrameSceneInputs& inputs);
 
 passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& inputs, FrameSceneShortfalls& shortfalls);
 

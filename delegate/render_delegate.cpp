@@ -3,9 +3,12 @@
 #include "passes/clip_volumes.h"
 
 #include "delegate/frame_scene_builder.h"
+#include "delegate/reference_frames.h"
 #include "gpu/vk_check.h"
+#include "passes/accumulate.h"
 #include "passes/aov_readback.h"
 #include "passes/best_fit_normals.h"
+#include "passes/depth_of_field.h"
 #include "passes/gbuffer.h"
 #include "passes/lighting.h"
 #include "passes/shadow_maps.h"
@@ -102,6 +105,7 @@ RenderDelegate::~RenderDelegate() {
     geometry_.reset();
     bestFitNormals_.reset();
     unoccluded_ = {};
+    accumulation_ = {};
     ssaoHistory_ = {};
     temporalAaHistory_ = {};
     grading_ = passes::ColorGradingLut();
@@ -219,6 +223,8 @@ void RenderDelegate::sync(double time, const Camera* camera) {
             for (const auto& w : material->warnings()) log(OBSCURA_LOG_WARNING, material->path() + ": " + w);
         if (auto* light = dynamic_cast<Light*>(prim); light && !light->warning().empty())
             log(OBSCURA_LOG_WARNING, light->path() + ": " + light->warning());
+        if (auto* cam = dynamic_cast<Camera*>(prim); cam && !cam->warning().empty())
+            log(OBSCURA_LOG_WARNING, cam->path() + ": " + cam->warning());
     }
     // All uploads of this sync go to the GPU in one submission.
     device_->flushUploads();
@@ -274,20 +280,6 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (std::string problem = grading_.update(*device_, colour); !problem.empty())
         throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "colour management: " + problem};
 
-    // Temporal AA picks this frame's jitter before the scene's camera constants are packed.
-    Matrix4d view = camera->viewMatrix(), projection = camera->projectionMatrix(double(width) / double(height));
-    std::optional<TemporalAaStep> temporalAa;
-    passes::TemporalAaSettings temporalAaSettings{
-        settings_.token("taa:mode") == "2tx" ? passes::TemporalAaMode::Smaa2tx : passes::TemporalAaMode::Smaa1tx,
-        float(settings_.number("taa:kLowFreq")), float(settings_.number("taa:kHighFreq"))};
-    if (settings_.number("taa") != 0.0) {
-        temporalAa = temporalAccumulation_.next({desc.cameraPath, width, height, settings_.version()},
-                                                sceneVersion_, temporalAaSettings.mode,
-                                                uint32_t(settings_.number("taa:frames")), view, projection);
-    } else {
-        temporalAccumulation_.reset();
-    }
-
     std::vector<std::string> ignoredDomes;
     const Light* dome = environmentDome(prims_, ignoredDomes);
     if (ignoredDomes != ignoredDomes_)
@@ -297,12 +289,31 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     ignoredDomes_ = std::move(ignoredDomes);
     ShadowSettings shadows{settings_.number("shadows") != 0.0, uint32_t(settings_.number("shadows:resolution")),
                            uint32_t(settings_.number("shadows:cascades"))};
+    FrameSceneInputs frame{prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows, dome};
+    // The `dof` setting turns the lens off for the post-process and the reference alike.
+    passes::ThinLens lens = settings_.number("dof") != 0.0 ? camera->thinLens(double(width) / double(height))
+                                                           : passes::ThinLens{};
+    uint32_t referenceSubFrames = static_cast<uint32_t>(settings_.number("reference"));
+    if (referenceSubFrames > 0) accumulateReference(frame, lens, referenceSubFrames, desc.time);
+
+    // Temporal AA picks this frame's jitter before the scene's camera constants are packed. The
+    // reference is its own ground truth, jittered per sub-frame: no temporal AA there.
+    std::optional<TemporalAaStep> temporalAa;
+    passes::TemporalAaSettings temporalAaSettings{
+        settings_.token("taa:mode") == "2tx" ? passes::TemporalAaMode::Smaa2tx : passes::TemporalAaMode::Smaa1tx,
+        float(settings_.number("taa:kLowFreq")), float(settings_.number("taa:kHighFreq"))};
+    if (settings_.number("taa") != 0.0 && referenceSubFrames == 0) {
+        FrameView seen = frameView(frame);
+        temporalAa = temporalAccumulation_.next({desc.cameraPath, width, height, settings_.version()}, sceneVersion_,
+                                                temporalAaSettings.mode, uint32_t(settings_.number("taa:frames")),
+                                                seen.view, seen.projection);
+        frame.clipJitter = temporalAa->clipJitter;
+    } else {
+        temporalAccumulation_.reset();
+    }
+
     FrameSceneShortfalls shortfalls;
-    passes::FrameScene scene =
-        buildFrameScene(*device_,
-                        {prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows, dome,
-                         temporalAa ? temporalAa->clipJitter : kIdentity},
-                        shortfalls);
+    passes::FrameScene scene = buildFrameScene(*device_, frame, shortfalls);
     if (shortfalls.lightsWithoutShadowRoom != lightsWithoutShadowRoom_ && shortfalls.lightsWithoutShadowRoom > 0)
         log(OBSCURA_LOG_WARNING, std::to_string(shortfalls.lightsWithoutShadowRoom) +
                                      " light(s) cast no shadow: the shadow atlas is full (lower shadows:resolution)");
@@ -314,58 +325,44 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
 
     // The frame (DESIGN.md "The frame"): shadow maps, G-buffer, clip volumes into stencil, SSAO,
-    // lighting, temporal AA, tone mapping, AOV readback.
+    // lighting, temporal AA, depth of field, tone mapping, AOV readback. In reference mode the
+    // accumulated sub-frames replace all between the G-buffer and tone mapping; the other AOVs come
+    // from the pinhole camera.
     gpu::FrameGraph graph;
-    gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
+    gpu::ImageHandle shadowAtlas;
+    if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
-    passes::addClipVolumePass(graph, *pipelines_, scene, gbuffer);
-    passes::SsaoResult ambient;
-    const bool ssaoOn = settings_.number("ssao") != 0.0;
-    if (ssaoOn) {
-        // The radius is authored in metres; the passes work in scene units (USD metersPerUnit).
-        passes::SsaoSettings ssao{float(settings_.number("ssao:radius") / settings_.number("metersPerUnit")),
-                                  float(settings_.number("ssao:intensity"))};
-        // The history reprojects through the camera's motion; anything else that changes what a
-        // texel means (size, projection, settings) restarts it.
-        auto& last = ssaoHistoryFrame_;
-        ssaoHistory_.valid = last.valid && last.width == width && last.height == height &&
-                             last.projection == projection && last.settingsVersion == settings_.version();
-        Matrix4d inverseView = kIdentity;
-        invert(view, inverseView);
-        ssaoHistory_.viewToPreviousView = toFloats<passes::Mat4>(multiply(inverseView, last.view));
-        ambient = passes::addSsaoPasses(graph, *pipelines_, scene, gbuffer, ssao, ssaoHistory_);
+    gpu::ImageHandle hdr;
+    if (referenceSubFrames > 0) {
+        gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
+        hdr = passes::addAccumulationResolvePass(graph, *pipelines_, sum,
+                                                 lightAccumulation() == passes::LightAccumulation::HalfFloat
+                                                     ? VK_FORMAT_R16G16B16A16_SFLOAT
+                                                     : VK_FORMAT_B10G11R11_UFLOAT_PACK32);
     } else {
-        ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
-                   graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
+        hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frame);
+        if (temporalAa) {
+            hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, temporalAaSettings,
+                                            temporalAa->pass, temporalAaHistory_);
+            temporalAaInFrame_ = true;
+        }
+        if (passes::hasDepthOfField(lens)) {
+            const CameraParams& p = camera->params();
+            passes::DepthOfFieldSettings dof{
+                passes::cocFromDepth(lens, p.clippingRange[0], p.clippingRange[1], double(width)),
+                camera->apertureShape(), static_cast<int>(settings_.number("dof:taps"))};
+            hdr = passes::addDepthOfFieldPasses(graph, *pipelines_, scene, gbuffer, hdr, dof);
+        }
     }
-    passes::EnvironmentLighting environment =
-        environment_->addToFrame(graph, *pipelines_, dome ? dome->environment() : nullptr);
-    gpu::ImageHandle hdr =
-        passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas, environment,
-                                settings_.number("lighting:halfFloat") != 0.0 ? passes::LightAccumulation::HalfFloat
-                                                                              : passes::LightAccumulation::SmallFloat);
-    if (temporalAa)
-        hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, temporalAaSettings, temporalAa->pass,
-                                        temporalAaHistory_);
-    const passes::HdrAlpha hdrAlpha = temporalAa ? passes::HdrAlpha::Coverage : passes::HdrAlpha::None;
+    // Temporal AA's accumulation carries coverage in alpha; depth of field writes none.
+    passes::HdrAlpha hdrAlpha = passes::HdrAlpha::None;
+    if (temporalAa && !passes::hasDepthOfField(lens)) hdrAlpha = passes::HdrAlpha::Coverage;
     gpu::ImageHandle display =
         passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance, grading_);
     passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, hdrAlpha, display, requests);
-    graph.compile();
-    environment_->frameCompiled(graph);
-    if (ssaoOn) passes::keepSsaoHistory(graph, ssaoHistory_);
-    if (temporalAa) passes::keepTemporalAaHistory(graph, temporalAaHistory_);
+    executeFrame(graph);
     converged_ = !temporalAa || temporalAa->converged;
-    ssaoHistoryFrame_ = {ssaoOn, view, projection, width, height, settings_.version()};
-
-    device_->context().submitAndWait([&](VkCommandBuffer cmd) {
-        timestamps_->reset(cmd);
-        graph.execute(*transients_, cmd, timestamps_.get());
-        frameSetupMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - syncEnd).count();
-    });
-    timings_ = timestamps_->resolve();
-    device_->endFrame();
-    transients_->endFrame();
+    frameSetupMilliseconds_ = std::chrono::duration<double, std::milli>(frameRecorded_ - syncEnd).count();
     for (RenderBuffer* rb : targets) rb->setRendered(true);
 
     if (failOnValidation_ && device_->context().validationErrorCount() > 0)
@@ -377,6 +374,99 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
             return OBSCURA_ERROR_BAD_PRIM_DATA;
         }
     return OBSCURA_OK;
+}
+
+gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
+                                             const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
+                                             const FrameSceneInputs& frame) {
+    FrameView seen = frameView(frame);
+    passes::addClipVolumePass(graph, *pipelines_, scene, gbuffer);
+    passes::SsaoResult ambient;
+    const bool ssaoOn = settings_.number("ssao") != 0.0;
+    if (ssaoOn) {
+        // The radius is authored in metres; the passes work in scene units (USD metersPerUnit).
+        passes::SsaoSettings ssao{float(settings_.number("ssao:radius") / settings_.number("metersPerUnit")),
+                                  float(settings_.number("ssao:intensity"))};
+        // The history reprojects through the camera's motion; anything else that changes what a
+        // texel means (size, projection, settings) restarts it.
+        auto& last = ssaoHistoryFrame_;
+        ssaoHistory_.valid = last.valid && last.width == scene.width && last.height == scene.height &&
+                             last.projection == seen.projection && last.settingsVersion == settings_.version();
+        Matrix4d inverseView = kIdentity;
+        invert(seen.view, inverseView);
+        ssaoHistory_.viewToPreviousView = toFloats<passes::Mat4>(multiply(inverseView, last.view));
+        ambient = passes::addSsaoPasses(graph, *pipelines_, scene, gbuffer, ssao, ssaoHistory_);
+        ssaoInFrame_ = true;
+    } else {
+        ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
+                   graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
+    }
+    ssaoHistoryFrame_ = {ssaoOn, seen.view, seen.projection, scene.width, scene.height, settings_.version()};
+    const Light* dome = frame.environmentDome;
+    passes::EnvironmentLighting environment =
+        environment_->addToFrame(graph, *pipelines_, dome ? dome->environment() : nullptr);
+    environmentInFrame_ = true;
+    return passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas, environment,
+                                   lightAccumulation());
+}
+
+passes::LightAccumulation RenderDelegate::lightAccumulation() const {
+    return settings_.number("lighting:halfFloat") != 0.0 ? passes::LightAccumulation::HalfFloat
+                                                         : passes::LightAccumulation::SmallFloat;
+}
+
+void RenderDelegate::executeFrame(gpu::FrameGraph& graph) {
+    graph.compile();
+    if (environmentInFrame_) environment_->frameCompiled(graph);
+    environmentInFrame_ = false;
+    if (ssaoInFrame_) passes::keepSsaoHistory(graph, ssaoHistory_);
+    if (temporalAaInFrame_) passes::keepTemporalAaHistory(graph, temporalAaHistory_);
+    ssaoInFrame_ = temporalAaInFrame_ = false;
+    device_->context().submitAndWait([&](VkCommandBuffer cmd) {
+        timestamps_->reset(cmd);
+        graph.execute(*transients_, cmd, timestamps_.get());
+        frameRecorded_ = std::chrono::steady_clock::now();
+    });
+    timings_ = timestamps_->resolve();
+    device_->endFrame();
+    transients_->endFrame();
+}
+
+void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const passes::ThinLens& lens, uint32_t count,
+                                         double time) {
+    const gpu::ImageDesc* current = accumulation_.image ? &accumulation_.image->desc : nullptr;
+    if (!current || current->width != frame.width || current->height != frame.height) {
+        gpu::ImageDesc desc;
+        desc.format = passes::kAccumulationFormat;
+        desc.width = frame.width;
+        desc.height = frame.height;
+        desc.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+        accumulation_ = {device_->createImage(desc, "reference accumulation"), VK_IMAGE_LAYOUT_UNDEFINED};
+    }
+    // Without depth of field the lens is a pinhole: every sub-frame looks from its centre.
+    bool lensBlur = passes::hasDepthOfField(lens);
+    double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
+    const CameraParams& camera = frame.camera.params();
+    double open = time + camera.shutterOpen, close = time + camera.shutterClose;
+    std::vector<ReferenceSubFrame> subFrames =
+        referenceSubFrames(count, lensBlur ? frame.camera.apertureShape() : passes::ApertureShape{});
+    for (size_t k = 0; k < subFrames.size(); ++k) {
+        const ReferenceSubFrame& sub = subFrames[k];
+        FrameSceneInputs inputs = frame;
+        inputs.sample = FrameSample{open + sub.shutter * (close - open),
+                                    {sub.aperture[0] * apertureRadius, sub.aperture[1] * apertureRadius},
+                                    sub.pixelJitter};
+        FrameSceneShortfalls shortfalls;  // reported by the frame itself
+        passes::FrameScene scene = buildFrameScene(*device_, inputs, shortfalls);
+        gpu::FrameGraph graph;
+        gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
+        passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
+        gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, inputs);
+        gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
+        passes::addAccumulatePass(graph, *pipelines_, hdr, sum, float(sub.weight), k == 0);
+        executeFrame(graph);
+        accumulation_.layout = graph.finalLayout(sum);
+    }
 }
 
 void RenderDelegate::map(const std::string& path, ObscuraMappedBuffer& out) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "delegate/environment_cache.h"
+#include "delegate/frame_scene_builder.h"
 #include "delegate/geometry_cache.h"
 #include "delegate/prims/camera.h"
 #include "delegate/prims/instancer.h"
@@ -16,15 +17,19 @@
 #include "gpu/frame_graph.h"
 #include "gpu/timestamps.h"
 #include "passes/color_grading_lut.h"
+#include "passes/gbuffer.h"
+#include "passes/lighting.h"
 #include "passes/pipeline_cache.h"
 #include "passes/ssao.h"
 #include "passes/temporal_aa.h"
 
 #include <obscura/obscura.h>
 
+#include <chrono>
 #include <map>
 #include <set>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +65,18 @@ public:
 
 private:
     void sync(double time, const Camera* camera);
+    // Clip volumes, SSAO, the environment and deferred lighting of `scene` (built from `frame`)
+    // into the light accumulation.
+    gpu::ImageHandle addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
+                                 const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
+                                 const FrameSceneInputs& frame);
+    // The light accumulation's format (render setting lighting:halfFloat).
+    passes::LightAccumulation lightAccumulation() const;
+    // Compiles, records and submits one frame graph, and waits for it.
+    void executeFrame(gpu::FrameGraph& graph);
+    // Reference mode: `count` sub-frames of `frame` sampling `lens`'s aperture, the shutter and the
+    // pixel, summed into accumulation_.
+    void accumulateReference(const FrameSceneInputs& frame, const passes::ThinLens& lens, uint32_t count, double time);
     template <typename T>
     T* find(const std::string& path) const;
 
@@ -74,6 +91,10 @@ private:
     struct {
         gpu::ImagePtr accessibility, halfDepth;
     } unoccluded_;
+    struct {
+        gpu::ImagePtr image;
+        VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    } accumulation_;  // reference mode's running sum (passes/accumulate.h)
     // SSAO's temporal accumulation: the history and what it was rendered with, to reproject it or
     // reset it (size, projection, settings).
     passes::SsaoHistory ssaoHistory_;
@@ -83,9 +104,15 @@ private:
         uint32_t width = 0, height = 0;
         uint64_t settingsVersion = 0;
     } ssaoHistoryFrame_;
-    // Temporal AA: its history images and the bookkeeping that decides how each frame uses them.
+    // SSAO of the frame being built, whose history layouts executeFrame keeps once compiled, and
+    // whether it imported the environment maps (whose layouts it keeps too).
+    bool ssaoInFrame_ = false;
+    bool environmentInFrame_ = false;
+    // Temporal AA: its history images, the bookkeeping that decides how each frame uses them, and
+    // whether the frame being built runs it (executeFrame keeps its history layouts).
     passes::TemporalAaHistory temporalAaHistory_;
     TemporalAccumulation temporalAccumulation_;
+    bool temporalAaInFrame_ = false;
     bool converged_ = true;  // the last render's, for ObscuraRenderStats
     std::unique_ptr<TextureCache> textures_;
     std::unique_ptr<GeometryCache> geometry_;
@@ -111,6 +138,7 @@ private:
     std::vector<std::string> unclippedLights_;  // likewise
     double syncMilliseconds_ = 0.0;
     double frameSetupMilliseconds_ = 0.0;
+    std::chrono::steady_clock::time_point frameRecorded_;
     std::string lastError_;
 };
 

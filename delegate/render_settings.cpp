@@ -49,6 +49,16 @@ const RenderSettingInfo kSettings[] = {
      OBSCURA_VALUE_FLOAT, 1.25, 1.0},
     {"metersPerUnit", "the scene's metres per unit, as USD's stage metadata; hosts set it (float, default 0.01)",
      OBSCURA_VALUE_FLOAT, 0.01},
+    {"dof", "depth of field from the camera's lens (focalLength, fStop, focusDistance, obscura:apertureBlades, "
+            "obscura:apertureRotation); a camera with fStop 0 has none (bool, default on)",
+     OBSCURA_VALUE_BOOL, 1.0},
+    {"dof:taps", "taps per side of the depth of field's first gather pass (N x N taps; larger blurs reach further "
+                 "and look smoother at a higher cost), 3-15 (int, default 7)",
+     OBSCURA_VALUE_INT, 7.0, 3.0, 15.0},
+    {"reference", "ground truth: average this many sub-frames, each seen from a point of the lens aperture, at a time "
+                  "within the shutter and a sub-pixel offset, with post-process depth of field off; 0 renders the "
+                  "normal frame (int, default 0)",
+     OBSCURA_VALUE_INT, 0.0, 0.0, 65536.0},
     {"ocio:config", "OpenColorIO config file (token; default: $OCIO, else the built-in ACES-based config)",
      OBSCURA_VALUE_TOKEN, 0.0},
     {"ocio:display", "OCIO display (token; default: the config's default display)", OBSCURA_VALUE_TOKEN, 0.0},
@@ -107,6 +117,7 @@ std::string RenderSettings::set(const std::string& name, const ObscuraValue* val
         default: return name + ": expected a number";
     }
     if (!std::isfinite(v)) return name + ": value is not finite";
+    if (info->type == OBSCURA_VALUE_INT && v != std::floor(v)) return name + ": expected a whole number";
     if (v < info->minimum || v > info->maximum) {
         char range[96];
         std::snprintf(range, sizeof(range), "%g is outside %g..%g", v, info->minimum, info->maximum);

@@ -138,6 +138,20 @@ ObscuraInterpolation SceneAccess::interpolation(const char* name) {
     return out;
 }
 
+Matrix4d interpolateTransform(const std::vector<TransformSample>& samples, double time) {
+    if (samples.empty()) return kIdentity;
+    if (time <= samples.front().time) return samples.front().matrix;
+    for (size_t i = 1; i < samples.size(); ++i)
+        if (time <= samples[i].time) {
+            const TransformSample &a = samples[i - 1], &b = samples[i];
+            double t = b.time > a.time ? (time - a.time) / (b.time - a.time) : 1.0;
+            Matrix4d m{};
+            for (int k = 0; k < 16; ++k) m[k] = a.matrix[k] + t * (b.matrix[k] - a.matrix[k]);
+            return m;
+        }
+    return samples.back().matrix;
+}
+
 std::vector<TransformSample> SceneAccess::sampleTransform(double time0, double time1) {
     constexpr uint32_t kMaxSamples = 16;
     if (!sd_.sampleTransform) return {{time_, kIdentity}};

@@ -25,6 +25,10 @@ struct TransformSample {
     Matrix4d matrix;
 };
 
+// The transform at `time` from samples sorted by time: linear between the two around it (as
+// Hydra's HdResampleNeighbors), the first or last outside them; identity without samples.
+Matrix4d interpolateTransform(const std::vector<TransformSample>& samples, double time);
+
 class SceneAccess {
 public:
     SceneAccess(const ObscuraSceneDelegate& sceneDelegate, const schema::PrimSchema& schema, const std::string& path,

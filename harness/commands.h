@@ -17,6 +17,7 @@ struct RenderOptions {
     int height = 540;
     std::vector<std::string> aovs;
     std::vector<std::string> settings;
+    int reference = 0;  // sub-frames of the reference mode; 0: the normal frame
 };
 
 struct CompareOptions {

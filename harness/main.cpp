@@ -24,6 +24,10 @@ int main(int argc, char** argv) {
     r->add_option("--height", render.height, "image height in pixels")->check(CLI::PositiveNumber);
     r->add_option("--aov", render.aovs, "AOVs for .exr: color,depth,normal,albedo,primId")->delimiter(',');
     r->add_option("--set", render.settings, "render setting key=value (repeatable)");
+    r->add_option("--reference", render.reference,
+                  "ground truth: average N sub-frames sampling the lens aperture, shutter and pixel "
+                  "(render setting `reference`)")
+        ->check(CLI::NonNegativeNumber);
     frameOpt->excludes(r->get_option("--frames"));
 
     CompareOptions compare;

@@ -1,14 +1,11 @@
 #include "delegate/prims/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace obscura::delegate {
 
 void Camera::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
-    if (bits & OBSCURA_DIRTY_TRANSFORM) {
-        auto samples = s.sampleTransform(s.time(), s.time());
-        params_.cameraToWorld = samples.front().matrix;
-    }
     if (bits & OBSCURA_DIRTY_PARAMS) {
         CameraParams& p = params_;
         p.orthographic = s.getToken("projection") == "orthographic";
@@ -36,6 +33,22 @@ void Camera::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
         if (!(p.exposureFStop > 0) || p.exposureTime < 0 || p.exposureIso < 0 || p.exposureResponsivity < 0)
             throw PrimDataError(s.path() + ": exposure:fStop must be positive and exposure:time, exposure:iso, "
                                            "exposure:responsivity not negative");
+        if (p.fStop < 0 || p.focusDistance < 0)
+            throw PrimDataError(s.path() + ": fStop and focusDistance must not be negative");
+        if (p.apertureBlades < 0 || p.apertureBlades == 1 || p.apertureBlades == 2)
+            throw PrimDataError(s.path() + ": obscura:apertureBlades must be 0 (round) or at least 3");
+        // USD's default focusDistance is 0: a file that sets only fStop gets no depth of field.
+        warning_.clear();
+        if (p.fStop > 0 && !p.orthographic && p.focusDistance <= p.focalLength / 10.0)
+            warning_ = "fStop " + std::to_string(p.fStop) + " but focusDistance " + std::to_string(p.focusDistance) +
+                       " is not beyond the focal length: no depth of field";
+    }
+    // The shutter (just pulled) decides the interval the transform is sampled over.
+    if (bits & (OBSCURA_DIRTY_TRANSFORM | OBSCURA_DIRTY_PARAMS)) {
+        params_.cameraToWorld = s.sampleTransform(s.time(), s.time()).front().matrix;
+        shutterTransforms_.clear();
+        if (params_.shutterClose > params_.shutterOpen)
+            shutterTransforms_ = s.sampleTransform(s.time() + params_.shutterOpen, s.time() + params_.shutterClose);
     }
 }
 
@@ -49,6 +62,49 @@ Matrix4d Camera::viewMatrix() const {
     Matrix4d view = kIdentity;
     if (!invert(params_.cameraToWorld, view)) return kIdentity;
     return view;
+}
+
+Matrix4d Camera::cameraToWorldAt(double time) const {
+    return shutterTransforms_.size() > 1 ? interpolateTransform(shutterTransforms_, time) : params_.cameraToWorld;
+}
+
+Matrix4d Camera::viewMatrix(std::array<double, 2> lensOffset, double time) const {
+    Matrix4d lens = kIdentity;
+    lens[12] = lensOffset[0];
+    lens[13] = lensOffset[1];
+    Matrix4d view = kIdentity;
+    if (!invert(multiply(lens, cameraToWorldAt(time)), view)) return kIdentity;
+    return view;
+}
+
+Matrix4d Camera::projectionMatrix(double imageAspect, std::array<double, 2> lensOffset,
+                                  std::array<double, 2> ndcJitter) const {
+    // Row-vector form: element [i * 4 + j] is the column-vector matrix's (j, i). A view-space point
+    // at depth P moved by -lensOffset must land where it did: NDC x shifts by -c0 Lx / P, undone by
+    // adding c0 Lx / P (times w = -z) through the z column; the same for y, and the jitter alike.
+    Matrix4d p = projectionMatrix(imageAspect);
+    if (params_.orthographic) {
+        // w = 1: the jitter is a translation; an orthographic camera has no lens.
+        p[12] += ndcJitter[0];
+        p[13] += ndcJitter[1];
+        return p;
+    }
+    double focus = params_.focusDistance > 0 ? params_.focusDistance : 1.0;
+    p[8] -= p[0] * lensOffset[0] / focus + ndcJitter[0];
+    p[9] -= p[5] * lensOffset[1] / focus + ndcJitter[1];
+    return p;
+}
+
+passes::ThinLens Camera::thinLens(double imageAspect) const {
+    const CameraParams& p = params_;
+    if (p.orthographic) return {};
+    // The same "fit" conform as the projection: the film spans the widened horizontal aperture.
+    double filmWidth = std::max(p.horizontalAperture, p.verticalAperture * imageAspect);
+    return {p.focalLength / 10.0, p.fStop, p.focusDistance, filmWidth / 10.0};
+}
+
+passes::ApertureShape Camera::apertureShape() const {
+    return passes::apertureShape(params_.apertureBlades, params_.apertureRotation, params_.fStop);
 }
 
 Matrix4d Camera::projectionMatrix(double imageAspect) const {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "delegate/prims/prim.h"
+#include "passes/thin_lens.h"
 
 namespace obscura::delegate {
 
@@ -32,6 +33,8 @@ class Camera final : public Prim {
 public:
     using Prim::Prim;
     const CameraParams& params() const { return params_; }
+    // Why the camera's lens has no depth of field although its fStop asks for it; empty otherwise.
+    const std::string& warning() const { return warning_; }
 
     // World-to-view and view-to-clip (Vulkan clip space: y down, depth 0 at near, 1 at far), in
     // the row-vector convention. The aperture is conformed to the image aspect by "fit" (the
@@ -43,9 +46,23 @@ public:
     // (100 x fStop^2) (the photographic exposure H ~ t S / N^2, normalised to 1 at the defaults).
     double linearExposureScale() const;
 
+    // The lens for depth of field (passes/thin_lens.h): scene units, the film gate conformed to the
+    // image aspect. Orthographic cameras have no lens (fStop 0).
+    passes::ThinLens thinLens(double imageAspect) const;
+    passes::ApertureShape apertureShape() const;
+
+    // A reference sub-frame's view: the eye moved by `lensOffset` (camera space x right, y up, scene
+    // units) on the aperture at absolute `time` within the shutter. The projection shears so the
+    // focus plane keeps its image (an accumulation-buffer camera), and `ndcJitter` shifts the image.
+    Matrix4d cameraToWorldAt(double time) const;
+    Matrix4d viewMatrix(std::array<double, 2> lensOffset, double time) const;
+    Matrix4d projectionMatrix(double imageAspect, std::array<double, 2> lensOffset, std::array<double, 2> ndcJitter) const;
+
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
     CameraParams params_;
+    std::vector<TransformSample> shutterTransforms_;
+    std::string warning_;
 };
 
 }  // namespace obscura::delegate

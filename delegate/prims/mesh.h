@@ -24,6 +24,11 @@ public:
     uint32_t indexCount() const { return indexCount_; }
     const Aabb& localBounds() const { return localBounds_; }  // of the drawn (refined) points
     const Matrix4d& transform() const { return transform_; }
+    // The transform at an absolute time within the camera's shutter, between the samples synced
+    // over it; a prim with one sample is static.
+    Matrix4d transformAt(double time) const {
+        return shutterTransforms_.size() > 1 ? interpolateTransform(shutterTransforms_, time) : transform_;
+    }
     bool doubleSided() const { return doubleSided_; }
     const std::optional<std::string>& materialPath() const { return material_; }
     bool hasDisplayColor() const { return input_.displayColor.has_value(); }
@@ -40,7 +45,7 @@ private:
     int refineLevelOverride_ = -1;
     SubdivisionCache subdivision_;
     Matrix4d transform_ = kIdentity;
-    std::vector<TransformSample> shutterTransforms_;  // for motion blur
+    std::vector<TransformSample> shutterTransforms_;  // over the shutter: reference sub-frames, motion blur
     bool doubleSided_ = false;
     bool visible_ = true;
     std::optional<std::string> material_;

@@ -106,82 +106,78 @@ float shapingAttenuation(LightData light, vec3 fromLight) {
 // polygon clipped to the receiver's horizon. Specular: the representative point (Karis 2013,
 // "Real shading in Unreal Engine 4") with the lobe widened by the light's solid angle.
 
-const int AREA_LIGHT_MAX_VERTICES = 18;  // a 16-gon disk, plus one vertex from horizon clipping
 const int DISK_POLYGON_SIDES = 16;
 
 // theta * gamma for the edge (a, b) seen from the origin: the edge's contribution to the vector
 // form factor. atan2 keeps small edges accurate where acos(dot) would not.
 vec3 edgeIntegral(vec3 a, vec3 b) {
+    a = normalize(a);
+    b = normalize(b);
     vec3 c = cross(a, b);
     float s = length(c);
     if (s < 1e-12) return vec3(0.0);
     return c * (atan(s, dot(a, b)) / s);
 }
 
-struct AreaPolygon {
-    vec3 v[AREA_LIGHT_MAX_VERTICES];  // corners relative to the shaded point
-    int count;
-};
+int areaLightCorners(LightData light) { return uint(light.positionType.w) == LIGHT_RECT ? 4 : DISK_POLYGON_SIDES; }
 
-AreaPolygon areaLightPolygon(LightData light, vec3 P) {
-    AreaPolygon poly;
-    vec3 centre = light.positionType.xyz - P;
+// Corner i of the light's polygon relative to the shaded point, counter-clockwise about local +Z.
+// A disk is the regular 16-gon of its area (radius scaled by sqrt(2 pi / (n sin(2 pi / n)))), so
+// the irradiance of distant points is exact; on the axis it is within 0.004% at any distance.
+vec3 areaLightCorner(LightData light, vec3 centre, int i) {
     if (uint(light.positionType.w) == LIGHT_RECT) {
-        poly.count = 4;
-        poly.v[0] = centre - light.axisX.xyz - light.axisY.xyz;
-        poly.v[1] = centre + light.axisX.xyz - light.axisY.xyz;
-        poly.v[2] = centre + light.axisX.xyz + light.axisY.xyz;
-        poly.v[3] = centre - light.axisX.xyz + light.axisY.xyz;
-    } else {
-        // A regular 16-gon of the disk's area (radius scaled by sqrt(2 pi / (n sin(2 pi / n)))),
-        // so the irradiance of distant points is exact; on the axis it is within 0.004% at any distance.
-        const float areaScale = 1.01300;
-        poly.count = DISK_POLYGON_SIDES;
-        for (int i = 0; i < DISK_POLYGON_SIDES; ++i) {
-            float phi = 2.0 * PI * float(i) / float(DISK_POLYGON_SIDES);
-            poly.v[i] = centre + areaScale * (cos(phi) * light.axisX.xyz + sin(phi) * light.axisY.xyz);
-        }
+        vec2 corner = vec2((i == 1 || i == 2) ? 1.0 : -1.0, i >= 2 ? 1.0 : -1.0);
+        return centre + corner.x * light.axisX.xyz + corner.y * light.axisY.xyz;
     }
-    return poly;
+    const float areaScale = 1.01300;
+    float phi = 2.0 * PI * float(i) / float(DISK_POLYGON_SIDES);
+    return centre + areaScale * (cos(phi) * light.axisX.xyz + sin(phi) * light.axisY.xyz);
 }
 
-// Sutherland-Hodgman clip against the receiver's horizon plane dot(N, x) = 0.
-AreaPolygon clipToHorizon(AreaPolygon poly, vec3 N) {
-    AreaPolygon clipped;
-    clipped.count = 0;
-    for (int i = 0; i < poly.count; ++i) {
-        vec3 a = poly.v[i];
-        vec3 b = poly.v[(i + 1) % poly.count];
+// The vector form factor sum_i theta_i gamma_i of the light's polygon (x: whole; y: clipped to
+// the horizon of normal N, Sutherland-Hodgman one edge at a time: the polygons are convex, so the
+// clipped one leaves the horizon once and comes back once, closed by a segment along it). Corners
+// are made on the fly: no arrays, which CPU Vulkan drivers would keep in memory.
+void areaLightFormFactors(LightData light, vec3 centre, vec3 N, out vec3 whole, out vec3 clipped) {
+    whole = vec3(0.0);
+    clipped = vec3(0.0);
+    int count = areaLightCorners(light);
+    vec3 a = areaLightCorner(light, centre, 0), exitPoint = vec3(0.0), entryPoint = vec3(0.0);
+    bool crossed = false;
+    for (int i = 0; i < count; ++i) {
+        vec3 b = areaLightCorner(light, centre, (i + 1) % count);
+        vec3 edge = edgeIntegral(a, b);
+        whole += edge;
         float da = dot(N, a), db = dot(N, b);
-        if (da >= 0.0) clipped.v[clipped.count++] = a;
-        if ((da >= 0.0) != (db >= 0.0) && clipped.count < AREA_LIGHT_MAX_VERTICES)
-            clipped.v[clipped.count++] = mix(a, b, da / (da - db));
+        if (da >= 0.0 && db >= 0.0) {
+            clipped += edge;
+        } else if (da >= 0.0 || db >= 0.0) {
+            vec3 x = mix(a, b, da / (da - db));
+            if (da >= 0.0) {
+                clipped += edgeIntegral(a, x);
+                exitPoint = x;
+            } else {
+                clipped += edgeIntegral(x, b);
+                entryPoint = x;
+            }
+            crossed = true;
+        }
+        a = b;
     }
-    return clipped;
-}
-
-// sum_i theta_i gamma_i over the polygon's edges (pointing towards the polygon's front side).
-vec3 vectorFormFactor(AreaPolygon poly) {
-    vec3 sum = vec3(0.0);
-    for (int i = 0; i < poly.count; ++i)
-        sum += edgeIntegral(normalize(poly.v[i]), normalize(poly.v[(i + 1) % poly.count]));
-    return sum;
+    if (crossed) clipped += edgeIntegral(exitPoint, entryPoint);
 }
 
 vec3 reflectFromAreaLight(SurfacePoint s, LightData light) {
     vec3 axis = light.directionAngle.xyz;
     vec3 toPoint = s.P - light.positionType.xyz;
     if (dot(toPoint, axis) <= 0.0) return vec3(0.0);  // behind the emitting face
-    AreaPolygon poly = areaLightPolygon(light, s.P);
+    vec3 formFactor, clippedFormFactor;
+    areaLightFormFactors(light, light.positionType.xyz - s.P, s.N, formFactor, clippedFormFactor);
     // The edge sum points towards the light for one winding; orient it so (a mirroring transform
-    // reverses the corners' order).
-    vec3 formFactor = vectorFormFactor(poly);
+    // reverses the corners' order). A polygon wholly below the horizon sums to zero when clipped.
     float winding = dot(formFactor, axis) > 0.0 ? -1.0 : 1.0;
     formFactor *= winding;
-    bool belowHorizon = false;
-    for (int i = 0; i < poly.count; ++i) belowHorizon = belowHorizon || dot(s.N, poly.v[i]) < 0.0;
-    float diffuseIrradiance =
-        0.5 * max(dot(s.N, belowHorizon ? winding * vectorFormFactor(clipToHorizon(poly, s.N)) : formFactor), 0.0);
+    float diffuseIrradiance = 0.5 * max(dot(s.N, winding * clippedFormFactor), 0.0);
     float shaping = shapingAttenuation(light, normalize(toPoint));
     vec3 radiance = light.radiance.rgb * shaping;
     vec3 result = diffuseBrdf(s) * clearcoatTransmission(s) * light.factors.x * radiance * diffuseIrradiance;

@@ -42,6 +42,20 @@ check "render with --set" 0 $?
 check "compare below threshold exits 1" 1 $? "$tmp/out" 'below threshold'
 [ -s "$tmp/diff.png" ]; check "diff image written" 0 $?
 
+# Depth of field and its ground truth: the reference mode converges towards the post-process image.
+"$obscura" render "$src/scenes/depth_of_field.usda" -o "$tmp/dof.exr" --width 96 --height 64 >"$tmp/out" 2>&1
+check "render with depth of field" 0 $?
+"$obscura" render "$src/scenes/depth_of_field.usda" -o "$tmp/ref.exr" --width 96 --height 64 --reference 32 >"$tmp/out" 2>&1
+check "render --reference N" 0 $?
+"$obscura" render "$src/scenes/depth_of_field.usda" -o "$tmp/sharp.exr" --width 96 --height 64 --set dof=off >"$tmp/out" 2>&1
+check "render with --set dof=off" 0 $?
+"$obscura" compare "$tmp/dof.exr" "$tmp/sharp.exr" --ssim-min 0.999 >"$tmp/out" 2>&1
+check "depth of field changes the image" 1 $? "$tmp/out" 'below threshold'
+"$obscura" render "$src/scenes/depth_of_field.usda" -o "$tmp/x.exr" --reference -1 >"$tmp/out" 2>&1
+check "negative --reference is a usage error" 2 $?
+"$obscura" render "$src/scenes/depth_of_field.usda" -o "$tmp/x.exr" --set dof:taps=99 >"$tmp/out" 2>&1
+check "dof:taps out of range is a usage error" 2 $? "$tmp/out" 'dof:taps: 99 is outside 3\.\.15'
+
 "$obscura" render "$src/tests/harness/data/malformed.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
 check "malformed scene names file:line:column" 3 $? "$tmp/out" 'malformed\.usda:7:[0-9]+'
 "$obscura" render "$src/tests/harness/data/bad_prims.usda" -o "$tmp/bad.png" --width 64 --height 64 >"$tmp/out" 2>&1

@@ -1,5 +1,6 @@
 #include "tests/support/test_host.h"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
@@ -142,6 +143,10 @@ void TestHost::setInterpolation(const std::string& path, const std::string& attr
 
 void TestHost::setTransform(const std::string& path, Matrix transform) { transforms_[path] = transform; }
 
+void TestHost::setTransformMotion(const std::string& path, double start, Matrix atStart, double end, Matrix atEnd) {
+    motions_[path] = {start, end, atStart, atEnd};
+}
+
 void TestHost::addCamera(const std::string& path, Matrix transform, float focalLength, float aperture) {
     addPrim("camera", path,
             {{"focalLength", HostValue::floatValue(focalLength)},
@@ -223,9 +228,21 @@ ObscuraStatus TestHost::getInterpolationThunk(void* user, const char* path, cons
     return OBSCURA_OK;
 }
 
-ObscuraStatus TestHost::sampleTransformThunk(void* user, const char* path, double t0, double, uint32_t maxSamples,
+ObscuraStatus TestHost::sampleTransformThunk(void* user, const char* path, double t0, double t1, uint32_t maxSamples,
                                              double* times, double* matrices, uint32_t* count) {
     auto* self = static_cast<TestHost*>(user);
+    if (auto motion = self->motions_.find(path); motion != self->motions_.end() && maxSamples >= 2) {
+        const Motion& m = motion->second;
+        uint32_t n = t1 > t0 ? 2 : 1;
+        for (uint32_t i = 0; i < n; ++i) {
+            double t = i == 0 ? t0 : t1;
+            double f = std::clamp((t - m.start) / (m.end - m.start), 0.0, 1.0);
+            times[i] = t;
+            for (int k = 0; k < 16; ++k) matrices[i * 16 + k] = m.atStart[k] + f * (m.atEnd[k] - m.atStart[k]);
+        }
+        *count = n;
+        return OBSCURA_OK;
+    }
     auto it = self->transforms_.find(path);
     if (it == self->transforms_.end() || maxSamples == 0) return OBSCURA_ERROR_NOT_FOUND;
     times[0] = t0;

@@ -60,6 +60,9 @@ public:
     void set(const std::string& path, const std::string& attribute, HostValue value);
     void setInterpolation(const std::string& path, const std::string& attribute, ObscuraInterpolation interpolation);
     void setTransform(const std::string& path, Matrix transform);
+    // A transform moving linearly from `atStart` at time `start` to `atEnd` at `end` (held outside):
+    // sampleTransform then answers with the interval's two ends, as a host with time samples does.
+    void setTransformMotion(const std::string& path, double start, Matrix atStart, double end, Matrix atEnd);
 
     // Convenience scene pieces.
     void addCamera(const std::string& path, Matrix transform, float focalLength = 50.0f, float aperture = 20.955f);
@@ -94,6 +97,11 @@ private:
     std::map<std::string, std::map<std::string, HostValue>> values_;
     std::map<std::string, std::map<std::string, ObscuraInterpolation>> interpolations_;
     std::map<std::string, Matrix> transforms_;
+    struct Motion {
+        double start, end;
+        Matrix atStart, atEnd;
+    };
+    std::map<std::string, Motion> motions_;
     std::vector<std::string> errors_;
     std::vector<std::string> warnings_;
     std::vector<std::string> infos_;

@@ -1,0 +1,44 @@
+#include "delegate/reference_frames.h"
+
+#include <cmath>
+#include <numeric>
+
+namespace obscura::delegate {
+namespace {
+
+// Van der Corput: the digits of `index` in `base`, mirrored about the radix point.
+double radicalInverse(uint32_t index, uint32_t base) {
+    double inverse = 0.0, digitWeight = 1.0 / base;
+    for (; index > 0; index /= base, digitWeight /= base) inverse += digitWeight * (index % base);
+    return inverse;
+}
+
+// The multiplier of a rank-1 lattice k -> (k g mod N) / N: the integer nearest N (sqrt 5 - 1) / 2
+// that shares no factor with N, so that the lattice is a permutation (every 1/N of the interval
+// gets one point) and far from aligned with k / N (Korobov's golden-ratio choice).
+uint32_t latticeMultiplier(uint32_t count) {
+    uint32_t ideal = static_cast<uint32_t>(std::lround(count * 0.6180339887498949));
+    for (uint32_t step = 0;; ++step) {
+        for (uint32_t g : {ideal + step, ideal - step})
+            if (g > 0 && g < count && std::gcd(g, count) == 1) return g;
+        if (step > count) return 1;
+    }
+}
+
+}  // namespace
+
+std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::ApertureShape& aperture) {
+    std::vector<ReferenceSubFrame> frames;
+    frames.reserve(count);
+    uint64_t multiplier = latticeMultiplier(count);
+    for (uint32_t k = 0; k < count; ++k) {
+        // Both coordinates centred in their strata (the radical inverse steps by 1 / N for N = 2^m).
+        std::array<double, 2> square{2.0 * (k + 0.5) / count - 1.0, 2.0 * (radicalInverse(k, 2) + 0.5 / count) - 1.0};
+        passes::ApertureSample lens = passes::sampleAperture(square, aperture);
+        double shutter = (double(k * multiplier % count) + 0.5) / count;
+        frames.push_back({lens.position, lens.area, shutter, {radicalInverse(k, 3) - 0.5, radicalInverse(k, 5) - 0.5}});
+    }
+    return frames;
+}
+
+}  // namespace obscura::delegate

@@ -1,0 +1,28 @@
+// The reference mode's sub-frames (DESIGN.md "Testing and measuring": accumulation of jittered
+// lens, shutter and pixel sub-frames as ground truth): where each one samples the aperture, the
+// shutter interval and the pixel.
+#pragma once
+
+#include "passes/thin_lens.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace obscura::delegate {
+
+struct ReferenceSubFrame {
+    std::array<double, 2> aperture;     // on the unit aperture (x right, y up), passes::sampleAperture
+    double weight;                      // the aperture area the sample stands for: a flat bokeh
+    double shutter;                     // fraction of the shutter interval, [0, 1)
+    std::array<double, 2> pixelJitter;  // pixels, [-0.5, 0.5)^2: a box pixel filter
+};
+
+// `count` deterministic, stratified sub-frames: the aperture from a Hammersley set ((k + 0.5) / N
+// and the base-2 radical inverse) over the square, mapped with the same concentric + n-gon mapping
+// as the depth-of-field taps; the shutter from a golden-ratio rank-1 lattice (each 1/N of the
+// interval once); the jitter from the radical inverses in bases 3 and 5, so no dimension repeats
+// another's pattern.
+std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::ApertureShape& aperture);
+
+}  // namespace obscura::delegate

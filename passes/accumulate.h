@@ -1,0 +1,24 @@
+// Reference mode (DESIGN.md "Testing and measuring"; `obscura render --reference N`): the light
+// accumulation of N sub-frames, each seen from another point of the lens, time of the shutter and
+// sub-pixel position, summed with weights in linear HDR (the classic accumulation-buffer camera),
+// then averaged into the format tone mapping reads.
+#pragma once
+
+#include "passes/gbuffer.h"
+
+namespace obscura::passes {
+
+// Sums of many sub-frames need more precision than the light accumulation format.
+constexpr VkFormat kAccumulationFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+
+// accumulation = (first ? 0 : accumulation) + weight * (hdrColor, 1). `accumulation` is a persistent
+// (imported) image of kAccumulationFormat, the size of the frame; alpha sums the weights.
+void addAccumulatePass(gpu::FrameGraph& graph, PipelineCache& pipelines, gpu::ImageHandle hdrColor,
+                       gpu::ImageHandle accumulation, float weight, bool first);
+
+// The weighted mean, accumulation.rgb / accumulation.a, into a new image of `format` (the light
+// accumulation's).
+gpu::ImageHandle addAccumulationResolvePass(gpu::FrameGraph& graph, PipelineCache& pipelines,
+                                            gpu::ImageHandle accumulation, VkFormat format);
+
+}  // namespace obscura::passes

@@ -1,0 +1,52 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Depth of field, step 1 (seed 000 "Far + near field processing"): each half-resolution texel
+// takes its 2x2 pixels' colour and circle of confusion (one multiply-add on depth, "Lens review
+// (2)") and splits them into the two fields. The downscale is bilateral, not bilinear ("careful:
+// downscale is source of error"): each field averages only the pixels that belong to it, weighted
+// by their CoC, so a sharp pixel never leaks into a blurred field. The far field's CoC is that
+// weighted mean; the near field takes the largest near CoC (its blur only grows outwards). Each
+// field is stored premultiplied by its CoC [Gotanda09], so that bilinear fetches of colour and CoC
+// in the gather stay consistent and sharp texels weigh nothing.
+#include "common/dof_common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0) uniform sampler2D lightAccumulation;
+layout(set = 0, binding = 1) uniform sampler2D depthTexture;
+layout(set = 0, binding = 2, r11f_g11f_b10f) uniform writeonly image2D nearLayer;
+layout(set = 0, binding = 3, r11f_g11f_b10f) uniform writeonly image2D farLayer;
+layout(set = 0, binding = 4, rg8) uniform writeonly image2D halfCoc;
+
+// The R8G8 value a CoC radius (full-resolution pixels) is stored as, so that the premultiplied
+// colour uses exactly the CoC the gather will read back.
+float quantisedCocFraction(float radius) { return round(clamp(radius / dof.maxRadius, 0.0, 1.0) * 255.0) / 255.0; }
+
+void main() {
+    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(texel, imageSize(halfCoc)))) return;
+    // Odd sizes: the last texel's missing pixels repeat the image's edge.
+    ivec2 lastPixel = textureSize(depthTexture, 0) - 1;
+    vec3 mean = vec3(0.0), nearSum = vec3(0.0), farSum = vec3(0.0);
+    float nearWeight = 0.0, farWeight = 0.0, farCocSum = 0.0, nearMax = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        ivec2 pixel = min(texel * 2 + ivec2(i & 1, i >> 1), lastPixel);
+        vec3 colour = texelFetch(lightAccumulation, pixel, 0).rgb;
+        float coc = signedCocRadius(texelFetch(depthTexture, pixel, 0).r);
+        float near = max(coc, 0.0), far = max(-coc, 0.0);
+        mean += 0.25 * colour;
+        nearSum += near * colour;
+        nearWeight += near;
+        nearMax = max(nearMax, near);
+        farSum += far * colour;
+        farWeight += far;
+        farCocSum += far * far;
+    }
+    float nearFraction = quantisedCocFraction(nearMax);
+    float farFraction = quantisedCocFraction(farWeight > 0.0 ? farCocSum / farWeight : 0.0);
+    vec3 nearColour = nearWeight > 0.0 ? nearSum / nearWeight : mean;
+    vec3 farColour = farWeight > 0.0 ? farSum / farWeight : mean;
+    imageStore(nearLayer, texel, vec4(nearColour * nearFraction, 0.0));
+    imageStore(farLayer, texel, vec4(farColour * farFraction, 0.0));
+    imageStore(halfCoc, texel, vec4(nearFraction, farFraction, 0.0, 0.0));
+}

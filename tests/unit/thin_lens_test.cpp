@@ -1,0 +1,214 @@
+// The lens of depth of field (passes/thin_lens.h): the CoC against Potmesil's formula, the
+// field-of-view relation, the concentric mapping and the diaphragm's polygon, and the reference
+// mode's sub-frames (delegate/reference_frames.h).
+#include "delegate/reference_frames.h"
+#include "passes/thin_lens.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace obscura::passes {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// An 85 mm f/2 lens focused at 3 m on a 36 mm film, in centimetres (USD's default stage unit).
+ThinLens portraitLens() { return {8.5, 2.0, 300.0, 3.6}; }
+
+// Potmesil & Chakravarty 1981, written out as in seed 000 "Lens review (2)": the image distance of
+// each point from the thin-lens equation 1/P + 1/I = 1/F, then similar triangles through the
+// aperture A = F / f.
+double potmesilCoc(const ThinLens& lens, double distance) {
+    double F = lens.focalLength, P = lens.focusDistance, D = distance, A = F / lens.fStop;
+    double focusImage = F * P / (P - F), pointImage = F * D / (D - F);
+    return A * std::fabs(pointImage - focusImage) / pointImage;
+}
+
+// Device depth of a distance for a perspective projection with these clipping planes (Vulkan,
+// depth 0 at near): 1/D is affine in depth.
+double deviceDepth(double distance, double nearClip, double farClip) {
+    return (1.0 / distance - 1.0 / nearClip) / (1.0 / farClip - 1.0 / nearClip);
+}
+
+TEST(ThinLens, CocIsPotmesilsFormula) {
+    ThinLens lens = portraitLens();
+    for (double D : {50.0, 150.0, 299.0, 301.0, 600.0, 5000.0}) {
+        double F = lens.focalLength, P = lens.focusDistance, f = lens.fStop;
+        double slide = std::fabs(F * D / (D - F) - F * P / (P - F)) * (D - F) / (f * D);
+        double simplified = std::fabs((F / f) * F * (P - D) / (D * (P - F)));
+        EXPECT_NEAR(circleOfConfusionDiameter(lens, D), potmesilCoc(lens, D), 1e-12) << D;
+        EXPECT_NEAR(slide, potmesilCoc(lens, D), 1e-12) << D;
+        EXPECT_NEAR(simplified, potmesilCoc(lens, D), 1e-12) << D;
+    }
+    EXPECT_NEAR(circleOfConfusionDiameter(lens, lens.focusDistance), 0.0, 1e-12);
+}
+
+TEST(ThinLens, OneMultiplyAddOnDepthGivesTheSignedCocInPixels) {
+    ThinLens lens = portraitLens();
+    const double nearClip = 10.0, farClip = 10000.0, width = 1920.0;
+    CocFromDepth coc = cocFromDepth(lens, nearClip, farClip, width);
+    for (double D : {20.0, 100.0, 250.0, 300.0, 350.0, 900.0, 9000.0}) {
+        double expected = potmesilCoc(lens, D) / lens.filmWidth * width / 2.0 * (D < lens.focusDistance ? 1.0 : -1.0);
+        EXPECT_NEAR(coc.radiusPixels(deviceDepth(D, nearClip, farClip)), expected, 1e-9 * width) << D;
+    }
+    // A 0.5 mm CoC at f/2 is 0.5 / 36 of the film: 13.3 pixels of 1920 across.
+    double D = 900.0;
+    std::printf("85 mm f/2 focused at 3 m, 36 mm film, 1920 px: CoC at 9 m %.3f mm = %.2f px diameter\n",
+                10.0 * potmesilCoc(lens, D), -2.0 * coc.radiusPixels(deviceDepth(D, nearClip, farClip)));
+}
+
+TEST(ThinLens, NoDepthOfFieldWithoutFStopOrFocusBeyondTheFocalLength) {
+    ThinLens lens = portraitLens();
+    EXPECT_TRUE(hasDepthOfField(lens));
+    lens.fStop = 0.0;  // USD: no depth of field
+    EXPECT_FALSE(hasDepthOfField(lens));
+    CocFromDepth none = cocFromDepth(lens, 1.0, 100.0, 64.0);
+    EXPECT_EQ(none.scale, 0.0);
+    EXPECT_EQ(none.bias, 0.0);
+    lens = portraitLens();
+    lens.focusDistance = 0.0;  // USD's default
+    EXPECT_FALSE(hasDepthOfField(lens));
+    lens.focusDistance = lens.focalLength;
+    EXPECT_FALSE(hasDepthOfField(lens));
+}
+
+// An accumulation camera's pinholes shift a point at D by a F (1/D - 1/P) on a film at F; with the
+// aperture from accumulationApertureDiameter that blur is Potmesil's CoC.
+TEST(ThinLens, AccumulationCameraBlursByTheThinLensCoc) {
+    ThinLens lens = portraitLens();
+    double a = accumulationApertureDiameter(lens);
+    for (double D : {50.0, 200.0, 900.0, 9000.0})
+        EXPECT_NEAR(a * lens.focalLength * std::fabs(1.0 / D - 1.0 / lens.focusDistance), potmesilCoc(lens, D), 1e-12)
+            << D;
+}
+
+TEST(Aperture, FStopInterpolationFromRoundToPolygon) {
+    EXPECT_EQ(apertureShape(6, 0, 1.0).polygonBlend, 0.0);
+    EXPECT_EQ(apertureShape(6, 0, 0.7).polygonBlend, 0.0);
+    EXPECT_NEAR(apertureShape(6, 0, 4.5).polygonBlend, 0.5, 1e-12);
+    EXPECT_EQ(apertureShape(6, 0, 8.0).polygonBlend, 1.0);
+    EXPECT_EQ(apertureShape(6, 0, 22.0).polygonBlend, 1.0);
+    EXPECT_EQ(apertureShape(0, 30, 22.0).polygonBlend, 0.0) << "no blades: always round";
+    EXPECT_NEAR(apertureShape(5, 90, 8.0).rotation, kPi / 2.0, 1e-12);
+}
+
+// Evenly spread square points on the aperture (the gather's taps): cell centres of a fine grid.
+template <typename Visit>
+void forEachGridSample(int side, const ApertureShape& shape, Visit visit) {
+    for (int i = 0; i < side * side; ++i) visit(sampleAperture(squareGridCell(i, side), shape));
+}
+
+TEST(Aperture, ConcentricMappingIsUniformOnTheDisc) {
+    // Uniform on the unit disc: E[r^2] = 1/2, each quadrant a quarter, nothing outside.
+    double meanSquare = 0.0, quadrant = 0.0;
+    const int side = 200;
+    forEachGridSample(side, {}, [&](const ApertureSample& s) {
+        double r2 = s.position[0] * s.position[0] + s.position[1] * s.position[1];
+        EXPECT_LE(r2, 1.0 + 1e-12);
+        EXPECT_EQ(s.area, 1.0);
+        meanSquare += r2 / (side * side);
+        if (s.position[0] > 0 && s.position[1] > 0) quadrant += 1.0 / (side * side);
+    });
+    EXPECT_NEAR(meanSquare, 0.5, 1e-3);
+    EXPECT_NEAR(quadrant, 0.25, 1e-3);
+}
+
+// Radius of the regular polygon inscribed in the unit circle along `angle` (middle of an edge at
+// `rotation`).
+double polygonBoundary(double angle, int blades, double rotation) {
+    double sector = 2.0 * kPi / blades, local = std::remainder(angle - rotation, sector);
+    return std::cos(kPi / blades) / std::cos(local);
+}
+
+TEST(Aperture, StoppedDownTheSamplesFillTheRotatedPolygon) {
+    for (int blades : {5, 6, 9}) {
+        ApertureShape shape = apertureShape(blades, 20.0, 11.0);
+        constexpr int kBins = 360;
+        std::vector<double> reach(kBins, 0.0);
+        forEachGridSample(300, shape, [&](const ApertureSample& s) {
+            double r = std::hypot(s.position[0], s.position[1]);
+            double angle = std::atan2(s.position[1], s.position[0]);
+            EXPECT_LE(r, polygonBoundary(angle, blades, shape.rotation) + 1e-9) << "inside the polygon";
+            int bin = int(std::floor((angle + kPi) / (2.0 * kPi) * kBins)) % kBins;
+            reach[size_t(bin)] = std::max(reach[size_t(bin)], r);
+        });
+        for (int bin = 0; bin < kBins; ++bin) {
+            double angle = (bin + 0.5) / kBins * 2.0 * kPi - kPi;
+            EXPECT_NEAR(reach[size_t(bin)], polygonBoundary(angle, blades, shape.rotation), 0.02)
+                << blades << " blades, " << angle * 180.0 / kPi << " degrees";
+        }
+    }
+}
+
+TEST(Aperture, AreaWeightsMakeThePolygonEvenlyCovered) {
+    // The weighted share of samples in each cell of a coarse grid equals the share of the polygon's
+    // area there (counted on a fine grid of points): a flat bokeh.
+    ApertureShape shape = apertureShape(6, 10.0, 5.0);
+    constexpr int kCells = 6;
+    auto cellOf = [](double x, double y) {
+        int cx = std::clamp(int((x + 1.0) / 2.0 * kCells), 0, kCells - 1);
+        int cy = std::clamp(int((y + 1.0) / 2.0 * kCells), 0, kCells - 1);
+        return size_t(cy * kCells + cx);
+    };
+    std::vector<double> weighted(kCells * kCells, 0.0), area(kCells * kCells, 0.0);
+    double totalWeight = 0.0, totalArea = 0.0;
+    forEachGridSample(400, shape, [&](const ApertureSample& s) {
+        weighted[cellOf(s.position[0], s.position[1])] += s.area;
+        totalWeight += s.area;
+    });
+    // The blended shape's boundary: radius cos(pi/n)/cos(.)^f along each direction, turned.
+    const int fine = 800;
+    for (int j = 0; j < fine; ++j)
+        for (int i = 0; i < fine; ++i) {
+            double x = (2.0 * i + 1.0) / fine - 1.0, y = (2.0 * j + 1.0) / fine - 1.0;
+            double angle = std::atan2(y, x) - shape.polygonBlend * shape.rotation;
+            double boundary = std::pow(polygonBoundary(angle, shape.blades, 0.0), shape.polygonBlend);
+            if (std::hypot(x, y) <= boundary) area[cellOf(x, y)] += 1.0, totalArea += 1.0;
+        }
+    double worst = 0.0;
+    for (size_t c = 0; c < area.size(); ++c) worst = std::max(worst, std::fabs(weighted[c] / totalWeight - area[c] / totalArea));
+    std::printf("largest difference of a cell's weighted sample share from its area share: %.5f\n", worst);
+    EXPECT_LT(worst, 2e-3);
+}
+
+}  // namespace
+}  // namespace obscura::passes
+
+namespace obscura::delegate {
+namespace {
+
+TEST(ReferenceSubFrames, StratifiedOverTheApertureShutterAndPixel) {
+    passes::ApertureShape shape = passes::apertureShape(5, 0.0, 8.0);
+    const uint32_t count = 256;
+    std::vector<ReferenceSubFrame> frames = referenceSubFrames(count, shape);
+    ASSERT_EQ(frames.size(), count);
+    double weight = 0.0, cx = 0.0, cy = 0.0;
+    std::vector<int> shutterStrata(16, 0), jitterStrata(16, 0);
+    for (const auto& f : frames) {
+        EXPECT_GT(f.weight, 0.0);
+        EXPECT_LE(std::hypot(f.aperture[0], f.aperture[1]), 1.0 + 1e-12);
+        ASSERT_GE(f.shutter, 0.0);
+        ASSERT_LT(f.shutter, 1.0);
+        ASSERT_GE(f.pixelJitter[0], -0.5);
+        ASSERT_LT(f.pixelJitter[0], 0.5);
+        ++shutterStrata[size_t(f.shutter * 16)];
+        ++jitterStrata[size_t((f.pixelJitter[0] + 0.5) * 4) * 4 + size_t((f.pixelJitter[1] + 0.5) * 4)];
+        weight += f.weight;
+        cx += f.weight * f.aperture[0];
+        cy += f.weight * f.aperture[1];
+    }
+    EXPECT_NEAR(cx / weight, 0.0, 0.01) << "the weighted lens samples centre on the axis";
+    EXPECT_NEAR(cy / weight, 0.0, 0.01);
+    for (int n : shutterStrata) EXPECT_EQ(n, 16) << "every sixteenth of the shutter gets its share";
+    std::vector<ReferenceSubFrame> odd = referenceSubFrames(100, shape);
+    std::vector<int> hundredths(100, 0);
+    for (const auto& f : odd) ++hundredths[size_t(f.shutter * 100)];
+    for (int n : hundredths) EXPECT_EQ(n, 1) << "any count: one sub-frame per 1/N of the shutter";
+    // Halton points in bases 3 and 5 are stratified exactly only at powers of those bases.
+    for (int n : jitterStrata) EXPECT_NEAR(n, 16, 5) << "every sixteenth of the pixel gets about its share";
+}
+
+}  // namespace
+}  // namespace obscura::delegate
