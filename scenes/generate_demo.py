@@ -46,6 +46,35 @@ def ints(values):
     return "[" + ", ".join(str(v) for v in values) + "]"
 
 
+def prototypes_scope(ball, crate, ball_look, crate_look):
+    """The Prototypes scope of a PointInstancer holding a ball and a crate mesh (sphere() and box()
+    results), each bound to a material under /World/Looks."""
+    (sp, sn, sc, si), (bp, bc, bi) = ball, crate
+    return f'''        def Scope "Prototypes"
+        {{
+            def Mesh "Ball"
+            {{
+                int[] faceVertexCounts = {ints(sc)}
+                int[] faceVertexIndices = {ints(si)}
+                point3f[] points = {fmt(sp)}
+                normal3f[] normals = {fmt(sn)} (
+                    interpolation = "vertex"
+                )
+                uniform token subdivisionScheme = "none"
+                rel material:binding = </World/Looks/{ball_look}>
+            }}
+
+            def Mesh "Crate"
+            {{
+                int[] faceVertexCounts = {ints(bc)}
+                int[] faceVertexIndices = {ints(bi)}
+                point3f[] points = {fmt(bp)}
+                uniform token subdivisionScheme = "none"
+                rel material:binding = </World/Looks/{crate_look}>
+            }}
+        }}'''
+
+
 def material(name, diffuse, roughness, metallic=0.0, emissive=(0, 0, 0)):
     return f'''
         def Material "{name}"

@@ -4,7 +4,7 @@ with per-instance orientation and scale (one copy of each mesh, drawn with GPU i
 import math
 import random
 
-from generate_demo import box, fmt, ints, material, sphere
+from generate_demo import box, fmt, ints, material, prototypes_scope, sphere
 
 random.seed(7)
 sp, sn, sc, si = sphere(5, 12, 24)
@@ -51,29 +51,7 @@ def Xform "World"
         quath[] orientations = [{", ".join(orientations)}]
         float3[] scales = {fmt(scales)}
 
-        def Scope "Prototypes"
-        {{
-            def Mesh "Ball"
-            {{
-                int[] faceVertexCounts = {ints(sc)}
-                int[] faceVertexIndices = {ints(si)}
-                point3f[] points = {fmt(sp)}
-                normal3f[] normals = {fmt(sn)} (
-                    interpolation = "vertex"
-                )
-                uniform token subdivisionScheme = "none"
-                rel material:binding = </World/Looks/Red>
-            }}
-
-            def Mesh "Crate"
-            {{
-                int[] faceVertexCounts = {ints(bc)}
-                int[] faceVertexIndices = {ints(bi)}
-                point3f[] points = {fmt(bp)}
-                uniform token subdivisionScheme = "none"
-                rel material:binding = </World/Looks/Blue>
-            }}
-        }}
+{prototypes_scope((sp, sn, sc, si), (bp, bc, bi), "Red", "Blue")}
     }}
 
     def DistantLight "Sun"

@@ -7,7 +7,7 @@ still leaves tiles with different lists."""
 import math
 import random
 
-from generate_demo import box, fmt, ints, material, sphere
+from generate_demo import box, fmt, ints, material, prototypes_scope, sphere
 
 
 def light(i, rng):
@@ -79,29 +79,7 @@ def Xform "World"
         int[] protoIndices = {ints(proto)}
         point3f[] positions = {fmt(positions)}
 
-        def Scope "Prototypes"
-        {{
-            def Mesh "Ball"
-            {{
-                int[] faceVertexCounts = {ints(sc)}
-                int[] faceVertexIndices = {ints(si)}
-                point3f[] points = {fmt(sp)}
-                normal3f[] normals = {fmt(sn)} (
-                    interpolation = "vertex"
-                )
-                uniform token subdivisionScheme = "none"
-                rel material:binding = </World/Looks/Clay>
-            }}
-
-            def Mesh "Crate"
-            {{
-                int[] faceVertexCounts = {ints(bc)}
-                int[] faceVertexIndices = {ints(bi)}
-                point3f[] points = {fmt(bp)}
-                uniform token subdivisionScheme = "none"
-                rel material:binding = </World/Looks/Steel>
-            }}
-        }}
+{prototypes_scope((sp, sn, sc, si), (bp, bc, bi), "Clay", "Steel")}
     }}
 
     def DomeLight "Sky"

@@ -35,6 +35,19 @@ double diskIrradiance(double radiance, double r, double h, double rho) {
     return kPi * radiance * 0.5 * (1 - (h * h + rho * rho - r * r) / std::sqrt(z * z - 4 * r * r * rho * rho));
 }
 
+// A sphere light straight above the plane's origin at `height`, seen from the plane point under
+// pixel (x, y): the cosine of its angle off the vertical (= off the light's -Z axis, and the
+// surface's cos theta) and the Lambert radiance before any shaping, albedo/pi * pi L r^2/d^2 cos.
+struct BulbOverhead {
+    double cosTheta, radiance;
+};
+BulbOverhead bulbOverhead(int x, int y, double height, double radius, double radiance) {
+    auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
+    double d2 = p[0] * p[0] + p[1] * p[1] + height * height;
+    double cosTheta = height / std::sqrt(d2);
+    return {cosTheta, kLitPlaneAlbedo * radiance * radius * radius / d2 * cosTheta};
+}
+
 const std::pair<int, int> kPixels[] = {{32, 32}, {10, 20}, {50, 60}, {3, 3}, {62, 40}};
 
 TEST(AreaLight, RectangleMatchesTheParallelRectangleFactor) {
@@ -140,13 +153,11 @@ TEST(AreaLight, SpotConeCutsAndSoftensTheSphereLight) {
                        downAt(0, 0, height));
         auto color = s.renderColor();
         for (auto [x, y] : kPixels) {
-            auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
-            double d2 = p[0] * p[0] + p[1] * p[1] + height * height;
-            double cosTheta = height / std::sqrt(d2);
-            double offAxis = std::acos(cosTheta), cutoff = cone * kPi / 180, start = cutoff * (1 - softness);
+            BulbOverhead bulb = bulbOverhead(x, y, height, radius, radiance);
+            double offAxis = std::acos(bulb.cosTheta), cutoff = cone * kPi / 180, start = cutoff * (1 - softness);
             double t = std::clamp((offAxis - start) / (cutoff - start), 0.0, 1.0);
             double attenuation = offAxis > cutoff ? 0.0 : softness == 0.0 ? 1.0 : 1.0 - t * t * (3 - 2 * t);
-            double l = kLitPlaneAlbedo / kPi * kPi * radiance * radius * radius / d2 * cosTheta * attenuation;
+            double l = bulb.radiance * attenuation;
             expectRadiance(color, x, y, {l, l, l});
         }
     }
@@ -163,10 +174,8 @@ TEST(AreaLight, FocusNarrowsTheSpread) {
                    downAt(0, 0, height));
     auto color = s.renderColor();
     for (auto [x, y] : kPixels) {
-        auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
-        double d2 = p[0] * p[0] + p[1] * p[1] + height * height;
-        double cosTheta = height / std::sqrt(d2);
-        double l = kLitPlaneAlbedo * radiance * radius * radius / d2 * cosTheta * std::pow(cosTheta, focus);
+        BulbOverhead bulb = bulbOverhead(x, y, height, radius, radiance);
+        double l = bulb.radiance * std::pow(bulb.cosTheta, focus);
         expectRadiance(color, x, y, {l, l, l});
     }
 }
