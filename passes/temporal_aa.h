@@ -10,6 +10,7 @@
 #include "passes/gbuffer.h"
 
 #include <array>
+#include <cstdint>
 
 namespace obscura::passes {
 
