@@ -30,7 +30,8 @@ const RenderSettingInfo kSettings[] = {
     {"shadows:cascades", "cascades per distant light, 1-4 (int, default 4)", OBSCURA_VALUE_INT, 4.0, 1.0, 4.0},
     {"taa", "temporal anti-aliasing (seed 000 SMAA 1TX): the projection jitters by a sub-pixel offset each frame and "
             "an accumulation buffer, reprojected and clamped to the current frame's neighbourhood, gathers the "
-            "offsets; a still image accumulates taa:frames frames and then reports converged (bool, default on)",
+            "offsets; a still image accumulates taa:frames frames, then renders once through the pixel centres and "
+            "reports converged (bool, default on)",
      OBSCURA_VALUE_BOOL, 1.0},
     {"taa:frames", "frames a still image accumulates (1TX): the jitter cycles through this many offsets of the "
                    "Halton (2, 3) sequence, each weighted equally; `obscura render` renders until converged, "
