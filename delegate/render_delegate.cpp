@@ -11,6 +11,7 @@
 #include "passes/depth_of_field.h"
 #include "passes/gbuffer.h"
 #include "passes/lighting.h"
+#include "passes/msaa_resolve.h"
 #include "passes/shadow_maps.h"
 #include "passes/tonemap.h"
 
@@ -106,6 +107,7 @@ RenderDelegate::~RenderDelegate() {
     bestFitNormals_.reset();
     unoccluded_ = {};
     accumulation_ = {};
+    msaaTaggedPixels_.reset();
     ssaoHistory_ = {};
     temporalAaHistory_ = {};
     grading_ = passes::ColorGradingLut();
@@ -184,11 +186,36 @@ void RenderDelegate::markDirty(const std::string& path, ObscuraDirtyBits bits) {
     }
 }
 
+VkSampleCountFlags RenderDelegate::offeredMsaaSampleCounts() const {
+    const VkPhysicalDeviceLimits& limits = device_->context().properties().limits;
+    return limits.framebufferColorSampleCounts & limits.framebufferDepthSampleCounts &
+           limits.framebufferStencilSampleCounts & limits.sampledImageColorSampleCounts &
+           limits.sampledImageIntegerSampleCounts & limits.sampledImageDepthSampleCounts;
+}
+
 void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue* value) {
     double previousRefineLevel = settings_.number("refineLevel");
+    int32_t previousMsaa = int32_t(settings_.number("msaa"));
     std::string problem = settings_.set(key, value);
     if (!problem.empty())
         throw ApiError{findRenderSetting(key) ? OBSCURA_ERROR_INVALID_ARGUMENT : OBSCURA_ERROR_NOT_FOUND, problem};
+    // A sample count the device does not offer is refused (not clamped: a host asking for 8 samples
+    // and silently getting 4 would compare the wrong images), and the previous count stays.
+    if (int32_t samples = int32_t(settings_.number("msaa")); key == "msaa" && samples != previousMsaa) {
+        std::string offered;
+        for (int32_t n = 1; n <= 64; n *= 2)
+            if (offeredMsaaSampleCounts() & VkSampleCountFlags(n)) offered += (offered.empty() ? "" : ", ") + std::to_string(n);
+        bool powerOfTwo = (samples & (samples - 1)) == 0;
+        if (!powerOfTwo || !(offeredMsaaSampleCounts() & VkSampleCountFlags(samples))) {
+            ObscuraValue previous{OBSCURA_VALUE_INT, 0, 1, &previousMsaa};
+            settings_.set(key, &previous);
+            throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT,
+                           "msaa: " + std::to_string(samples) + " samples per pixel " +
+                               (powerOfTwo ? "are not offered by " + device_->context().summary().name
+                                           : std::string("is not a sample count")) +
+                               " (it offers " + offered + ")"};
+        }
+    }
     // A new refinement level re-refines every mesh (Hydra's display-style change).
     if (settings_.number("refineLevel") != previousRefineLevel)
         for (auto& [path, prim] : prims_)
@@ -328,10 +355,24 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     // lighting, temporal AA, depth of field, tone mapping, AOV readback. In reference mode the
     // accumulated sub-frames replace all between the G-buffer and tone mapping; the other AOVs come
     // from the pinhole camera.
+    // With msaa > 1 the G-buffer is multisampled and the custom resolve hands the single-sample
+    // one to everything after it; the lighting pass alone reads the samples (seed 000 "Deferred
+    // MSAA"). Reference mode's sub-frames carry their own pixel jitter, so it renders one sample.
     gpu::FrameGraph graph;
     gpu::ImageHandle shadowAtlas;
     if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
-    passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
+    auto samples = VkSampleCountFlagBits(referenceSubFrames == 0 ? uint32_t(settings_.number("msaa")) : 1u);
+    passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_, samples);
+    std::optional<passes::PerSampleLighting> perSample;
+    if (samples != VK_SAMPLE_COUNT_1_BIT) {
+        if (!msaaTaggedPixels_)
+            msaaTaggedPixels_ = device_->createBuffer(sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                      gpu::MemoryUsage::Readback, "msaa tagged pixels");
+        *static_cast<uint32_t*>(msaaTaggedPixels_->mapped()) = 0;
+        perSample = passes::PerSampleLighting{gbuffer, graph.importBuffer("msaaTaggedPixels", msaaTaggedPixels_)};
+        graph.markOutput(perSample->taggedPixelCount);
+        gbuffer = passes::addMsaaResolvePass(graph, *pipelines_, scene, gbuffer);
+    }
     gpu::ImageHandle hdr;
     if (referenceSubFrames > 0) {
         gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
@@ -340,7 +381,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
                                                      ? VK_FORMAT_R16G16B16A16_SFLOAT
                                                      : VK_FORMAT_B10G11R11_UFLOAT_PACK32);
     } else {
-        hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frame);
+        hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frame, perSample ? &*perSample : nullptr);
         if (temporalAa) {
             hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, temporalAaSettings,
                                             temporalAa->pass, temporalAaHistory_);
@@ -362,6 +403,14 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, hdrAlpha, display, requests);
     executeFrame(graph);
     converged_ = !temporalAa || temporalAa->converged;
+    if (perSample) {
+        // Issue 5: the share of pixels the per-sample mask sends to sample-frequency lighting.
+        uint32_t tagged = *static_cast<const uint32_t*>(msaaTaggedPixels_->mapped());
+        char line[160];
+        std::snprintf(line, sizeof(line), "msaa %ux: %.2f%% of pixels tagged for per-sample lighting (%u of %u)",
+                      uint32_t(samples), 100.0 * tagged / (double(width) * height), tagged, width * height);
+        log(OBSCURA_LOG_INFO, line);
+    }
     frameSetupMilliseconds_ = std::chrono::duration<double, std::milli>(frameRecorded_ - syncEnd).count();
     for (RenderBuffer* rb : targets) rb->setRendered(true);
 
@@ -378,7 +427,8 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
 
 gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
                                              const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
-                                             const FrameSceneInputs& frame) {
+                                             const FrameSceneInputs& frame,
+                                             const passes::PerSampleLighting* perSample) {
     FrameView seen = frameView(frame);
     passes::addClipVolumePass(graph, *pipelines_, scene, gbuffer);
     passes::SsaoResult ambient;
@@ -407,7 +457,7 @@ gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passe
         environment_->addToFrame(graph, *pipelines_, dome ? dome->environment() : nullptr);
     environmentInFrame_ = true;
     return passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas, environment,
-                                   lightAccumulation());
+                                   lightAccumulation(), perSample);
 }
 
 passes::LightAccumulation RenderDelegate::lightAccumulation() const {

@@ -67,9 +67,12 @@ private:
     void sync(double time, const Camera* camera);
     // Clip volumes, SSAO, the environment and deferred lighting of `scene` (built from `frame`)
     // into the light accumulation.
+    // `perSample`: the multisampled G-buffer behind `gbuffer` when the render setting msaa is > 1.
     gpu::ImageHandle addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
                                  const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
-                                 const FrameSceneInputs& frame);
+                                 const FrameSceneInputs& frame, const passes::PerSampleLighting* perSample = nullptr);
+    // Sample counts the G-buffer can be rendered and read with on this device (render setting msaa).
+    VkSampleCountFlags offeredMsaaSampleCounts() const;
     // The light accumulation's format (render setting lighting:halfFloat).
     passes::LightAccumulation lightAccumulation() const;
     // Compiles, records and submits one frame graph, and waits for it.
@@ -114,6 +117,9 @@ private:
     TemporalAccumulation temporalAccumulation_;
     bool temporalAaInFrame_ = false;
     bool converged_ = true;  // the last render's, for ObscuraRenderStats
+    // Deferred MSAA: the lighting pass counts the pixels it lit per sample into this host-visible
+    // uint (logged after each frame).
+    gpu::BufferPtr msaaTaggedPixels_;
     std::unique_ptr<TextureCache> textures_;
     std::unique_ptr<GeometryCache> geometry_;
     std::unique_ptr<EnvironmentCache> environment_;

@@ -28,6 +28,12 @@ const RenderSettingInfo kSettings[] = {
                            "(int, default 1024)",
      OBSCURA_VALUE_INT, 1024.0, 64.0, 4096.0},
     {"shadows:cascades", "cascades per distant light, 1-4 (int, default 4)", OBSCURA_VALUE_INT, 4.0, 1.0, 4.0},
+    {"msaa", "samples per pixel of the G-buffer, 1, 2, 4 or 8 as the device offers (lavapipe: 1 and 4; another "
+             "count is refused with the ones offered). Above 1: deferred MSAA (seed 000): a custom resolve copies "
+             "sample 0 for the per-pixel passes and tags pixels whose samples differ (id, depth, normal) in stencil "
+             "bit 0x80; lighting runs per sample there, resolved with tone-mapped weights 1/(1 + luma) so bright "
+             "edges keep their coverage. Reference mode renders 1 (int, default 1)",
+     OBSCURA_VALUE_INT, 1.0, 1.0, 8.0},
     {"taa", "temporal anti-aliasing (seed 000 SMAA 1TX): the projection jitters by a sub-pixel offset each frame and "
             "an accumulation buffer, reprojected and clamped to the current frame's neighbourhood, gathers the "
             "offsets; a still image accumulates taa:frames frames, then renders once through the pixel centres and "

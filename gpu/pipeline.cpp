@@ -101,12 +101,14 @@ Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(d
     ds.depthWriteEnable = desc.depthWrite;
     ds.depthCompareOp = desc.depthCompare;
     ds.stencilTestEnable = desc.stencil.enabled;
-    ds.front = {VK_STENCIL_OP_KEEP, desc.stencil.passOp, VK_STENCIL_OP_KEEP, desc.stencil.compare, 0xffu, 0u, 0u};
+    ds.front = {VK_STENCIL_OP_KEEP, desc.stencil.passOp, VK_STENCIL_OP_KEEP, desc.stencil.compare, 0xffu, 0u,
+                desc.stencil.reference};
     ds.back = ds.front;
     std::vector<VkPipelineColorBlendAttachmentState> blends(desc.colorFormats.size());
     for (auto& b : blends)
-        b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
-                           VK_COLOR_COMPONENT_A_BIT;
+        b.colorWriteMask = desc.colorWrite ? VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                                                 VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT
+                                           : 0u;
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     cb.attachmentCount = static_cast<uint32_t>(blends.size());
     cb.pAttachments = blends.data();

@@ -33,6 +33,9 @@ struct GraphicsPipelineDesc {
     std::vector<VkFormat> colorFormats;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    // Off: the colour attachments keep their contents (a pass that draws into stencil alone but
+    // shares its rendering with draws that write colour).
+    bool colorWrite = true;
     bool depthTest = true;
     bool depthWrite = true;
     // Rasteriser depth bias (constant and slope-scaled factors); both 0 leave it off.
@@ -41,11 +44,12 @@ struct GraphicsPipelineDesc {
     VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
     VkCompareOp depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
     // Stencil, front and back alike: `passOp` where both tests pass; the write mask is dynamic
-    // state (vkCmdSetStencilWriteMask per draw), the compare mask all bits, the reference 0.
+    // state (vkCmdSetStencilWriteMask per draw), the compare mask all bits.
     struct Stencil {
         bool enabled = false;
         VkCompareOp compare = VK_COMPARE_OP_ALWAYS;
         VkStencilOp passOp = VK_STENCIL_OP_KEEP;
+        uint32_t reference = 0;
     } stencil;
 };
 

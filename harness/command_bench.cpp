@@ -29,7 +29,8 @@ int runBench(const BenchOptions& o) {
         return error->exitCode;
     }
     Session& session = *std::get<std::unique_ptr<Session>>(opened);
-    if (auto problem = session.applySettings(o.settings)) {
+    session.setVerbose(o.verbose);
+    if (auto problem = session.applySettings(withMsaaSetting(o.settings, o.msaa))) {
         std::fprintf(stderr, "obscura: %s\n", problem->message.c_str());
         return problem->exitCode;
     }

@@ -93,7 +93,8 @@ int runRender(const RenderOptions& o) {
         return error->exitCode;
     }
     Session& session = *std::get<std::unique_ptr<Session>>(opened);
-    std::vector<std::string> settings = o.settings;
+    session.setVerbose(o.verbose);
+    std::vector<std::string> settings = withMsaaSetting(o.settings, o.msaa);
     if (o.reference > 0) settings.push_back("reference=" + std::to_string(o.reference));
     if (auto problem = session.applySettings(settings)) {
         std::fprintf(stderr, "obscura: %s\n", problem->message.c_str());

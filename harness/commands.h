@@ -18,6 +18,8 @@ struct RenderOptions {
     std::vector<std::string> aovs;
     std::vector<std::string> settings;
     int reference = 0;  // sub-frames of the reference mode; 0: the normal frame
+    std::optional<int> msaa;  // --msaa N: the render setting msaa
+    bool verbose = false;     // print the plugin's info messages
 };
 
 struct CompareOptions {
@@ -38,6 +40,8 @@ struct BenchOptions {
     // under camera motion (temporal AA reprojects and clamps) instead of settling into a still.
     bool changingCamera = false;
     std::vector<std::string> settings;
+    std::optional<int> msaa;  // --msaa N: the render setting msaa
+    bool verbose = false;     // print the plugin's info messages (e.g. the MSAA tagged share per frame)
 };
 
 int runInfo();

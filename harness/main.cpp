@@ -28,6 +28,8 @@ int main(int argc, char** argv) {
                   "ground truth: average N sub-frames sampling the lens aperture, shutter and pixel "
                   "(render setting `reference`)")
         ->check(CLI::NonNegativeNumber);
+    r->add_option("--msaa", render.msaa, "G-buffer samples per pixel (render setting `msaa`)");
+    r->add_flag("-v,--verbose", render.verbose, "print the plugin's info messages");
     frameOpt->excludes(r->get_option("--frames"));
 
     CompareOptions compare;
@@ -48,6 +50,8 @@ int main(int argc, char** argv) {
     b->add_flag("--changing-camera", bench.changingCamera,
                 "mark the camera changed every frame: temporal AA measured as under camera motion");
     b->add_option("--set", bench.settings, "render setting key=value (repeatable)");
+    b->add_option("--msaa", bench.msaa, "G-buffer samples per pixel (render setting `msaa`)");
+    b->add_flag("-v,--verbose", bench.verbose, "print the plugin's info messages");
 
     try {
         app.parse(argc, argv);

@@ -28,8 +28,14 @@ std::variant<LoadedPlugin, SessionError> loadBestPlugin() {
 void Session::logToStderr(void* user, ObscuraLogLevel level, const char* message) {
     auto* self = static_cast<Session*>(user);
     if (level == OBSCURA_LOG_ERROR) ++self->loggedErrors_;
-    if (level < OBSCURA_LOG_WARNING) return;
-    std::fprintf(stderr, "obscura: %s: %s\n", level == OBSCURA_LOG_ERROR ? "error" : "warning", message);
+    if (level < (self->verbose_ ? OBSCURA_LOG_INFO : OBSCURA_LOG_WARNING)) return;
+    std::fprintf(stderr, "obscura: %s: %s\n",
+                 level == OBSCURA_LOG_ERROR ? "error" : level == OBSCURA_LOG_WARNING ? "warning" : "info", message);
+}
+
+std::vector<std::string> withMsaaSetting(std::vector<std::string> settings, const std::optional<int>& msaa) {
+    if (msaa) settings.push_back("msaa=" + std::to_string(*msaa));
+    return settings;
 }
 
 std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::string& scenePath) {

@@ -17,6 +17,9 @@ struct SessionError {
     std::string message;
 };
 
+// "msaa=N" appended to `settings` when --msaa was given (a shortcut for --set msaa=N).
+std::vector<std::string> withMsaaSetting(std::vector<std::string> settings, const std::optional<int>& msaa);
+
 class Session {
 public:
     // Loads the highest-priority plugin found (OBSCURA_PLUGINPATH, then beside the harness).
@@ -29,6 +32,8 @@ public:
     const usda::Stage& stage() const { return *stage_; }
     std::string lastError() const { return api().lastError(delegate_); }
     uint32_t loggedErrors() const { return loggedErrors_; }
+    // Also print the plugin's info messages (device, loaded textures, the MSAA tagged share).
+    void setVerbose(bool verbose) { verbose_ = verbose; }
 
     // Applies "key=value" settings; returns the first problem.
     std::optional<SessionError> applySettings(const std::vector<std::string>& settings);
@@ -42,6 +47,7 @@ private:
     std::unique_ptr<UsdSceneHost> host_;
     ObscuraDelegate delegate_ = nullptr;
     uint32_t loggedErrors_ = 0;
+    bool verbose_ = false;
 };
 
 // Loads the best plugin without a scene (for `obscura info`).

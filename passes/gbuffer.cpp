@@ -3,11 +3,12 @@
 #include "passes/frame_data.h"
 
 #include <cstddef>
+#include <string>
 
 namespace obscura::passes {
 namespace {
 
-gpu::GraphicsPipelineDesc describeGBufferPipeline() {
+gpu::GraphicsPipelineDesc describeGBufferPipeline(VkSampleCountFlagBits samples) {
     gpu::GraphicsPipelineDesc d;
     d.vertexShader = "gbuffer.vert";
     d.fragmentShader = "gbuffer.frag";
@@ -25,24 +26,31 @@ gpu::GraphicsPipelineDesc describeGBufferPipeline() {
                           {4, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}};
     d.colorFormats = {kNormalRoughnessFormat, kAlbedoMetallicFormat, kInstanceFormat};
     d.depthFormat = kDepthFormat;
+    d.samples = samples;
     return d;
 }
 
 }  // namespace
 
-GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                       const gpu::ImagePtr& bestFitNormals) {
+GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkSampleCountFlagBits samples,
+                            const std::string& prefix) {
     auto image = [&](const char* name, VkFormat format) {
         gpu::ImageDesc desc;
         desc.format = format;
         desc.width = scene.width;
         desc.height = scene.height;
-        return graph.createImage(name, desc);
+        desc.samples = samples;
+        return graph.createImage(prefix + "." + name, desc);
     };
-    GBuffer gb{image("gbuffer.depth", kDepthFormat), image("gbuffer.normalRoughness", kNormalRoughnessFormat),
-               image("gbuffer.albedoMetallic", kAlbedoMetallicFormat), image("gbuffer.instance", kInstanceFormat)};
-    const gpu::Pipeline& pipeline =
-        pipelines.get<gpu::GraphicsPipelineDesc>("gbuffer", describeGBufferPipeline);
+    return {image("depth", kDepthFormat), image("normalRoughness", kNormalRoughnessFormat),
+            image("albedoMetallic", kAlbedoMetallicFormat), image("instance", kInstanceFormat)};
+}
+
+GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                       const gpu::ImagePtr& bestFitNormals, VkSampleCountFlagBits samples) {
+    GBuffer gb = createGBufferImages(graph, scene, samples, "gbuffer");
+    const gpu::Pipeline& pipeline = pipelines.get<gpu::GraphicsPipelineDesc>(
+        "gbuffer." + std::to_string(samples), [samples] { return describeGBufferPipeline(samples); });
     gpu::Device& device = pipelines.device();
 
     graph.addPass(

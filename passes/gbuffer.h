@@ -19,7 +19,13 @@ constexpr VkFormat kNormalRoughnessFormat = VK_FORMAT_R8G8B8A8_UNORM;
 constexpr VkFormat kAlbedoMetallicFormat = VK_FORMAT_R8G8B8A8_SRGB;
 constexpr VkFormat kInstanceFormat = VK_FORMAT_R32_UINT;
 
+// The G-buffer's images at the scene's size, named "<prefix>.depth" etc.
+GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkSampleCountFlagBits samples,
+                            const std::string& prefix);
+
+// With more than one sample (render setting msaa) every target is multisampled; the custom
+// resolve (msaa_resolve.h) turns it into the single-sample G-buffer the other passes read.
 GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                       const gpu::ImagePtr& bestFitNormals);
+                       const gpu::ImagePtr& bestFitNormals, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 
 }  // namespace obscura::passes

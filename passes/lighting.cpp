@@ -1,30 +1,42 @@
 #include "passes/lighting.h"
 
+#include <optional>
+
 namespace obscura::passes {
 namespace {
 
 constexpr uint32_t kLightingTileSize = 16;  // lighting.comp's TILE_SIZE: one workgroup culls lights per tile
 
+std::vector<gpu::BindingDesc> pixelFrequencyBindings() {
+    return {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+            {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+            {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+            {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+            {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+            {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+            {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+            {14, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+            {15, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+            {16, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
+}
+
 gpu::ComputePipelineDesc describeLightingPipeline() {
-    return {"lighting.comp",
-            {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-             {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-             {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-             {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-             {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-             {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-             {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {14, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-             {15, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-             {16, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
-            0};
+    return {"lighting.comp", pixelFrequencyBindings(), 0};
+}
+
+// The PER_SAMPLE_LIGHTING build of lighting.comp: the multisampled G-buffer and the tagged count.
+gpu::ComputePipelineDesc describePerSampleLightingPipeline() {
+    std::vector<gpu::BindingDesc> bindings = pixelFrequencyBindings();
+    for (uint32_t b = 17; b <= 20; ++b) bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+    bindings.push_back({21, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+    return {"lighting_per_sample.comp", bindings, 0};
 }
 
 }  // namespace
@@ -32,14 +44,18 @@ gpu::ComputePipelineDesc describeLightingPipeline() {
 gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                                  const GBuffer& gb, const SsaoResult& ambient, gpu::ImageHandle shadowAtlas,
                                  const EnvironmentLighting& environment,
-                                 LightAccumulation format) {
+                                 LightAccumulation format, const PerSampleLighting* perSample) {
     gpu::ImageDesc desc;
     desc.format = format == LightAccumulation::HalfFloat ? VK_FORMAT_R16G16B16A16_SFLOAT
                                                          : VK_FORMAT_B10G11R11_UFLOAT_PACK32;
     desc.width = scene.width;
     desc.height = scene.height;
     gpu::ImageHandle accumulation = graph.createImage("lightAccumulation", desc);
-    const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("lighting", describeLightingPipeline);
+    const gpu::Pipeline& pipeline =
+        perSample ? pipelines.get<gpu::ComputePipelineDesc>("lighting_per_sample", describePerSampleLightingPipeline)
+                  : pipelines.get<gpu::ComputePipelineDesc>("lighting", describeLightingPipeline);
+    std::optional<PerSampleLighting> samples;
+    if (perSample) samples = *perSample;
     gpu::Device& device = pipelines.device();
 
     graph.addPass(
@@ -55,11 +71,27 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipeline
             pass.read(environment.prefiltered, gpu::Usage::SampledCompute);
             pass.read(environment.irradiance, gpu::Usage::StorageBufferRead);
             pass.write(accumulation, gpu::Usage::StorageImageWrite);
+            if (samples) {
+                pass.read(samples->multisampled.depth, gpu::Usage::SampledCompute);
+                pass.read(samples->multisampled.normalRoughness, gpu::Usage::SampledCompute);
+                pass.read(samples->multisampled.albedoMetallic, gpu::Usage::SampledCompute);
+                pass.read(samples->multisampled.instance, gpu::Usage::SampledCompute);
+                pass.write(samples->taggedPixelCount, gpu::Usage::StorageBufferWrite);
+            }
         },
-        [&device, &pipeline, &scene, gb, ambient, shadowAtlas, environment, accumulation](
+        [&device, &pipeline, &scene, gb, ambient, shadowAtlas, environment, accumulation, samples](
             VkCommandBuffer cmd, const gpu::PassResources& res) {
             VkSampler nearest = device.nearestClampSampler();
-            gpu::DescriptorWriter(device, pipeline)
+            gpu::DescriptorWriter writer(device, pipeline);
+            if (samples)
+                writer
+                    .sampled(17, res.view(samples->multisampled.depth), nearest,
+                             VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
+                    .sampled(18, res.view(samples->multisampled.normalRoughness), nearest)
+                    .sampled(19, res.view(samples->multisampled.albedoMetallic), nearest)
+                    .sampled(20, res.view(samples->multisampled.instance), nearest)
+                    .buffer(21, res.buffer(samples->taggedPixelCount));
+            writer
                 .buffer(0, scene.camera->buffer)
                 .buffer(1, scene.instances->buffer)
                 .buffer(2, scene.materials->buffer)

@@ -6,6 +6,9 @@
 // every pixel shades with its tile's list, each light's share through its shadow maps (per pixel,
 // shadow_sampling.glsl). Accumulates into B10G11R11_UFLOAT, pre-exposed by the camera's exposure
 // (seed 004 "HDR": keep the accumulation in a range the small float format holds).
+// Built twice (cmake/ObscuraShaders.cmake variants): with PER_SAMPLE_LIGHTING (render setting
+// msaa > 1) pixels the custom resolve tagged in the stencil's edge bit are lit once per sample of
+// the multisampled G-buffer and resolved HDR-correctly; the others stay at pixel frequency.
 #extension GL_EXT_scalar_block_layout : require
 #include "common/frame_data.glsl"
 #include "common/light_evaluation.glsl"
@@ -31,12 +34,25 @@ layout(set = 0, binding = 9) uniform sampler2D ambientAccessibility;
 layout(set = 0, binding = 10) uniform sampler2D ambientHalfDepth;
 layout(set = 0, binding = 11, std430) readonly buffer ShadowViews { ShadowViewData shadowViews[]; };
 layout(set = 0, binding = 12) uniform sampler2D shadowAtlas;
-// The G-buffer's stencil: bits 0x01..0x40 mark surfaces inside the clip volumes (clip_volumes.cpp).
+// The G-buffer's stencil: bits 0x01..0x40 mark surfaces inside the clip volumes (clip_volumes.cpp),
+// 0x80 the pixels the MSAA resolve tagged for per-sample lighting (msaa_edge_mask.frag).
 layout(set = 0, binding = 13) uniform usampler2D clipStencil;
 // The textured dome (a 1x1 black image and zero coefficients without one).
 layout(set = 0, binding = 14, std140) uniform Environment { EnvironmentData environment; };
 layout(set = 0, binding = 15, std430) readonly buffer EnvironmentIrradiance { vec4 irradianceSh[SH_COEFFICIENTS]; };
 layout(set = 0, binding = 16) uniform sampler2D prefilteredEnvironment;
+#ifdef PER_SAMPLE_LIGHTING
+#include "common/msaa_samples.glsl"
+#include "common/hdr_resolve.glsl"
+// The multisampled G-buffer the custom resolve read (msaa_resolve.frag).
+layout(set = 0, binding = 17) uniform sampler2DMS depthSamples;
+layout(set = 0, binding = 18) uniform sampler2DMS normalRoughnessSamples;
+layout(set = 0, binding = 19) uniform sampler2DMS albedoMetallicSamples;
+layout(set = 0, binding = 20) uniform usampler2DMS instanceSamples;
+// Pixels lit per sample this frame (the render stats' tagged fraction).
+layout(set = 0, binding = 21, std430) buffer TaggedPixels { uint taggedPixelCount; };
+shared uint tileTaggedPixels;
+#endif
 
 #include "common/shadow_sampling.glsl"
 
@@ -84,16 +100,76 @@ bool touchesTile(LightData light) {
     return dot(d, d) <= light.factors.w * light.factors.w;
 }
 
+// Exposed radiance of the G-buffer surface `instanceId` (> 0) seen through window position
+// `windowPosition` at device depth `depth`, lit by the tile's lights.
+vec3 shadeSurface(uint instanceId, float depth, vec4 normalRoughness, vec4 albedoMetallic, vec2 windowPosition,
+                  ivec2 pixel, uint insideClipVolumes) {
+    InstanceData inst = instances[instanceId - 1u];
+    MaterialData mat = materials[inst.materialIndex];
+    vec2 ndc = windowPosition / camera.resolution * 2.0 - 1.0;
+    SurfacePoint s = surfaceFromMaterial(mat, albedoMetallic.rgb, albedoMetallic.a);
+    s.P = unproject(camera.inverseViewProjection, ndc, depth);
+    s.N = decodeBestFitNormal(normalRoughness.xyz);
+    s.V = normalize(camera.position.xyz - s.P);
+    s.roughness = normalRoughness.a;
+    float viewDistance = linearDepthFromDevice(camera.projection, depth);
+    s.ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel, viewDistance);
+    s.environment = sampleEnvironment(s);
+
+    vec3 radiance = mat.emissiveMetallic.rgb;
+    uint count = min(tileLightCount, MAX_TILE_LIGHTS);
+    for (uint i = 0u; i < count; ++i) {
+        LightData light = lights[tileLights[i]];
+        // A clipped light reaches only surfaces inside its volume (seed 004 "clip volumes").
+        if (light.shadow.w != 0u && (insideClipVolumes & light.shadow.w) == 0u) continue;
+        vec3 reflected = reflectFromLight(s, light);
+        // Shadow lookups only where the light reaches the surface at all.
+        if (light.shadow.y > 0u && any(greaterThan(reflected, vec3(0.0))))
+            reflected *= shadowVisibility(light, s.P, s.N, viewDistance);
+        radiance += reflected;
+    }
+    return radiance * camera.exposureScale;
+}
+
+#ifdef PER_SAMPLE_LIGHTING
+// Seed 000 "Deferred MSAA \ pixel and sample frequency passes", in compute ("DX 11.0 compute tiled
+// deferred shading: loop through MSAA tagged sub-samples"): each sample of the multisampled
+// G-buffer is shaded at its own position (the standard sample locations) and the results are
+// resolved with tone-mapped weights (hdr_resolve.glsl). Clip volumes and SSAO stay per pixel.
+// Alpha: the share of samples that hit a surface (the pixel's coverage).
+vec4 shadeSamples(ivec2 pixel, uint insideClipVolumes) {
+    int sampleCount = textureSamples(instanceSamples);
+    HdrResolve resolve = beginHdrResolve();
+    int covered = 0;
+    for (int k = 0; k < sampleCount; ++k) {
+        uint instanceId = texelFetch(instanceSamples, pixel, k).r;
+        vec3 radiance = vec3(0.0);
+        covered += instanceId != 0u ? 1 : 0;
+        if (instanceId != 0u)
+            radiance = shadeSurface(instanceId, texelFetch(depthSamples, pixel, k).r,
+                                    texelFetch(normalRoughnessSamples, pixel, k),
+                                    texelFetch(albedoMetallicSamples, pixel, k),
+                                    vec2(pixel) + standardSampleLocation(sampleCount, k), pixel, insideClipVolumes);
+        addHdrResolveSample(resolve, radiance);
+    }
+    return vec4(endHdrResolve(resolve), float(covered) / float(sampleCount));
+}
+#endif
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     bool inside = all(lessThan(pixel, ivec2(camera.resolution)));
     uint instanceId = inside ? texelFetch(instanceTexture, pixel, 0).r : 0u;
     float depth = inside ? texelFetch(depthTexture, pixel, 0).r : 1.0;
+    uint stencil = inside ? texelFetch(clipStencil, pixel, 0).r : 0u;
 
     if (gl_LocalInvocationIndex == 0u) {
         tileMinDepthBits = floatBitsToUint(1.0);
         tileMaxDepthBits = 0u;
         tileLightCount = 0u;
+#ifdef PER_SAMPLE_LIGHTING
+        tileTaggedPixels = 0u;
+#endif
     }
     barrier();
     // Depths are non-negative, so their bit patterns order like the floats.
@@ -101,6 +177,19 @@ void main() {
         atomicMin(tileMinDepthBits, floatBitsToUint(depth));
         atomicMax(tileMaxDepthBits, floatBitsToUint(depth));
     }
+#ifdef PER_SAMPLE_LIGHTING
+    // A tagged pixel's other samples may lie on another surface: the tile's box holds them too.
+    bool perSample = (stencil & MSAA_EDGE_STENCIL_BIT) != 0u;
+    if (perSample) {
+        atomicAdd(tileTaggedPixels, 1u);
+        for (int k = 1; k < textureSamples(instanceSamples); ++k) {
+            if (texelFetch(instanceSamples, pixel, k).r == 0u) continue;
+            uint sampleDepthBits = floatBitsToUint(texelFetch(depthSamples, pixel, k).r);
+            atomicMin(tileMinDepthBits, sampleDepthBits);
+            atomicMax(tileMaxDepthBits, sampleDepthBits);
+        }
+    }
+#endif
     barrier();
     bool tileHasSurface = tileMinDepthBits <= tileMaxDepthBits;
     if (gl_LocalInvocationIndex == 0u && tileHasSurface) {
@@ -117,6 +206,9 @@ void main() {
         tileBoxMin = lo;
         tileBoxMax = hi;
     }
+#ifdef PER_SAMPLE_LIGHTING
+    if (gl_LocalInvocationIndex == 0u && tileTaggedPixels > 0u) atomicAdd(taggedPixelCount, tileTaggedPixels);
+#endif
     barrier();
     if (tileHasSurface) {
         for (uint i = gl_LocalInvocationIndex; i < lightCount; i += TILE_SIZE * TILE_SIZE) {
@@ -127,37 +219,20 @@ void main() {
     }
     barrier();
     if (!inside) return;
+    // Bits 0x01..0x40 mark surfaces inside the clip volumes (clip_volumes.cpp).
+    uint insideClipVolumes = stencil & 0x7fu;
+#ifdef PER_SAMPLE_LIGHTING
+    if (perSample) {
+        imageStore(lightAccumulation, pixel, shadeSamples(pixel, insideClipVolumes));
+        return;
+    }
+#endif
     if (instanceId == 0u) {
         imageStore(lightAccumulation, pixel, vec4(0.0));
         return;
     }
-
-    InstanceData inst = instances[instanceId - 1u];
-    MaterialData mat = materials[inst.materialIndex];
-    vec4 nr = texelFetch(normalRoughnessTexture, pixel, 0);
-    vec4 am = texelFetch(albedoMetallicTexture, pixel, 0);
-    vec2 ndc = (vec2(pixel) + 0.5) / camera.resolution * 2.0 - 1.0;
-    SurfacePoint s = surfaceFromMaterial(mat, am.rgb, am.a);
-    s.P = unproject(camera.inverseViewProjection, ndc, depth);
-    s.N = decodeBestFitNormal(nr.xyz);
-    s.V = normalize(camera.position.xyz - s.P);
-    s.roughness = nr.a;
-    float viewDistance = linearDepthFromDevice(camera.projection, depth);
-    s.ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel, viewDistance);
-    s.environment = sampleEnvironment(s);
-
-    vec3 radiance = mat.emissiveMetallic.rgb;
-    uint insideClipVolumes = texelFetch(clipStencil, pixel, 0).r;
-    uint count = min(tileLightCount, MAX_TILE_LIGHTS);
-    for (uint i = 0u; i < count; ++i) {
-        LightData light = lights[tileLights[i]];
-        // A clipped light reaches only surfaces inside its volume (seed 004 "clip volumes").
-        if (light.shadow.w != 0u && (insideClipVolumes & light.shadow.w) == 0u) continue;
-        vec3 reflected = reflectFromLight(s, light);
-        // Shadow lookups only where the light reaches the surface at all.
-        if (light.shadow.y > 0u && any(greaterThan(reflected, vec3(0.0))))
-            reflected *= shadowVisibility(light, s.P, s.N, viewDistance);
-        radiance += reflected;
-    }
-    imageStore(lightAccumulation, pixel, vec4(radiance * camera.exposureScale, 1.0));
+    vec3 radiance = shadeSurface(instanceId, depth, texelFetch(normalRoughnessTexture, pixel, 0),
+                                 texelFetch(albedoMetallicTexture, pixel, 0), vec2(pixel) + 0.5, pixel,
+                                 insideClipVolumes);
+    imageStore(lightAccumulation, pixel, vec4(radiance, 1.0));
 }

@@ -53,14 +53,17 @@ void addBulb(TestHost& host, std::array<double, 3> at, const std::string& clip) 
     host.addPrim("sphereLight", "/Bulb", values, translation(at[0], at[1], at[2]));
 }
 
-TEST(ClipVolume, LightStopsAtTheWall) {
-    // The floor spans x in [-1.05, 1.05] in view; a wall 2 units high stands at x = 0 (seen edge
-    // on). The bulb hangs in the left room, high enough that no pixel sees it at a grazing angle
-    // (where the 8-bit best-fit normal's 0.3 degrees would show).
+// The floor spans x in [-1.05, 1.05] in view; a wall 2 units high stands at x = 0 (seen edge on).
+// The bulb hangs in the left room, high enough that no pixel sees it at a grazing angle (where the
+// 8-bit best-fit normal's 0.3 degrees would show). `msaa`: the G-buffer's samples per pixel (the
+// volumes then clip the resolved G-buffer's stencil, beside the MSAA edge bit).
+void expectLightStopsAtTheWall(int32_t msaa) {
     const std::array<double, 3> bulb{-0.5, 0.0, 1.5};
     auto render = [&](bool clipped) {
         LitPlaneScene s;
         setShadows(s.host, false);
+        ObscuraValue samples{OBSCURA_VALUE_INT, 0, 1, &msaa};
+        EXPECT_EQ(s.host.api().setRenderSetting(s.host.delegate(), "msaa", &samples), OBSCURA_OK);
         Matrix wall = lightPointingAlong({1, 0, 0});  // a plane turned to face +X, standing at x = 0
         wall[12] = 0, wall[13] = 0, wall[14] = 0;
         addPlane(s.host, "/Wall", "/Looks/Grey", 2.0, wall);
@@ -78,6 +81,10 @@ TEST(ClipVolume, LightStopsAtTheWall) {
         expectRadiance(clipped, rightColumn, y, {0, 0, 0});
     }
 }
+
+TEST(ClipVolume, LightStopsAtTheWall) { expectLightStopsAtTheWall(1); }
+
+TEST(ClipVolume, LightStopsAtTheWallWithFourSamples) { expectLightStopsAtTheWall(4); }
 
 TEST(ClipVolume, AVolumeInPiecesAndConcaveRegionsClipsByParity) {
     // Two boxes meeting at an edge form an L over the floor; the bulb lights the L and not the

@@ -98,4 +98,35 @@ void expectRadiance(const std::vector<float>& color, int x, int y, std::array<do
     EXPECT_EQ(p[3], 1.0f);
 }
 
+Matrix turnedAndMoved(double degrees, double x, double y, double z) {
+    double a = degrees * kPi / 180.0, c = std::cos(a), s = std::sin(a);
+    return {c, s, 0, 0, -s, c, 0, 0, 0, 0, 1, 0, x, y, z, 1};
+}
+
+image::Image rgbImage(const std::vector<float>& rgba, int width, int height) {
+    image::Image out = image::Image::make(width, height, {"R", "G", "B"});
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            for (int c = 0; c < 3; ++c) out.at(x, y, c) = rgba[(size_t(y) * width + x) * 4 + c];
+    return out;
+}
+
+image::Image boxDownsample(const std::vector<float>& rgba, int width, int height, int factor,
+                           float (*transfer)(float)) {
+    image::Image out = image::Image::make(width / factor, height / factor, {"R", "G", "B"});
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                float v = rgba[(size_t(y) * width + x) * 4 + c];
+                out.at(x / factor, y / factor, c) += (transfer ? transfer(v) : v) / float(factor * factor);
+            }
+    return out;
+}
+
+image::CompareMetrics compareImages(const image::Image& a, const image::Image& b) {
+    auto result = image::compare(a, b);
+    EXPECT_FALSE(image::isError(result));
+    return image::isError(result) ? image::CompareMetrics{} : std::get<image::CompareMetrics>(result);
+}
+
 }  // namespace obscura::test

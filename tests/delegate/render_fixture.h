@@ -2,6 +2,7 @@
 // materials, and the helpers that turn pixels into the analytic expectations.
 #pragma once
 
+#include "harness/image/compare.h"
 #include "tests/support/test_host.h"
 
 #include <gtest/gtest.h>
@@ -60,5 +61,19 @@ struct LitPlaneScene {
 // The pixel's radiance equals `expected` within 1% plus one step of the B10G11R11 accumulation
 // format (mantissa 6, 6, 5 bits: 1.6% for R and G, 3.1% for B).
 void expectRadiance(const std::vector<float>& color, int x, int y, std::array<double, 3> expected);
+
+// Rotation by `degrees` about Z (counter-clockwise seen from +Z), then a translation.
+Matrix turnedAndMoved(double degrees, double x, double y, double z);
+
+// The RGB channels of a colour AOV (RGBA floats, rows from the top) as an image.
+image::Image rgbImage(const std::vector<float>& rgba, int width, int height);
+
+// The box filter over each pixel: the mean of its factor x factor supersamples, each passed
+// through `transfer` first (identity: the plain supersampled image).
+image::Image boxDownsample(const std::vector<float>& rgba, int width, int height, int factor,
+                           float (*transfer)(float) = nullptr);
+
+// PSNR, SSIM and errors of `a` against `b` (a failed comparison fails the test).
+image::CompareMetrics compareImages(const image::Image& a, const image::Image& b);
 
 }  // namespace obscura::test

@@ -4,7 +4,6 @@
 // (256 sub-frames jittered over the pixel); nothing ghosts when an object moves, a light goes out
 // or a material changes; the history restarts when the size or a setting changes. Printed:
 // PSNR/SSIM against the truth, and the residual an object, a light or a material leaves behind.
-#include "harness/image/compare.h"
 #include "tests/delegate/render_fixture.h"
 
 #include <algorithm>
@@ -27,36 +26,6 @@ void setBool(TestHost& host, const char* name, bool on) {
 void setInt(TestHost& host, const char* name, int32_t value) { setSetting(host, name, OBSCURA_VALUE_INT, &value); }
 void setToken(TestHost& host, const char* name, const char* token) {
     setSetting(host, name, OBSCURA_VALUE_TOKEN, &token);
-}
-
-// Rotation by `degrees` about Z, then a translation.
-Matrix turnedAndMoved(double degrees, double x, double y, double z) {
-    double a = degrees * kPi / 180.0, c = std::cos(a), s = std::sin(a);
-    return {c, s, 0, 0, -s, c, 0, 0, 0, 0, 1, 0, x, y, z, 1};
-}
-
-image::Image rgbImage(const std::vector<float>& rgba, int width, int height) {
-    image::Image out = image::Image::make(width, height, {"R", "G", "B"});
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            for (int c = 0; c < 3; ++c) out.at(x, y, c) = rgba[(size_t(y) * width + x) * 4 + c];
-    return out;
-}
-
-// The box filter over each pixel: the mean of its factor x factor supersamples.
-image::Image boxDownsample(const std::vector<float>& rgba, int width, int height, int factor) {
-    image::Image out = image::Image::make(width / factor, height / factor, {"R", "G", "B"});
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            for (int c = 0; c < 3; ++c)
-                out.at(x / factor, y / factor, c) += rgba[(size_t(y) * width + x) * 4 + c] / float(factor * factor);
-    return out;
-}
-
-image::CompareMetrics compareImages(const image::Image& a, const image::Image& b) {
-    auto result = image::compare(a, b);
-    EXPECT_FALSE(image::isError(result));
-    return image::isError(result) ? image::CompareMetrics{} : std::get<image::CompareMetrics>(result);
 }
 
 // Emissive surfaces only (no lights): what reaches a pixel is pure coverage, so the edges are the

@@ -56,6 +56,12 @@ check "negative --reference is a usage error" 2 $?
 "$obscura" render "$src/scenes/depth_of_field.usda" -o "$tmp/x.exr" --set dof:taps=99 >"$tmp/out" 2>&1
 check "dof:taps out of range is a usage error" 2 $? "$tmp/out" 'dof:taps: 99 is outside 3\.\.15'
 
+# Deferred MSAA: --msaa N is --set msaa=N; -v prints the share of pixels lit per sample.
+"$obscura" render "$src/scenes/demo.usda" -o "$tmp/msaa.png" --width 96 --height 54 --msaa 4 --set taa=off -v >"$tmp/out" 2>&1
+check "render --msaa 4 -v" 0 $? "$tmp/out" 'msaa 4x: [0-9.]+% of pixels tagged'
+"$obscura" render "$src/scenes/demo.usda" -o "$tmp/x.png" --width 32 --height 18 --msaa 3 >"$tmp/out" 2>&1
+check "--msaa 3 is a usage error" 2 $? "$tmp/out" 'msaa: 3 samples per pixel is not a sample count'
+
 "$obscura" render "$src/tests/harness/data/malformed.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
 check "malformed scene names file:line:column" 3 $? "$tmp/out" 'malformed\.usda:7:[0-9]+'
 "$obscura" render "$src/tests/harness/data/bad_prims.usda" -o "$tmp/bad.png" --width 64 --height 64 >"$tmp/out" 2>&1
