@@ -14,21 +14,12 @@ layout(set = 0, binding = 1) uniform sampler2DMS normalRoughnessSamples;
 layout(set = 0, binding = 3) uniform usampler2DMS instanceSamples;
 layout(set = 0, binding = 4, std140) uniform Camera { CameraData camera; };
 
-bool samplesMismatch(ivec2 pixel) {
-    int sampleCount = textureSamples(instanceSamples);
-    GBufferSample first = fetchGBufferSample(depthSamples, normalRoughnessSamples, instanceSamples,
-                                             camera.projection, pixel, 0);
-    for (int s = 1; s < sampleCount; ++s)
-        if (samplesDiffer(first, fetchGBufferSample(depthSamples, normalRoughnessSamples, instanceSamples,
-                                                    camera.projection, pixel, s)))
-            return true;
-    return false;
-}
-
 void main() {
     // Helper invocations of quads that reach past the image's edge read its last texel.
     ivec2 pixel = min(ivec2(gl_FragCoord.xy), textureSize(instanceSamples) - 1);
-    float edge = samplesMismatch(pixel) ? 1.0 : 0.0;
+    float edge = samplesMismatch(depthSamples, normalRoughnessSamples, instanceSamples, camera.projection, pixel)
+                     ? 1.0
+                     : 0.0;
     // Seed 000: "tag entire pixel-quad instead of just single pixel". Fine derivatives are the
     // differences inside the fragment quad, so for a 0/1 value |dFdxFine| is 1 exactly where the
     // horizontal neighbour differs: max(v, |dFdxFine(v)|) is the pair's maximum, and the same

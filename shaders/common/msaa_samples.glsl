@@ -55,4 +55,17 @@ GBufferSample fetchGBufferSample(sampler2DMS depthSamples, sampler2DMS normalRou
     return g;
 }
 
+// Whether any sample of `pixel` differs from sample 0: the per-sample mask before the quad.
+bool samplesMismatch(sampler2DMS depthSamples, sampler2DMS normalRoughnessSamples, usampler2DMS instanceSamples,
+                     mat4 projection, ivec2 pixel) {
+    int sampleCount = textureSamples(instanceSamples);
+    GBufferSample first = fetchGBufferSample(depthSamples, normalRoughnessSamples, instanceSamples, projection,
+                                             pixel, 0);
+    for (int s = 1; s < sampleCount; ++s)
+        if (samplesDiffer(first, fetchGBufferSample(depthSamples, normalRoughnessSamples, instanceSamples,
+                                                    projection, pixel, s)))
+            return true;
+    return false;
+}
+
 #endif
