@@ -215,6 +215,10 @@ void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue
                                            : std::string("is not a sample count")) +
                                " (it offers " + offered + ")"};
         }
+        // The resolve and the per-sample lighting place samples at Vulkan's standard locations.
+        if (samples > 1 && !device_->context().properties().limits.standardSampleLocations)
+            log(OBSCURA_LOG_WARNING, "msaa: the device does not use the standard sample locations; depths and "
+                                     "per-sample positions will be slightly off");
     }
     // A new refinement level re-refines every mesh (Hydra's display-style change).
     if (settings_.number("refineLevel") != previousRefineLevel)
