@@ -37,6 +37,7 @@ layout(set = 0, binding = 12) uniform sampler2D shadowAtlas;
 // The G-buffer's stencil: bits 0x01..0x40 mark surfaces inside the clip volumes (clip_volumes.cpp),
 // 0x80 the pixels the MSAA resolve tagged for per-sample lighting (msaa_edge_mask.frag).
 layout(set = 0, binding = 13) uniform usampler2D clipStencil;
+const uint CLIP_VOLUME_BITS = 0x7fu;
 // The textured dome (a 1x1 black image and zero coefficients without one).
 layout(set = 0, binding = 14, std140) uniform Environment { EnvironmentData environment; };
 layout(set = 0, binding = 15, std430) readonly buffer EnvironmentIrradiance { vec4 irradianceSh[SH_COEFFICIENTS]; };
@@ -51,7 +52,11 @@ layout(set = 0, binding = 19) uniform sampler2DMS albedoMetallicSamples;
 layout(set = 0, binding = 20) uniform usampler2DMS instanceSamples;
 // Pixels lit per sample this frame (the render stats' tagged fraction).
 layout(set = 0, binding = 21, std430) buffer TaggedPixels { uint taggedPixelCount; };
+// The tile's tagged pixels (local invocation indices), compacted, and one round of their
+// samples' weighted radiance (rgb x weight, the weight; negative where the sample hit nothing).
 shared uint tileTaggedPixels;
+shared uint tileTaggedList[TILE_SIZE * TILE_SIZE];
+shared vec4 tileSampleRadiance[TILE_SIZE * TILE_SIZE];
 #endif
 
 #include "common/shadow_sampling.glsl"
@@ -133,26 +138,57 @@ vec3 shadeSurface(uint instanceId, float depth, vec4 normalRoughness, vec4 albed
 
 #ifdef PER_SAMPLE_LIGHTING
 // Seed 000 "Deferred MSAA \ pixel and sample frequency passes", in compute ("DX 11.0 compute tiled
-// deferred shading: loop through MSAA tagged sub-samples"): each sample of the multisampled
-// G-buffer is shaded at its own position (the standard sample locations) and the results are
-// resolved with tone-mapped weights (hdr_resolve.glsl). Clip volumes and SSAO stay per pixel.
-// Alpha: the share of samples that hit a surface (the pixel's coverage).
-vec4 shadeSamples(ivec2 pixel, uint insideClipVolumes) {
-    int sampleCount = textureSamples(instanceSamples);
-    HdrResolve resolve = beginHdrResolve();
-    int covered = 0;
-    for (int k = 0; k < sampleCount; ++k) {
-        uint instanceId = texelFetch(instanceSamples, pixel, k).r;
-        vec3 radiance = vec3(0.0);
-        covered += instanceId != 0u ? 1 : 0;
-        if (instanceId != 0u)
-            radiance = shadeSurface(instanceId, texelFetch(depthSamples, pixel, k).r,
-                                    texelFetch(normalRoughnessSamples, pixel, k),
-                                    texelFetch(albedoMetallicSamples, pixel, k),
-                                    vec2(pixel) + standardSampleLocation(sampleCount, k), pixel, insideClipVolumes);
-        addHdrResolveSample(resolve, radiance);
+// deferred shading: loop through MSAA tagged sub-samples"). The tile's tagged pixels were compacted
+// into tileTaggedList; their (pixel, sample) pairs are spread over all invocations of the tile, a
+// round of TILE_SIZE^2 pairs at a time, so no invocation idles on a silhouette while its
+// neighbours loop over samples (the per-sample rescheduling of Lauritzen 2010, "Deferred
+// rendering for current and future rendering pipelines"). Each sample is shaded at its own position (the standard sample
+// locations) with the tile's lights, and each pixel's samples are resolved with tone-mapped
+// weights (hdr_resolve.glsl); alpha is the share of samples that hit a surface. Clip volumes and
+// SSAO stay per pixel. Called by every invocation (it holds barriers).
+void shadeTaggedSamples() {
+    const uint roundSize = TILE_SIZE * TILE_SIZE;
+    uint sampleCount = uint(textureSamples(instanceSamples));
+    uint pairs = tileTaggedPixels * sampleCount;
+    ivec2 tileOrigin = ivec2(gl_WorkGroupID.xy * TILE_SIZE);
+    // Rounds hold whole pixels: 1, 2, 4 and 8 divide the round size.
+    for (uint first = 0u; first < pairs; first += roundSize) {
+        uint pair = first + gl_LocalInvocationIndex;
+        vec4 weighted = vec4(0.0);
+        if (pair < pairs) {
+            uint local = tileTaggedList[pair / sampleCount];
+            int k = int(pair % sampleCount);
+            ivec2 pixel = tileOrigin + ivec2(local % TILE_SIZE, local / TILE_SIZE);
+            uint instanceId = texelFetch(instanceSamples, pixel, k).r;
+            vec3 radiance = vec3(0.0);
+            if (instanceId != 0u)
+                radiance = shadeSurface(instanceId, texelFetch(depthSamples, pixel, k).r,
+                                        texelFetch(normalRoughnessSamples, pixel, k),
+                                        texelFetch(albedoMetallicSamples, pixel, k),
+                                        vec2(pixel) + standardSampleLocation(int(sampleCount), k), pixel,
+                                        texelFetch(clipStencil, pixel, 0).r & CLIP_VOLUME_BITS);
+            float w = hdrResolveWeight(radiance);
+            weighted = vec4(radiance * w, instanceId != 0u ? w : -w);
+        }
+        tileSampleRadiance[gl_LocalInvocationIndex] = weighted;
+        barrier();
+        uint slot = first / sampleCount + gl_LocalInvocationIndex;
+        if (gl_LocalInvocationIndex < roundSize / sampleCount && slot < tileTaggedPixels) {
+            vec3 weightedRadianceSum = vec3(0.0);
+            float weightSum = 0.0;
+            uint covered = 0u;
+            for (uint k = 0u; k < sampleCount; ++k) {
+                vec4 v = tileSampleRadiance[gl_LocalInvocationIndex * sampleCount + k];
+                weightedRadianceSum += v.rgb;
+                weightSum += abs(v.a);
+                covered += v.a > 0.0 ? 1u : 0u;
+            }
+            uint local = tileTaggedList[slot];
+            imageStore(lightAccumulation, tileOrigin + ivec2(local % TILE_SIZE, local / TILE_SIZE),
+                       vec4(hdrResolve(weightedRadianceSum, weightSum), float(covered) / float(sampleCount)));
+        }
+        barrier();
     }
-    return vec4(endHdrResolve(resolve), float(covered) / float(sampleCount));
 }
 #endif
 
@@ -181,7 +217,7 @@ void main() {
     // A tagged pixel's other samples may lie on another surface: the tile's box holds them too.
     bool perSample = (stencil & MSAA_EDGE_STENCIL_BIT) != 0u;
     if (perSample) {
-        atomicAdd(tileTaggedPixels, 1u);
+        tileTaggedList[atomicAdd(tileTaggedPixels, 1u)] = gl_LocalInvocationIndex;
         for (int k = 1; k < textureSamples(instanceSamples); ++k) {
             if (texelFetch(instanceSamples, pixel, k).r == 0u) continue;
             uint sampleDepthBits = floatBitsToUint(texelFetch(depthSamples, pixel, k).r);
@@ -218,15 +254,13 @@ void main() {
         }
     }
     barrier();
-    if (!inside) return;
     // Bits 0x01..0x40 mark surfaces inside the clip volumes (clip_volumes.cpp).
-    uint insideClipVolumes = stencil & 0x7fu;
+    uint insideClipVolumes = stencil & CLIP_VOLUME_BITS;
 #ifdef PER_SAMPLE_LIGHTING
-    if (perSample) {
-        imageStore(lightAccumulation, pixel, shadeSamples(pixel, insideClipVolumes));
-        return;
-    }
+    shadeTaggedSamples();
+    if (perSample) return;
 #endif
+    if (!inside) return;
     if (instanceId == 0u) {
         imageStore(lightAccumulation, pixel, vec4(0.0));
         return;

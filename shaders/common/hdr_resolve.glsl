@@ -11,27 +11,13 @@
 #ifndef OBSCURA_HDR_RESOLVE_GLSL
 #define OBSCURA_HDR_RESOLVE_GLSL
 
-struct HdrResolve {
-    vec3 weightedSum;
-    float weightSum;
-};
-
 float hdrResolveWeight(vec3 exposedRadiance) {
     return 1.0 / (1.0 + dot(exposedRadiance, vec3(0.2126, 0.7152, 0.0722)));
 }
 
-HdrResolve beginHdrResolve() {
-    return HdrResolve(vec3(0.0), 0.0);
-}
-
-void addHdrResolveSample(inout HdrResolve resolve, vec3 exposedRadiance) {
-    float w = hdrResolveWeight(exposedRadiance);
-    resolve.weightedSum += w * exposedRadiance;
-    resolve.weightSum += w;
-}
-
-vec3 endHdrResolve(HdrResolve resolve) {
-    return resolve.weightedSum / resolve.weightSum;
+// The resolved radiance from the sums of w_s x_s and of w_s over a pixel's samples.
+vec3 hdrResolve(vec3 weightedRadianceSum, float weightSum) {
+    return weightedRadianceSum / weightSum;
 }
 
 #endif
