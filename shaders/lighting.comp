@@ -136,59 +136,66 @@ vec3 shadeSurface(uint instanceId, float depth, vec4 normalRoughness, vec4 albed
     return radiance * camera.exposureScale;
 }
 
+// What one invocation shades in one round: a pixel of the resolved G-buffer or a sample of the
+// multisampled one (instanceId 0: nothing).
+struct ShadingJob {
+    uint instanceId;
+    float depth;
+    vec4 normalRoughness;
+    vec4 albedoMetallic;
+    vec2 windowPosition;
+    ivec2 pixel;
+};
+
 #ifdef PER_SAMPLE_LIGHTING
 // Seed 000 "Deferred MSAA \ pixel and sample frequency passes", in compute ("DX 11.0 compute tiled
 // deferred shading: loop through MSAA tagged sub-samples"). The tile's tagged pixels were compacted
 // into tileTaggedList; their (pixel, sample) pairs are spread over all invocations of the tile, a
 // round of TILE_SIZE^2 pairs at a time, so no invocation idles on a silhouette while its
 // neighbours loop over samples (the per-sample rescheduling of Lauritzen 2010, "Deferred
-// rendering for current and future rendering pipelines"). Each sample is shaded at its own position (the standard sample
-// locations) with the tile's lights, and each pixel's samples are resolved with tone-mapped
-// weights (hdr_resolve.glsl); alpha is the share of samples that hit a surface. Clip volumes and
-// SSAO stay per pixel. Called by every invocation (it holds barriers).
-void shadeTaggedSamples() {
-    const uint roundSize = TILE_SIZE * TILE_SIZE;
-    uint sampleCount = uint(textureSamples(instanceSamples));
-    uint pairs = tileTaggedPixels * sampleCount;
-    ivec2 tileOrigin = ivec2(gl_WorkGroupID.xy * TILE_SIZE);
-    // Rounds hold whole pixels: 1, 2, 4 and 8 divide the round size.
-    for (uint first = 0u; first < pairs; first += roundSize) {
-        uint pair = first + gl_LocalInvocationIndex;
-        vec4 weighted = vec4(0.0);
-        if (pair < pairs) {
-            uint local = tileTaggedList[pair / sampleCount];
-            int k = int(pair % sampleCount);
-            ivec2 pixel = tileOrigin + ivec2(local % TILE_SIZE, local / TILE_SIZE);
-            uint instanceId = texelFetch(instanceSamples, pixel, k).r;
-            vec3 radiance = vec3(0.0);
-            if (instanceId != 0u)
-                radiance = shadeSurface(instanceId, texelFetch(depthSamples, pixel, k).r,
-                                        texelFetch(normalRoughnessSamples, pixel, k),
-                                        texelFetch(albedoMetallicSamples, pixel, k),
-                                        vec2(pixel) + standardSampleLocation(int(sampleCount), k), pixel,
-                                        texelFetch(clipStencil, pixel, 0).r & CLIP_VOLUME_BITS);
-            float w = hdrResolveWeight(radiance);
-            weighted = vec4(radiance * w, instanceId != 0u ? w : -w);
+// rendering for current and future rendering pipelines"). Rounds hold whole pixels: 1, 2, 4 and 8
+// divide TILE_SIZE^2. Each sample is shaded at its own position (the standard sample locations).
+const uint SAMPLE_ROUND = TILE_SIZE * TILE_SIZE;
+
+ShadingJob sampleJob(uint pair, uint pairs, uint sampleCount) {
+    ShadingJob job;
+    job.instanceId = 0u;
+    if (pair >= pairs) return job;
+    uint local = tileTaggedList[pair / sampleCount];
+    int k = int(pair % sampleCount);
+    job.pixel = ivec2(gl_WorkGroupID.xy * TILE_SIZE) + ivec2(local % TILE_SIZE, local / TILE_SIZE);
+    job.instanceId = texelFetch(instanceSamples, job.pixel, k).r;
+    job.depth = texelFetch(depthSamples, job.pixel, k).r;
+    job.normalRoughness = texelFetch(normalRoughnessSamples, job.pixel, k);
+    job.albedoMetallic = texelFetch(albedoMetallicSamples, job.pixel, k);
+    job.windowPosition = vec2(job.pixel) + standardSampleLocation(int(sampleCount), k);
+    return job;
+}
+
+// Gathers one round's sample radiance and resolves the pixels of the round with tone-mapped
+// weights (hdr_resolve.glsl); alpha is the share of samples that hit a surface. Called by every
+// invocation (it holds barriers).
+void resolveSampleRound(uint first, vec3 radiance, bool hit, uint sampleCount) {
+    float w = hdrResolveWeight(radiance);
+    tileSampleRadiance[gl_LocalInvocationIndex] = vec4(radiance * w, hit ? w : -w);
+    barrier();
+    uint slot = first / sampleCount + gl_LocalInvocationIndex;
+    if (gl_LocalInvocationIndex < SAMPLE_ROUND / sampleCount && slot < tileTaggedPixels) {
+        vec3 weightedRadianceSum = vec3(0.0);
+        float weightSum = 0.0;
+        uint covered = 0u;
+        for (uint k = 0u; k < sampleCount; ++k) {
+            vec4 v = tileSampleRadiance[gl_LocalInvocationIndex * sampleCount + k];
+            weightedRadianceSum += v.rgb;
+            weightSum += abs(v.a);
+            covered += v.a > 0.0 ? 1u : 0u;
         }
-        tileSampleRadiance[gl_LocalInvocationIndex] = weighted;
-        barrier();
-        uint slot = first / sampleCount + gl_LocalInvocationIndex;
-        if (gl_LocalInvocationIndex < roundSize / sampleCount && slot < tileTaggedPixels) {
-            vec3 weightedRadianceSum = vec3(0.0);
-            float weightSum = 0.0;
-            uint covered = 0u;
-            for (uint k = 0u; k < sampleCount; ++k) {
-                vec4 v = tileSampleRadiance[gl_LocalInvocationIndex * sampleCount + k];
-                weightedRadianceSum += v.rgb;
-                weightSum += abs(v.a);
-                covered += v.a > 0.0 ? 1u : 0u;
-            }
-            uint local = tileTaggedList[slot];
-            imageStore(lightAccumulation, tileOrigin + ivec2(local % TILE_SIZE, local / TILE_SIZE),
-                       vec4(hdrResolve(weightedRadianceSum, weightSum), float(covered) / float(sampleCount)));
-        }
-        barrier();
+        uint local = tileTaggedList[slot];
+        imageStore(lightAccumulation,
+                   ivec2(gl_WorkGroupID.xy * TILE_SIZE) + ivec2(local % TILE_SIZE, local / TILE_SIZE),
+                   vec4(hdrResolve(weightedRadianceSum, weightSum), float(covered) / float(sampleCount)));
     }
+    barrier();
 }
 #endif
 
@@ -197,7 +204,6 @@ void main() {
     bool inside = all(lessThan(pixel, ivec2(camera.resolution)));
     uint instanceId = inside ? texelFetch(instanceTexture, pixel, 0).r : 0u;
     float depth = inside ? texelFetch(depthTexture, pixel, 0).r : 1.0;
-    uint stencil = inside ? texelFetch(clipStencil, pixel, 0).r : 0u;
 
     if (gl_LocalInvocationIndex == 0u) {
         tileMinDepthBits = floatBitsToUint(1.0);
@@ -215,7 +221,7 @@ void main() {
     }
 #ifdef PER_SAMPLE_LIGHTING
     // A tagged pixel's other samples may lie on another surface: the tile's box holds them too.
-    bool perSample = (stencil & MSAA_EDGE_STENCIL_BIT) != 0u;
+    bool perSample = inside && (texelFetch(clipStencil, pixel, 0).r & MSAA_EDGE_STENCIL_BIT) != 0u;
     if (perSample) {
         tileTaggedList[atomicAdd(tileTaggedPixels, 1u)] = gl_LocalInvocationIndex;
         for (int k = 1; k < textureSamples(instanceSamples); ++k) {
@@ -254,19 +260,41 @@ void main() {
         }
     }
     barrier();
-    // Bits 0x01..0x40 mark surfaces inside the clip volumes (clip_volumes.cpp).
-    uint insideClipVolumes = stencil & CLIP_VOLUME_BITS;
+    // Bits 0x01..0x40 mark surfaces inside the clip volumes (clip_volumes.cpp); per pixel, also
+    // for the samples of tagged pixels.
 #ifdef PER_SAMPLE_LIGHTING
-    shadeTaggedSamples();
-    if (perSample) return;
+    bool pixelFrequency = inside && !perSample;
+    uint sampleCount = uint(textureSamples(instanceSamples));
+    uint pairs = tileTaggedPixels * sampleCount;
+    uint rounds = 1u + (pairs + SAMPLE_ROUND - 1u) / SAMPLE_ROUND;
+#else
+    bool pixelFrequency = inside;
+    const uint rounds = 1u;
 #endif
-    if (!inside) return;
-    if (instanceId == 0u) {
-        imageStore(lightAccumulation, pixel, vec4(0.0));
-        return;
+    // Round 0 shades this invocation's pixel at pixel frequency, later rounds (MSAA) the tile's
+    // tagged samples: one call site of shadeSurface, since a second inlined copy of the lighting
+    // loops slowed every pixel down on lavapipe.
+    for (uint round = 0u; round < rounds; ++round) {
+        ShadingJob job;
+        job.instanceId = 0u;
+        if (round == 0u && pixelFrequency)
+            job = ShadingJob(instanceId, depth, texelFetch(normalRoughnessTexture, pixel, 0),
+                             texelFetch(albedoMetallicTexture, pixel, 0), vec2(pixel) + 0.5, pixel);
+#ifdef PER_SAMPLE_LIGHTING
+        if (round > 0u) job = sampleJob((round - 1u) * SAMPLE_ROUND + gl_LocalInvocationIndex, pairs, sampleCount);
+#endif
+        vec3 radiance = vec3(0.0);
+        if (job.instanceId != 0u)
+            radiance = shadeSurface(job.instanceId, job.depth, job.normalRoughness, job.albedoMetallic,
+                                    job.windowPosition, job.pixel,
+                                    texelFetch(clipStencil, job.pixel, 0).r & CLIP_VOLUME_BITS);
+        if (round == 0u) {
+            if (pixelFrequency) imageStore(lightAccumulation, pixel, vec4(radiance, instanceId != 0u ? 1.0 : 0.0));
+        }
+#ifdef PER_SAMPLE_LIGHTING
+        else {
+            resolveSampleRound((round - 1u) * SAMPLE_ROUND, radiance, job.instanceId != 0u, sampleCount);
+        }
+#endif
     }
-    vec3 radiance = shadeSurface(instanceId, depth, texelFetch(normalRoughnessTexture, pixel, 0),
-                                 texelFetch(albedoMetallicTexture, pixel, 0), vec2(pixel) + 0.5, pixel,
-                                 insideClipVolumes);
-    imageStore(lightAccumulation, pixel, vec4(radiance, 1.0));
 }
