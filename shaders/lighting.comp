@@ -37,7 +37,7 @@ layout(set = 0, binding = 12) uniform sampler2D shadowAtlas;
 // The G-buffer's stencil: bits 0x01..0x40 mark surfaces inside the clip volumes (clip_volumes.cpp),
 // 0x80 the pixels the MSAA resolve tagged for per-sample lighting (msaa_edge_mask.frag).
 layout(set = 0, binding = 13) uniform usampler2D clipStencil;
-const uint CLIP_VOLUME_BITS = 0x7fu;
+const uint CLIP_VOLUME_BITS = 0x7fu;  // per pixel, also for the samples of tagged pixels
 // The textured dome (a 1x1 black image and zero coefficients without one).
 layout(set = 0, binding = 14, std140) uniform Environment { EnvironmentData environment; };
 layout(set = 0, binding = 15, std430) readonly buffer EnvironmentIrradiance { vec4 irradianceSh[SH_COEFFICIENTS]; };
@@ -260,8 +260,6 @@ void main() {
         }
     }
     barrier();
-    // Bits 0x01..0x40 mark surfaces inside the clip volumes (clip_volumes.cpp); per pixel, also
-    // for the samples of tagged pixels.
 #ifdef PER_SAMPLE_LIGHTING
     bool pixelFrequency = inside && !perSample;
     uint sampleCount = uint(textureSamples(instanceSamples));
@@ -272,8 +270,7 @@ void main() {
     const uint rounds = 1u;
 #endif
     // Round 0 shades this invocation's pixel at pixel frequency, later rounds (MSAA) the tile's
-    // tagged samples: one call site of shadeSurface, since a second inlined copy of the lighting
-    // loops slowed every pixel down on lavapipe.
+    // tagged samples, through one call site of shadeSurface (its light loop inlined once).
     for (uint round = 0u; round < rounds; ++round) {
         ShadingJob job;
         job.instanceId = 0u;
