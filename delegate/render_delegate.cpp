@@ -11,6 +11,7 @@
 #include "passes/depth_of_field.h"
 #include "passes/gbuffer.h"
 #include "passes/lighting.h"
+#include "passes/motion_blur.h"
 #include "passes/shadow_maps.h"
 #include "passes/tonemap.h"
 
@@ -290,11 +291,17 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     ShadowSettings shadows{settings_.number("shadows") != 0.0, uint32_t(settings_.number("shadows:resolution")),
                            uint32_t(settings_.number("shadows:cascades"))};
     FrameSceneInputs frame{prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows, dome};
-    // The `dof` setting turns the lens off for the post-process and the reference alike.
+    // The `dof` setting turns the lens off for the post-process and the reference alike, and
+    // `motionBlur` the shutter.
     passes::ThinLens lens = settings_.number("dof") != 0.0 ? camera->thinLens(double(width) / double(height))
                                                            : passes::ThinLens{};
+    const CameraParams& cameraParams = camera->params();
+    std::array<double, 2> shutter{desc.time, desc.time};
+    if (settings_.number("motionBlur") != 0.0 && cameraParams.shutterClose > cameraParams.shutterOpen)
+        shutter = {desc.time + cameraParams.shutterOpen, desc.time + cameraParams.shutterClose};
     uint32_t referenceSubFrames = static_cast<uint32_t>(settings_.number("reference"));
-    if (referenceSubFrames > 0) accumulateReference(frame, lens, referenceSubFrames, desc.time);
+    if (referenceSubFrames > 0) accumulateReference(frame, lens, referenceSubFrames, shutter);
+    else if (shutter[1] > shutter[0]) frame.motionBlurShutter = shutter;
 
     // Temporal AA picks this frame's jitter before the scene's camera constants are packed. The
     // reference is its own ground truth, jittered per sub-frame: no temporal AA there.
@@ -353,10 +360,15 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
                 camera->apertureShape(), static_cast<int>(settings_.number("dof:taps"))};
             hdr = passes::addDepthOfFieldPasses(graph, *pipelines_, scene, gbuffer, hdr, dof);
         }
+        // After depth of field (seed 000 "MB or DOF first?": motion blur gathers with the
+        // geometry's depth and velocity, and is the error less seen when it comes last).
+        if (scene.motionBlur)
+            hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr,
+                                              static_cast<int>(settings_.number("motionBlur:samples")));
     }
-    // Temporal AA's accumulation carries coverage in alpha; depth of field writes none.
+    // Temporal AA's accumulation carries coverage in alpha; depth of field and motion blur write none.
     passes::HdrAlpha hdrAlpha = passes::HdrAlpha::None;
-    if (temporalAa && !passes::hasDepthOfField(lens)) hdrAlpha = passes::HdrAlpha::Coverage;
+    if (temporalAa && !passes::hasDepthOfField(lens) && !scene.motionBlur) hdrAlpha = passes::HdrAlpha::Coverage;
     gpu::ImageHandle display =
         passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance, grading_);
     passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, hdrAlpha, display, requests);
@@ -433,7 +445,7 @@ void RenderDelegate::executeFrame(gpu::FrameGraph& graph) {
 }
 
 void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const passes::ThinLens& lens, uint32_t count,
-                                         double time) {
+                                         const std::array<double, 2>& shutter) {
     const gpu::ImageDesc* current = accumulation_.image ? &accumulation_.image->desc : nullptr;
     if (!current || current->width != frame.width || current->height != frame.height) {
         gpu::ImageDesc desc;
@@ -446,8 +458,7 @@ void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const pa
     // Without depth of field the lens is a pinhole: every sub-frame looks from its centre.
     bool lensBlur = passes::hasDepthOfField(lens);
     double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
-    const CameraParams& camera = frame.camera.params();
-    double open = time + camera.shutterOpen, close = time + camera.shutterClose;
+    const auto [open, close] = shutter;
     std::vector<ReferenceSubFrame> subFrames =
         referenceSubFrames(count, lensBlur ? frame.camera.apertureShape() : passes::ApertureShape{});
     for (size_t k = 0; k < subFrames.size(); ++k) {

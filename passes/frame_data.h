@@ -19,8 +19,10 @@ struct alignas(16) CameraData {
     std::array<float, 2> resolution;
     float exposureScale;
     float pad0;
+    Mat4 shutterOpenViewProjection;   // unjittered, for motion blur's velocities
+    Mat4 shutterCloseViewProjection;
 };
-static_assert(sizeof(CameraData) == 5 * 64 + 16 + 16);
+static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16);
 
 enum InstanceFlags : uint32_t { kInstanceDoubleSided = 1u, kInstanceVertexColor = 2u };
 
@@ -30,9 +32,14 @@ struct alignas(16) InstanceData {
     uint32_t materialIndex;
     int32_t primId;
     uint32_t flags;
-    uint32_t pad0;
+    uint32_t motionIndex;  // its InstanceMotion record when it moves within the shutter
 };
 static_assert(sizeof(InstanceData) == 144);
+
+struct alignas(16) InstanceMotion {
+    Mat4 shutterOpenModel;
+    Mat4 shutterCloseModel;
+};
 
 // Which texture channel a material input reads: the UsdUVTexture output connected to it.
 enum class TextureChannel : uint32_t { R = 0, G = 1, B = 2, A = 3, Rgb = 4 };
@@ -125,5 +132,13 @@ struct Vertex {
     float tangent[4];
 };
 static_assert(sizeof(Vertex) == 60);
+
+// Where a deforming mesh's drawn vertices are at the shutter's open and close (motion blur): a
+// second vertex stream beside Vertex, one per drawn vertex.
+struct ShutterPositions {
+    float open[3];
+    float close[3];
+};
+static_assert(sizeof(ShutterPositions) == 24);
 
 }  // namespace obscura::passes

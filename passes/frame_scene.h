@@ -18,6 +18,8 @@ struct Draw {
     uint32_t instanceCount = 1;  // consecutive records, one per GPU instance
     uint32_t textures = 0;       // the draw's MaterialTextures in FrameScene::materialTextures
     bool opacityCutout = false;  // its material has an opacityThreshold: some texels are absent
+    bool moving = false;         // its instances move within the shutter (motion blur's velocities)
+    gpu::BufferPtr shutterPositions;  // deforming: ShutterPositions per vertex (moving draws only)
 };
 
 // The textures a material samples, one per MaterialTextureSlot, white where the input is
@@ -55,6 +57,7 @@ struct FrameScene {
     CameraData cameraData{};   // what `camera` holds, for passes that build push constants
     gpu::BufferPtr camera;     // CameraData (uniform)
     gpu::BufferPtr instances;  // InstanceData[] (storage)
+    gpu::BufferPtr instanceMotions;  // InstanceMotion[] (storage) of the moving instances, never empty
     gpu::BufferPtr materials;  // MaterialData[] (storage)
     gpu::BufferPtr lights;     // LightBufferHeader + LightData[] (storage)
     gpu::BufferPtr environment;  // EnvironmentData (uniform)
@@ -62,6 +65,10 @@ struct FrameScene {
     std::vector<Draw> draws;
     ShadowAtlas shadows;
     std::vector<ClipVolume> clipVolumes;
+    // Motion blur: the G-buffer writes the velocities of the moving draws (drawn last) and the
+    // motion blur passes run. Set when the frame asks for motion blur and the camera or an
+    // instance moves within the shutter.
+    bool motionBlur = false;
     uint32_t width = 0;
     uint32_t height = 0;
 };

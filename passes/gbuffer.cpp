@@ -7,25 +7,61 @@
 namespace obscura::passes {
 namespace {
 
-gpu::GraphicsPipelineDesc describeGBufferPipeline() {
+enum class Variant {
+    Static,                    // no velocity target
+    StaticWithVelocityTarget,  // leaves the velocity target at its clear value (kStaticVelocity)
+    Moving,                    // a rigid transform moves: writes velocity
+    Deforming,                 // points move (a second vertex stream): writes velocity
+};
+
+const char* pipelineName(Variant variant) {
+    switch (variant) {
+        case Variant::Static: return "gbuffer";
+        case Variant::StaticWithVelocityTarget: return "gbuffer.staticWithVelocityTarget";
+        case Variant::Moving: return "gbuffer.moving";
+        case Variant::Deforming: return "gbuffer.deforming";
+    }
+    return "";
+}
+
+bool writesVelocity(Variant variant) { return variant == Variant::Moving || variant == Variant::Deforming; }
+
+gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant) {
     gpu::GraphicsPipelineDesc d;
-    d.vertexShader = "gbuffer.vert";
-    d.fragmentShader = "gbuffer.frag";
+    d.vertexShader = variant == Variant::Moving      ? "gbuffer_moving.vert"
+                     : variant == Variant::Deforming ? "gbuffer_deforming.vert"
+                                                     : "gbuffer.vert";
+    d.fragmentShader = writesVelocity(variant) ? "gbuffer_moving.frag" : "gbuffer.frag";
     d.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
+    if (writesVelocity(variant)) d.bindings.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
     d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
     d.pushConstantSize = sizeof(uint32_t);
-    d.vertexStride = sizeof(Vertex);
+    d.vertexStrides = {sizeof(Vertex)};
     d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
                           {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
                           {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, color)},
                           {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
                           {4, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}};
+    if (variant == Variant::Deforming) {
+        d.vertexStrides.push_back(sizeof(ShutterPositions));
+        d.vertexAttributes.push_back({6, VK_FORMAT_R32G32B32_SFLOAT, offsetof(ShutterPositions, open), 1});
+        d.vertexAttributes.push_back({7, VK_FORMAT_R32G32B32_SFLOAT, offsetof(ShutterPositions, close), 1});
+    }
     d.colorFormats = {kNormalRoughnessFormat, kAlbedoMetallicFormat, kInstanceFormat};
+    if (variant != Variant::Static) d.colorFormats.push_back(kVelocityFormat);
+    // Seed 000 "An improved reconstruction filter (3)": static geometry does not export velocity.
+    if (variant == Variant::StaticWithVelocityTarget) d.untouchedColorAttachments = 1u << 3;
     d.depthFormat = kDepthFormat;
     return d;
+}
+
+Variant variantOf(const Draw& draw, bool velocityTarget) {
+    if (!velocityTarget) return Variant::Static;
+    if (!draw.moving) return Variant::StaticWithVelocityTarget;
+    return draw.shutterPositions ? Variant::Deforming : Variant::Moving;
 }
 
 }  // namespace
@@ -40,10 +76,24 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const F
         return graph.createImage(name, desc);
     };
     GBuffer gb{image("gbuffer.depth", kDepthFormat), image("gbuffer.normalRoughness", kNormalRoughnessFormat),
-               image("gbuffer.albedoMetallic", kAlbedoMetallicFormat), image("gbuffer.instance", kInstanceFormat)};
-    const gpu::Pipeline& pipeline =
-        pipelines.get<gpu::GraphicsPipelineDesc>("gbuffer", describeGBufferPipeline);
+               image("gbuffer.albedoMetallic", kAlbedoMetallicFormat), image("gbuffer.instance", kInstanceFormat), {}};
+    if (scene.motionBlur) gb.velocity = image("gbuffer.velocity", kVelocityFormat);
     gpu::Device& device = pipelines.device();
+    auto pipelineOf = [&pipelines](Variant variant) -> const gpu::Pipeline& {
+        return pipelines.get<gpu::GraphicsPipelineDesc>(pipelineName(variant),
+                                                        [variant] { return describeGBufferPipeline(variant); });
+    };
+    // Moving geometry is drawn last (seed 000 "An improved reconstruction filter (3)"), so static
+    // surfaces never cover a velocity a moving one wrote; draws are grouped by pipeline.
+    struct Ordered {
+        Variant variant;
+        const gpu::Pipeline* pipeline;
+        const Draw* draw;
+    };
+    std::vector<Ordered> ordered;
+    for (Variant variant : {Variant::Static, Variant::StaticWithVelocityTarget, Variant::Moving, Variant::Deforming})
+        for (const Draw& draw : scene.draws)
+            if (variantOf(draw, scene.motionBlur) == variant) ordered.push_back({variant, &pipelineOf(variant), &draw});
 
     graph.addPass(
         "gbuffer", gpu::PassKind::Raster,
@@ -52,32 +102,41 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const F
             pass.colorAttachment(gb.normalRoughness, VkClearColorValue{{0.5f, 0.5f, 1.0f, 1.0f}});
             pass.colorAttachment(gb.albedoMetallic, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
             pass.colorAttachment(gb.instance, VkClearColorValue{.uint32 = {0, 0, 0, 0}});
+            if (gb.velocity.valid()) pass.colorAttachment(gb.velocity, VkClearColorValue{{kStaticVelocity, 0.0f, 0.0f, 0.0f}});
         },
-        [&device, &pipeline, &scene, bestFitNormals](VkCommandBuffer cmd, const gpu::PassResources&) {
-            gpu::DescriptorWriter(device, pipeline)
-                .buffer(0, scene.camera->buffer)
-                .buffer(1, scene.instances->buffer)
-                .buffer(2, scene.materials->buffer)
-                .sampled(3, bestFitNormals->view, device.nearestClampSampler())
-                .bind(cmd);
+        [&device, ordered, &scene, bestFitNormals](VkCommandBuffer cmd, const gpu::PassResources&) {
+            const gpu::Pipeline* bound = nullptr;
             const MaterialTextures* pushed = nullptr;
-            for (const Draw& draw : scene.draws) {
+            for (auto [variant, pipeline, draw] : ordered) {
+                if (pipeline != bound) {
+                    gpu::DescriptorWriter writer(device, *pipeline);
+                    writer.buffer(0, scene.camera->buffer)
+                        .buffer(1, scene.instances->buffer)
+                        .buffer(2, scene.materials->buffer)
+                        .sampled(3, bestFitNormals->view, device.nearestClampSampler());
+                    if (writesVelocity(variant)) writer.buffer(4, scene.instanceMotions->buffer);
+                    writer.bind(cmd);
+                    bound = pipeline;
+                    pushed = nullptr;  // a new layout: the pushed set starts over
+                }
                 // Textures change per material: pushed, not allocated (VK_KHR_push_descriptor).
-                const MaterialTextures& textures = scene.materialTextures[draw.textures];
+                const MaterialTextures& textures = scene.materialTextures[draw->textures];
                 if (&textures != pushed) {
                     std::vector<VkDescriptorImageInfo> images;
                     for (uint32_t slot = 0; slot < kMaterialTextureSlots; ++slot)
                         images.push_back({textures.samplers[slot], textures.images[slot]->view,
                                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
-                    gpu::pushSampledImages(device, cmd, pipeline, images);
+                    gpu::pushSampledImages(device, cmd, *pipeline, images);
                     pushed = &textures;
                 }
-                VkDeviceSize offset = 0;
-                vkCmdBindVertexBuffers(cmd, 0, 1, &draw.vertices->buffer, &offset);
-                vkCmdBindIndexBuffer(cmd, draw.indices->buffer, 0, VK_INDEX_TYPE_UINT32);
-                vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                                   sizeof(uint32_t), &draw.instanceIndex);
-                vkCmdDrawIndexed(cmd, draw.indexCount, draw.instanceCount, 0, 0, 0);
+                VkBuffer streams[] = {draw->vertices->buffer,
+                                      draw->shutterPositions ? draw->shutterPositions->buffer : VK_NULL_HANDLE};
+                VkDeviceSize offsets[] = {0, 0};
+                vkCmdBindVertexBuffers(cmd, 0, draw->shutterPositions ? 2 : 1, streams, offsets);
+                vkCmdBindIndexBuffer(cmd, draw->indices->buffer, 0, VK_INDEX_TYPE_UINT32);
+                vkCmdPushConstants(cmd, pipeline->layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                                   sizeof(uint32_t), &draw->instanceIndex);
+                vkCmdDrawIndexed(cmd, draw->indexCount, draw->instanceCount, 0, 0, 0);
             }
         });
     return gb;

@@ -12,12 +12,22 @@ struct GBuffer {
     gpu::ImageHandle normalRoughness;   // RGBA8 UNORM: best-fit normal + roughness
     gpu::ImageHandle albedoMetallic;    // RGBA8 sRGB: albedo + metallic
     gpu::ImageHandle instance;          // R32 UINT: instance index + 1, 0 where nothing drew
+    // RG16 SFLOAT, with motion blur only (FrameScene::motionBlur): the displacement in pixels from
+    // the shutter's open to its close of what moving draws cover, kStaticVelocity elsewhere.
+    gpu::ImageHandle velocity;
 };
 
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT_S8_UINT;
 constexpr VkFormat kNormalRoughnessFormat = VK_FORMAT_R8G8B8A8_UNORM;
 constexpr VkFormat kAlbedoMetallicFormat = VK_FORMAT_R8G8B8A8_SRGB;
 constexpr VkFormat kInstanceFormat = VK_FORMAT_R32_UINT;
+// Half floats, not the seed's R8G8 gamma-2 encoding: the 8 bits are off by up to half a pixel on
+// the longest streaks (tests/unit/velocity_encoding_test.cpp measures both), cannot hold the
+// static-pixel marker below, nor displacements beyond the blur's reach.
+constexpr VkFormat kVelocityFormat = VK_FORMAT_R16G16_SFLOAT;
+// The velocity target's clear value: the pixel moves with the camera (STATIC_VELOCITY in
+// shaders/common/motion_velocity.glsl).
+constexpr float kStaticVelocity = -65504.0f;
 
 GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                        const gpu::ImagePtr& bestFitNormals);

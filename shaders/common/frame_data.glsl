@@ -12,6 +12,10 @@ struct CameraData {
     vec2 resolution;     // render size in pixels
     float exposureScale; // camera exposure (UsdGeomCamera linear scale) x 2^(render setting exposure): pre-exposed accumulation
     float pad0;
+    // Motion blur: world -> clip (unjittered) at the shutter's open and close; the frame itself is
+    // seen at the shutter's centre. Without motion blur both are the frame's unjittered view.
+    mat4 shutterOpenViewProjection;
+    mat4 shutterCloseViewProjection;
 };
 
 // One per drawn rprim.
@@ -21,7 +25,13 @@ struct InstanceData {
     uint materialIndex;
     int primId;
     uint flags;          // bit 0: double-sided, bit 1: use vertex colour (no bound material)
-    uint pad0;
+    uint motionIndex;    // moving within the shutter: its InstanceMotion record; unused when static
+};
+
+// Where a moving instance is at the shutter's open and close (motion blur's velocities).
+struct InstanceMotion {
+    mat4 shutterOpenModel;
+    mat4 shutterCloseModel;
 };
 
 const uint TEXTURE_CHANNEL_RGB = 4u;  // else 0..3: r, g, b, a
