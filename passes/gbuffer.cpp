@@ -9,7 +9,6 @@ namespace {
 
 gpu::GraphicsPipelineDesc describeGBufferPipeline() {
     gpu::GraphicsPipelineDesc d;
-    d.vertexShader = "gbuffer.vert";
     d.fragmentShader = "gbuffer.frag";
     d.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -17,18 +16,42 @@ gpu::GraphicsPipelineDesc describeGBufferPipeline() {
                   {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
     d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
     d.pushConstantSize = sizeof(uint32_t);
-    d.vertexStride = sizeof(Vertex);
-    d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
-                          {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
-                          {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, color)},
-                          {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
-                          {4, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}};
+    setSceneVertexInput(d);
     d.colorFormats = {kNormalRoughnessFormat, kAlbedoMetallicFormat, kInstanceFormat};
     d.depthFormat = kDepthFormat;
     return d;
 }
 
 }  // namespace
+
+void setSceneVertexInput(gpu::GraphicsPipelineDesc& d) {
+    d.vertexShader = "gbuffer.vert";
+    d.vertexStride = sizeof(Vertex);
+    d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+                          {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+                          {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, color)},
+                          {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+                          {4, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}};
+}
+
+void recordMaterialDraw(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& pipeline,
+                        const FrameScene& scene, const Draw& draw, const MaterialTextures*& pushed,
+                        const void* push, uint32_t pushSize) {
+    // Textures change per material: pushed, not allocated (VK_KHR_push_descriptor).
+    const MaterialTextures& textures = scene.materialTextures[draw.textures];
+    if (&textures != pushed) {
+        std::vector<VkDescriptorImageInfo> images;
+        for (uint32_t slot = 0; slot < kMaterialTextureSlots; ++slot)
+            images.push_back({textures.samplers[slot], textures.images[slot]->view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+        gpu::pushSampledImages(device, cmd, pipeline, images);
+        pushed = &textures;
+    }
+    VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &draw.vertices->buffer, &offset);
+    vkCmdBindIndexBuffer(cmd, draw.indices->buffer, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, pushSize, push);
+    vkCmdDrawIndexed(cmd, draw.indexCount, draw.instanceCount, 0, 0, 0);
+}
 
 GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                        const gpu::ImagePtr& bestFitNormals) {
@@ -61,24 +84,10 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const F
                 .sampled(3, bestFitNormals->view, device.nearestClampSampler())
                 .bind(cmd);
             const MaterialTextures* pushed = nullptr;
-            for (const Draw& draw : scene.draws) {
-                // Textures change per material: pushed, not allocated (VK_KHR_push_descriptor).
-                const MaterialTextures& textures = scene.materialTextures[draw.textures];
-                if (&textures != pushed) {
-                    std::vector<VkDescriptorImageInfo> images;
-                    for (uint32_t slot = 0; slot < kMaterialTextureSlots; ++slot)
-                        images.push_back({textures.samplers[slot], textures.images[slot]->view,
-                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
-                    gpu::pushSampledImages(device, cmd, pipeline, images);
-                    pushed = &textures;
-                }
-                VkDeviceSize offset = 0;
-                vkCmdBindVertexBuffers(cmd, 0, 1, &draw.vertices->buffer, &offset);
-                vkCmdBindIndexBuffer(cmd, draw.indices->buffer, 0, VK_INDEX_TYPE_UINT32);
-                vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                                   sizeof(uint32_t), &draw.instanceIndex);
-                vkCmdDrawIndexed(cmd, draw.indexCount, draw.instanceCount, 0, 0, 0);
-            }
+            // Transparent surfaces are drawn after lighting (passes/transparent.h).
+            for (const Draw& draw : scene.draws)
+                if (!draw.transparent)
+                    recordMaterialDraw(device, cmd, pipeline, scene, draw, pushed, &draw.instanceIndex, sizeof(uint32_t));
         });
     return gb;
 }

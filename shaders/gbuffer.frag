@@ -3,10 +3,12 @@
 // G-buffer pass, fragment stage: the thin G-buffer of seed 004 ("G-Buffer layout"):
 //   RT0 RGBA8  best-fit normal (24 bits) + roughness (8 bits)
 //   RT1 RGBA8 sRGB  albedo + metallic
-//   RT2 R32UI  instance index + 1 (0: nothing drawn) for per-prim data and the primId AOV
+//   RT2 R32UI  instance index + 1 (0: nothing drawn) for per-prim data and the primId AOV, and the
+//              material's occlusion in its top 8 bits (common/instance_target.glsl)
 #include "common/frame_data.glsl"
 #include "common/best_fit_normals.glsl"
 #include "common/material_inputs.glsl"
+#include "common/instance_target.glsl"
 
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inColor;
@@ -25,6 +27,7 @@ layout(set = 1, binding = 1) uniform sampler2D roughnessTexture;
 layout(set = 1, binding = 2) uniform sampler2D metallicTexture;
 layout(set = 1, binding = 3) uniform sampler2D opacityTexture;
 layout(set = 1, binding = 4) uniform sampler2D normalTexture;
+layout(set = 1, binding = 5) uniform sampler2D occlusionTexture;
 
 layout(location = 0) out vec4 outNormalRoughness;
 layout(location = 1) out vec4 outAlbedoMetallic;
@@ -42,8 +45,9 @@ void main() {
                       : colorInput(mat.diffuseRoughness.rgb, mat.textures[TEXTURE_DIFFUSE], diffuseTexture, inUv);
     float roughness = scalarInput(mat.diffuseRoughness.a, mat.textures[TEXTURE_ROUGHNESS], roughnessTexture, inUv);
     float metallic = scalarInput(mat.emissiveMetallic.a, mat.textures[TEXTURE_METALLIC], metallicTexture, inUv);
+    float occlusion = scalarInput(mat.opacity.z, mat.textures[TEXTURE_OCCLUSION], occlusionTexture, inUv);
     if (cutOut(mat, opacityTexture, inUv)) discard;
     outNormalRoughness = vec4(encodeBestFitNormal(n, fittingScale), roughness);
     outAlbedoMetallic = vec4(albedo, metallic);
-    outInstance = inInstance + 1u;
+    outInstance = packInstanceTarget(inInstance, occlusion);
 }
