@@ -206,14 +206,18 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     // Meshes with the same geometry (repeated references share buffers through the geometry
     // cache) and the same textures become one instanced draw, in the order they first appear.
     std::vector<std::vector<const Mesh*>> batches;
-    std::map<std::tuple<const void*, const void*, uint32_t, bool, bool>, size_t> batchOf;
+    std::map<std::tuple<const void*, const void*, uint32_t, bool>, size_t> batchOf;
     for (const auto& [path, prim] : in.prims) {
         const Mesh* mesh = drawable(*prim);
         if (!mesh || isPrototype(path)) continue;
-        // Opaque, cut-out and transparent draws stay apart: the passes draw them differently.
+        // Transparent meshes draw one by one: the transparent pass sorts draws, not instances.
+        if (isTransparent(*mesh)) {
+            batches.push_back({mesh});
+            continue;
+        }
+        // Opaque and cut-out draws stay apart: the shadow maps rasterise them differently.
         auto key = std::make_tuple(static_cast<const void*>(mesh->vertices().get()),
-                                   static_cast<const void*>(mesh->indices().get()), texturesOf(*mesh), hasCutout(*mesh),
-                                   isTransparent(*mesh));
+                                   static_cast<const void*>(mesh->indices().get()), texturesOf(*mesh), hasCutout(*mesh));
         auto [it, added] = batchOf.emplace(key, batches.size());
         if (added) batches.emplace_back();
         batches[it->second].push_back(mesh);
