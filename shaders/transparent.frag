@@ -13,7 +13,6 @@
 // src + dst (1 - alpha): a matte surface blends as lit * opacity + behind * (1 - opacity), and
 // glass keeps its reflections.
 #include "common/frame_data.glsl"
-#include "common/best_fit_normals.glsl"
 #include "common/material_inputs.glsl"
 #include "common/light_evaluation.glsl"
 #include "common/environment_map.glsl"
