@@ -96,6 +96,12 @@ TEST(Transparency, HalfOpaqueRedOverLitWhiteIsTheAnalyticBlend) {
     EXPECT_NEAR(s.at(32, 32)[3], 1.0f, 1e-3f) << "over an opaque surface the pixel is covered";
     // Transparent surfaces write no G-buffer: ids, depth and normals are the opaque surface's.
     EXPECT_EQ(s.primIdAt(32, 32), s.primIdOf("/Floor"));
+    // Pre-exposed like the lighting pass: one stop more doubles the blend.
+    s.setting("exposure", 1.0);
+    s.render();
+    Rgb brighter = {2.0 * expected[0], 2.0 * expected[1], 2.0 * expected[2]};
+    s.print("red 0.5 over white, exposure +1", brighter);
+    expectRadiance(s.color, 32, 32, brighter);
 }
 
 TEST(Transparency, OverlappingPanesSortBackToFrontInEitherSubmissionOrder) {
