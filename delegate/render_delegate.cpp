@@ -323,7 +323,8 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         for (const auto& problem : shortfalls.unclippedLights) log(OBSCURA_LOG_WARNING, problem);
     unclippedLights_ = shortfalls.unclippedLights;
     if (scene.instanceCount > passes::kMaxInstanceRecords)
-        throw ApiError{OBSCURA_ERROR_OUT_OF_MEMORY, std::to_string(scene.instanceCount) + " instances: the G-buffer addresses at most " +
+        throw ApiError{OBSCURA_ERROR_OUT_OF_MEMORY, std::to_string(scene.instanceCount) +
+                                                        " instances: the G-buffer addresses at most " +
                                                         std::to_string(passes::kMaxInstanceRecords)};
     trianglesDrawn_ = 0;
     for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
@@ -351,8 +352,8 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     } else {
         hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frame, transparentCoverage);
         if (temporalAa) {
-            hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage, temporalAaSettings,
-                                            temporalAa->pass, temporalAaHistory_);
+            hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage,
+                                            temporalAaSettings, temporalAa->pass, temporalAaHistory_);
             temporalAaInFrame_ = true;
         }
         if (passes::hasDepthOfField(lens)) {
@@ -366,9 +367,10 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     // Temporal AA's accumulation carries coverage in alpha; depth of field writes none.
     passes::HdrAlpha hdrAlpha = passes::HdrAlpha::None;
     if (temporalAa && !passes::hasDepthOfField(lens)) hdrAlpha = passes::HdrAlpha::Coverage;
-    gpu::ImageHandle display =
-        passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance, transparentCoverage, grading_);
-    passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, hdrAlpha, transparentCoverage, display, requests);
+    gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance,
+                                                      transparentCoverage, grading_);
+    passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, hdrAlpha, transparentCoverage, display,
+                               requests);
     executeFrame(graph);
     converged_ = !temporalAa || temporalAa->converged;
     frameSetupMilliseconds_ = std::chrono::duration<double, std::milli>(frameRecorded_ - syncEnd).count();

@@ -30,7 +30,8 @@ gpu::ComputePipelineDesc describeAovPackPipeline() {
 
 void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                         const GBuffer& gb, gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha,
-                        gpu::ImageHandle transparentCoverage, gpu::ImageHandle display, const std::vector<AovRequest>& requests) {
+                        gpu::ImageHandle transparentCoverage, gpu::ImageHandle display,
+                        const std::vector<AovRequest>& requests) {
     if (requests.empty()) return;
     // The pack writes `targets`; where a device-local staging buffer exists, a copy pass then
     // moves it to the host-visible destination.

@@ -21,6 +21,7 @@ struct AovRequest {
 // composited with `transparentCoverage` (passes/transparent.h).
 void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                         const GBuffer& gbuffer, gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha,
-                        gpu::ImageHandle transparentCoverage, gpu::ImageHandle display, const std::vector<AovRequest>& requests);
+                        gpu::ImageHandle transparentCoverage, gpu::ImageHandle display,
+                        const std::vector<AovRequest>& requests);
 
 }  // namespace obscura::passes

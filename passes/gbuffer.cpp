@@ -42,14 +42,16 @@ void recordMaterialDraw(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pip
     if (&textures != pushed) {
         std::vector<VkDescriptorImageInfo> images;
         for (uint32_t slot = 0; slot < kMaterialTextureSlots; ++slot)
-            images.push_back({textures.samplers[slot], textures.images[slot]->view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+            images.push_back(
+                {textures.samplers[slot], textures.images[slot]->view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
         gpu::pushSampledImages(device, cmd, pipeline, images);
         pushed = &textures;
     }
     VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &draw.vertices->buffer, &offset);
     vkCmdBindIndexBuffer(cmd, draw.indices->buffer, 0, VK_INDEX_TYPE_UINT32);
-    vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, pushSize, push);
+    vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, pushSize,
+                       push);
     vkCmdDrawIndexed(cmd, draw.indexCount, draw.instanceCount, 0, 0, 0);
 }
 
@@ -87,7 +89,8 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const F
             // Transparent surfaces are drawn after lighting (passes/transparent.h).
             for (const Draw& draw : scene.draws)
                 if (!draw.transparent)
-                    recordMaterialDraw(device, cmd, pipeline, scene, draw, pushed, &draw.instanceIndex, sizeof(uint32_t));
+                    recordMaterialDraw(device, cmd, pipeline, scene, draw, pushed, &draw.instanceIndex,
+                                       sizeof(uint32_t));
         });
     return gb;
 }

@@ -47,8 +47,8 @@ std::array<double, 2> temporalAaJitter(TemporalAaMode mode, uint32_t index, uint
 
 gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                                    const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
-                                   gpu::ImageHandle transparentCoverage, const TemporalAaSettings& settings, const TemporalAaFrame& frame,
-                                   TemporalAaHistory& history) {
+                                   gpu::ImageHandle transparentCoverage, const TemporalAaSettings& settings,
+                                   const TemporalAaFrame& frame, TemporalAaHistory& history) {
     gpu::Device& device = pipelines.device();
     gpu::ImageDesc colorDesc;
     colorDesc.format = kTemporalAaColorFormat;

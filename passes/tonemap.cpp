@@ -39,8 +39,8 @@ gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines
             pass.read(transparentCoverage, gpu::Usage::SampledCompute);
             pass.write(display, gpu::Usage::StorageImageWrite);
         },
-        [&device, &pipeline, &scene, &grading, hdrColor, hdrAlpha, coverage, transparentCoverage, display](VkCommandBuffer cmd,
-                                                                             const gpu::PassResources& res) {
+        [&device, &pipeline, &scene, &grading, hdrColor, hdrAlpha, coverage, transparentCoverage, display](
+            VkCommandBuffer cmd, const gpu::PassResources& res) {
             gpu::DescriptorWriter(device, pipeline)
                 .sampled(0, res.view(hdrColor), device.nearestClampSampler())
                 .storageImage(1, res.view(display))

@@ -32,7 +32,8 @@ gpu::GraphicsPipelineDesc describeTransparentPipeline(VkFormat hdrFormat) {
 }  // namespace
 
 gpu::ImageHandle addTransparentPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                    const std::vector<uint32_t>& draws, gpu::ImageHandle opaqueDepth, gpu::ImageHandle hdr, gpu::ImageHandle shadowAtlas,
+                                    const std::vector<uint32_t>& draws, gpu::ImageHandle opaqueDepth,
+                                    gpu::ImageHandle hdr, gpu::ImageHandle shadowAtlas,
                                     const EnvironmentLighting& environment, const TransparentSettings& settings) {
     gpu::ImageDesc desc;
     desc.format = kTransparentCoverageFormat;

@@ -20,14 +20,15 @@ struct TransparentSettings {
     float fadeDistance = 0.0f;
 };
 
+// `draws` are the transparent draws to render, back to front (FrameScene::transparentDraws).
 // `opaqueDepth` is the depth transparents are tested against and fade with (sampled, no depth
 // attachment): the G-buffer's depth, or with a multisampled G-buffer the max of its samples (seed
 // 000 "Deferred MSAA \ performance shortcuts (2)"). `hdr` is the light accumulation, blended
-// into in place. Returns the transparent coverage (kTransparentCoverageFormat; all 0 when the
-// frame has no transparent draws: then only cleared).
-// `draws` are the transparent draws to render, back to front (FrameScene::transparentDraws).
+// into in place. Returns the transparent coverage (kTransparentCoverageFormat; all 0 when there
+// are no draws: then the pass only clears it).
 gpu::ImageHandle addTransparentPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                    const std::vector<uint32_t>& draws, gpu::ImageHandle opaqueDepth, gpu::ImageHandle hdr, gpu::ImageHandle shadowAtlas,
+                                    const std::vector<uint32_t>& draws, gpu::ImageHandle opaqueDepth,
+                                    gpu::ImageHandle hdr, gpu::ImageHandle shadowAtlas,
                                     const EnvironmentLighting& environment, const TransparentSettings& settings);
 
 }  // namespace obscura::passes

@@ -122,8 +122,8 @@ void main() {
     s.V = normalize(camera.position.xyz - s.P);
     s.roughness = nr.a;
     float viewDistance = linearDepthFromDevice(camera.projection, depth);
-    s.ambientAccess = ambientAccessWithOcclusion(
-        sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel, viewDistance), occlusionFromTarget(instanceTarget));
+    float screenSpaceAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel, viewDistance);
+    s.ambientAccess = ambientAccessWithOcclusion(screenSpaceAccess, occlusionFromTarget(instanceTarget));
     s.environment = sampleEnvironment(s);
 
     vec3 radiance = mat.emissiveMetallic.rgb;

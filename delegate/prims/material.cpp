@@ -32,8 +32,8 @@ void Material::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
 // UsdUVTexture networks the host flattened into obscura:<input>:* (UsdPreviewSurface spec).
 void Material::readTextures(SceneAccess& s, SyncContext& ctx) {
     warnings_.clear();
-    const char* const sampled[passes::kMaterialTextureSlots] = {"diffuseColor", "roughness", "metallic", "opacity",
-                                                                        "normal",       "occlusion"};
+    const char* const sampled[passes::kMaterialTextureSlots] = {"diffuseColor", "roughness", "metallic",
+                                                                "opacity",      "normal",    "occlusion"};
     const BoundTexture* first = nullptr;
     for (uint32_t slot = 0; slot < passes::kMaterialTextureSlots; ++slot) {
         textures_[slot] = readBoundTexture(s, ctx.textures, sampled[slot], warnings_);

@@ -50,7 +50,8 @@ TEST(MaterialOcclusion, ScalesTheDomeAndNotTheSun) {
         const float* p = &color[(32 * kWidth + 32) * 4];
         std::printf("[ metric ] occlusion %.2f: radiance %.4f, analytic %.4f (ambient %.4f + direct %.4f)\n",
                     double(occlusion), double(p[0]), expected, occlusion * ambient, direct);
-        for (auto [x, y] : {std::pair{32, 32}, {5, 7}, {60, 50}}) expectRadiance(color, x, y, {expected, expected, expected});
+        for (auto [x, y] : {std::pair{32, 32}, {5, 7}, {60, 50}})
+            expectRadiance(color, x, y, {expected, expected, expected});
     }
 }
 
@@ -62,7 +63,8 @@ TEST(MaterialOcclusion, QuarterOcclusionQuartersTheAmbientLight) {
     const float* b = &occluded[(32 * kWidth + 32) * 4];
     std::printf("[ metric ] ambient with occlusion 0.25 / with 1: %.4f (analytic 0.25)\n", double(b[0] / a[0]));
     for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(b[c] / a[c], 0.25, 0.01 + 1.0 / 255.0 + 2.0 * smallFloatStep(1.0f, c == 2 ? 5 : 6)) << "channel " << c;
+        EXPECT_NEAR(b[c] / a[c], 0.25, 0.01 + 1.0 / 255.0 + 2.0 * smallFloatStep(1.0f, c == 2 ? 5 : 6))
+            << "channel " << c;
 }
 
 // Bad values are reported like other bad material inputs: the material is skipped (its meshes

@@ -280,12 +280,15 @@ TEST_F(TextureTest, OpacityTextureCutsOutBelowTheThreshold) {
 TEST_F(TextureTest, OcclusionTextureDarkensTheDomeWhereItSaysSo) {
     // Left half 255 (unoccluded), right half 128 (raw: 0.502): the dome lights the right half half
     // as much (UsdPreviewSurface occlusion darkens indirect light only). SSAO off: a flat plane.
-    std::string file = writePng("occlusion.png", 8, [](int x, int) { return x < 4 ? Rgb8{255, 255, 255} : Rgb8{128, 128, 128}; });
-    std::map<std::string, HostValue> values = textured("occlusion", file, {{"sourceColorSpace", HostValue::token("raw")}});
+    std::string file =
+        writePng("occlusion.png", 8, [](int x, int) { return x < 4 ? Rgb8{255, 255, 255} : Rgb8{128, 128, 128}; });
+    std::map<std::string, HostValue> values =
+        textured("occlusion", file, {{"sourceColorSpace", HostValue::token("raw")}});
     values["inputs:diffuseColor"] = HostValue::float3(0.5f, 0.5f, 0.5f);
     host.addPrim("material", "/Looks/M", values);
     addPlane("/Plane", "/Looks/M");
-    host.addPrim("domeLight", "/Sky", {{"inputs:intensity", HostValue::floatValue(1.0f)}, {"inputs:specular", HostValue::floatValue(0.0f)}});
+    host.addPrim("domeLight", "/Sky",
+                 {{"inputs:intensity", HostValue::floatValue(1.0f)}, {"inputs:specular", HostValue::floatValue(0.0f)}});
     double off = 0.0;
     ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &off};
     ASSERT_EQ(host.api().setRenderSetting(host.delegate(), "ssao", &v), OBSCURA_OK);

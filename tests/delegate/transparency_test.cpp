@@ -33,7 +33,8 @@ void expectPremultipliedRadiance(const std::vector<float>& color, int x, int y, 
     const int mantissa[3] = {6, 6, 5};
     for (int c = 0; c < 3; ++c) {
         double e = expected[size_t(c)];
-        EXPECT_NEAR(p[c], e, 0.01 * e + smallFloatStep(float(e), mantissa[c])) << "pixel (" << x << ", " << y << ") channel " << c;
+        EXPECT_NEAR(p[c], e, 0.01 * e + smallFloatStep(float(e), mantissa[c]))
+            << "pixel (" << x << ", " << y << ") channel " << c;
     }
 }
 
@@ -76,8 +77,8 @@ struct TransparencyScene {
     }
     void print(const char* what, Rgb expected) const {
         const float* p = at(32, 32);
-        std::printf("[ metric ] %s: pixel (%.4f, %.4f, %.4f, a %.4f), analytic (%.4f, %.4f, %.4f)\n", what, double(p[0]),
-                    double(p[1]), double(p[2]), double(p[3]), expected[0], expected[1], expected[2]);
+        std::printf("[ metric ] %s: pixel (%.4f, %.4f, %.4f, a %.4f), analytic (%.4f, %.4f, %.4f)\n", what,
+                    double(p[0]), double(p[1]), double(p[2]), double(p[3]), expected[0], expected[1], expected[2]);
     }
 };
 
@@ -196,8 +197,8 @@ TEST(Transparency, ClearGlassKeepsItsReflection) {
     auto color = host.readFloats("/Buffers/color");
     auto [a, b] = environmentBrdf(0.5, 1.0);  // the centre pixel looks straight at the pane
     double expected = 0.04 * a + b;
-    std::printf("[ metric ] clear glass reflection: %.4f, split sum %.4f, alpha %.4f\n", double(color[(32 * kWidth + 32) * 4]),
-                expected, double(color[(32 * kWidth + 32) * 4 + 3]));
+    std::printf("[ metric ] clear glass reflection: %.4f, split sum %.4f, alpha %.4f\n",
+                double(color[(32 * kWidth + 32) * 4]), expected, double(color[(32 * kWidth + 32) * 4 + 3]));
     expectPremultipliedRadiance(color, 32, 32, {expected, expected, expected});
     EXPECT_NEAR(color[(32 * kWidth + 32) * 4 + 3], 0.0f, 1e-6f);
 }
