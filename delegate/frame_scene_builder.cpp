@@ -139,7 +139,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     // Materials: index 0 is the fallback for meshes without a (valid) binding.
     std::vector<passes::MaterialData> materials(1);
     materials[0].diffuseRoughness = {0.18f, 0.18f, 0.18f, 0.5f};
-    materials[0].opacity = {1.0f, 0, 0, 0};
+    materials[0].opacity = {1.0f, 0, 1.0f, 0};
     // Material textures: element 0 (all white) serves untextured materials.
     passes::MaterialTextures white;
     white.images.fill(in.textures.white());
@@ -222,6 +222,15 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         auto it = materialIndex.find(*mesh.materialPath());
         return it != materialIndex.end() && materials[it->second].opacity[1] > 0.0f;
     };
+    // UsdPreviewSurface opacity without a threshold blends (the spec: opacityThreshold 0 means no
+    // masking): below 1, or textured, the surface is transparent.
+    auto isTransparent = [&](const Mesh& mesh) {
+        if (!mesh.materialPath()) return false;
+        auto it = materialIndex.find(*mesh.materialPath());
+        if (it == materialIndex.end()) return false;
+        const passes::MaterialData& m = materials[it->second];
+        return m.opacity[1] <= 0.0f && (m.opacity[0] < 1.0f || m.textures[passes::kTextureOpacity].sampled != 0);
+    };
     auto drawable = [](const Prim& prim) -> const Mesh* {
         auto* mesh = dynamic_cast<const Mesh*>(&prim);
         return mesh && !mesh->skipped() && mesh->drawable() ? mesh : nullptr;
@@ -233,6 +242,11 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     for (const auto& [path, prim] : in.prims) {
         const Mesh* mesh = drawable(*prim);
         if (!mesh || isPrototype(path)) continue;
+        // Transparent meshes draw one by one: the transparent pass sorts draws, not instances.
+        if (isTransparent(*mesh)) {
+            batches.push_back({mesh});
+            continue;
+        }
         // Opaque and cut-out draws stay apart: the shadow maps rasterise them differently; moving
         // and static ones too: only moving draws write velocities.
         auto key = std::make_tuple(static_cast<const void*>(mesh->vertices().get()),
@@ -247,7 +261,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         const Mesh& first = *batch.front();
         scene.draws.push_back({first.vertices(), first.indices(), first.indexCount(),
                                static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(batch.size()),
-                               texturesOf(first), hasCutout(first), motionOf(first).has_value(),
+                               texturesOf(first), hasCutout(first), isTransparent(first), motionOf(first).has_value(),
                                shutterPositionsOf(first)});
         Aabb bounds;
         for (const Mesh* mesh : batch) {
@@ -269,7 +283,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
             auto meshMotion = motionOf(*mesh);
             scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
                                    static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(placements.size()),
-                                   texturesOf(*mesh), hasCutout(*mesh), meshMotion.has_value(),
+                                   texturesOf(*mesh), hasCutout(*mesh), isTransparent(*mesh), meshMotion.has_value(),
                                    shutterPositionsOf(*mesh)});
             Aabb bounds;
             for (const Matrix4d& placement : placements) {
@@ -282,6 +296,19 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
             drawBounds.push_back(bounds);
         }
     }
+    // Transparent draws back to front: the "over" blend needs what lies behind drawn first.
+    std::vector<std::pair<double, uint32_t>> transparentByDistance;
+    for (uint32_t i = 0; i < scene.draws.size(); ++i) {
+        if (!scene.draws[i].transparent) continue;
+        Vec3d centre = drawBounds[i].centre();
+        Vec3d toEye{centre[0] - eye[0], centre[1] - eye[1], centre[2] - eye[2]};
+        transparentByDistance.push_back({toEye[0] * toEye[0] + toEye[1] * toEye[1] + toEye[2] * toEye[2], i});
+    }
+    // Farthest first; equal distances keep submission order (path order), so the result is stable.
+    std::stable_sort(transparentByDistance.begin(), transparentByDistance.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (const auto& [distance, index] : transparentByDistance) scene.transparentDraws.push_back(index);
+
     // Shadow maps: the views of every shadow-casting light, and each light's place among them.
     ShadowedCamera shadowed{view, unjitteredProjection};
     ShadowAtlasBuild shadows = buildShadowAtlas(
@@ -316,6 +343,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         lights[i].shadow[3] = bit;
     }
 
+    scene.instanceCount = static_cast<uint32_t>(std::min<size_t>(instances.size(), UINT32_MAX));
     passes::LightBufferHeader header{static_cast<uint32_t>(lights.size()), {0, 0, 0}};
     scene.instances = uploadRecords(device, nullptr, 0, instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instances");
     scene.instanceMotions =

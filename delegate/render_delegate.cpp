@@ -14,6 +14,7 @@
 #include "passes/motion_blur.h"
 #include "passes/shadow_maps.h"
 #include "passes/tonemap.h"
+#include "passes/transparent.h"
 
 #include <chrono>
 #include <cstdio>
@@ -328,6 +329,10 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (shortfalls.unclippedLights != unclippedLights_)
         for (const auto& problem : shortfalls.unclippedLights) log(OBSCURA_LOG_WARNING, problem);
     unclippedLights_ = shortfalls.unclippedLights;
+    if (scene.instanceCount > passes::kMaxInstanceRecords)
+        throw ApiError{OBSCURA_ERROR_OUT_OF_MEMORY, std::to_string(scene.instanceCount) +
+                                                        " instances: the G-buffer addresses at most " +
+                                                        std::to_string(passes::kMaxInstanceRecords)};
     trianglesDrawn_ = 0;
     for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
 
@@ -340,17 +345,22 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
     gpu::ImageHandle hdr;
+    gpu::ImageHandle transparentCoverage;
     if (referenceSubFrames > 0) {
         gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
         hdr = passes::addAccumulationResolvePass(graph, *pipelines_, sum,
                                                  lightAccumulation() == passes::LightAccumulation::HalfFloat
                                                      ? VK_FORMAT_R16G16B16A16_SFLOAT
                                                      : VK_FORMAT_B10G11R11_UFLOAT_PACK32);
+        // The sub-frames blended the transparent surfaces into the accumulation. XXX: the alpha of
+        // the reference's colour is the pinhole G-buffer's coverage alone (this clears the
+        // transparent coverage): transparents over the background are not in it.
+        transparentCoverage = passes::addTransparentPass(graph, *pipelines_, scene, {}, gbuffer.depth, hdr, {}, {}, {});
     } else {
-        hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frame);
+        hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frame, transparentCoverage);
         if (temporalAa) {
-            hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, temporalAaSettings,
-                                            temporalAa->pass, temporalAaHistory_);
+            hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage,
+                                            temporalAaSettings, temporalAa->pass, temporalAaHistory_);
             temporalAaInFrame_ = true;
         }
         if (passes::hasDepthOfField(lens)) {
@@ -369,9 +379,10 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     // Temporal AA's accumulation carries coverage in alpha; depth of field and motion blur write none.
     passes::HdrAlpha hdrAlpha = passes::HdrAlpha::None;
     if (temporalAa && !passes::hasDepthOfField(lens) && !scene.motionBlur) hdrAlpha = passes::HdrAlpha::Coverage;
-    gpu::ImageHandle display =
-        passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance, grading_);
-    passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, hdrAlpha, display, requests);
+    gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance,
+                                                      transparentCoverage, grading_);
+    passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, hdrAlpha, transparentCoverage, display,
+                               requests);
     executeFrame(graph);
     converged_ = !temporalAa || temporalAa->converged;
     frameSetupMilliseconds_ = std::chrono::duration<double, std::milli>(frameRecorded_ - syncEnd).count();
@@ -390,7 +401,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
 
 gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
                                              const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
-                                             const FrameSceneInputs& frame) {
+                                             const FrameSceneInputs& frame, gpu::ImageHandle& transparentCoverage) {
     FrameView seen = frameView(frame);
     passes::addClipVolumePass(graph, *pipelines_, scene, gbuffer);
     passes::SsaoResult ambient;
@@ -418,8 +429,15 @@ gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passe
     passes::EnvironmentLighting environment =
         environment_->addToFrame(graph, *pipelines_, dome ? dome->environment() : nullptr);
     environmentInFrame_ = true;
-    return passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas, environment,
-                                   lightAccumulation());
+    gpu::ImageHandle hdr = passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas,
+                                                   environment, lightAccumulation());
+    // Transparent surfaces over the lit opaque ones, before temporal AA (DESIGN.md "The frame").
+    // The fade distance is authored in metres, like the SSAO radius.
+    passes::TransparentSettings transparents{
+        float(settings_.number("transparents:fadeDistance") / settings_.number("metersPerUnit"))};
+    transparentCoverage = passes::addTransparentPass(graph, *pipelines_, scene, scene.transparentDraws, gbuffer.depth,
+                                                     hdr, shadowAtlas, environment, transparents);
+    return hdr;
 }
 
 passes::LightAccumulation RenderDelegate::lightAccumulation() const {
@@ -472,7 +490,9 @@ void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const pa
         gpu::FrameGraph graph;
         gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
         passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
-        gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, inputs);
+        // Each sub-frame blends its transparent surfaces into its lighting; their coverage is not kept.
+        gpu::ImageHandle transparentCoverage;
+        gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, inputs, transparentCoverage);
         gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
         passes::addAccumulatePass(graph, *pipelines_, hdr, sum, float(sub.weight), k == 0);
         executeFrame(graph);

@@ -69,7 +69,7 @@ private:
     // into the light accumulation.
     gpu::ImageHandle addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
                                  const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
-                                 const FrameSceneInputs& frame);
+                                 const FrameSceneInputs& frame, gpu::ImageHandle& transparentCoverage);
     // The light accumulation's format (render setting lighting:halfFloat).
     passes::LightAccumulation lightAccumulation() const;
     // Compiles, records and submits one frame graph, and waits for it.

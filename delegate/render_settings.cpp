@@ -20,6 +20,10 @@ const RenderSettingInfo kSettings[] = {
     {"lighting:halfFloat", "accumulate lighting in RGBA16F instead of B10G11R11_UFLOAT: about 2^-11 relative "
                            "precision instead of 2^-7..2^-6, twice the bandwidth (bool, default off)",
      OBSCURA_VALUE_BOOL, 0.0},
+    {"transparents:fadeDistance", "soft intersections of transparent surfaces (opacity below 1): a surface fades "
+                                  "out over this distance in metres in front of the opaque surface behind it; 0 "
+                                  "keeps the intersection hard (float, default 0)",
+     OBSCURA_VALUE_FLOAT, 0.0, 0.0},
     {"shadows", "shadow maps: cascaded for distant lights, cube maps (or one spot map inside a ShapingAPI cone) "
                 "for sphere, rect and disk lights, for every light whose inputs:shadow:enable is on "
                 "(bool, default on)",

@@ -106,10 +106,17 @@ Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(d
     ds.front = {VK_STENCIL_OP_KEEP, desc.stencil.passOp, VK_STENCIL_OP_KEEP, desc.stencil.compare, 0xffu, 0u, 0u};
     ds.back = ds.front;
     std::vector<VkPipelineColorBlendAttachmentState> blends(desc.colorFormats.size());
-    for (size_t i = 0; i < blends.size(); ++i)
-        if ((desc.untouchedColorAttachments >> i & 1u) == 0)
-            blends[i].colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
-                                       VK_COLOR_COMPONENT_A_BIT;
+    for (size_t i = 0; i < blends.size(); ++i) {
+        VkPipelineColorBlendAttachmentState& b = blends[i];
+        if ((desc.untouchedColorAttachments >> i & 1u) != 0) continue;
+        b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                           VK_COLOR_COMPONENT_A_BIT;
+        if (!desc.premultipliedOverBlend) continue;
+        b.blendEnable = VK_TRUE;
+        b.srcColorBlendFactor = b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        b.dstColorBlendFactor = b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        b.colorBlendOp = b.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     cb.attachmentCount = static_cast<uint32_t>(blends.size());
     cb.pAttachments = blends.data();

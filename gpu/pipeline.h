@@ -36,6 +36,9 @@ struct GraphicsPipelineDesc {
     uint32_t untouchedColorAttachments = 0;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    // Every colour attachment blends "over" with premultiplied colour: src + dst * (1 - src alpha)
+    // (Porter & Duff 1984), the alpha likewise.
+    bool premultipliedOverBlend = false;
     bool depthTest = true;
     bool depthWrite = true;
     // Rasteriser depth bias (constant and slope-scaled factors); both 0 leave it off.

@@ -65,18 +65,19 @@ enum MaterialTextureSlot : uint32_t {
     kTextureMetallic = 2,
     kTextureOpacity = 3,
     kTextureNormal = 4,  // tangent space, UsdPreviewSurface `normal`
-    kMaterialTextureSlots = 5
+    kTextureOcclusion = 5,
+    kMaterialTextureSlots = 6
 };
 
 struct alignas(16) MaterialData {
     std::array<float, 4> diffuseRoughness;
     std::array<float, 4> emissiveMetallic;
-    std::array<float, 4> opacity;  // x opacity, y opacityThreshold
+    std::array<float, 4> opacity;  // x opacity, y opacityThreshold, z occlusion
     std::array<float, 4> specularIor{0.0f, 0.0f, 0.0f, 1.5f};  // rgb specularColor, a ior
     std::array<float, 4> clearcoat{};  // x clearcoat, y clearcoatRoughness, z 1 for the specular workflow
     std::array<MaterialTexture, kMaterialTextureSlots> textures;
 };
-static_assert(sizeof(MaterialData) == 80 + 5 * 48);
+static_assert(sizeof(MaterialData) == 80 + 6 * 48);
 
 enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4 };
 

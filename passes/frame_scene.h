@@ -18,6 +18,9 @@ struct Draw {
     uint32_t instanceCount = 1;  // consecutive records, one per GPU instance
     uint32_t textures = 0;       // the draw's MaterialTextures in FrameScene::materialTextures
     bool opacityCutout = false;  // its material has an opacityThreshold: some texels are absent
+    // Its material is partly transparent (opacity below 1 or textured, no opacityThreshold):
+    // drawn by the forward transparent pass, not into the G-buffer or the shadow maps.
+    bool transparent = false;
     bool moving = false;         // its instances move within the shutter (motion blur's velocities)
     gpu::BufferPtr shutterPositions;  // deforming: ShutterPositions per vertex (moving draws only)
 };
@@ -63,6 +66,10 @@ struct FrameScene {
     gpu::BufferPtr environment;  // EnvironmentData (uniform)
     std::vector<MaterialTextures> materialTextures;  // never empty: element 0 is all white
     std::vector<Draw> draws;
+    uint32_t instanceCount = 0;  // InstanceData records in `instances`
+    // The transparent draws (indices into `draws`), back to front: by the distance from the eye to
+    // the centre of each draw's world bounds (an instanced draw sorts as one).
+    std::vector<uint32_t> transparentDraws;
     ShadowAtlas shadows;
     std::vector<ClipVolume> clipVolumes;
     // Motion blur: the G-buffer writes the velocities of the moving draws (drawn last) and the

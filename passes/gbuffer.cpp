@@ -28,9 +28,6 @@ bool writesVelocity(Variant variant) { return variant == Variant::Moving || vari
 
 gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant) {
     gpu::GraphicsPipelineDesc d;
-    d.vertexShader = variant == Variant::Moving      ? "gbuffer_moving.vert"
-                     : variant == Variant::Deforming ? "gbuffer_deforming.vert"
-                                                     : "gbuffer.vert";
     d.fragmentShader = writesVelocity(variant) ? "gbuffer_moving.frag" : "gbuffer.frag";
     d.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -39,12 +36,9 @@ gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant) {
     if (writesVelocity(variant)) d.bindings.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
     d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
     d.pushConstantSize = sizeof(uint32_t);
-    d.vertexStrides = {sizeof(Vertex)};
-    d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
-                          {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
-                          {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, color)},
-                          {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
-                          {4, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}};
+    setSceneVertexInput(d);
+    if (variant == Variant::Moving) d.vertexShader = "gbuffer_moving.vert";
+    if (variant == Variant::Deforming) d.vertexShader = "gbuffer_deforming.vert";
     if (variant == Variant::Deforming) {
         d.vertexStrides.push_back(sizeof(ShutterPositions));
         d.vertexAttributes.push_back({6, VK_FORMAT_R32G32B32_SFLOAT, offsetof(ShutterPositions, open), 1});
@@ -65,6 +59,40 @@ Variant variantOf(const Draw& draw, bool velocityTarget) {
 }
 
 }  // namespace
+
+void setSceneVertexInput(gpu::GraphicsPipelineDesc& d) {
+    d.vertexShader = "gbuffer.vert";
+    d.vertexStrides = {sizeof(Vertex)};
+    d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+                          {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+                          {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, color)},
+                          {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+                          {4, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}};
+}
+
+void recordMaterialDraw(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& pipeline,
+                        const FrameScene& scene, const Draw& draw, const MaterialTextures*& pushed,
+                        const void* push, uint32_t pushSize) {
+    // Textures change per material: pushed, not allocated (VK_KHR_push_descriptor).
+    const MaterialTextures& textures = scene.materialTextures[draw.textures];
+    if (&textures != pushed) {
+        std::vector<VkDescriptorImageInfo> images;
+        for (uint32_t slot = 0; slot < kMaterialTextureSlots; ++slot)
+            images.push_back(
+                {textures.samplers[slot], textures.images[slot]->view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+        gpu::pushSampledImages(device, cmd, pipeline, images);
+        pushed = &textures;
+    }
+    // A deforming draw's second stream: where its vertices are at the shutter's ends (pipelines
+    // without that binding ignore it).
+    VkBuffer streams[] = {draw.vertices->buffer, draw.shutterPositions ? draw.shutterPositions->buffer : VK_NULL_HANDLE};
+    VkDeviceSize offsets[] = {0, 0};
+    vkCmdBindVertexBuffers(cmd, 0, draw.shutterPositions ? 2 : 1, streams, offsets);
+    vkCmdBindIndexBuffer(cmd, draw.indices->buffer, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, pushSize,
+                       push);
+    vkCmdDrawIndexed(cmd, draw.indexCount, draw.instanceCount, 0, 0, 0);
+}
 
 GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                        const gpu::ImagePtr& bestFitNormals) {
@@ -93,7 +121,9 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const F
     std::vector<Ordered> ordered;
     for (Variant variant : {Variant::Static, Variant::StaticWithVelocityTarget, Variant::Moving, Variant::Deforming})
         for (const Draw& draw : scene.draws)
-            if (variantOf(draw, scene.motionBlur) == variant) ordered.push_back({variant, &pipelineOf(variant), &draw});
+            // Transparent surfaces are drawn after lighting (passes/transparent.h).
+            if (!draw.transparent && variantOf(draw, scene.motionBlur) == variant)
+                ordered.push_back({variant, &pipelineOf(variant), &draw});
 
     graph.addPass(
         "gbuffer", gpu::PassKind::Raster,
@@ -119,24 +149,7 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const F
                     bound = pipeline;
                     pushed = nullptr;  // a new layout: the pushed set starts over
                 }
-                // Textures change per material: pushed, not allocated (VK_KHR_push_descriptor).
-                const MaterialTextures& textures = scene.materialTextures[draw->textures];
-                if (&textures != pushed) {
-                    std::vector<VkDescriptorImageInfo> images;
-                    for (uint32_t slot = 0; slot < kMaterialTextureSlots; ++slot)
-                        images.push_back({textures.samplers[slot], textures.images[slot]->view,
-                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
-                    gpu::pushSampledImages(device, cmd, *pipeline, images);
-                    pushed = &textures;
-                }
-                VkBuffer streams[] = {draw->vertices->buffer,
-                                      draw->shutterPositions ? draw->shutterPositions->buffer : VK_NULL_HANDLE};
-                VkDeviceSize offsets[] = {0, 0};
-                vkCmdBindVertexBuffers(cmd, 0, draw->shutterPositions ? 2 : 1, streams, offsets);
-                vkCmdBindIndexBuffer(cmd, draw->indices->buffer, 0, VK_INDEX_TYPE_UINT32);
-                vkCmdPushConstants(cmd, pipeline->layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                                   sizeof(uint32_t), &draw->instanceIndex);
-                vkCmdDrawIndexed(cmd, draw->indexCount, draw->instanceCount, 0, 0, 0);
+                recordMaterialDraw(device, cmd, *pipeline, scene, *draw, pushed, &draw->instanceIndex, sizeof(uint32_t));
             }
         });
     return gb;

@@ -11,11 +11,15 @@ struct GBuffer {
     gpu::ImageHandle depth;             // D32_SFLOAT_S8_UINT (stencil bit 0x80 reserved for MSAA)
     gpu::ImageHandle normalRoughness;   // RGBA8 UNORM: best-fit normal + roughness
     gpu::ImageHandle albedoMetallic;    // RGBA8 sRGB: albedo + metallic
-    gpu::ImageHandle instance;          // R32 UINT: instance index + 1, 0 where nothing drew
+    gpu::ImageHandle instance;          // R32 UINT: instance index + 1 (low 24 bits, 0 where nothing drew),
+                                        // the material's occlusion (top 8 bits): common/instance_target.glsl
     // RG16 SFLOAT, with motion blur only (FrameScene::motionBlur): the displacement in pixels from
     // the shutter's open to its close of what moving draws cover, kStaticVelocity elsewhere.
     gpu::ImageHandle velocity;
 };
+
+// The instance target keeps 24 bits for the instance index + 1.
+constexpr uint32_t kMaxInstanceRecords = (1u << 24) - 1u;
 
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT_S8_UINT;
 constexpr VkFormat kNormalRoughnessFormat = VK_FORMAT_R8G8B8A8_UNORM;
@@ -29,6 +33,17 @@ constexpr VkFormat kVelocityFormat = VK_FORMAT_R16G16_SFLOAT;
 // shaders/common/motion_velocity.glsl).
 constexpr float kStaticVelocity = -65504.0f;
 
+// The scene's vertex input (Vertex, the instance records; shaders/gbuffer.vert), shared by the
+// passes that draw the scene's materials.
+void setSceneVertexInput(gpu::GraphicsPipelineDesc& desc);
+
+// Records one draw of the scene with its material textures pushed into set 1 (unless `pushed`
+// holds them already) and `push` as push constants (its first uint: the draw's first instance).
+void recordMaterialDraw(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& pipeline,
+                        const FrameScene& scene, const Draw& draw, const MaterialTextures*& pushed,
+                        const void* push, uint32_t pushSize);
+
+// Draws every opaque draw of the scene (Draw::transparent ones are the transparent pass's).
 GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                        const gpu::ImagePtr& bestFitNormals);
 

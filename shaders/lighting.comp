@@ -12,6 +12,7 @@
 #include "common/best_fit_normals.glsl"
 #include "common/ssao_upsample.glsl"
 #include "common/environment_map.glsl"
+#include "common/instance_target.glsl"
 
 const uint TILE_SIZE = 16u;
 const uint MAX_TILE_LIGHTS = 1024u;  // lights beyond this many in one tile are dropped
@@ -38,7 +39,7 @@ layout(set = 0, binding = 14, std140) uniform Environment { EnvironmentData envi
 layout(set = 0, binding = 15, std430) readonly buffer EnvironmentIrradiance { vec4 irradianceSh[SH_COEFFICIENTS]; };
 layout(set = 0, binding = 16) uniform sampler2D prefilteredEnvironment;
 
-#include "common/shadow_sampling.glsl"
+#include "common/scene_lighting.glsl"
 
 shared uint tileMinDepthBits;
 shared uint tileMaxDepthBits;
@@ -52,32 +53,9 @@ vec3 unproject(mat4 inverseMatrix, vec2 ndc, float depth) {
     return p.xyz / p.w;
 }
 
-// The textured dome seen from s: SH irradiance around N, the prefiltered chain along the mirror
-// direction at the lobes' roughness (the split sum's N = V = R lookup), in the dome's frame.
-EnvironmentSample sampleEnvironment(SurfacePoint s) {
-    if (environment.params.x < 0.5) return EnvironmentSample(vec3(1.0), vec3(1.0), vec3(1.0));
-    mat3 toDome = mat3(environment.worldToDome);
-    vec3 N = normalize(toDome * s.N);
-    vec3 R = normalize(toDome * reflect(-s.V, s.N));
-    vec2 uv = latlongUv(R);
-    float lastLevel = float(textureQueryLevels(prefilteredEnvironment) - 1);
-    EnvironmentSample e;
-    e.diffuse = shIrradiance(irradianceSh, N) / PI;
-    e.specular = textureLod(prefilteredEnvironment, uv, prefilteredLod(s.roughness, lastLevel)).rgb;
-    e.coat = s.clearcoat > 0.0
-        ? textureLod(prefilteredEnvironment, uv, prefilteredLod(s.clearcoatRoughness, lastLevel)).rgb
-        : vec3(0.0);
-    return e;
-}
-
-bool isLocal(LightData light) {
-    uint type = uint(light.positionType.w);
-    return type != LIGHT_DISTANT && type != LIGHT_DOME;
-}
-
 // Sphere against the tile's view-space box (tighter than the four side planes for thin tiles).
 bool touchesTile(LightData light) {
-    if (!isLocal(light)) return true;
+    if (!isLocalLight(light)) return true;
     vec3 centre = (camera.view * vec4(light.positionType.xyz, 1.0)).xyz;
     vec3 nearest = clamp(centre, tileBoxMin, tileBoxMax);
     vec3 d = centre - nearest;
@@ -87,7 +65,8 @@ bool touchesTile(LightData light) {
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     bool inside = all(lessThan(pixel, ivec2(camera.resolution)));
-    uint instanceId = inside ? texelFetch(instanceTexture, pixel, 0).r : 0u;
+    uint instanceTarget = inside ? texelFetch(instanceTexture, pixel, 0).r : 0u;
+    uint instanceId = instanceIdFromTarget(instanceTarget);
     float depth = inside ? texelFetch(depthTexture, pixel, 0).r : 1.0;
 
     if (gl_LocalInvocationIndex == 0u) {
@@ -143,7 +122,8 @@ void main() {
     s.V = normalize(camera.position.xyz - s.P);
     s.roughness = nr.a;
     float viewDistance = linearDepthFromDevice(camera.projection, depth);
-    s.ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel, viewDistance);
+    float screenSpaceAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel, viewDistance);
+    s.ambientAccess = ambientAccessWithOcclusion(screenSpaceAccess, occlusionFromTarget(instanceTarget));
     s.environment = sampleEnvironment(s);
 
     vec3 radiance = mat.emissiveMetallic.rgb;
@@ -153,11 +133,7 @@ void main() {
         LightData light = lights[tileLights[i]];
         // A clipped light reaches only surfaces inside its volume (seed 004 "clip volumes").
         if (light.shadow.w != 0u && (insideClipVolumes & light.shadow.w) == 0u) continue;
-        vec3 reflected = reflectFromLight(s, light);
-        // Shadow lookups only where the light reaches the surface at all.
-        if (light.shadow.y > 0u && any(greaterThan(reflected, vec3(0.0))))
-            reflected *= shadowVisibility(light, s.P, s.N, viewDistance);
-        radiance += reflected;
+        radiance += reflectShadowedLight(s, light, viewDistance);
     }
     imageStore(lightAccumulation, pixel, vec4(radiance * camera.exposureScale, 1.0));
 }

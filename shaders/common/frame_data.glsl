@@ -51,12 +51,13 @@ const uint TEXTURE_ROUGHNESS = 1u;
 const uint TEXTURE_METALLIC = 2u;
 const uint TEXTURE_OPACITY = 3u;
 const uint TEXTURE_NORMAL = 4u;
-const uint MATERIAL_TEXTURE_SLOTS = 5u;
+const uint TEXTURE_OCCLUSION = 5u;
+const uint MATERIAL_TEXTURE_SLOTS = 6u;
 
 struct MaterialData {
     vec4 diffuseRoughness;  // rgb diffuseColor, a roughness
     vec4 emissiveMetallic;  // rgb emissiveColor (textured: the texture's average), a metallic
-    vec4 opacity;           // x opacity, y opacityThreshold
+    vec4 opacity;           // x opacity, y opacityThreshold, z occlusion
     vec4 specularIor;       // rgb specularColor (specular workflow), a ior
     vec4 clearcoat;         // x clearcoat, y clearcoatRoughness, z 1 for the specular workflow
     MaterialTexture textures[MATERIAL_TEXTURE_SLOTS];

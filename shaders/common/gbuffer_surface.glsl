@@ -2,7 +2,8 @@
 // seed 004 ("G-Buffer layout"):
 //   RT0 RGBA8  best-fit normal (24 bits) + roughness (8 bits)
 //   RT1 RGBA8 sRGB  albedo + metallic
-//   RT2 R32UI  instance index + 1 (0: nothing drawn) for per-prim data and the primId AOV
+//   RT2 R32UI  instance index + 1 (0: nothing drawn) for per-prim data and the primId AOV, and the
+//              material's occlusion in its top 8 bits (instance_target.glsl)
 // (and, with motion blur, RT3 RG16F velocity, written by moving draws only: gbuffer_moving.frag).
 #ifndef OBSCURA_GBUFFER_SURFACE_GLSL
 #define OBSCURA_GBUFFER_SURFACE_GLSL
@@ -10,6 +11,7 @@
 #include "frame_data.glsl"
 #include "best_fit_normals.glsl"
 #include "material_inputs.glsl"
+#include "instance_target.glsl"
 
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inColor;
@@ -28,6 +30,7 @@ layout(set = 1, binding = 1) uniform sampler2D roughnessTexture;
 layout(set = 1, binding = 2) uniform sampler2D metallicTexture;
 layout(set = 1, binding = 3) uniform sampler2D opacityTexture;
 layout(set = 1, binding = 4) uniform sampler2D normalTexture;
+layout(set = 1, binding = 5) uniform sampler2D occlusionTexture;
 
 layout(location = 0) out vec4 outNormalRoughness;
 layout(location = 1) out vec4 outAlbedoMetallic;
@@ -46,10 +49,11 @@ void writeSurface() {
                       : colorInput(mat.diffuseRoughness.rgb, mat.textures[TEXTURE_DIFFUSE], diffuseTexture, inUv);
     float roughness = scalarInput(mat.diffuseRoughness.a, mat.textures[TEXTURE_ROUGHNESS], roughnessTexture, inUv);
     float metallic = scalarInput(mat.emissiveMetallic.a, mat.textures[TEXTURE_METALLIC], metallicTexture, inUv);
+    float occlusion = scalarInput(mat.opacity.z, mat.textures[TEXTURE_OCCLUSION], occlusionTexture, inUv);
     if (cutOut(mat, opacityTexture, inUv)) discard;
     outNormalRoughness = vec4(encodeBestFitNormal(n, fittingScale), roughness);
     outAlbedoMetallic = vec4(albedo, metallic);
-    outInstance = inInstance + 1u;
+    outInstance = packInstanceTarget(inInstance, occlusion);
 }
 
 #endif
