@@ -27,6 +27,7 @@ struct Aabb {
         extend(box.min);
         extend(box.max);
     }
+    Vec3d centre() const { return {0.5 * (min[0] + max[0]), 0.5 * (min[1] + max[1]), 0.5 * (min[2] + max[2])}; }
     std::array<Vec3d, 8> corners() const {
         std::array<Vec3d, 8> c{};
         for (size_t i = 0; i < 8; ++i) c[i] = {(i & 1) ? max[0] : min[0], (i & 2) ? max[1] : min[1], (i & 4) ? max[2] : min[2]};

@@ -54,6 +54,8 @@ passes::EnvironmentData environmentData(const Light* dome) {
     return data;
 }
 
+double shutterCentre(const std::array<double, 2>& shutter) { return 0.5 * (shutter[0] + shutter[1]); }
+
 }  // namespace
 
 const Light* environmentDome(const std::map<std::string, std::unique_ptr<Prim>>& prims,
@@ -71,6 +73,8 @@ const Light* environmentDome(const std::map<std::string, std::unique_ptr<Prim>>&
 FrameView frameView(const FrameSceneInputs& in) {
     const Camera& cam = in.camera;
     double aspect = double(in.width) / double(in.height);
+    if (in.motionBlurShutter && !in.sample)
+        return {cam.viewMatrix({0.0, 0.0}, shutterCentre(*in.motionBlurShutter)), cam.projectionMatrix(aspect)};
     if (!in.sample) return {cam.viewMatrix(), cam.projectionMatrix(aspect)};
     std::array<double, 2> ndcJitter{2.0 * in.sample->pixelJitter[0] / in.width, 2.0 * in.sample->pixelJitter[1] / in.height};
     return {cam.viewMatrix(in.sample->lensOffset, in.sample->time),
@@ -90,7 +94,20 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     Matrix4d projection = multiply(unjitteredProjection, in.clipJitter);
     Matrix4d cameraToWorld = kIdentity;
     invert(view, cameraToWorld);
-    auto transformOf = [&](const Mesh& mesh) { return in.sample ? mesh.transformAt(in.sample->time) : mesh.transform(); };
+    auto transformOf = [&](const Mesh& mesh) {
+        if (in.sample) return mesh.transformAt(in.sample->time);
+        if (in.motionBlurShutter) return mesh.transformAt(shutterCentre(*in.motionBlurShutter));
+        return mesh.transform();
+    };
+    // Motion blur: where a mesh's transform is at the shutter's open and close, for meshes that
+    // move or deform within it; static meshes have none.
+    auto motionOf = [&](const Mesh& mesh) -> std::optional<std::array<Matrix4d, 2>> {
+        if (!in.motionBlurShutter) return std::nullopt;
+        std::array<Matrix4d, 2> ends{mesh.transformAt((*in.motionBlurShutter)[0]), mesh.transformAt((*in.motionBlurShutter)[1])};
+        if (ends[0] == ends[1] && !mesh.shutterPositions()) return std::nullopt;
+        return ends;
+    };
+    auto shutterPositionsOf = [&](const Mesh& mesh) { return in.motionBlurShutter ? mesh.shutterPositions() : nullptr; };
     Matrix4d viewProjection = multiply(view, projection);
     Matrix4d inverseViewProjection = kIdentity;
     invert(viewProjection, inverseViewProjection);
@@ -106,6 +123,15 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     cd.position = {float(eye[0]), float(eye[1]), float(eye[2]), 1.0f};
     cd.resolution = {float(in.width), float(in.height)};
     cd.exposureScale = float(cam.linearExposureScale() * std::exp2(in.exposureStops));
+    cd.shutterOpenViewProjection = cd.shutterCloseViewProjection = toFloats<passes::Mat4>(multiply(view, unjitteredProjection));
+    bool cameraMoves = false;
+    if (in.motionBlurShutter && !in.sample) {
+        for (int end = 0; end < 2; ++end) {
+            Matrix4d atEnd = multiply(cam.viewMatrix({0.0, 0.0}, (*in.motionBlurShutter)[end]), unjitteredProjection);
+            (end == 0 ? cd.shutterOpenViewProjection : cd.shutterCloseViewProjection) = toFloats<passes::Mat4>(atEnd);
+        }
+        cameraMoves = cd.shutterOpenViewProjection != cd.shutterCloseViewProjection;
+    }
     scene.cameraData = cd;
     scene.camera = device.createBuffer(sizeof(cd), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "camera");
     std::memcpy(scene.camera->mapped(), &cd, sizeof(cd));
@@ -113,7 +139,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     // Materials: index 0 is the fallback for meshes without a (valid) binding.
     std::vector<passes::MaterialData> materials(1);
     materials[0].diffuseRoughness = {0.18f, 0.18f, 0.18f, 0.5f};
-    materials[0].opacity = {1.0f, 0, 0, 0};
+    materials[0].opacity = {1.0f, 0, 1.0f, 0};
     // Material textures: element 0 (all white) serves untextured materials.
     passes::MaterialTextures white;
     white.images.fill(in.textures.white());
@@ -161,9 +187,15 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     };
 
     std::vector<passes::InstanceData> instances;
+    std::vector<passes::InstanceMotion> motions;
     std::vector<Aabb> drawBounds;  // world bounds of each draw, all its instances
-    auto record = [&](const Mesh& mesh, const Matrix4d& model) {
+    auto record = [&](const Mesh& mesh, const Matrix4d& model,
+                      const std::optional<std::array<Matrix4d, 2>>& motion = std::nullopt) {
         passes::InstanceData inst{};
+        if (motion) {
+            inst.motionIndex = static_cast<uint32_t>(motions.size());
+            motions.push_back({toFloats<passes::Mat4>((*motion)[0]), toFloats<passes::Mat4>((*motion)[1])});
+        }
         inst.model = toFloats<passes::Mat4>(model);
         inst.normalMatrix = toFloats<passes::Mat4>(normalMatrix(model));
         inst.primId = mesh.primId();
@@ -190,6 +222,15 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         auto it = materialIndex.find(*mesh.materialPath());
         return it != materialIndex.end() && materials[it->second].opacity[1] > 0.0f;
     };
+    // UsdPreviewSurface opacity without a threshold blends (the spec: opacityThreshold 0 means no
+    // masking): below 1, or textured, the surface is transparent.
+    auto isTransparent = [&](const Mesh& mesh) {
+        if (!mesh.materialPath()) return false;
+        auto it = materialIndex.find(*mesh.materialPath());
+        if (it == materialIndex.end()) return false;
+        const passes::MaterialData& m = materials[it->second];
+        return m.opacity[1] <= 0.0f && (m.opacity[0] < 1.0f || m.textures[passes::kTextureOpacity].sampled != 0);
+    };
     auto drawable = [](const Prim& prim) -> const Mesh* {
         auto* mesh = dynamic_cast<const Mesh*>(&prim);
         return mesh && !mesh->skipped() && mesh->drawable() ? mesh : nullptr;
@@ -197,13 +238,21 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     // Meshes with the same geometry (repeated references share buffers through the geometry
     // cache) and the same textures become one instanced draw, in the order they first appear.
     std::vector<std::vector<const Mesh*>> batches;
-    std::map<std::tuple<const void*, const void*, uint32_t, bool>, size_t> batchOf;
+    std::map<std::tuple<const void*, const void*, uint32_t, bool, bool, const void*>, size_t> batchOf;
     for (const auto& [path, prim] : in.prims) {
         const Mesh* mesh = drawable(*prim);
         if (!mesh || isPrototype(path)) continue;
-        // Opaque and cut-out draws stay apart: the shadow maps rasterise them differently.
+        // Transparent meshes draw one by one: the transparent pass sorts draws, not instances.
+        if (isTransparent(*mesh)) {
+            batches.push_back({mesh});
+            continue;
+        }
+        // Opaque and cut-out draws stay apart: the shadow maps rasterise them differently; moving
+        // and static ones too: only moving draws write velocities.
         auto key = std::make_tuple(static_cast<const void*>(mesh->vertices().get()),
-                                   static_cast<const void*>(mesh->indices().get()), texturesOf(*mesh), hasCutout(*mesh));
+                                   static_cast<const void*>(mesh->indices().get()), texturesOf(*mesh), hasCutout(*mesh),
+                                   motionOf(*mesh).has_value(),
+                                   static_cast<const void*>(shutterPositionsOf(*mesh).get()));
         auto [it, added] = batchOf.emplace(key, batches.size());
         if (added) batches.emplace_back();
         batches[it->second].push_back(mesh);
@@ -212,10 +261,11 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         const Mesh& first = *batch.front();
         scene.draws.push_back({first.vertices(), first.indices(), first.indexCount(),
                                static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(batch.size()),
-                               texturesOf(first), hasCutout(first)});
+                               texturesOf(first), hasCutout(first), isTransparent(first), motionOf(first).has_value(),
+                               shutterPositionsOf(first)});
         Aabb bounds;
         for (const Mesh* mesh : batch) {
-            record(*mesh, transformOf(*mesh));
+            record(*mesh, transformOf(*mesh), motionOf(*mesh));
             bounds.merge(transformAabb(mesh->localBounds(), transformOf(*mesh)));
         }
         drawBounds.push_back(bounds);
@@ -229,18 +279,36 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
             if (proto < 0) continue;
             const auto& placements = inst->instancesOf(size_t(proto));
             if (placements.empty()) continue;
+            // The prototype's own transform may move within the shutter; the placements hold.
+            auto meshMotion = motionOf(*mesh);
             scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
                                    static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(placements.size()),
-                                   texturesOf(*mesh), hasCutout(*mesh)});
+                                   texturesOf(*mesh), hasCutout(*mesh), isTransparent(*mesh), meshMotion.has_value(),
+                                   shutterPositionsOf(*mesh)});
             Aabb bounds;
             for (const Matrix4d& placement : placements) {
                 Matrix4d model = multiply(transformOf(*mesh), placement);
-                record(*mesh, model);
+                std::optional<std::array<Matrix4d, 2>> motion;
+                if (meshMotion) motion = {{multiply((*meshMotion)[0], placement), multiply((*meshMotion)[1], placement)}};
+                record(*mesh, model, motion);
                 bounds.merge(transformAabb(mesh->localBounds(), model));
             }
             drawBounds.push_back(bounds);
         }
     }
+    // Transparent draws back to front: the "over" blend needs what lies behind drawn first.
+    std::vector<std::pair<double, uint32_t>> transparentByDistance;
+    for (uint32_t i = 0; i < scene.draws.size(); ++i) {
+        if (!scene.draws[i].transparent) continue;
+        Vec3d centre = drawBounds[i].centre();
+        Vec3d toEye{centre[0] - eye[0], centre[1] - eye[1], centre[2] - eye[2]};
+        transparentByDistance.push_back({toEye[0] * toEye[0] + toEye[1] * toEye[1] + toEye[2] * toEye[2], i});
+    }
+    // Farthest first; equal distances keep submission order (path order), so the result is stable.
+    std::stable_sort(transparentByDistance.begin(), transparentByDistance.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (const auto& [distance, index] : transparentByDistance) scene.transparentDraws.push_back(index);
+
     // Shadow maps: the views of every shadow-casting light, and each light's place among them.
     ShadowedCamera shadowed{view, unjitteredProjection};
     ShadowAtlasBuild shadows = buildShadowAtlas(
@@ -275,8 +343,12 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         lights[i].shadow[3] = bit;
     }
 
+    scene.instanceCount = static_cast<uint32_t>(std::min<size_t>(instances.size(), UINT32_MAX));
     passes::LightBufferHeader header{static_cast<uint32_t>(lights.size()), {0, 0, 0}};
     scene.instances = uploadRecords(device, nullptr, 0, instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instances");
+    scene.instanceMotions =
+        uploadRecords(device, nullptr, 0, motions, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instance motions");
+    scene.motionBlur = in.motionBlurShutter && !in.sample && (cameraMoves || !motions.empty());
     scene.materials = uploadRecords(device, nullptr, 0, materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials");
     scene.lights = uploadRecords(device, &header, sizeof(header), lights, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights");
     passes::EnvironmentData environment = environmentData(in.environmentDome);

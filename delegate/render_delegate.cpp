@@ -12,8 +12,10 @@
 #include "passes/gbuffer.h"
 #include "passes/lighting.h"
 #include "passes/msaa_resolve.h"
+#include "passes/motion_blur.h"
 #include "passes/shadow_maps.h"
 #include "passes/tonemap.h"
+#include "passes/transparent.h"
 
 #include <chrono>
 #include <cstdio>
@@ -321,11 +323,17 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     ShadowSettings shadows{settings_.number("shadows") != 0.0, uint32_t(settings_.number("shadows:resolution")),
                            uint32_t(settings_.number("shadows:cascades"))};
     FrameSceneInputs frame{prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows, dome};
-    // The `dof` setting turns the lens off for the post-process and the reference alike.
+    // The `dof` setting turns the lens off for the post-process and the reference alike, and
+    // `motionBlur` the shutter.
     passes::ThinLens lens = settings_.number("dof") != 0.0 ? camera->thinLens(double(width) / double(height))
                                                            : passes::ThinLens{};
+    const CameraParams& cameraParams = camera->params();
+    std::array<double, 2> shutter{desc.time, desc.time};
+    if (settings_.number("motionBlur") != 0.0 && cameraParams.shutterClose > cameraParams.shutterOpen)
+        shutter = {desc.time + cameraParams.shutterOpen, desc.time + cameraParams.shutterClose};
     uint32_t referenceSubFrames = static_cast<uint32_t>(settings_.number("reference"));
-    if (referenceSubFrames > 0) accumulateReference(frame, lens, referenceSubFrames, desc.time);
+    if (referenceSubFrames > 0) accumulateReference(frame, lens, referenceSubFrames, shutter);
+    else if (shutter[1] > shutter[0]) frame.motionBlurShutter = shutter;
 
     // Temporal AA picks this frame's jitter before the scene's camera constants are packed. The
     // reference is its own ground truth, jittered per sub-frame: no temporal AA there.
@@ -352,6 +360,10 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (shortfalls.unclippedLights != unclippedLights_)
         for (const auto& problem : shortfalls.unclippedLights) log(OBSCURA_LOG_WARNING, problem);
     unclippedLights_ = shortfalls.unclippedLights;
+    if (scene.instanceCount > passes::kMaxInstanceRecords)
+        throw ApiError{OBSCURA_ERROR_OUT_OF_MEMORY, std::to_string(scene.instanceCount) +
+                                                        " instances: the G-buffer addresses at most " +
+                                                        std::to_string(passes::kMaxInstanceRecords)};
     trianglesDrawn_ = 0;
     for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
 
@@ -367,28 +379,35 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
     auto samples = VkSampleCountFlagBits(referenceSubFrames == 0 ? uint32_t(settings_.number("msaa")) : 1u);
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_, samples);
-    std::optional<passes::PerSampleLighting> perSample;
+    std::optional<MsaaFrame> msaa;
     if (samples != VK_SAMPLE_COUNT_1_BIT) {
         if (!msaaTaggedPixels_)
             msaaTaggedPixels_ = device_->createBuffer(sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                                       gpu::MemoryUsage::Readback, "msaa tagged pixels");
         *static_cast<uint32_t*>(msaaTaggedPixels_->mapped()) = 0;
-        perSample = passes::PerSampleLighting{gbuffer, graph.importBuffer("msaaTaggedPixels", msaaTaggedPixels_)};
-        graph.markOutput(perSample->taggedPixelCount);
-        gbuffer = passes::addMsaaResolvePass(graph, *pipelines_, scene, gbuffer);
+        passes::PerSampleLighting perSample{gbuffer, graph.importBuffer("msaaTaggedPixels", msaaTaggedPixels_)};
+        graph.markOutput(perSample.taggedPixelCount);
+        passes::MsaaResolve resolve = passes::addMsaaResolvePass(graph, *pipelines_, scene, gbuffer);
+        gbuffer = resolve.resolved;
+        msaa = MsaaFrame{perSample, resolve.maxDepth};
     }
     gpu::ImageHandle hdr;
+    gpu::ImageHandle transparentCoverage;
     if (referenceSubFrames > 0) {
         gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
         hdr = passes::addAccumulationResolvePass(graph, *pipelines_, sum,
                                                  lightAccumulation() == passes::LightAccumulation::HalfFloat
                                                      ? VK_FORMAT_R16G16B16A16_SFLOAT
                                                      : VK_FORMAT_B10G11R11_UFLOAT_PACK32);
+        // The sub-frames blended the transparent surfaces into the accumulation. XXX: the alpha of
+        // the reference's colour is the pinhole G-buffer's coverage alone (this clears the
+        // transparent coverage): transparents over the background are not in it.
+        transparentCoverage = passes::addTransparentPass(graph, *pipelines_, scene, {}, gbuffer.depth, hdr, {}, {}, {});
     } else {
-        hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frame, perSample ? &*perSample : nullptr);
+        hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frame, transparentCoverage, msaa ? &*msaa : nullptr);
         if (temporalAa) {
-            hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, temporalAaSettings,
-                                            temporalAa->pass, temporalAaHistory_);
+            hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage,
+                                            temporalAaSettings, temporalAa->pass, temporalAaHistory_);
             temporalAaInFrame_ = true;
         }
         if (passes::hasDepthOfField(lens)) {
@@ -398,16 +417,22 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
                 camera->apertureShape(), static_cast<int>(settings_.number("dof:taps"))};
             hdr = passes::addDepthOfFieldPasses(graph, *pipelines_, scene, gbuffer, hdr, dof);
         }
+        // After depth of field (seed 000 "MB or DOF first?": motion blur gathers with the
+        // geometry's depth and velocity, and is the error less seen when it comes last).
+        if (scene.motionBlur)
+            hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr,
+                                              static_cast<int>(settings_.number("motionBlur:samples")));
     }
-    // Temporal AA's accumulation carries coverage in alpha; depth of field writes none.
+    // Temporal AA's accumulation carries coverage in alpha; depth of field and motion blur write none.
     passes::HdrAlpha hdrAlpha = passes::HdrAlpha::None;
-    if (temporalAa && !passes::hasDepthOfField(lens)) hdrAlpha = passes::HdrAlpha::Coverage;
-    gpu::ImageHandle display =
-        passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance, grading_);
-    passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, hdrAlpha, display, requests);
+    if (temporalAa && !passes::hasDepthOfField(lens) && !scene.motionBlur) hdrAlpha = passes::HdrAlpha::Coverage;
+    gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance,
+                                                      transparentCoverage, grading_);
+    passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, hdrAlpha, transparentCoverage, display,
+                               requests);
     executeFrame(graph);
     converged_ = !temporalAa || temporalAa->converged;
-    if (perSample) {
+    if (msaa) {
         // Issue 5: the share of pixels the per-sample mask sends to sample-frequency lighting.
         uint32_t tagged = *static_cast<const uint32_t*>(msaaTaggedPixels_->mapped());
         char line[160];
@@ -431,8 +456,8 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
 
 gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
                                              const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
-                                             const FrameSceneInputs& frame,
-                                             const passes::PerSampleLighting* perSample) {
+                                             const FrameSceneInputs& frame, gpu::ImageHandle& transparentCoverage,
+                                             const MsaaFrame* msaa) {
     FrameView seen = frameView(frame);
     passes::addClipVolumePass(graph, *pipelines_, scene, gbuffer);
     passes::SsaoResult ambient;
@@ -460,8 +485,16 @@ gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passe
     passes::EnvironmentLighting environment =
         environment_->addToFrame(graph, *pipelines_, dome ? dome->environment() : nullptr);
     environmentInFrame_ = true;
-    return passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas, environment,
-                                   lightAccumulation(), perSample);
+    gpu::ImageHandle hdr = passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas,
+                                                   environment, lightAccumulation(), msaa ? &msaa->perSample : nullptr);
+    // Transparent surfaces over the lit opaque ones, before temporal AA (DESIGN.md "The frame").
+    // The fade distance is authored in metres, like the SSAO radius.
+    passes::TransparentSettings transparents{
+        float(settings_.number("transparents:fadeDistance") / settings_.number("metersPerUnit"))};
+    transparentCoverage =
+        passes::addTransparentPass(graph, *pipelines_, scene, scene.transparentDraws, msaa ? msaa->maxDepth : gbuffer.depth,
+                                   hdr, shadowAtlas, environment, transparents);
+    return hdr;
 }
 
 passes::LightAccumulation RenderDelegate::lightAccumulation() const {
@@ -487,7 +520,7 @@ void RenderDelegate::executeFrame(gpu::FrameGraph& graph) {
 }
 
 void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const passes::ThinLens& lens, uint32_t count,
-                                         double time) {
+                                         const std::array<double, 2>& shutter) {
     const gpu::ImageDesc* current = accumulation_.image ? &accumulation_.image->desc : nullptr;
     if (!current || current->width != frame.width || current->height != frame.height) {
         gpu::ImageDesc desc;
@@ -500,8 +533,7 @@ void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const pa
     // Without depth of field the lens is a pinhole: every sub-frame looks from its centre.
     bool lensBlur = passes::hasDepthOfField(lens);
     double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
-    const CameraParams& camera = frame.camera.params();
-    double open = time + camera.shutterOpen, close = time + camera.shutterClose;
+    const auto [open, close] = shutter;
     std::vector<ReferenceSubFrame> subFrames =
         referenceSubFrames(count, lensBlur ? frame.camera.apertureShape() : passes::ApertureShape{});
     for (size_t k = 0; k < subFrames.size(); ++k) {
@@ -515,7 +547,9 @@ void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const pa
         gpu::FrameGraph graph;
         gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
         passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
-        gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, inputs);
+        // Each sub-frame blends its transparent surfaces into its lighting; their coverage is not kept.
+        gpu::ImageHandle transparentCoverage;
+        gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, inputs, transparentCoverage);
         gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
         passes::addAccumulatePass(graph, *pipelines_, hdr, sum, float(sub.weight), k == 0);
         executeFrame(graph);

@@ -67,19 +67,27 @@ private:
     void sync(double time, const Camera* camera);
     // Clip volumes, SSAO, the environment and deferred lighting of `scene` (built from `frame`)
     // into the light accumulation.
-    // `perSample`: the multisampled G-buffer behind `gbuffer` when the render setting msaa is > 1.
+    // Deferred MSAA's part of the frame after the resolve (render setting msaa > 1): the
+    // multisampled G-buffer behind the resolved one, for the per-sample lighting, and the max of
+    // each pixel's sample depths, which the transparents test and fade against.
+    struct MsaaFrame {
+        passes::PerSampleLighting perSample;
+        gpu::ImageHandle maxDepth;
+    };
     gpu::ImageHandle addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
                                  const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
-                                 const FrameSceneInputs& frame, const passes::PerSampleLighting* perSample = nullptr);
+                                 const FrameSceneInputs& frame, gpu::ImageHandle& transparentCoverage,
+                                 const MsaaFrame* msaa = nullptr);
     // Sample counts the G-buffer can be rendered and read with on this device (render setting msaa).
     VkSampleCountFlags offeredMsaaSampleCounts() const;
     // The light accumulation's format (render setting lighting:halfFloat).
     passes::LightAccumulation lightAccumulation() const;
     // Compiles, records and submits one frame graph, and waits for it.
     void executeFrame(gpu::FrameGraph& graph);
-    // Reference mode: `count` sub-frames of `frame` sampling `lens`'s aperture, the shutter and the
-    // pixel, summed into accumulation_.
-    void accumulateReference(const FrameSceneInputs& frame, const passes::ThinLens& lens, uint32_t count, double time);
+    // Reference mode: `count` sub-frames of `frame` sampling `lens`'s aperture, the `shutter`
+    // interval (absolute time codes; empty: the frame's time) and the pixel, summed into accumulation_.
+    void accumulateReference(const FrameSceneInputs& frame, const passes::ThinLens& lens, uint32_t count,
+                             const std::array<double, 2>& shutter);
     template <typename T>
     T* find(const std::string& path) const;
 

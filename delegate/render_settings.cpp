@@ -20,6 +20,10 @@ const RenderSettingInfo kSettings[] = {
     {"lighting:halfFloat", "accumulate lighting in RGBA16F instead of B10G11R11_UFLOAT: about 2^-11 relative "
                            "precision instead of 2^-7..2^-6, twice the bandwidth (bool, default off)",
      OBSCURA_VALUE_BOOL, 0.0},
+    {"transparents:fadeDistance", "soft intersections of transparent surfaces (opacity below 1): a surface fades "
+                                  "out over this distance in metres in front of the opaque surface behind it; 0 "
+                                  "keeps the intersection hard (float, default 0)",
+     OBSCURA_VALUE_FLOAT, 0.0, 0.0},
     {"shadows", "shadow maps: cascaded for distant lights, cube maps (or one spot map inside a ShapingAPI cone) "
                 "for sphere, rect and disk lights, for every light whose inputs:shadow:enable is on "
                 "(bool, default on)",
@@ -62,9 +66,18 @@ const RenderSettingInfo kSettings[] = {
     {"dof:taps", "taps per side of the depth of field's first gather pass (N x N taps; larger blurs reach further "
                  "and look smoother at a higher cost), 3-15 (int, default 7)",
      OBSCURA_VALUE_INT, 7.0, 3.0, 15.0},
+    {"motionBlur", "motion blur over the camera's shutter (shutter:open to shutter:close, in time codes): the frame "
+                   "is seen at the shutter's centre and blurred along the screen-space motion of the camera and of "
+                   "moving prims (McGuire 2012's reconstruction filter, separable); a camera whose shutter is closed "
+                   "(open = close) has none (bool, default on)",
+     OBSCURA_VALUE_BOOL, 1.0},
+    {"motionBlur:samples", "taps per motion blur gather pass; the two passes place samples^2 along a blur (more is "
+                           "smoother and slower), 2-32 (int, default 8)",
+     OBSCURA_VALUE_INT, 8.0, 2.0, 32.0},
     {"reference", "ground truth: average this many sub-frames, each seen from a point of the lens aperture, at a time "
-                  "within the shutter and a sub-pixel offset, with post-process depth of field off; 0 renders the "
-                  "normal frame (int, default 0)",
+                  "within the shutter and a sub-pixel offset, with post-process depth of field and motion blur off "
+                  "(the dof and motionBlur settings still decide whether the lens and the shutter are sampled); 0 "
+                  "renders the normal frame (int, default 0)",
      OBSCURA_VALUE_INT, 0.0, 0.0, 65536.0},
     {"ocio:config", "OpenColorIO config file (token; default: $OCIO, else the built-in ACES-based config)",
      OBSCURA_VALUE_TOKEN, 0.0},

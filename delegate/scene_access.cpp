@@ -18,11 +18,13 @@ const schema::AttributeSchema& SceneAccess::attribute(const char* name) const {
     return *a;
 }
 
-std::optional<ObscuraValue> SceneAccess::fetch(const schema::AttributeSchema& a) {
+std::optional<ObscuraValue> SceneAccess::fetch(const schema::AttributeSchema& a) { return fetchAt(a, time_); }
+
+std::optional<ObscuraValue> SceneAccess::fetchAt(const schema::AttributeSchema& a, double time) {
     if (!sd_.getValue) return std::nullopt;
     ObscuraValue v{};
     ++callbacks_;
-    ObscuraStatus s = sd_.getValue(sd_.userData, path_.c_str(), a.name, time_, &v);
+    ObscuraStatus s = sd_.getValue(sd_.userData, path_.c_str(), a.name, time, &v);
     if (s == OBSCURA_ERROR_NOT_FOUND) return std::nullopt;
     if (s != OBSCURA_OK) fail(std::string("the host failed to provide ") + a.name + " (status " + std::to_string(s) + ")");
     std::string problem = schema::checkValue(a, v);
@@ -104,8 +106,10 @@ std::optional<std::vector<int32_t>> SceneAccess::getIntArray(const char* name) {
     return std::vector<int32_t>(p, p + v->count);
 }
 
-std::optional<std::vector<float>> SceneAccess::getFloatArray(const char* name) {
-    auto v = fetch(attribute(name));
+std::optional<std::vector<float>> SceneAccess::getFloatArray(const char* name) { return getFloatArrayAt(name, time_); }
+
+std::optional<std::vector<float>> SceneAccess::getFloatArrayAt(const char* name, double time) {
+    auto v = fetchAt(attribute(name), time);
     if (!v) return std::nullopt;
     size_t components = v->type == OBSCURA_VALUE_FLOAT4   ? 4
                         : v->type == OBSCURA_VALUE_FLOAT3 ? 3

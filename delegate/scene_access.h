@@ -51,6 +51,8 @@ public:
     // Arrays: nullopt when not authored.
     std::optional<std::vector<int32_t>> getIntArray(const char* name);
     std::optional<std::vector<float>> getFloatArray(const char* name);  // float[] and floatN[] flattened
+    // The same at another time (the shutter's ends, for motion blur).
+    std::optional<std::vector<float>> getFloatArrayAt(const char* name, double time);
     ObscuraInterpolation interpolation(const char* name);
 
     // World transform samples over [time0, time1] (at least one).
@@ -65,6 +67,7 @@ private:
     std::array<T, N> getTuple(const char* name);
     // The host's value, checked against the schema; nullopt when not authored.
     std::optional<ObscuraValue> fetch(const schema::AttributeSchema& attribute);
+    std::optional<ObscuraValue> fetchAt(const schema::AttributeSchema& attribute, double time);
     const schema::AttributeSchema& attribute(const char* name) const;
     [[noreturn]] void fail(const std::string& message) const;
 

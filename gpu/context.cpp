@@ -233,6 +233,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     features.features.sampleRateShading = supported.sampleRateShading;
     features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
     features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
+    // Static geometry leaves the velocity target untouched while writing the others (motion blur).
+    features.features.independentBlend = supported.independentBlend;
     // Material textures are filtered anisotropically where the device can.
     features.features.samplerAnisotropy = supported.samplerAnisotropy;
     ctx->enabledFeatures_ = features.features;

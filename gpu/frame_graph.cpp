@@ -45,6 +45,9 @@ UsageState stateOf(Usage u, bool depthFormat) {
         case Usage::StorageBufferRead:
             return {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
                     0, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT};
+        case Usage::StorageBufferReadFragment:
+            return {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT, 0, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT};
         case Usage::StorageBufferWrite:
             return {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                     0, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT};

@@ -25,6 +25,7 @@ enum class Usage {
     StorageImageRead,       // imageLoad in compute
     StorageImageWrite,      // imageStore in compute
     StorageBufferRead,      // compute
+    StorageBufferReadFragment,  // a storage buffer read in a fragment shader
     StorageBufferWrite,     // compute
     TransferSrc,
     TransferDst,

@@ -73,12 +73,14 @@ Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(d
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs, "main", nullptr},
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, fs, "main", nullptr}};
 
-    VkVertexInputBindingDescription vb{0, desc.vertexStride, VK_VERTEX_INPUT_RATE_VERTEX};
+    std::vector<VkVertexInputBindingDescription> bindings;
+    for (uint32_t b = 0; b < desc.vertexStrides.size(); ++b)
+        bindings.push_back({b, desc.vertexStrides[b], VK_VERTEX_INPUT_RATE_VERTEX});
     std::vector<VkVertexInputAttributeDescription> attrs;
-    for (const auto& a : desc.vertexAttributes) attrs.push_back({a.location, 0, a.format, a.offset});
+    for (const auto& a : desc.vertexAttributes) attrs.push_back({a.location, a.binding, a.format, a.offset});
     VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    vi.vertexBindingDescriptionCount = desc.vertexStride ? 1 : 0;
-    vi.pVertexBindingDescriptions = &vb;
+    vi.vertexBindingDescriptionCount = static_cast<uint32_t>(bindings.size());
+    vi.pVertexBindingDescriptions = bindings.data();
     vi.vertexAttributeDescriptionCount = static_cast<uint32_t>(attrs.size());
     vi.pVertexAttributeDescriptions = attrs.data();
     VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
@@ -105,10 +107,17 @@ Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(d
                 desc.stencil.reference};
     ds.back = ds.front;
     std::vector<VkPipelineColorBlendAttachmentState> blends(desc.colorFormats.size());
-    for (auto& b : blends)
-        b.colorWriteMask = desc.colorWrite ? VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
-                                                 VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT
-                                           : 0u;
+    for (size_t i = 0; i < blends.size(); ++i) {
+        VkPipelineColorBlendAttachmentState& b = blends[i];
+        if ((desc.untouchedColorAttachments >> i & 1u) != 0) continue;
+        b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                           VK_COLOR_COMPONENT_A_BIT;
+        if (!desc.premultipliedOverBlend) continue;
+        b.blendEnable = VK_TRUE;
+        b.srcColorBlendFactor = b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        b.dstColorBlendFactor = b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        b.colorBlendOp = b.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     cb.attachmentCount = static_cast<uint32_t>(blends.size());
     cb.pAttachments = blends.data();

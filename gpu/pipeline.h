@@ -18,6 +18,7 @@ struct VertexAttribute {
     uint32_t location;
     VkFormat format;
     uint32_t offset;
+    uint32_t binding = 0;  // index into GraphicsPipelineDesc::vertexStrides
 };
 
 struct GraphicsPipelineDesc {
@@ -28,14 +29,16 @@ struct GraphicsPipelineDesc {
     // pushSampledImages (VK_KHR_push_descriptor) instead of allocated.
     uint32_t pushedSamplers = 0;
     uint32_t pushConstantSize = 0;
-    uint32_t vertexStride = 0;
+    std::vector<uint32_t> vertexStrides;  // one per vertex buffer binding (per-vertex rate)
     std::vector<VertexAttribute> vertexAttributes;
     std::vector<VkFormat> colorFormats;
+    // Colour attachments (bit i: attachment i) the pipeline leaves as they are: write mask 0.
+    uint32_t untouchedColorAttachments = 0;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
-    // Off: the colour attachments keep their contents (a pass that draws into stencil alone but
-    // shares its rendering with draws that write colour).
-    bool colorWrite = true;
+    // Every colour attachment blends "over" with premultiplied colour: src + dst * (1 - src alpha)
+    // (Porter & Duff 1984), the alpha likewise.
+    bool premultipliedOverBlend = false;
     bool depthTest = true;
     bool depthWrite = true;
     // Rasteriser depth bias (constant and slope-scaled factors); both 0 leave it off.

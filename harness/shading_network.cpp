@@ -8,9 +8,9 @@
 namespace obscura::harness {
 namespace {
 
-constexpr std::array<std::string_view, 6> kTexturableInputs = {"inputs:diffuseColor", "inputs:emissiveColor",
-                                                               "inputs:roughness",     "inputs:metallic",
-                                                               "inputs:opacity",       "inputs:normal"};
+constexpr std::array<std::string_view, 7> kTexturableInputs = {
+    "inputs:diffuseColor", "inputs:emissiveColor", "inputs:roughness", "inputs:metallic",
+    "inputs:opacity",      "inputs:normal",        "inputs:occlusion"};
 constexpr std::array<std::string_view, 5> kTextureOutputs = {"r", "g", "b", "a", "rgb"};
 // Connections between inputs are followed this far (a cycle is an authoring error).
 constexpr int kMaxConnectionDepth = 16;

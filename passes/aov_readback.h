@@ -17,9 +17,11 @@ struct AovRequest {
     gpu::BufferPtr deviceStaging;  // optional device-local twin: packed there, then copied
 };
 
-// The colour AOV's alpha is `hdrColor`'s where that holds coverage, else the G-buffer's coverage.
+// The colour AOV's alpha is `hdrColor`'s where that holds coverage, else the G-buffer's coverage
+// composited with `transparentCoverage` (passes/transparent.h).
 void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                         const GBuffer& gbuffer, gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha,
-                        gpu::ImageHandle display, const std::vector<AovRequest>& requests);
+                        gpu::ImageHandle transparentCoverage, gpu::ImageHandle display,
+                        const std::vector<AovRequest>& requests);
 
 }  // namespace obscura::passes

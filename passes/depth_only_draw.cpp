@@ -9,7 +9,7 @@ gpu::GraphicsPipelineDesc describeDepthOnlyDraw() {
     d.vertexShader = "depth_only.vert";
     d.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
     d.pushConstantSize = sizeof(DepthOnlyPush);
-    d.vertexStride = sizeof(Vertex);
+    d.vertexStrides = {sizeof(Vertex)};
     d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
                           {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)}};
     return d;

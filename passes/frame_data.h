@@ -19,8 +19,10 @@ struct alignas(16) CameraData {
     std::array<float, 2> resolution;
     float exposureScale;
     float pad0;
+    Mat4 shutterOpenViewProjection;   // unjittered, for motion blur's velocities
+    Mat4 shutterCloseViewProjection;
 };
-static_assert(sizeof(CameraData) == 5 * 64 + 16 + 16);
+static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16);
 
 enum InstanceFlags : uint32_t { kInstanceDoubleSided = 1u, kInstanceVertexColor = 2u };
 
@@ -30,9 +32,14 @@ struct alignas(16) InstanceData {
     uint32_t materialIndex;
     int32_t primId;
     uint32_t flags;
-    uint32_t pad0;
+    uint32_t motionIndex;  // its InstanceMotion record when it moves within the shutter
 };
 static_assert(sizeof(InstanceData) == 144);
+
+struct alignas(16) InstanceMotion {
+    Mat4 shutterOpenModel;
+    Mat4 shutterCloseModel;
+};
 
 // Which texture channel a material input reads: the UsdUVTexture output connected to it.
 enum class TextureChannel : uint32_t { R = 0, G = 1, B = 2, A = 3, Rgb = 4 };
@@ -58,18 +65,19 @@ enum MaterialTextureSlot : uint32_t {
     kTextureMetallic = 2,
     kTextureOpacity = 3,
     kTextureNormal = 4,  // tangent space, UsdPreviewSurface `normal`
-    kMaterialTextureSlots = 5
+    kTextureOcclusion = 5,
+    kMaterialTextureSlots = 6
 };
 
 struct alignas(16) MaterialData {
     std::array<float, 4> diffuseRoughness;
     std::array<float, 4> emissiveMetallic;
-    std::array<float, 4> opacity;  // x opacity, y opacityThreshold
+    std::array<float, 4> opacity;  // x opacity, y opacityThreshold, z occlusion
     std::array<float, 4> specularIor{0.0f, 0.0f, 0.0f, 1.5f};  // rgb specularColor, a ior
     std::array<float, 4> clearcoat{};  // x clearcoat, y clearcoatRoughness, z 1 for the specular workflow
     std::array<MaterialTexture, kMaterialTextureSlots> textures;
 };
-static_assert(sizeof(MaterialData) == 80 + 5 * 48);
+static_assert(sizeof(MaterialData) == 80 + 6 * 48);
 
 enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4 };
 
@@ -125,5 +133,13 @@ struct Vertex {
     float tangent[4];
 };
 static_assert(sizeof(Vertex) == 60);
+
+// Where a deforming mesh's drawn vertices are at the shutter's open and close (motion blur): a
+// second vertex stream beside Vertex, one per drawn vertex.
+struct ShutterPositions {
+    float open[3];
+    float close[3];
+};
+static_assert(sizeof(ShutterPositions) == 24);
 
 }  // namespace obscura::passes

@@ -18,6 +18,11 @@ struct Draw {
     uint32_t instanceCount = 1;  // consecutive records, one per GPU instance
     uint32_t textures = 0;       // the draw's MaterialTextures in FrameScene::materialTextures
     bool opacityCutout = false;  // its material has an opacityThreshold: some texels are absent
+    // Its material is partly transparent (opacity below 1 or textured, no opacityThreshold):
+    // drawn by the forward transparent pass, not into the G-buffer or the shadow maps.
+    bool transparent = false;
+    bool moving = false;         // its instances move within the shutter (motion blur's velocities)
+    gpu::BufferPtr shutterPositions;  // deforming: ShutterPositions per vertex (moving draws only)
 };
 
 // The textures a material samples, one per MaterialTextureSlot, white where the input is
@@ -55,13 +60,22 @@ struct FrameScene {
     CameraData cameraData{};   // what `camera` holds, for passes that build push constants
     gpu::BufferPtr camera;     // CameraData (uniform)
     gpu::BufferPtr instances;  // InstanceData[] (storage)
+    gpu::BufferPtr instanceMotions;  // InstanceMotion[] (storage) of the moving instances, never empty
     gpu::BufferPtr materials;  // MaterialData[] (storage)
     gpu::BufferPtr lights;     // LightBufferHeader + LightData[] (storage)
     gpu::BufferPtr environment;  // EnvironmentData (uniform)
     std::vector<MaterialTextures> materialTextures;  // never empty: element 0 is all white
     std::vector<Draw> draws;
+    uint32_t instanceCount = 0;  // InstanceData records in `instances`
+    // The transparent draws (indices into `draws`), back to front: by the distance from the eye to
+    // the centre of each draw's world bounds (an instanced draw sorts as one).
+    std::vector<uint32_t> transparentDraws;
     ShadowAtlas shadows;
     std::vector<ClipVolume> clipVolumes;
+    // Motion blur: the G-buffer writes the velocities of the moving draws (drawn last) and the
+    // motion blur passes run. Set when the frame asks for motion blur and the camera or an
+    // instance moves within the shutter.
+    bool motionBlur = false;
     uint32_t width = 0;
     uint32_t height = 0;
 };

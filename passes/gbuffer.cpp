@@ -8,29 +8,93 @@
 namespace obscura::passes {
 namespace {
 
-gpu::GraphicsPipelineDesc describeGBufferPipeline(VkSampleCountFlagBits samples) {
+enum class Variant {
+    Static,                    // no velocity target
+    StaticWithVelocityTarget,  // leaves the velocity target at its clear value (kStaticVelocity)
+    Moving,                    // a rigid transform moves: writes velocity
+    Deforming,                 // points move (a second vertex stream): writes velocity
+};
+
+const char* pipelineName(Variant variant) {
+    switch (variant) {
+        case Variant::Static: return "gbuffer";
+        case Variant::StaticWithVelocityTarget: return "gbuffer.staticWithVelocityTarget";
+        case Variant::Moving: return "gbuffer.moving";
+        case Variant::Deforming: return "gbuffer.deforming";
+    }
+    return "";
+}
+
+bool writesVelocity(Variant variant) { return variant == Variant::Moving || variant == Variant::Deforming; }
+
+gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, VkSampleCountFlagBits samples) {
     gpu::GraphicsPipelineDesc d;
-    d.vertexShader = "gbuffer.vert";
-    d.fragmentShader = "gbuffer.frag";
+    d.fragmentShader = writesVelocity(variant) ? "gbuffer_moving.frag" : "gbuffer.frag";
     d.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
+    if (writesVelocity(variant)) d.bindings.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
     d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
     d.pushConstantSize = sizeof(uint32_t);
-    d.vertexStride = sizeof(Vertex);
-    d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
-                          {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
-                          {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, color)},
-                          {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
-                          {4, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}};
+    setSceneVertexInput(d);
+    if (variant == Variant::Moving) d.vertexShader = "gbuffer_moving.vert";
+    if (variant == Variant::Deforming) d.vertexShader = "gbuffer_deforming.vert";
+    if (variant == Variant::Deforming) {
+        d.vertexStrides.push_back(sizeof(ShutterPositions));
+        d.vertexAttributes.push_back({6, VK_FORMAT_R32G32B32_SFLOAT, offsetof(ShutterPositions, open), 1});
+        d.vertexAttributes.push_back({7, VK_FORMAT_R32G32B32_SFLOAT, offsetof(ShutterPositions, close), 1});
+    }
     d.colorFormats = {kNormalRoughnessFormat, kAlbedoMetallicFormat, kInstanceFormat};
+    if (variant != Variant::Static) d.colorFormats.push_back(kVelocityFormat);
+    // Seed 000 "An improved reconstruction filter (3)": static geometry does not export velocity.
+    if (variant == Variant::StaticWithVelocityTarget) d.untouchedColorAttachments = 1u << 3;
     d.depthFormat = kDepthFormat;
     d.samples = samples;
     return d;
 }
 
+Variant variantOf(const Draw& draw, bool velocityTarget) {
+    if (!velocityTarget) return Variant::Static;
+    if (!draw.moving) return Variant::StaticWithVelocityTarget;
+    return draw.shutterPositions ? Variant::Deforming : Variant::Moving;
+}
+
 }  // namespace
+
+void setSceneVertexInput(gpu::GraphicsPipelineDesc& d) {
+    d.vertexShader = "gbuffer.vert";
+    d.vertexStrides = {sizeof(Vertex)};
+    d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+                          {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+                          {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, color)},
+                          {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+                          {4, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}};
+}
+
+void recordMaterialDraw(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& pipeline,
+                        const FrameScene& scene, const Draw& draw, const MaterialTextures*& pushed,
+                        const void* push, uint32_t pushSize) {
+    // Textures change per material: pushed, not allocated (VK_KHR_push_descriptor).
+    const MaterialTextures& textures = scene.materialTextures[draw.textures];
+    if (&textures != pushed) {
+        std::vector<VkDescriptorImageInfo> images;
+        for (uint32_t slot = 0; slot < kMaterialTextureSlots; ++slot)
+            images.push_back(
+                {textures.samplers[slot], textures.images[slot]->view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+        gpu::pushSampledImages(device, cmd, pipeline, images);
+        pushed = &textures;
+    }
+    // A deforming draw's second stream: where its vertices are at the shutter's ends (pipelines
+    // without that binding ignore it).
+    VkBuffer streams[] = {draw.vertices->buffer, draw.shutterPositions ? draw.shutterPositions->buffer : VK_NULL_HANDLE};
+    VkDeviceSize offsets[] = {0, 0};
+    vkCmdBindVertexBuffers(cmd, 0, draw.shutterPositions ? 2 : 1, streams, offsets);
+    vkCmdBindIndexBuffer(cmd, draw.indices->buffer, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, pushSize,
+                       push);
+    vkCmdDrawIndexed(cmd, draw.indexCount, draw.instanceCount, 0, 0, 0);
+}
 
 GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkSampleCountFlagBits samples,
                             const std::string& prefix) {
@@ -42,16 +106,34 @@ GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkS
         desc.samples = samples;
         return graph.createImage(prefix + "." + name, desc);
     };
-    return {image("depth", kDepthFormat), image("normalRoughness", kNormalRoughnessFormat),
-            image("albedoMetallic", kAlbedoMetallicFormat), image("instance", kInstanceFormat)};
+    GBuffer gb{image("depth", kDepthFormat), image("normalRoughness", kNormalRoughnessFormat),
+               image("albedoMetallic", kAlbedoMetallicFormat), image("instance", kInstanceFormat), {}};
+    if (scene.motionBlur) gb.velocity = image("velocity", kVelocityFormat);
+    return gb;
 }
 
 GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                        const gpu::ImagePtr& bestFitNormals, VkSampleCountFlagBits samples) {
     GBuffer gb = createGBufferImages(graph, scene, samples, "gbuffer");
-    const gpu::Pipeline& pipeline = pipelines.get<gpu::GraphicsPipelineDesc>(
-        "gbuffer." + std::to_string(samples), [samples] { return describeGBufferPipeline(samples); });
     gpu::Device& device = pipelines.device();
+    auto pipelineOf = [&pipelines, samples](Variant variant) -> const gpu::Pipeline& {
+        return pipelines.get<gpu::GraphicsPipelineDesc>(
+            std::string(pipelineName(variant)) + "." + std::to_string(samples),
+            [variant, samples] { return describeGBufferPipeline(variant, samples); });
+    };
+    // Moving geometry is drawn last (seed 000 "An improved reconstruction filter (3)"), so static
+    // surfaces never cover a velocity a moving one wrote; draws are grouped by pipeline.
+    struct Ordered {
+        Variant variant;
+        const gpu::Pipeline* pipeline;
+        const Draw* draw;
+    };
+    std::vector<Ordered> ordered;
+    for (Variant variant : {Variant::Static, Variant::StaticWithVelocityTarget, Variant::Moving, Variant::Deforming})
+        for (const Draw& draw : scene.draws)
+            // Transparent surfaces are drawn after lighting (passes/transparent.h).
+            if (!draw.transparent && variantOf(draw, scene.motionBlur) == variant)
+                ordered.push_back({variant, &pipelineOf(variant), &draw});
 
     graph.addPass(
         "gbuffer", gpu::PassKind::Raster,
@@ -60,32 +142,24 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const F
             pass.colorAttachment(gb.normalRoughness, VkClearColorValue{{0.5f, 0.5f, 1.0f, 1.0f}});
             pass.colorAttachment(gb.albedoMetallic, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
             pass.colorAttachment(gb.instance, VkClearColorValue{.uint32 = {0, 0, 0, 0}});
+            if (gb.velocity.valid()) pass.colorAttachment(gb.velocity, VkClearColorValue{{kStaticVelocity, 0.0f, 0.0f, 0.0f}});
         },
-        [&device, &pipeline, &scene, bestFitNormals](VkCommandBuffer cmd, const gpu::PassResources&) {
-            gpu::DescriptorWriter(device, pipeline)
-                .buffer(0, scene.camera->buffer)
-                .buffer(1, scene.instances->buffer)
-                .buffer(2, scene.materials->buffer)
-                .sampled(3, bestFitNormals->view, device.nearestClampSampler())
-                .bind(cmd);
+        [&device, ordered, &scene, bestFitNormals](VkCommandBuffer cmd, const gpu::PassResources&) {
+            const gpu::Pipeline* bound = nullptr;
             const MaterialTextures* pushed = nullptr;
-            for (const Draw& draw : scene.draws) {
-                // Textures change per material: pushed, not allocated (VK_KHR_push_descriptor).
-                const MaterialTextures& textures = scene.materialTextures[draw.textures];
-                if (&textures != pushed) {
-                    std::vector<VkDescriptorImageInfo> images;
-                    for (uint32_t slot = 0; slot < kMaterialTextureSlots; ++slot)
-                        images.push_back({textures.samplers[slot], textures.images[slot]->view,
-                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
-                    gpu::pushSampledImages(device, cmd, pipeline, images);
-                    pushed = &textures;
+            for (auto [variant, pipeline, draw] : ordered) {
+                if (pipeline != bound) {
+                    gpu::DescriptorWriter writer(device, *pipeline);
+                    writer.buffer(0, scene.camera->buffer)
+                        .buffer(1, scene.instances->buffer)
+                        .buffer(2, scene.materials->buffer)
+                        .sampled(3, bestFitNormals->view, device.nearestClampSampler());
+                    if (writesVelocity(variant)) writer.buffer(4, scene.instanceMotions->buffer);
+                    writer.bind(cmd);
+                    bound = pipeline;
+                    pushed = nullptr;  // a new layout: the pushed set starts over
                 }
-                VkDeviceSize offset = 0;
-                vkCmdBindVertexBuffers(cmd, 0, 1, &draw.vertices->buffer, &offset);
-                vkCmdBindIndexBuffer(cmd, draw.indices->buffer, 0, VK_INDEX_TYPE_UINT32);
-                vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                                   sizeof(uint32_t), &draw.instanceIndex);
-                vkCmdDrawIndexed(cmd, draw.indexCount, draw.instanceCount, 0, 0, 0);
+                recordMaterialDraw(device, cmd, *pipeline, scene, *draw, pushed, &draw->instanceIndex, sizeof(uint32_t));
             }
         });
     return gb;

@@ -10,11 +10,21 @@ namespace obscura::passes {
 
 // Mirrors shaders/common/msaa_samples.glsl MSAA_EDGE_STENCIL_BIT; clip volumes own 0x01..0x40.
 constexpr uint32_t kMsaaEdgeStencilBit = 0x80;
+constexpr VkFormat kMaxDepthFormat = VK_FORMAT_R32_SFLOAT;
 
-// `multisampled` comes from addGBufferPass with more than one sample. The returned G-buffer has
-// one sample per pixel, sample 0's values, depth/stencil cleared to (sample 0's depth, 0) with the
-// edge bit set where the lighting must work per sample.
-GBuffer addMsaaResolvePass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                           const GBuffer& multisampled);
+struct MsaaResolve {
+    // One sample per pixel: sample 0's values (the centre's depth where the samples agree), the
+    // depth/stencil cleared to 0 with the edge bit set where the lighting must work per sample.
+    GBuffer resolved;
+    // R32 SFLOAT: the farthest of each pixel's sample depths, for passes that test or fade against
+    // the opaque depth without working per sample (seed 000 "Deferred MSAA \ performance shortcuts
+    // (2)": "using max depth works ok for most cases and N-times faster"): the transparents.
+    gpu::ImageHandle maxDepth;
+};
+
+// `multisampled` comes from addGBufferPass with more than one sample (its velocity target, if
+// any, is resolved too).
+MsaaResolve addMsaaResolvePass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                               const GBuffer& multisampled);
 
 }  // namespace obscura::passes

@@ -38,7 +38,8 @@ void recordViews(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& 
         bool inTile = false;
         for (uint32_t index : view.draws) {
             const Draw& draw = scene.draws[index];
-            if (draw.opacityCutout != cutout) continue;
+            // Transparent surfaces cast no shadow (docs/ARCHITECTURE.md "Transparent surfaces").
+            if (draw.opacityCutout != cutout || draw.transparent) continue;
             if (!bound) {
                 gpu::DescriptorWriter writer(device, pipeline);
                 writer.buffer(0, scene.instances->buffer);

@@ -47,8 +47,8 @@ std::array<double, 2> temporalAaJitter(TemporalAaMode mode, uint32_t index, uint
 
 gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                                    const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
-                                   const TemporalAaSettings& settings, const TemporalAaFrame& frame,
-                                   TemporalAaHistory& history) {
+                                   gpu::ImageHandle transparentCoverage, const TemporalAaSettings& settings,
+                                   const TemporalAaFrame& frame, TemporalAaHistory& history) {
     gpu::Device& device = pipelines.device();
     gpu::ImageDesc colorDesc;
     colorDesc.format = kTemporalAaColorFormat;
@@ -91,7 +91,8 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
                                               {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                               {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                               {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                                              {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+                                              {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                                              {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
     if (twoFrame) bindings.push_back({8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
     const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>(
         variant, [&] { return gpu::ComputePipelineDesc{std::string(variant) + ".comp", bindings, 0}; });
@@ -100,13 +101,14 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
         [&](gpu::FrameGraph::PassBuilder& pass) {
             pass.read(hdrColor, gpu::Usage::SampledCompute);
             pass.read(gbuffer.depth, gpu::Usage::SampledCompute);
+            pass.read(transparentCoverage, gpu::Usage::SampledCompute);
             pass.read(color.previous, gpu::Usage::SampledCompute);
             pass.read(depth.previous, gpu::Usage::SampledCompute);
             pass.write(color.current, gpu::Usage::StorageImageWrite);
             pass.write(depth.current, gpu::Usage::StorageImageWrite);
             if (twoFrame) pass.write(resolved, gpu::Usage::StorageImageWrite);
         },
-        [&device, &pipeline, &scene, gbuffer, hdrColor, color, depth, resolved, twoFrame,
+        [&device, &pipeline, &scene, gbuffer, hdrColor, transparentCoverage, color, depth, resolved, twoFrame,
          constantBuffer](VkCommandBuffer cmd, const gpu::PassResources& res) {
             VkSampler nearest = device.nearestClampSampler();
             gpu::DescriptorWriter writer(device, pipeline);
@@ -117,7 +119,8 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
                 .sampled(4, res.view(color.previous), nearest)
                 .sampled(5, res.view(depth.previous), nearest)
                 .storageImage(6, res.view(color.current))
-                .storageImage(7, res.view(depth.current));
+                .storageImage(7, res.view(depth.current))
+                .sampled(9, res.view(transparentCoverage), nearest);
             if (twoFrame) writer.storageImage(8, res.view(resolved));
             writer.bind(cmd);
             gpu::dispatch2D(cmd, scene.width, scene.height);

@@ -70,8 +70,8 @@ struct TemporalAaHistory {
 // jittered projection.
 gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                                    const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
-                                   const TemporalAaSettings& settings, const TemporalAaFrame& frame,
-                                   TemporalAaHistory& history);
+                                   gpu::ImageHandle transparentCoverage, const TemporalAaSettings& settings,
+                                   const TemporalAaFrame& frame, TemporalAaHistory& history);
 
 // After the graph is compiled: records the layouts this frame leaves the history images in.
 void keepTemporalAaHistory(const gpu::FrameGraph& graph, TemporalAaHistory& history);

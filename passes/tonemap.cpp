@@ -15,7 +15,7 @@ struct TonemapPush {
 
 gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                                 gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha, gpu::ImageHandle coverage,
-                                const ColorGradingLut& grading) {
+                                gpu::ImageHandle transparentCoverage, const ColorGradingLut& grading) {
     gpu::ImageDesc desc;
     desc.format = kDisplayFormat;
     desc.width = scene.width;
@@ -26,7 +26,8 @@ gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines
                                         {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                          {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                                          {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+                                         {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                         {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                                         sizeof(TonemapPush)};
     });
     gpu::Device& device = pipelines.device();
@@ -35,15 +36,17 @@ gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines
         [&](gpu::FrameGraph::PassBuilder& pass) {
             pass.read(hdrColor, gpu::Usage::SampledCompute);
             pass.read(coverage, gpu::Usage::SampledCompute);
+            pass.read(transparentCoverage, gpu::Usage::SampledCompute);
             pass.write(display, gpu::Usage::StorageImageWrite);
         },
-        [&device, &pipeline, &scene, &grading, hdrColor, hdrAlpha, coverage, display](VkCommandBuffer cmd,
-                                                                             const gpu::PassResources& res) {
+        [&device, &pipeline, &scene, &grading, hdrColor, hdrAlpha, coverage, transparentCoverage, display](
+            VkCommandBuffer cmd, const gpu::PassResources& res) {
             gpu::DescriptorWriter(device, pipeline)
                 .sampled(0, res.view(hdrColor), device.nearestClampSampler())
                 .storageImage(1, res.view(display))
                 .sampled(2, res.view(coverage), device.nearestClampSampler())
                 .sampled(3, grading.texture()->view, device.linearClampSampler())
+                .sampled(4, res.view(transparentCoverage), device.nearestClampSampler())
                 .bind(cmd);
             const ColorLut& lut = grading.lut();
             TonemapPush push{lut.shaperMinStops, lut.shaperMaxStops - lut.shaperMinStops, kShaperMiddleGrey,

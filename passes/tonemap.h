@@ -11,9 +11,10 @@ namespace obscura::passes {
 constexpr VkFormat kDisplayFormat = VK_FORMAT_R8G8B8A8_UNORM;
 
 // The display image's alpha is `hdrColor`'s alpha where that holds coverage, else `coverage`'s (the
-// G-buffer's instance target: 1 where something drew).
+// G-buffer's instance target: 1 where something drew) composited with `transparentCoverage`
+// (passes/transparent.h).
 gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                                 gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha, gpu::ImageHandle coverage,
-                                const ColorGradingLut& grading);
+                                gpu::ImageHandle transparentCoverage, const ColorGradingLut& grading);
 
 }  // namespace obscura::passes

@@ -5,6 +5,8 @@
 #extension GL_EXT_scalar_block_layout : require
 #include "common/frame_data.glsl"
 #include "common/best_fit_normals.glsl"
+#include "common/instance_target.glsl"
+#include "common/coverage.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -25,6 +27,7 @@ layout(set = 0, binding = 6) uniform sampler2D hdrColor;  // any float format: l
 layout(set = 0, binding = 7, rgba8) uniform readonly image2D displayColor;
 layout(set = 0, binding = 8, scalar) writeonly buffer Floats { float floats[]; };
 layout(set = 0, binding = 9, scalar) writeonly buffer Words { uint words[]; };
+layout(set = 0, binding = 10) uniform sampler2D transparentCoverage;  // passes/transparent.h
 
 layout(push_constant) uniform Push {
     uint aov;
@@ -37,12 +40,15 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (pixel.x >= int(push.width) || pixel.y >= int(push.height)) return;
     uint index = uint(pixel.y) * push.width + uint(pixel.x);
-    uint instanceId = texelFetch(instanceTexture, pixel, 0).r;
+    uint instanceId = instanceIdFromTarget(texelFetch(instanceTexture, pixel, 0).r);
     bool covered = instanceId != 0u;
     if (push.aov == AOV_COLOR) {
         vec4 hdr = texelFetch(hdrColor, pixel, 0);
         vec3 c = hdr.rgb;
-        float a = push.alphaIsCoverage != 0u ? hdr.a : covered ? 1.0 : 0.0;
+        // Premultiplied alpha: the opaque coverage with the transparent surfaces' over it.
+        float a = push.alphaIsCoverage != 0u
+                      ? hdr.a
+                      : compositeCoverage(covered ? 1.0 : 0.0, texelFetch(transparentCoverage, pixel, 0).r);
         for (uint i = 0u; i < 3u; ++i) floats[index * 4u + i] = c[i];
         floats[index * 4u + 3u] = a;
     } else if (push.aov == AOV_DEPTH) {

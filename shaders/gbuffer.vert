@@ -1,37 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// G-buffer pass, vertex stage: world transform from the instance buffer.
-#include "common/frame_data.glsl"
+// G-buffer pass, vertex stage of static geometry.
+#include "common/gbuffer_vertex.glsl"
 
-layout(location = 0) in vec3 inPosition;
-layout(location = 1) in vec3 inNormal;
-layout(location = 2) in vec3 inColor;
-layout(location = 3) in vec2 inSt;
-layout(location = 4) in vec4 inTangent;
-
-layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
-layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
-
-layout(push_constant) uniform Push { uint instanceIndex; } push;
-
-layout(location = 0) out vec3 outNormal;
-layout(location = 1) out vec3 outColor;
-layout(location = 2) out vec3 outWorldPosition;
-layout(location = 3) flat out uint outInstance;
-layout(location = 4) out vec2 outUv;
-layout(location = 5) out vec4 outTangent;
-
-void main() {
-    // One record per GPU instance, consecutive from the draw's first record.
-    outInstance = push.instanceIndex + uint(gl_InstanceIndex);
-    InstanceData inst = instances[outInstance];
-    vec4 world = inst.model * vec4(inPosition, 1.0);
-    outWorldPosition = world.xyz;
-    outNormal = mat3(inst.normalMatrix) * inNormal;
-    outColor = inColor;
-    // Tangents follow the surface like positions (the model's linear part), unlike normals.
-    outTangent = vec4(mat3(inst.model) * inTangent.xyz, inTangent.w);
-    // USD's st has its origin at the bottom left of the image, Vulkan's row 0 is the top.
-    outUv = vec2(inSt.x, 1.0 - inSt.y);
-    gl_Position = camera.viewProjection * world;
-}
+void main() { gl_Position = camera.viewProjection * surfaceVertex(inPosition); }

@@ -15,6 +15,7 @@
 #include "common/best_fit_normals.glsl"
 #include "common/ssao_upsample.glsl"
 #include "common/environment_map.glsl"
+#include "common/instance_target.glsl"
 
 const uint TILE_SIZE = 16u;
 const uint MAX_TILE_LIGHTS = 1024u;  // lights beyond this many in one tile are dropped
@@ -59,7 +60,7 @@ shared uint tileTaggedList[TILE_SIZE * TILE_SIZE];
 shared vec4 tileSampleRadiance[TILE_SIZE * TILE_SIZE];
 #endif
 
-#include "common/shadow_sampling.glsl"
+#include "common/scene_lighting.glsl"
 
 shared uint tileMinDepthBits;
 shared uint tileMaxDepthBits;
@@ -73,43 +74,21 @@ vec3 unproject(mat4 inverseMatrix, vec2 ndc, float depth) {
     return p.xyz / p.w;
 }
 
-// The textured dome seen from s: SH irradiance around N, the prefiltered chain along the mirror
-// direction at the lobes' roughness (the split sum's N = V = R lookup), in the dome's frame.
-EnvironmentSample sampleEnvironment(SurfacePoint s) {
-    if (environment.params.x < 0.5) return EnvironmentSample(vec3(1.0), vec3(1.0), vec3(1.0));
-    mat3 toDome = mat3(environment.worldToDome);
-    vec3 N = normalize(toDome * s.N);
-    vec3 R = normalize(toDome * reflect(-s.V, s.N));
-    vec2 uv = latlongUv(R);
-    float lastLevel = float(textureQueryLevels(prefilteredEnvironment) - 1);
-    EnvironmentSample e;
-    e.diffuse = shIrradiance(irradianceSh, N) / PI;
-    e.specular = textureLod(prefilteredEnvironment, uv, prefilteredLod(s.roughness, lastLevel)).rgb;
-    e.coat = s.clearcoat > 0.0
-        ? textureLod(prefilteredEnvironment, uv, prefilteredLod(s.clearcoatRoughness, lastLevel)).rgb
-        : vec3(0.0);
-    return e;
-}
-
-bool isLocal(LightData light) {
-    uint type = uint(light.positionType.w);
-    return type != LIGHT_DISTANT && type != LIGHT_DOME;
-}
-
 // Sphere against the tile's view-space box (tighter than the four side planes for thin tiles).
 bool touchesTile(LightData light) {
-    if (!isLocal(light)) return true;
+    if (!isLocalLight(light)) return true;
     vec3 centre = (camera.view * vec4(light.positionType.xyz, 1.0)).xyz;
     vec3 nearest = clamp(centre, tileBoxMin, tileBoxMax);
     vec3 d = centre - nearest;
     return dot(d, d) <= light.factors.w * light.factors.w;
 }
 
-// Exposed radiance of the G-buffer surface `instanceId` (> 0) seen through window position
-// `windowPosition` at device depth `depth`, lit by the tile's lights.
-vec3 shadeSurface(uint instanceId, float depth, vec4 normalRoughness, vec4 albedoMetallic, vec2 windowPosition,
+// Exposed radiance of the G-buffer surface seen through window position `windowPosition` at
+// device depth `depth`, lit by the tile's lights; `instanceTarget` holds the instance (> 0) and the
+// material's occlusion (instance_target.glsl).
+vec3 shadeSurface(uint instanceTarget, float depth, vec4 normalRoughness, vec4 albedoMetallic, vec2 windowPosition,
                   ivec2 pixel, uint insideClipVolumes) {
-    InstanceData inst = instances[instanceId - 1u];
+    InstanceData inst = instances[instanceIdFromTarget(instanceTarget) - 1u];
     MaterialData mat = materials[inst.materialIndex];
     vec2 ndc = windowPosition / camera.resolution * 2.0 - 1.0;
     SurfacePoint s = surfaceFromMaterial(mat, albedoMetallic.rgb, albedoMetallic.a);
@@ -118,7 +97,8 @@ vec3 shadeSurface(uint instanceId, float depth, vec4 normalRoughness, vec4 albed
     s.V = normalize(camera.position.xyz - s.P);
     s.roughness = normalRoughness.a;
     float viewDistance = linearDepthFromDevice(camera.projection, depth);
-    s.ambientAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel, viewDistance);
+    float screenSpaceAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel, viewDistance);
+    s.ambientAccess = ambientAccessWithOcclusion(screenSpaceAccess, occlusionFromTarget(instanceTarget));
     s.environment = sampleEnvironment(s);
 
     vec3 radiance = mat.emissiveMetallic.rgb;
@@ -127,19 +107,15 @@ vec3 shadeSurface(uint instanceId, float depth, vec4 normalRoughness, vec4 albed
         LightData light = lights[tileLights[i]];
         // A clipped light reaches only surfaces inside its volume (seed 004 "clip volumes").
         if (light.shadow.w != 0u && (insideClipVolumes & light.shadow.w) == 0u) continue;
-        vec3 reflected = reflectFromLight(s, light);
-        // Shadow lookups only where the light reaches the surface at all.
-        if (light.shadow.y > 0u && any(greaterThan(reflected, vec3(0.0))))
-            reflected *= shadowVisibility(light, s.P, s.N, viewDistance);
-        radiance += reflected;
+        radiance += reflectShadowedLight(s, light, viewDistance);
     }
     return radiance * camera.exposureScale;
 }
 
 // What one invocation shades in one round: a pixel of the resolved G-buffer or a sample of the
-// multisampled one (instanceId 0: nothing).
+// multisampled one (an instance target whose id is 0: nothing).
 struct ShadingJob {
-    uint instanceId;
+    uint instanceTarget;
     float depth;
     vec4 normalRoughness;
     vec4 albedoMetallic;
@@ -159,12 +135,12 @@ const uint SAMPLE_ROUND = TILE_SIZE * TILE_SIZE;
 
 ShadingJob sampleJob(uint pair, uint pairs, uint sampleCount) {
     ShadingJob job;
-    job.instanceId = 0u;
+    job.instanceTarget = 0u;
     if (pair >= pairs) return job;
     uint local = tileTaggedList[pair / sampleCount];
     int k = int(pair % sampleCount);
     job.pixel = ivec2(gl_WorkGroupID.xy * TILE_SIZE) + ivec2(local % TILE_SIZE, local / TILE_SIZE);
-    job.instanceId = texelFetch(instanceSamples, job.pixel, k).r;
+    job.instanceTarget = texelFetch(instanceSamples, job.pixel, k).r;
     job.depth = texelFetch(depthSamples, job.pixel, k).r;
     job.normalRoughness = texelFetch(normalRoughnessSamples, job.pixel, k);
     job.albedoMetallic = texelFetch(albedoMetallicSamples, job.pixel, k);
@@ -202,7 +178,8 @@ void resolveSampleRound(uint first, vec3 radiance, bool hit, uint sampleCount) {
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     bool inside = all(lessThan(pixel, ivec2(camera.resolution)));
-    uint instanceId = inside ? texelFetch(instanceTexture, pixel, 0).r : 0u;
+    uint instanceTarget = inside ? texelFetch(instanceTexture, pixel, 0).r : 0u;
+    uint instanceId = instanceIdFromTarget(instanceTarget);
     float depth = inside ? texelFetch(depthTexture, pixel, 0).r : 1.0;
 
     if (gl_LocalInvocationIndex == 0u) {
@@ -225,7 +202,7 @@ void main() {
     if (perSample) {
         tileTaggedList[atomicAdd(tileTaggedPixels, 1u)] = gl_LocalInvocationIndex;
         for (int k = 1; k < textureSamples(instanceSamples); ++k) {
-            if (texelFetch(instanceSamples, pixel, k).r == 0u) continue;
+            if (instanceIdFromTarget(texelFetch(instanceSamples, pixel, k).r) == 0u) continue;
             uint sampleDepthBits = floatBitsToUint(texelFetch(depthSamples, pixel, k).r);
             atomicMin(tileMinDepthBits, sampleDepthBits);
             atomicMax(tileMaxDepthBits, sampleDepthBits);
@@ -273,16 +250,17 @@ void main() {
     // tagged samples, through one call site of shadeSurface (its light loop inlined once).
     for (uint round = 0u; round < rounds; ++round) {
         ShadingJob job;
-        job.instanceId = 0u;
+        job.instanceTarget = 0u;
         if (round == 0u && pixelFrequency)
-            job = ShadingJob(instanceId, depth, texelFetch(normalRoughnessTexture, pixel, 0),
+            job = ShadingJob(instanceTarget, depth, texelFetch(normalRoughnessTexture, pixel, 0),
                              texelFetch(albedoMetallicTexture, pixel, 0), vec2(pixel) + 0.5, pixel);
 #ifdef PER_SAMPLE_LIGHTING
         if (round > 0u) job = sampleJob((round - 1u) * SAMPLE_ROUND + gl_LocalInvocationIndex, pairs, sampleCount);
 #endif
+        bool hit = instanceIdFromTarget(job.instanceTarget) != 0u;
         vec3 radiance = vec3(0.0);
-        if (job.instanceId != 0u)
-            radiance = shadeSurface(job.instanceId, job.depth, job.normalRoughness, job.albedoMetallic,
+        if (hit)
+            radiance = shadeSurface(job.instanceTarget, job.depth, job.normalRoughness, job.albedoMetallic,
                                     job.windowPosition, job.pixel,
                                     texelFetch(clipStencil, job.pixel, 0).r & CLIP_VOLUME_BITS);
         if (round == 0u) {
@@ -290,7 +268,7 @@ void main() {
         }
 #ifdef PER_SAMPLE_LIGHTING
         else {
-            resolveSampleRound((round - 1u) * SAMPLE_ROUND, radiance, job.instanceId != 0u, sampleCount);
+            resolveSampleRound((round - 1u) * SAMPLE_ROUND, radiance, hit, sampleCount);
         }
 #endif
     }

@@ -24,6 +24,14 @@ layout(set = 0, binding = 4, std140) uniform Camera { CameraData camera; };
 layout(location = 0) out vec4 outNormalRoughness;
 layout(location = 1) out vec4 outAlbedoMetallic;
 layout(location = 2) out uint outInstance;
+// Built twice (cmake variants): with VELOCITY_TARGET for a G-buffer with motion blur's velocity.
+#ifdef VELOCITY_TARGET
+layout(set = 0, binding = 5) uniform sampler2DMS velocitySamples;
+layout(location = 3) out vec2 outVelocity;
+layout(location = 4) out float outMaxDepth;
+#else
+layout(location = 3) out float outMaxDepth;
+#endif
 
 float pixelCentreDepth(ivec2 pixel) {
     if (samplesMismatch(depthSamples, normalRoughnessSamples, instanceSamples, camera.projection, pixel))
@@ -40,5 +48,13 @@ void main() {
     // The sRGB target re-encodes what the fetch decoded: 8-bit values round-trip exactly.
     outAlbedoMetallic = texelFetch(albedoMetallicSamples, pixel, 0);
     outInstance = texelFetch(instanceSamples, pixel, 0).r;
+#ifdef VELOCITY_TARGET
+    outVelocity = texelFetch(velocitySamples, pixel, 0).rg;
+#endif
     gl_FragDepth = pixelCentreDepth(pixel);
+    // Seed 000 "performance shortcuts (2)": the farthest sample, for the transparents' depth test
+    // and fade (passes/transparent.h).
+    float farthest = 0.0;
+    for (int s = 0; s < textureSamples(depthSamples); ++s) farthest = max(farthest, texelFetch(depthSamples, pixel, s).r);
+    outMaxDepth = farthest;
 }

@@ -3,12 +3,17 @@
 // LUT (seed 004 "Color grading"; Selan 2007, GPU Gems 3 ch. 24): a log2 shaper maps the HDR range
 // onto the lattice, one trilinear lookup applies the whole OCIO processor, the result is clamped
 // to the display range and written as 8 bits.
+#extension GL_GOOGLE_include_directive : require
+#include "common/instance_target.glsl"
+#include "common/coverage.glsl"
+
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 0) uniform sampler2D hdrColor;  // any float format: light accumulation or TAA
 layout(set = 0, binding = 1, rgba8) uniform writeonly image2D displayColor;
 layout(set = 0, binding = 2) uniform usampler2D instanceTexture;
 layout(set = 0, binding = 3) uniform sampler3D gradingLut;
+layout(set = 0, binding = 4) uniform sampler2D transparentCoverage;
 
 layout(push_constant) uniform Push {
     float shaperMinStops;
@@ -38,6 +43,8 @@ void main() {
     // Lattice points sit at texel centres: scale and offset so 0 and 1 hit the first and last.
     vec3 coordinate = shaperEncode(hdr) * ((push.lutSize - 1.0) / push.lutSize) + 0.5 / push.lutSize;
     vec3 display = clamp(textureLod(gradingLut, coordinate, 0.0).rgb, 0.0, 1.0);
-    float alpha = push.alphaIsCoverage != 0u ? hdrSample.a : texelFetch(instanceTexture, pixel, 0).r != 0u ? 1.0 : 0.0;
+    float opaque = instanceIdFromTarget(texelFetch(instanceTexture, pixel, 0).r) != 0u ? 1.0 : 0.0;
+    float alpha = push.alphaIsCoverage != 0u ? hdrSample.a
+                                             : compositeCoverage(opaque, texelFetch(transparentCoverage, pixel, 0).r);
     imageStore(displayColor, pixel, vec4(display, alpha));
 }

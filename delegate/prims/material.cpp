@@ -14,7 +14,11 @@ void Material::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     float opacityThreshold = std::clamp(s.getFloat("inputs:opacityThreshold"), 0.0f, 1.0f);
     data_.diffuseRoughness = {diffuse[0], diffuse[1], diffuse[2], roughness};
     data_.emissiveMetallic = {emissive[0], emissive[1], emissive[2], metallic};
-    data_.opacity = {opacity, opacityThreshold, 0.0f, 0.0f};
+    // UsdPreviewSurface: occlusion is a fraction of the ambient light; outside [0, 1] it has no meaning.
+    float occlusion = s.getFloat("inputs:occlusion");
+    if (!(occlusion >= 0.0f && occlusion <= 1.0f))
+        throw PrimDataError(s.path() + ": inputs:occlusion must be in [0, 1]");
+    data_.opacity = {opacity, opacityThreshold, occlusion, 0.0f};
     auto specular = s.getFloat3("inputs:specularColor");
     float ior = s.getFloat("inputs:ior");
     if (!(ior >= 1.0f)) throw PrimDataError(s.path() + ": inputs:ior must be at least 1");
@@ -28,8 +32,8 @@ void Material::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
 // UsdUVTexture networks the host flattened into obscura:<input>:* (UsdPreviewSurface spec).
 void Material::readTextures(SceneAccess& s, SyncContext& ctx) {
     warnings_.clear();
-    const char* const sampled[passes::kMaterialTextureSlots] = {"diffuseColor", "roughness", "metallic", "opacity",
-                                                                        "normal"};
+    const char* const sampled[passes::kMaterialTextureSlots] = {"diffuseColor", "roughness", "metallic",
+                                                                "opacity",      "normal",    "occlusion"};
     const BoundTexture* first = nullptr;
     for (uint32_t slot = 0; slot < passes::kMaterialTextureSlots; ++slot) {
         textures_[slot] = readBoundTexture(s, ctx.textures, sampled[slot], warnings_);

@@ -6,6 +6,8 @@ void Mesh::reset() {
     input_ = MeshInput{};
     vertices_.reset();
     indices_.reset();
+    shutterPositions_.reset();
+    shutterPoints_.reset();
     indexCount_ = 0;
     localBounds_ = Aabb{};
 }
@@ -22,7 +24,17 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     constexpr ObscuraDirtyBits kGeometry =
         OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_TOPOLOGY | OBSCURA_DIRTY_NORMALS | OBSCURA_DIRTY_PRIMVAR;
     if (!(bits & kGeometry)) return;
-    if (bits & OBSCURA_DIRTY_POINTS) input_.points = s.getFloatArray("points").value_or(std::vector<float>{});
+    // Points at the shutter's ends, when they differ from the frame's: the mesh deforms within
+    // the shutter (motion blur's velocities).
+    if (bits & OBSCURA_DIRTY_POINTS) {
+        input_.points = s.getFloatArray("points").value_or(std::vector<float>{});
+        shutterPoints_.reset();
+        if (ctx.shutterClose > ctx.shutterOpen) {
+            std::array<std::vector<float>, 2> ends{s.getFloatArrayAt("points", ctx.shutterOpen).value_or(input_.points),
+                                                   s.getFloatArrayAt("points", ctx.shutterClose).value_or(input_.points)};
+            if (ends[0] != input_.points || ends[1] != input_.points) shutterPoints_ = std::move(ends);
+        }
+    }
     if (bits & OBSCURA_DIRTY_TOPOLOGY) {
         input_.faceVertexCounts = s.getIntArray("faceVertexCounts").value_or(std::vector<int32_t>{});
         input_.faceVertexIndices = s.getIntArray("faceVertexIndices").value_or(std::vector<int32_t>{});
@@ -66,6 +78,35 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     SharedGeometry shared = ctx.geometry.get(geometry.vertices, geometry.indices, s.path().c_str());
     vertices_ = std::move(shared.vertices);
     indices_ = std::move(shared.indices);
+    shutterPositions_.reset();
+    if (shutterPoints_) {
+        std::array<std::vector<float>, 2> ends{drawnPositions((*shutterPoints_)[0], level, s.path()),
+                                               drawnPositions((*shutterPoints_)[1], level, s.path())};
+        if (ends[0].size() != geometry.vertices.size() * 3 || ends[1].size() != ends[0].size())
+            throw PrimDataError(s.path() + ": points at the shutter's ends do not match the mesh's topology");
+        std::vector<passes::ShutterPositions> positions(geometry.vertices.size());
+        for (size_t v = 0; v < positions.size(); ++v)
+            for (int k = 0; k < 3; ++k) {
+                positions[v].open[k] = ends[0][v * 3 + k];
+                positions[v].close[k] = ends[1][v * 3 + k];
+            }
+        shutterPositions_ = ctx.device.createBufferWithData(positions.data(), positions.size() * sizeof(positions[0]),
+                                                            VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, s.path().c_str());
+    }
+}
+
+std::vector<float> Mesh::drawnPositions(const std::vector<float>& points, int level, const std::string& path) {
+    MeshInput input = input_;
+    input.points = points;
+    std::variant<MeshInput, std::string> refined = input;
+    if (scheme_ != SubdivisionScheme::None && level > 0) refined = subdivision_.refine(input, scheme_, tags_, level);
+    if (auto* problem = std::get_if<std::string>(&refined)) throw PrimDataError(path + ": " + *problem);
+    auto built = buildMeshGeometry(std::get<MeshInput>(refined));
+    if (auto* problem = std::get_if<std::string>(&built)) throw PrimDataError(path + ": " + *problem);
+    std::vector<float> positions;
+    for (const passes::Vertex& v : std::get<MeshGeometry>(built).vertices)
+        positions.insert(positions.end(), v.position, v.position + 3);
+    return positions;
 }
 
 }  // namespace obscura::delegate

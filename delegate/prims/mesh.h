@@ -29,6 +29,9 @@ public:
     Matrix4d transformAt(double time) const {
         return shutterTransforms_.size() > 1 ? interpolateTransform(shutterTransforms_, time) : transform_;
     }
+    // Deforming within the shutter: its drawn vertices at the shutter's open and close
+    // (passes::ShutterPositions), else null.
+    const gpu::BufferPtr& shutterPositions() const { return shutterPositions_; }
     bool doubleSided() const { return doubleSided_; }
     const std::optional<std::string>& materialPath() const { return material_; }
     bool hasDisplayColor() const { return input_.displayColor.has_value(); }
@@ -37,6 +40,8 @@ public:
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
     void reset() override;
+    // The drawn (refined, triangulated) vertex positions of the mesh with `points` instead of its own.
+    std::vector<float> drawnPositions(const std::vector<float>& points, int level, const std::string& path);
 
     int32_t primId_;
     MeshInput input_;
@@ -51,6 +56,8 @@ private:
     std::optional<std::string> material_;
     gpu::BufferPtr vertices_;
     gpu::BufferPtr indices_;
+    std::optional<std::array<std::vector<float>, 2>> shutterPoints_;  // points at the shutter's ends
+    gpu::BufferPtr shutterPositions_;
     uint32_t indexCount_ = 0;
     Aabb localBounds_;
     std::vector<std::string> warnings_;

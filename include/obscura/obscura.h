@@ -194,12 +194,15 @@ typedef struct ObscuraSceneDelegate {
 } ObscuraSceneDelegate;
 
 /* An AOV binding: render `aov` into the render buffer prim at `renderBufferPath`. AOVs:
- *   "color"   float32Vec4  linear, premultiplied RGBA, exposure applied (alpha 0 where nothing drew)
+ *   "color"   float32Vec4  linear, premultiplied RGBA, exposure applied (alpha 0 where nothing drew; transparent
+ *                          surfaces of opacity a_i over it: 1 - (1 - opaque)(1 - a_1)(1 - a_2)...)
  *   "depth"   float32      clip-space depth in [0,1] (1 where nothing drew), as Hydra's depth AOV
  *   "normal"  float32Vec3  eye-space shading normal (Hydra's Neye); 0 where nothing drew
  *   "albedo"  float32Vec3  base colour of the surface
  *   "primId"  int32        id of the prim (see getPrimId), -1 where nothing drew
  *   "display" unorm8Vec4   display-referred colour after the view transform (for PNG and viewports)
+ * depth, normal, albedo and primId describe the nearest opaque surface: transparent surfaces (opacity
+ * below 1 without opacityThreshold) are only in "color" and "display".
  * The render buffer's format must match the AOV's format above. */
 typedef struct ObscuraAovBinding {
     const char* aov;

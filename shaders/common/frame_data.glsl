@@ -12,6 +12,10 @@ struct CameraData {
     vec2 resolution;     // render size in pixels
     float exposureScale; // camera exposure (UsdGeomCamera linear scale) x 2^(render setting exposure): pre-exposed accumulation
     float pad0;
+    // Motion blur: world -> clip (unjittered) at the shutter's open and close; the frame itself is
+    // seen at the shutter's centre. Without motion blur both are the frame's unjittered view.
+    mat4 shutterOpenViewProjection;
+    mat4 shutterCloseViewProjection;
 };
 
 // One per drawn rprim.
@@ -21,7 +25,13 @@ struct InstanceData {
     uint materialIndex;
     int primId;
     uint flags;          // bit 0: double-sided, bit 1: use vertex colour (no bound material)
-    uint pad0;
+    uint motionIndex;    // moving within the shutter: its InstanceMotion record; unused when static
+};
+
+// Where a moving instance is at the shutter's open and close (motion blur's velocities).
+struct InstanceMotion {
+    mat4 shutterOpenModel;
+    mat4 shutterCloseModel;
 };
 
 const uint TEXTURE_CHANNEL_RGB = 4u;  // else 0..3: r, g, b, a
@@ -41,12 +51,13 @@ const uint TEXTURE_ROUGHNESS = 1u;
 const uint TEXTURE_METALLIC = 2u;
 const uint TEXTURE_OPACITY = 3u;
 const uint TEXTURE_NORMAL = 4u;
-const uint MATERIAL_TEXTURE_SLOTS = 5u;
+const uint TEXTURE_OCCLUSION = 5u;
+const uint MATERIAL_TEXTURE_SLOTS = 6u;
 
 struct MaterialData {
     vec4 diffuseRoughness;  // rgb diffuseColor, a roughness
     vec4 emissiveMetallic;  // rgb emissiveColor (textured: the texture's average), a metallic
-    vec4 opacity;           // x opacity, y opacityThreshold
+    vec4 opacity;           // x opacity, y opacityThreshold, z occlusion
     vec4 specularIor;       // rgb specularColor (specular workflow), a ior
     vec4 clearcoat;         // x clearcoat, y clearcoatRoughness, z 1 for the specular workflow
     MaterialTexture textures[MATERIAL_TEXTURE_SLOTS];

@@ -25,7 +25,8 @@ struct SurfacePoint {
     float roughness;  // perceptual, as authored
     float clearcoat;  // UsdPreviewSurface's second specular lobe: weight and roughness
     float clearcoatRoughness;
-    float ambientAccess;  // SSAO: applied to the dome only (seed 004, "SSAO": ambient light only)
+    float ambientAccess;  // SSAO and the material's occlusion: applied to the dome only (seed 004, "SSAO":
+                          // ambient light only); ambientAccessWithOcclusion
     EnvironmentSample environment;  // what the textured dome sends this point, if there is one
 };
 
@@ -41,6 +42,17 @@ SurfacePoint surfaceFromMaterial(MaterialData mat, vec3 baseColor, float metalli
     s.clearcoat = mat.clearcoat.x;
     s.clearcoatRoughness = mat.clearcoat.y;
     return s;
+}
+
+// UsdPreviewSurface `occlusion` is "used to darken indirect lighting" (the spec,
+// https://openusd.org/release/spec_usdpreviewsurface.html): baked visibility of the ambient light,
+// like SSAO's. Both estimate the same quantity (the crease the asset's bake sees is also the one
+// SSAO sees on screen), so the darker estimate wins: a product would darken such a crease twice
+// (the baked 0.5 under SSAO's 0.5 would give 0.25), while the minimum keeps the stronger of two
+// estimates that each may miss what the other sees (SSAO: off-screen and sub-pixel occluders;
+// the bake: the neighbours in this scene).
+float ambientAccessWithOcclusion(float screenSpaceAccess, float materialOcclusion) {
+    return min(screenSpaceAccess, materialOcclusion);
 }
 
 const float CLEARCOAT_F0 = 0.04;  // the coat is a dielectric of ior 1.5

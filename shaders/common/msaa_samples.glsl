@@ -4,6 +4,7 @@
 #define OBSCURA_MSAA_SAMPLES_GLSL
 
 #include "best_fit_normals.glsl"
+#include "instance_target.glsl"
 #include "view_depth.glsl"
 
 // Seed 000 "Deferred MSAA \ stencil batching": one reserved stencil bit tags the pixels lit per
@@ -26,7 +27,7 @@ vec2 standardSampleLocation(int sampleCount, int s) {
 
 // What the comparison looks at in one sample of the G-buffer.
 struct GBufferSample {
-    uint instance;       // instance index + 1; the instance names the material (seed 004 thin G-buffer)
+    uint instance;       // instance index + 1 (0: nothing); it names the material (seed 004 thin G-buffer)
     float viewDistance;  // along the view axis
     vec3 normal;
 };
@@ -49,7 +50,7 @@ bool samplesDiffer(GBufferSample a, GBufferSample b) {
 GBufferSample fetchGBufferSample(sampler2DMS depthSamples, sampler2DMS normalRoughnessSamples,
                                  usampler2DMS instanceSamples, mat4 projection, ivec2 pixel, int s) {
     GBufferSample g;
-    g.instance = texelFetch(instanceSamples, pixel, s).r;
+    g.instance = instanceIdFromTarget(texelFetch(instanceSamples, pixel, s).r);
     g.viewDistance = linearDepthFromDevice(projection, texelFetch(depthSamples, pixel, s).r);
     g.normal = decodeBestFitNormal(texelFetch(normalRoughnessSamples, pixel, s).xyz);
     return g;

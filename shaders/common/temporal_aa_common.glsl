@@ -1,13 +1,17 @@
 // Shared by the temporal anti-aliasing shaders (passes/temporal_aa.cpp): SMAA 1TX
 // (temporal_aa.comp) and SMAA 2TX (temporal_aa_2tx.comp). Bindings 0-7 are common; the history
 // images are written one texel per pixel. Colours carry coverage in alpha (1 where the G-buffer
-// holds a surface, 0 where nothing drew), accumulated like the colour, so the premultiplied
-// colour and its alpha stay consistent at anti-aliased silhouettes.
+// holds a surface, 0 where nothing drew, composited with the transparent surfaces' coverage),
+// accumulated like the colour, so the premultiplied colour and its alpha stay consistent at
+// anti-aliased silhouettes. Transparent surfaces are in the colour (the forward pass blended them
+// into the light accumulation) but not in the depth: reprojection follows the opaque surface
+// behind them, and the neighbourhood clamp bounds what a moved transparent leaves in the history.
 #ifndef OBSCURA_TEMPORAL_AA_COMMON_GLSL
 #define OBSCURA_TEMPORAL_AA_COMMON_GLSL
 
 #include "common/frame_data.glsl"
 #include "common/view_depth.glsl"
+#include "common/coverage.glsl"
 
 // Mirrors TemporalAaConstants in passes/temporal_aa.cpp.
 struct TemporalAaConstants {
@@ -26,6 +30,7 @@ layout(set = 0, binding = 3) uniform sampler2D currentDepth;   // the G-buffer's
 layout(set = 0, binding = 4) uniform sampler2D previousColor;  // last frame's history colour (texelFetch)
 layout(set = 0, binding = 5) uniform sampler2D previousDepth;  // x: last frame's linear view depth (nearest)
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D historyColor;
+layout(set = 0, binding = 9) uniform sampler2D transparentCoverage;  // passes/transparent.h (nearest)
 
 bool historyReadable() { return taa.frames.x != 0u; }
 
@@ -48,7 +53,8 @@ CrossDepths loadCrossDepths(ivec2 pixel, ivec2 size) {
 
 // This frame's colour at `pixel`, with coverage in alpha.
 vec4 currentSample(ivec2 pixel, float deviceDepth) {
-    return vec4(texelFetch(currentColor, pixel, 0).rgb, deviceDepth < 1.0 ? 1.0 : 0.0);
+    float coverage = compositeCoverage(deviceDepth < 1.0 ? 1.0 : 0.0, texelFetch(transparentCoverage, pixel, 0).r);
+    return vec4(texelFetch(currentColor, pixel, 0).rgb, coverage);
 }
 
 // A history depth may differ from the one expected by this much (relative) and still hold the

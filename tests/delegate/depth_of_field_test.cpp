@@ -1,9 +1,7 @@
 // Depth of field (seed 000 "Depth of field") against the thin lens and against the renderer's own
 // ground truth: the reference mode, which averages sub-frames seen from points of the aperture.
 // Expectations come from Potmesil's CoC formula written out here, independently of the delegate.
-#include "tests/delegate/render_fixture.h"
-
-#include "harness/image/compare.h"
+#include "tests/delegate/camera_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -13,16 +11,6 @@
 
 namespace obscura::test {
 namespace {
-
-// A USD camera's lens, in USD units: focal length and film in tenths of a scene unit.
-struct Lens {
-    float focalLength = 50.0f;
-    float filmWidth = 20.955f;
-    float fStop = 0.0f;
-    float focusDistance = 0.0f;
-    int blades = 0;
-    float rotationDegrees = 0.0f;
-};
 
 // Diameter of the circle of confusion in pixels of a point at `distance` (Potmesil & Chakravarty
 // 1981): |F D / (D - F) - F P / (P - F)| (D - F) / (f D) on the film, scaled to the image.
@@ -35,69 +23,6 @@ double cocDiameterPixels(const Lens& lens, double distance, int imageWidth) {
 // Scene units per pixel on a plane at `distance`, for a square image.
 double unitsPerPixel(const Lens& lens, double distance, int imageWidth) {
     return distance * (lens.filmWidth / lens.focalLength) / imageWidth;
-}
-
-struct DofScene {
-    TestHost host;
-    int width, height;
-    DofScene(const Lens& lens, int w, int h) : width(w), height(h) {
-        // Looking down -Z from the origin; a square film gate, so the image is square too.
-        host.addPrim("camera", "/Camera",
-                     {{"focalLength", HostValue::floatValue(lens.focalLength)},
-                      {"horizontalAperture", HostValue::floatValue(lens.filmWidth)},
-                      {"verticalAperture", HostValue::floatValue(lens.filmWidth * float(h) / float(w))},
-                      {"clippingRange", HostValue::float2(0.5f, 1000.0f)},
-                      {"fStop", HostValue::floatValue(lens.fStop)},
-                      {"focusDistance", HostValue::floatValue(lens.focusDistance)},
-                      {"obscura:apertureBlades", HostValue::intValue(lens.blades)},
-                      {"obscura:apertureRotation", HostValue::floatValue(lens.rotationDegrees)}});
-        host.addRenderBuffer("/Buffers/color", "float32Vec4", w, h);
-        setNumber("ssao", 0);
-    }
-    void setNumber(const char* name, double value) {
-        ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &value};
-        ASSERT_EQ(host.api().setRenderSetting(host.delegate(), name, &v), OBSCURA_OK) << host.lastError();
-    }
-    image::Image render() {
-        EXPECT_EQ(host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_OK) << host.lastError();
-        EXPECT_TRUE(host.loggedErrors().empty()) << host.loggedErrors().front();
-        std::vector<float> rgba = host.readFloats("/Buffers/color");
-        image::Image img = image::Image::make(width, height, {"R", "G", "B"});
-        for (size_t p = 0; p < size_t(width) * height; ++p)
-            for (int c = 0; c < 3; ++c) img.pixels[p * 3 + c] = rgba[p * 4 + c];
-        return img;
-    }
-    image::Image renderReference(int subFrames) {
-        setNumber("reference", subFrames);
-        image::Image img = render();
-        setNumber("reference", 0);
-        return img;
-    }
-};
-
-// A card of cells_x x cells_y chequered cells centred at `centre`, facing +Z (the camera).
-void addChequerCard(TestHost& host, const std::string& path, std::array<double, 3> centre, double cellSize,
-                    int cellsX, int cellsY, std::array<float, 3> light, std::array<float, 3> dark) {
-    std::vector<std::array<float, 3>> points, colours;
-    std::vector<int32_t> counts, indices;
-    for (int j = 0; j <= cellsY; ++j)
-        for (int i = 0; i <= cellsX; ++i)
-            points.push_back({float(cellSize * (i - 0.5 * cellsX)), float(cellSize * (j - 0.5 * cellsY)), 0.0f});
-    for (int j = 0; j < cellsY; ++j)
-        for (int i = 0; i < cellsX; ++i) {
-            int a = j * (cellsX + 1) + i;
-            counts.push_back(4);
-            indices.insert(indices.end(), {a, a + 1, a + cellsX + 2, a + cellsX + 1});
-            colours.push_back((i + j) % 2 ? dark : light);
-        }
-    host.addPrim("mesh", path,
-                 {{"points", HostValue::points(points)},
-                  {"faceVertexCounts", HostValue::intArray(counts)},
-                  {"faceVertexIndices", HostValue::intArray(indices)},
-                  {"subdivisionScheme", HostValue::token("none")},
-                  {"primvars:displayColor", HostValue::points(colours)}},
-                 translation(centre[0], centre[1], centre[2]));
-    host.setInterpolation(path, "primvars:displayColor", OBSCURA_INTERPOLATION_UNIFORM);
 }
 
 // A disc of `radius` facing +Z, glowing with `radiance` (a 24-gon fan).
@@ -214,7 +139,7 @@ Lens pentagonLens() {
 constexpr double kGlowRadiusPixels = 1.0;
 
 // A glowing disc at `distance` on the view axis over a black card at `backdrop`.
-void addBokehScene(DofScene& s, const Lens& lens, double distance, double backdrop) {
+void addBokehScene(CameraScene& s, const Lens& lens, double distance, double backdrop) {
     addGlowingDisc(s.host, "/Glow", {0, 0, -distance}, kGlowRadiusPixels * unitsPerPixel(lens, distance, kBokehSize),
                    50.0f);
     addMaterial(s.host, "/Black", {0, 0, 0});
@@ -242,14 +167,14 @@ void expectBokeh(const image::Image& img, const Lens& lens, double distance, boo
 
 TEST(DepthOfField, FarBokehIsTheUprightApertureAtTheThinLensCoc) {
     Lens lens = pentagonLens();
-    DofScene s(lens, kBokehSize, kBokehSize);
+    CameraScene s(lens, kBokehSize, kBokehSize);
     addBokehScene(s, lens, 120.0, 121.0);
     expectBokeh(s.render(), lens, 120.0, false, "far bokeh (post-process)", kGlowRadiusPixels, 1.0);
 }
 
 TEST(DepthOfField, NearBokehIsTheInvertedAperture) {
     Lens lens = pentagonLens();
-    DofScene s(lens, kBokehSize, kBokehSize);
+    CameraScene s(lens, kBokehSize, kBokehSize);
     addBokehScene(s, lens, 18.0, lens.focusDistance);
     expectBokeh(s.render(), lens, 18.0, true, "near bokeh (post-process)", kGlowRadiusPixels, 1.0);
 }
@@ -257,10 +182,10 @@ TEST(DepthOfField, NearBokehIsTheInvertedAperture) {
 // The ground truth itself must be right: the reference mode's bokeh is the thin lens's too.
 TEST(DepthOfField, ReferenceBokehIsTheThinLensAperture) {
     Lens lens = pentagonLens();
-    DofScene s(lens, kBokehSize, kBokehSize);
+    CameraScene s(lens, kBokehSize, kBokehSize);
     addBokehScene(s, lens, 120.0, 121.0);
     expectBokeh(s.renderReference(256), lens, 120.0, false, "far bokeh (reference)", 0.0, 1.0);
-    DofScene near(lens, kBokehSize, kBokehSize);
+    CameraScene near(lens, kBokehSize, kBokehSize);
     addBokehScene(near, lens, 18.0, lens.focusDistance);
     expectBokeh(near.renderReference(256), lens, 18.0, true, "near bokeh (reference)", 0.0, 1.0);
 }
@@ -279,27 +204,13 @@ Lens planesLens() {
 }
 constexpr double kFarDistance = 60.0, kNearDistance = 10.0;
 
-void addPlanesScene(DofScene& s) {
+void addPlanesScene(CameraScene& s) {
     const std::array<float, 3> light{0.8f, 0.75f, 0.7f}, dark{0.1f, 0.12f, 0.2f};
     addChequerCard(s.host, "/Far", {0, 0, -kFarDistance}, 2.0, 16, 16, light, dark);
     addChequerCard(s.host, "/InFocus", {5.25, 0, -planesLens().focusDistance}, 1.5, 7, 14, dark, light);
     addChequerCard(s.host, "/Near", {-2.5, -2.5, -kNearDistance}, 1.0, 4, 4, light, dark);
     s.host.addPrim("domeLight", "/Sky", {{"inputs:intensity", HostValue::floatValue(1.0f)},
                                          {"inputs:specular", HostValue::floatValue(0.0f)}});
-}
-
-image::CompareMetrics metrics(const image::Image& a, const image::Image& b) {
-    auto result = image::compare(a, b);
-    EXPECT_FALSE(image::isError(result));
-    return image::isError(result) ? image::CompareMetrics{} : std::get<image::CompareMetrics>(result);
-}
-
-image::Image crop(const image::Image& img, int x0, int y0, int x1, int y1) {
-    image::Image c = image::Image::make(x1 - x0, y1 - y0, img.channels);
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x)
-            for (int k = 0; k < int(img.channelCount()); ++k) c.at(x - x0, y - y0, k) = img.at(x, y, k);
-    return c;
 }
 
 // Thresholds: measured on lavapipe (whole image 26.1 dB / 0.930, far wall 30.6 dB / 0.968, near
@@ -309,7 +220,7 @@ image::Image crop(const image::Image& img, int x0, int y0, int x1, int y1) {
 // the reference's anti-aliased edges where the post-process has none.
 TEST(DepthOfField, MatchesTheReferenceOnPlanesAtSeveralDepths) {
     Lens lens = planesLens();
-    DofScene s(lens, kPlanesSize, kPlanesSize);
+    CameraScene s(lens, kPlanesSize, kPlanesSize);
     addPlanesScene(s);
     image::Image post = s.render();
     image::Image reference = s.renderReference(256);
@@ -339,7 +250,7 @@ TEST(DepthOfField, MatchesTheReferenceOnPlanesAtSeveralDepths) {
 // The card in focus is not touched where no blur reaches: the composite copies the sharp pixels.
 TEST(DepthOfField, InFocusRegionIsUnblurred) {
     Lens lens = planesLens();
-    DofScene s(lens, kPlanesSize, kPlanesSize);
+    CameraScene s(lens, kPlanesSize, kPlanesSize);
     addPlanesScene(s);
     image::Image post = s.render();
     s.setNumber("dof", 0);
@@ -357,17 +268,6 @@ TEST(DepthOfField, InFocusRegionIsUnblurred) {
     EXPECT_EQ(changed, 0);
 }
 
-std::vector<std::string> passNames(TestHost& host) {
-    uint32_t count = 0;
-    host.api().getPassTimings(host.delegate(), nullptr, &count);
-    std::vector<ObscuraPassTiming> timings(count);
-    for (auto& t : timings) t.sType = OBSCURA_STRUCTURE_TYPE_PASS_TIMING, t.structSize = sizeof(t);
-    host.api().getPassTimings(host.delegate(), timings.data(), &count);
-    std::vector<std::string> names;
-    for (const auto& t : timings) names.push_back(t.pass);
-    return names;
-}
-
 bool ranDepthOfField(TestHost& host) {
     auto names = passNames(host);
     return std::find(names.begin(), names.end(), "dof_gather") != names.end();
@@ -376,7 +276,7 @@ bool ranDepthOfField(TestHost& host) {
 // USD's fStop 0 and the `dof` setting both turn it off; then the frame is the pinhole's exactly.
 TEST(DepthOfField, OffWithoutFStopOrWithTheSettingOff) {
     Lens lens = planesLens();
-    DofScene s(lens, kPlanesSize / 2, kPlanesSize / 2);
+    CameraScene s(lens, kPlanesSize / 2, kPlanesSize / 2);
     addPlanesScene(s);
     s.render();
     EXPECT_TRUE(ranDepthOfField(s.host));
@@ -394,7 +294,7 @@ TEST(DepthOfField, OffWithoutFStopOrWithTheSettingOff) {
 TEST(DepthOfField, FocusDistanceInsideTheFocalLengthWarns) {
     Lens lens = planesLens();
     lens.focusDistance = 0.0f;  // USD's default
-    DofScene s(lens, 16, 16);
+    CameraScene s(lens, 16, 16);
     s.render();
     EXPECT_FALSE(ranDepthOfField(s.host));
     ASSERT_FALSE(s.host.loggedWarnings().empty());
@@ -403,7 +303,7 @@ TEST(DepthOfField, FocusDistanceInsideTheFocalLengthWarns) {
 
 TEST(DepthOfField, BadSettingsAndLensDataAreRefused) {
     Lens lens = planesLens();
-    DofScene s(lens, 16, 16);
+    CameraScene s(lens, 16, 16);
     for (double taps : {2.0, 16.0, 7.5}) {
         ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &taps};
         EXPECT_EQ(s.host.api().setRenderSetting(s.host.delegate(), "dof:taps", &v), OBSCURA_ERROR_INVALID_ARGUMENT);
@@ -421,7 +321,7 @@ TEST(DepthOfField, BadSettingsAndLensDataAreRefused) {
 // More taps per side (a quality setting) still give the thin lens's bokeh.
 TEST(DepthOfField, MoreTapsKeepTheBokeh) {
     Lens lens = pentagonLens();
-    DofScene s(lens, kBokehSize, kBokehSize);
+    CameraScene s(lens, kBokehSize, kBokehSize);
     addBokehScene(s, lens, 120.0, 121.0);
     s.setNumber("dof:taps", 11);
     expectBokeh(s.render(), lens, 120.0, false, "far bokeh (post-process, 11x11 taps)", kGlowRadiusPixels, 1.0);
@@ -432,7 +332,7 @@ TEST(DepthOfField, MoreTapsKeepTheBokeh) {
 TEST(DepthOfField, ReferenceConvergesAndIsSharpThroughAPinhole) {
     Lens lens = planesLens();
     lens.fStop = 0.0f;
-    DofScene s(lens, kPlanesSize / 2, kPlanesSize / 2);
+    CameraScene s(lens, kPlanesSize / 2, kPlanesSize / 2);
     addPlanesScene(s);
     image::Image sharp = s.render();
     image::Image reference = s.renderReference(16);
@@ -459,7 +359,7 @@ TEST(DepthOfField, ReferenceConvergesAndIsSharpThroughAPinhole) {
 // reference mode: the images agree to the small float's precision.
 TEST(DepthOfField, FollowsTheLightAccumulationFormat) {
     Lens lens = planesLens();
-    DofScene s(lens, kPlanesSize / 2, kPlanesSize / 2);
+    CameraScene s(lens, kPlanesSize / 2, kPlanesSize / 2);
     addPlanesScene(s);
     image::Image smallFloat = s.render(), smallFloatReference = s.renderReference(8);
     s.setNumber("lighting:halfFloat", 1);
@@ -476,7 +376,7 @@ TEST(DepthOfField, ReferenceSamplesTheShutter) {
     Lens pinhole;
     constexpr int kSize = 64;
     const double distance = 10.0, travelPixels = 16.0, units = unitsPerPixel(pinhole, distance, kSize);
-    DofScene s(pinhole, kSize, kSize);
+    CameraScene s(pinhole, kSize, kSize);
     HostValue close;
     close.type = OBSCURA_VALUE_DOUBLE;
     close.doubles = {1.0};

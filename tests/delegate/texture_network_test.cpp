@@ -118,6 +118,44 @@ def Material "M"
     EXPECT_EQ(sd.getValue(sd.userData, "/M", "obscura:specularColor:file", 0.0, &value), OBSCURA_ERROR_NOT_FOUND);
 }
 
+TEST(TexturedUsda, OcclusionTextureIsFlattenedLikeTheOtherInputs) {
+    // inputs:occlusion (a constant, and a UsdUVTexture's r output) reaches the delegate as the
+    // constant and obscura:occlusion:*, with no "connected" warning.
+    const std::string text = R"(#usda 1.0
+def Material "M"
+{
+    token outputs:surface.connect = </M/Surface.outputs:surface>
+    def Shader "Surface"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        float inputs:occlusion = 0.75
+        float inputs:occlusion.connect = </M/Texture.outputs:r>
+        token outputs:surface
+    }
+    def Shader "Texture"
+    {
+        uniform token info:id = "UsdUVTexture"
+        asset inputs:file = @textures/checker.png@
+        token inputs:sourceColorSpace = "raw"
+        float outputs:r
+    }
+}
+)";
+    HostedStage scene(usda::Stage::openFromString(text, OBSCURA_TEST_DATA_DIR "/inline.usda"));
+    const ObscuraSceneDelegate& sd = scene.host->sceneDelegate();
+    ObscuraValue value{};
+    ASSERT_EQ(sd.getValue(sd.userData, "/M", "inputs:occlusion", 0.0, &value), OBSCURA_OK);
+    EXPECT_FLOAT_EQ(static_cast<const float*>(value.data)[0], 0.75f);
+    EXPECT_FALSE(scene.warned("inputs:occlusion is connected"));
+    ASSERT_EQ(sd.getValue(sd.userData, "/M", "obscura:occlusion:file", 0.0, &value), OBSCURA_OK);
+    EXPECT_EQ(std::filesystem::path(static_cast<const char* const*>(value.data)[0]),
+              std::filesystem::absolute(OBSCURA_TEST_DATA_DIR "/textures/checker.png").lexically_normal());
+    ASSERT_EQ(sd.getValue(sd.userData, "/M", "obscura:occlusion:channel", 0.0, &value), OBSCURA_OK);
+    EXPECT_EQ(std::string(static_cast<const char* const*>(value.data)[0]), "r");
+    ASSERT_EQ(sd.getValue(sd.userData, "/M", "obscura:occlusion:sourceColorSpace", 0.0, &value), OBSCURA_OK);
+    EXPECT_EQ(std::string(static_cast<const char* const*>(value.data)[0]), "raw");
+}
+
 TEST(TexturedUsda, DomeTextureFileIsResolvedAgainstItsLayer) {
     // Hosts resolve asset paths: the delegate gets the file's absolute path.
     HostedStage scene(usda::Stage::open(OBSCURA_TEST_DATA_DIR "/dome.usda"));

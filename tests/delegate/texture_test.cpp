@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 
@@ -273,6 +274,31 @@ TEST_F(TextureTest, OpacityTextureCutsOutBelowTheThreshold) {
     for (int y : {4, 32, 60}) {
         EXPECT_EQ(primIds[size_t(y) * kWidth + 10], -1) << "transparent half drawn at row " << y;
         EXPECT_EQ(primIds[size_t(y) * kWidth + 54], plane) << "opaque half missing at row " << y;
+    }
+}
+
+TEST_F(TextureTest, OcclusionTextureDarkensTheDomeWhereItSaysSo) {
+    // Left half 255 (unoccluded), right half 128 (raw: 0.502): the dome lights the right half half
+    // as much (UsdPreviewSurface occlusion darkens indirect light only). SSAO off: a flat plane.
+    std::string file =
+        writePng("occlusion.png", 8, [](int x, int) { return x < 4 ? Rgb8{255, 255, 255} : Rgb8{128, 128, 128}; });
+    std::map<std::string, HostValue> values =
+        textured("occlusion", file, {{"sourceColorSpace", HostValue::token("raw")}});
+    values["inputs:diffuseColor"] = HostValue::float3(0.5f, 0.5f, 0.5f);
+    host.addPrim("material", "/Looks/M", values);
+    addPlane("/Plane", "/Looks/M");
+    host.addPrim("domeLight", "/Sky",
+                 {{"inputs:intensity", HostValue::floatValue(1.0f)}, {"inputs:specular", HostValue::floatValue(0.0f)}});
+    double off = 0.0;
+    ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &off};
+    ASSERT_EQ(host.api().setRenderSetting(host.delegate(), "ssao", &v), OBSCURA_OK);
+    render();
+    for (int y : {10, 32, 54}) {
+        float open = colorAt(10, y)[0], occluded = colorAt(54, y)[0];
+        if (y == 32) std::printf("[ metric ] occlusion texture: right / left radiance %.4f (texel 128/255 = %.4f)\n",
+                                 double(occluded / open), 128.0 / 255.0);
+        EXPECT_NEAR(open, 0.5f, 0.01f + smallFloatStep(0.5f, 6)) << "row " << y;
+        EXPECT_NEAR(occluded / open, 128.0f / 255.0f, 0.01f + 2.0f * smallFloatStep(1.0f, 6)) << "row " << y;
     }
 }
 

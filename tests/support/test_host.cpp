@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <iterator>
 #include <stdexcept>
 
 namespace obscura::test {
@@ -10,6 +11,12 @@ HostValue HostValue::floatValue(float v) {
     HostValue h;
     h.type = OBSCURA_VALUE_FLOAT;
     h.floats = {v};
+    return h;
+}
+HostValue HostValue::doubleValue(double v) {
+    HostValue h;
+    h.type = OBSCURA_VALUE_DOUBLE;
+    h.doubles = {v};
     return h;
 }
 HostValue HostValue::float3(float x, float y, float z) {
@@ -144,7 +151,17 @@ void TestHost::setInterpolation(const std::string& path, const std::string& attr
 void TestHost::setTransform(const std::string& path, Matrix transform) { transforms_[path] = transform; }
 
 void TestHost::setTransformMotion(const std::string& path, double start, Matrix atStart, double end, Matrix atEnd) {
-    motions_[path] = {start, end, atStart, atEnd};
+    auto at = [=](double t) {
+        double f = std::clamp((t - start) / (end - start), 0.0, 1.0);
+        Matrix m;
+        for (int k = 0; k < 16; ++k) m[k] = atStart[k] + f * (atEnd[k] - atStart[k]);
+        return m;
+    };
+    motions_[path] = {at, 2};
+}
+
+void TestHost::setTransformFunction(const std::string& path, std::function<Matrix(double)> at, uint32_t samples) {
+    motions_[path] = {std::move(at), std::max(samples, 2u)};
 }
 
 void TestHost::addCamera(const std::string& path, Matrix transform, float focalLength, float aperture) {
@@ -189,14 +206,41 @@ std::vector<int32_t> TestHost::readInts(const std::string& buffer) {
     return out;
 }
 
-ObscuraStatus TestHost::getValueThunk(void* user, const char* path, const char* attribute, double, ObscuraValue* out) {
+void TestHost::setTimeSamples(const std::string& path, const std::string& attribute,
+                              std::map<double, HostValue> samples) {
+    timeSamples_[path][attribute] = std::move(samples);
+}
+
+ObscuraStatus TestHost::getValueThunk(void* user, const char* path, const char* attribute, double time,
+                                      ObscuraValue* out) {
     auto* self = static_cast<TestHost*>(user);
     self->getValueCalls[path]++;
-    auto prim = self->values_.find(path);
-    if (prim == self->values_.end()) return OBSCURA_ERROR_NOT_FOUND;
-    auto it = prim->second.find(attribute);
-    if (it == prim->second.end()) return OBSCURA_ERROR_NOT_FOUND;
-    const HostValue& v = it->second;
+    const HostValue* found = nullptr;
+    if (auto prim = self->timeSamples_.find(path); prim != self->timeSamples_.end())
+        if (auto it = prim->second.find(attribute); it != prim->second.end() && !it->second.empty()) {
+            const auto& samples = it->second;
+            auto after = samples.lower_bound(time);
+            if (after == samples.end()) {
+                found = &std::prev(after)->second;
+            } else if (after == samples.begin() || after->first == time) {
+                found = &after->second;
+            } else {
+                auto before = std::prev(after);
+                double f = (time - before->first) / (after->first - before->first);
+                self->sampled_ = before->second;
+                for (size_t i = 0; i < self->sampled_.floats.size(); ++i)
+                    self->sampled_.floats[i] += float(f) * (after->second.floats[i] - before->second.floats[i]);
+                found = &self->sampled_;
+            }
+        }
+    if (!found) {
+        auto prim = self->values_.find(path);
+        if (prim == self->values_.end()) return OBSCURA_ERROR_NOT_FOUND;
+        auto it = prim->second.find(attribute);
+        if (it == prim->second.end()) return OBSCURA_ERROR_NOT_FOUND;
+        found = &it->second;
+    }
+    const HostValue& v = *found;
     out->type = v.type;
     out->isArray = v.isArray ? 1 : 0;
     out->count = v.isArray ? v.count : 1;
@@ -233,12 +277,12 @@ ObscuraStatus TestHost::sampleTransformThunk(void* user, const char* path, doubl
     auto* self = static_cast<TestHost*>(user);
     if (auto motion = self->motions_.find(path); motion != self->motions_.end() && maxSamples >= 2) {
         const Motion& m = motion->second;
-        uint32_t n = t1 > t0 ? 2 : 1;
+        uint32_t n = t1 > t0 ? std::min(m.samples, maxSamples) : 1;
         for (uint32_t i = 0; i < n; ++i) {
-            double t = i == 0 ? t0 : t1;
-            double f = std::clamp((t - m.start) / (m.end - m.start), 0.0, 1.0);
+            double t = n == 1 ? t0 : t0 + (t1 - t0) * i / (n - 1);
             times[i] = t;
-            for (int k = 0; k < 16; ++k) matrices[i * 16 + k] = m.atStart[k] + f * (m.atEnd[k] - m.atStart[k]);
+            Matrix at = m.at(t);
+            std::memcpy(matrices + i * 16, at.data(), sizeof(double) * 16);
         }
         *count = n;
         return OBSCURA_OK;

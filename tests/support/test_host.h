@@ -9,6 +9,7 @@
 #include <obscura/obscura.h>
 
 #include <array>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -27,6 +28,7 @@ struct HostValue {
     size_t count = 1;
 
     static HostValue floatValue(float v);
+    static HostValue doubleValue(double v);
     static HostValue float3(float x, float y, float z);
     static HostValue float2(float x, float y);
     static HostValue int2(int32_t x, int32_t y);
@@ -59,10 +61,16 @@ public:
                  Matrix transform = identity());
     void set(const std::string& path, const std::string& attribute, HostValue value);
     void setInterpolation(const std::string& path, const std::string& attribute, ObscuraInterpolation interpolation);
+    // Time samples of an attribute: float values interpolate linearly between them (as USD's),
+    // held before the first and after the last; they win over the value set().
+    void setTimeSamples(const std::string& path, const std::string& attribute, std::map<double, HostValue> samples);
     void setTransform(const std::string& path, Matrix transform);
     // A transform moving linearly from `atStart` at time `start` to `atEnd` at `end` (held outside):
     // sampleTransform then answers with the interval's two ends, as a host with time samples does.
     void setTransformMotion(const std::string& path, double start, Matrix atStart, double end, Matrix atEnd);
+    // A transform given by a function of time: sampleTransform answers with `samples` evenly spaced
+    // samples over the interval asked for (a host with that many time samples in it).
+    void setTransformFunction(const std::string& path, std::function<Matrix(double)> at, uint32_t samples);
 
     // Convenience scene pieces.
     void addCamera(const std::string& path, Matrix transform, float focalLength = 50.0f, float aperture = 20.955f);
@@ -96,10 +104,12 @@ private:
     ObscuraSceneDelegate sceneDelegate_{};
     std::map<std::string, std::map<std::string, HostValue>> values_;
     std::map<std::string, std::map<std::string, ObscuraInterpolation>> interpolations_;
+    std::map<std::string, std::map<std::string, std::map<double, HostValue>>> timeSamples_;
+    HostValue sampled_;  // the last interpolated value handed out
     std::map<std::string, Matrix> transforms_;
     struct Motion {
-        double start, end;
-        Matrix atStart, atEnd;
+        std::function<Matrix(double)> at;
+        uint32_t samples;
     };
     std::map<std::string, Motion> motions_;
     std::vector<std::string> errors_;

@@ -1,0 +1,88 @@
+#include "passes/motion_blur.h"
+
+#include "passes/image_compute_pass.h"
+
+#include <stdexcept>
+
+namespace obscura::passes {
+namespace {
+
+// Mirrors shaders/common/motion_blur_common.glsl.
+struct MotionBlurConstants {
+    float maxRadius;
+    float spanScale;
+    int32_t samples;
+    float softDepth;
+};
+
+constexpr uint32_t kTileSize = 32;  // MOTION_BLUR_TILE_SIZE
+static_assert(float(kTileSize) == kMotionBlurMaxRadius);
+// Soft depth comparison over 1% of the centre's depth: surfaces that close blur together
+// (McGuire 2012's SOFT_Z_EXTENT, made relative so it does not depend on the scene's units).
+constexpr float kSoftDepthFraction = 0.01f;
+// |V| and linear depth per pixel; the tiles' velocities.
+constexpr VkFormat kSpeedDepthFormat = VK_FORMAT_R16G16_SFLOAT;
+constexpr VkFormat kTileVelocityFormat = VK_FORMAT_R16G16_SFLOAT;
+
+gpu::ImageDesc imageOf(VkFormat format, uint32_t width, uint32_t height) {
+    gpu::ImageDesc desc;
+    desc.format = format;
+    desc.width = width;
+    desc.height = height;
+    return desc;
+}
+
+}  // namespace
+
+gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                                     const GBuffer& gbuffer, gpu::ImageHandle hdrColor, int samples) {
+    if (samples < kMinMotionBlurSamples || samples > kMaxMotionBlurSamples)
+        throw std::invalid_argument("motion blur: samples out of range");
+    if (!gbuffer.velocity.valid()) throw std::invalid_argument("motion blur: the G-buffer has no velocity target");
+    uint32_t tilesWide = (scene.width + kTileSize - 1) / kTileSize, tilesHigh = (scene.height + kTileSize - 1) / kTileSize;
+    MotionBlurConstants constants{kMotionBlurMaxRadius, 1.0f, samples, kSoftDepthFraction};
+
+    gpu::ImageHandle tileMax = graph.createImage("motionBlurTileMax", imageOf(kTileVelocityFormat, tilesWide, tilesHigh));
+    gpu::ImageHandle speedDepth =
+        graph.createImage("motionBlurSpeedDepth", imageOf(kSpeedDepthFormat, scene.width, scene.height));
+    ImageComputePass tiles{"motion_blur_tile_max",
+                           {{gbuffer.velocity, SampledRead::Nearest}, {gbuffer.depth, SampledRead::Depth}},
+                           {tileMax, speedDepth},
+                           pushConstantBytes(constants)};
+    tiles.camera = scene.camera->buffer;
+    tiles.texelsPerGroup = 1;
+    addImageComputePass(graph, pipelines, tiles);
+
+    gpu::ImageHandle neighbourMax =
+        graph.createImage("motionBlurNeighbourMax", imageOf(kTileVelocityFormat, tilesWide, tilesHigh));
+    addImageComputePass(graph, pipelines,
+                        {"motion_blur_neighbour_max", {{tileMax, SampledRead::Nearest}}, {neighbourMax},
+                         pushConstantBytes(constants)});
+
+    // Separable [Sousa08]: the first pass covers one tap spacing of the second.
+    VkFormat format = graph.imageDesc(hdrColor).format;
+    gpu::ImageHandle prefiltered = graph.createImage("motionBlurPrefiltered", imageOf(format, scene.width, scene.height));
+    MotionBlurConstants fine = constants;
+    fine.spanScale = 1.0f / float(samples);
+    ImageComputePass first{"motion_blur_gather",
+                           {{hdrColor, SampledRead::Nearest},
+                            {speedDepth, SampledRead::Nearest},
+                            {neighbourMax, SampledRead::Nearest}},
+                           {prefiltered},
+                           pushConstantBytes(fine)};
+    first.label = "motion_blur_gather_fine";
+    addImageComputePass(graph, pipelines, first);
+
+    gpu::ImageHandle output = graph.createImage("motionBlurColor", imageOf(format, scene.width, scene.height));
+    ImageComputePass second{"motion_blur_gather",
+                            {{prefiltered, SampledRead::Nearest},
+                             {speedDepth, SampledRead::Nearest},
+                             {neighbourMax, SampledRead::Nearest}},
+                            {output},
+                            pushConstantBytes(constants)};
+    second.label = "motion_blur_gather_coarse";
+    addImageComputePass(graph, pipelines, second);
+    return output;
+}
+
+}  // namespace obscura::passes

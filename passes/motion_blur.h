@@ -1,0 +1,30 @@
+// Motion blur (frame step 11, after depth of field; seed 000 "Motion blur"): McGuire et al. 2012's
+// reconstruction filter with the seed's improvements.
+//   motion_blur_tile_max       per-pixel velocity (moving draws' own from the G-buffer, the
+//                              camera's from depth elsewhere), |V| and depth baked for the gather,
+//                              the longest velocity of each k x k tile;
+//   motion_blur_neighbour_max  the longest of the 3x3 tiles around each tile;
+//   motion_blur_gather (x2)    the reconstruction filter along the neighbour max, separable: a
+//                              prefilter over one step, then the whole blur over its result.
+#pragma once
+
+#include "passes/frame_scene.h"
+#include "passes/gbuffer.h"
+#include "passes/pipeline_cache.h"
+
+namespace obscura::passes {
+
+// Taps per gather pass: the two passes place samples^2 along a blur.
+constexpr int kDefaultMotionBlurSamples = 8;
+constexpr int kMinMotionBlurSamples = 2;
+constexpr int kMaxMotionBlurSamples = 32;
+
+// The longest blur radius in pixels (half a streak): the tile side (McGuire 2012's k).
+constexpr float kMotionBlurMaxRadius = 32.0f;
+
+// Reads the light accumulation (pre-exposed, either format of lighting.h), the G-buffer's depth
+// and velocity (FrameScene::motionBlur); returns a new image of the same format.
+gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                                     const GBuffer& gbuffer, gpu::ImageHandle hdrColor, int samples);
+
+}  // namespace obscura::passes

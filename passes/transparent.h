@@ -1,0 +1,34 @@
+// Transparent surfaces (frame step 8, DESIGN.md "The frame"): a forward raster pass after deferred
+// lighting that draws FrameScene::transparentDraws back to front into the light accumulation,
+// lit by every light, its shadows and the dome, blended "over" with premultiplied colour
+// (shaders/transparent.frag).
+#pragma once
+
+#include "passes/environment_prefilter.h"
+#include "passes/gbuffer.h"
+
+namespace obscura::passes {
+
+// What the transparent surfaces leave in a pixel, "over" the opaque surfaces and the background:
+// 1 - prod(1 - opacity_i); the colour AOV's alpha composites it with the G-buffer's coverage
+// (shaders/common/coverage.glsl).
+constexpr VkFormat kTransparentCoverageFormat = VK_FORMAT_R8_UNORM;
+
+struct TransparentSettings {
+    // Soft-particle fade (render setting transparents:fadeDistance, scene units): a surface fades
+    // out over this distance in front of the opaque surface behind it; 0: a hard intersection.
+    float fadeDistance = 0.0f;
+};
+
+// `draws` are the transparent draws to render, back to front (FrameScene::transparentDraws).
+// `opaqueDepth` is the depth transparents are tested against and fade with (sampled, no depth
+// attachment): the G-buffer's depth, or with a multisampled G-buffer the max of its samples (seed
+// 000 "Deferred MSAA \ performance shortcuts (2)"). `hdr` is the light accumulation, blended
+// into in place. Returns the transparent coverage (kTransparentCoverageFormat; all 0 when there
+// are no draws: then the pass only clears it).
+gpu::ImageHandle addTransparentPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                                    const std::vector<uint32_t>& draws, gpu::ImageHandle opaqueDepth,
+                                    gpu::ImageHandle hdr, gpu::ImageHandle shadowAtlas,
+                                    const EnvironmentLighting& environment, const TransparentSettings& settings);
+
+}  // namespace obscura::passes

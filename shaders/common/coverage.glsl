@@ -1,0 +1,10 @@
+// Coverage of a pixel (the colour AOV's premultiplied alpha): the opaque surfaces' (G-buffer)
+// and the transparent surfaces' over them (passes/transparent.h: 1 - prod(1 - opacity_i), what
+// the forward pass's "over" blend leaves in its coverage target). Light through both: alpha
+// composites "over" as the colour does (Porter & Duff 1984).
+#ifndef OBSCURA_COVERAGE_GLSL
+#define OBSCURA_COVERAGE_GLSL
+
+float compositeCoverage(float opaque, float transparent) { return 1.0 - (1.0 - opaque) * (1.0 - transparent); }
+
+#endif

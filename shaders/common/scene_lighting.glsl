@@ -1,0 +1,57 @@
+// What a surface point receives from the frame's lights, shared by the deferred lighting pass
+// (lighting.comp, G-buffer surfaces) and the forward pass of transparent surfaces
+// (transparent.frag): the textured dome's sample and each light's reflection with its shadow.
+//
+// The includer declares, before including this file (frame_data.glsl types):
+//   EnvironmentData environment          the textured dome's frame (a uniform block)
+//   vec4 irradianceSh[SH_COEFFICIENTS]   its irradiance coefficients (a storage buffer)
+//   sampler2D prefilteredEnvironment     its prefiltered latlong chain (a 1x1 black image without one)
+//   ShadowViewData shadowViews[], sampler2D shadowAtlas   (shadow_sampling.glsl)
+#ifndef OBSCURA_SCENE_LIGHTING_GLSL
+#define OBSCURA_SCENE_LIGHTING_GLSL
+
+#include "light_evaluation.glsl"
+#include "environment_map.glsl"
+#include "shadow_sampling.glsl"
+
+// The textured dome seen from s: SH irradiance around N, the prefiltered chain along the mirror
+// direction at the lobes' roughness (the split sum's N = V = R lookup), in the dome's frame.
+EnvironmentSample sampleEnvironment(SurfacePoint s) {
+    if (environment.params.x < 0.5) return EnvironmentSample(vec3(1.0), vec3(1.0), vec3(1.0));
+    mat3 toDome = mat3(environment.worldToDome);
+    vec3 N = normalize(toDome * s.N);
+    vec3 R = normalize(toDome * reflect(-s.V, s.N));
+    vec2 uv = latlongUv(R);
+    float lastLevel = float(textureQueryLevels(prefilteredEnvironment) - 1);
+    EnvironmentSample e;
+    e.diffuse = shIrradiance(irradianceSh, N) / PI;
+    e.specular = textureLod(prefilteredEnvironment, uv, prefilteredLod(s.roughness, lastLevel)).rgb;
+    e.coat = s.clearcoat > 0.0
+        ? textureLod(prefilteredEnvironment, uv, prefilteredLod(s.clearcoatRoughness, lastLevel)).rgb
+        : vec3(0.0);
+    return e;
+}
+
+bool isLocalLight(LightData light) {
+    uint type = uint(light.positionType.w);
+    return type != LIGHT_DISTANT && type != LIGHT_DOME;
+}
+
+// A local light's influence sphere (delegate/prims/light.cpp): beyond it the light is below what
+// the accumulation shows, and the lighting pass's tiles do not list it.
+bool lightReaches(LightData light, vec3 P) {
+    if (!isLocalLight(light)) return true;
+    vec3 d = P - light.positionType.xyz;
+    return dot(d, d) <= light.factors.w * light.factors.w;
+}
+
+// One light's reflection off s towards the eye, scaled by its shadow maps' visibility; the
+// shadow lookups only where the light reaches the surface at all.
+vec3 reflectShadowedLight(SurfacePoint s, LightData light, float viewDistance) {
+    vec3 reflected = reflectFromLight(s, light);
+    if (light.shadow.y > 0u && any(greaterThan(reflected, vec3(0.0))))
+        reflected *= shadowVisibility(light, s.P, s.N, viewDistance);
+    return reflected;
+}
+
+#endif

@@ -1,0 +1,107 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Transparent surfaces (frame step 8), forward: after deferred lighting, into the pre-exposed light
+// accumulation, without MSAA (seed 000 "MSAA \ performance shortcuts (3)": render only opaque with
+// MSAA, then transparents without). Every light, its shadows and the dome light the surface through
+// the code the lighting pass uses (common/scene_lighting.glsl); no tiles, each local light within
+// its influence range.
+//
+// UsdPreviewSurface opacity (https://openusd.org/release/spec_usdpreviewsurface.html): "even a
+// fully transparent object still receives lighting as, for example, perfectly clear glass still has
+// a specular response". So opacity is the coverage of the diffuse layer (and its emission): the
+// output is premultiplied, diffuse x opacity + specular, alpha = opacity, blended
+// src + dst (1 - alpha): a matte surface blends as lit * opacity + behind * (1 - opacity), and
+// glass keeps its reflections.
+#include "common/frame_data.glsl"
+#include "common/material_inputs.glsl"
+#include "common/light_evaluation.glsl"
+#include "common/environment_map.glsl"
+#include "common/view_depth.glsl"
+
+layout(location = 0) in vec3 inNormal;
+layout(location = 1) in vec3 inColor;
+layout(location = 2) in vec3 inWorldPosition;
+layout(location = 3) flat in uint inInstance;
+layout(location = 4) in vec2 inUv;
+layout(location = 5) in vec4 inTangent;
+
+layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
+layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
+layout(set = 0, binding = 2, std430) readonly buffer Materials { MaterialData materials[]; };
+layout(set = 0, binding = 3, std430) readonly buffer Lights { uint lightCount; uint pad[3]; LightData lights[]; };
+// The depth transparents are tested against and fade with: the G-buffer's (its max over the
+// samples where the G-buffer is multisampled: seed 000 "Deferred MSAA \ performance shortcuts (2)").
+layout(set = 0, binding = 4) uniform sampler2D sceneDepth;
+layout(set = 0, binding = 5, std430) readonly buffer ShadowViews { ShadowViewData shadowViews[]; };
+layout(set = 0, binding = 6) uniform sampler2D shadowAtlas;
+layout(set = 0, binding = 7, std140) uniform Environment { EnvironmentData environment; };
+layout(set = 0, binding = 8, std430) readonly buffer EnvironmentIrradiance { vec4 irradianceSh[SH_COEFFICIENTS]; };
+layout(set = 0, binding = 9) uniform sampler2D prefilteredEnvironment;
+// The draw's material textures, pushed per draw as in the G-buffer pass.
+layout(set = 1, binding = 0) uniform sampler2D diffuseTexture;
+layout(set = 1, binding = 1) uniform sampler2D roughnessTexture;
+layout(set = 1, binding = 2) uniform sampler2D metallicTexture;
+layout(set = 1, binding = 3) uniform sampler2D opacityTexture;
+layout(set = 1, binding = 4) uniform sampler2D normalTexture;
+layout(set = 1, binding = 5) uniform sampler2D occlusionTexture;
+
+layout(push_constant) uniform Push {
+    uint instanceIndex;    // read by the vertex stage (gbuffer.vert)
+    float fadeDistance;    // render setting transparents:fadeDistance, scene units; 0: no fade
+} push;
+
+#include "common/scene_lighting.glsl"
+
+layout(location = 0) out vec4 outRadiance;  // premultiplied, pre-exposed
+layout(location = 1) out vec4 outCoverage;  // x and w: opacity (alpha "over" alpha)
+
+// Soft-particle depth fade: the surface fades out over `fadeDistance` in front of the opaque
+// surface behind it, so a pane meeting a floor shows no hard seam. `depthImage` holds the opaque
+// depth per pixel: the G-buffer's here; a multisampled G-buffer supplies the max of its samples
+// (seed 000 "Deferred MSAA \ performance shortcuts (2)": max depth works and is N times faster
+// than per-sample passes). Returns 0 where the opaque surface is in front (the depth test).
+float depthFade(sampler2D depthImage, ivec2 pixel, float fragmentDepth, float fadeDistance) {
+    float opaqueDepth = texelFetch(depthImage, pixel, 0).r;
+    if (fragmentDepth >= opaqueDepth) return 0.0;
+    if (fadeDistance <= 0.0) return 1.0;
+    float gap = linearDepthFromDevice(camera.projection, opaqueDepth) -
+                linearDepthFromDevice(camera.projection, fragmentDepth);
+    return clamp(gap / fadeDistance, 0.0, 1.0);
+}
+
+void main() {
+    InstanceData inst = instances[inInstance];
+    MaterialData mat = materials[inst.materialIndex];
+    vec3 n = normalize(inNormal);
+    if ((inst.flags & INSTANCE_DOUBLE_SIDED) != 0u && !gl_FrontFacing) n = -n;
+    n = perturbedNormal(n, inTangent, mat.textures[TEXTURE_NORMAL], normalTexture, inUv);
+    vec3 albedo = (inst.flags & INSTANCE_VERTEX_COLOR) != 0u
+                      ? inColor
+                      : colorInput(mat.diffuseRoughness.rgb, mat.textures[TEXTURE_DIFFUSE], diffuseTexture, inUv);
+    float roughness = scalarInput(mat.diffuseRoughness.a, mat.textures[TEXTURE_ROUGHNESS], roughnessTexture, inUv);
+    float metallic = scalarInput(mat.emissiveMetallic.a, mat.textures[TEXTURE_METALLIC], metallicTexture, inUv);
+    float opacity = scalarInput(mat.opacity.x, mat.textures[TEXTURE_OPACITY], opacityTexture, inUv);
+    float occlusion = scalarInput(mat.opacity.z, mat.textures[TEXTURE_OCCLUSION], occlusionTexture, inUv);
+
+    float fade = depthFade(sceneDepth, ivec2(gl_FragCoord.xy), gl_FragCoord.z, push.fadeDistance);
+    if (fade <= 0.0) discard;
+
+    SurfacePoint s = surfaceFromMaterial(mat, albedo, metallic);
+    s.P = inWorldPosition;
+    s.N = n;
+    s.V = normalize(camera.position.xyz - s.P);
+    s.roughness = roughness;
+    // No SSAO: its obscurance is the opaque surface's behind; the material's occlusion still holds.
+    s.ambientAccess = occlusion;
+    s.environment = sampleEnvironment(s);
+    // Coverage scales the diffuse layer only (see above): the lights' response is linear in it.
+    s.diffuse *= opacity;
+    float viewDistance = linearDepthFromDevice(camera.projection, gl_FragCoord.z);
+    vec3 radiance = mat.emissiveMetallic.rgb * opacity;
+    // Clipped lights light transparents unclipped: their volumes mark opaque pixels in stencil.
+    for (uint i = 0u; i < lightCount; ++i)
+        if (lightReaches(lights[i], s.P)) radiance += reflectShadowedLight(s, lights[i], viewDistance);
+    // The fade thins the whole surface, reflections included, as coverage.
+    outRadiance = vec4(radiance * camera.exposureScale * fade, opacity * fade);
+    outCoverage = vec4(opacity * fade, 0.0, 0.0, opacity * fade);
+}
