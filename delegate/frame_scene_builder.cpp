@@ -73,8 +73,8 @@ const Light* environmentDome(const std::map<std::string, std::unique_ptr<Prim>>&
 FrameView frameView(const FrameSceneInputs& in) {
     const Camera& cam = in.camera;
     double aspect = double(in.width) / double(in.height);
-    if (in.motionBlurShutter && !in.sample)
-        return {cam.viewMatrix({0.0, 0.0}, shutterCentre(*in.motionBlurShutter)), cam.projectionMatrix(aspect)};
+    if (in.shutter && !in.sample)
+        return {cam.viewMatrix({0.0, 0.0}, shutterCentre(*in.shutter)), cam.projectionMatrix(aspect)};
     if (!in.sample) return {cam.viewMatrix(), cam.projectionMatrix(aspect)};
     std::array<double, 2> ndcJitter{2.0 * in.sample->pixelJitter[0] / in.width, 2.0 * in.sample->pixelJitter[1] / in.height};
     return {cam.viewMatrix(in.sample->lensOffset, in.sample->time),
@@ -94,20 +94,25 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     Matrix4d projection = multiply(unjitteredProjection, in.clipJitter);
     Matrix4d cameraToWorld = kIdentity;
     invert(view, cameraToWorld);
-    auto transformOf = [&](const Mesh& mesh) {
-        if (in.sample) return mesh.transformAt(in.sample->time);
-        if (in.motionBlurShutter) return mesh.transformAt(shutterCentre(*in.motionBlurShutter));
-        return mesh.transform();
-    };
-    // Motion blur: where a mesh's transform is at the shutter's open and close, for meshes that
-    // move or deform within it; static meshes have none.
+    // When the frame is seen: a sub-frame's time, the shutter's centre, or the sync time (none).
+    std::optional<double> frameTime;
+    if (in.sample) frameTime = in.sample->time;
+    else if (in.shutter) frameTime = shutterCentre(*in.shutter);
+    auto transformOf = [&](const Mesh& mesh) { return frameTime ? mesh.transformAt(*frameTime) : mesh.transform(); };
+    // Where a mesh's transform is at the shutter's open and close, for meshes that move or deform
+    // within it (motion blur's velocities); static meshes have none. A reference sub-frame draws
+    // deforming meshes between their shutter positions, through the same records.
     auto motionOf = [&](const Mesh& mesh) -> std::optional<std::array<Matrix4d, 2>> {
-        if (!in.motionBlurShutter) return std::nullopt;
-        std::array<Matrix4d, 2> ends{mesh.transformAt((*in.motionBlurShutter)[0]), mesh.transformAt((*in.motionBlurShutter)[1])};
+        if (!in.shutter) return std::nullopt;
+        if (in.sample) {
+            if (!mesh.shutterPositions()) return std::nullopt;
+            return std::array<Matrix4d, 2>{transformOf(mesh), transformOf(mesh)};
+        }
+        std::array<Matrix4d, 2> ends{mesh.transformAt((*in.shutter)[0]), mesh.transformAt((*in.shutter)[1])};
         if (ends[0] == ends[1] && !mesh.shutterPositions()) return std::nullopt;
         return ends;
     };
-    auto shutterPositionsOf = [&](const Mesh& mesh) { return in.motionBlurShutter ? mesh.shutterPositions() : nullptr; };
+    auto shutterPositionsOf = [&](const Mesh& mesh) { return in.shutter ? mesh.shutterPositions() : nullptr; };
     Matrix4d viewProjection = multiply(view, projection);
     Matrix4d inverseViewProjection = kIdentity;
     invert(viewProjection, inverseViewProjection);
@@ -124,10 +129,13 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     cd.resolution = {float(in.width), float(in.height)};
     cd.exposureScale = float(cam.linearExposureScale() * std::exp2(in.exposureStops));
     cd.shutterOpenViewProjection = cd.shutterCloseViewProjection = toFloats<passes::Mat4>(multiply(view, unjitteredProjection));
+    cd.shutterPosition = 0.5f;
+    if (in.shutter && in.sample && (*in.shutter)[1] > (*in.shutter)[0])
+        cd.shutterPosition = float((in.sample->time - (*in.shutter)[0]) / ((*in.shutter)[1] - (*in.shutter)[0]));
     bool cameraMoves = false;
-    if (in.motionBlurShutter && !in.sample) {
+    if (in.shutter && !in.sample) {
         for (int end = 0; end < 2; ++end) {
-            Matrix4d atEnd = multiply(cam.viewMatrix({0.0, 0.0}, (*in.motionBlurShutter)[end]), unjitteredProjection);
+            Matrix4d atEnd = multiply(cam.viewMatrix({0.0, 0.0}, (*in.shutter)[end]), unjitteredProjection);
             (end == 0 ? cd.shutterOpenViewProjection : cd.shutterCloseViewProjection) = toFloats<passes::Mat4>(atEnd);
         }
         cameraMoves = cd.shutterOpenViewProjection != cd.shutterCloseViewProjection;
@@ -167,7 +175,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
             }
         } else if (auto* l = dynamic_cast<const Light*>(prim.get())) {
             if (l->visible()) {
-                lights.push_back(withInfluenceRange(l->data(), cd.exposureScale));
+                lights.push_back(withInfluenceRange(frameTime ? l->dataAt(*frameTime) : l->data(), cd.exposureScale));
                 lightCastsShadows.push_back(l->castsShadows());
                 lightPrims.push_back(l);
                 if (l == in.environmentDome) lights.back().factors[2] = 1.0f;
@@ -348,7 +356,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     scene.instances = uploadRecords(device, nullptr, 0, instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instances");
     scene.instanceMotions =
         uploadRecords(device, nullptr, 0, motions, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instance motions");
-    scene.motionBlur = in.motionBlurShutter && !in.sample && (cameraMoves || !motions.empty());
+    scene.motionBlur = in.shutter && !in.sample && (cameraMoves || !motions.empty());
     scene.materials = uploadRecords(device, nullptr, 0, materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials");
     scene.lights = uploadRecords(device, &header, sizeof(header), lights, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights");
     passes::EnvironmentData environment = environmentData(in.environmentDome);

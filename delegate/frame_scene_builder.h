@@ -42,11 +42,13 @@ struct FrameSceneInputs {
     // keep the unjittered frustum, so SSAO's history check and the cascades' texel grids do not
     // move with the jitter. Identity for reference sub-frames, which jitter through `sample`.
     Matrix4d clipJitter = kIdentity;
-    // Motion blur's shutter, absolute time codes [open, close]: the frame is seen at its centre
-    // (the reconstruction filter spreads each pixel both ways along its velocity, McGuire et al.
-    // 2012) and the passes get where the camera and every instance are at its ends. None: no
-    // motion blur, the frame is seen at the sync time.
-    std::optional<std::array<double, 2>> motionBlurShutter = std::nullopt;
+    // The camera's shutter, absolute time codes [open, close], when the frame samples it: a
+    // motion-blurred frame (no `sample`) is seen at its centre (the reconstruction filter spreads
+    // each pixel both ways along its velocity, McGuire et al. 2012) and the passes get where the
+    // camera and every instance are at its ends; a reference sub-frame (`sample`) is seen at its
+    // own time within it. None: the shutter is closed or not sampled (motionBlur off), the frame is
+    // seen at the sync time.
+    std::optional<std::array<double, 2>> shutter = std::nullopt;
 };
 
 // The first visible dome with a texture, in path order: the one the environment maps are made

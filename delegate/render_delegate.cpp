@@ -44,6 +44,7 @@ constexpr AovInfo kAovs[] = {
     {"albedo", passes::Aov::Albedo, OBSCURA_FORMAT_FLOAT32_VEC3},
     {"primId", passes::Aov::PrimId, OBSCURA_FORMAT_INT32},
     {"display", passes::Aov::Display, OBSCURA_FORMAT_UNORM8_VEC4},
+    {"motion", passes::Aov::Motion, OBSCURA_FORMAT_FLOAT32_VEC3},
 };
 
 const char* formatName(ObscuraFormat f) {
@@ -94,6 +95,10 @@ RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
     unoccluded_.accessibility = device_->createTextureWithData(one, &open, sizeof(open), "ssao off");
     one.format = passes::kSsaoDepthFormat;
     unoccluded_.halfDepth = device_->createTextureWithData(one, &farDepth, sizeof(farDepth), "ssao off depth");
+    const uint16_t still[2] = {0xFBFF, 0};  // half floats: kStaticVelocity (-65504), 0
+    static_assert(passes::kStaticVelocity == -65504.0f);
+    one.format = passes::kVelocityFormat;
+    stillVelocity_ = device_->createTextureWithData(one, still, sizeof(still), "still velocity");
     textures_ = std::make_unique<TextureCache>(*device_, options.log);
     geometry_ = std::make_unique<GeometryCache>(*device_);
     environment_ = std::make_unique<EnvironmentCache>(*device_, textures_->sampler(WrapMode::Repeat, WrapMode::Clamp));
@@ -108,6 +113,7 @@ RenderDelegate::~RenderDelegate() {
     geometry_.reset();
     bestFitNormals_.reset();
     unoccluded_ = {};
+    stillVelocity_.reset();
     accumulation_ = {};
     msaaTaggedPixels_.reset();
     ssaoHistory_ = {};
@@ -333,7 +339,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         shutter = {desc.time + cameraParams.shutterOpen, desc.time + cameraParams.shutterClose};
     uint32_t referenceSubFrames = static_cast<uint32_t>(settings_.number("reference"));
     if (referenceSubFrames > 0) accumulateReference(frame, lens, referenceSubFrames, shutter);
-    else if (shutter[1] > shutter[0]) frame.motionBlurShutter = shutter;
+    else if (shutter[1] > shutter[0]) frame.shutter = shutter;
 
     // Temporal AA picks this frame's jitter before the scene's camera constants are packed. The
     // reference is its own ground truth, jittered per sub-frame: no temporal AA there.
@@ -428,8 +434,12 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (temporalAa && !passes::hasDepthOfField(lens) && !scene.motionBlur) hdrAlpha = passes::HdrAlpha::Coverage;
     gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance,
                                                       transparentCoverage, grading_);
+    gpu::ImageHandle velocity =
+        gbuffer.velocity.valid()
+            ? gbuffer.velocity
+            : graph.importImage("velocity.still", stillVelocity_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, hdrAlpha, transparentCoverage, display,
-                               requests);
+                               velocity, requests);
     executeFrame(graph);
     converged_ = !temporalAa || temporalAa->converged;
     if (msaa) {
@@ -539,6 +549,7 @@ void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const pa
     for (size_t k = 0; k < subFrames.size(); ++k) {
         const ReferenceSubFrame& sub = subFrames[k];
         FrameSceneInputs inputs = frame;
+        if (close > open) inputs.shutter = shutter;
         inputs.sample = FrameSample{open + sub.shutter * (close - open),
                                     {sub.aperture[0] * apertureRadius, sub.aperture[1] * apertureRadius},
                                     sub.pixelJitter};

@@ -102,6 +102,8 @@ private:
     struct {
         gpu::ImagePtr accessibility, halfDepth;
     } unoccluded_;
+    // A frame without a velocity target reads this one texel of kStaticVelocity (the motion AOV).
+    gpu::ImagePtr stillVelocity_;
     struct {
         gpu::ImagePtr image;
         VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;

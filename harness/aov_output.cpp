@@ -37,6 +37,8 @@ std::string writeExrAovs(const std::string& path, const std::vector<MappedAov>& 
             layers.push_back({"normal", {"X", "Y", "Z"}, PT::Float, b.data, b.rowStride});
         } else if (m.aov == "albedo") {
             layers.push_back({"albedo", {"R", "G", "B"}, PT::Half, b.data, b.rowStride});
+        } else if (m.aov == "motion") {
+            layers.push_back({"motion", {"X", "Y", "Z"}, PT::Float, b.data, b.rowStride});
         } else if (m.aov == "primId") {
             layers.push_back({"primId", {"id"}, PT::Uint, b.data, b.rowStride});
         }

@@ -22,7 +22,8 @@ gpu::ComputePipelineDesc describeAovPackPipeline() {
              {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
              {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
              {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-             {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+             {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+             {11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
             sizeof(PackPush)};
 }
 
@@ -30,7 +31,7 @@ gpu::ComputePipelineDesc describeAovPackPipeline() {
 
 void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                         const GBuffer& gb, gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha,
-                        gpu::ImageHandle transparentCoverage, gpu::ImageHandle display,
+                        gpu::ImageHandle transparentCoverage, gpu::ImageHandle display, gpu::ImageHandle velocity,
                         const std::vector<AovRequest>& requests) {
     if (requests.empty()) return;
     // The pack writes `targets`; where a device-local staging buffer exists, a copy pass then
@@ -58,10 +59,11 @@ void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const 
             pass.read(gb.instance, gpu::Usage::SampledCompute);
             pass.read(hdrColor, gpu::Usage::SampledCompute);
             pass.read(transparentCoverage, gpu::Usage::SampledCompute);
+            pass.read(velocity, gpu::Usage::SampledCompute);
             pass.read(display, gpu::Usage::StorageImageRead);
             for (auto h : targets) pass.write(h, gpu::Usage::StorageBufferWrite);
         },
-        [&device, &pipeline, &scene, gb, hdrColor, hdrAlpha, transparentCoverage, display, targets, requests](
+        [&device, &pipeline, &scene, gb, hdrColor, hdrAlpha, transparentCoverage, display, velocity, targets, requests](
             VkCommandBuffer cmd, const gpu::PassResources& res) {
             VkSampler nearest = device.nearestClampSampler();
             for (size_t i = 0; i < requests.size(); ++i) {
@@ -77,6 +79,7 @@ void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const 
                     .buffer(8, res.buffer(targets[i]))
                     .buffer(9, res.buffer(targets[i]))
                     .sampled(10, res.view(transparentCoverage), nearest)
+                    .sampled(11, res.view(velocity), nearest)
                     .bind(cmd);
                 PackPush push{static_cast<uint32_t>(requests[i].aov), scene.width, scene.height,
                               hdrAlpha == HdrAlpha::Coverage ? 1u : 0u};

@@ -9,7 +9,7 @@
 
 namespace obscura::passes {
 
-enum class Aov : uint32_t { Color = 0, Depth = 1, Normal = 2, Albedo = 3, PrimId = 4, Display = 5 };
+enum class Aov : uint32_t { Color = 0, Depth = 1, Normal = 2, Albedo = 3, PrimId = 4, Display = 5, Motion = 6 };
 
 struct AovRequest {
     Aov aov;
@@ -19,9 +19,11 @@ struct AovRequest {
 
 // The colour AOV's alpha is `hdrColor`'s where that holds coverage, else the G-buffer's coverage
 // composited with `transparentCoverage` (passes/transparent.h).
+// `velocity`: the G-buffer's velocity target, or a 1x1 image holding kStaticVelocity where the frame
+// has none (the motion AOV is then the camera's motion within the shutter).
 void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                         const GBuffer& gbuffer, gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha,
-                        gpu::ImageHandle transparentCoverage, gpu::ImageHandle display,
+                        gpu::ImageHandle transparentCoverage, gpu::ImageHandle display, gpu::ImageHandle velocity,
                         const std::vector<AovRequest>& requests);
 
 }  // namespace obscura::passes

@@ -18,7 +18,7 @@ struct alignas(16) CameraData {
     std::array<float, 4> position;
     std::array<float, 2> resolution;
     float exposureScale;
-    float pad0;
+    float shutterPosition;  // 0 the shutter's open .. 1 its close: where deforming meshes are drawn
     Mat4 shutterOpenViewProjection;   // unjittered, for motion blur's velocities
     Mat4 shutterCloseViewProjection;
 };

@@ -13,6 +13,7 @@ enum class Variant {
     StaticWithVelocityTarget,  // leaves the velocity target at its clear value (kStaticVelocity)
     Moving,                    // a rigid transform moves: writes velocity
     Deforming,                 // points move (a second vertex stream): writes velocity
+    DeformingWithoutVelocity,  // the same in a reference sub-frame: its points at the sub-frame's time
 };
 
 const char* pipelineName(Variant variant) {
@@ -21,11 +22,13 @@ const char* pipelineName(Variant variant) {
         case Variant::StaticWithVelocityTarget: return "gbuffer.staticWithVelocityTarget";
         case Variant::Moving: return "gbuffer.moving";
         case Variant::Deforming: return "gbuffer.deforming";
+        case Variant::DeformingWithoutVelocity: return "gbuffer.deformingWithoutVelocity";
     }
     return "";
 }
 
 bool writesVelocity(Variant variant) { return variant == Variant::Moving || variant == Variant::Deforming; }
+bool deforms(Variant variant) { return variant == Variant::Deforming || variant == Variant::DeformingWithoutVelocity; }
 
 gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, VkSampleCountFlagBits samples) {
     gpu::GraphicsPipelineDesc d;
@@ -34,19 +37,19 @@ gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, VkSampleCount
                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
-    if (writesVelocity(variant)) d.bindings.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+    if (writesVelocity(variant) || deforms(variant)) d.bindings.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
     d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
     d.pushConstantSize = sizeof(uint32_t);
     setSceneVertexInput(d);
     if (variant == Variant::Moving) d.vertexShader = "gbuffer_moving.vert";
-    if (variant == Variant::Deforming) d.vertexShader = "gbuffer_deforming.vert";
-    if (variant == Variant::Deforming) {
+    if (deforms(variant)) {
+        d.vertexShader = "gbuffer_deforming.vert";
         d.vertexStrides.push_back(sizeof(ShutterPositions));
         d.vertexAttributes.push_back({6, VK_FORMAT_R32G32B32_SFLOAT, offsetof(ShutterPositions, open), 1});
         d.vertexAttributes.push_back({7, VK_FORMAT_R32G32B32_SFLOAT, offsetof(ShutterPositions, close), 1});
     }
     d.colorFormats = {kNormalRoughnessFormat, kAlbedoMetallicFormat, kInstanceFormat};
-    if (variant != Variant::Static) d.colorFormats.push_back(kVelocityFormat);
+    if (variant != Variant::Static && variant != Variant::DeformingWithoutVelocity) d.colorFormats.push_back(kVelocityFormat);
     // Seed 000 "An improved reconstruction filter (3)": static geometry does not export velocity.
     if (variant == Variant::StaticWithVelocityTarget) d.untouchedColorAttachments = 1u << 3;
     d.depthFormat = kDepthFormat;
@@ -55,9 +58,9 @@ gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, VkSampleCount
 }
 
 Variant variantOf(const Draw& draw, bool velocityTarget) {
+    if (draw.shutterPositions) return velocityTarget ? Variant::Deforming : Variant::DeformingWithoutVelocity;
     if (!velocityTarget) return Variant::Static;
-    if (!draw.moving) return Variant::StaticWithVelocityTarget;
-    return draw.shutterPositions ? Variant::Deforming : Variant::Moving;
+    return draw.moving ? Variant::Moving : Variant::StaticWithVelocityTarget;
 }
 
 }  // namespace
@@ -129,7 +132,8 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const F
         const Draw* draw;
     };
     std::vector<Ordered> ordered;
-    for (Variant variant : {Variant::Static, Variant::StaticWithVelocityTarget, Variant::Moving, Variant::Deforming})
+    for (Variant variant : {Variant::Static, Variant::StaticWithVelocityTarget, Variant::DeformingWithoutVelocity,
+                            Variant::Moving, Variant::Deforming})
         for (const Draw& draw : scene.draws)
             // Transparent surfaces are drawn after lighting (passes/transparent.h).
             if (!draw.transparent && variantOf(draw, scene.motionBlur) == variant)
@@ -154,7 +158,7 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const F
                         .buffer(1, scene.instances->buffer)
                         .buffer(2, scene.materials->buffer)
                         .sampled(3, bestFitNormals->view, device.nearestClampSampler());
-                    if (writesVelocity(variant)) writer.buffer(4, scene.instanceMotions->buffer);
+                    if (writesVelocity(variant) || deforms(variant)) writer.buffer(4, scene.instanceMotions->buffer);
                     writer.bind(cmd);
                     bound = pipeline;
                     pushed = nullptr;  // a new layout: the pushed set starts over

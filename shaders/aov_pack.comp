@@ -5,6 +5,7 @@
 #extension GL_EXT_scalar_block_layout : require
 #include "common/frame_data.glsl"
 #include "common/best_fit_normals.glsl"
+#include "common/motion_velocity.glsl"
 #include "common/instance_target.glsl"
 #include "common/coverage.glsl"
 
@@ -16,6 +17,7 @@ const uint AOV_NORMAL = 2u;
 const uint AOV_ALBEDO = 3u;
 const uint AOV_PRIM_ID = 4u;
 const uint AOV_DISPLAY = 5u;
+const uint AOV_MOTION = 6u;
 
 layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
@@ -28,6 +30,8 @@ layout(set = 0, binding = 7, rgba8) uniform readonly image2D displayColor;
 layout(set = 0, binding = 8, scalar) writeonly buffer Floats { float floats[]; };
 layout(set = 0, binding = 9, scalar) writeonly buffer Words { uint words[]; };
 layout(set = 0, binding = 10) uniform sampler2D transparentCoverage;  // passes/transparent.h
+// The G-buffer's velocity target, or one STATIC_VELOCITY texel where the frame has none.
+layout(set = 0, binding = 11) uniform sampler2D velocityTexture;
 
 layout(push_constant) uniform Push {
     uint aov;
@@ -64,5 +68,11 @@ void main() {
         words[index] = uint(covered ? instances[instanceId - 1u].primId : -1);
     } else if (push.aov == AOV_DISPLAY) {
         words[index] = packUnorm4x8(imageLoad(displayColor, pixel));
+    } else if (push.aov == AOV_MOTION) {
+        vec2 stored = texelFetch(velocityTexture, min(pixel, textureSize(velocityTexture, 0) - 1), 0).xy;
+        vec2 d = pixelDisplacement(stored, texelFetch(depthTexture, pixel, 0).r, pixel, camera);
+        floats[index * 3u] = d.x;
+        floats[index * 3u + 1u] = d.y;
+        floats[index * 3u + 2u] = 0.0;
     }
 }

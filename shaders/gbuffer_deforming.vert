@@ -1,14 +1,15 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // G-buffer pass, vertex stage of deforming geometry: its points at the shutter's open and close
-// come as a second vertex stream (passes::ShutterPositions); the frame sees it at the shutter's
-// centre, halfway between them (the points interpolate linearly in between, as USD's do).
+// come as a second vertex stream (passes::ShutterPositions); the frame sees it where it is at
+// camera.shutterPosition between them (the points interpolate linearly in between, as USD's do):
+// the centre in a motion-blurred frame, the sub-frame's time in the reference.
 #include "common/gbuffer_motion_vertex.glsl"
 
 layout(location = 6) in vec3 inShutterOpenPosition;
 layout(location = 7) in vec3 inShutterClosePosition;
 
 void main() {
-    gl_Position = camera.viewProjection * surfaceVertex(mix(inShutterOpenPosition, inShutterClosePosition, 0.5));
+    gl_Position = camera.viewProjection * surfaceVertex(mix(inShutterOpenPosition, inShutterClosePosition, camera.shutterPosition));
     writeShutterClips(inShutterOpenPosition, inShutterClosePosition);
 }

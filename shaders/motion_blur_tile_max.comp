@@ -25,16 +25,8 @@ layout(set = 0, binding = 4, std140) uniform Camera { CameraData camera; };
 shared vec2 longest[256];
 
 vec2 halfVelocity(ivec2 pixel) {
-    vec2 displacement = texelFetch(velocityTexture, pixel, 0).xy;
     float depth = texelFetch(depthTexture, pixel, 0).r;
-    if (displacement.x == STATIC_VELOCITY) {
-        vec2 ndc = (vec2(pixel) + 0.5) / camera.resolution * 2.0 - 1.0;
-        vec4 world = camera.inverseViewProjection * vec4(ndc, depth, 1.0);
-        world /= world.w;
-        displacement = shutterDisplacement(camera.shutterOpenViewProjection * world,
-                                           camera.shutterCloseViewProjection * world, camera.resolution);
-    }
-    vec2 v = 0.5 * displacement;
+    vec2 v = 0.5 * pixelDisplacement(texelFetch(velocityTexture, pixel, 0).xy, depth, pixel, camera);
     float speed = length(v);
     if (speed > motionBlur.maxRadius) v *= motionBlur.maxRadius / speed;
     imageStore(speedDepth, pixel,

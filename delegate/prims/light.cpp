@@ -35,78 +35,107 @@ TexturePtr readDomeTexture(SceneAccess& s, TextureCache& textures, std::string& 
 }  // namespace
 
 void Light::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
-    if (bits & OBSCURA_DIRTY_TRANSFORM) transform_ = s.sampleTransform(s.time(), s.time()).front().matrix;
+    if (bits & OBSCURA_DIRTY_TRANSFORM) {
+        transform_ = s.sampleTransform(s.time(), s.time()).front().matrix;
+        shutterTransforms_ = s.sampleTransform(ctx.shutterOpen, ctx.shutterClose);
+    }
     if (bits & OBSCURA_DIRTY_VISIBILITY) visible_ = s.getToken("visibility") != "invisible";
     if (!(bits & (OBSCURA_DIRTY_PARAMS | OBSCURA_DIRTY_TRANSFORM))) return;
 
     const double pi = std::numbers::pi;
     double intensity = s.getDouble("inputs:intensity") * std::exp2(s.getDouble("inputs:exposure"));
     auto color = s.getFloat3("inputs:color");
-    bool normalize = s.getBool("inputs:normalize");
     if (s.getBool("inputs:enableColorTemperature")) {
         auto tint = blackbodyColor(s.getDouble("inputs:colorTemperature"));
         for (size_t i = 0; i < 3; ++i) color[i] *= tint[i];
     }
     castsShadows_ = type_ != passes::LightType::Dome && s.getBool("inputs:shadow:enable");
     clipVolume_ = s.getPath("obscura:clipVolume");
-    passes::LightData d{};
-    d.factors = {s.getFloat("inputs:diffuse"), s.getFloat("inputs:specular"), 0.0f, 0.0f};
-    double scale = 1.0;
+    Shape shape;
+    shape.normalize = s.getBool("inputs:normalize");
+    for (size_t i = 0; i < 3; ++i) shape.radiance[i] = intensity * color[i];
+    shape.factors = {s.getFloat("inputs:diffuse"), s.getFloat("inputs:specular"), 0.0f, 0.0f};
     warning_.clear();
     if (type_ == passes::LightType::Dome) {
         // The texture's texels are radiance, scaled like the constant colour (UsdLux); the frame
         // marks the dome that lights through it (factors.z) and orients it by the transform.
         environment_ = readDomeTexture(s, ctx.textures, warning_);
-        d.positionType = {0, 0, 0, float(passes::LightType::Dome)};
     } else if (type_ == passes::LightType::Distant) {
-        double angle = s.getDouble("inputs:angle") * pi / 180.0;
-        double solidAngle = 2.0 * pi * (1.0 - std::cos(angle / 2.0));
-        scale = normalize ? 1.0 : solidAngle;
-        // UsdLux lights emit along their local -Z axis.
-        Vec3d dir = normalized(transformDirection({0, 0, -1}, transform_));
-        d.positionType = {0, 0, 0, float(passes::LightType::Distant)};
-        d.directionAngle = {float(dir[0]), float(dir[1]), float(dir[2]), float(angle / 2.0)};
+        shape.angle = s.getDouble("inputs:angle") * pi / 180.0;
     } else {
-        // UsdLux lights emit along their local -Z axis; the transform's scale scales their size.
-        Vec3d axis = normalized(transformDirection({0, 0, -1}, transform_));
-        Vec3d pos = transformPoint({0, 0, 0}, transform_);
-        Vec3d localX = transformDirection({1, 0, 0}, transform_), localY = transformDirection({0, 1, 0}, transform_);
-        d.positionType = {float(pos[0]), float(pos[1]), float(pos[2]), float(type_)};
-        d.directionAngle = {float(axis[0]), float(axis[1]), float(axis[2]), 0.0f};
-        double area = 0.0;
         if (type_ == passes::LightType::Sphere) {
-            double axisScale = std::max({length(localX), length(localY), length(transformDirection({0, 0, 1}, transform_))});
-            double radius = s.getDouble("inputs:radius") * axisScale;
-            if (radius <= 0) throw PrimDataError(s.path() + ": inputs:radius must be positive");
-            area = 4.0 * pi * radius * radius;
-            d.factors[2] = s.getBool("treatAsPoint") ? 1.0f : 0.0f;
-            d.radiance[3] = float(radius);
+            shape.halfX = s.getDouble("inputs:radius");
+            if (shape.halfX <= 0) throw PrimDataError(s.path() + ": inputs:radius must be positive");
+            shape.factors[2] = s.getBool("treatAsPoint") ? 1.0f : 0.0f;
+        } else if (type_ == passes::LightType::Rect) {
+            shape.halfX = 0.5 * s.getDouble("inputs:width");
+            shape.halfY = 0.5 * s.getDouble("inputs:height");
+            if (shape.halfX <= 0 || shape.halfY <= 0)
+                throw PrimDataError(s.path() + ": inputs:width and inputs:height must be positive");
         } else {
-            // The disk's (or rectangle's) half extents along its local X and Y, in world space.
-            double halfX = 0.0, halfY = 0.0;
-            if (type_ == passes::LightType::Rect) {
-                halfX = 0.5 * s.getDouble("inputs:width");
-                halfY = 0.5 * s.getDouble("inputs:height");
-                if (halfX <= 0 || halfY <= 0) throw PrimDataError(s.path() + ": inputs:width and inputs:height must be positive");
-                area = 4.0 * halfX * halfY * length(localX) * length(localY);
-            } else {
-                halfX = halfY = s.getDouble("inputs:radius");
-                if (halfX <= 0) throw PrimDataError(s.path() + ": inputs:radius must be positive");
-                area = pi * halfX * halfY * length(localX) * length(localY);
-            }
-            if (area <= 0) throw PrimDataError(s.path() + ": the transform collapses the light to zero area");
-            d.axisX = {float(localX[0] * halfX), float(localX[1] * halfX), float(localX[2] * halfX), 0.0f};
-            d.axisY = {float(localY[0] * halfY), float(localY[1] * halfY), float(localY[2] * halfY), 0.0f};
+            shape.halfX = shape.halfY = s.getDouble("inputs:radius");
+            if (shape.halfX <= 0) throw PrimDataError(s.path() + ": inputs:radius must be positive");
         }
-        if (normalize) scale = 1.0 / area;
         // ShapingAPI: the fade starts at lerp(softness, cutoff, 0) (UsdLuxShapingAPI).
         double cone = std::clamp(double(s.getFloat("inputs:shaping:cone:angle")), 0.0, 180.0) * pi / 180.0;
         double softness = std::clamp(double(s.getFloat("inputs:shaping:cone:softness")), 0.0, 1.0);
         double focus = std::max(0.0, double(s.getFloat("inputs:shaping:focus")));
-        d.shaping = {float(cone), float(cone * (1.0 - softness)), float(focus), 0.0f};
+        shape.shaping = {float(cone), float(cone * (1.0 - softness)), float(focus), 0.0f};
     }
-    for (int i = 0; i < 3; ++i) d.radiance[size_t(i)] = float(intensity * scale * color[size_t(i)]);
-    data_ = d;
+    shape_ = shape;
+    data_ = placed(transform_);
+    if (type_ != passes::LightType::Dome && type_ != passes::LightType::Distant && data_.radiance[3] < 0.0f)
+        throw PrimDataError(s.path() + ": the transform collapses the light to zero area");
+}
+
+passes::LightData Light::dataAt(double time) const {
+    return shutterTransforms_.size() > 1 ? placed(interpolateTransform(shutterTransforms_, time)) : data_;
+}
+
+passes::LightData Light::placed(const Matrix4d& transform) const {
+    const double pi = std::numbers::pi;
+    passes::LightData d{};
+    d.factors = shape_.factors;
+    double scale = 1.0;
+    if (type_ == passes::LightType::Dome) {
+        d.positionType = {0, 0, 0, float(passes::LightType::Dome)};
+    } else if (type_ == passes::LightType::Distant) {
+        double solidAngle = 2.0 * pi * (1.0 - std::cos(shape_.angle / 2.0));
+        scale = shape_.normalize ? 1.0 : solidAngle;
+        // UsdLux lights emit along their local -Z axis.
+        Vec3d dir = normalized(transformDirection({0, 0, -1}, transform));
+        d.positionType = {0, 0, 0, float(passes::LightType::Distant)};
+        d.directionAngle = {float(dir[0]), float(dir[1]), float(dir[2]), float(shape_.angle / 2.0)};
+    } else {
+        // UsdLux lights emit along their local -Z axis; the transform's scale scales their size.
+        Vec3d axis = normalized(transformDirection({0, 0, -1}, transform));
+        Vec3d pos = transformPoint({0, 0, 0}, transform);
+        Vec3d localX = transformDirection({1, 0, 0}, transform), localY = transformDirection({0, 1, 0}, transform);
+        d.positionType = {float(pos[0]), float(pos[1]), float(pos[2]), float(type_)};
+        d.directionAngle = {float(axis[0]), float(axis[1]), float(axis[2]), 0.0f};
+        d.shaping = shape_.shaping;
+        double area = 0.0;
+        if (type_ == passes::LightType::Sphere) {
+            double axisScale = std::max({length(localX), length(localY), length(transformDirection({0, 0, 1}, transform))});
+            double radius = shape_.halfX * axisScale;
+            area = 4.0 * pi * radius * radius;
+            d.radiance[3] = float(radius);
+        } else {
+            // The disk's (or rectangle's) half extents along its local X and Y, in world space.
+            double lengths = length(localX) * length(localY);
+            area = (type_ == passes::LightType::Rect ? 4.0 : pi) * shape_.halfX * shape_.halfY * lengths;
+            d.axisX = {float(localX[0] * shape_.halfX), float(localX[1] * shape_.halfX), float(localX[2] * shape_.halfX), 0.0f};
+            d.axisY = {float(localY[0] * shape_.halfY), float(localY[1] * shape_.halfY), float(localY[2] * shape_.halfY), 0.0f};
+        }
+        // A collapsed light emits nothing; pull() reports it (radiance.w < 0 marks it).
+        if (area <= 0) {
+            d.radiance = {0.0f, 0.0f, 0.0f, -1.0f};
+            return d;
+        }
+        if (shape_.normalize) scale = 1.0 / area;
+    }
+    for (int i = 0; i < 3; ++i) d.radiance[size_t(i)] = float(shape_.radiance[size_t(i)] * scale);
+    return d;
 }
 
 passes::LightData withInfluenceRange(passes::LightData light, double exposureScale) {

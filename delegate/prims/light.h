@@ -23,6 +23,9 @@ public:
     // obscura:clipVolume: the mesh the light is clipped to (passes/clip_volumes.h), if any.
     const std::optional<std::string>& clipVolume() const { return clipVolume_; }
     const passes::LightData& data() const { return data_; }
+    // The light placed by its transform at an absolute time within the camera's shutter (between
+    // the samples synced over it): reference sub-frames and the motion-blurred frame's centre.
+    passes::LightData dataAt(double time) const;
     const std::string& warning() const { return warning_; }
     // A dome's latlong radiance texture; null for a constant dome (no file, a file that cannot be
     // read, or a layout other than latlong).
@@ -31,8 +34,20 @@ public:
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
+    // What the light's inputs say, before its transform places it.
+    struct Shape {
+        std::array<double, 3> radiance{};  // intensity x 2^exposure x colour (x colour temperature)
+        bool normalize = false;
+        double angle = 0.0;                // distant: radians
+        double halfX = 0.0, halfY = 0.0;   // sphere: radius in halfX; rect: half width, height; disk: radius
+        std::array<float, 4> factors{};    // LightData::factors before the frame's
+        std::array<float, 4> shaping{};    // LightData::shaping
+    };
+    passes::LightData placed(const Matrix4d& transform) const;
     passes::LightType type_;
+    Shape shape_;
     Matrix4d transform_ = kIdentity;
+    std::vector<TransformSample> shutterTransforms_;  // over the shutter: reference sub-frames, motion blur
     passes::LightData data_{};
     TexturePtr environment_;
     bool visible_ = true;

@@ -201,7 +201,10 @@ typedef struct ObscuraSceneDelegate {
  *   "albedo"  float32Vec3  base colour of the surface
  *   "primId"  int32        id of the prim (see getPrimId), -1 where nothing drew
  *   "display" unorm8Vec4   display-referred colour after the view transform (for PNG and viewports)
- * depth, normal, albedo and primId describe the nearest opaque surface: transparent surfaces (opacity
+ *   "motion"  float32Vec3  screen-space displacement in pixels (x right, y down; z 0) of the surface from
+ *                          the camera's shutter:open to shutter:close, camera and object motion together;
+ *                          0 where the shutter is closed or the motionBlur setting is off
+ * depth, normal, albedo, primId and motion describe the nearest opaque surface: transparent surfaces (opacity
  * below 1 without opacityThreshold) are only in "color" and "display".
  * The render buffer's format must match the AOV's format above. */
 typedef struct ObscuraAovBinding {

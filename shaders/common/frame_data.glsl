@@ -11,7 +11,7 @@ struct CameraData {
     vec4 position;       // world-space eye, w unused
     vec2 resolution;     // render size in pixels
     float exposureScale; // camera exposure (UsdGeomCamera linear scale) x 2^(render setting exposure): pre-exposed accumulation
-    float pad0;
+    float shutterPosition;  // where within the shutter the frame is seen, 0 open .. 1 close (deforming meshes)
     // Motion blur: world -> clip (unjittered) at the shutter's open and close; the frame itself is
     // seen at the shutter's centre. Without motion blur both are the frame's unjittered view.
     mat4 shutterOpenViewProjection;

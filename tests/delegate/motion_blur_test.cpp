@@ -321,6 +321,34 @@ TEST(MotionBlur, PointsThatChangeCountWithinTheShutterSkipTheMesh) {
     EXPECT_EQ(renderStats(s.host).primsSkipped, 1u);
 }
 
+// The motion AOV: where a surface moves within the shutter, in pixels (x right, y down): the
+// square's 12 pixels to the right, the still wall's none; nothing with the setting off.
+TEST(MotionBlur, MotionAovHoldsTheDisplacementWithinTheShutter) {
+    BlurScene s;
+    addWall(s);
+    s.addMovingGlow(16.0, 10.0, 12.0);
+    s.host.addRenderBuffer("/Buffers/motion", "float32Vec3", kSize, kSize);
+    auto motionAt = [&](int x, int y) {
+        EXPECT_EQ(s.host.render("/Camera", {{"color", "/Buffers/color"}, {"motion", "/Buffers/motion"}}), OBSCURA_OK)
+            << s.host.lastError();
+        std::vector<float> m = s.host.readFloats("/Buffers/motion");
+        size_t i = (size_t(y) * kSize + size_t(x)) * 3;
+        return std::array<float, 3>{m[i], m[i + 1], m[i + 2]};
+    };
+    auto square = motionAt(kSize / 2, kSize / 2);
+    std::printf("motion AOV on the square: (%.3f, %.3f, %.3f) px, predicted (12, 0, 0)\n", square[0], square[1], square[2]);
+    EXPECT_NEAR(square[0], 12.0f, 0.05f);
+    EXPECT_NEAR(square[1], 0.0f, 0.05f);
+    EXPECT_EQ(square[2], 0.0f);
+    auto wall = motionAt(4, 4);
+    EXPECT_EQ(wall[0], 0.0f);
+    EXPECT_EQ(wall[1], 0.0f);
+    s.setNumber("motionBlur", 0);
+    auto off = motionAt(kSize / 2, kSize / 2);
+    EXPECT_EQ(off[0], 0.0f);
+    EXPECT_EQ(off[1], 0.0f);
+}
+
 TEST(MotionBlur, BadSamplesSettingIsRefused) {
     BlurScene s;
     for (double samples : {1.0, 33.0, 8.5}) {
@@ -329,6 +357,69 @@ TEST(MotionBlur, BadSamplesSettingIsRefused) {
                   OBSCURA_ERROR_INVALID_ARGUMENT);
         EXPECT_NE(s.host.lastError().find("motionBlur:samples"), std::string::npos) << s.host.lastError();
     }
+}
+
+// The reference mode samples the shutter for everything that moves. A small sphere light crossing
+// above a plane from x = -1 to x = 1 within the shutter: the reference averages its irradiance
+// over the path, E = (1/2) int pi L r^2 h / (|p - c(x)|^2)^(3/2) dx (integrated here numerically),
+// while the frame itself sees the light at the shutter's centre.
+TEST(ReferenceShutter, MovingLightIsAveragedOverItsPath) {
+    LitPlaneScene s;
+    s.host.set("/Camera", "shutter:open", HostValue::doubleValue(-0.5));
+    s.host.set("/Camera", "shutter:close", HostValue::doubleValue(0.5));
+    s.host.api().markDirty(s.host.delegate(), "/Camera", OBSCURA_DIRTY_PARAMS);
+    constexpr double kRadiance = 400.0, kRadius = 0.05, kHeight = 1.0;
+    s.host.addPrim("sphereLight", "/Bulb",
+                   {{"inputs:intensity", HostValue::floatValue(float(kRadiance))},
+                    {"inputs:radius", HostValue::floatValue(float(kRadius))},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   translation(0, 0, kHeight));
+    s.host.setTransformMotion("/Bulb", -0.5, translation(-1.0, 0, kHeight), 0.5, translation(1.0, 0, kHeight));
+    auto irradianceFrom = [&](const std::array<double, 3>& p, double lightX) {
+        double dx = p[0] - lightX, d2 = dx * dx + p[1] * p[1] + kHeight * kHeight;
+        return kPi * kRadiance * kRadius * kRadius / d2 * (kHeight / std::sqrt(d2));
+    };
+    for (auto [x, y] : {std::pair{32, 32}, std::pair{12, 40}}) {
+        auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
+        double average = 0.0;
+        constexpr int kSteps = 4000;
+        for (int i = 0; i < kSteps; ++i) average += irradianceFrom(p, -1.0 + 2.0 * (i + 0.5) / kSteps) / kSteps;
+        double centre = irradianceFrom(p, 0.0);
+        std::printf("pixel (%d, %d): irradiance averaged over the light's path %.4f, at the shutter's centre %.4f\n", x,
+                    y, average, centre);
+        double l = kLitPlaneAlbedo / kPi;
+        ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, nullptr};
+        double subFrames = 128;
+        v.data = &subFrames;
+        ASSERT_EQ(s.host.api().setRenderSetting(s.host.delegate(), "reference", &v), OBSCURA_OK);
+        expectRadiance(s.renderColor(), x, y, {l * average, l * average, l * average});
+        double off = 0;
+        v.data = &off;
+        ASSERT_EQ(s.host.api().setRenderSetting(s.host.delegate(), "reference", &v), OBSCURA_OK);
+        expectRadiance(s.renderColor(), x, y, {l * centre, l * centre, l * centre});
+    }
+}
+
+// Deforming points in the reference: the square whose points translate accumulates as the same
+// motion through its transform does.
+TEST(ReferenceShutter, DeformingPointsMoveInTheSubFrames) {
+    constexpr double kSide = 16.0, kTravel = 12.0, kDistance = 10.0;
+    BlurScene rigid;
+    rigid.addMovingGlow(kSide, kDistance, kTravel);
+    image::Image moved = rigid.renderReference(32);
+    BlurScene deforming;
+    deforming.addMovingGlow(kSide, kDistance, 0.0);
+    deforming.host.setTransform("/Glow", translation(0, 0, -kDistance));
+    float h = float(0.5 * kSide * unitsPerPixel(kDistance)), t = float(0.5 * kTravel * unitsPerPixel(kDistance));
+    auto square = [h](float dx) { return HostValue::points({{dx - h, -h, 0}, {dx + h, -h, 0}, {dx + h, h, 0}, {dx - h, h, 0}}); };
+    deforming.host.setTimeSamples("/Glow", "points", {{-0.5, square(-t)}, {0.5, square(t)}});
+    image::Image deformed = deforming.renderReference(32);
+    image::CompareMetrics same = metrics(deformed, moved);
+    std::printf("reference: deforming square vs the same motion through its transform: max error %.4f\n",
+                same.maxAbsError);
+    EXPECT_LT(same.maxAbsError, 0.02);
+    Streak streak = measureStreak(rowProfile(deformed, kSize / 2 - 4, kSize / 2 + 4), 4);
+    EXPECT_NEAR(streak.length, kSide + kTravel, 1.0);
 }
 
 }  // namespace
