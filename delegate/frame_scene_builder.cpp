@@ -196,13 +196,29 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
 
     std::vector<passes::InstanceData> instances;
     std::vector<passes::InstanceMotion> motions;
+    std::vector<passes::InstanceReprojection> reprojections;
     std::vector<Aabb> drawBounds;  // world bounds of each draw, all its instances
+    // `key`: the instance's identity from frame to frame beside its prim's id (an instancer's
+    // ordinal and the instance's number), for temporal AA's object motion; none for records that
+    // are not drawn into the G-buffer (clip volumes).
     auto record = [&](const Mesh& mesh, const Matrix4d& model,
-                      const std::optional<std::array<Matrix4d, 2>>& motion = std::nullopt) {
+                      const std::optional<std::array<Matrix4d, 2>>& motion = std::nullopt,
+                      std::optional<uint64_t> key = 0) {
         passes::InstanceData inst{};
         if (motion) {
             inst.motionIndex = static_cast<uint32_t>(motions.size());
             motions.push_back({toFloats<passes::Mat4>((*motion)[0]), toFloats<passes::Mat4>((*motion)[1])});
+        }
+        if (in.models && key) {
+            uint64_t identity = *key | uint64_t(uint32_t(mesh.primId())) << 32;
+            (*in.models)[identity] = model;
+            auto last = in.lastModels ? in.lastModels->find(identity) : InstanceModels::const_iterator{};
+            Matrix4d inverse = kIdentity;
+            if (in.lastModels && last != in.lastModels->end() && last->second != model && invert(model, inverse)) {
+                // Row vectors: p_last = p_world x model^-1 x lastModel.
+                reprojections.push_back({toFloats<passes::Mat4>(multiply(inverse, last->second))});
+                inst.reprojection = static_cast<uint32_t>(reprojections.size());
+            }
         }
         inst.model = toFloats<passes::Mat4>(model);
         inst.normalMatrix = toFloats<passes::Mat4>(normalMatrix(model));
@@ -280,25 +296,36 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     }
     // One draw per (instancer, prototype mesh): the mesh's transform relative to the instancer,
     // then each instance's transform.
-    for (const Instancer* inst : instancers) {
+    for (size_t ordinal = 0; ordinal < instancers.size(); ++ordinal) {
+        const Instancer* inst = instancers[ordinal];
         for (const auto& [path, prim] : in.prims) {
             const Mesh* mesh = drawable(*prim);
             int proto = mesh ? inst->prototypeOf(path) : -1;
             if (proto < 0) continue;
             const auto& placements = inst->instancesOf(size_t(proto));
             if (placements.empty()) continue;
-            // The prototype's own transform may move within the shutter; the placements hold.
+            // The prototype's own transform and the placements may both move within the shutter.
             auto meshMotion = motionOf(*mesh);
+            const bool placementsMove = in.shutter && !in.sample && inst->movesWithinShutter();
             scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
                                    static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(placements.size()),
-                                   texturesOf(*mesh), hasCutout(*mesh), isTransparent(*mesh), meshMotion.has_value(),
-                                   shutterPositionsOf(*mesh)});
+                                   texturesOf(*mesh), hasCutout(*mesh), isTransparent(*mesh),
+                                   meshMotion.has_value() || placementsMove, shutterPositionsOf(*mesh)});
             Aabb bounds;
-            for (const Matrix4d& placement : placements) {
+            for (size_t number = 0; number < placements.size(); ++number) {
+                Matrix4d placement = frameTime ? inst->instanceAt(size_t(proto), number, *frameTime) : placements[number];
                 Matrix4d model = multiply(transformOf(*mesh), placement);
                 std::optional<std::array<Matrix4d, 2>> motion;
-                if (meshMotion) motion = {{multiply((*meshMotion)[0], placement), multiply((*meshMotion)[1], placement)}};
-                record(*mesh, model, motion);
+                if (placementsMove) {
+                    motion.emplace();
+                    for (int end = 0; end < 2; ++end)
+                        (*motion)[size_t(end)] =
+                            multiply(meshMotion ? (*meshMotion)[size_t(end)] : mesh->transformAt((*in.shutter)[size_t(end)]),
+                                     inst->instanceAtShutterEnd(size_t(proto), number, end));
+                } else if (meshMotion) {
+                    motion = {{multiply((*meshMotion)[0], placement), multiply((*meshMotion)[1], placement)}};
+                }
+                record(*mesh, model, motion, (uint64_t(ordinal + 1) << 24) | (number & 0xFFFFFFu));
                 bounds.merge(transformAabb(mesh->localBounds(), model));
             }
             drawBounds.push_back(bounds);
@@ -347,7 +374,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         scene.clipVolumes.push_back({{mesh->vertices(), mesh->indices(), mesh->indexCount(),
                                       static_cast<uint32_t>(instances.size()), 1, 0, false},
                                      bit});
-        record(*mesh, mesh->transform());
+        record(*mesh, mesh->transform(), std::nullopt, std::nullopt);
         lights[i].shadow[3] = bit;
     }
 
@@ -356,6 +383,8 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     scene.instances = uploadRecords(device, nullptr, 0, instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instances");
     scene.instanceMotions =
         uploadRecords(device, nullptr, 0, motions, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instance motions");
+    scene.instanceReprojections =
+        uploadRecords(device, nullptr, 0, reprojections, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instance reprojections");
     scene.motionBlur = in.shutter && !in.sample && (cameraMoves || !motions.empty());
     scene.materials = uploadRecords(device, nullptr, 0, materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials");
     scene.lights = uploadRecords(device, &header, sizeof(header), lights, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights");

@@ -14,6 +14,7 @@
 #include <optional>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace obscura::delegate {
@@ -25,6 +26,10 @@ struct FrameSample {
     std::array<double, 2> lensOffset;   // camera space, scene units
     std::array<double, 2> pixelJitter;  // pixels
 };
+
+// Temporal AA's object motion: every drawn instance's model by a key stable from frame to frame
+// (instanceKey()), as the last frame drew it and as this one does.
+using InstanceModels = std::unordered_map<uint64_t, Matrix4d>;
 
 struct FrameSceneInputs {
     const std::map<std::string, std::unique_ptr<Prim>>& prims;
@@ -49,6 +54,10 @@ struct FrameSceneInputs {
     // own time within it. None: the shutter is closed or not sampled (motionBlur off), the frame is
     // seen at the sync time.
     std::optional<std::array<double, 2>> shutter = std::nullopt;
+    // Temporal AA: the last frame's models (instances whose model differs get an
+    // InstanceReprojection record), and where this frame's go; null without temporal AA.
+    const InstanceModels* lastModels = nullptr;
+    InstanceModels* models = nullptr;
 };
 
 // The first visible dome with a texture, in path order: the one the environment maps are made

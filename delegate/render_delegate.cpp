@@ -357,8 +357,15 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         temporalAccumulation_.reset();
     }
 
+    // Temporal AA reprojects what moved since the last frame along its own motion.
+    InstanceModels models;
+    if (temporalAa) {
+        frame.lastModels = &lastModels_;
+        frame.models = &models;
+    }
     FrameSceneShortfalls shortfalls;
     passes::FrameScene scene = buildFrameScene(*device_, frame, shortfalls);
+    lastModels_ = std::move(models);
     if (shortfalls.lightsWithoutShadowRoom != lightsWithoutShadowRoom_ && shortfalls.lightsWithoutShadowRoom > 0)
         log(OBSCURA_LOG_WARNING, std::to_string(shortfalls.lightsWithoutShadowRoom) +
                                      " light(s) cast no shadow: the shadow atlas is full (lower shadows:resolution)");

@@ -104,6 +104,7 @@ private:
     } unoccluded_;
     // A frame without a velocity target reads this one texel of kStaticVelocity (the motion AOV).
     gpu::ImagePtr stillVelocity_;
+    InstanceModels lastModels_;  // the last frame's instance models, for temporal AA's object motion
     struct {
         gpu::ImagePtr image;
         VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;

@@ -40,8 +40,12 @@ TemporalAaStep TemporalAccumulation::next(const TemporalAaKey& key, uint64_t sce
         step.pass.currentClipToPreviousClip = toFloats<passes::Mat4>(
             multiply(currentClipToWorld, multiply(multiply(lastView_, lastProjection_), step.clipJitter)));
         step.pass.currentClipToPreviousView = toFloats<passes::Mat4>(multiply(currentClipToWorld, lastView_));
+        step.pass.worldToPreviousClip =
+            toFloats<passes::Mat4>(multiply(multiply(lastView_, lastProjection_), step.clipJitter));
+        step.pass.worldToPreviousView = toFloats<passes::Mat4>(lastView_);
     } else {
-        step.pass.currentClipToPreviousClip = step.pass.currentClipToPreviousView = toFloats<passes::Mat4>(kIdentity);
+        step.pass.currentClipToPreviousClip = step.pass.currentClipToPreviousView = step.pass.worldToPreviousClip =
+            step.pass.worldToPreviousView = toFloats<passes::Mat4>(kIdentity);
     }
     last_ = key;
     lastView_ = view;

@@ -33,8 +33,14 @@ struct alignas(16) InstanceData {
     int32_t primId;
     uint32_t flags;
     uint32_t motionIndex;  // its InstanceMotion record when it moves within the shutter
+    uint32_t reprojection = 0;  // moved since the last frame: its InstanceReprojection record + 1
+    uint32_t pad0 = 0, pad1 = 0, pad2 = 0;
 };
-static_assert(sizeof(InstanceData) == 144);
+static_assert(sizeof(InstanceData) == 160);
+
+struct alignas(16) InstanceReprojection {
+    Mat4 currentToPreviousWorld;  // this frame's world space to last frame's, for temporal AA
+};
 
 struct alignas(16) InstanceMotion {
     Mat4 shutterOpenModel;

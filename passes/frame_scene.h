@@ -61,6 +61,9 @@ struct FrameScene {
     gpu::BufferPtr camera;     // CameraData (uniform)
     gpu::BufferPtr instances;  // InstanceData[] (storage)
     gpu::BufferPtr instanceMotions;  // InstanceMotion[] (storage) of the moving instances, never empty
+    // InstanceReprojection[] (storage) of the instances that moved since the last frame (temporal
+    // AA's object motion), never empty.
+    gpu::BufferPtr instanceReprojections;
     gpu::BufferPtr materials;  // MaterialData[] (storage)
     gpu::BufferPtr lights;     // LightBufferHeader + LightData[] (storage)
     gpu::BufferPtr environment;  // EnvironmentData (uniform)

@@ -17,10 +17,12 @@ constexpr float kSmaa2txVelocityWeight = 1.0f;
 struct TemporalAaConstants {
     Mat4 currentClipToPreviousClip;
     Mat4 currentClipToPreviousView;
+    Mat4 worldToPreviousClip;
+    Mat4 worldToPreviousView;
     std::array<float, 4> weights;    // x K_lowfreq, y K_hifreq, z 2TX's velocity weight
     std::array<uint32_t, 4> frames;  // x history valid, y held frames, z frames to converge
 };
-static_assert(sizeof(TemporalAaConstants) == 2 * 64 + 32);
+static_assert(sizeof(TemporalAaConstants) == 4 * 64 + 32);
 
 // Van der Corput: the digits of `index` in `base`, mirrored about the radix point.
 double radicalInverse(uint32_t index, uint32_t base) {
@@ -65,6 +67,8 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
 
     TemporalAaConstants constants{frame.currentClipToPreviousClip,
                                   frame.currentClipToPreviousView,
+                                  frame.worldToPreviousClip,
+                                  frame.worldToPreviousView,
                                   {settings.kLowFreq, settings.kHighFreq, kSmaa2txVelocityWeight, 0.0f},
                                   {frame.historyValid && color.previousWritten ? 1u : 0u,
                                    frame.heldFrames, frame.framesToConverge, 0u}};
@@ -92,7 +96,10 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
                                               {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                               {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                                               {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                                              {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
+                                              {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                              {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                              {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                              {12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
     if (twoFrame) bindings.push_back({8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
     const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>(
         variant, [&] { return gpu::ComputePipelineDesc{std::string(variant) + ".comp", bindings, 0}; });
@@ -102,6 +109,7 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
             pass.read(hdrColor, gpu::Usage::SampledCompute);
             pass.read(gbuffer.depth, gpu::Usage::SampledCompute);
             pass.read(transparentCoverage, gpu::Usage::SampledCompute);
+            pass.read(gbuffer.instance, gpu::Usage::SampledCompute);
             pass.read(color.previous, gpu::Usage::SampledCompute);
             pass.read(depth.previous, gpu::Usage::SampledCompute);
             pass.write(color.current, gpu::Usage::StorageImageWrite);
@@ -120,7 +128,10 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
                 .sampled(5, res.view(depth.previous), nearest)
                 .storageImage(6, res.view(color.current))
                 .storageImage(7, res.view(depth.current))
-                .sampled(9, res.view(transparentCoverage), nearest);
+                .sampled(9, res.view(transparentCoverage), nearest)
+                .sampled(10, res.view(gbuffer.instance), nearest)
+                .buffer(11, scene.instances->buffer)
+                .buffer(12, scene.instanceReprojections->buffer);
             if (twoFrame) writer.storageImage(8, res.view(resolved));
             writer.bind(cmd);
             gpu::dispatch2D(cmd, scene.width, scene.height);

@@ -57,6 +57,10 @@ struct TemporalAaFrame {
     // jitter added back, so that an unchanged camera maps every pixel onto itself.
     Mat4 currentClipToPreviousClip{};
     Mat4 currentClipToPreviousView{};  // this frame's clip space to last frame's view space
+    // The same from world space, for surfaces that moved on their own since (their world point is
+    // first taken to where it was: InstanceReprojection).
+    Mat4 worldToPreviousClip{};
+    Mat4 worldToPreviousView{};
 };
 
 // The history (an explicit history input, STYLE.md): persistent images the delegate keeps.

@@ -1,5 +1,6 @@
 #include "delegate/prims/instancer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -34,10 +35,16 @@ void Instancer::reset() {
     prototypes_.clear();
     protoIndices_.clear();
     byPrototype_.clear();
+    shutterPoints_.reset();
+    shutterPlacements_.reset();
 }
 
-void Instancer::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
-    if (bits & OBSCURA_DIRTY_TRANSFORM) transform_ = s.sampleTransform(s.time(), s.time()).front().matrix;
+void Instancer::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
+    const bool shutterOpen = ctx.shutterClose > ctx.shutterOpen;
+    if (bits & OBSCURA_DIRTY_TRANSFORM) {
+        transform_ = s.sampleTransform(s.time(), s.time()).front().matrix;
+        shutterTransforms_ = s.sampleTransform(ctx.shutterOpen, ctx.shutterClose);
+    }
     if (bits & OBSCURA_DIRTY_VISIBILITY) {
         visible_ = s.getToken("visibility") != "invisible";
         invisible_ = s.getIntArray("invisibleIds").value_or(std::vector<int32_t>{});
@@ -47,36 +54,74 @@ void Instancer::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
         protoIndices_ = s.getIntArray("protoIndices").value_or(std::vector<int32_t>{});
     }
     if (bits & OBSCURA_DIRTY_POINTS) {
-        positions_ = s.getFloatArray("positions").value_or(std::vector<float>{});
-        orientations_ = s.getFloatArray("orientations").value_or(std::vector<float>{});
-        scales_ = s.getFloatArray("scales").value_or(std::vector<float>{});
+        auto pointsAt = [&](double time) {
+            return PointArrays{s.getFloatArrayAt("positions", time).value_or(std::vector<float>{}),
+                               s.getFloatArrayAt("orientations", time).value_or(std::vector<float>{}),
+                               s.getFloatArrayAt("scales", time).value_or(std::vector<float>{})};
+        };
+        points_ = pointsAt(s.time());
+        shutterPoints_.reset();
+        if (shutterOpen) {
+            std::array<PointArrays, 2> ends{pointsAt(ctx.shutterOpen), pointsAt(ctx.shutterClose)};
+            auto same = [this](const PointArrays& a) {
+                return a.positions == points_.positions && a.orientations == points_.orientations &&
+                       a.scales == points_.scales;
+            };
+            if (!same(ends[0]) || !same(ends[1])) shutterPoints_ = std::move(ends);
+        }
     }
-    rebuildInstances(s.path());
+    shutter_ = {ctx.shutterOpen, ctx.shutterClose};
+    byPrototype_ = placementsOf(points_, transform_, s.path());
+    // Placements at the shutter's ends, for motion blur and the reference's sub-frames.
+    shutterPlacements_.reset();
+    if (shutterPoints_ || shutterTransforms_.size() > 1) {
+        std::array<Placements, 2> ends;
+        for (int end = 0; end < 2; ++end)
+            ends[size_t(end)] = placementsOf(shutterPoints_ ? (*shutterPoints_)[size_t(end)] : points_,
+                                             interpolateTransform(shutterTransforms_, shutter_[size_t(end)]), s.path());
+        for (size_t p = 0; p < byPrototype_.size(); ++p)
+            if (ends[0][p].size() != byPrototype_[p].size() || ends[1][p].size() != byPrototype_[p].size())
+                throw PrimDataError(s.path() + ": the instances change within the shutter");
+        shutterPlacements_ = std::move(ends);
+    }
 }
 
-void Instancer::rebuildInstances(const std::string& path) {
+Matrix4d Instancer::instanceAt(size_t index, size_t k, double time) const {
+    if (!shutterPlacements_) return byPrototype_.at(index).at(k);
+    double f = shutter_[1] > shutter_[0] ? std::clamp((time - shutter_[0]) / (shutter_[1] - shutter_[0]), 0.0, 1.0) : 0.5;
+    const Matrix4d& a = (*shutterPlacements_)[0].at(index).at(k);
+    const Matrix4d& b = (*shutterPlacements_)[1].at(index).at(k);
+    Matrix4d m;
+    for (size_t i = 0; i < m.size(); ++i) m[i] = a[i] + f * (b[i] - a[i]);
+    return m;
+}
+
+Instancer::Placements Instancer::placementsOf(const PointArrays& points, const Matrix4d& transform,
+                                              const std::string& path) const {
     const size_t n = protoIndices_.size();
-    if (positions_.size() != 3 * n)
-        throw PrimDataError(path + ": positions has " + std::to_string(positions_.size() / 3) + " entries for " +
+    if (points.positions.size() != 3 * n)
+        throw PrimDataError(path + ": positions has " + std::to_string(points.positions.size() / 3) + " entries for " +
                             std::to_string(n) + " instances");
-    if (!orientations_.empty() && orientations_.size() != 4 * n)
-        throw PrimDataError(path + ": orientations has " + std::to_string(orientations_.size() / 4) +
+    if (!points.orientations.empty() && points.orientations.size() != 4 * n)
+        throw PrimDataError(path + ": orientations has " + std::to_string(points.orientations.size() / 4) +
                             " entries for " + std::to_string(n) + " instances");
-    if (!scales_.empty() && scales_.size() != 3 * n)
-        throw PrimDataError(path + ": scales has " + std::to_string(scales_.size() / 3) + " entries for " +
+    if (!points.scales.empty() && points.scales.size() != 3 * n)
+        throw PrimDataError(path + ": scales has " + std::to_string(points.scales.size() / 3) + " entries for " +
                             std::to_string(n) + " instances");
     std::set<int32_t> hidden(invisible_.begin(), invisible_.end());
-    byPrototype_.assign(prototypes_.size(), {});
+    Placements placements(prototypes_.size());
     for (size_t i = 0; i < n; ++i) {
         int32_t proto = protoIndices_[i];
         if (proto < 0 || size_t(proto) >= prototypes_.size())
             throw PrimDataError(path + ": protoIndices[" + std::to_string(i) + "] = " + std::to_string(proto) +
                                 " is outside the " + std::to_string(prototypes_.size()) + " prototypes");
         if (hidden.count(int32_t(i))) continue;
-        Matrix4d local = instanceTransform(&positions_[3 * i], orientations_.empty() ? nullptr : &orientations_[4 * i],
-                                           scales_.empty() ? nullptr : &scales_[3 * i]);
-        byPrototype_[size_t(proto)].push_back(multiply(local, transform_));
+        Matrix4d local = instanceTransform(&points.positions[3 * i],
+                                           points.orientations.empty() ? nullptr : &points.orientations[4 * i],
+                                           points.scales.empty() ? nullptr : &points.scales[3 * i]);
+        placements[size_t(proto)].push_back(multiply(local, transform));
     }
+    return placements;
 }
 
 }  // namespace obscura::delegate

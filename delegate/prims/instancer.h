@@ -4,6 +4,8 @@
 
 #include "delegate/prims/prim.h"
 
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,18 +22,36 @@ public:
     // Instance-to-world matrices (instance transform, then the instancer's transform) of the
     // visible instances of prototype `index`.
     const std::vector<Matrix4d>& instancesOf(size_t index) const { return byPrototype_.at(index); }
+    // Whether the placements move within the camera's shutter (the instancer's transform, or
+    // positions, orientations or scales sampled at the shutter's ends differ).
+    bool movesWithinShutter() const { return shutterPlacements_.has_value(); }
+    // Instance `k` of prototype `index` at the shutter's open (end 0) or close (end 1); the
+    // frame's placement when the instancer holds still.
+    const Matrix4d& instanceAtShutterEnd(size_t index, size_t k, int end) const {
+        return shutterPlacements_ ? (*shutterPlacements_)[size_t(end)].at(index).at(k) : byPrototype_.at(index).at(k);
+    }
+    // The same at an absolute time within the shutter: between its ends, linearly.
+    Matrix4d instanceAt(size_t index, size_t k, double time) const;
     bool visible() const { return visible_; }
     size_t instanceCount() const { return protoIndices_.size(); }
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
     void reset() override;
-    void rebuildInstances(const std::string& path);
+    using Placements = std::vector<std::vector<Matrix4d>>;  // by prototype, the visible instances
+    struct PointArrays {
+        std::vector<float> positions, orientations, scales;
+    };
+    Placements placementsOf(const PointArrays& points, const Matrix4d& transform, const std::string& path) const;
 
     Matrix4d transform_ = kIdentity;
+    std::vector<TransformSample> shutterTransforms_;
+    std::array<double, 2> shutter_{};
+    std::optional<std::array<PointArrays, 2>> shutterPoints_;  // at the shutter's ends, when they differ
+    std::optional<std::array<Placements, 2>> shutterPlacements_;
     std::vector<std::string> prototypes_;
     std::vector<int32_t> protoIndices_;
-    std::vector<float> positions_, orientations_, scales_;
+    PointArrays points_;
     std::vector<int32_t> invisible_;
     bool visible_ = true;
     std::vector<std::vector<Matrix4d>> byPrototype_;

@@ -26,6 +26,16 @@ struct InstanceData {
     int primId;
     uint flags;          // bit 0: double-sided, bit 1: use vertex colour (no bound material)
     uint motionIndex;    // moving within the shutter: its InstanceMotion record; unused when static
+    uint reprojection;   // moved since the last frame: its InstanceReprojection record + 1; 0 unmoved
+    uint pad0;
+    uint pad1;
+    uint pad2;
+};
+
+// Temporal AA's object motion: where an instance that moved since the last frame was then, as
+// this frame's world space to last frame's (last model x inverse of this model).
+struct InstanceReprojection {
+    mat4 currentToPreviousWorld;
 };
 
 // Where a moving instance is at the shutter's open and close (motion blur's velocities).

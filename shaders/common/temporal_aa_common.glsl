@@ -12,11 +12,14 @@
 #include "common/frame_data.glsl"
 #include "common/view_depth.glsl"
 #include "common/coverage.glsl"
+#include "common/instance_target.glsl"
 
 // Mirrors TemporalAaConstants in passes/temporal_aa.cpp.
 struct TemporalAaConstants {
     mat4 currentClipToPreviousClip;  // this frame's clip (jittered) -> last frame's, this frame's jitter added back
     mat4 currentClipToPreviousView;  // this frame's clip -> last frame's view space
+    mat4 worldToPreviousClip;        // world -> last frame's clip (this frame's jitter added back)
+    mat4 worldToPreviousView;        // world -> last frame's view space
     vec4 weights;                    // x K_lowfreq, y K_hifreq (1TX); z K of the 2TX velocity weight
     uvec4 frames;                    // x 1: the history may be read; y frames it holds (0: changed); z frames to converge
 };
@@ -31,6 +34,9 @@ layout(set = 0, binding = 4) uniform sampler2D previousColor;  // last frame's h
 layout(set = 0, binding = 5) uniform sampler2D previousDepth;  // x: last frame's linear view depth (nearest)
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D historyColor;
 layout(set = 0, binding = 9) uniform sampler2D transparentCoverage;  // passes/transparent.h (nearest)
+layout(set = 0, binding = 10) uniform usampler2D instanceTarget;     // the G-buffer's instance target
+layout(set = 0, binding = 11, std430) readonly buffer Instances { InstanceData instances[]; };
+layout(set = 0, binding = 12, std430) readonly buffer Reprojections { InstanceReprojection reprojections[]; };
 
 bool historyReadable() { return taa.frames.x != 0u; }
 
@@ -70,7 +76,8 @@ struct Reprojection {
 // front-most of the cross's: reprojecting with the nearest surface's motion (Karis 2014, "High
 // quality temporal supersampling") moves a silhouette's background pixels with the object in
 // front of them, so they do not take what that object covered last frame. Objects that moved on
-// their own are caught by the depth test: the history is rejected where the depth expected there
+// their own since the last frame go back along their own motion (InstanceReprojection); what a
+// moving object uncovers is caught by the depth test: the history is rejected where the depth expected there
 // lies outside the range of the 3x3 depths last frame stored around it. A range, not the nearest
 // texel's depth, because the sub-pixel jitter moves silhouettes from frame to frame (either side
 // of an edge may be what a texel saw), and a surface seen at a grazing angle changes depth
@@ -83,11 +90,21 @@ Reprojection reproject(ivec2 pixel, ivec2 size, CrossDepths depths) {
     ivec2 surfacePixel = crossPixel(pixel, nearest, size);
     vec4 clip = vec4((vec2(surfacePixel) + 0.5) / vec2(size) * 2.0 - 1.0, depths.depth[nearest], 1.0);
     vec4 previousClip = taa.currentClipToPreviousClip * clip;
+    vec4 previousView = taa.currentClipToPreviousView * clip;
+    // Object motion (seed 000 "SMAA 1TX": the accumulation is re-projected with camera and object
+    // motion): a surface that moved since the last frame is taken back to where it was first.
+    uint instance = instanceIdFromTarget(texelFetch(instanceTarget, surfacePixel, 0).r);
+    uint moved = instance != 0u ? instances[instance - 1u].reprojection : 0u;
+    if (moved != 0u) {
+        vec4 world = camera.inverseViewProjection * clip;
+        vec4 then = reprojections[moved - 1u].currentToPreviousWorld * (world / world.w);
+        previousClip = taa.worldToPreviousClip * then;
+        previousView = taa.worldToPreviousView * then;
+    }
     Reprojection r;
     r.position = (previousClip.xy / previousClip.w * 0.5 + 0.5) * vec2(size) + vec2(pixel - surfacePixel);
     r.valid = previousClip.w > 0.0 && all(greaterThanEqual(r.position, vec2(0.0))) && all(lessThan(r.position, vec2(size)));
     if (!r.valid) return r;
-    vec4 previousView = taa.currentClipToPreviousView * clip;
     float expected = -previousView.z / previousView.w;
     ivec2 centre = ivec2(floor(r.position));
     float closest = 3.4e38, farthest = 0.0;

@@ -237,6 +237,37 @@ TEST(MotionBlur, DeformingPointsBlurLikeTheSameMotionThroughTheTransform) {
     EXPECT_NEAR(streak.length, kSide + kTravel, 3.0);
 }
 
+// A PointInstancer whose positions are sampled at the shutter's ends moves its instances within
+// the shutter: one instance of a glowing square, its position time-sampled, blurs (and
+// accumulates in the reference) as the same square moved by its own transform.
+TEST(MotionBlur, InstancerPositionsMoveWithinTheShutter) {
+    constexpr double kSide = 16.0, kTravel = 12.0, kDistance = 10.0;
+    BlurScene rigid;
+    rigid.addMovingGlow(kSide, kDistance, kTravel);
+    image::Image moved = rigid.render();
+    image::Image movedReference = rigid.renderReference(32);
+
+    BlurScene instanced;
+    addMaterial(instanced.host, "/GlowLook", {0, 0, 0}, 1.0f, 0.0f, {1, 1, 1});
+    addPlane(instanced.host, "/Instancer/Prototypes/Glow", "/GlowLook", 0.5 * kSide * unitsPerPixel(kDistance));
+    float t = float(0.5 * kTravel * unitsPerPixel(kDistance));
+    instanced.host.addPrim("instancer", "/Instancer",
+                           {{"prototypes", HostValue::paths({"/Instancer/Prototypes/Glow"})},
+                            {"protoIndices", HostValue::intArray({0})},
+                            {"positions", HostValue::points({{0, 0, 0}})}},
+                           translation(0, 0, -kDistance));
+    instanced.host.setTimeSamples("/Instancer", "positions",
+                                  {{-0.5, HostValue::points({{-t, 0, 0}})}, {0.5, HostValue::points({{t, 0, 0}})}});
+    image::Image blurred = instanced.render();
+    EXPECT_TRUE(ranPass(instanced.host, "motion_blur_gather_coarse"));
+    image::Image reference = instanced.renderReference(32);
+    image::CompareMetrics post = metrics(blurred, moved), truth = metrics(reference, movedReference);
+    std::printf("instanced square vs the same motion through a transform: motion blur max error %.4f, reference %.4f\n",
+                post.maxAbsError, truth.maxAbsError);
+    EXPECT_LT(post.maxAbsError, 0.02);
+    EXPECT_LT(truth.maxAbsError, 0.02);
+}
+
 // A card crossing a still wall: the wall keeps its detail wherever the card's blur cannot reach
 // (bit for bit the still frame's), and the card's streak over it matches the reference.
 TEST(MotionBlur, MovingObjectLeavesTheStillBackgroundSharp) {
@@ -347,6 +378,23 @@ TEST(MotionBlur, MotionAovHoldsTheDisplacementWithinTheShutter) {
     auto off = motionAt(kSize / 2, kSize / 2);
     EXPECT_EQ(off[0], 0.0f);
     EXPECT_EQ(off[1], 0.0f);
+}
+
+// Instancer positions whose count disagrees with protoIndices at a shutter end are bad prim data.
+TEST(MotionBlur, InstancerPositionsThatChangeCountWithinTheShutterSkipTheInstancer) {
+    BlurScene s;
+    addWall(s);
+    addMaterial(s.host, "/GlowLook", {0, 0, 0}, 1.0f, 0.0f, {1, 1, 1});
+    addPlane(s.host, "/Instancer/Prototypes/Glow", "/GlowLook", 0.5);
+    s.host.addPrim("instancer", "/Instancer",
+                   {{"prototypes", HostValue::paths({"/Instancer/Prototypes/Glow"})},
+                    {"protoIndices", HostValue::intArray({0})},
+                    {"positions", HostValue::points({{0, 0, 0}})}},
+                   translation(0, 0, -10.0));
+    s.host.setTimeSamples("/Instancer", "positions", {{0.5, HostValue::points({{0, 0, 0}, {1, 0, 0}})}});
+    EXPECT_EQ(s.host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_ERROR_BAD_PRIM_DATA);
+    ASSERT_FALSE(s.host.loggedErrors().empty());
+    EXPECT_NE(s.host.loggedErrors().front().find("/Instancer"), std::string::npos) << s.host.loggedErrors().front();
 }
 
 TEST(MotionBlur, BadSamplesSettingIsRefused) {

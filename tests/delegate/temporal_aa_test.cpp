@@ -347,6 +347,39 @@ TEST(TemporalAa, MovingCameraIsReprojected) {
     }
 }
 
+// Object motion (seed 000 "SMAA 1TX": re-projected with camera and object motion): the square and
+// the bar move by a fraction of a pixel each frame under a still camera; the history follows each
+// one's own motion back (InstanceReprojection), so they stay anti-aliased while they move.
+// Measured: 25.46 dB (no AA 23.49 dB; the camera's motion alone, with the object path taken out
+// of the shader, 21.61 dB: the history smears along the motion).
+TEST(TemporalAa, MovingObjectsAreReprojectedAlongTheirOwnMotion) {
+    const double pixel = 2.0 * kLitPlaneTanHalfFov * kLitPlaneCameraDistance / kWidth;
+    EdgeScene moving, reference;
+    double sumTemporal = 0.0, sumPlain = 0.0;
+    int counted = 0;
+    for (int frame = 0; frame < 12; ++frame) {
+        double dx = 0.45 * pixel * frame, dy = -0.2 * pixel * frame;
+        for (EdgeScene* s : {&moving, &reference}) {
+            s->host.setTransform("/Square", turnedAndMoved(20 + 0.5 * frame, -0.3 + dx, dy, 0));
+            s->host.setTransform("/Bar", turnedAndMoved(7, 0.6 - dx, -dy, 0));
+            for (const char* path : {"/Square", "/Bar"})
+                ASSERT_EQ(s->host.api().markDirty(s->host.delegate(), path, OBSCURA_DIRTY_TRANSFORM), OBSCURA_OK);
+        }
+        image::Image temporal = rgbImage(moving.renderColor(), kWidth, kHeight);
+        image::Image truth = reference.supersampled();
+        image::Image plain = rgbImage(reference.renderColor(), kWidth, kHeight);
+        if (frame < 3) continue;  // the history fills up
+        sumTemporal += compareImages(temporal, truth).psnr;
+        sumPlain += compareImages(plain, truth).psnr;
+        ++counted;
+    }
+    double temporalPsnr = sumTemporal / counted, plainPsnr = sumPlain / counted;
+    std::printf("moving objects, mean PSNR vs %dx supersampled over %d frames: no AA %.2f dB, 1tx %.2f dB\n",
+                kSupersampling, counted, plainPsnr, temporalPsnr);
+    ::testing::Test::RecordProperty("moving objects 1tx PSNR dB", std::to_string(temporalPsnr));
+    EXPECT_GT(temporalPsnr, plainPsnr + 1.0);
+}
+
 TEST(TemporalAa, HistoryRestartsOnResizeAndSettingChanges) {
     EdgeScene s;
     s.renderUntilConverged();

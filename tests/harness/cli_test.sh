@@ -18,7 +18,7 @@ check() {  # check NAME EXPECTED_CODE ACTUAL_CODE [OUTPUT_FILE PATTERN]
 }
 
 "$obscura" render "$src/scenes/demo.usda" -o "$tmp/demo.exr" --width 96 --height 54 \
-    --aov color,depth,normal,albedo,primId >"$tmp/out" 2>&1
+    --aov color,depth,normal,albedo,motion,primId >"$tmp/out" 2>&1
 check "render demo to EXR" 0 $?
 "$obscura" render "$src/scenes/demo.usda" -o "$tmp/demo.png" --width 96 --height 54 >"$tmp/out" 2>&1
 check "render demo to PNG" 0 $?
@@ -26,8 +26,9 @@ check "render demo to PNG" 0 $?
 if command -v exrheader >/dev/null; then
     exrheader "$tmp/demo.exr" >"$tmp/header" 2>&1
     check "EXR has the AOV channels" 0 $? "$tmp/header" 'primId\.id.*' 
-    grep -qE '^ +Z, ' "$tmp/header" && grep -q 'normal.X' "$tmp/header" && grep -q 'albedo.R' "$tmp/header"
-    check "EXR names Z, normal and albedo layers" 0 $?
+    grep -qE '^ +Z, ' "$tmp/header" && grep -q 'normal.X' "$tmp/header" && grep -q 'albedo.R' "$tmp/header" &&
+        grep -q 'motion.X' "$tmp/header"
+    check "EXR names Z, normal, albedo and motion layers" 0 $?
 fi
 
 "$obscura" render "$src/scenes/demo.usda" -o "$tmp/frame.####.png" --frames 1-2 --width 32 --height 18 >"$tmp/out" 2>&1
