@@ -391,7 +391,8 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     gpu::ImageHandle shadowAtlas;
     if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
     auto samples = VkSampleCountFlagBits(referenceSubFrames == 0 ? uint32_t(settings_.number("msaa")) : 1u);
-    passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_, samples);
+    passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_, samples,
+                                                     settings_.number("msaa:alphaToCoverage") != 0.0);
     std::optional<MsaaFrame> msaa;
     if (samples != VK_SAMPLE_COUNT_1_BIT) {
         if (!msaaTaggedPixels_)

@@ -38,6 +38,11 @@ const RenderSettingInfo kSettings[] = {
              "bit 0x80; lighting runs per sample there, resolved with tone-mapped weights 1/(1 + luma) so bright "
              "edges keep their coverage. Reference mode renders 1 (int, default 1)",
      OBSCURA_VALUE_INT, 1.0, 1.0, 8.0},
+    {"msaa:alphaToCoverage", "with msaa above 1, cut-out materials (opacityThreshold) cover the fraction of a "
+                             "pixel's samples their opacity gives, from one lookup (alpha-to-coverage), instead of "
+                             "testing the opacity at every sample's position (alpha-test supersampling, the "
+                             "default) (bool, default off)",
+     OBSCURA_VALUE_BOOL, 0.0},
     {"taa", "temporal anti-aliasing (seed 000 SMAA 1TX): the projection jitters by a sub-pixel offset each frame and "
             "an accumulation buffer, reprojected and clamped to the current frame's neighbourhood, gathers the "
             "offsets; a still image accumulates taa:frames frames, then renders once through the pixel centres and "

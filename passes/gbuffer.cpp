@@ -27,6 +27,13 @@ const char* pipelineName(Variant variant) {
     return "";
 }
 
+// Mirrors the push constants of shaders/common/gbuffer_surface.glsl (gbuffer.vert reads the first).
+struct GBufferPush {
+    uint32_t instanceIndex;
+    uint32_t sampleCount;
+    uint32_t alphaToCoverage;
+};
+
 bool writesVelocity(Variant variant) { return variant == Variant::Moving || variant == Variant::Deforming; }
 bool deforms(Variant variant) { return variant == Variant::Deforming || variant == Variant::DeformingWithoutVelocity; }
 
@@ -39,7 +46,7 @@ gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, VkSampleCount
                   {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
     if (writesVelocity(variant) || deforms(variant)) d.bindings.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
     d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
-    d.pushConstantSize = sizeof(uint32_t);
+    d.pushConstantSize = sizeof(GBufferPush);
     setSceneVertexInput(d);
     if (variant == Variant::Moving) d.vertexShader = "gbuffer_moving.vert";
     if (deforms(variant)) {
@@ -116,7 +123,7 @@ GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkS
 }
 
 GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                       const gpu::ImagePtr& bestFitNormals, VkSampleCountFlagBits samples) {
+                       const gpu::ImagePtr& bestFitNormals, VkSampleCountFlagBits samples, bool alphaToCoverage) {
     GBuffer gb = createGBufferImages(graph, scene, samples, "gbuffer");
     gpu::Device& device = pipelines.device();
     auto pipelineOf = [&pipelines, samples](Variant variant) -> const gpu::Pipeline& {
@@ -148,7 +155,8 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const F
             pass.colorAttachment(gb.instance, VkClearColorValue{.uint32 = {0, 0, 0, 0}});
             if (gb.velocity.valid()) pass.colorAttachment(gb.velocity, VkClearColorValue{{kStaticVelocity, 0.0f, 0.0f, 0.0f}});
         },
-        [&device, ordered, &scene, bestFitNormals](VkCommandBuffer cmd, const gpu::PassResources&) {
+        [&device, ordered, &scene, bestFitNormals, samples, alphaToCoverage](VkCommandBuffer cmd,
+                                                                              const gpu::PassResources&) {
             const gpu::Pipeline* bound = nullptr;
             const MaterialTextures* pushed = nullptr;
             for (auto [variant, pipeline, draw] : ordered) {
@@ -163,7 +171,8 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const F
                     bound = pipeline;
                     pushed = nullptr;  // a new layout: the pushed set starts over
                 }
-                recordMaterialDraw(device, cmd, *pipeline, scene, *draw, pushed, &draw->instanceIndex, sizeof(uint32_t));
+                GBufferPush push{draw->instanceIndex, uint32_t(samples), alphaToCoverage ? 1u : 0u};
+                recordMaterialDraw(device, cmd, *pipeline, scene, *draw, pushed, &push, sizeof(push));
             }
         });
     return gb;

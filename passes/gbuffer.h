@@ -53,7 +53,11 @@ GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkS
 // Draws every opaque draw of the scene (Draw::transparent ones are the transparent pass's). With
 // more than one sample (render setting msaa) every target is multisampled; the custom resolve
 // (msaa_resolve.h) turns it into the single-sample G-buffer the other passes read.
+// Cut-out materials (opacityThreshold) cover the samples their opacity passes at each sample's
+// position (alpha-test supersampling), or with `alphaToCoverage` the fraction of the samples their
+// opacity gives (seed 000 "Deferred MSAA \ alpha test SSAA", "performance shortcuts (3)").
 GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                       const gpu::ImagePtr& bestFitNormals, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
+                       const gpu::ImagePtr& bestFitNormals, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT,
+                       bool alphaToCoverage = false);
 
 }  // namespace obscura::passes

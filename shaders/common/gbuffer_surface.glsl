@@ -12,6 +12,7 @@
 #include "best_fit_normals.glsl"
 #include "material_inputs.glsl"
 #include "instance_target.glsl"
+#include "msaa_samples.glsl"
 
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inColor;
@@ -32,11 +33,46 @@ layout(set = 1, binding = 3) uniform sampler2D opacityTexture;
 layout(set = 1, binding = 4) uniform sampler2D normalTexture;
 layout(set = 1, binding = 5) uniform sampler2D occlusionTexture;
 
+// Mirrors GBufferPush in passes/gbuffer.cpp (the vertex stage reads the first member).
+layout(push_constant) uniform Push {
+    uint instanceIndex;
+    uint sampleCount;       // the G-buffer's samples per pixel (render setting msaa)
+    uint alphaToCoverage;   // render setting msaa:alphaToCoverage
+} push;
+
 layout(location = 0) out vec4 outNormalRoughness;
 layout(location = 1) out vec4 outAlbedoMetallic;
 layout(location = 2) out uint outInstance;
 
-// Writes RT0..RT2, or discards the fragment where the material cuts the surface out.
+// The samples a cut-out material (opacityThreshold) covers. Seed 000 "Deferred MSAA \ alpha test
+// SSAA": the rasteriser's coverage only knows triangle edges, so each sample's opacity is read at
+// the texture coordinates moved by the sample's offset from the pixel centre through the UV
+// derivatives, and the sample is kept where it passes the threshold. With alpha-to-coverage
+// instead (seed "performance shortcuts (3)"), the pixel's opacity, sharpened around the threshold
+// over its screen-space gradient, keeps that fraction of the samples: one lookup. (The hardware's
+// alpha-to-coverage reads RT0's alpha, which holds roughness, so the mask is made here.)
+uint cutoutCoverage(MaterialData mat, vec2 uv) {
+    float threshold = mat.opacity.y;
+    int samples = int(push.sampleCount);
+    if (threshold <= 0.0) return ~0u;
+    if (samples <= 1) return opacityAt(mat, opacityTexture, uv) < threshold ? 0u : ~0u;
+    if (push.alphaToCoverage != 0u) {
+        float alpha = opacityAt(mat, opacityTexture, uv);
+        float covered = clamp((alpha - threshold) / max(fwidth(alpha), 1e-4) + 0.5, 0.0, 1.0);
+        uint kept = uint(round(covered * float(samples)));
+        return kept >= 32u ? ~0u : (1u << kept) - 1u;
+    }
+    vec2 dx = dFdx(uv), dy = dFdy(uv);
+    uint mask = 0u;
+    for (int s = 0; s < samples; ++s) {
+        vec2 offset = standardSampleLocation(samples, s) - 0.5;
+        if (opacityAt(mat, opacityTexture, uv + offset.x * dx + offset.y * dy) >= threshold) mask |= 1u << uint(s);
+    }
+    return mask;
+}
+
+// Writes RT0..RT2 and the samples the surface covers, or discards the fragment where the material
+// cuts the surface out of every sample.
 void writeSurface() {
     InstanceData inst = instances[inInstance];
     MaterialData mat = materials[inst.materialIndex];
@@ -50,7 +86,9 @@ void writeSurface() {
     float roughness = scalarInput(mat.diffuseRoughness.a, mat.textures[TEXTURE_ROUGHNESS], roughnessTexture, inUv);
     float metallic = scalarInput(mat.emissiveMetallic.a, mat.textures[TEXTURE_METALLIC], metallicTexture, inUv);
     float occlusion = scalarInput(mat.opacity.z, mat.textures[TEXTURE_OCCLUSION], occlusionTexture, inUv);
-    if (cutOut(mat, opacityTexture, inUv)) discard;
+    uint coverage = cutoutCoverage(mat, inUv);
+    if (coverage == 0u) discard;
+    gl_SampleMask[0] = int(coverage);
     outNormalRoughness = vec4(encodeBestFitNormal(n, fittingScale), roughness);
     outAlbedoMetallic = vec4(albedo, metallic);
     outInstance = packInstanceTarget(inInstance, occlusion);

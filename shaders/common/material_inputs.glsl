@@ -34,10 +34,14 @@ vec3 perturbedNormal(vec3 n, vec4 tangent, MaterialTexture t, sampler2D tex, vec
 // UsdPreviewSurface opacityThreshold: above 0, opacity is a cut-out mask and the surface is absent
 // where opacity falls below the threshold. Callers discard last, so that every implicit-LOD
 // sample runs in uniform control flow.
+float opacityAt(MaterialData mat, sampler2D opacityTexture, vec2 uv) {
+    return scalarInput(mat.opacity.x, mat.textures[TEXTURE_OPACITY], opacityTexture, uv);
+}
+
 bool cutOut(MaterialData mat, sampler2D opacityTexture, vec2 uv) {
     float threshold = mat.opacity.y;
     if (threshold <= 0.0) return false;
-    return scalarInput(mat.opacity.x, mat.textures[TEXTURE_OPACITY], opacityTexture, uv) < threshold;
+    return opacityAt(mat, opacityTexture, uv) < threshold;
 }
 
 #endif
