@@ -36,14 +36,6 @@ void addDofPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const std::str
     addImageComputePass(graph, pipelines, {name, std::move(inputs), std::move(outputs), pushConstantBytes(constants)});
 }
 
-gpu::ImageDesc imageOf(VkFormat format, uint32_t width, uint32_t height) {
-    gpu::ImageDesc desc;
-    desc.format = format;
-    desc.width = width;
-    desc.height = height;
-    return desc;
-}
-
 }  // namespace
 
 double maxDofRadiusPixels(int tapsPerSide) { return 4.0 * tapsPerSide; }
@@ -65,31 +57,31 @@ gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, PipelineCache& pi
 
     uint32_t halfWidth = (scene.width + 1) / 2, halfHeight = (scene.height + 1) / 2;
     uint32_t tilesWide = (halfWidth + kTileSize - 1) / kTileSize, tilesHigh = (halfHeight + kTileSize - 1) / kTileSize;
-    gpu::ImageHandle nearLayer = graph.createImage("dofNearLayer", imageOf(kFieldInputFormat, halfWidth, halfHeight));
-    gpu::ImageHandle farLayer = graph.createImage("dofFarLayer", imageOf(kFieldInputFormat, halfWidth, halfHeight));
-    gpu::ImageHandle halfCoc = graph.createImage("dofHalfCoc", imageOf(kCocFormat, halfWidth, halfHeight));
+    gpu::ImageHandle nearLayer = graph.createImage("dofNearLayer", chainImage(kFieldInputFormat, halfWidth, halfHeight));
+    gpu::ImageHandle farLayer = graph.createImage("dofFarLayer", chainImage(kFieldInputFormat, halfWidth, halfHeight));
+    gpu::ImageHandle halfCoc = graph.createImage("dofHalfCoc", chainImage(kCocFormat, halfWidth, halfHeight));
     addDofPass(graph, pipelines, "dof_downsample", {{hdrColor, SampledRead::Nearest}, {gbuffer.depth, SampledRead::Depth}},
                {nearLayer, farLayer, halfCoc}, constants);
 
-    gpu::ImageHandle tiles = graph.createImage("dofTileCoc", imageOf(kCocFormat, tilesWide, tilesHigh));
+    gpu::ImageHandle tiles = graph.createImage("dofTileCoc", chainImage(kCocFormat, tilesWide, tilesHigh));
     addDofPass(graph, pipelines, "dof_tile_min_max", {{halfCoc, SampledRead::Nearest}}, {tiles}, constants);
-    gpu::ImageHandle neighbourhood = graph.createImage("dofTileNeighbourhood", imageOf(kCocFormat, tilesWide, tilesHigh));
+    gpu::ImageHandle neighbourhood = graph.createImage("dofTileNeighbourhood", chainImage(kCocFormat, tilesWide, tilesHigh));
     addDofPass(graph, pipelines, "dof_tile_neighbourhood", {{tiles, SampledRead::Nearest}}, {neighbourhood}, constants);
 
-    gpu::ImageHandle nearGathered = graph.createImage("dofNearGathered", imageOf(kFieldFormat, halfWidth, halfHeight));
-    gpu::ImageHandle farGathered = graph.createImage("dofFarGathered", imageOf(kFieldFormat, halfWidth, halfHeight));
+    gpu::ImageHandle nearGathered = graph.createImage("dofNearGathered", chainImage(kFieldFormat, halfWidth, halfHeight));
+    gpu::ImageHandle farGathered = graph.createImage("dofFarGathered", chainImage(kFieldFormat, halfWidth, halfHeight));
     addDofPass(graph, pipelines, "dof_gather",
                {{nearLayer, SampledRead::Linear}, {farLayer, SampledRead::Linear}, {halfCoc, SampledRead::Linear}, {neighbourhood, SampledRead::Nearest}},
                {nearGathered, farGathered}, constants);
 
-    gpu::ImageHandle nearField = graph.createImage("dofNearField", imageOf(kFieldFormat, halfWidth, halfHeight));
-    gpu::ImageHandle farField = graph.createImage("dofFarField", imageOf(kFieldFormat, halfWidth, halfHeight));
+    gpu::ImageHandle nearField = graph.createImage("dofNearField", chainImage(kFieldFormat, halfWidth, halfHeight));
+    gpu::ImageHandle farField = graph.createImage("dofFarField", chainImage(kFieldFormat, halfWidth, halfHeight));
     addDofPass(graph, pipelines, "dof_flood_fill",
                {{nearGathered, SampledRead::Linear}, {farGathered, SampledRead::Linear}, {halfCoc, SampledRead::Nearest},
                 {neighbourhood, SampledRead::Nearest}},
                {nearField, farField}, constants);
 
-    gpu::ImageHandle output = graph.createImage("dofColor", imageOf(graph.imageDesc(hdrColor).format, scene.width, scene.height));
+    gpu::ImageHandle output = graph.createImage("dofColor", chainImage(graph.imageDesc(hdrColor).format, scene.width, scene.height));
     addDofPass(graph, pipelines, "dof_composite",
                {{hdrColor, SampledRead::Nearest}, {gbuffer.depth, SampledRead::Depth}, {nearField, SampledRead::Linear},
                 {farField, SampledRead::Linear}, {halfCoc, SampledRead::Linear}, {neighbourhood, SampledRead::Nearest}},

@@ -2,6 +2,14 @@
 
 namespace obscura::passes {
 
+gpu::ImageDesc chainImage(VkFormat format, uint32_t width, uint32_t height) {
+    gpu::ImageDesc desc;
+    desc.format = format;
+    desc.width = width;
+    desc.height = height;
+    return desc;
+}
+
 void addImageComputePass(gpu::FrameGraph& graph, PipelineCache& pipelines, ImageComputePass desc) {
     const bool withCamera = desc.camera != VK_NULL_HANDLE;
     const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>(desc.shader, [&] {

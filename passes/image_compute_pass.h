@@ -31,6 +31,9 @@ struct ImageComputePass {
     std::string label;  // the pass's name in timings; the shader's name when empty
 };
 
+// A 2D single-sample image of the chain (storage and sampled use come from the graph).
+gpu::ImageDesc chainImage(VkFormat format, uint32_t width, uint32_t height);
+
 template <typename T>
 std::vector<uint8_t> pushConstantBytes(const T& constants) {
     const auto* bytes = reinterpret_cast<const uint8_t*>(&constants);

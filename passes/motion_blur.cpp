@@ -24,14 +24,6 @@ constexpr float kSoftDepthFraction = 0.01f;
 constexpr VkFormat kSpeedDepthFormat = VK_FORMAT_R16G16_SFLOAT;
 constexpr VkFormat kTileVelocityFormat = VK_FORMAT_R16G16_SFLOAT;
 
-gpu::ImageDesc imageOf(VkFormat format, uint32_t width, uint32_t height) {
-    gpu::ImageDesc desc;
-    desc.format = format;
-    desc.width = width;
-    desc.height = height;
-    return desc;
-}
-
 }  // namespace
 
 gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
@@ -42,9 +34,9 @@ gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, PipelineCache& pipe
     uint32_t tilesWide = (scene.width + kTileSize - 1) / kTileSize, tilesHigh = (scene.height + kTileSize - 1) / kTileSize;
     MotionBlurConstants constants{kMotionBlurMaxRadius, 1.0f, samples, kSoftDepthFraction};
 
-    gpu::ImageHandle tileMax = graph.createImage("motionBlurTileMax", imageOf(kTileVelocityFormat, tilesWide, tilesHigh));
+    gpu::ImageHandle tileMax = graph.createImage("motionBlurTileMax", chainImage(kTileVelocityFormat, tilesWide, tilesHigh));
     gpu::ImageHandle speedDepth =
-        graph.createImage("motionBlurSpeedDepth", imageOf(kSpeedDepthFormat, scene.width, scene.height));
+        graph.createImage("motionBlurSpeedDepth", chainImage(kSpeedDepthFormat, scene.width, scene.height));
     ImageComputePass tiles{"motion_blur_tile_max",
                            {{gbuffer.velocity, SampledRead::Nearest}, {gbuffer.depth, SampledRead::Depth}},
                            {tileMax, speedDepth},
@@ -54,14 +46,14 @@ gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, PipelineCache& pipe
     addImageComputePass(graph, pipelines, tiles);
 
     gpu::ImageHandle neighbourMax =
-        graph.createImage("motionBlurNeighbourMax", imageOf(kTileVelocityFormat, tilesWide, tilesHigh));
+        graph.createImage("motionBlurNeighbourMax", chainImage(kTileVelocityFormat, tilesWide, tilesHigh));
     addImageComputePass(graph, pipelines,
                         {"motion_blur_neighbour_max", {{tileMax, SampledRead::Nearest}}, {neighbourMax},
                          pushConstantBytes(constants)});
 
     // Separable [Sousa08]: the first pass covers one tap spacing of the second.
     VkFormat format = graph.imageDesc(hdrColor).format;
-    gpu::ImageHandle prefiltered = graph.createImage("motionBlurPrefiltered", imageOf(format, scene.width, scene.height));
+    gpu::ImageHandle prefiltered = graph.createImage("motionBlurPrefiltered", chainImage(format, scene.width, scene.height));
     MotionBlurConstants fine = constants;
     fine.spanScale = 1.0f / float(samples);
     ImageComputePass first{"motion_blur_gather",
@@ -73,7 +65,7 @@ gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, PipelineCache& pipe
     first.label = "motion_blur_gather_fine";
     addImageComputePass(graph, pipelines, first);
 
-    gpu::ImageHandle output = graph.createImage("motionBlurColor", imageOf(format, scene.width, scene.height));
+    gpu::ImageHandle output = graph.createImage("motionBlurColor", chainImage(format, scene.width, scene.height));
     ImageComputePass second{"motion_blur_gather",
                             {{prefiltered, SampledRead::Nearest},
                              {speedDepth, SampledRead::Nearest},

@@ -53,6 +53,17 @@ struct BlurScene : CameraScene {
         host.setTransformMotion("/Glow", -0.5, translation(-0.5 * travel, 0, -distance), 0.5,
                                 translation(0.5 * travel, 0, -distance));
     }
+    // The same square, its transform still and its points moving instead (time samples at the
+    // shutter's ends, the host's linear interpolation between them).
+    void addDeformingGlow(double sidePixels, double distance, double travelPixels) {
+        addMovingGlow(sidePixels, distance, 0.0);
+        host.setTransform("/Glow", translation(0, 0, -distance));
+        float h = float(0.5 * sidePixels * unitsPerPixel(distance)), t = float(0.5 * travelPixels * unitsPerPixel(distance));
+        auto square = [h](float dx) {
+            return HostValue::points({{dx - h, -h, 0}, {dx + h, -h, 0}, {dx + h, h, 0}, {dx - h, h, 0}});
+        };
+        host.setTimeSamples("/Glow", "points", {{-0.5, square(-t)}, {0.5, square(t)}});
+    }
     image::Image sharp() {
         setNumber("motionBlur", 0);
         image::Image img = render();
@@ -221,11 +232,7 @@ TEST(MotionBlur, DeformingPointsBlurLikeTheSameMotionThroughTheTransform) {
     image::Image moved = rigid.render();
 
     BlurScene deforming;
-    deforming.addMovingGlow(kSide, kDistance, 0.0);
-    deforming.host.setTransform("/Glow", translation(0, 0, -kDistance));
-    float h = float(0.5 * kSide * unitsPerPixel(kDistance)), t = float(0.5 * kTravel * unitsPerPixel(kDistance));
-    auto square = [h](float dx) { return HostValue::points({{dx - h, -h, 0}, {dx + h, -h, 0}, {dx + h, h, 0}, {dx - h, h, 0}}); };
-    deforming.host.setTimeSamples("/Glow", "points", {{-0.5, square(-t)}, {0.5, square(t)}});
+    deforming.addDeformingGlow(kSide, kDistance, kTravel);
     image::Image deformed = deforming.render();
     EXPECT_TRUE(ranPass(deforming.host, "motion_blur_gather_coarse"));
     image::CompareMetrics same = metrics(deformed, moved);
@@ -456,11 +463,7 @@ TEST(ReferenceShutter, DeformingPointsMoveInTheSubFrames) {
     rigid.addMovingGlow(kSide, kDistance, kTravel);
     image::Image moved = rigid.renderReference(32);
     BlurScene deforming;
-    deforming.addMovingGlow(kSide, kDistance, 0.0);
-    deforming.host.setTransform("/Glow", translation(0, 0, -kDistance));
-    float h = float(0.5 * kSide * unitsPerPixel(kDistance)), t = float(0.5 * kTravel * unitsPerPixel(kDistance));
-    auto square = [h](float dx) { return HostValue::points({{dx - h, -h, 0}, {dx + h, -h, 0}, {dx + h, h, 0}, {dx - h, h, 0}}); };
-    deforming.host.setTimeSamples("/Glow", "points", {{-0.5, square(-t)}, {0.5, square(t)}});
+    deforming.addDeformingGlow(kSide, kDistance, kTravel);
     image::Image deformed = deforming.renderReference(32);
     image::CompareMetrics same = metrics(deformed, moved);
     std::printf("reference: deforming square vs the same motion through its transform: max error %.4f\n",
