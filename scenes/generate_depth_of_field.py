@@ -3,7 +3,7 @@
 through an 85 mm lens at f/2 focused on the middle card (seed 000 "Depth of field"): the near card
 and the far wall blur, the glowing spheres make bokeh. Run from this folder; the output is
 committed. Units are centimetres (metersPerUnit 0.01), so focalLength and apertures read as mm."""
-from usda_pieces import card_prim, glow_material, glow_prim
+from usda_pieces import SUN_AND_SKY, card_prim, glow_material, glow_prim
 
 
 glows = "".join(glow_prim(f"FarGlow{k}", (-150 + 75 * k, 70 + 30 * (k % 2), -600), "Warm" if k % 2 else "Cool")
@@ -24,19 +24,7 @@ def Xform "World"
     {{{glow_material("Warm", (40, 22, 8))}{glow_material("Cool", (8, 20, 40))}
     }}
 {card_prim("FarWall", (0, 0, -600), 600, 400, 30, 20)}{card_prim("FocusCard", (20, -5, 0), 40, 60, 8, 12)}{card_prim("NearCard", (-18, -5, 150), 14, 20, 4, 6)}{glows}{glow_prim("NearGlow", (12, 14, 150), "Warm", 0.4)}
-    def DistantLight "Sun"
-    {{
-        float inputs:intensity = 2
-        bool inputs:normalize = 1
-        float3 xformOp:rotateXYZ = (-30, 20, 0)
-        uniform token[] xformOpOrder = ["xformOp:rotateXYZ"]
-    }}
-
-    def DomeLight "Sky"
-    {{
-        float inputs:intensity = 0.3
-    }}
-
+{SUN_AND_SKY}
     def Camera "Camera"
     {{
         float focalLength = 85

@@ -4,7 +4,7 @@ view axis, glowing spheres moving diagonally, and a camera panning slowly, throu
 shutter (shutter:open -0.25, shutter:close 0.25) at frame 1 (seed 000 "Motion blur"). At 1920x1080
 the racing card moves about 120 pixels a frame, so its blur reaches the filter's 32-pixel
 half-length. Run from this folder; the output is committed. Units are centimetres."""
-from usda_pieces import card_prim, glow_material, glow_prim
+from usda_pieces import SUN_AND_SKY, card_prim, glow_material, glow_prim
 
 
 def moving(start, velocity):
@@ -30,19 +30,7 @@ def Xform "World"
     {{{glow_material("Warm", (40, 22, 8))}{glow_material("Cool", (8, 20, 40))}
     }}
 {card_prim("Wall", (0, 0, -600), 900, 600, 30, 20)}{card_prim("Racer", moving((0, -40, 0), (20, 0, 0)), 60, 40, 6, 4)}{card_prim("Spinner", (90, 60, -50), 80, 20, 8, 2, rotate_z={0: 0, 1: 90, 2: 180})}{glows}
-    def DistantLight "Sun"
-    {{
-        float inputs:intensity = 2
-        bool inputs:normalize = 1
-        float3 xformOp:rotateXYZ = (-30, 20, 0)
-        uniform token[] xformOpOrder = ["xformOp:rotateXYZ"]
-    }}
-
-    def DomeLight "Sky"
-    {{
-        float inputs:intensity = 0.3
-    }}
-
+{SUN_AND_SKY}
     def Camera "Camera"
     {{
         float focalLength = 35

@@ -102,3 +102,19 @@ def glow_material(name, emissive):
                 token outputs:surface
             }}
         }}'''
+
+
+# The sample scenes' light: a normalized sun from above left and a dim sky.
+SUN_AND_SKY = '''    def DistantLight "Sun"
+    {
+        float inputs:intensity = 2
+        bool inputs:normalize = 1
+        float3 xformOp:rotateXYZ = (-30, 20, 0)
+        uniform token[] xformOpOrder = ["xformOp:rotateXYZ"]
+    }
+
+    def DomeLight "Sky"
+    {
+        float inputs:intensity = 0.3
+    }
+'''
