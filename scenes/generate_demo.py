@@ -3,6 +3,8 @@
 a sun and a sphere light). Run from this folder; the output is committed."""
 import math
 
+from usda_pieces import world_header
+
 
 def sphere(radius, rings=24, segments=48):
     points, normals, counts, indices = [], [], [], []
@@ -96,19 +98,7 @@ sp, sn, sc, si = sphere(50)
 bp, bc, bi = box(80)
 ground = [(-1000, 0, 1000), (1000, 0, 1000), (1000, 0, -1000), (-1000, 0, -1000)]
 
-text = f'''#usda 1.0
-(
-    doc = "Obscura demo scene: a ground plane, a rough red sphere, a polished gold sphere and a box under a sun and a sphere light."
-    defaultPrim = "World"
-    metersPerUnit = 0.01
-    upAxis = "Y"
-    startTimeCode = 1
-    endTimeCode = 1
-)
-
-def Xform "World"
-{{
-    def Scope "Looks"
+text = f'''{world_header("Obscura demo scene: a ground plane, a rough red sphere, a polished gold sphere and a box under a sun and a sphere light.")}    def Scope "Looks"
     {{{material("Ground", (0.5, 0.5, 0.5), 0.8)}{material("Red", (0.7, 0.08, 0.05), 0.45)}{material("Gold", (1.0, 0.78, 0.34), 0.25, 1.0)}{material("Glow", (0.05, 0.05, 0.05), 0.6, 0.0, (0.4, 1.2, 2.0))}
     }}
 

@@ -3,24 +3,12 @@
 through an 85 mm lens at f/2 focused on the middle card (seed 000 "Depth of field"): the near card
 and the far wall blur, the glowing spheres make bokeh. Run from this folder; the output is
 committed. Units are centimetres (metersPerUnit 0.01), so focalLength and apertures read as mm."""
-from usda_pieces import SUN_AND_SKY, card_prim, glow_material, glow_prim
+from usda_pieces import world_header, SUN_AND_SKY, card_prim, glow_material, glow_prim
 
 
 glows = "".join(glow_prim(f"FarGlow{k}", (-150 + 75 * k, 70 + 30 * (k % 2), -600), "Warm" if k % 2 else "Cool")
                 for k in range(5))
-text = f'''#usda 1.0
-(
-    doc = "Depth of field: chequered cards at 1.5 m, 3 m and 9 m and glowing spheres, through an 85 mm f/2 lens focused at 3 m, 6 aperture blades."
-    defaultPrim = "World"
-    metersPerUnit = 0.01
-    upAxis = "Y"
-    startTimeCode = 1
-    endTimeCode = 1
-)
-
-def Xform "World"
-{{
-    def Scope "Looks"
+text = f'''{world_header("Depth of field: chequered cards at 1.5 m, 3 m and 9 m and glowing spheres, through an 85 mm f/2 lens focused at 3 m, 6 aperture blades.")}    def Scope "Looks"
     {{{glow_material("Warm", (40, 22, 8))}{glow_material("Cool", (8, 20, 40))}
     }}
 {card_prim("FarWall", (0, 0, -600), 600, 400, 30, 20)}{card_prim("FocusCard", (20, -5, 0), 40, 60, 8, 12)}{card_prim("NearCard", (-18, -5, 150), 14, 20, 4, 6)}{glows}{glow_prim("NearGlow", (12, 14, 150), "Warm", 0.4)}

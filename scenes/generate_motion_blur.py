@@ -4,7 +4,7 @@ view axis, glowing spheres moving diagonally, and a camera panning slowly, throu
 shutter (shutter:open -0.25, shutter:close 0.25) at frame 1 (seed 000 "Motion blur"). At 1920x1080
 the racing card moves about 120 pixels a frame, so its blur reaches the filter's 32-pixel
 half-length. Run from this folder; the output is committed. Units are centimetres."""
-from usda_pieces import SUN_AND_SKY, card_prim, glow_material, glow_prim
+from usda_pieces import world_header, SUN_AND_SKY, card_prim, glow_material, glow_prim
 
 
 def moving(start, velocity):
@@ -14,19 +14,7 @@ def moving(start, velocity):
 
 glows = "".join(glow_prim(f"Glow{k}", moving((-120 + 60 * k, 80 - 20 * k, -100), (12, -8, 0)),
                           "Warm" if k % 2 else "Cool", radius=6.0) for k in range(5))
-text = f'''#usda 1.0
-(
-    doc = "Motion blur: a card racing across a still wall, a spinning card and moving glows, a panning camera, 180-degree shutter."
-    defaultPrim = "World"
-    metersPerUnit = 0.01
-    upAxis = "Y"
-    startTimeCode = 1
-    endTimeCode = 1
-)
-
-def Xform "World"
-{{
-    def Scope "Looks"
+text = f'''{world_header("Motion blur: a card racing across a still wall, a spinning card and moving glows, a panning camera, 180-degree shutter.")}    def Scope "Looks"
     {{{glow_material("Warm", (40, 22, 8))}{glow_material("Cool", (8, 20, 40))}
     }}
 {card_prim("Wall", (0, 0, -600), 900, 600, 30, 20)}{card_prim("Racer", moving((0, -40, 0), (20, 0, 0)), 60, 40, 6, 4)}{card_prim("Spinner", (90, 60, -50), 80, 20, 8, 2, rotate_z={0: 0, 1: 90, 2: 180})}{glows}

@@ -118,3 +118,20 @@ SUN_AND_SKY = '''    def DistantLight "Sun"
         float inputs:intensity = 0.3
     }
 '''
+
+
+def world_header(doc):
+    """A sample scene's layer metadata (centimetres, Y up, frame 1) and the opening of /World."""
+    return f'''#usda 1.0
+(
+    doc = "{doc}"
+    defaultPrim = "World"
+    metersPerUnit = 0.01
+    upAxis = "Y"
+    startTimeCode = 1
+    endTimeCode = 1
+)
+
+def Xform "World"
+{{
+'''
