@@ -53,27 +53,23 @@ gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, PipelineCache& pipe
 
     // Separable [Sousa08]: the first pass covers one tap spacing of the second.
     VkFormat format = graph.imageDesc(hdrColor).format;
-    gpu::ImageHandle prefiltered = graph.createImage("motionBlurPrefiltered", chainImage(format, scene.width, scene.height));
-    MotionBlurConstants fine = constants;
-    fine.spanScale = 1.0f / float(samples);
-    ImageComputePass first{"motion_blur_gather",
-                           {{hdrColor, SampledRead::Nearest},
-                            {speedDepth, SampledRead::Nearest},
-                            {neighbourMax, SampledRead::Nearest}},
-                           {prefiltered},
-                           pushConstantBytes(fine)};
-    first.label = "motion_blur_gather_fine";
-    addImageComputePass(graph, pipelines, first);
-
-    gpu::ImageHandle output = graph.createImage("motionBlurColor", chainImage(format, scene.width, scene.height));
-    ImageComputePass second{"motion_blur_gather",
-                            {{prefiltered, SampledRead::Nearest},
-                             {speedDepth, SampledRead::Nearest},
-                             {neighbourMax, SampledRead::Nearest}},
-                            {output},
-                            pushConstantBytes(constants)};
-    second.label = "motion_blur_gather_coarse";
-    addImageComputePass(graph, pipelines, second);
+    auto gather = [&](gpu::ImageHandle input, const char* name, float spanScale, const char* label) {
+        gpu::ImageHandle result = graph.createImage(name, chainImage(format, scene.width, scene.height));
+        MotionBlurConstants pass = constants;
+        pass.spanScale = spanScale;
+        ImageComputePass desc{"motion_blur_gather",
+                              {{input, SampledRead::Nearest},
+                               {speedDepth, SampledRead::Nearest},
+                               {neighbourMax, SampledRead::Nearest}},
+                              {result},
+                              pushConstantBytes(pass)};
+        desc.label = label;
+        addImageComputePass(graph, pipelines, desc);
+        return result;
+    };
+    gpu::ImageHandle prefiltered =
+        gather(hdrColor, "motionBlurPrefiltered", 1.0f / float(samples), "motion_blur_gather_fine");
+    gpu::ImageHandle output = gather(prefiltered, "motionBlurColor", 1.0f, "motion_blur_gather_coarse");
     return output;
 }
 
