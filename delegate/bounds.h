@@ -5,6 +5,7 @@
 #include "delegate/matrix.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace obscura::delegate {
@@ -34,6 +35,16 @@ struct Aabb {
         return c;
     }
 };
+
+// Distance from `p` to the nearest point of the box (0 inside it).
+inline double distanceTo(const Aabb& box, const Vec3d& p) {
+    double squared = 0.0;
+    for (size_t c = 0; c < 3; ++c) {
+        double outside = std::max({box.min[c] - p[c], 0.0, p[c] - box.max[c]});
+        squared += outside * outside;
+    }
+    return std::sqrt(squared);
+}
 
 // The box around `local` after the affine transform `m` (row-vector convention).
 inline Aabb transformAabb(const Aabb& local, const Matrix4d& m) {

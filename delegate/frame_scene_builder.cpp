@@ -130,6 +130,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     cd.exposureScale = float(cam.linearExposureScale() * std::exp2(in.exposureStops));
     cd.shutterOpenViewProjection = cd.shutterCloseViewProjection = toFloats<passes::Mat4>(multiply(view, unjitteredProjection));
     cd.shutterPosition = 0.5f;
+    cd.clipJitter = {float(in.clipJitter[12]), float(in.clipJitter[13]), 0.0f, 0.0f};
     if (in.shutter && in.sample && (*in.shutter)[1] > (*in.shutter)[0])
         cd.shutterPosition = float((in.sample->time - (*in.shutter)[0]) / ((*in.shutter)[1] - (*in.shutter)[0]));
     bool cameraMoves = false;
@@ -232,6 +233,12 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         // surface colour (as Hydra's fallback material).
         if (inst.materialIndex == 0) inst.flags |= passes::kInstanceVertexColor;
         if (mesh.doubleSided()) inst.flags |= passes::kInstanceDoubleSided;
+        // Hybrid AA, per object (seed 004): near the eye the view vector turns fastest as the camera
+        // moves, so view-dependent shading defeats reprojection there; edge AA takes those.
+        if (key && in.edgeAaDistance > 0.0 && distanceTo(transformAabb(mesh.localBounds(), model), eye) < in.edgeAaDistance) {
+            inst.flags |= passes::kInstanceEdgeAa;
+            scene.edgeAa = true;
+        }
         instances.push_back(inst);
     };
     // A draw's instances share its mesh's material, and so its textures.

@@ -47,6 +47,10 @@ struct FrameSceneInputs {
     // keep the unjittered frustum, so SSAO's history check and the cascades' texel grids do not
     // move with the jitter. Identity for reference sub-frames, which jitter through `sample`.
     Matrix4d clipJitter = kIdentity;
+    // Hybrid AA (seed 004, render setting taa:hybridDistance in scene units): instances whose world
+    // bounds come nearer the eye than this are drawn without the jitter and edge-anti-aliased
+    // (kInstanceEdgeAa); the rest are temporally anti-aliased. 0: every instance is temporal.
+    double edgeAaDistance = 0.0;
     // The camera's shutter, absolute time codes [open, close], when the frame samples it: a
     // motion-blurred frame (no `sample`) is seen at its centre (the reconstruction filter spreads
     // each pixel both ways along its velocity, McGuire et al. 2012) and the passes get where the

@@ -9,6 +9,7 @@
 #include "passes/aov_readback.h"
 #include "passes/best_fit_normals.h"
 #include "passes/depth_of_field.h"
+#include "passes/edge_aa.h"
 #include "passes/gbuffer.h"
 #include "passes/lighting.h"
 #include "passes/msaa_resolve.h"
@@ -353,6 +354,10 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
                                                 temporalAaSettings.mode, uint32_t(settings_.number("taa:frames")),
                                                 seen.view, seen.projection);
         frame.clipJitter = temporalAa->clipJitter;
+        // Hybrid AA (seed 004) while anything changes; a still accumulates jittered frames of every
+        // object, converging to the supersampled image, which edge AA never reaches.
+        if (temporalAaSettings.mode == passes::TemporalAaMode::Smaa1tx && !temporalAa->pass.unchanged)
+            frame.edgeAaDistance = settings_.number("taa:hybridDistance") / settings_.number("metersPerUnit");
     } else {
         temporalAccumulation_.reset();
     }
@@ -420,9 +425,11 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     } else {
         hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frame, transparentCoverage, msaa ? &*msaa : nullptr);
         if (temporalAa) {
+            temporalAa->pass.edgeAa = scene.edgeAa;
             hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage,
                                             temporalAaSettings, temporalAa->pass, temporalAaHistory_);
             temporalAaInFrame_ = true;
+            if (scene.edgeAa) hdr = passes::addEdgeAaPasses(graph, *pipelines_, scene, gbuffer, hdr);
         }
         if (passes::hasDepthOfField(lens)) {
             const CameraParams& p = camera->params();

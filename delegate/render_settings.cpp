@@ -63,6 +63,12 @@ const RenderSettingInfo kSettings[] = {
                       "lower keeps edges anti-aliased in motion, higher keeps them sharper, at least 1 "
                       "(float, default 1.25)",
      OBSCURA_VALUE_FLOAT, 1.25, 1.0},
+    {"taa:hybridDistance", "hybrid AA (seed 004), 1tx only: objects whose bounds come nearer the camera than this "
+                           "many metres are drawn without the jitter and anti-aliased by edge AA (morphological, "
+                           "after temporal AA) instead of accumulated, where view-dependent shading changes fastest "
+                           "as the camera moves; farther ones stay temporal; 0 makes every object temporal "
+                           "(float, default 0)",
+     OBSCURA_VALUE_FLOAT, 0.0, 0.0},
     {"metersPerUnit", "the scene's metres per unit, as USD's stage metadata; hosts set it (float, default 0.01)",
      OBSCURA_VALUE_FLOAT, 0.01},
     {"dof", "depth of field from the camera's lens (focalLength, fStop, focusDistance, obscura:apertureBlades, "

@@ -20,9 +20,13 @@ TemporalAaStep TemporalAccumulation::next(const TemporalAaKey& key, uint64_t sce
     const bool settled = valid && !sceneChanged && held_ >= framesToConverge && !twoFrame;
     if (!settled)
         step.jitter = passes::temporalAaJitter(mode, uint32_t(frame_ % framesToConverge), framesToConverge);
+    // The mean counts proper samples only: the first frame after a reset is one (its own jittered
+    // image), but a frame of change leaves the reprojected, clamped blend, whose 1/n share of the
+    // still's mean would outweigh the converged error; the still after it starts the mean afresh.
+    step.pass.unchanged = valid && !sceneChanged;
     if (!valid || sceneChanged) {
         step.pass.heldFrames = 0;
-        held_ = 1;
+        held_ = valid ? 0 : 1;
     } else {
         step.pass.heldFrames = held_;
         held_ = std::min(held_ + 1, framesToConverge);

@@ -21,10 +21,15 @@ struct alignas(16) CameraData {
     float shutterPosition;  // 0 the shutter's open .. 1 its close: where deforming meshes are drawn
     Mat4 shutterOpenViewProjection;   // unjittered, for motion blur's velocities
     Mat4 shutterCloseViewProjection;
+    // Temporal AA's sub-pixel shift of this frame, in clip space (x, y: clip += jitter * w; z, w
+    // unused): instances drawn for edge AA (kInstanceEdgeAa) take it back off.
+    std::array<float, 4> clipJitter;
 };
-static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16);
+static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16 + 16);
 
-enum InstanceFlags : uint32_t { kInstanceDoubleSided = 1u, kInstanceVertexColor = 2u };
+// kInstanceEdgeAa: hybrid AA (seed 004) chose edge AA over temporal AA for this instance: it is
+// drawn without the jitter, its pixels keep no history and the edge AA passes smooth its edges.
+enum InstanceFlags : uint32_t { kInstanceDoubleSided = 1u, kInstanceVertexColor = 2u, kInstanceEdgeAa = 4u };
 
 struct alignas(16) InstanceData {
     Mat4 model;

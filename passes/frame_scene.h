@@ -79,6 +79,8 @@ struct FrameScene {
     // motion blur passes run. Set when the frame asks for motion blur and the camera or an
     // instance moves within the shutter.
     bool motionBlur = false;
+    // Hybrid AA: some instance carries kInstanceEdgeAa, so the edge AA passes run after temporal AA.
+    bool edgeAa = false;
     uint32_t width = 0;
     uint32_t height = 0;
 };

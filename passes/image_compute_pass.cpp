@@ -19,6 +19,8 @@ void addImageComputePass(gpu::FrameGraph& graph, PipelineCache& pipelines, Image
             d.bindings.push_back({binding++, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
         for (size_t i = 0; i < desc.outputs.size(); ++i) d.bindings.push_back({binding++, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
         if (withCamera) d.bindings.push_back({binding++, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER});
+        for (size_t i = 0; i < desc.storageBuffers.size(); ++i)
+            d.bindings.push_back({binding++, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
         return d;
     });
     gpu::Device& device = pipelines.device();
@@ -41,6 +43,7 @@ void addImageComputePass(gpu::FrameGraph& graph, PipelineCache& pipelines, Image
             }
             for (gpu::ImageHandle output : desc.outputs) writer.storageImage(binding++, res.view(output));
             if (desc.camera != VK_NULL_HANDLE) writer.buffer(binding++, desc.camera);
+            for (VkBuffer buffer : desc.storageBuffers) writer.buffer(binding++, buffer);
             writer.bind(cmd);
             if (!desc.constants.empty())
                 vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0,

@@ -1,7 +1,7 @@
 // A compute pass of the post-processing chains (depth of field, motion blur): sampled images in,
 // storage images out, one set of push constants, and optionally the frame's camera constants.
 // The pipeline is named after its shader; its bindings follow the call's order: the inputs
-// (0..n-1), then the outputs, then the camera uniform.
+// (0..n-1), then the outputs, then the camera uniform, then the storage buffers.
 #pragma once
 
 #include "gpu/frame_graph.h"
@@ -25,6 +25,7 @@ struct ImageComputePass {
     std::vector<gpu::ImageHandle> outputs;
     std::vector<uint8_t> constants;  // push constants, the shader's layout
     VkBuffer camera = VK_NULL_HANDLE;  // CameraData uniform, bound after the outputs when set
+    std::vector<VkBuffer> storageBuffers;  // read-only records (e.g. the frame's InstanceData), bound last
     // Texels of the first output one workgroup covers per side: 8 for 8x8 groups of one
     // invocation per texel, 1 for a workgroup per texel (a tile reduced in shared memory).
     uint32_t texelsPerGroup = 8;

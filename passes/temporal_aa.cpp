@@ -20,7 +20,7 @@ struct TemporalAaConstants {
     Mat4 worldToPreviousClip;
     Mat4 worldToPreviousView;
     std::array<float, 4> weights;    // x K_lowfreq, y K_hifreq, z 2TX's velocity weight
-    std::array<uint32_t, 4> frames;  // x history valid, y held frames, z frames to converge
+    std::array<uint32_t, 4> frames;  // x history valid, y held frames, z frames to converge, w hybrid AA
 };
 static_assert(sizeof(TemporalAaConstants) == 4 * 64 + 32);
 
@@ -71,7 +71,7 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
                                   frame.worldToPreviousView,
                                   {settings.kLowFreq, settings.kHighFreq, kSmaa2txVelocityWeight, 0.0f},
                                   {frame.historyValid && color.previousWritten ? 1u : 0u,
-                                   frame.heldFrames, frame.framesToConverge, 0u}};
+                                   frame.heldFrames, frame.framesToConverge, frame.edgeAa ? 1u : 0u}};
     gpu::BufferPtr constantBuffer = device.createBuffer(sizeof(constants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                                         gpu::MemoryUsage::Upload, "temporalAaConstants");
     std::memcpy(constantBuffer->mapped(), &constants, sizeof(constants));
@@ -80,7 +80,7 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
     // unchanged scene runs the still's plain running mean, its own shader: lavapipe pays for both
     // sides of a branch, even a uniform one.
     const bool twoFrame = settings.mode == TemporalAaMode::Smaa2tx;
-    const bool still = !twoFrame && constants.frames[0] != 0 && frame.heldFrames > 0;
+    const bool still = !twoFrame && constants.frames[0] != 0 && frame.unchanged;
     const char* variant = twoFrame ? "temporal_aa_2tx" : still ? "temporal_aa_still" : "temporal_aa";
     gpu::ImageHandle resolved = color.current;
     if (twoFrame) {

@@ -47,12 +47,19 @@ struct TemporalAaSettings {
 // layout: matrices column-major.
 struct TemporalAaFrame {
     bool historyValid = false;  // last frame's history may be read at all
-    // Frames the history holds as an equal-weight mean of an unchanged scene seen by an unchanged
-    // camera; this frame adds its own with weight 1 / (heldFrames + 1), no reprojection, no clamp.
-    // 0: something changed: the history is reprojected, clamped and blended by the slide's weights.
+    // Nothing changed since the last frame (scene and camera): the still's running mean, no
+    // reprojection, no clamp. Otherwise the history is reprojected, clamped and blended by the
+    // slide's weights.
+    bool unchanged = false;
+    // In a still: the frames the history holds as an equal-weight mean (0 on the first frame after
+    // a change: the history is not a mean of jittered frames then); this frame adds its own with
+    // weight 1 / (heldFrames + 1).
     uint32_t heldFrames = 0;
     // The mean stops growing at this many frames (render setting taa:frames): a converged still.
     uint32_t framesToConverge = 1;
+    // Hybrid AA drew some instance on the pixel grid (FrameScene::edgeAa): temporal pixels beside
+    // one leave it out of their reprojection and clamp.
+    bool edgeAa = false;
     // This frame's clip space (jittered) to last frame's clip space (unjittered) with this frame's
     // jitter added back, so that an unchanged camera maps every pixel onto itself.
     Mat4 currentClipToPreviousClip{};

@@ -3,4 +3,4 @@
 // G-buffer pass, vertex stage of static geometry.
 #include "common/gbuffer_vertex.glsl"
 
-void main() { gl_Position = camera.viewProjection * surfaceVertex(inPosition); }
+void main() { gl_Position = cameraClip(surfaceVertex(inPosition)); }

@@ -10,6 +10,6 @@ layout(location = 6) in vec3 inShutterOpenPosition;
 layout(location = 7) in vec3 inShutterClosePosition;
 
 void main() {
-    gl_Position = camera.viewProjection * surfaceVertex(mix(inShutterOpenPosition, inShutterClosePosition, camera.shutterPosition));
+    gl_Position = cameraClip(surfaceVertex(mix(inShutterOpenPosition, inShutterClosePosition, camera.shutterPosition)));
     writeShutterClips(inShutterOpenPosition, inShutterClosePosition);
 }

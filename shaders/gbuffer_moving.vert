@@ -4,6 +4,6 @@
 #include "common/gbuffer_motion_vertex.glsl"
 
 void main() {
-    gl_Position = camera.viewProjection * surfaceVertex(inPosition);
+    gl_Position = cameraClip(surfaceVertex(inPosition));
     writeShutterClips(inPosition, inPosition);
 }

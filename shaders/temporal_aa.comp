@@ -27,7 +27,7 @@ Neighbourhood crossNeighbourhood(ivec2 pixel, ivec2 size, vec4 centre, CrossDept
     Neighbourhood n = Neighbourhood(centre, centre, vec4(0.0));
     vec4 sum = vec4(0.0);
     for (int i = 1; i < CROSS_TAPS; ++i) {
-        vec4 c = currentSample(crossPixel(pixel, i, size), depths.depth[i]);
+        vec4 c = depths.edgeAa[i] ? centre : currentSample(crossPixel(pixel, i, size), depths.depth[i]);
         n.minimum = min(n.minimum, c);
         n.maximum = max(n.maximum, c);
         sum += c;
@@ -45,7 +45,7 @@ void main() {
     imageStore(historyDepth, pixel, vec4(linearDepthFromDevice(camera.projection, deviceDepth)));
 
     vec4 result = current;
-    if (historyReadable()) {
+    if (historyReadable() && !edgeAntiAliased(pixel)) {
         CrossDepths depths = loadCrossDepths(pixel, size);
         Reprojection r = reproject(pixel, size, depths);
         if (r.valid) {

@@ -6,7 +6,8 @@
 // converges to the box-filtered supersampled image, which the slide's exponential weights (seed 000
 // "SMAA 1TX", temporal_aa.comp) never reach: they forever favour the latest few jitter offsets.
 // Nothing moves, so there is nothing to reproject and nothing to clamp away (the clamp would only
-// bias sub-pixel features); what left in the frame of the change was clamped away then.
+// bias sub-pixel features). The first frame after a change has n = 0: the blend the change left
+// is no jittered sample, and its 1/n share would cost a converged edge a few dB.
 #include "common/temporal_aa_common.glsl"
 
 layout(set = 0, binding = 7, r32f) uniform writeonly image2D historyDepth;

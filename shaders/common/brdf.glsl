@@ -20,7 +20,9 @@ float smithVisibilityHeightCorrelated(float NdotV, float NdotL, float alpha) {
 }
 
 vec3 fresnelSchlick(vec3 f0, float VdotH) {
-    float f = pow(1.0 - VdotH, 5.0);
+    // A dot product of unit vectors may round past 1, and pow() of a negative base is undefined
+    // (NaN on lavapipe): seen where a light sits on the line of sight (L = V, H = V).
+    float f = pow(clamp(1.0 - VdotH, 0.0, 1.0), 5.0);
     return f0 + (1.0 - f0) * f;
 }
 

@@ -16,6 +16,9 @@ struct CameraData {
     // seen at the shutter's centre. Without motion blur both are the frame's unjittered view.
     mat4 shutterOpenViewProjection;
     mat4 shutterCloseViewProjection;
+    // Temporal AA's sub-pixel shift in clip space (clip.xy += clipJitter.xy * clip.w), already in
+    // the matrices above; edge-anti-aliased instances (INSTANCE_EDGE_AA) take it back off.
+    vec4 clipJitter;
 };
 
 // One per drawn rprim.
@@ -24,7 +27,7 @@ struct InstanceData {
     mat4 normalMatrix;   // inverse transpose of model's upper 3x3, in a mat4
     uint materialIndex;
     int primId;
-    uint flags;          // bit 0: double-sided, bit 1: use vertex colour (no bound material)
+    uint flags;          // INSTANCE_* bits below
     uint motionIndex;    // moving within the shutter: its InstanceMotion record; unused when static
     uint reprojection;   // moved since the last frame: its InstanceReprojection record + 1; 0 unmoved
     uint pad0;
@@ -111,5 +114,7 @@ struct EnvironmentData {
 
 const uint INSTANCE_DOUBLE_SIDED = 1u;
 const uint INSTANCE_VERTEX_COLOR = 2u;
+// Hybrid AA (seed 004): drawn unjittered, no temporal history, edges smoothed by the edge AA passes.
+const uint INSTANCE_EDGE_AA = 4u;
 
 #endif

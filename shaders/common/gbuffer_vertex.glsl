@@ -40,4 +40,13 @@ vec4 surfaceVertex(vec3 position) {
     return world;
 }
 
+// The world position through the frame's camera: jittered for temporal AA, except instances that
+// hybrid AA gives to edge AA (seed 004 "Hybrid anti-aliasing": "separate it with stencil and
+// non-jittered camera"), which stay on the pixel grid. Call after surfaceVertex().
+vec4 cameraClip(vec4 world) {
+    vec4 clip = camera.viewProjection * world;
+    if ((instances[outInstance].flags & INSTANCE_EDGE_AA) != 0u) clip.xy -= camera.clipJitter.xy * clip.w;
+    return clip;
+}
+
 #endif

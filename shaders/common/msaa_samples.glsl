@@ -4,6 +4,7 @@
 #define OBSCURA_MSAA_SAMPLES_GLSL
 
 #include "best_fit_normals.glsl"
+#include "gbuffer_discontinuity.glsl"
 #include "instance_target.glsl"
 #include "view_depth.glsl"
 
@@ -23,28 +24,6 @@ vec2 standardSampleLocation(int sampleCount, int s) {
     if (sampleCount == 4) return four[s];
     if (sampleCount == 8) return eight[s];
     return vec2(0.5);
-}
-
-// What the comparison looks at in one sample of the G-buffer.
-struct GBufferSample {
-    uint instance;       // instance index + 1 (0: nothing); it names the material (seed 004 thin G-buffer)
-    float viewDistance;  // along the view axis
-    vec3 normal;
-};
-
-// Seed 000 "custom resolve & per-sample mask": "compare samples similarity, mark if mismatching",
-// not the rasteriser's coverage (which tags every triangle edge, also inside one smooth surface).
-// A triangle's fragment writes one normal and id to every sample it covers, but depth per sample,
-// so depth differs along a slope: only a step of more than 10% of the distance counts (a surface
-// in front of another part of the same mesh). Normals more than ~14 degrees apart are a crease.
-const float MSAA_DEPTH_STEP = 0.1;
-const float MSAA_CREASE_COSINE = 0.97;
-
-bool samplesDiffer(GBufferSample a, GBufferSample b) {
-    if (a.instance != b.instance) return true;
-    if (a.instance == 0u) return false;  // background in both
-    if (abs(a.viewDistance - b.viewDistance) > MSAA_DEPTH_STEP * min(a.viewDistance, b.viewDistance)) return true;
-    return dot(a.normal, b.normal) < MSAA_CREASE_COSINE;
 }
 
 GBufferSample fetchGBufferSample(sampler2DMS depthSamples, sampler2DMS normalRoughnessSamples,

@@ -21,7 +21,8 @@ struct TemporalAaConstants {
     mat4 worldToPreviousClip;        // world -> last frame's clip (this frame's jitter added back)
     mat4 worldToPreviousView;        // world -> last frame's view space
     vec4 weights;                    // x K_lowfreq, y K_hifreq (1TX); z K of the 2TX velocity weight
-    uvec4 frames;                    // x 1: the history may be read; y frames it holds (0: changed); z frames to converge
+    uvec4 frames;                    // x 1: the history may be read; y frames it holds (0: changed); z frames to converge;
+                                     // w 1: hybrid AA drew some instance for edge AA
 };
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -40,20 +41,33 @@ layout(set = 0, binding = 12, std430) readonly buffer Reprojections { InstanceRe
 
 bool historyReadable() { return taa.frames.x != 0u; }
 
+// Hybrid AA (seed 004): the pixel's surface was drawn on the pixel grid for edge AA and keeps no
+// history (the history there holds this frame's colour).
+bool edgeAntiAliased(ivec2 pixel) {
+    uint instance = instanceIdFromTarget(texelFetch(instanceTarget, pixel, 0).r);
+    return instance != 0u && (instances[instance - 1u].flags & INSTANCE_EDGE_AA) != 0u;
+}
+
 // The pixel and the slide's cross around it: its four diagonal neighbours (c_TL, c_TR, c_BL, c_BR).
 const int CROSS_TAPS = 5;
 const ivec2 CROSS[CROSS_TAPS] = ivec2[CROSS_TAPS](ivec2(0, 0), ivec2(-1, -1), ivec2(1, -1), ivec2(-1, 1), ivec2(1, 1));
 
 ivec2 crossPixel(ivec2 pixel, int tap, ivec2 size) { return clamp(pixel + CROSS[tap], ivec2(0), size - 1); }
 
-// This frame's device depths over the cross (the G-buffer clears to 1, the far plane).
+// This frame's device depths over the cross (the G-buffer clears to 1, the far plane), and which
+// taps hybrid AA drew on the pixel grid: those never cover a temporal pixel in any frame, so they
+// neither lend it their motion nor widen its clamp (their colour would leak into its history).
 struct CrossDepths {
     float depth[CROSS_TAPS];
+    bool edgeAa[CROSS_TAPS];
 };
 
 CrossDepths loadCrossDepths(ivec2 pixel, ivec2 size) {
     CrossDepths d;
-    for (int i = 0; i < CROSS_TAPS; ++i) d.depth[i] = texelFetch(currentDepth, crossPixel(pixel, i, size), 0).r;
+    for (int i = 0; i < CROSS_TAPS; ++i) {
+        d.depth[i] = texelFetch(currentDepth, crossPixel(pixel, i, size), 0).r;
+        d.edgeAa[i] = taa.frames.w != 0u && edgeAntiAliased(crossPixel(pixel, i, size));
+    }
     return d;
 }
 
@@ -86,7 +100,7 @@ struct Reprojection {
 Reprojection reproject(ivec2 pixel, ivec2 size, CrossDepths depths) {
     int nearest = 0;
     for (int i = 1; i < CROSS_TAPS; ++i)
-        if (depths.depth[i] < depths.depth[nearest]) nearest = i;
+        if (depths.depth[i] < depths.depth[nearest] && !depths.edgeAa[i]) nearest = i;
     ivec2 surfacePixel = crossPixel(pixel, nearest, size);
     vec4 clip = vec4((vec2(surfacePixel) + 0.5) / vec2(size) * 2.0 - 1.0, depths.depth[nearest], 1.0);
     vec4 previousClip = taa.currentClipToPreviousClip * clip;

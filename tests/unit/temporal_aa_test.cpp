@@ -109,6 +109,7 @@ TEST(TemporalAccumulation, ResetsAndConvergence) {
         TemporalAaStep step = taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection);
         EXPECT_TRUE(step.pass.historyValid);
         EXPECT_EQ(step.pass.heldFrames, held);
+        EXPECT_TRUE(step.pass.unchanged);
         EXPECT_EQ(step.jitter, passes::temporalAaJitter(TemporalAaMode::Smaa1tx, held, 4));
         EXPECT_FALSE(step.converged);
     }
@@ -123,7 +124,16 @@ TEST(TemporalAccumulation, ResetsAndConvergence) {
     TemporalAaStep changed = taa.next(key, ++scene, TemporalAaMode::Smaa1tx, 4, view, kProjection);
     EXPECT_TRUE(changed.pass.historyValid);
     EXPECT_EQ(changed.pass.heldFrames, 0u);
+    EXPECT_FALSE(changed.pass.unchanged);
     EXPECT_FALSE(changed.converged);
+    // The still after it starts its mean afresh: four frames of its own, then the settled one.
+    for (uint32_t held = 0; held < 4; ++held) {
+        TemporalAaStep step = taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection);
+        EXPECT_TRUE(step.pass.unchanged);
+        EXPECT_EQ(step.pass.heldFrames, held);
+        EXPECT_FALSE(step.converged);
+    }
+    EXPECT_TRUE(taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection).converged);
     // A new size, another camera, a changed setting: the history is gone.
     for (TemporalAaKey other : {TemporalAaKey{"/Camera", 32, 64, 7}, TemporalAaKey{"/Other", 64, 64, 7},
                                 TemporalAaKey{"/Camera", 64, 64, 8}}) {
