@@ -204,8 +204,9 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     // are not drawn into the G-buffer (clip volumes).
     auto record = [&](const Mesh& mesh, const Matrix4d& model,
                       const std::optional<std::array<Matrix4d, 2>>& motion = std::nullopt,
-                      std::optional<uint64_t> key = 0) {
+                      std::optional<uint64_t> key = 0, int32_t instanceId = -1) {
         passes::InstanceData inst{};
+        inst.instanceId = instanceId;
         if (motion) {
             inst.motionIndex = static_cast<uint32_t>(motions.size());
             motions.push_back({toFloats<passes::Mat4>((*motion)[0]), toFloats<passes::Mat4>((*motion)[1])});
@@ -332,7 +333,8 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
                 } else if (meshMotion) {
                     motion = {{multiply((*meshMotion)[0], placement), multiply((*meshMotion)[1], placement)}};
                 }
-                record(*mesh, model, motion, (uint64_t(ordinal + 1) << 24) | (number & 0xFFFFFFu));
+                record(*mesh, model, motion, (uint64_t(ordinal + 1) << 24) | (number & 0xFFFFFFu),
+                       inst->instanceIndexOf(size_t(proto), number));
                 bounds.merge(transformAabb(mesh->localBounds(), model));
             }
             drawBounds.push_back(bounds);

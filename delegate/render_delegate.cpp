@@ -44,6 +44,7 @@ constexpr AovInfo kAovs[] = {
     {"normal", passes::Aov::Normal, OBSCURA_FORMAT_FLOAT32_VEC3},
     {"albedo", passes::Aov::Albedo, OBSCURA_FORMAT_FLOAT32_VEC3},
     {"primId", passes::Aov::PrimId, OBSCURA_FORMAT_INT32},
+    {"instanceId", passes::Aov::InstanceId, OBSCURA_FORMAT_INT32},
     {"display", passes::Aov::Display, OBSCURA_FORMAT_UNORM8_VEC4},
     {"motion", passes::Aov::Motion, OBSCURA_FORMAT_FLOAT32_VEC3},
 };

@@ -39,8 +39,8 @@ std::string writeExrAovs(const std::string& path, const std::vector<MappedAov>& 
             layers.push_back({"albedo", {"R", "G", "B"}, PT::Half, b.data, b.rowStride});
         } else if (m.aov == "motion") {
             layers.push_back({"motion", {"X", "Y", "Z"}, PT::Float, b.data, b.rowStride});
-        } else if (m.aov == "primId") {
-            layers.push_back({"primId", {"id"}, PT::Uint, b.data, b.rowStride});
+        } else if (m.aov == "primId" || m.aov == "instanceId") {
+            layers.push_back({m.aov, {"id"}, PT::Uint, b.data, b.rowStride});
         }
     }
     auto status = image::writeExr(path, width, height, layers);

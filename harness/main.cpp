@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
     r->add_option("--frames", render.frames, "range A-B of frames");
     r->add_option("--width", render.width, "image width in pixels")->check(CLI::PositiveNumber);
     r->add_option("--height", render.height, "image height in pixels")->check(CLI::PositiveNumber);
-    r->add_option("--aov", render.aovs, "AOVs for .exr: color,depth,normal,albedo,primId")->delimiter(',');
+    r->add_option("--aov", render.aovs, "AOVs for .exr: color,depth,normal,albedo,motion,primId,instanceId")->delimiter(',');
     r->add_option("--set", render.settings, "render setting key=value (repeatable)");
     r->add_option("--reference", render.reference,
                   "ground truth: average N sub-frames sampling the lens aperture, shutter and pixel "

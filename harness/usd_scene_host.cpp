@@ -144,7 +144,7 @@ std::string UsdSceneHost::addRenderBuffer(const ObscuraApiV1& api, ObscuraDelega
     std::string path = "/Render/Buffers/" + aov;
     std::string format = aov == "color"     ? "float32Vec4"
                          : aov == "depth"   ? "float32"
-                         : aov == "primId"  ? "int32"
+                         : aov == "primId" || aov == "instanceId" ? "int32"
                          : aov == "display" ? "unorm8Vec4"
                                             : "float32Vec3";
     bool exists = renderBuffers_.count(path) > 0;

@@ -9,7 +9,16 @@
 
 namespace obscura::passes {
 
-enum class Aov : uint32_t { Color = 0, Depth = 1, Normal = 2, Albedo = 3, PrimId = 4, Display = 5, Motion = 6 };
+enum class Aov : uint32_t {
+    Color = 0,
+    Depth = 1,
+    Normal = 2,
+    Albedo = 3,
+    PrimId = 4,
+    Display = 5,
+    Motion = 6,
+    InstanceId = 7
+};
 
 struct AovRequest {
     Aov aov;

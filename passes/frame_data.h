@@ -39,7 +39,9 @@ struct alignas(16) InstanceData {
     uint32_t flags;
     uint32_t motionIndex;  // its InstanceMotion record when it moves within the shutter
     uint32_t reprojection = 0;  // moved since the last frame: its InstanceReprojection record + 1
-    uint32_t pad0 = 0, pad1 = 0, pad2 = 0;
+    // The instanceId AOV: the instance's index in its PointInstancer's arrays; -1 for a plain mesh.
+    int32_t instanceId = -1;
+    uint32_t pad1 = 0, pad2 = 0;
 };
 static_assert(sizeof(InstanceData) == 160);
 

@@ -18,6 +18,7 @@ const uint AOV_ALBEDO = 3u;
 const uint AOV_PRIM_ID = 4u;
 const uint AOV_DISPLAY = 5u;
 const uint AOV_MOTION = 6u;
+const uint AOV_INSTANCE_ID = 7u;
 
 layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
@@ -66,6 +67,8 @@ void main() {
         for (uint i = 0u; i < 3u; ++i) floats[index * 3u + i] = a[i];
     } else if (push.aov == AOV_PRIM_ID) {
         words[index] = uint(covered ? instances[instanceId - 1u].primId : -1);
+    } else if (push.aov == AOV_INSTANCE_ID) {
+        words[index] = uint(covered ? instances[instanceId - 1u].instanceId : -1);
     } else if (push.aov == AOV_DISPLAY) {
         words[index] = packUnorm4x8(imageLoad(displayColor, pixel));
     } else if (push.aov == AOV_MOTION) {

@@ -35,6 +35,7 @@ void Instancer::reset() {
     prototypes_.clear();
     protoIndices_.clear();
     byPrototype_.clear();
+    indicesByPrototype_.clear();
     shutterPoints_.reset();
     shutterPlacements_.reset();
 }
@@ -72,6 +73,10 @@ void Instancer::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     }
     shutter_ = {ctx.shutterOpen, ctx.shutterClose};
     byPrototype_ = placementsOf(points_, transform_, s.path());
+    std::set<int32_t> hidden(invisible_.begin(), invisible_.end());
+    indicesByPrototype_.assign(prototypes_.size(), {});
+    for (size_t i = 0; i < protoIndices_.size(); ++i)
+        if (!hidden.count(int32_t(i))) indicesByPrototype_[size_t(protoIndices_[i])].push_back(int32_t(i));
     // Placements at the shutter's ends, for motion blur and the reference's sub-frames.
     shutterPlacements_.reset();
     if (shutterPoints_ || shutterTransforms_.size() > 1) {

@@ -22,6 +22,9 @@ public:
     // Instance-to-world matrices (instance transform, then the instancer's transform) of the
     // visible instances of prototype `index`.
     const std::vector<Matrix4d>& instancesOf(size_t index) const { return byPrototype_.at(index); }
+    // The index in the instancer's arrays (positions, protoIndices...) of instance `k` of prototype
+    // `index`: the instanceId AOV (invisible instances are skipped in instancesOf, not here).
+    int32_t instanceIndexOf(size_t index, size_t k) const { return indicesByPrototype_.at(index).at(k); }
     // Whether the placements move within the camera's shutter (the instancer's transform, or
     // positions, orientations or scales sampled at the shutter's ends differ).
     bool movesWithinShutter() const { return shutterPlacements_.has_value(); }
@@ -55,6 +58,7 @@ private:
     std::vector<int32_t> invisible_;
     bool visible_ = true;
     std::vector<std::vector<Matrix4d>> byPrototype_;
+    std::vector<std::vector<int32_t>> indicesByPrototype_;  // parallel to byPrototype_
 };
 
 // USD's instance transform: scale, then rotate by the unit quaternion (w, x, y, z), then

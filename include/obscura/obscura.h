@@ -199,12 +199,15 @@ typedef struct ObscuraSceneDelegate {
  *   "depth"   float32      clip-space depth in [0,1] (1 where nothing drew), as Hydra's depth AOV
  *   "normal"  float32Vec3  eye-space shading normal (Hydra's Neye); 0 where nothing drew
  *   "albedo"  float32Vec3  base colour of the surface
- *   "primId"  int32        id of the prim (see getPrimId), -1 where nothing drew
+ *   "primId"  int32        id of the prim (see getPrimId), -1 where nothing drew; for a PointInstancer's
+ *                          instance, its prototype mesh's
+ *   "instanceId" int32     the instance's index in its PointInstancer's arrays (positions, protoIndices...),
+ *                          -1 for a mesh drawn once and where nothing drew: with primId, what picking needs
  *   "display" unorm8Vec4   display-referred colour after the view transform (for PNG and viewports)
  *   "motion"  float32Vec3  screen-space displacement in pixels (x right, y down; z 0) of the surface from
  *                          the camera's shutter:open to shutter:close, camera and object motion together;
  *                          0 where the shutter is closed or the motionBlur setting is off
- * depth, normal, albedo, primId and motion describe the nearest opaque surface: transparent surfaces (opacity
+ * depth, normal, albedo, primId, instanceId and motion describe the nearest opaque surface: transparent surfaces (opacity
  * below 1 without opacityThreshold) are only in "color" and "display".
  * The render buffer's format must match the AOV's format above. */
 typedef struct ObscuraAovBinding {

@@ -30,7 +30,7 @@ struct InstanceData {
     uint flags;          // INSTANCE_* bits below
     uint motionIndex;    // moving within the shutter: its InstanceMotion record; unused when static
     uint reprojection;   // moved since the last frame: its InstanceReprojection record + 1; 0 unmoved
-    uint pad0;
+    int instanceId;      // the instanceId AOV: index in its PointInstancer's arrays, -1 for a plain mesh
     uint pad1;
     uint pad2;
 };

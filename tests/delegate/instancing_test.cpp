@@ -67,6 +67,35 @@ TEST(Instancing, InstancesAreDrawnWhereUsdPlacesThem) {
     EXPECT_EQ(stats.trianglesDrawn, 6u) << "3 visible instances of 2-triangle meshes";
 }
 
+// The instanceId AOV names each instance by its index in the instancer's arrays (so a host can
+// pick an instance as usdview does); a mesh drawn once and the background are -1.
+TEST(Instancing, InstanceIdNamesTheInstanceIndex) {
+    InstancedScene s;
+    addPlane(s.host, "/Plain", "", 0.5, translation(-2.5, -2.5, 0));
+    s.host.addRenderBuffer("/Buffers/instance", "int32", kWidth, kHeight);
+    ASSERT_EQ(s.host.render("/Ortho", {{"primId", "/Buffers/id"}, {"instanceId", "/Buffers/instance"}}), OBSCURA_OK)
+        << s.host.lastError();
+    std::vector<int32_t> instances = s.host.readInts("/Buffers/instance");
+    EXPECT_EQ(at(instances, -2.0, 2.5), 0);
+    EXPECT_EQ(at(instances, 3.0 + 0.9, 2.5), 1);
+    EXPECT_EQ(at(instances, 0.5, -2.0 + 0.9), 2) << "the bar: index 2 of the arrays, the first of its prototype";
+    EXPECT_EQ(at(instances, 0.5, 0.0), -1) << "instance 3 is invisible";
+    EXPECT_EQ(at(instances, -2.5, -2.5), -1) << "a mesh drawn once";
+    EXPECT_EQ(at(instances, -3.9, -0.5), -1) << "nothing drawn";
+    std::vector<int32_t> ids = s.host.readInts("/Buffers/id");
+    int32_t plain = -1;
+    ASSERT_EQ(s.host.api().getPrimId(s.host.delegate(), "/Plain", &plain), OBSCURA_OK);
+    EXPECT_EQ(at(ids, -2.5, -2.5), plain);
+    // Hiding instance 0 leaves the others their indices.
+    s.host.set("/Instancer", "invisibleIds", HostValue::intArray({0}));
+    ASSERT_EQ(s.host.api().markDirty(s.host.delegate(), "/Instancer", OBSCURA_DIRTY_VISIBILITY), OBSCURA_OK);
+    ASSERT_EQ(s.host.render("/Ortho", {{"instanceId", "/Buffers/instance"}}), OBSCURA_OK) << s.host.lastError();
+    instances = s.host.readInts("/Buffers/instance");
+    EXPECT_EQ(at(instances, -2.0, 2.5), -1);
+    EXPECT_EQ(at(instances, 3.0, 2.5), 1);
+    EXPECT_EQ(at(instances, 0.5, 0.0), 3);
+}
+
 TEST(Instancing, ManyInstancesShareOneMesh) {
     InstancedScene s;
     const int n = 100000;
