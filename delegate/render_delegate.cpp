@@ -205,6 +205,7 @@ VkSampleCountFlags RenderDelegate::offeredMsaaSampleCounts() const {
 
 void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue* value) {
     double previousRefineLevel = settings_.number("refineLevel");
+    double previousTimeCodesPerSecond = settings_.number("timeCodesPerSecond");
     int32_t previousMsaa = int32_t(settings_.number("msaa"));
     std::string problem = settings_.set(key, value);
     if (!problem.empty())
@@ -234,6 +235,11 @@ void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue
     if (settings_.number("refineLevel") != previousRefineLevel)
         for (auto& [path, prim] : prims_)
             if (dynamic_cast<Mesh*>(prim.get())) markDirty(path, OBSCURA_DIRTY_TOPOLOGY);
+    // Velocities are per second: another rate moves points and instances elsewhere in the shutter.
+    if (settings_.number("timeCodesPerSecond") != previousTimeCodesPerSecond)
+        for (auto& [path, prim] : prims_)
+            if (dynamic_cast<Mesh*>(prim.get()) || dynamic_cast<Instancer*>(prim.get()))
+                markDirty(path, OBSCURA_DIRTY_POINTS);
 }
 
 void RenderDelegate::sync(double time, const Camera* camera) {
@@ -246,7 +252,7 @@ void RenderDelegate::sync(double time, const Camera* camera) {
         return oa != ob ? oa < ob : a->path() < b->path();
     });
     SyncContext ctx{sceneDelegate_, *device_, time, time, time, static_cast<int>(settings_.number("refineLevel")),
-                    *textures_, *geometry_};
+                    settings_.number("timeCodesPerSecond"), *textures_, *geometry_};
     auto takeShutter = [&] {
         if (!camera || camera->skipped()) return;
         ctx.shutterOpen = time + camera->params().shutterOpen;

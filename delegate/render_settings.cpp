@@ -71,6 +71,9 @@ const RenderSettingInfo kSettings[] = {
      OBSCURA_VALUE_FLOAT, 0.0, 0.0},
     {"metersPerUnit", "the scene's metres per unit, as USD's stage metadata; hosts set it (float, default 0.01)",
      OBSCURA_VALUE_FLOAT, 0.01},
+    {"timeCodesPerSecond", "the scene's time codes per second, as USD's stage metadata, for points and instances "
+                           "moved by their velocities within the shutter; hosts set it (float, default 24)",
+     OBSCURA_VALUE_FLOAT, 24.0, 1e-6},
     {"dof", "depth of field from the camera's lens (focalLength, fStop, focusDistance, obscura:apertureBlades, "
             "obscura:apertureRotation); a camera with fStop 0 has none (bool, default on)",
      OBSCURA_VALUE_BOOL, 1.0},

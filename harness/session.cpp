@@ -70,6 +70,9 @@ std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::st
     double metersPerUnit = s->stage_->metadata().metersPerUnit;
     ObscuraValue units{OBSCURA_VALUE_DOUBLE, 0, 1, &metersPerUnit};
     s->api().setRenderSetting(s->delegate_, "metersPerUnit", &units);
+    double timeCodesPerSecond = s->stage_->metadata().timeCodesPerSecond;
+    ObscuraValue rate{OBSCURA_VALUE_DOUBLE, 0, 1, &timeCodesPerSecond};
+    s->api().setRenderSetting(s->delegate_, "timeCodesPerSecond", &rate);
 
     s->host_ = std::make_unique<UsdSceneHost>(*s->stage_);
     if (s->api().setSceneDelegate(s->delegate_, &s->host_->sceneDelegate()) != OBSCURA_OK ||

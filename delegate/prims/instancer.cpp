@@ -1,7 +1,10 @@
 #include "delegate/prims/instancer.h"
 
+#include "delegate/prims/point_motion.h"
+
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <set>
 
 namespace obscura::delegate {
@@ -19,6 +22,25 @@ Matrix4d instanceTransform(const float* p, const float* q, const float* s) {
         for (int c = 0; c < 3; ++c) m[row * 4 + c] = r[row][c] * (s ? s[row] : 1.0);
     for (int c = 0; c < 3; ++c) m[12 + c] = p[c];
     return m;
+}
+
+std::vector<float> turnOrientations(const std::vector<float>& orientations, const std::vector<float>& angularVelocities,
+                                    double seconds) {
+    std::vector<float> turned(orientations.size());
+    for (size_t i = 0; i < orientations.size() / 4; ++i) {
+        const float* w = &angularVelocities[3 * i];
+        double speed = std::sqrt(double(w[0]) * w[0] + double(w[1]) * w[1] + double(w[2]) * w[2]);  // degrees/s
+        double half = 0.5 * speed * seconds * std::numbers::pi / 180.0;
+        double s = speed > 0.0 ? std::sin(half) / speed : 0.0;
+        // The turn (w, x, y, z), then the orientation before it: turn * orientation (Hamilton).
+        double a[4] = {std::cos(half), w[0] * s, w[1] * s, w[2] * s};
+        const float* q = &orientations[4 * i];
+        turned[4 * i] = float(a[0] * q[0] - a[1] * q[1] - a[2] * q[2] - a[3] * q[3]);
+        turned[4 * i + 1] = float(a[0] * q[1] + a[1] * q[0] + a[2] * q[3] - a[3] * q[2]);
+        turned[4 * i + 2] = float(a[0] * q[2] - a[1] * q[3] + a[2] * q[0] + a[3] * q[1]);
+        turned[4 * i + 3] = float(a[0] * q[3] + a[1] * q[2] - a[2] * q[1] + a[3] * q[0]);
+    }
+    return turned;
 }
 
 int Instancer::prototypeOf(const std::string& meshPath) const {
@@ -55,14 +77,29 @@ void Instancer::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         protoIndices_ = s.getIntArray("protoIndices").value_or(std::vector<int32_t>{});
     }
     if (bits & OBSCURA_DIRTY_POINTS) {
-        auto pointsAt = [&](double time) {
-            return PointArrays{s.getFloatArrayAt("positions", time).value_or(std::vector<float>{}),
-                               s.getFloatArrayAt("orientations", time).value_or(std::vector<float>{}),
-                               s.getFloatArrayAt("scales", time).value_or(std::vector<float>{})};
-        };
-        points_ = pointsAt(s.time());
+        points_ = PointArrays{s.getFloatArray("positions").value_or(std::vector<float>{}),
+                              s.getFloatArray("orientations").value_or(std::vector<float>{}),
+                              s.getFloatArray("scales").value_or(std::vector<float>{})};
         shutterPoints_.reset();
         if (shutterOpen) {
+            // USD moves instances by their velocities and turns them by their angular velocities
+            // where either is authored, and interpolates the time samples only otherwise
+            // (UsdGeomPointInstancer::ComputeInstanceTransformsAtTime; point_motion.h).
+            const size_t n = points_.positions.size() / 3;
+            auto motion = pointMotion(s.getFloatArray("velocities"), s.getFloatArray("accelerations"), n);
+            auto angular = s.getFloatArray("angularVelocities");
+            if (!angular || angular->size() != 3 * n || points_.orientations.size() != 4 * n) angular.reset();
+            auto pointsAt = [&](double time) {
+                double seconds = secondsBetween(s.time(), time, ctx.timeCodesPerSecond);
+                if (motion || angular)
+                    return PointArrays{motion ? movePoints(points_.positions, *motion, seconds) : points_.positions,
+                                       angular ? turnOrientations(points_.orientations, *angular, seconds)
+                                               : points_.orientations,
+                                       points_.scales};
+                return PointArrays{sampledOrFrame(s.getFloatArrayAt("positions", time), points_.positions),
+                                   sampledOrFrame(s.getFloatArrayAt("orientations", time), points_.orientations),
+                                   sampledOrFrame(s.getFloatArrayAt("scales", time), points_.scales)};
+            };
             std::array<PointArrays, 2> ends{pointsAt(ctx.shutterOpen), pointsAt(ctx.shutterClose)};
             auto same = [this](const PointArrays& a) {
                 return a.positions == points_.positions && a.orientations == points_.orientations &&

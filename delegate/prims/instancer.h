@@ -61,6 +61,12 @@ private:
     std::vector<std::vector<int32_t>> indicesByPrototype_;  // parallel to byPrototype_
 };
 
+// Orientations (w, x, y, z per instance) followed by the turn of their angular velocities (xyz per
+// instance, the axis scaled to degrees per second) over `seconds`, as UsdGeomPointInstancer
+// composes them (the orientation's rotation, then the angular velocity's).
+std::vector<float> turnOrientations(const std::vector<float>& orientations, const std::vector<float>& angularVelocities,
+                                    double seconds);
+
 // USD's instance transform: scale, then rotate by the unit quaternion (w, x, y, z), then
 // translate, in the row-vector convention (UsdGeomPointInstancer::ComputeInstanceTransformsAtTime).
 Matrix4d instanceTransform(const float* position, const float* orientation, const float* scale);

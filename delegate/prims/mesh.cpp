@@ -1,5 +1,7 @@
 #include "delegate/prims/mesh.h"
 
+#include "delegate/prims/point_motion.h"
+
 namespace obscura::delegate {
 
 void Mesh::reset() {
@@ -25,13 +27,21 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_TOPOLOGY | OBSCURA_DIRTY_NORMALS | OBSCURA_DIRTY_PRIMVAR;
     if (!(bits & kGeometry)) return;
     // Points at the shutter's ends, when they differ from the frame's: the mesh deforms within
-    // the shutter (motion blur's velocities).
+    // the shutter (motion blur's velocities). Moved by their velocities where those are authored,
+    // else the host's samples (point_motion.h).
     if (bits & OBSCURA_DIRTY_POINTS) {
         input_.points = s.getFloatArray("points").value_or(std::vector<float>{});
         shutterPoints_.reset();
         if (ctx.shutterClose > ctx.shutterOpen) {
-            std::array<std::vector<float>, 2> ends{s.getFloatArrayAt("points", ctx.shutterOpen).value_or(input_.points),
-                                                   s.getFloatArrayAt("points", ctx.shutterClose).value_or(input_.points)};
+            auto motion = pointMotion(s.getFloatArray("velocities"), s.getFloatArray("accelerations"),
+                                      input_.points.size() / 3);
+            std::array<std::vector<float>, 2> ends;
+            for (int end = 0; end < 2; ++end) {
+                double time = end == 0 ? ctx.shutterOpen : ctx.shutterClose;
+                ends[size_t(end)] = motion ? movePoints(input_.points, *motion,
+                                                        secondsBetween(s.time(), time, ctx.timeCodesPerSecond))
+                                           : sampledOrFrame(s.getFloatArrayAt("points", time), input_.points);
+            }
             if (ends[0] != input_.points || ends[1] != input_.points) shutterPoints_ = std::move(ends);
         }
     }

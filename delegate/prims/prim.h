@@ -24,6 +24,7 @@ struct SyncContext {
     double shutterOpen;   // absolute time codes of the camera's shutter
     double shutterClose;
     int refineLevel;      // render setting; meshes may override it
+    double timeCodesPerSecond;  // render setting: velocities are per second, times in time codes
     TextureCache& textures;
     GeometryCache& geometry;
 };
