@@ -451,9 +451,10 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
             hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr,
                                               static_cast<int>(settings_.number("motionBlur:samples")));
     }
-    // Temporal AA's accumulation carries coverage in alpha; depth of field and motion blur write none.
+    // Temporal AA's accumulation carries coverage in alpha, and motion blur blurs it along; depth of
+    // field writes none.
     passes::HdrAlpha hdrAlpha = passes::HdrAlpha::None;
-    if (temporalAa && !passes::hasDepthOfField(lens) && !scene.motionBlur) hdrAlpha = passes::HdrAlpha::Coverage;
+    if (temporalAa && !passes::hasDepthOfField(lens)) hdrAlpha = passes::HdrAlpha::Coverage;
     gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance,
                                                       transparentCoverage, grading_);
     gpu::ImageHandle velocity =

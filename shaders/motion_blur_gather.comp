@@ -14,6 +14,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 // Taps read whole pixels, as McGuire's (a filtered read would mix a still pixel's neighbours
 // into it wherever a tap lands within a pixel of the centre).
+// Colour with coverage in alpha (temporal AA's accumulation) blurs its alpha along: a streak over
+// nothing is partly transparent, as the premultiplied colour says. (B10G11R11 reads alpha 1.)
 layout(set = 0, binding = 0) uniform sampler2D colorTexture;
 layout(set = 0, binding = 1) uniform sampler2D speedDepth;     // |V| (pixels), linear depth
 layout(set = 0, binding = 2) uniform sampler2D neighbourMax;
@@ -32,11 +34,11 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(outputColor);
     if (any(greaterThanEqual(pixel, size))) return;
-    vec3 centre = texelFetch(colorTexture, pixel, 0).rgb;
+    vec4 centre = texelFetch(colorTexture, pixel, 0);
     vec2 vN = texelFetch(neighbourMax, pixel / MOTION_BLUR_TILE_SIZE, 0).xy;
     // Early out (McGuire 2012): nothing within reach moves by half a pixel.
     if (dot(vN, vN) < 0.25) {
-        imageStore(outputColor, pixel, vec4(centre, 0.0));
+        imageStore(outputColor, pixel, centre);
         return;
     }
     vec2 vx = texelFetch(speedDepth, pixel, 0).xy;  // |V|, depth of the centre
@@ -50,7 +52,7 @@ void main() {
     // pixel the same whatever passes over it.)
     float centreWeight = 0.5 * length(vN);
     // Sums relative to the centre: where no tap counts, the pixel stays exactly as it was.
-    vec3 sum = vec3(0.0);
+    vec4 sum = vec4(0.0);
     float weights = centreWeight;
     vec2 x = vec2(pixel) + 0.5;
     // McGuire's per-pixel jitter of the taps by up to half their spacing: how many taps land on a
@@ -67,8 +69,8 @@ void main() {
         vec2 cmpZ = depthCmp(vec2(vx.y, vy.y), vec2(vy.y, vx.y), softZ);
         vec4 cmpV = velCmp(length(offset), vec2(vy.x, vx.x));
         float w = (dot(cmpZ, cmpV.xy) + cmpV.z * cmpV.w * 2.0) * spacing;
-        sum += (texelFetch(colorTexture, tap, 0).rgb - centre) * w;
+        sum += (texelFetch(colorTexture, tap, 0) - centre) * w;
         weights += w;
     }
-    imageStore(outputColor, pixel, vec4(centre + sum / weights, 0.0));
+    imageStore(outputColor, pixel, centre + sum / weights);
 }

@@ -451,6 +451,26 @@ TEST(MotionBlur, PointsThatChangeCountWithinTheShutterHoldStill) {
     EXPECT_EQ(img.pixels, still.pixels);
 }
 
+// The colour AOV's alpha is blurred with the colour: over nothing, a white emitter's streak is as
+// transparent as its premultiplied colour is dark (radiance 1: red = alpha), so a compositor gets
+// the streak, not the sharp silhouette of the G-buffer's coverage.
+TEST(MotionBlur, AlphaIsBlurredWithTheColour) {
+    BlurScene s;
+    s.addMovingGlow(16.0, 10.0, 12.0);
+    s.render();
+    std::vector<float> rgba = s.host.readFloats("/Buffers/color");
+    float mismatch = 0.0f;
+    int partial = 0;
+    for (size_t p = 0; p < size_t(kSize) * kSize; ++p) {
+        float red = rgba[p * 4], alpha = rgba[p * 4 + 3];
+        mismatch = std::max(mismatch, std::fabs(red - alpha));
+        partial += alpha > 0.05f && alpha < 0.95f;
+    }
+    std::printf("motion-blurred white square: %d partly covered pixels, largest |red - alpha| %.4f\n", partial, mismatch);
+    EXPECT_GT(partial, 8 * 16) << "the streak's ends: two runs of about 12 pixels on 16 rows";
+    EXPECT_LT(mismatch, 0.01f);
+}
+
 // The motion AOV: where a surface moves within the shutter, in pixels (x right, y down): the
 // square's 12 pixels to the right, the still wall's none; nothing with the setting off.
 TEST(MotionBlur, MotionAovHoldsTheDisplacementWithinTheShutter) {
