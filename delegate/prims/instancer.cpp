@@ -109,11 +109,8 @@ void Instancer::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         }
     }
     shutter_ = {ctx.shutterOpen, ctx.shutterClose};
+    indicesByPrototype_ = visibleByPrototype(s.path());
     byPrototype_ = placementsOf(points_, transform_, s.path());
-    std::set<int32_t> hidden(invisible_.begin(), invisible_.end());
-    indicesByPrototype_.assign(prototypes_.size(), {});
-    for (size_t i = 0; i < protoIndices_.size(); ++i)
-        if (!hidden.count(int32_t(i))) indicesByPrototype_[size_t(protoIndices_[i])].push_back(int32_t(i));
     // Placements at the shutter's ends, for motion blur and the reference's sub-frames.
     shutterPlacements_.reset();
     if (shutterPoints_ || shutterTransforms_.size() > 1) {
@@ -150,20 +147,29 @@ Instancer::Placements Instancer::placementsOf(const PointArrays& points, const M
     if (!points.scales.empty() && points.scales.size() != 3 * n)
         throw PrimDataError(path + ": scales has " + std::to_string(points.scales.size() / 3) + " entries for " +
                             std::to_string(n) + " instances");
-    std::set<int32_t> hidden(invisible_.begin(), invisible_.end());
     Placements placements(prototypes_.size());
-    for (size_t i = 0; i < n; ++i) {
+    for (size_t proto = 0; proto < indicesByPrototype_.size(); ++proto)
+        for (int32_t index : indicesByPrototype_[proto]) {
+            size_t i = size_t(index);
+            Matrix4d local = instanceTransform(&points.positions[3 * i],
+                                               points.orientations.empty() ? nullptr : &points.orientations[4 * i],
+                                               points.scales.empty() ? nullptr : &points.scales[3 * i]);
+            placements[proto].push_back(multiply(local, transform));
+        }
+    return placements;
+}
+
+std::vector<std::vector<int32_t>> Instancer::visibleByPrototype(const std::string& path) const {
+    std::set<int32_t> hidden(invisible_.begin(), invisible_.end());
+    std::vector<std::vector<int32_t>> visible(prototypes_.size());
+    for (size_t i = 0; i < protoIndices_.size(); ++i) {
         int32_t proto = protoIndices_[i];
         if (proto < 0 || size_t(proto) >= prototypes_.size())
             throw PrimDataError(path + ": protoIndices[" + std::to_string(i) + "] = " + std::to_string(proto) +
                                 " is outside the " + std::to_string(prototypes_.size()) + " prototypes");
-        if (hidden.count(int32_t(i))) continue;
-        Matrix4d local = instanceTransform(&points.positions[3 * i],
-                                           points.orientations.empty() ? nullptr : &points.orientations[4 * i],
-                                           points.scales.empty() ? nullptr : &points.scales[3 * i]);
-        placements[size_t(proto)].push_back(multiply(local, transform));
+        if (!hidden.count(int32_t(i))) visible[size_t(proto)].push_back(int32_t(i));
     }
-    return placements;
+    return visible;
 }
 
 }  // namespace obscura::delegate

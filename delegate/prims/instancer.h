@@ -45,7 +45,10 @@ private:
     struct PointArrays {
         std::vector<float> positions, orientations, scales;
     };
+    // The visible instances' placements (indicesByPrototype_), by prototype.
     Placements placementsOf(const PointArrays& points, const Matrix4d& transform, const std::string& path) const;
+    // The visible instances' indices by prototype; a prototype index out of range is bad prim data.
+    std::vector<std::vector<int32_t>> visibleByPrototype(const std::string& path) const;
 
     Matrix4d transform_ = kIdentity;
     std::vector<TransformSample> shutterTransforms_;
