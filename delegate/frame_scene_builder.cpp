@@ -130,7 +130,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     cd.exposureScale = float(cam.linearExposureScale() * std::exp2(in.exposureStops));
     cd.shutterOpenViewProjection = cd.shutterCloseViewProjection = toFloats<passes::Mat4>(multiply(view, unjitteredProjection));
     cd.shutterPosition = 0.5f;
-    cd.clipJitter = {float(in.clipJitter[12]), float(in.clipJitter[13]), 0.0f, 0.0f};
+    cd.clipJitter = {float(in.clipJitter[12]), float(in.clipJitter[13])};
     if (in.shutter && in.sample && (*in.shutter)[1] > (*in.shutter)[0])
         cd.shutterPosition = float((in.sample->time - (*in.shutter)[0]) / ((*in.shutter)[1] - (*in.shutter)[0]));
     bool cameraMoves = false;
@@ -141,6 +141,12 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         }
         cameraMoves = cd.shutterOpenViewProjection != cd.shutterCloseViewProjection;
     }
+    // Hydra's domeLightCameraVisibility: a visible dome is the background, opaque.
+    if (in.domeBackdrop)
+        for (const auto& [path, prim] : in.prims)
+            if (auto* l = dynamic_cast<const Light*>(prim.get());
+                l && !l->skipped() && l->visible() && l->data().positionType[3] == float(passes::LightType::Dome))
+                cd.backdropCoverage = 1.0f;
     scene.cameraData = cd;
     scene.camera = device.createBuffer(sizeof(cd), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "camera");
     std::memcpy(scene.camera->mapped(), &cd, sizeof(cd));
@@ -398,6 +404,15 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     scene.materials = uploadRecords(device, nullptr, 0, materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials");
     scene.lights = uploadRecords(device, &header, sizeof(header), lights, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights");
     passes::EnvironmentData environment = environmentData(in.environmentDome);
+    // The domes the camera sees: each one's radiance, the textured one's times its texture.
+    if (cd.backdropCoverage > 0.0f) {
+        environment.backdrop[3] = 1.0f;
+        for (const passes::LightData& light : lights) {
+            if (light.positionType[3] != float(passes::LightType::Dome)) continue;
+            auto& sum = light.factors[2] > 0.5f ? environment.texturedBackdrop : environment.backdrop;
+            for (size_t c = 0; c < 3; ++c) sum[c] += light.radiance[c];
+        }
+    }
     scene.environment =
         device.createBuffer(sizeof(environment), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "environment");
     std::memcpy(scene.environment->mapped(), &environment, sizeof(environment));

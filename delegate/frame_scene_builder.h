@@ -51,6 +51,9 @@ struct FrameSceneInputs {
     // bounds come nearer the eye than this are drawn without the jitter and edge-anti-aliased
     // (kInstanceEdgeAa); the rest are temporally anti-aliased. 0: every instance is temporal.
     double edgeAaDistance = 0.0;
+    // Render setting domeLightCameraVisibility (Hydra's): visible domes are the background the
+    // camera sees where nothing is drawn, and it is opaque.
+    bool domeBackdrop = true;
     // The camera's shutter, absolute time codes [open, close], when the frame samples it: a
     // motion-blurred frame (no `sample`) is seen at its centre (the reconstruction filter spreads
     // each pixel both ways along its velocity, McGuire et al. 2012) and the passes get where the

@@ -337,6 +337,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     ShadowSettings shadows{settings_.number("shadows") != 0.0, uint32_t(settings_.number("shadows:resolution")),
                            uint32_t(settings_.number("shadows:cascades"))};
     FrameSceneInputs frame{prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows, dome};
+    frame.domeBackdrop = settings_.number("domeLightCameraVisibility") != 0.0;
     // The `dof` setting turns the lens off for the post-process and the reference alike, and
     // `motionBlur` the shutter.
     passes::ThinLens lens = settings_.number("dof") != 0.0 ? camera->thinLens(double(width) / double(height))

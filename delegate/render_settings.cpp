@@ -69,6 +69,11 @@ const RenderSettingInfo kSettings[] = {
                            "as the camera moves; farther ones stay temporal; 0 makes every object temporal "
                            "(float, default 0)",
      OBSCURA_VALUE_FLOAT, 0.0, 0.0},
+    {"domeLightCameraVisibility", "dome lights are seen by the camera where nothing is drawn, as Hydra's setting of the "
+                                  "name: their texture (or colour) times intensity is the background, which is then "
+                                  "opaque (the colour AOV's alpha is 1); off: the background is black and transparent "
+                                  "(bool, default on)",
+     OBSCURA_VALUE_BOOL, 1.0},
     {"metersPerUnit", "the scene's metres per unit, as USD's stage metadata; hosts set it (float, default 0.01)",
      OBSCURA_VALUE_FLOAT, 0.01},
     {"timeCodesPerSecond", "the scene's time codes per second, as USD's stage metadata, for points and instances "

@@ -21,9 +21,13 @@ struct alignas(16) CameraData {
     float shutterPosition;  // 0 the shutter's open .. 1 its close: where deforming meshes are drawn
     Mat4 shutterOpenViewProjection;   // unjittered, for motion blur's velocities
     Mat4 shutterCloseViewProjection;
-    // Temporal AA's sub-pixel shift of this frame, in clip space (x, y: clip += jitter * w; z, w
-    // unused): instances drawn for edge AA (kInstanceEdgeAa) take it back off.
-    std::array<float, 4> clipJitter;
+    // Temporal AA's sub-pixel shift of this frame, in clip space (clip += jitter * w): instances
+    // drawn for edge AA (kInstanceEdgeAa) take it back off.
+    std::array<float, 2> clipJitter;
+    // 1 where the camera sees a dome behind everything (render setting domeLightCameraVisibility):
+    // the background is opaque, so every pixel's coverage (the colour AOV's alpha) is 1; else 0.
+    float backdropCoverage;
+    float pad0;
 };
 static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16 + 16);
 
@@ -126,8 +130,13 @@ static_assert(sizeof(ShadowViewData) == 96);
 struct alignas(16) EnvironmentData {
     Mat4 worldToDome;
     std::array<float, 4> params;  // x 1 when a textured dome lights the scene
+    // What the camera sees where nothing is drawn (render setting domeLightCameraVisibility), before
+    // exposure: rgb the untextured domes' radiance, w 1 when domes are seen at all; and rgb the
+    // textured dome's radiance, which multiplies its texture.
+    std::array<float, 4> backdrop;
+    std::array<float, 4> texturedBackdrop;
 };
-static_assert(sizeof(EnvironmentData) == 80);
+static_assert(sizeof(EnvironmentData) == 112);
 
 // Header of the light buffer: the count, padded to the first LightData.
 struct alignas(16) LightBufferHeader {

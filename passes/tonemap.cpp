@@ -10,6 +10,7 @@ struct TonemapPush {
     float middleGrey;
     float lutSize;
     uint32_t alphaIsCoverage;
+    float backdropCoverage;
 };
 }  // namespace
 
@@ -50,7 +51,8 @@ gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines
                 .bind(cmd);
             const ColorLut& lut = grading.lut();
             TonemapPush push{lut.shaperMinStops, lut.shaperMaxStops - lut.shaperMinStops, kShaperMiddleGrey,
-                             float(lut.size), hdrAlpha == HdrAlpha::Coverage ? 1u : 0u};
+                             float(lut.size), hdrAlpha == HdrAlpha::Coverage ? 1u : 0u,
+                             scene.cameraData.backdropCoverage};
             vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
             gpu::dispatch2D(cmd, scene.width, scene.height);
         });

@@ -53,7 +53,8 @@ void main() {
         // Premultiplied alpha: the opaque coverage with the transparent surfaces' over it.
         float a = push.alphaIsCoverage != 0u
                       ? hdr.a
-                      : compositeCoverage(covered ? 1.0 : 0.0, texelFetch(transparentCoverage, pixel, 0).r);
+                      : compositeCoverage(max(covered ? 1.0 : 0.0, camera.backdropCoverage),
+                                          texelFetch(transparentCoverage, pixel, 0).r);
         for (uint i = 0u; i < 3u; ++i) floats[index * 4u + i] = c[i];
         floats[index * 4u + 3u] = a;
     } else if (push.aov == AOV_DEPTH) {

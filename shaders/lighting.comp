@@ -112,6 +112,22 @@ vec3 shadeSurface(uint instanceTarget, float depth, vec4 normalRoughness, vec4 a
     return radiance * camera.exposureScale;
 }
 
+// What the camera sees through `windowPosition` where nothing is drawn: the visible domes
+// (render setting domeLightCameraVisibility), the textured one through the mirror level of its
+// prefiltered chain (the texture resampled to 512 x 256). The ray runs between two depths of the
+// pixel, which serves perspective and orthographic cameras alike.
+vec3 backdropRadiance(vec2 windowPosition) {
+    if (environment.backdrop.w == 0.0) return vec3(0.0);
+    vec3 radiance = environment.backdrop.rgb;
+    if (environment.params.x > 0.5) {
+        vec2 ndc = windowPosition / camera.resolution * 2.0 - 1.0;
+        vec3 ray = unproject(camera.inverseViewProjection, ndc, 0.75) - unproject(camera.inverseViewProjection, ndc, 0.25);
+        vec2 uv = latlongUv(normalize(mat3(environment.worldToDome) * ray));
+        radiance += environment.texturedBackdrop.rgb * textureLod(prefilteredEnvironment, uv, 0.0).rgb;
+    }
+    return radiance * camera.exposureScale;
+}
+
 // What one invocation shades in one round: a pixel of the resolved G-buffer or a sample of the
 // multisampled one (an instance target whose id is 0: nothing).
 struct ShadingJob {
@@ -258,11 +274,10 @@ void main() {
         if (round > 0u) job = sampleJob((round - 1u) * SAMPLE_ROUND + gl_LocalInvocationIndex, pairs, sampleCount);
 #endif
         bool hit = instanceIdFromTarget(job.instanceTarget) != 0u;
-        vec3 radiance = vec3(0.0);
-        if (hit)
-            radiance = shadeSurface(job.instanceTarget, job.depth, job.normalRoughness, job.albedoMetallic,
-                                    job.windowPosition, job.pixel,
-                                    texelFetch(clipStencil, job.pixel, 0).r & CLIP_VOLUME_BITS);
+        vec3 radiance = hit ? shadeSurface(job.instanceTarget, job.depth, job.normalRoughness, job.albedoMetallic,
+                                           job.windowPosition, job.pixel,
+                                           texelFetch(clipStencil, job.pixel, 0).r & CLIP_VOLUME_BITS)
+                            : backdropRadiance(job.windowPosition);
         if (round == 0u) {
             if (pixelFrequency) imageStore(lightAccumulation, pixel, vec4(radiance, instanceId != 0u ? 1.0 : 0.0));
         }

@@ -21,6 +21,7 @@ layout(push_constant) uniform Push {
     float middleGrey;
     float lutSize;
     uint alphaIsCoverage;  // passes/hdr_color.h
+    float backdropCoverage;  // CameraData::backdropCoverage: a dome is seen behind everything
 } push;
 
 // passes/color_lut.cpp shaperEncode: log2 stops around middle grey, with a linear toe that is the
@@ -43,7 +44,8 @@ void main() {
     // Lattice points sit at texel centres: scale and offset so 0 and 1 hit the first and last.
     vec3 coordinate = shaperEncode(hdr) * ((push.lutSize - 1.0) / push.lutSize) + 0.5 / push.lutSize;
     vec3 display = clamp(textureLod(gradingLut, coordinate, 0.0).rgb, 0.0, 1.0);
-    float opaque = instanceIdFromTarget(texelFetch(instanceTexture, pixel, 0).r) != 0u ? 1.0 : 0.0;
+    float opaque = max(instanceIdFromTarget(texelFetch(instanceTexture, pixel, 0).r) != 0u ? 1.0 : 0.0,
+                       push.backdropCoverage);
     float alpha = push.alphaIsCoverage != 0u ? hdrSample.a
                                              : compositeCoverage(opaque, texelFetch(transparentCoverage, pixel, 0).r);
     imageStore(displayColor, pixel, vec4(display, alpha));

@@ -194,7 +194,8 @@ typedef struct ObscuraSceneDelegate {
 } ObscuraSceneDelegate;
 
 /* An AOV binding: render `aov` into the render buffer prim at `renderBufferPath`. AOVs:
- *   "color"   float32Vec4  linear, premultiplied RGBA, exposure applied (alpha 0 where nothing drew; transparent
+ *   "color"   float32Vec4  linear, premultiplied RGBA, exposure applied (alpha 0 where nothing drew, unless the
+ *                          camera sees a dome there, render setting domeLightCameraVisibility: alpha 1; transparent
  *                          surfaces of opacity a_i over it: 1 - (1 - opaque)(1 - a_1)(1 - a_2)...)
  *   "depth"   float32      clip-space depth in [0,1] (1 where nothing drew), as Hydra's depth AOV
  *   "normal"  float32Vec3  eye-space shading normal (Hydra's Neye); 0 where nothing drew

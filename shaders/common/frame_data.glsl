@@ -16,9 +16,12 @@ struct CameraData {
     // seen at the shutter's centre. Without motion blur both are the frame's unjittered view.
     mat4 shutterOpenViewProjection;
     mat4 shutterCloseViewProjection;
-    // Temporal AA's sub-pixel shift in clip space (clip.xy += clipJitter.xy * clip.w), already in
-    // the matrices above; edge-anti-aliased instances (INSTANCE_EDGE_AA) take it back off.
-    vec4 clipJitter;
+    // Temporal AA's sub-pixel shift in clip space (clip.xy += clipJitter * clip.w), already in the
+    // matrices above; edge-anti-aliased instances (INSTANCE_EDGE_AA) take it back off.
+    vec2 clipJitter;
+    // 1 where a dome is seen behind everything (domeLightCameraVisibility): every pixel is covered.
+    float backdropCoverage;
+    float pad0;
 };
 
 // One per drawn rprim.
@@ -110,6 +113,10 @@ struct ShadowViewData {
 struct EnvironmentData {
     mat4 worldToDome;       // world directions into the dome's frame: the inverse of its transform
     vec4 params;            // x 1 when a textured dome lights the scene; yzw unused
+    // Where nothing is drawn, before exposure: rgb the untextured domes' radiance, w 1 when domes are
+    // seen at all; rgb the textured dome's radiance, times its texture (domeLightCameraVisibility).
+    vec4 backdrop;
+    vec4 texturedBackdrop;
 };
 
 const uint INSTANCE_DOUBLE_SIDED = 1u;

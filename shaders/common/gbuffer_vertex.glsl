@@ -45,7 +45,7 @@ vec4 surfaceVertex(vec3 position) {
 // non-jittered camera"), which stay on the pixel grid. Call after surfaceVertex().
 vec4 cameraClip(vec4 world) {
     vec4 clip = camera.viewProjection * world;
-    if ((instances[outInstance].flags & INSTANCE_EDGE_AA) != 0u) clip.xy -= camera.clipJitter.xy * clip.w;
+    if ((instances[outInstance].flags & INSTANCE_EDGE_AA) != 0u) clip.xy -= camera.clipJitter * clip.w;
     return clip;
 }
 

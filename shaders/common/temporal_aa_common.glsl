@@ -73,7 +73,8 @@ CrossDepths loadCrossDepths(ivec2 pixel, ivec2 size) {
 
 // This frame's colour at `pixel`, with coverage in alpha.
 vec4 currentSample(ivec2 pixel, float deviceDepth) {
-    float coverage = compositeCoverage(deviceDepth < 1.0 ? 1.0 : 0.0, texelFetch(transparentCoverage, pixel, 0).r);
+    float opaque = max(deviceDepth < 1.0 ? 1.0 : 0.0, camera.backdropCoverage);
+    float coverage = compositeCoverage(opaque, texelFetch(transparentCoverage, pixel, 0).r);
     return vec4(texelFetch(currentColor, pixel, 0).rgb, coverage);
 }
 

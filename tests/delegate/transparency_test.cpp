@@ -185,8 +185,13 @@ TEST(Transparency, FadeDistanceSoftensTheIntersection) {
 TEST(Transparency, ClearGlassKeepsItsReflection) {
     // UsdPreviewSurface: "perfectly clear glass still has a specular response". A black pane of
     // opacity 0 under a white dome of radiance 1 reflects the split-sum response F0 A + B (ior 1.5:
-    // F0 = 0.04) with alpha 0: added light over the background, premultiplied.
+    // F0 = 0.04) with alpha 0: added light over the background, premultiplied. With the dome hidden
+    // from the camera (domeLightCameraVisibility off) the background is empty; seen, the sky is
+    // the opaque background and the pane adds its reflection over it.
     TestHost host;
+    int32_t off = 0;
+    ObscuraValue hidden{OBSCURA_VALUE_BOOL, 0, 1, &off};
+    ASSERT_EQ(host.api().setRenderSetting(host.delegate(), "domeLightCameraVisibility", &hidden), OBSCURA_OK);
     host.addCamera("/Camera", translation(0, 0, kLitPlaneCameraDistance), kLitPlaneFocalLength, kLitPlaneAperture);
     host.addPrim("domeLight", "/Sky", {{"inputs:intensity", HostValue::floatValue(1.0f)}});
     addMaterial(host, "/GlassLook", {0, 0, 0}, 0.5f);
@@ -201,6 +206,14 @@ TEST(Transparency, ClearGlassKeepsItsReflection) {
                 double(color[(32 * kWidth + 32) * 4]), expected, double(color[(32 * kWidth + 32) * 4 + 3]));
     expectPremultipliedRadiance(color, 32, 32, {expected, expected, expected});
     EXPECT_NEAR(color[(32 * kWidth + 32) * 4 + 3], 0.0f, 1e-6f);
+
+    int32_t on = 1;
+    ObscuraValue seen{OBSCURA_VALUE_BOOL, 0, 1, &on};
+    ASSERT_EQ(host.api().setRenderSetting(host.delegate(), "domeLightCameraVisibility", &seen), OBSCURA_OK);
+    ASSERT_EQ(host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_OK) << host.lastError();
+    color = host.readFloats("/Buffers/color");
+    expectPremultipliedRadiance(color, 32, 32, {1.0 + expected, 1.0 + expected, 1.0 + expected});
+    EXPECT_NEAR(color[(32 * kWidth + 32) * 4 + 3], 1.0f, 1e-6f);
 }
 
 }  // namespace
