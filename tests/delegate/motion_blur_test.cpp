@@ -519,13 +519,20 @@ TEST(MotionBlur, InstancerPositionsThatChangeCountWithinTheShutterHoldStill) {
     EXPECT_FALSE(ranPass(s.host, "motion_blur_tile_max")) << "nothing moves";
 }
 
-TEST(MotionBlur, BadSamplesSettingIsRefused) {
+TEST(MotionBlur, BadSettingsAreRefused) {
     BlurScene s;
     for (double samples : {1.0, 33.0, 8.5}) {
         ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &samples};
         EXPECT_EQ(s.host.api().setRenderSetting(s.host.delegate(), "motionBlur:samples", &v),
                   OBSCURA_ERROR_INVALID_ARGUMENT);
         EXPECT_NE(s.host.lastError().find("motionBlur:samples"), std::string::npos) << s.host.lastError();
+    }
+    // Velocities are per second: a rate of time codes that is not positive means nothing.
+    for (double rate : {0.0, -24.0}) {
+        ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &rate};
+        EXPECT_EQ(s.host.api().setRenderSetting(s.host.delegate(), "timeCodesPerSecond", &v),
+                  OBSCURA_ERROR_INVALID_ARGUMENT);
+        EXPECT_NE(s.host.lastError().find("timeCodesPerSecond"), std::string::npos) << s.host.lastError();
     }
 }
 
