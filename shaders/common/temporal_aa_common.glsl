@@ -42,8 +42,9 @@ layout(set = 0, binding = 12, std430) readonly buffer Reprojections { InstanceRe
 bool historyReadable() { return taa.frames.x != 0u; }
 
 // Hybrid AA (seed 004): the pixel's surface was drawn on the pixel grid for edge AA and keeps no
-// history (the history there holds this frame's colour).
+// history (the history there holds this frame's colour). Frames without hybrid AA skip the lookup.
 bool edgeAntiAliased(ivec2 pixel) {
+    if (taa.frames.w == 0u) return false;
     uint instance = instanceIdFromTarget(texelFetch(instanceTarget, pixel, 0).r);
     return instance != 0u && (instances[instance - 1u].flags & INSTANCE_EDGE_AA) != 0u;
 }
@@ -66,7 +67,7 @@ CrossDepths loadCrossDepths(ivec2 pixel, ivec2 size) {
     CrossDepths d;
     for (int i = 0; i < CROSS_TAPS; ++i) {
         d.depth[i] = texelFetch(currentDepth, crossPixel(pixel, i, size), 0).r;
-        d.edgeAa[i] = taa.frames.w != 0u && edgeAntiAliased(crossPixel(pixel, i, size));
+        d.edgeAa[i] = edgeAntiAliased(crossPixel(pixel, i, size));
     }
     return d;
 }
