@@ -141,15 +141,6 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         }
         cameraMoves = cd.shutterOpenViewProjection != cd.shutterCloseViewProjection;
     }
-    // Hydra's domeLightCameraVisibility: a visible dome is the background, opaque.
-    if (in.domeBackdrop)
-        for (const auto& [path, prim] : in.prims)
-            if (auto* l = dynamic_cast<const Light*>(prim.get());
-                l && !l->skipped() && l->visible() && l->data().positionType[3] == float(passes::LightType::Dome))
-                cd.backdropCoverage = 1.0f;
-    scene.cameraData = cd;
-    scene.camera = device.createBuffer(sizeof(cd), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "camera");
-    std::memcpy(scene.camera->mapped(), &cd, sizeof(cd));
 
     // Materials: index 0 is the fallback for meshes without a (valid) binding.
     std::vector<passes::MaterialData> materials(1);
@@ -189,6 +180,13 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
             }
         }
     }
+    // Hydra's domeLightCameraVisibility: a visible dome is the background, opaque.
+    if (in.domeBackdrop)
+        for (const passes::LightData& light : lights)
+            if (light.positionType[3] == float(passes::LightType::Dome)) cd.backdropCoverage = 1.0f;
+    scene.cameraData = cd;
+    scene.camera = device.createBuffer(sizeof(cd), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "camera");
+    std::memcpy(scene.camera->mapped(), &cd, sizeof(cd));
 
     // Prototype meshes draw only through their instancers.
     std::vector<const Instancer*> instancers;
