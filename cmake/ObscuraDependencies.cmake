@@ -6,7 +6,6 @@ find_package(CLI11 REQUIRED)
 find_package(OpenEXR REQUIRED)
 find_package(Imath REQUIRED)
 find_package(PNG REQUIRED)
-find_package(fmt REQUIRED)
 find_package(assimp REQUIRED)          # glTF, FBX and OBJ scenes, converted to USD text
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET GLOBAL stb)
