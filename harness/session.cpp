@@ -10,7 +10,7 @@ namespace obscura::harness {
 
 std::variant<LoadedPlugin, SessionError> loadBestPlugin() {
     const char* env = std::getenv("OBSCURA_PLUGINPATH");
-    DiscoveryResult found = discoverPlugins(env ? env : "", executableDir() / ".." / "plugin");
+    DiscoveryResult found = discoverPlugins(env ? env : "", defaultPluginDir());
     for (const auto& problem : found.problems) std::fprintf(stderr, "obscura: warning: %s\n", problem.c_str());
     if (found.plugins.empty())
         return SessionError{kExitPluginOrDevice,
