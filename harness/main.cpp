@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
         ->check(CLI::NonNegativeNumber);
     r->add_option("--msaa", render.msaa, "G-buffer samples per pixel (render setting `msaa`)");
     r->add_flag("-v,--verbose", render.verbose, "print the plugin's info messages");
+    r->add_flag("--skip-existing", render.skipExisting, "do not render frames whose output file exists (resume a range)");
     frameOpt->excludes(r->get_option("--frames"));
 
     CompareOptions compare;
@@ -53,6 +54,26 @@ int main(int argc, char** argv) {
     b->add_option("--msaa", bench.msaa, "G-buffer samples per pixel (render setting `msaa`)");
     b->add_flag("-v,--verbose", bench.verbose, "print the plugin's info messages");
 
+    FarmSubmitOptions farmSubmit;
+    FarmJobOptions farmJob;
+    auto* farm = app.add_subcommand("farm", "frame ranges as array jobs on a Slurm cluster (docs/FARM.md)");
+    farm->require_subcommand(1);
+    auto* fs = farm->add_subcommand("submit", "submit a frame range; prints the job id");
+    fs->add_option("scene", farmSubmit.scene, "scene file")->required();
+    fs->add_option("-o,--output", farmSubmit.output, "output pattern with #### (.exr or .png)")->required();
+    fs->add_option("--frames", farmSubmit.frames, "range A-B of frames")->required();
+    fs->add_option("--chunk", farmSubmit.chunk, "frames per task")->check(CLI::PositiveNumber);
+    fs->add_option("--partition", farmSubmit.partition, "scheduler partition (default: the cluster's)");
+    fs->add_option("--render-args", farmSubmit.renderArgs, "more `obscura render` arguments (repeatable)")
+        ->allow_extra_args(false);
+    fs->add_option("--max-retries", farmSubmit.maxRetries, "restarts of a task before it gives up")
+        ->check(CLI::NonNegativeNumber);
+    fs->add_flag("--force", farmSubmit.force, "render frames whose file exists too");
+    auto* fst = farm->add_subcommand("status", "frames done, running, pending and failed; exit 0 when complete");
+    fst->add_option("job", farmJob.job, "job id or job folder")->required();
+    auto* fr = farm->add_subcommand("resubmit", "submit again the tasks whose frames are missing");
+    fr->add_option("job", farmJob.job, "job id or job folder")->required();
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -63,5 +84,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("info")) return runInfo();
     if (app.got_subcommand("render")) return runRender(render);
     if (app.got_subcommand("compare")) return runCompare(compare);
+    if (fs->parsed()) return runFarmSubmit(farmSubmit);
+    if (fst->parsed()) return runFarmStatus(farmJob);
+    if (fr->parsed()) return runFarmResubmit(farmJob);
     return runBench(bench);
 }

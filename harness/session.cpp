@@ -33,6 +33,13 @@ void Session::logToStderr(void* user, ObscuraLogLevel level, const char* message
                  level == OBSCURA_LOG_ERROR ? "error" : level == OBSCURA_LOG_WARNING ? "warning" : "info", message);
 }
 
+std::string Session::deviceName() const {
+    ObscuraRenderStats stats{};
+    stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
+    stats.structSize = sizeof(stats);
+    return api().getRenderStats(delegate_, &stats) == OBSCURA_OK ? std::string(stats.deviceName) : std::string();
+}
+
 std::vector<std::string> withMsaaSetting(std::vector<std::string> settings, const std::optional<int>& msaa) {
     if (msaa) settings.push_back("msaa=" + std::to_string(*msaa));
     return settings;

@@ -32,6 +32,8 @@ public:
     const usda::Stage& stage() const { return *stage_; }
     std::string lastError() const { return api().lastError(delegate_); }
     uint32_t loggedErrors() const { return loggedErrors_; }
+    // The Vulkan device the delegate renders with (from its render stats; empty before the first render).
+    std::string deviceName() const;
     // Also print the plugin's info messages (device, loaded textures, the MSAA tagged share).
     void setVerbose(bool verbose) { verbose_ = verbose; }
 
