@@ -31,6 +31,11 @@ if command -v exrheader >/dev/null; then
     check "EXR names Z, normal, albedo and motion layers" 0 $?
 fi
 
+# Every UsdGeom implicit surface renders, none reported as unsupported.
+"$obscura" render "$src/scenes/gprims.usda" -o "$tmp/gprims.png" --width 96 --height 40 --set taa:frames=2 >"$tmp/out" 2>&1
+check "render every implicit gprim" 0 $?
+! grep -q "not supported" "$tmp/out"; check "no gprim reported unsupported" 0 $? "$tmp/out" '.*'
+
 "$obscura" render "$src/scenes/demo.usda" -o "$tmp/frame.####.png" --frames 1-2 --width 32 --height 18 >"$tmp/out" 2>&1
 check "frame sequence" 0 $? "$tmp/out" 'frame 2 \(2/2\)'
 [ -s "$tmp/frame.0001.png" ] && [ -s "$tmp/frame.0002.png" ]; check "#### becomes the frame number" 0 $?
