@@ -162,6 +162,7 @@ void RenderDelegate::insertPrim(const std::string& type, const std::string& path
     if (prims_.count(path)) throw ApiError{OBSCURA_ERROR_ALREADY_EXISTS, "a prim already exists at " + path};
     std::unique_ptr<Prim> prim;
     if (type == "mesh") prim = std::make_unique<Mesh>(path, *schema, nextPrimId_++);
+    else if (auto kind = ImplicitSurface::kindOf(type)) prim = std::make_unique<ImplicitSurface>(path, *schema, nextPrimId_++, *kind);
     else if (type == "camera") prim = std::make_unique<Camera>(path, *schema);
     else if (type == "distantLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Distant);
     else if (type == "sphereLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Sphere);
@@ -242,7 +243,7 @@ void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue
                 markDirty(path, OBSCURA_DIRTY_POINTS);
 }
 
-void RenderDelegate::sync(double time, const Camera* camera) {
+void RenderDelegate::sync(double time, const Camera* camera, const ObscuraRenderPassDesc& desc) {
     primsSynced_ = 0;
     // The camera's shutter decides the interval transforms are sampled over; sync it first.
     std::vector<Prim*> dirty(dirty_.begin(), dirty_.end());
@@ -259,7 +260,7 @@ void RenderDelegate::sync(double time, const Camera* camera) {
         ctx.shutterClose = time + camera->params().shutterClose;
     };
     takeShutter();
-    for (Prim* prim : dirty) {
+    auto syncPrim = [&](Prim* prim) {
         prim->sync(ctx);
         if (prim == camera) takeShutter();
         ++primsSynced_;
@@ -272,7 +273,19 @@ void RenderDelegate::sync(double time, const Camera* camera) {
             log(OBSCURA_LOG_WARNING, light->path() + ": " + light->warning());
         if (auto* cam = dynamic_cast<Camera*>(prim); cam && !cam->warning().empty())
             log(OBSCURA_LOG_WARNING, cam->path() + ": " + cam->warning());
-    }
+    };
+    for (Prim* prim : dirty) syncPrim(prim);
+    // Implicit surfaces refine with their size on screen: those whose level changed are
+    // tessellated again, with the transforms and instance placements just synced.
+    // The viewport's size, else the first bound render buffer's (checked when they are bound).
+    uint32_t width = desc.viewport[2] > 0 ? uint32_t(desc.viewport[2]) : 0;
+    uint32_t height = desc.viewport[3] > 0 ? uint32_t(desc.viewport[3]) : 0;
+    const RenderBuffer* first = desc.aovBindingCount > 0 && desc.aovBindings[0].renderBufferPath
+                                    ? find<RenderBuffer>(desc.aovBindings[0].renderBufferPath)
+                                    : nullptr;
+    if (width == 0 && first) width = first->width(), height = first->height();
+    if (camera && !camera->skipped())
+        for (ImplicitSurface* surface : chooseImplicitLevels(prims_, *camera, width, height)) syncPrim(surface);
     // All uploads of this sync go to the GPU in one submission.
     device_->flushUploads();
 }
@@ -288,7 +301,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "aovBindings is NULL but aovBindingCount is not 0"};
 
     auto syncStart = std::chrono::steady_clock::now();
-    sync(desc.time, camera);
+    sync(desc.time, camera, desc);
     auto syncEnd = std::chrono::steady_clock::now();
     syncMilliseconds_ = std::chrono::duration<double, std::milli>(syncEnd - syncStart).count();
     if (camera->skipped()) throw ApiError{OBSCURA_ERROR_BAD_PRIM_DATA, "camera " + camera->problem()};

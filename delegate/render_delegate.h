@@ -6,6 +6,7 @@
 #include "delegate/frame_scene_builder.h"
 #include "delegate/geometry_cache.h"
 #include "delegate/prims/camera.h"
+#include "delegate/prims/implicit_surface.h"
 #include "delegate/prims/instancer.h"
 #include "delegate/prims/light.h"
 #include "delegate/prims/material.h"
@@ -64,7 +65,8 @@ public:
     void log(ObscuraLogLevel level, const std::string& message) const;
 
 private:
-    void sync(double time, const Camera* camera);
+    // `desc`: the render pass, whose viewport size implicit surfaces are tessellated for.
+    void sync(double time, const Camera* camera, const ObscuraRenderPassDesc& desc);
     // Clip volumes, SSAO, the environment and deferred lighting of `scene` (built from `frame`)
     // into the light accumulation.
     // Deferred MSAA's part of the frame after the resolve (render setting msaa > 1): the

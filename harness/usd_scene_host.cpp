@@ -21,6 +21,14 @@ const std::map<std::string, std::string> kPrimTypes = {
     {"DomeLight", "domeLight"},
     {"Material", "material"},
     {"PointInstancer", "instancer"},
+    {"Cube", "cube"},
+    {"Sphere", "sphere"},
+    {"Cylinder", "cylinder"},
+    {"Cylinder_1", "cylinder1"},
+    {"Cone", "cone"},
+    {"Capsule", "capsule"},
+    {"Capsule_1", "capsule1"},
+    {"Plane", "plane"},
 };
 
 // Types that organise a scene and are not drawn themselves.
@@ -161,6 +169,7 @@ std::string UsdSceneHost::defaultCamera() const {
 }
 
 std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDelegate delegate, double time) {
+    // XXX: only meshes' points are framed; implicit gprims (Cube, Sphere...) are left out of the bounds.
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (const usda::Prim* prim : stage_.prims()) {
         if (prim->typeName != "Mesh" || prototypeSpace(*prim)) continue;

@@ -31,6 +31,11 @@ if command -v exrheader >/dev/null; then
     check "EXR names Z, normal, albedo and motion layers" 0 $?
 fi
 
+# Every UsdGeom implicit surface renders, none reported as unsupported.
+"$obscura" render "$src/scenes/gprims.usda" -o "$tmp/gprims.png" --width 96 --height 40 --set taa:frames=2 >"$tmp/out" 2>&1
+check "render every implicit gprim" 0 $?
+! grep -q "not supported" "$tmp/out"; check "no gprim reported unsupported" 0 $?
+
 "$obscura" render "$src/scenes/demo.usda" -o "$tmp/frame.####.png" --frames 1-2 --width 32 --height 18 >"$tmp/out" 2>&1
 check "frame sequence" 0 $? "$tmp/out" 'frame 2 \(2/2\)'
 [ -s "$tmp/frame.0001.png" ] && [ -s "$tmp/frame.0002.png" ]; check "#### becomes the frame number" 0 $?
@@ -68,7 +73,8 @@ check "malformed scene names file:line:column" 3 $? "$tmp/out" 'malformed\.usda:
 "$obscura" render "$src/tests/harness/data/bad_prims.usda" -o "$tmp/bad.png" --width 64 --height 64 >"$tmp/out" 2>&1
 check "bad prims exit 3" 3 $? "$tmp/out" 'NaNPoints.*NaN'
 grep -q 'IndexOutOfRange' "$tmp/out"; check "every bad prim is reported" 0 $?
-grep -q "prim type 'Cube' is not supported" "$tmp/out"; check "unsupported prim types warned once" 0 $?
+grep -q "prim type 'BasisCurves' is not supported" "$tmp/out"; check "unsupported prim types warned once" 0 $?
+grep -q 'NegativeRadius: radius is -1' "$tmp/out"; check "a sphere of negative radius is reported" 0 $?
 [ -s "$tmp/bad.png" ]; check "the rest still renders" 0 $?
 "$obscura" render "$src/tests/harness/data/no_camera.usda" -o "$tmp/x.exr" --aov color,depth >"$tmp/out" 2>&1
 check "scene without camera is framed" 0 $? "$tmp/out" 'no camera; framing'
