@@ -41,6 +41,8 @@ grep -q "12/12 frames done" "$tmp/status"; check "status counts 12 frames" $? "$
 same=0
 for f in $(seq -f %04g 1 12); do cmp -s "$tmp/farm/f.$f.exr" "$tmp/local/f.$f.exr" || same=1; done
 check "every farm frame equals the local render, bit for bit" $same
+LP_NUM_THREADS=1 "$obscura" render "$scene" -o "$tmp/alone.exr" --frame 5 "${args[@]}" 2>/dev/null
+cmp -s "$tmp/alone.exr" "$tmp/farm/f.0005.exr"; check "a frame alone, on one lavapipe thread, is the same file" $?
 ! cmp -s "$tmp/farm/f.0001.exr" "$tmp/farm/f.0012.exr"; check "the frames differ (the scene moves)" $?
 grep -q "frame 5 (1/4) -> .*f.0005.exr: [0-9]* ms on " "$tmp/farm/.obscura-farm/f/logs/${job}_1.log"
 check "a task's log names each frame, its time and the device" $? "$tmp/farm/.obscura-farm/f/logs/${job}_1.log"
