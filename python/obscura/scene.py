@@ -108,11 +108,11 @@ def _converted(path: str, attribute: str, value: Any) -> Value:
         return to_value(value)
     except (ValueError, TypeError) as e:  # numpy's own conversion errors too
         # The conversion's message, with the prim and attribute it belongs to.
-        raise InvalidArgumentError(f"{path}: {attribute}: {e}") from None
+        raise InvalidArgumentError(f"{path}: {attribute}: {getattr(e, 'message', e)}") from None
 
 
 def _converted_matrix(path: str, transform: Any) -> np.ndarray:
     try:
         return to_matrix(transform)
     except (ValueError, TypeError) as e:
-        raise InvalidArgumentError(f"{path}: transform: {e}") from None
+        raise InvalidArgumentError(f"{path}: transform: {getattr(e, 'message', e)}") from None

@@ -175,7 +175,7 @@ def to_value(value: Any) -> Value:
         return _from_tuple(value)
     if isinstance(value, (list, np.ndarray)):
         return _from_array(value)
-    raise InvalidArgumentError(f"cannot pass a {type(value).__name__} to the renderer")
+    raise InvalidArgumentError(f"cannot pass a value of type {type(value).__name__} to the renderer")
 
 
 def address_of(array: np.ndarray) -> int:
