@@ -238,14 +238,14 @@ class Delegate:
             native = self._open()
             values = dict(attributes or {})
             values.update({keyword_name(k): v for k, v in keyword_attributes.items()})
+            prim = None
             if isinstance(self.scene, Scene):
-                self.scene.add(type, path, values, transform, interpolations)
+                prim = self.scene.make_prim(type, path, values, transform, interpolations)
             elif values or transform is not None or interpolations:
                 raise InvalidStateError(f"{path}: values go to the scene delegate {self.scene!r}, not to insert_prim")
-            status = native.api.insertPrim(native.handle, type.encode("utf-8"), path.encode("utf-8"))
-            if status != Status.OK and isinstance(self.scene, Scene):
-                self.scene.remove(path)
-            self._check(status)
+            self._check(native.api.insertPrim(native.handle, type.encode("utf-8"), path.encode("utf-8")))
+            if prim is not None:  # only now: a refused insert leaves a prim already at `path` as it was
+                self.scene.prims[path] = prim
 
     def remove_prim(self, path: str) -> None:
         with self._lock:

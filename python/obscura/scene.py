@@ -65,16 +65,22 @@ class Scene(SceneDelegate):
     def __init__(self) -> None:
         self.prims: dict[str, Prim] = {}
 
-    def add(self, type: str, path: str, values: Mapping[str, Any] | None = None, transform: Any = None,
-            interpolations: Mapping[str, Interpolation] | None = None) -> Prim:
+    @staticmethod
+    def make_prim(type: str, path: str, values: Mapping[str, Any] | None = None, transform: Any = None,
+                  interpolations: Mapping[str, Interpolation] | None = None) -> Prim:
+        """A prim with its values converted (raising InvalidArgumentError, naming the attribute)."""
         prim = Prim(type)
         for attribute, value in (values or {}).items():
             prim.values[attribute] = _converted(path, attribute, value)
         if transform is not None:
             prim.transform = _converted_matrix(path, transform)
         prim.interpolations.update(interpolations or {})
-        self.prims[path] = prim
         return prim
+
+    def add(self, type: str, path: str, values: Mapping[str, Any] | None = None, transform: Any = None,
+            interpolations: Mapping[str, Interpolation] | None = None) -> Prim:
+        self.prims[path] = self.make_prim(type, path, values, transform, interpolations)
+        return self.prims[path]
 
     def set(self, path: str, attribute: str, value: Any) -> None:
         """Sets (or, with None, removes) an attribute's value."""

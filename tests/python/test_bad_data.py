@@ -76,9 +76,10 @@ def test_plugin_refusals_raise_with_status_and_message(delegate: obscura.Delegat
     with pytest.raises(obscura.UnknownTypeError) as caught:
         delegate.insert_prim("teapot", "/Teapot")
     assert caught.value.status == obscura.Status.UNKNOWN_TYPE and "teapot" in caught.value.message
-    delegate.insert_prim("camera", "/Camera")
+    delegate.insert_prim("camera", "/Camera", focalLength=35.0)
     with pytest.raises(obscura.AlreadyExistsError, match="/Camera"):
-        delegate.insert_prim("camera", "/Camera")
+        delegate.insert_prim("camera", "/Camera", focalLength=85.0)
+    assert delegate.scene.get_value("/Camera", "focalLength", 0.0).array == 35.0  # the first one's, kept
     with pytest.raises(obscura.NotFoundError, match="/Nowhere"):
         delegate.render("/Nowhere", {})
     with pytest.raises(obscura.InvalidStateError, match="has not been rendered"):
