@@ -130,7 +130,7 @@ class _Callbacks:
         thunks = (_abi.PFN_obscuraGetValue(self.get_value), _abi.PFN_obscuraGetInterpolation(self.get_interpolation),
                   _abi.PFN_obscuraSampleTransform(self.sample_transform))
         sd = _abi.ObscuraSceneDelegate.new(
-            flags=_abi.SCENE_DELEGATE_THREAD_SAFE if self.scene.thread_safe else 0, userData=None,
+            flags=0, userData=None,  # not OBSCURA_SCENE_DELEGATE_THREAD_SAFE: see SceneDelegate
             getValue=thunks[0], getInterpolation=thunks[1], sampleTransform=thunks[2])
         return sd, thunks
 

@@ -41,7 +41,8 @@ class UnknownTypeError(ObscuraError):
 
 
 class BadPrimDataError(ObscuraError):
-    """Some prims were skipped for bad data; the image was still rendered without them.
+    """Some prims were skipped for bad data: the image was still rendered without them, unless the
+    skipped prim was the camera or a bound render buffer (then nothing was rendered).
 
     ``callback_errors`` lists the exceptions the scene delegate's Python callbacks raised during
     the render, as ``(prim path, what was asked, exception)``.

@@ -27,11 +27,10 @@ class SceneDelegate:
     logged, kept in :attr:`Delegate.callback_errors` and makes that prim skipped with the message,
     and the render goes on without it.
 
-    Callbacks run on the thread that called :meth:`Delegate.render` (the plugin never calls them
-    from elsewhere unless ``thread_safe`` is true, which a Python scene delegate has no reason to say).
+    Callbacks run on the thread that called :meth:`Delegate.render`: the package never sets
+    OBSCURA_SCENE_DELEGATE_THREAD_SAFE, as the GIL would serialise parallel callbacks anyway and a
+    value handed out stays valid only until the next callback.
     """
-
-    thread_safe: bool = False
 
     def get_value(self, path: str, attribute: str, time: float) -> Any:
         """The value of ``attribute`` of the prim at ``path`` at time code ``time``, in any form

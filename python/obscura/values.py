@@ -96,21 +96,21 @@ class Value:
         return f"Value({self.type.name}{'[]' if self.is_array else ''}, {shown!r})"
 
 
-def _element(type: ValueType) -> tuple[type, int]:
+def _element(value_type: ValueType) -> tuple[type, int]:
     """numpy dtype and numbers per element of a numeric value type."""
-    if type in (ValueType.BOOL, ValueType.INT):
+    if value_type in (ValueType.BOOL, ValueType.INT):
         return np.int32, 1
-    if type == ValueType.INT2:
+    if value_type == ValueType.INT2:
         return np.int32, 2
-    if type == ValueType.FLOAT:
+    if value_type == ValueType.FLOAT:
         return np.float32, 1
-    if type == ValueType.DOUBLE:
+    if value_type == ValueType.DOUBLE:
         return np.float64, 1
-    if type == ValueType.MATRIX4D:
+    if value_type == ValueType.MATRIX4D:
         return np.float64, 16
-    if type in _VECTOR_TYPES.values():
-        return np.float32, type - ValueType.FLOAT2 + 2
-    raise InvalidArgumentError(f"value type {type.name} carries no numbers")
+    if value_type in _VECTOR_TYPES.values():
+        return np.float32, value_type - ValueType.FLOAT2 + 2
+    raise InvalidArgumentError(f"value type {value_type.name} carries no numbers")
 
 
 def _int32(values: np.ndarray) -> np.ndarray:
