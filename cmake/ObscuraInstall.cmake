@@ -4,6 +4,7 @@
 #   include/obscura/                          the public C ABI header(s)
 #   lib/cmake/Obscura/                        find_package(Obscura CONFIG): Obscura::headers, Obscura_PLUGIN_DIR
 #   lib/pkgconfig/obscura.pc                  pkg-config --cflags obscura; --variable=plugindir obscura
+#   lib/python3/dist-packages/obscura/        the Python package
 include(CMakePackageConfigHelpers)
 set(OBSCURA_CMAKE_PACKAGE_DIR lib/cmake/Obscura)
 set(OBSCURA_PKGCONFIG_DIR lib/pkgconfig)
@@ -12,6 +13,9 @@ install(TARGETS obscura RUNTIME DESTINATION bin COMPONENT runtime)
 install(TARGETS obscura_plugin LIBRARY DESTINATION ${OBSCURA_PLUGIN_RELDIR}/obscura COMPONENT runtime)
 install(FILES ${OBSCURA_PLUGIN_DIR}/plugInfo.json DESTINATION ${OBSCURA_PLUGIN_RELDIR}/obscura COMPONENT runtime)
 install(DIRECTORY include/obscura DESTINATION include COMPONENT development)
+# The Python package (docs/PYTHON.md), where Debian's python3 looks under /usr; it finds the plugin
+# relative to itself (<prefix>/lib/python3/dist-packages/obscura -> <prefix>/lib/obscura/plugin).
+install(DIRECTORY python/obscura DESTINATION lib/python3/dist-packages COMPONENT runtime PATTERN __pycache__ EXCLUDE)
 
 configure_package_config_file(cmake/package/ObscuraConfig.cmake.in
   ${CMAKE_BINARY_DIR}/package/ObscuraConfig.cmake

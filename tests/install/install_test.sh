@@ -3,6 +3,7 @@
 # build tree. usage: install_test.sh MODE BUILD_DIR SOURCE_DIR
 #   prefix        install into BUILD_DIR/install-test (the fixture of the other modes)
 #   harness       the installed obscura finds the installed plugin with no environment variable, and renders
+#   python        the installed Python package finds the installed plugin the same way
 #   find_package  a separate CMake project finds the package and builds the C99 host, which renders
 #   pkg_config    the same host built with `pkg-config --cflags --libs obscura`
 #   deb           cpack builds the .deb; its layout, dependencies, and its extracted obscura renders
@@ -29,12 +30,20 @@ prefix)
   cmake --install "$build" --prefix "$prefix" >/dev/null
   for f in bin/obscura lib/obscura/plugin/obscura/plugInfo.json lib/obscura/plugin/obscura/libobscuraDelegate.so \
            include/obscura/obscura.h lib/cmake/Obscura/ObscuraConfig.cmake lib/cmake/Obscura/ObscuraConfigVersion.cmake \
-           lib/pkgconfig/obscura.pc; do
+           lib/pkgconfig/obscura.pc lib/python3/dist-packages/obscura/__init__.py; do
     [ -e "$prefix/$f" ] || fail "$f not installed"
   done
   ;;
 harness)
   check_harness "$prefix"
+  ;;
+python)
+  # The installed Python package finds the installed plugin with no environment variable.
+  PYTHONPATH=$prefix/lib/python3/dist-packages /usr/bin/python3 -c "
+import obscura, os
+r = obscura.Renderer()
+assert os.path.realpath(str(r.info.library)).startswith(os.path.realpath('$prefix')), r.info.library
+print('installed package loaded', r.info.library, r.version)" || fail "the installed Python package"
   ;;
 find_package)
   rm -rf "$build/install-test-consumer"
