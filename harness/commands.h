@@ -1,6 +1,8 @@
 // The harness's subcommands (DESIGN.md, CLI contract). main.cpp parses the command line.
 #pragma once
 
+#include "harness/usda/stage.h"
+
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +22,7 @@ struct RenderOptions {
     int reference = 0;  // sub-frames of the reference mode; 0: the normal frame
     std::optional<int> msaa;  // --msaa N: the render setting msaa
     bool verbose = false;     // print the plugin's info messages
+    usda::CompositionLimits limits;  // --max-prims, --max-index-nodes, --max-stage-mib
 };
 
 struct CompareOptions {
@@ -42,6 +45,7 @@ struct BenchOptions {
     std::vector<std::string> settings;
     std::optional<int> msaa;  // --msaa N: the render setting msaa
     bool verbose = false;     // print the plugin's info messages (e.g. the MSAA tagged share per frame)
+    usda::CompositionLimits limits;
 };
 
 int runInfo();

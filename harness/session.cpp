@@ -38,7 +38,8 @@ std::vector<std::string> withMsaaSetting(std::vector<std::string> settings, cons
     return settings;
 }
 
-std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::string& scenePath) {
+std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::string& scenePath,
+                                                                  const usda::CompositionLimits& limits) {
     std::unique_ptr<Session> s(new Session());
     // glTF, FBX and OBJ arrive through Assimp as a USD layer: one scene model for every format.
     std::variant<std::unique_ptr<usda::Stage>, usda::Error> opened = usda::Error{};
@@ -47,9 +48,9 @@ std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::st
         if (auto* error = std::get_if<ImportError>(&imported)) return SessionError{kExitBadInput, error->message};
         for (const auto& w : std::get<ImportResult>(imported).warnings)
             std::fprintf(stderr, "obscura: warning: %s: %s\n", scenePath.c_str(), w.c_str());
-        opened = usda::Stage::openFromString(std::get<ImportResult>(imported).usda, scenePath);
+        opened = usda::Stage::openFromString(std::get<ImportResult>(imported).usda, scenePath, limits);
     } else {
-        opened = usda::Stage::open(scenePath);
+        opened = usda::Stage::open(scenePath, limits);
     }
     if (auto* error = std::get_if<usda::Error>(&opened)) return SessionError{kExitBadInput, error->str()};
     s->stage_ = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));

@@ -73,6 +73,16 @@ grep -q "prim type 'Cube' is not supported" "$tmp/out"; check "unsupported prim 
 "$obscura" render "$src/tests/harness/data/no_camera.usda" -o "$tmp/x.exr" --aov color,depth >"$tmp/out" 2>&1
 check "scene without camera is framed" 0 $? "$tmp/out" 'no camera; framing'
 
+# Composition has a budget: a file whose arcs fan out stops with its location, and the limits are options.
+"$obscura" render "$src/tests/usda/data/limits/laughs.usda" -o "$tmp/x.png" --max-prims 5000 >"$tmp/out" 2>&1
+check "--max-prims stops a fan-out of references" 3 $? "$tmp/out" 'laughs\.usda:[0-9]+:[0-9]+: composition stopped: .* the limit is 5000 prims'
+"$obscura" render "$src/tests/usda/data/limits/laughs.usda" -o "$tmp/x.png" --max-stage-mib 32 >"$tmp/out" 2>&1
+check "--max-stage-mib bounds the stage's memory" 3 $? "$tmp/out" 'laughs\.usda:[0-9]+:[0-9]+: .*more than 32 MiB'
+"$obscura" render "$src/tests/usda/data/limits/repeated_reference.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
+check "one prim named 1000 times stops at its arc" 3 $? "$tmp/out" 'repeated_reference\.usda:7:[0-9]+: .*more than 10000 composition arcs contribute to </T>'
+"$obscura" render "$src/tests/usda/data/limits/repeated_reference.usda" -o "$tmp/x.png" --max-index-nodes 20000 >"$tmp/out" 2>&1
+check "--max-index-nodes is settable" 3 $? "$tmp/out" 'more than 20000 composition arcs'
+
 "$obscura" render "$tmp/does-not-exist.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
 check "missing scene file" 3 $? "$tmp/out" 'does-not-exist'
 "$obscura" render "$src/scenes/demo.usda" -o "$tmp/x.tiff" >"$tmp/out" 2>&1
