@@ -25,11 +25,31 @@ std::variant<LoadedPlugin, SessionError> loadBestPlugin() {
     return SessionError{kExitPluginOrDevice, "no plugin could be loaded:" + reasons};
 }
 
+namespace {
+
+// "file:line:column: " as compilers write it, or "" for no location.
+std::string locationPrefix(const usda::SourceLocation& where) {
+    if (where.file.empty() || where.line <= 0) return {};
+    return where.file + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) + ": ";
+}
+
+void printHostMessage(const HostMessage& m) {
+    std::fprintf(stderr, "obscura: %s%s: %s\n", locationPrefix(m.where).c_str(), m.error ? "error" : "warning",
+                 m.text.c_str());
+}
+
+}  // namespace
+
+// A message about a prim names where its offending attribute was authored (delegate_message.h).
 void Session::logToStderr(void* user, ObscuraLogLevel level, const char* message) {
     auto* self = static_cast<Session*>(user);
     if (level == OBSCURA_LOG_ERROR) ++self->loggedErrors_;
     if (level < (self->verbose_ ? OBSCURA_LOG_INFO : OBSCURA_LOG_WARNING)) return;
-    std::fprintf(stderr, "obscura: %s: %s\n",
+    std::string where;
+    if (self->host_)
+        if (auto about = parsePrimMessage(message))
+            if (auto location = self->host_->locate(*about)) where = locationPrefix(*location);
+    std::fprintf(stderr, "obscura: %s%s: %s\n", where.c_str(),
                  level == OBSCURA_LOG_ERROR ? "error" : level == OBSCURA_LOG_WARNING ? "warning" : "info", message);
 }
 
@@ -76,10 +96,10 @@ std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::st
     s->api().setRenderSetting(s->delegate_, "timeCodesPerSecond", &rate);
 
     s->host_ = std::make_unique<UsdSceneHost>(*s->stage_);
+    s->host_->setMessageSink(printHostMessage);
     if (s->api().setSceneDelegate(s->delegate_, &s->host_->sceneDelegate()) != OBSCURA_OK ||
         s->host_->populate(s->api(), s->delegate_) != OBSCURA_OK)
         return SessionError{kExitPluginOrDevice, s->lastError()};
-    for (const auto& m : s->host_->messages()) std::fprintf(stderr, "obscura: warning: %s\n", m.text.c_str());
     return s;
 }
 
