@@ -7,6 +7,7 @@ packages=(
   glslang-dev glslang-tools spirv-tools
   libopenexr-dev openexr libimath-dev libpng-dev libstb-dev libopencolorio-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev libosd-dev libassimp-dev
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do
