@@ -18,6 +18,7 @@ run)
     fuzzer=$2 corpus=$3 seconds=$4
     work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
     cp -r "$corpus/." "$work/"
+    export LSAN_OPTIONS="suppressions=$(cd "$(dirname "$0")" && pwd)/lsan.supp"
     # Inputs grow to a few scene files' size; an input slower than 10 s or above 2 GB is a finding.
     "$fuzzer" -max_total_time="$seconds" -max_len=16384 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 "$work"
     ;;
