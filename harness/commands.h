@@ -1,6 +1,8 @@
 // The harness's subcommands (DESIGN.md, CLI contract). main.cpp parses the command line.
 #pragma once
 
+#include "harness/usda/stage.h"
+
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,6 +23,7 @@ struct RenderOptions {
     std::optional<int> msaa;  // --msaa N: the render setting msaa
     bool verbose = false;     // print the plugin's info messages
     bool skipExisting = false;  // frames whose output file exists are not rendered again (resumable ranges)
+    usda::CompositionLimits limits;  // --max-prims, --max-index-nodes, --max-stage-mib
 };
 
 struct CompareOptions {
@@ -43,6 +46,7 @@ struct BenchOptions {
     std::vector<std::string> settings;
     std::optional<int> msaa;  // --msaa N: the render setting msaa
     bool verbose = false;     // print the plugin's info messages (e.g. the MSAA tagged share per frame)
+    usda::CompositionLimits limits;
 };
 
 // obscura farm submit: a frame range as an array job of the scheduler (docs/FARM.md).

@@ -5,6 +5,25 @@
 
 #include <CLI/CLI.hpp>
 
+namespace {
+
+// What composing the scene may build (usda::CompositionLimits); render and bench share them.
+void addCompositionLimits(CLI::App& command, obscura::usda::CompositionLimits& limits) {
+    command.add_option("--max-prims", limits.maxPrims, "stop composing beyond this many prims")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    command.add_option("--max-index-nodes", limits.maxIndexNodes, "composition arcs one prim may gather")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    command
+        .add_option_function<size_t>(
+            "--max-stage-mib", [&limits](size_t mib) { limits.maxMemoryBytes = mib << 20; },
+            "memory the composed stage may hold, MiB (default " + std::to_string(limits.maxMemoryBytes >> 20) + ")")
+        ->check(CLI::Range(size_t(1), size_t(1) << 40));
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     using namespace obscura::harness;
     CLI::App app{"obscura: render USD scenes with the Obscura render delegate plugin"};
@@ -32,6 +51,7 @@ int main(int argc, char** argv) {
     r->add_flag("-v,--verbose", render.verbose, "print the plugin's info messages");
     r->add_flag("--skip-existing", render.skipExisting, "do not render frames whose output file exists (resume a range)");
     frameOpt->excludes(r->get_option("--frames"));
+    addCompositionLimits(*r, render.limits);
 
     CompareOptions compare;
     auto* c = app.add_subcommand("compare", "compare two images; exit 1 below a threshold");
@@ -53,6 +73,7 @@ int main(int argc, char** argv) {
     b->add_option("--set", bench.settings, "render setting key=value (repeatable)");
     b->add_option("--msaa", bench.msaa, "G-buffer samples per pixel (render setting `msaa`)");
     b->add_flag("-v,--verbose", bench.verbose, "print the plugin's info messages");
+    addCompositionLimits(*b, bench.limits);
 
     FarmSubmitOptions farmSubmit;
     FarmJobOptions farmJob;

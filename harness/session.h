@@ -23,7 +23,8 @@ std::vector<std::string> withMsaaSetting(std::vector<std::string> settings, cons
 class Session {
 public:
     // Loads the highest-priority plugin found (OBSCURA_PLUGINPATH, then beside the harness).
-    static std::variant<std::unique_ptr<Session>, SessionError> open(const std::string& scenePath);
+    static std::variant<std::unique_ptr<Session>, SessionError> open(const std::string& scenePath,
+                                                                     const usda::CompositionLimits& limits = {});
     ~Session();
 
     const ObscuraApiV1& api() const { return plugin_->api(); }
