@@ -291,11 +291,18 @@ Context::~Context() {
 }
 
 void Context::beginOneShot(VkCommandBuffer& cmd) {
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = commandPool_;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    vkCheck(vkAllocateCommandBuffers(device_, &ai, &cmd), "vkAllocateCommandBuffers");
+    // One command buffer, allocated once and reset for each submission: a steady frame creates no
+    // Vulkan object (issue 13).
+    if (!oneShot_) {
+        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        ai.commandPool = commandPool_;
+        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        ai.commandBufferCount = 1;
+        vkCheck(vkAllocateCommandBuffers(device_, &ai, &oneShot_), "vkAllocateCommandBuffers");
+    } else {
+        vkCheck(vkResetCommandBuffer(oneShot_, 0), "vkResetCommandBuffer");
+    }
+    cmd = oneShot_;
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     vkCheck(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
@@ -309,7 +316,6 @@ void Context::endOneShot(VkCommandBuffer cmd) {
     vkCheck(vkResetFences(device_, 1, &fence_), "vkResetFences");
     vkCheck(vkQueueSubmit(queue_, 1, &si, fence_), "vkQueueSubmit");
     vkCheck(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-    vkFreeCommandBuffers(device_, commandPool_, 1, &cmd);
 }
 
 const char* vkResultName(VkResult r) {

@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -56,7 +57,7 @@ public:
     uint32_t validationErrorCount() const { return validationErrors_.load(); }
     void log(LogLevel level, const std::string& message) const;
 
-    // Runs a one-off command buffer to completion (uploads at sync time, readbacks).
+    // Records and runs a command buffer to completion (frames, uploads at sync time). Not re-entrant.
     template <typename F>
     void submitAndWait(F&& record);
 
@@ -86,14 +87,24 @@ private:
     PhysicalDeviceSummary summary_;
     VkCommandPool commandPool_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;
+    VkCommandBuffer oneShot_ = VK_NULL_HANDLE;  // reused by every submitAndWait
+    bool recording_ = false;
     std::atomic<uint32_t> validationErrors_{0};
 };
 
 template <typename F>
 void Context::submitAndWait(F&& record) {
+    if (recording_) throw std::logic_error("submitAndWait called while recording another submission");
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     beginOneShot(cmd);
-    record(cmd);
+    recording_ = true;
+    try {
+        record(cmd);
+    } catch (...) {
+        recording_ = false;
+        throw;
+    }
+    recording_ = false;
     endOneShot(cmd);
 }
 
