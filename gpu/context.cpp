@@ -173,6 +173,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     pinDriversForLeakChecking();
     std::unique_ptr<Context> ctx(new Context());
     ctx->log_ = options.log;
+    ctx->faults_ = options.faults;
     bool validation = options.validation;
     if (validation && !hasLayer(kValidationLayer)) {
         return Failure{"validation requested but VK_LAYER_KHRONOS_validation is not installed"};
@@ -314,6 +315,8 @@ void Context::endOneShot(VkCommandBuffer cmd) {
     si.commandBufferCount = 1;
     si.pCommandBuffers = &cmd;
     vkCheck(vkResetFences(device_, 1, &fence_), "vkResetFences");
+    if (faults_.strikes(FaultInjection::Kind::DeviceLost))
+        vkCheck(VK_ERROR_DEVICE_LOST, "vkQueueSubmit (OBSCURA_FAULT_INJECTION)");
     vkCheck(vkQueueSubmit(queue_, 1, &si, fence_), "vkQueueSubmit");
     vkCheck(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
 }

@@ -2,6 +2,7 @@
 // Each delegate owns one Context: delegates in one process are fully independent.
 #pragma once
 
+#include "gpu/fault_injection.h"
 #include "gpu/log.h"
 #include "gpu/result.h"
 
@@ -19,6 +20,7 @@ struct ContextOptions {
     std::string deviceSelector;  // name substring or index; empty: OBSCURA_DEVICE, then the best device
     bool validation = false;     // Khronos validation layer; its errors are counted
     LogSink log;
+    FaultInjection faults;
 };
 
 struct PhysicalDeviceSummary {
@@ -61,6 +63,9 @@ public:
     template <typename F>
     void submitAndWait(F&& record);
 
+    // Simulated failures (gpu/fault_injection.h); the delegate counts its renders into it.
+    FaultInjection& faults() { return faults_; }
+
     VkCommandPool commandPool() const { return commandPool_; }
     VkFence fence() const { return fence_; }
 
@@ -74,6 +79,7 @@ private:
     void endOneShot(VkCommandBuffer cmd);
 
     LogSink log_;
+    FaultInjection faults_;
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     VkPhysicalDevice physical_ = VK_NULL_HANDLE;
