@@ -17,6 +17,11 @@
 namespace obscura::delegate {
 namespace {
 
+// Camera and environment constants: uniform blocks for most passes, std140 storage buffers for the
+// lighting pass (shaders/lighting.comp says why).
+constexpr VkBufferUsageFlags kFrameConstantsUsage =
+    VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+
 template <typename T>
 gpu::BufferPtr uploadRecords(gpu::Device& device, const void* header, size_t headerSize, const std::vector<T>& records,
                              VkBufferUsageFlags usage, const char* name) {
@@ -185,7 +190,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         for (const passes::LightData& light : lights)
             if (light.positionType[3] == float(passes::LightType::Dome)) cd.backdropCoverage = 1.0f;
     scene.cameraData = cd;
-    scene.camera = device.createBuffer(sizeof(cd), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "camera");
+    scene.camera = device.createBuffer(sizeof(cd), kFrameConstantsUsage, gpu::MemoryUsage::Upload, "camera");
     std::memcpy(scene.camera->mapped(), &cd, sizeof(cd));
 
     // Prototype meshes draw only through their instancers.
@@ -412,7 +417,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         }
     }
     scene.environment =
-        device.createBuffer(sizeof(environment), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "environment");
+        device.createBuffer(sizeof(environment), kFrameConstantsUsage, gpu::MemoryUsage::Upload, "environment");
     std::memcpy(scene.environment->mapped(), &environment, sizeof(environment));
     return scene;
 }

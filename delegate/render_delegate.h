@@ -58,7 +58,11 @@ public:
     void map(const std::string& path, ObscuraMappedBuffer& out);
     void unmap(const std::string& path);
     const std::vector<gpu::PassTime>& passTimings() const { return timings_; }
-    ObscuraRenderStats stats() const;
+    // Fills the counters of `out` and of the structs chained to its pNext that this delegate knows
+    // (ObscuraMemoryStats), leaving every sType, pNext and structSize as the host set them.
+    void stats(ObscuraRenderStats& out) const;
+    // After a lost device every render is refused with OBSCURA_ERROR_DEVICE and `why`.
+    void deviceLost(const std::string& why) { deviceLost_ = why; }
     int32_t primId(const std::string& path) const;
 
     std::string& lastError() { return lastError_; }
@@ -159,6 +163,7 @@ private:
     double frameSetupMilliseconds_ = 0.0;
     std::chrono::steady_clock::time_point frameRecorded_;
     std::string lastError_;
+    std::string deviceLost_;  // empty while the device works
 };
 
 }  // namespace obscura::delegate

@@ -26,7 +26,7 @@ from ctypes import (
 )
 
 ABI_VERSION_MAJOR = 1
-ABI_VERSION_MINOR = 0
+ABI_VERSION_MINOR = 1
 GET_API_SYMBOL = "obscuraGetApi"
 
 
@@ -98,6 +98,7 @@ class StructureType(enum.IntEnum):
     DEVICE_INFO = 5
     PASS_TIMING = 6
     RENDER_STATS = 7
+    MEMORY_STATS = 8  # ABI 1.1
 
 
 class LogLevel(enum.IntEnum):
@@ -254,6 +255,19 @@ class ObscuraRenderStats(_Extensible):
     ]
 
 
+class ObscuraMemoryStats(_Extensible):
+    """ABI 1.1, chained to ObscuraRenderStats.pNext: the delegate's Vulkan memory."""
+    _structure_type = StructureType.MEMORY_STATS
+    _fields_ = [
+        ("sType", c_enum),
+        ("pNext", c_void_p),
+        ("structSize", c_uint32),
+        ("deviceMemoryBlocks", c_uint32),
+        ("deviceMemoryReserved", c_uint64),
+        ("deviceMemoryInUse", c_uint64),
+    ]
+
+
 _D = ObscuraDelegate
 _S = c_enum  # every function returns an ObscuraStatus
 
@@ -294,6 +308,7 @@ STRUCTS = {
     "ObscuraMappedBuffer": ObscuraMappedBuffer,
     "ObscuraDeviceInfo": ObscuraDeviceInfo,
     "ObscuraPassTiming": ObscuraPassTiming,
+    "ObscuraMemoryStats": ObscuraMemoryStats,
     "ObscuraRenderStats": ObscuraRenderStats,
     "ObscuraApiV1": ObscuraApiV1,
 }
