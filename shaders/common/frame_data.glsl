@@ -21,7 +21,8 @@ struct CameraData {
     vec2 clipJitter;
     // 1 where a dome is seen behind everything (domeLightCameraVisibility): every pixel is covered.
     float backdropCoverage;
-    float pad0;
+    // Where this frame lies in temporal AA's jitter cycle (0 without it): the shadow filter's turn.
+    uint noiseFrame;
 };
 
 // One per drawn rprim.
@@ -84,6 +85,10 @@ const uint LIGHT_SPHERE = 1u;
 const uint LIGHT_DOME = 2u;
 const uint LIGHT_RECT = 3u;
 const uint LIGHT_DISK = 4u;
+// One point of a sphere, rect or disk light's surface standing for the whole light in a reference
+// sub-frame: positionType.xyz the point, axisX.xyz the surface's outward normal there, radiance.rgb
+// the radiance times the area the point stands for; it emits towards its normal's side only.
+const uint LIGHT_SURFACE_SAMPLE = 5u;
 
 struct LightData {
     vec4 positionType;      // xyz world position (sphere, rect and disk centre), w type
@@ -106,7 +111,9 @@ const uint SHADOW_SPOT = 2u;      // one perspective map along the light's axis 
 struct ShadowViewData {
     mat4 worldToAtlas;      // world -> clip whose x/w, y/w are atlas texel coordinates, z/w depth
     vec4 tileRect;          // first and last texel of the view's tile: x0, y0, x1, y1
-    vec4 params;            // x world size of a texel (perspective: at distance 1), y cascade's far end
+    vec4 params;            // x world size of a texel (perspective: at distance 1), y cascade's far end;
+                            // z cascades: world distance along the light of depth 0..1, perspective: near;
+                            // w perspective: far
 };
 
 // The textured dome's frame (its prefiltered maps and irradiance coefficients are in it).
