@@ -36,9 +36,7 @@ std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::
         std::array<double, 2> square{2.0 * (k + 0.5) / count - 1.0, 2.0 * (radicalInverse(k, 2) + 0.5 / count) - 1.0};
         passes::ApertureSample lens = passes::sampleAperture(square, aperture);
         double shutter = (double(k * multiplier % count) + 0.5) / count;
-        // R2: k (1/g, 1/g^2) mod 1 from 1/2, g the plastic number (the real root of x^3 = x + 1).
-        const double plastic = 1.32471795724474602596;
-        std::array<double, 2> emitter{std::fmod(0.5 + k / plastic, 1.0), std::fmod(0.5 + k / (plastic * plastic), 1.0)};
+        std::array<double, 2> emitter{radicalInverse(k, 7), radicalInverse(k, 11)};
         frames.push_back(
             {lens.position, lens.area, shutter, {radicalInverse(k, 3) - 0.5, radicalInverse(k, 5) - 0.5}, emitter});
     }

@@ -22,9 +22,8 @@ struct ReferenceSubFrame {
 // `count` deterministic, stratified sub-frames: the aperture from a Hammersley set ((k + 0.5) / N
 // and the base-2 radical inverse) over the square, mapped with the same concentric + n-gon mapping
 // as the depth-of-field taps; the shutter from a golden-ratio rank-1 lattice (each 1/N of the
-// interval once); the jitter from the radical inverses in bases 3 and 5; the lights' emitters from
-// the R2 sequence (Roberts 2018, the additive recurrence of the plastic number, evenly spread in
-// 2D for any count), so no dimension repeats another's pattern.
+// interval once); the jitter from the radical inverses in bases 3 and 5, the lights' emitters from
+// those in bases 7 and 11 (Halton), so no dimension repeats another's pattern.
 std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::ApertureShape& aperture);
 
 }  // namespace obscura::delegate

@@ -99,9 +99,7 @@ struct alignas(16) MaterialData {
 };
 static_assert(sizeof(MaterialData) == 80 + 6 * 48);
 
-// SurfaceSample: one point on a sphere, rect or disk light's surface, which stands for the whole
-// light in a reference sub-frame (delegate/prims/light.h emitterSample).
-enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4, SurfaceSample = 5 };
+enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4 };
 
 struct alignas(16) LightData {
     std::array<float, 4> positionType;

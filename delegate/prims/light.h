@@ -65,10 +65,8 @@ passes::LightData withInfluenceRange(passes::LightData light, double exposureSca
 // (hard shadow maps), so that the mean over stratified sub-frames converges to the integral over
 // the emitter of its visible, cosine-weighted radiance, penumbrae included (the accumulation
 // buffer's soft shadows, Haeberli & Akeley 1990). A distant light: a direction within its cone,
-// uniform in solid angle (concentric disc mapping), with the light's irradiance and no angle. A
-// sphere, rect or disk light: a point of its surface, uniform by area, as LightType::SurfaceSample
-// whose radiance is the light's times that area and whose influence range grows by the light's
-// size. Domes, treatAsPoint spheres and lights of no angle are returned as they are.
+// uniform in solid angle (concentric disc mapping), with the light's irradiance and no angle.
+// Every other light is returned as it is.
 passes::LightData emitterSample(const passes::LightData& light, std::array<double, 2> u);
 
 // Linear Rec.709 colour of a black body at `kelvin`, scaled to luminance 1 (UsdLux

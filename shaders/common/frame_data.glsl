@@ -85,10 +85,6 @@ const uint LIGHT_SPHERE = 1u;
 const uint LIGHT_DOME = 2u;
 const uint LIGHT_RECT = 3u;
 const uint LIGHT_DISK = 4u;
-// One point of a sphere, rect or disk light's surface standing for the whole light in a reference
-// sub-frame: positionType.xyz the point, axisX.xyz the surface's outward normal there, radiance.rgb
-// the radiance times the area the point stands for; it emits towards its normal's side only.
-const uint LIGHT_SURFACE_SAMPLE = 5u;
 
 struct LightData {
     vec4 positionType;      // xyz world position (sphere, rect and disk centre), w type

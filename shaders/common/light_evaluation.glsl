@@ -236,17 +236,6 @@ vec3 reflectFromLight(SurfacePoint s, LightData light) {
         return reflectFromDirection(s, L, irradiance, sinHalfAngle, light.factors.xy);
     }
     if (type == LIGHT_RECT || type == LIGHT_DISK) return reflectFromAreaLight(s, light);
-    if (type == LIGHT_SURFACE_SAMPLE) {
-        // A Lambertian element of the emitter: E = L A cos(theta_emitter) / d^2 at normal incidence
-        // (radiance.rgb holds L A), the lobe unwidened: the reference's sub-frames integrate the
-        // emitter point by point.
-        vec3 toLight = light.positionType.xyz - s.P;
-        float d2 = max(dot(toLight, toLight), 1e-8);
-        vec3 L = toLight * inversesqrt(d2);
-        float cosEmitter = max(dot(light.axisX.xyz, -L), 0.0);
-        vec3 irradiance = light.radiance.rgb * (cosEmitter / d2) * shapingAttenuation(light, -L);
-        return reflectFromDirection(s, L, irradiance, 0.0, light.factors.xy);
-    }
     // LIGHT_DOME: Lambert integrates to albedo x irradiance / pi (albedo x L for a constant
     // dome); GGX is the split sum (Karis 2013): the prefiltered radiance (L for a constant dome)
     // times the pre-integrated response (environmentBrdf), for the base and the coat.

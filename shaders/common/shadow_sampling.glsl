@@ -236,7 +236,7 @@ float spotVisibility(uvec4 shadow, vec3 position, vec3 normal, vec3 lightPositio
 
 // The size the penumbra grows with: a distant light's tan(half angle); a sphere's radius (none
 // with treatAsPoint); a rect's or disk's radius of the disc of its area (XXX: a long rectangle's
-// penumbra is as wide along both its axes); none for a reference sub-frame's point of an emitter.
+// penumbra is as wide along both its axes).
 float shadowLightSize(LightData light) {
     uint type = uint(light.positionType.w);
     if (type == LIGHT_DISTANT) return tan(light.directionAngle.w);
