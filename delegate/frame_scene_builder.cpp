@@ -136,6 +136,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     cd.shutterOpenViewProjection = cd.shutterCloseViewProjection = toFloats<passes::Mat4>(multiply(view, unjitteredProjection));
     cd.shutterPosition = 0.5f;
     cd.clipJitter = {float(in.clipJitter[12]), float(in.clipJitter[13])};
+    cd.noiseFrame = in.noiseFrame;
     if (in.shutter && in.sample && (*in.shutter)[1] > (*in.shutter)[0])
         cd.shutterPosition = float((in.sample->time - (*in.shutter)[0]) / ((*in.shutter)[1] - (*in.shutter)[0]));
     bool cameraMoves = false;
@@ -179,6 +180,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         } else if (auto* l = dynamic_cast<const Light*>(prim.get())) {
             if (l->visible()) {
                 lights.push_back(withInfluenceRange(frameTime ? l->dataAt(*frameTime) : l->data(), cd.exposureScale));
+                if (in.sample) lights.back() = emitterSample(lights.back(), in.sample->emitter);
                 lightCastsShadows.push_back(l->castsShadows());
                 lightPrims.push_back(l);
                 if (l == in.environmentDome) lights.back().factors[2] = 1.0f;

@@ -413,6 +413,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
                                                 temporalAaSettings.mode, uint32_t(settings_.number("taa:frames")),
                                                 seen.view, seen.projection);
         frame.clipJitter = temporalAa->clipJitter;
+        frame.noiseFrame = temporalAa->noiseFrame;
         // Hybrid AA (seed 004) while anything changes; a still accumulates jittered frames of every
         // object, converging to the supersampled image, which edge AA never reaches.
         if (temporalAaSettings.mode == passes::TemporalAaMode::Smaa1tx && !temporalAa->pass.unchanged)
@@ -627,7 +628,7 @@ void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const pa
         if (close > open) inputs.shutter = shutter;
         inputs.sample = FrameSample{open + sub.shutter * (close - open),
                                     {sub.aperture[0] * apertureRadius, sub.aperture[1] * apertureRadius},
-                                    sub.pixelJitter};
+                                    sub.pixelJitter, sub.emitter};
         FrameSceneShortfalls shortfalls;  // reported by the frame itself
         passes::FrameScene scene = buildFrameScene(*device_, inputs, shortfalls);
         gpu::FrameGraph graph;

@@ -18,8 +18,8 @@ TemporalAaStep TemporalAccumulation::next(const TemporalAaKey& key, uint64_t sce
     // A settled 1TX still (the mean is complete and nothing changed) keeps its colour and looks
     // through the pixel centres.
     const bool settled = valid && !sceneChanged && held_ >= framesToConverge && !twoFrame;
-    if (!settled)
-        step.jitter = passes::temporalAaJitter(mode, uint32_t(frame_ % framesToConverge), framesToConverge);
+    step.noiseFrame = uint32_t(frame_ % framesToConverge);
+    if (!settled) step.jitter = passes::temporalAaJitter(mode, step.noiseFrame, framesToConverge);
     // The mean counts proper samples only: the first frame after a reset is one (its own jittered
     // image), but a frame of change leaves the reprojected, clamped blend, whose 1/n share of the
     // still's mean would outweigh the converged error; the still after it starts the mean afresh.

@@ -104,6 +104,7 @@ vec3 shadeSurface(uint instanceTarget, float depth, vec4 normalRoughness, vec4 a
     float screenSpaceAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel, viewDistance);
     s.ambientAccess = ambientAccessWithOcclusion(screenSpaceAccess, occlusionFromTarget(instanceTarget));
     s.environment = sampleEnvironment(s);
+    s.shadowTurn = shadowFilterTurn(vec2(pixel), camera.noiseFrame);
 
     vec3 radiance = mat.emissiveMetallic.rgb;
     uint count = min(tileLightCount, MAX_TILE_LIGHTS);

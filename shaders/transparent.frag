@@ -94,6 +94,7 @@ void main() {
     // No SSAO: its obscurance is the opaque surface's behind; the material's occlusion still holds.
     s.ambientAccess = occlusion;
     s.environment = sampleEnvironment(s);
+    s.shadowTurn = shadowFilterTurn(floor(gl_FragCoord.xy), camera.noiseFrame);
     // Coverage scales the diffuse layer only (see above): the lights' response is linear in it.
     s.diffuse *= opacity;
     float viewDistance = linearDepthFromDevice(camera.projection, gl_FragCoord.z);

@@ -21,7 +21,8 @@ struct CameraData {
     vec2 clipJitter;
     // 1 where a dome is seen behind everything (domeLightCameraVisibility): every pixel is covered.
     float backdropCoverage;
-    float pad0;
+    // Where this frame lies in temporal AA's jitter cycle (0 without it): the shadow filter's turn.
+    uint noiseFrame;
 };
 
 // One per drawn rprim.
@@ -106,7 +107,9 @@ const uint SHADOW_SPOT = 2u;      // one perspective map along the light's axis 
 struct ShadowViewData {
     mat4 worldToAtlas;      // world -> clip whose x/w, y/w are atlas texel coordinates, z/w depth
     vec4 tileRect;          // first and last texel of the view's tile: x0, y0, x1, y1
-    vec4 params;            // x world size of a texel (perspective: at distance 1), y cascade's far end
+    vec4 params;            // x world size of a texel (perspective: at distance 1), y cascade's far end;
+                            // z cascades: world distance along the light of depth 0..1, perspective: near;
+                            // w perspective: far
 };
 
 // The textured dome's frame (its prefiltered maps and irradiance coefficients are in it).
