@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # A single-node Slurm cluster on localhost in one folder, for the farm test (no root-owned state is
-# left outside it; needs root, munge and slurm-wlm). usage:
+# left outside it; needs root, munge and slurm-wlm; addresses are 127.0.0.1, so no name service is
+# needed). usage:
 #   slurm_cluster.sh start DIR    start munged, slurmctld and slurmd with everything under DIR; prints the
 #                                 environment to source (SLURM_CONF) once the node is idle
 #   slurm_cluster.sh stop DIR     cancel every job, stop the daemons, remove DIR
@@ -11,8 +12,24 @@ free_port() {  # a TCP port nobody listens on
   python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1]); s.close()'
 }
 
+# slurmd needs the cgroup hierarchies mounted under /sys/fs/cgroup, which a bare root (a chroot, a
+# minimal container) lacks: mount them as the kernel has them (/proc/self/cgroup), remembered for stop.
+mount_cgroups() {
+  [ "$(stat -f -c %T /sys/fs/cgroup 2>/dev/null)" = sysfs ] || [ -z "$(ls -A /sys/fs/cgroup 2>/dev/null)" ] || return 0
+  mount -t tmpfs -o mode=755 obscura-cgroups /sys/fs/cgroup || return 1
+  echo /sys/fs/cgroup >"$dir/run/mounts"
+  while IFS=: read -r _ controllers _; do
+    local name=${controllers#name=} opts=$controllers type=cgroup
+    if [ -z "$controllers" ]; then name=unified; opts=defaults; type=cgroup2; fi
+    [ "$name" != "$controllers" ] && [ -n "$controllers" ] && opts="none,name=$name"
+    mkdir -p "/sys/fs/cgroup/$name"
+    mount -t "$type" -o "$opts" cgroup "/sys/fs/cgroup/$name" && echo "/sys/fs/cgroup/$name" >>"$dir/run/mounts"
+  done < /proc/self/cgroup
+}
+
 start() {
   mkdir -p "$dir"/{munge,state,spool,log,run}
+  mount_cgroups
   chmod 755 "$dir" "$dir/munge"
   mungekey --create --keyfile="$dir/munge/munge.key" >/dev/null 2>&1
   chmod 600 "$dir/munge/munge.key"
@@ -22,7 +39,7 @@ start() {
   host=$(hostname -s); ctld_port=$(free_port); d_port=$(free_port); cpus=$(nproc)
   cat >"$dir/slurm.conf" <<CONF
 ClusterName=obscura-test
-SlurmctldHost=$host
+SlurmctldHost=$host(127.0.0.1)
 SlurmctldPort=$ctld_port
 SlurmdPort=$d_port
 SlurmUser=root
@@ -49,7 +66,7 @@ MailProg=/bin/true
 SchedulerParameters=sched_interval=2,bf_interval=1
 MinJobAge=600
 KillWait=5
-NodeName=$host CPUs=$cpus RealMemory=4000 State=UNKNOWN
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=4000 State=UNKNOWN
 PartitionName=obscura Nodes=$host Default=YES MaxTime=INFINITE State=UP
 CONF
   export SLURM_CONF=$dir/slurm.conf
@@ -75,6 +92,7 @@ stop() {
   pkill -f -- "-f $dir/slurm.conf" 2>/dev/null || true
   munged -s --socket="$dir/munge/munge.socket" >/dev/null 2>&1 || true
   [ -f "$dir/munge/munged.pid" ] && kill "$(cat "$dir/munge/munged.pid")" 2>/dev/null || true
+  [ -f "$dir/run/mounts" ] && tac "$dir/run/mounts" | while read -r m; do umount "$m" 2>/dev/null || true; done
   rm -rf "$dir"
 }
 
