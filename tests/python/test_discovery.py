@@ -66,14 +66,17 @@ def test_defaults_only_when_the_search_path_finds_nothing(tmp_path: Path) -> Non
 
 def test_the_built_plugin_is_found_and_negotiated(renderer: obscura.Renderer) -> None:
     assert renderer.version == (obscura.ABI_VERSION_MAJOR, obscura.ABI_VERSION_MINOR)
-    assert renderer.info.abi_version == "1.0" and renderer.info.library.exists()
+    # plugInfo.json declares the version the header says (one owner: OBSCURA_ABI_VERSION_*).
+    declared = f"{obscura.ABI_VERSION_MAJOR}.{obscura.ABI_VERSION_MINOR}"
+    assert renderer.info.abi_version == declared and renderer.info.library.exists()
     assert "exposure" in renderer.render_settings() and "taa:frames" in renderer.render_settings()
     assert any(device.name for device in renderer.devices())
 
 
 def test_a_plugin_without_abi_1_is_refused_and_the_next_one_taken() -> None:
     fake = environment("OBSCURA_TEST_FAKE_PLUGIN_DIR")  # priority 100, speaks ABI 2 only
-    with pytest.raises(obscura.UnsupportedVersionError, match="does not provide ABI 1.0 .it declares 2.0") as caught:
+    wanted = rf"{obscura.ABI_VERSION_MAJOR}\.{obscura.ABI_VERSION_MINOR}"
+    with pytest.raises(obscura.UnsupportedVersionError, match=rf"does not provide ABI {wanted} .it declares 2.0") as caught:
         obscura.Renderer(fake)
     assert caught.value.status == obscura.Status.UNSUPPORTED_VERSION
     with obscura.Renderer(f"{fake}:{os.environ['OBSCURA_PLUGINPATH']}") as r:
