@@ -3,13 +3,14 @@
 // done, so a killed or failed task is resumed by rendering what is missing.
 #include "harness/commands.h"
 #include "harness/exit_codes.h"
-#include "harness/farm/farm_job.h"
-#include "harness/farm/slurm.h"
+#include "harness/scheduler/farm_job.h"
+#include "harness/scheduler/slurm.h"
 #include "harness/plugin_loader.h"
 
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace obscura::harness {
@@ -121,6 +122,14 @@ std::string submit(FarmJob& job, const std::vector<int>& tasks, bool resubmissio
     return id;
 }
 
+// The job `farm submit` printed (or its folder); says why when there is none.
+std::optional<FarmJob> findJob(const std::string& jobOrFolder) {
+    std::string problem;
+    auto job = farm::find(jobOrFolder, problem);
+    if (!job) std::fprintf(stderr, "obscura: %s\n", problem.c_str());
+    return job;
+}
+
 }  // namespace
 
 int runFarmSubmit(const FarmSubmitOptions& o) {
@@ -164,12 +173,8 @@ int runFarmSubmit(const FarmSubmitOptions& o) {
 }
 
 int runFarmStatus(const FarmJobOptions& o) {
-    std::string problem;
-    auto job = farm::find(o.job, problem);
-    if (!job) {
-        std::fprintf(stderr, "obscura: %s\n", problem.c_str());
-        return kExitUsage;
-    }
+    auto job = findJob(o.job);
+    if (!job) return kExitUsage;
     auto reports = reportTasks(*job);
     int frames = 0, done = 0, running = 0, pending = 0, failed = 0;
     for (const auto& r : reports) {
@@ -194,12 +199,8 @@ int runFarmStatus(const FarmJobOptions& o) {
 }
 
 int runFarmResubmit(const FarmJobOptions& o) {
-    std::string problem;
-    auto job = farm::find(o.job, problem);
-    if (!job) {
-        std::fprintf(stderr, "obscura: %s\n", problem.c_str());
-        return kExitUsage;
-    }
+    auto job = findJob(o.job);
+    if (!job) return kExitUsage;
     auto reports = reportTasks(*job);
     std::vector<int> tasks;
     int gaveUp = 0;

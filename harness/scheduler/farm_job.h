@@ -55,8 +55,8 @@ std::string save(const FarmJob& job);
 // job.json of a job folder (or the file itself).
 std::optional<FarmJob> load(const std::filesystem::path& folderOrFile, std::string& problem);
 
-// Remembers which folder a scheduler job id belongs to ($XDG_STATE_HOME/obscura/farm, else
-// ~/.local/state/obscura/farm), so `farm status JOB` takes the id `farm submit` printed.
+// Remembers which folder a scheduler job id belongs to ($XDG_STATE_HOME/obscura/farm-jobs, else
+// ~/.local/state/obscura/farm-jobs), so `farm status JOB` takes the id `farm submit` printed.
 void remember(const std::string& jobId, const std::filesystem::path& folder);
 // A job id remembered, or a job folder / job.json path.
 std::optional<FarmJob> find(const std::string& jobOrFolder, std::string& problem);

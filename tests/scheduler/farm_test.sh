@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `obscura farm` on a single-node Slurm cluster started here (tests/farm/slurm_cluster.sh): a range in
+# `obscura farm` on a single-node Slurm cluster started here (tests/scheduler/slurm_cluster.sh): a range in
 # chunks equals a local render of the same frames bit for bit; a task killed mid-frame leaves no partial
 # file and `resubmit` completes the range; a scene with an error fails its tasks with the message in
 # the logs and `status` says so. usage: farm_test.sh OBSCURA SOURCE_DIR
@@ -32,20 +32,20 @@ scene=$src/scenes/motion_blur.usda
 args=(--width 24 --height 16 --set taa:frames=2)
 
 # 1. Twelve frames in chunks of four, against one local process rendering the same range.
-job=$("$obscura" farm submit "$scene" -o "$tmp/farm/f.####.exr" --frames 1-12 --chunk 4 \
+job=$("$obscura" farm submit "$scene" -o "$tmp/range/f.####.exr" --frames 1-12 --chunk 4 \
       --render-args "${args[*]}" 2>"$tmp/submit")
 check "submit prints the job id" "$([[ $job =~ ^[0-9]+$ ]]; echo $?)" "$tmp/submit"
 wait_for "$job" 300; check "the range completes" $? "$tmp/status"
 grep -q "12/12 frames done" "$tmp/status"; check "status counts 12 frames" $? "$tmp/status"
 "$obscura" render "$scene" -o "$tmp/local/f.####.exr" --frames 1-12 "${args[@]}" 2>"$tmp/local.log"
 same=0
-for f in $(seq -f %04g 1 12); do cmp -s "$tmp/farm/f.$f.exr" "$tmp/local/f.$f.exr" || same=1; done
+for f in $(seq -f %04g 1 12); do cmp -s "$tmp/range/f.$f.exr" "$tmp/local/f.$f.exr" || same=1; done
 check "every farm frame equals the local render, bit for bit" $same
 LP_NUM_THREADS=1 "$obscura" render "$scene" -o "$tmp/alone.exr" --frame 5 "${args[@]}" 2>/dev/null
-cmp -s "$tmp/alone.exr" "$tmp/farm/f.0005.exr"; check "a frame alone, on one lavapipe thread, is the same file" $?
-! cmp -s "$tmp/farm/f.0001.exr" "$tmp/farm/f.0012.exr"; check "the frames differ (the scene moves)" $?
-grep -q "frame 5 (1/4) -> .*f.0005.exr: [0-9]* ms on " "$tmp/farm/.obscura-farm/f/logs/${job}_1.log"
-check "a task's log names each frame, its time and the device" $? "$tmp/farm/.obscura-farm/f/logs/${job}_1.log"
+cmp -s "$tmp/alone.exr" "$tmp/range/f.0005.exr"; check "a frame alone, on one lavapipe thread, is the same file" $?
+! cmp -s "$tmp/range/f.0001.exr" "$tmp/range/f.0012.exr"; check "the frames differ (the scene moves)" $?
+grep -q "frame 5 (1/4) -> .*f.0005.exr: [0-9]* ms on " "$tmp/range/.obscura-farm/f/logs/${job}_1.log"
+check "a task's log names each frame, its time and the device" $? "$tmp/range/.obscura-farm/f/logs/${job}_1.log"
 
 # 2. A task killed mid-frame: one task of four slow frames (the reference mode at a larger size),
 # cancelled once its first frame is on disk, so while it renders the second.

@@ -1,4 +1,4 @@
-#include "harness/farm/slurm.h"
+#include "harness/scheduler/slurm.h"
 
 #include <sstream>
 

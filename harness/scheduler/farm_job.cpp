@@ -1,4 +1,4 @@
-#include "harness/farm/farm_job.h"
+#include "harness/scheduler/farm_job.h"
 
 #include "harness/frame_output.h"
 
@@ -25,7 +25,7 @@ fs::path registryFolder() {
     const char* state = std::getenv("XDG_STATE_HOME");
     const char* home = std::getenv("HOME");
     fs::path base = state && *state ? fs::path(state) : fs::path(home ? home : ".") / ".local" / "state";
-    return base / "obscura" / "farm";
+    return base / "obscura" / "farm-jobs";
 }
 
 // One array task: the chunk's frames through the ordinary `obscura render`, which writes each frame
