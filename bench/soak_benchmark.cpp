@@ -1,6 +1,7 @@
 // The long soak (issue 13): 10,000 frames (or argv[1]) of random edits through the ABI at 32x32
 // (or argv[2] x argv[3]) with the in-memory test host; prints resident and Vulkan memory every
-// 500 frames and the growth from frame 100 to the end. Figures go into bench/RESULTS.md.
+// 500 frames (and whenever the Vulkan memory changes) and the growth from frame 100 to the end.
+// Figures go into bench/RESULTS.md.
 #include "tests/support/random_edits.h"
 #include "tests/support/resident_memory.h"
 
@@ -15,14 +16,9 @@ int main(int argc, char** argv) {
     int width = argc > 2 ? std::atoi(argv[2]) : 32, height = argc > 3 ? std::atoi(argv[3]) : 32;
     TestHost host(false);
     RandomEditScene scene(host, 13, width, height);
-    auto vulkanReserved = [&] {
-        ObscuraMemoryStats memory{OBSCURA_STRUCTURE_TYPE_MEMORY_STATS, nullptr, sizeof(memory)};
-        ObscuraRenderStats stats{OBSCURA_STRUCTURE_TYPE_RENDER_STATS, &memory, sizeof(stats)};
-        host.api().getRenderStats(host.delegate(), &stats);
-        return memory.deviceMemoryReserved;
-    };
+    auto vulkanReserved = [&] { return vulkanMemoryReserved(host.api(), host.delegate()); };
     constexpr int kWarmup = 100;
-    uint64_t residentAtWarmup = 0, vulkanAtWarmup = 0;
+    uint64_t residentAtWarmup = 0, vulkanAtWarmup = 0, vulkanBefore = 0;
     auto start = std::chrono::steady_clock::now();
     for (int frame = 1; frame <= frames; ++frame) {
         ObscuraStatus s = scene.editAndRender();
@@ -31,9 +27,12 @@ int main(int argc, char** argv) {
             return 1;
         }
         if (frame == kWarmup) residentAtWarmup = residentBytes(), vulkanAtWarmup = vulkanReserved();
-        if (frame % 500 == 0 || frame == frames)
+        const uint64_t vulkan = vulkanReserved();
+        const bool vulkanChanged = frame > 1 && vulkan != vulkanBefore;
+        vulkanBefore = vulkan;
+        if (frame % 500 == 0 || frame == frames || vulkanChanged)
             std::printf("frame %5d: resident %7.1f MiB, Vulkan memory %7.1f MiB, %.1f s\n", frame,
-                        double(residentBytes()) / 1048576.0, double(vulkanReserved()) / 1048576.0,
+                        double(residentBytes()) / 1048576.0, double(vulkan) / 1048576.0,
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
     if (frames > kWarmup)

@@ -17,10 +17,9 @@
 namespace obscura::delegate {
 namespace {
 
-// Camera and environment constants: uniform blocks for most passes, std140 storage buffers for the
-// lighting pass (shaders/lighting.comp says why).
-constexpr VkBufferUsageFlags kFrameConstantsUsage =
-    VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+// Camera and environment constants: std140 storage buffers, never uniform blocks
+// (shaders/common/frame_data.glsl, CAMERA_BLOCK, says why).
+constexpr VkBufferUsageFlags kFrameConstantsUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 
 template <typename T>
 gpu::BufferPtr uploadRecords(gpu::Device& device, const void* header, size_t headerSize, const std::vector<T>& records,

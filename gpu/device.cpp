@@ -33,7 +33,7 @@ Device::Device(std::unique_ptr<Context> context) : context_(std::move(context)) 
     vkCheck(vkCreateSampler(vk(), &si, nullptr, &nearestClamp_), "vkCreateSampler");
 
     const VkDescriptorPoolSize sizes[] = {
-        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 256},         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 512},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 768},  // per-frame records too: shaders/common/frame_data.glsl says why
         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 512}, {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 512},
         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 256},
     };

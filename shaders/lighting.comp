@@ -21,11 +21,7 @@ const uint TILE_SIZE = 16u;
 const uint MAX_TILE_LIGHTS = 1024u;  // lights beyond this many in one tile are dropped
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 
-// Camera and environment are storage buffers in std140 layout (the bytes the other passes read as
-// uniform blocks): Mesa 22.3's lavapipe inlines uniform-buffer values that steer a large shader's
-// control flow, compiling a new variant of it at every bind and keeping each until the device is
-// destroyed (~1.3 MB a frame here, issue 13). Storage-buffer loads are never inlined.
-layout(set = 0, binding = 0, std140) readonly buffer Camera { CameraData camera; };
+CAMERA_BLOCK(0);
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Materials { MaterialData materials[]; };
 layout(set = 0, binding = 3, std430) readonly buffer Lights { uint lightCount; uint pad[3]; LightData lights[]; };
@@ -44,7 +40,7 @@ layout(set = 0, binding = 12) uniform sampler2D shadowAtlas;
 layout(set = 0, binding = 13) uniform usampler2D clipStencil;
 const uint CLIP_VOLUME_BITS = 0x7fu;  // per pixel, also for the samples of tagged pixels
 // The textured dome (a 1x1 black image and zero coefficients without one).
-layout(set = 0, binding = 14, std140) readonly buffer Environment { EnvironmentData environment; };
+ENVIRONMENT_BLOCK(14);
 layout(set = 0, binding = 15, std430) readonly buffer EnvironmentIrradiance { vec4 irradianceSh[SH_COEFFICIENTS]; };
 layout(set = 0, binding = 16) uniform sampler2D prefilteredEnvironment;
 #ifdef PER_SAMPLE_LIGHTING

@@ -122,6 +122,14 @@ struct EnvironmentData {
     vec4 texturedBackdrop;
 };
 
+// Per-frame records are bound as storage buffers in std140 layout, never as uniform blocks: Mesa
+// 22.3's lavapipe inlines uniform-buffer (and push-constant) values that steer a large shader's
+// control flow, compiling a new variant at every bind whose values it has not seen and keeping each
+// until the device is destroyed (issue 13: ~1.3 MB a frame in the lighting pass, ~0.34 MB a frame
+// in temporal AA while a scene is edited). Storage-buffer loads are never inlined.
+#define CAMERA_BLOCK(b) layout(set = 0, binding = b, std140) readonly buffer Camera { CameraData camera; }
+#define ENVIRONMENT_BLOCK(b) layout(set = 0, binding = b, std140) readonly buffer Environment { EnvironmentData environment; }
+
 const uint INSTANCE_DOUBLE_SIDED = 1u;
 const uint INSTANCE_VERTEX_COLOR = 2u;
 // Hybrid AA (seed 004): drawn unjittered, no temporal history, edges smoothed by the edge AA passes.
