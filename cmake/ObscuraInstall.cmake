@@ -44,5 +44,9 @@ set(CPACK_STRIP_FILES ON)
 # Library dependencies from the binaries themselves (dpkg-shlibdeps); a Vulkan driver beside them,
 # lavapipe where nothing else provides one.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# The tools cpack runs for that (`file`, dpkg-shlibdeps), found at configure time too so that
+# tests/setup/setup_covers_build.py sees them in the cache and checks their packages are listed.
+find_program(OBSCURA_CPACK_FILE_PROGRAM file)
+find_program(OBSCURA_CPACK_SHLIBDEPS_PROGRAM dpkg-shlibdeps)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "mesa-vulkan-drivers | vulkan-icd")
 include(CPack)

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The suite's fuzzing (tests/CMakeLists.txt):
 #   fuzz.sh build SOURCE_DIR FUZZ_BUILD_DIR   configure a clang build tree with -DOBSCURA_FUZZ=ON and build the targets
-#   fuzz.sh run FUZZER CORPUS_DIR SECONDS     run one target over a copy of the committed corpus
+#   fuzz.sh run FUZZER CORPUS_DIR SECONDS [TIMEOUT]   run one target over a copy of the committed
+#                                             corpus; an input slower than TIMEOUT s (10) is a finding
 # A crash, leak, sanitizer report or timeout makes libFuzzer exit non-zero; the reproducer is
 # left in the working directory (crash-*, leak-*, timeout-*).
 set -euo pipefail
@@ -15,15 +16,20 @@ build)
     cmake --build "$build" --target obscura_fuzzers
     ;;
 run)
-    fuzzer=$2 corpus=$3 seconds=$4
+    fuzzer=$2 corpus=$3 seconds=$4 timeout=${5:-10}
     work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
     cp -r "$corpus/." "$work/"
-    export LSAN_OPTIONS="suppressions=$(cd "$(dirname "$0")" && pwd)/lsan.supp"
-    # Inputs grow to a few scene files' size; an input slower than 10 s or above 2 GB is a finding.
-    "$fuzzer" -max_total_time="$seconds" -max_len=16384 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 "$work"
+    # The suite's suppressions (Vulkan driver, validation layer, LLVM: tests/lsan.supp) and the fuzz
+    # targets' own (a third-party importer).
+    here=$(cd "$(dirname "$0")" && pwd)
+    cat "$here/../lsan.supp" "$here/lsan.supp" >"$work.supp"
+    trap 'rm -rf "$work" "$work.supp"' EXIT
+    export LSAN_OPTIONS="suppressions=$work.supp"
+    # Inputs grow to a few scene files' size; a slow input or one above 2 GB is a finding.
+    "$fuzzer" -max_total_time="$seconds" -max_len=16384 -timeout="$timeout" -rss_limit_mb=2048 -print_final_stats=1 "$work"
     ;;
 *)
-    echo "usage: fuzz.sh build SOURCE_DIR BUILD_DIR | run FUZZER CORPUS_DIR SECONDS" >&2
+    echo "usage: fuzz.sh build SOURCE_DIR BUILD_DIR | run FUZZER CORPUS_DIR SECONDS [TIMEOUT]" >&2
     exit 2
     ;;
 esac

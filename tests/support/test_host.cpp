@@ -150,6 +150,18 @@ void TestHost::set(const std::string& path, const std::string& attribute, HostVa
     values_[path][attribute] = std::move(value);
 }
 
+void TestHost::forgetScene() {
+    values_.clear();
+    interpolations_.clear();
+    timeSamples_.clear();
+    transforms_.clear();
+    motions_.clear();
+    errors_.clear();
+    warnings_.clear();
+    infos_.clear();
+    getValueCalls.clear();
+}
+
 void TestHost::setInterpolation(const std::string& path, const std::string& attribute, ObscuraInterpolation i) {
     interpolations_[path][attribute] = i;
 }

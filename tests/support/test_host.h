@@ -94,6 +94,9 @@ public:
     // back into the API from its callbacks.
     std::function<void(const std::string&, const std::string&)> onGetValue;
     void resetCounters() { getValueCalls.clear(); }
+    // Forgets every value, transform and log this host holds (the delegate's prims stay): a fuzz
+    // input starts from a host that knows nothing.
+    void forgetScene();
 
 private:
     static void logThunk(void* user, ObscuraLogLevel level, const char* message);
