@@ -18,7 +18,7 @@ struct alignas(16) CameraData {
     std::array<float, 4> position;
     std::array<float, 2> resolution;
     float exposureScale;
-    float shutterPosition;  // 0 the shutter's open .. 1 its close: where deforming meshes are drawn
+    float shutterPosition;  // 0 the shutter's open .. 1 its close: where the frame is seen (deforming meshes)
     Mat4 shutterOpenViewProjection;   // unjittered, for motion blur's velocities
     Mat4 shutterCloseViewProjection;
     // Temporal AA's sub-pixel shift of this frame, in clip space (clip += jitter * w): instances
@@ -27,7 +27,10 @@ struct alignas(16) CameraData {
     // 1 where the camera sees a dome behind everything (render setting domeLightCameraVisibility):
     // the background is opaque, so every pixel's coverage (the colour AOV's alpha) is 1; else 0.
     float backdropCoverage;
-    float pad0;
+    // The share of the shutter this frame's velocities span, around shutterPosition: 1 in a
+    // real-time frame, 1 / taa:frames in a sample of a still's accumulation (the motion AOV
+    // divides by it to report the whole shutter's displacement).
+    float shutterFraction;
 };
 static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16 + 16);
 

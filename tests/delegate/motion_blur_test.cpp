@@ -2,7 +2,7 @@
 // improvements) against what the shutter must do and against the renderer's own ground truth: the
 // reference mode, which averages sub-frames at times within the shutter. Scenes are lit by a
 // white dome only (each cell's radiance is its colour) or glow, so every value is known.
-#include "tests/delegate/camera_scene.h"
+#include "tests/delegate/blur_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -13,10 +13,7 @@ namespace obscura::test {
 namespace {
 
 constexpr int kSize = 96;
-const Lens kPinhole{};
-
-// Scene units per pixel on a plane at `distance` (the default 50 mm lens, square image).
-double unitsPerPixel(double distance) { return distance * (kPinhole.filmWidth / kPinhole.focalLength) / kSize; }
+double unitsPerPixel(double distance) { return pinholeUnitsPerPixel(distance, kSize); }
 
 Matrix rotationZ(double radians, std::array<double, 3> at) {
     Matrix m = translation(at[0], at[1], at[2]);
@@ -24,86 +21,6 @@ Matrix rotationZ(double radians, std::array<double, 3> at) {
     // Row-vector convention: x' = x c - y s, y' = x s + y c.
     m[0] = c, m[1] = s, m[4] = -s, m[5] = c;
     return m;
-}
-
-// The shutter open for one frame around the frame's time: [-0.5, 0.5].
-struct BlurScene : CameraScene {
-    explicit BlurScene(const Lens& lens = kPinhole) : CameraScene(lens, kSize, kSize) {
-        setNumber("shadows", 0);
-        setShutter(-0.5, 0.5);
-    }
-    // A still frame as `obscura render` makes it: temporal AA (before the blur) runs until it
-    // reports convergence, so edges are anti-aliased like the reference's jittered sub-frames.
-    image::Image render() {
-        image::Image img = CameraScene::render();
-        for (int frame = 0; frame < 64 && !renderStats(host).converged; ++frame) img = CameraScene::render();
-        EXPECT_TRUE(renderStats(host).converged);
-        return img;
-    }
-    void addSky() {
-        host.addPrim("domeLight", "/Sky", {{"inputs:intensity", HostValue::floatValue(1.0f)},
-                                           {"inputs:specular", HostValue::floatValue(0.0f)}});
-    }
-    // A square of `sidePixels` at `distance` glowing white, moving right by `travelPixels`
-    // (image x) within the shutter, centred on the view axis at the shutter's centre.
-    void addMovingGlow(double sidePixels, double distance, double travelPixels) {
-        addMaterial(host, "/GlowLook", {0, 0, 0}, 1.0f, 0.0f, {1, 1, 1});
-        addPlane(host, "/Glow", "/GlowLook", 0.5 * sidePixels * unitsPerPixel(distance), translation(0, 0, -distance));
-        double travel = travelPixels * unitsPerPixel(distance);
-        host.setTransformMotion("/Glow", -0.5, translation(-0.5 * travel, 0, -distance), 0.5,
-                                translation(0.5 * travel, 0, -distance));
-    }
-    // The same square, its transform still and its points moving instead (time samples at the
-    // shutter's ends, the host's linear interpolation between them).
-    void addDeformingGlow(double sidePixels, double distance, double travelPixels) {
-        addMovingGlow(sidePixels, distance, 0.0);
-        host.setTransform("/Glow", translation(0, 0, -distance));
-        float h = float(0.5 * sidePixels * unitsPerPixel(distance)), t = float(0.5 * travelPixels * unitsPerPixel(distance));
-        auto square = [h](float dx) {
-            return HostValue::points({{dx - h, -h, 0}, {dx + h, -h, 0}, {dx + h, h, 0}, {dx - h, h, 0}});
-        };
-        host.setTimeSamples("/Glow", "points", {{-0.5, square(-t)}, {0.5, square(t)}});
-    }
-    image::Image sharp() {
-        setNumber("motionBlur", 0);
-        image::Image img = render();
-        setNumber("motionBlur", 1);
-        return img;
-    }
-};
-
-float luminance(const image::Image& img, int x, int y) {
-    return 0.2126f * img.at(x, y, 0) + 0.7152f * img.at(x, y, 1) + 0.0722f * img.at(x, y, 2);
-}
-
-// The mean of rows [y0, y1) along x.
-std::vector<double> rowProfile(const image::Image& img, int y0, int y1) {
-    std::vector<double> p(size_t(img.width), 0.0);
-    for (int y = y0; y < y1; ++y)
-        for (int x = 0; x < img.width; ++x) p[size_t(x)] += luminance(img, x, y) / (y1 - y0);
-    return p;
-}
-
-struct Streak {
-    double length;    // pixels from the first to the last above the threshold, inclusive
-    double integral;  // sum over the row
-    double plateau;   // mean of the middle `plateauWidth` pixels
-};
-
-Streak measureStreak(const std::vector<double>& p, int plateauWidth) {
-    Streak s{0, 0, 0};
-    int first = -1, last = -1;
-    for (size_t x = 0; x < p.size(); ++x) {
-        s.integral += p[x];
-        if (p[x] > 1.0 / 256.0) {
-            if (first < 0) first = int(x);
-            last = int(x);
-        }
-    }
-    s.length = first < 0 ? 0 : last - first + 1;
-    int centre = int(p.size()) / 2;
-    for (int x = centre - plateauWidth / 2; x < centre + plateauWidth / 2; ++x) s.plateau += p[size_t(x)] / plateauWidth;
-    return s;
 }
 
 void expectSimilar(const char* what, const image::CompareMetrics& m, double minPsnr, double minSsim) {
@@ -234,7 +151,7 @@ TEST(MotionBlur, DeformingPointsBlurLikeTheSameMotionThroughTheTransform) {
     BlurScene deforming;
     deforming.addDeformingGlow(kSide, kDistance, kTravel);
     image::Image deformed = deforming.render();
-    EXPECT_TRUE(ranPass(deforming.host, "motion_blur_gather_coarse"));
+    EXPECT_TRUE(deforming.ranUntilSettled("motion_blur_gather_coarse"));
     image::CompareMetrics same = metrics(deformed, moved);
     Streak streak = measureStreak(rowProfile(deformed, kSize / 2 - 4, kSize / 2 + 4), 4);
     std::printf("deforming square vs the same motion through its transform: PSNR %.2f dB, max error %.4f; streak %.0f px "
@@ -266,7 +183,7 @@ TEST(MotionBlur, InstancerPositionsMoveWithinTheShutter) {
     instanced.host.setTimeSamples("/Instancer", "positions",
                                   {{-0.5, HostValue::points({{-t, 0, 0}})}, {0.5, HostValue::points({{t, 0, 0}})}});
     image::Image blurred = instanced.render();
-    EXPECT_TRUE(ranPass(instanced.host, "motion_blur_gather_coarse"));
+    EXPECT_TRUE(instanced.ranUntilSettled("motion_blur_gather_coarse"));
     image::Image reference = instanced.renderReference(32);
     image::CompareMetrics post = metrics(blurred, moved), truth = metrics(reference, movedReference);
     std::printf("instanced square vs the same motion through a transform: motion blur max error %.4f, reference %.4f\n",
@@ -308,8 +225,8 @@ TEST(MotionBlur, VelocitiesMovePointsAndInstancesWithinTheShutter) {
     image::CompareMetrics points = metrics(deformed, moved), instances = metrics(placed, moved);
     std::printf("velocities vs the same motion through a transform: mesh points max error %.4f, instances %.4f\n",
                 points.maxAbsError, instances.maxAbsError);
-    EXPECT_TRUE(ranPass(mesh.host, "motion_blur_gather_coarse"));
-    EXPECT_TRUE(ranPass(instanced.host, "motion_blur_gather_coarse"));
+    EXPECT_TRUE(mesh.ranUntilSettled("motion_blur_gather_coarse"));
+    EXPECT_TRUE(instanced.ranUntilSettled("motion_blur_gather_coarse"));
     EXPECT_LT(points.maxAbsError, 0.02);
     EXPECT_LT(instances.maxAbsError, 0.02);
 
@@ -358,7 +275,7 @@ TEST(MotionBlur, AngularVelocitiesTurnInstancesWithinTheShutter) {
     image::Image bySamples = sampled.render();
     image::CompareMetrics same = metrics(byVelocity, bySamples);
     std::printf("angular velocity vs the orientation sampled at the shutter's ends: max error %.4f\n", same.maxAbsError);
-    EXPECT_TRUE(ranPass(turning.host, "motion_blur_gather_coarse"));
+    EXPECT_TRUE(turning.ranUntilSettled("motion_blur_gather_coarse"));
     EXPECT_LT(same.maxAbsError, 0.02);
 }
 
@@ -408,7 +325,7 @@ TEST(MotionBlur, TogetherWithDepthOfFieldMatchesTheReference) {
     s.host.setTransformMotion("/Card", -0.5, translation(-0.5 * travel, -1.0, -kDistance), 0.5,
                               translation(0.5 * travel, -1.0, -kDistance));
     image::Image post = s.render();
-    EXPECT_TRUE(ranPass(s.host, "dof_gather") && ranPass(s.host, "motion_blur_gather_coarse"));
+    EXPECT_TRUE(ranPass(s.host, "dof_gather") && s.ranUntilSettled("motion_blur_gather_coarse"));
     image::Image reference = s.renderReference(256);
     // Measured: 25.59 dB, SSIM 0.8814 (depth of field alone 24.77 dB, 0.8567).
     expectCloserThanTheStillFrame("depth of field and motion blur", post, s.sharp(), reference, 24.0, 0.86);
@@ -421,15 +338,15 @@ TEST(MotionBlur, OffWithAClosedShutterTheSettingOffOrNothingMoving) {
     BlurScene s;
     addWall(s);
     image::Image still = s.render();
-    EXPECT_FALSE(ranPass(s.host, "motion_blur_tile_max")) << "nothing moves";
+    EXPECT_FALSE(s.ranInAnyFrame("motion_blur_tile_max")) << "nothing moves";
     s.addMovingGlow(8.0, 10.0, 12.0);
     s.render();
-    EXPECT_TRUE(ranPass(s.host, "motion_blur_tile_max"));
+    EXPECT_TRUE(s.ranUntilSettled("motion_blur_tile_max"));
     image::Image off = s.sharp();
-    EXPECT_FALSE(ranPass(s.host, "motion_blur_tile_max")) << "motionBlur 0";
+    EXPECT_FALSE(s.ranInAnyFrame("motion_blur_tile_max")) << "motionBlur 0";
     s.setShutter(0.0, 0.0);
     image::Image closed = s.render();
-    EXPECT_FALSE(ranPass(s.host, "motion_blur_tile_max")) << "closed shutter";
+    EXPECT_FALSE(s.ranInAnyFrame("motion_blur_tile_max")) << "closed shutter";
     EXPECT_EQ(off.pixels, closed.pixels);
 }
 
@@ -447,7 +364,7 @@ TEST(MotionBlur, PointsThatChangeCountWithinTheShutterHoldStill) {
     image::Image img = s.render();
     EXPECT_TRUE(s.host.loggedErrors().empty());
     EXPECT_EQ(renderStats(s.host).primsSkipped, 0u);
-    EXPECT_FALSE(ranPass(s.host, "motion_blur_tile_max")) << "nothing moves";
+    EXPECT_FALSE(s.ranInAnyFrame("motion_blur_tile_max")) << "nothing moves";
     EXPECT_EQ(img.pixels, still.pixels);
 }
 
