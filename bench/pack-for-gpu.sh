@@ -13,7 +13,7 @@ export OBSCURA_BUILD_DIR=$root/build-gpu
 "$root/scripts/build.sh" -DOBSCURA_BUILD_TESTS=OFF -DCMAKE_BUILD_TYPE=Release >/dev/null
 rm -rf "$root/gpu-pack" "$root/gpu-debs"
 "$pack_tool" "$root/gpu-pack" "$OBSCURA_BUILD_DIR/bin/obscura" \
-  "$OBSCURA_BUILD_DIR/plugin/obscura/libobscuraDelegate.so" "$OBSCURA_BUILD_DIR/plugin/obscura"
+  "$OBSCURA_BUILD_DIR/lib/obscura/plugin/obscura/libobscuraDelegate.so" "$OBSCURA_BUILD_DIR/lib/obscura/plugin/obscura"
 mkdir -p "$root/gpu-debs"
 (cd "$root/gpu-debs" && apt-get download libvulkan1 libglvnd0 libglx0 libegl1 libgl1 libopengl0 libgles2 >/dev/null)
 echo "packed gpu-pack/ and gpu-debs/"

@@ -8,11 +8,17 @@
 
 #include <obscura/obscura.h>
 
+#include <atomic>
 #include <cstring>
 #include <new>
+#include <thread>
 
 struct ObscuraDelegate_T {
     std::unique_ptr<obscura::delegate::RenderDelegate> impl;
+    // The thread inside a call on this delegate (default: none). Calls are serialised by the host;
+    // one made while another runs (from a scene-delegate or log callback, or another thread) is
+    // refused, never run on a delegate in the middle of a call.
+    std::atomic<std::thread::id> inCall{};
 };
 
 namespace {
@@ -35,7 +41,7 @@ ObscuraStatus guarded(std::string* errorSink, F&& body) {
         return e.status;
     } catch (const obscura::gpu::DeviceError& e) {
         sink = e.what();
-        return OBSCURA_ERROR_DEVICE;
+        return e.outOfMemory() ? OBSCURA_ERROR_OUT_OF_MEMORY : OBSCURA_ERROR_DEVICE;
     } catch (const std::bad_alloc&) {
         sink = "out of memory";
         return OBSCURA_ERROR_OUT_OF_MEMORY;
@@ -48,13 +54,49 @@ ObscuraStatus guarded(std::string* errorSink, F&& body) {
     }
 }
 
-// Runs `body` on a valid delegate; null handles are refused with a message.
+// Marks `d` as in a call for the lifetime of the guard, unless a call on it is already running.
+class CallGuard {
+public:
+    explicit CallGuard(ObscuraDelegate d) : d_(d) {
+        std::thread::id none{};
+        entered_ = d_->inCall.compare_exchange_strong(none, std::this_thread::get_id());
+        reentrant_ = !entered_ && none == std::this_thread::get_id();
+    }
+    ~CallGuard() {
+        if (entered_) d_->inCall.store(std::thread::id{});
+    }
+    bool entered() const { return entered_; }
+    // The refused call came from inside a call on this thread (a callback), not from another thread.
+    bool reentrant() const { return reentrant_; }
+
+private:
+    ObscuraDelegate d_;
+    bool entered_ = false;
+    bool reentrant_ = false;
+};
+
+ObscuraStatus refuseConcurrentCall(const CallGuard& guard, ObscuraDelegate d, const char* function) {
+    std::string message = std::string(function) +
+                          (guard.reentrant() ? " called from a callback while a call on the same delegate runs"
+                                             : " called while another thread is in a call on the same delegate") +
+                          ": calls on one delegate must be serialised, so it was refused and changed nothing";
+    // From a callback the host reads lastError(delegate) on the same thread; from another thread the
+    // delegate's message belongs to the running call, so this one goes to lastError(NULL).
+    if (guard.reentrant()) d->impl->lastError() = message;
+    else tlsLastError = message;
+    return OBSCURA_ERROR_INVALID_STATE;
+}
+
+// Runs `body` on a valid delegate; null handles are refused with a message, calls made while
+// another call on the delegate runs with OBSCURA_ERROR_INVALID_STATE.
 template <typename F>
-ObscuraStatus withDelegate(ObscuraDelegate d, F&& body) {
+ObscuraStatus withDelegate(ObscuraDelegate d, const char* function, F&& body) {
     if (!d || !d->impl) {
         tlsLastError = "null delegate handle";
         return OBSCURA_ERROR_INVALID_ARGUMENT;
     }
+    CallGuard guard(d);
+    if (!guard.entered()) return refuseConcurrentCall(guard, d, function);
     return guarded(&d->impl->lastError(), [&] { return body(*d->impl); });
 }
 
@@ -80,6 +122,10 @@ ObscuraStatus createDelegate(const ObscuraDelegateCreateInfo* info, ObscuraDeleg
 }
 
 ObscuraStatus destroyDelegate(ObscuraDelegate d) {
+    if (d) {
+        CallGuard guard(d);
+        if (!guard.entered()) return refuseConcurrentCall(guard, d, "destroyDelegate");
+    }
     return guarded(nullptr, [&] {
         delete d;
         return OBSCURA_OK;
@@ -92,7 +138,7 @@ const char* lastError(ObscuraDelegate d) {
 }
 
 ObscuraStatus setSceneDelegate(ObscuraDelegate d, const ObscuraSceneDelegate* sd) {
-    return withDelegate(d, [&](RenderDelegate& r) {
+    return withDelegate(d, "setSceneDelegate", [&](RenderDelegate& r) {
         if (!sd) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "sceneDelegate is NULL"};
         r.setSceneDelegate(*sd);
         return OBSCURA_OK;
@@ -100,42 +146,48 @@ ObscuraStatus setSceneDelegate(ObscuraDelegate d, const ObscuraSceneDelegate* sd
 }
 
 ObscuraStatus insertPrim(ObscuraDelegate d, const char* type, const char* path) {
-    return withDelegate(d, [&](RenderDelegate& r) {
+    return withDelegate(d, "insertPrim", [&](RenderDelegate& r) {
         r.insertPrim(requireString(type, "type"), requireString(path, "path"));
         return OBSCURA_OK;
     });
 }
 
 ObscuraStatus removePrim(ObscuraDelegate d, const char* path) {
-    return withDelegate(d, [&](RenderDelegate& r) {
+    return withDelegate(d, "removePrim", [&](RenderDelegate& r) {
         r.removePrim(requireString(path, "path"));
         return OBSCURA_OK;
     });
 }
 
 ObscuraStatus markDirty(ObscuraDelegate d, const char* path, ObscuraDirtyBits bits) {
-    return withDelegate(d, [&](RenderDelegate& r) {
+    return withDelegate(d, "markDirty", [&](RenderDelegate& r) {
         r.markDirty(requireString(path, "path"), bits);
         return OBSCURA_OK;
     });
 }
 
 ObscuraStatus setRenderSetting(ObscuraDelegate d, const char* key, const ObscuraValue* value) {
-    return withDelegate(d, [&](RenderDelegate& r) {
+    return withDelegate(d, "setRenderSetting", [&](RenderDelegate& r) {
         r.setRenderSetting(requireString(key, "key"), value);
         return OBSCURA_OK;
     });
 }
 
 ObscuraStatus render(ObscuraDelegate d, const ObscuraRenderPassDesc* desc) {
-    return withDelegate(d, [&](RenderDelegate& r) {
+    return withDelegate(d, "render", [&](RenderDelegate& r) {
         if (!desc) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "render pass description is NULL"};
-        return r.render(*desc);
+        try {
+            return r.render(*desc);
+        } catch (const obscura::gpu::DeviceError& e) {
+            // A lost device stays lost: later renders are refused until the host makes a new delegate.
+            if (e.deviceLost()) r.deviceLost(e.what());
+            throw;
+        }
     });
 }
 
 ObscuraStatus mapRenderBuffer(ObscuraDelegate d, const char* path, ObscuraMappedBuffer* out) {
-    return withDelegate(d, [&](RenderDelegate& r) {
+    return withDelegate(d, "mapRenderBuffer", [&](RenderDelegate& r) {
         if (!out || out->structSize < sizeof(ObscuraMappedBuffer))
             throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "ObscuraMappedBuffer is NULL or too small"};
         r.map(requireString(path, "path"), *out);
@@ -144,14 +196,14 @@ ObscuraStatus mapRenderBuffer(ObscuraDelegate d, const char* path, ObscuraMapped
 }
 
 ObscuraStatus unmapRenderBuffer(ObscuraDelegate d, const char* path) {
-    return withDelegate(d, [&](RenderDelegate& r) {
+    return withDelegate(d, "unmapRenderBuffer", [&](RenderDelegate& r) {
         r.unmap(requireString(path, "path"));
         return OBSCURA_OK;
     });
 }
 
 ObscuraStatus getPassTimings(ObscuraDelegate d, ObscuraPassTiming* timings, uint32_t* count) {
-    return withDelegate(d, [&](RenderDelegate& r) {
+    return withDelegate(d, "getPassTimings", [&](RenderDelegate& r) {
         if (!count) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "count is NULL"};
         const auto& t = r.passTimings();
         if (!timings) {
@@ -172,10 +224,10 @@ ObscuraStatus getPassTimings(ObscuraDelegate d, ObscuraPassTiming* timings, uint
 }
 
 ObscuraStatus getRenderStats(ObscuraDelegate d, ObscuraRenderStats* out) {
-    return withDelegate(d, [&](RenderDelegate& r) {
+    return withDelegate(d, "getRenderStats", [&](RenderDelegate& r) {
         if (!out || out->structSize < sizeof(ObscuraRenderStats))
             throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "ObscuraRenderStats is NULL or too small"};
-        *out = r.stats();
+        r.stats(*out);
         return OBSCURA_OK;
     });
 }
@@ -212,7 +264,7 @@ ObscuraStatus enumerateDevices(ObscuraDeviceInfo* devices, uint32_t* count) {
 }
 
 ObscuraStatus getPrimId(ObscuraDelegate d, const char* path, int32_t* outId) {
-    return withDelegate(d, [&](RenderDelegate& r) {
+    return withDelegate(d, "getPrimId", [&](RenderDelegate& r) {
         if (!outId) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "outId is NULL"};
         *outId = r.primId(requireString(path, "path"));
         return OBSCURA_OK;

@@ -17,6 +17,10 @@
 namespace obscura::delegate {
 namespace {
 
+// Camera and environment constants: std140 storage buffers, never uniform blocks
+// (shaders/common/frame_data.glsl, CAMERA_BLOCK, says why).
+constexpr VkBufferUsageFlags kFrameConstantsUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+
 template <typename T>
 gpu::BufferPtr uploadRecords(gpu::Device& device, const void* header, size_t headerSize, const std::vector<T>& records,
                              VkBufferUsageFlags usage, const char* name) {
@@ -142,6 +146,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     cd.shutterPosition = float(0.5 * (in.shutterSpan[0] + in.shutterSpan[1]));
     cd.shutterFraction = float(in.shutterSpan[1] - in.shutterSpan[0]);
     cd.clipJitter = {float(in.clipJitter[12]), float(in.clipJitter[13])};
+    cd.noiseFrame = in.noiseFrame;
     if (in.shutter && in.sample && (*in.shutter)[1] > (*in.shutter)[0])
         cd.shutterPosition = float((in.sample->time - (*in.shutter)[0]) / ((*in.shutter)[1] - (*in.shutter)[0]));
     bool cameraMoves = false;
@@ -185,6 +190,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         } else if (auto* l = dynamic_cast<const Light*>(prim.get())) {
             if (l->visible()) {
                 lights.push_back(withInfluenceRange(frameTime ? l->dataAt(*frameTime) : l->data(), cd.exposureScale));
+                if (in.sample) lights.back() = emitterSample(lights.back(), in.sample->emitter);
                 lightCastsShadows.push_back(l->castsShadows());
                 lightPrims.push_back(l);
                 if (l == in.environmentDome) lights.back().factors[2] = 1.0f;
@@ -196,7 +202,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         for (const passes::LightData& light : lights)
             if (light.positionType[3] == float(passes::LightType::Dome)) cd.backdropCoverage = 1.0f;
     scene.cameraData = cd;
-    scene.camera = device.createBuffer(sizeof(cd), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "camera");
+    scene.camera = device.createBuffer(sizeof(cd), kFrameConstantsUsage, gpu::MemoryUsage::Upload, "camera");
     std::memcpy(scene.camera->mapped(), &cd, sizeof(cd));
 
     // Prototype meshes draw only through their instancers.
@@ -423,7 +429,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         }
     }
     scene.environment =
-        device.createBuffer(sizeof(environment), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::MemoryUsage::Upload, "environment");
+        device.createBuffer(sizeof(environment), kFrameConstantsUsage, gpu::MemoryUsage::Upload, "environment");
     std::memcpy(scene.environment->mapped(), &environment, sizeof(environment));
     return scene;
 }

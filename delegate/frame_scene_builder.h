@@ -20,11 +20,13 @@
 namespace obscura::delegate {
 
 // Where on the lens, when in the shutter and where within the pixel a reference sub-frame looks
-// from (Camera::viewMatrix / projectionMatrix with a lens offset).
+// from (Camera::viewMatrix / projectionMatrix with a lens offset), and which point of each light's
+// emitter lights it.
 struct FrameSample {
     double time;                        // absolute time code, within the camera's shutter
     std::array<double, 2> lensOffset;   // camera space, scene units
     std::array<double, 2> pixelJitter;  // pixels
+    std::array<double, 2> emitter;      // [0, 1)^2: where on each light's emitter (emitterSample)
 };
 
 // Temporal AA's object motion: every drawn instance's model by a key stable from frame to frame
@@ -47,6 +49,8 @@ struct FrameSceneInputs {
     // keep the unjittered frustum, so SSAO's history check and the cascades' texel grids do not
     // move with the jitter. Identity for reference sub-frames, which jitter through `sample`.
     Matrix4d clipJitter = kIdentity;
+    // Temporal AA's place in its jitter cycle (CameraData::noiseFrame): the shadow filter's turn.
+    uint32_t noiseFrame = 0;
     // Hybrid AA (seed 004, render setting taa:hybridDistance in scene units): instances whose world
     // bounds come nearer the eye than this are drawn without the jitter and edge-anti-aliased
     // (kInstanceEdgeAa); the rest are temporally anti-aliased. 0: every instance is temporal.

@@ -39,7 +39,9 @@ std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::
         std::array<double, 2> square{2.0 * (k + 0.5) / count - 1.0, 2.0 * (radicalInverse(k, 2) + 0.5 / count) - 1.0};
         passes::ApertureSample lens = passes::sampleAperture(square, aperture);
         double shutter = (double(shutterStratum(k, count)) + 0.5) / count;
-        frames.push_back({lens.position, lens.area, shutter, {radicalInverse(k, 3) - 0.5, radicalInverse(k, 5) - 0.5}});
+        std::array<double, 2> emitter{radicalInverse(k, 7), radicalInverse(k, 11)};
+        frames.push_back(
+            {lens.position, lens.area, shutter, {radicalInverse(k, 3) - 0.5, radicalInverse(k, 5) - 0.5}, emitter});
     }
     return frames;
 }

@@ -16,13 +16,14 @@ struct ReferenceSubFrame {
     double weight;                      // the aperture area the sample stands for: a flat bokeh
     double shutter;                     // fraction of the shutter interval, [0, 1)
     std::array<double, 2> pixelJitter;  // pixels, [-0.5, 0.5)^2: a box pixel filter
+    std::array<double, 2> emitter;      // [0, 1)^2: the point of each light's emitter (emitterSample)
 };
 
 // `count` deterministic, stratified sub-frames: the aperture from a Hammersley set ((k + 0.5) / N
 // and the base-2 radical inverse) over the square, mapped with the same concentric + n-gon mapping
 // as the depth-of-field taps; the shutter from a golden-ratio rank-1 lattice (each 1/N of the
-// interval once); the jitter from the radical inverses in bases 3 and 5, so no dimension repeats
-// another's pattern.
+// interval once); the jitter from the radical inverses in bases 3 and 5, the lights' emitters from
+// those in bases 7 and 11 (Halton), so no dimension repeats another's pattern.
 std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::ApertureShape& aperture);
 
 // The stratum of the shutter sample `index` of `count` takes, in [0, count): the golden-ratio

@@ -74,6 +74,8 @@ RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
     gpu::ContextOptions options;
     options.deviceSelector = info.device ? info.device : "";
     options.validation = validation;
+    std::string faultProblem;
+    options.faults = gpu::FaultInjection::fromEnvironment(&faultProblem);
     options.log = [this](LogLevel level, const std::string& message) {
         log(level == LogLevel::Error     ? OBSCURA_LOG_ERROR
             : level == LogLevel::Warning ? OBSCURA_LOG_WARNING
@@ -105,6 +107,7 @@ RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
     geometry_ = std::make_unique<GeometryCache>(*device_);
     environment_ = std::make_unique<EnvironmentCache>(*device_, textures_->sampler(WrapMode::Repeat, WrapMode::Clamp));
     log(OBSCURA_LOG_INFO, "device: " + device_->context().summary().name);
+    if (!faultProblem.empty()) log(OBSCURA_LOG_WARNING, faultProblem);
 }
 
 RenderDelegate::~RenderDelegate() {
@@ -162,6 +165,7 @@ void RenderDelegate::insertPrim(const std::string& type, const std::string& path
     if (prims_.count(path)) throw ApiError{OBSCURA_ERROR_ALREADY_EXISTS, "a prim already exists at " + path};
     std::unique_ptr<Prim> prim;
     if (type == "mesh") prim = std::make_unique<Mesh>(path, *schema, nextPrimId_++);
+    else if (auto kind = ImplicitSurface::kindOf(type)) prim = std::make_unique<ImplicitSurface>(path, *schema, nextPrimId_++, *kind);
     else if (type == "camera") prim = std::make_unique<Camera>(path, *schema);
     else if (type == "distantLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Distant);
     else if (type == "sphereLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Sphere);
@@ -242,7 +246,7 @@ void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue
                 markDirty(path, OBSCURA_DIRTY_POINTS);
 }
 
-void RenderDelegate::sync(double time, const Camera* camera) {
+void RenderDelegate::sync(double time, const Camera* camera, const ObscuraRenderPassDesc& desc) {
     primsSynced_ = 0;
     // The camera's shutter decides the interval transforms are sampled over; sync it first.
     std::vector<Prim*> dirty(dirty_.begin(), dirty_.end());
@@ -259,7 +263,21 @@ void RenderDelegate::sync(double time, const Camera* camera) {
         ctx.shutterClose = time + camera->params().shutterClose;
     };
     takeShutter();
-    for (Prim* prim : dirty) {
+    // A device failure (out of memory) leaves the prims not yet synced dirty, so that a later render
+    // pulls them again.
+    size_t next = 0;
+    struct Requeue {
+        std::vector<Prim*>& dirty;
+        size_t& next;
+        std::set<Prim*>& set;
+        ~Requeue() {
+            for (size_t i = next; i < dirty.size(); ++i) {
+                dirty[i]->markDirty(OBSCURA_DIRTY_ALL);
+                set.insert(dirty[i]);
+            }
+        }
+    } requeue{dirty, next, dirty_};
+    auto syncPrim = [&](Prim* prim) {
         prim->sync(ctx);
         if (prim == camera) takeShutter();
         ++primsSynced_;
@@ -272,7 +290,19 @@ void RenderDelegate::sync(double time, const Camera* camera) {
             log(OBSCURA_LOG_WARNING, light->path() + ": " + light->warning());
         if (auto* cam = dynamic_cast<Camera*>(prim); cam && !cam->warning().empty())
             log(OBSCURA_LOG_WARNING, cam->path() + ": " + cam->warning());
-    }
+    };
+    for (; next < dirty.size(); ++next) syncPrim(dirty[next]);
+    // Implicit surfaces refine with their size on screen: those whose level changed are
+    // tessellated again, with the transforms and instance placements just synced.
+    // The viewport's size, else the first bound render buffer's (checked when they are bound).
+    uint32_t width = desc.viewport[2] > 0 ? uint32_t(desc.viewport[2]) : 0;
+    uint32_t height = desc.viewport[3] > 0 ? uint32_t(desc.viewport[3]) : 0;
+    const RenderBuffer* first = desc.aovBindingCount > 0 && desc.aovBindings[0].renderBufferPath
+                                    ? find<RenderBuffer>(desc.aovBindings[0].renderBufferPath)
+                                    : nullptr;
+    if (width == 0 && first) width = first->width(), height = first->height();
+    if (camera && !camera->skipped())
+        for (ImplicitSurface* surface : chooseImplicitLevels(prims_, *camera, width, height)) syncPrim(surface);
     // All uploads of this sync go to the GPU in one submission.
     device_->flushUploads();
 }
@@ -280,6 +310,9 @@ void RenderDelegate::sync(double time, const Camera* camera) {
 ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (desc.structSize < sizeof(ObscuraRenderPassDesc) || desc.sType != OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC)
         throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "ObscuraRenderPassDesc: wrong sType or structSize"};
+    if (!deviceLost_.empty())
+        throw ApiError{OBSCURA_ERROR_DEVICE, "the Vulkan device was lost (" + deviceLost_ +
+                                                 "): destroy this delegate and create a new one"};
     if (!hasSceneDelegate_) throw ApiError{OBSCURA_ERROR_INVALID_STATE, "no scene delegate: call setSceneDelegate first"};
     if (!desc.cameraPath) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "render pass without a camera"};
     Camera* camera = find<Camera>(desc.cameraPath);
@@ -287,8 +320,14 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (desc.aovBindingCount > 0 && !desc.aovBindings)
         throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "aovBindings is NULL but aovBindingCount is not 0"};
 
+    // A mapped buffer keeps its contents until unmap: refuse before anything is pulled or drawn.
+    for (uint32_t i = 0; i < desc.aovBindingCount; ++i)
+        if (const char* path = desc.aovBindings[i].renderBufferPath)
+            if (const RenderBuffer* rb = find<RenderBuffer>(path); rb && rb->mapped)
+                throw ApiError{OBSCURA_ERROR_INVALID_STATE, std::string(path) + " is still mapped: unmap it before rendering"};
+    device_->context().faults().beginRender();
     auto syncStart = std::chrono::steady_clock::now();
-    sync(desc.time, camera);
+    sync(desc.time, camera, desc);
     auto syncEnd = std::chrono::steady_clock::now();
     syncMilliseconds_ = std::chrono::duration<double, std::milli>(syncEnd - syncStart).count();
     if (camera->skipped()) throw ApiError{OBSCURA_ERROR_BAD_PRIM_DATA, "camera " + camera->problem()};
@@ -296,6 +335,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     // Bind render buffers; they all share the viewport's size.
     std::vector<passes::AovRequest> requests;
     std::vector<RenderBuffer*> targets;
+    const RenderBuffer* firstSkippedBuffer = nullptr;
     uint32_t width = desc.viewport[2] > 0 ? uint32_t(desc.viewport[2]) : 0;
     uint32_t height = desc.viewport[3] > 0 ? uint32_t(desc.viewport[3]) : 0;
     for (uint32_t i = 0; i < desc.aovBindingCount; ++i) {
@@ -307,8 +347,12 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         if (!info) throw ApiError{OBSCURA_ERROR_NOT_FOUND, std::string("unknown AOV '") + b.aov + "'"};
         RenderBuffer* rb = find<RenderBuffer>(b.renderBufferPath);
         if (!rb) throw ApiError{OBSCURA_ERROR_NOT_FOUND, std::string("no render buffer at ") + b.renderBufferPath};
-        if (rb->skipped()) throw ApiError{OBSCURA_ERROR_BAD_PRIM_DATA, "render buffer " + rb->problem()};
-        if (rb->mapped) throw ApiError{OBSCURA_ERROR_INVALID_STATE, std::string(b.renderBufferPath) + " is still mapped"};
+        // A render buffer with bad data is a skipped prim like any other: the frame renders into the
+        // others and render returns BAD_PRIM_DATA (it keeps its last pixels, or stays unrendered).
+        if (rb->skipped()) {
+            if (!firstSkippedBuffer) firstSkippedBuffer = rb;
+            continue;
+        }
         if (rb->format() != info->format)
             throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, std::string("AOV '") + b.aov + "' needs format " +
                                                                formatName(info->format) + ", " + b.renderBufferPath +
@@ -320,7 +364,14 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         requests.push_back({info->aov, rb->storage(*device_), rb->deviceStaging(*device_)});
         targets.push_back(rb);
     }
+    if ((width == 0 || height == 0) && firstSkippedBuffer)
+        throw ApiError{OBSCURA_ERROR_BAD_PRIM_DATA, "no size to render at: render buffer " + firstSkippedBuffer->problem()};
     if (width == 0 || height == 0) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "empty viewport and no render buffers"};
+    const uint32_t maxSize = device_->context().properties().limits.maxImageDimension2D;
+    if (width > maxSize || height > maxSize)
+        throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "viewport " + std::to_string(width) + "x" + std::to_string(height) +
+                                                           " exceeds " + std::to_string(maxSize) +
+                                                           " pixels a side, the device's largest image"};
 
     passes::ColorLutRequest colour{settings_.token("ocio:config"), settings_.token("ocio:display"),
                                    settings_.token("ocio:view"), settings_.token("ocio:look")};
@@ -363,6 +414,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
                                                 seen.view, seen.projection, frame.shutter.has_value());
         frame.clipJitter = temporalAa->clipJitter;
         if (temporalAa->shutterStratum) frame.shutterSpan = *temporalAa->shutterStratum;
+        frame.noiseFrame = temporalAa->noiseFrame;
         // Hybrid AA (seed 004) while anything changes; a still accumulates jittered frames of every
         // object, converging to the supersampled image, which edge AA never reaches.
         if (temporalAaSettings.mode == passes::TemporalAaMode::Smaa1tx && !temporalAa->pass.unchanged)
@@ -586,7 +638,7 @@ void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const pa
         if (close > open) inputs.shutter = shutter;
         inputs.sample = FrameSample{open + sub.shutter * (close - open),
                                     {sub.aperture[0] * apertureRadius, sub.aperture[1] * apertureRadius},
-                                    sub.pixelJitter};
+                                    sub.pixelJitter, sub.emitter};
         FrameSceneShortfalls shortfalls;  // reported by the frame itself
         passes::FrameScene scene = buildFrameScene(*device_, inputs, shortfalls);
         gpu::FrameGraph graph;
@@ -620,10 +672,11 @@ void RenderDelegate::unmap(const std::string& path) {
     rb->mapped = false;
 }
 
-ObscuraRenderStats RenderDelegate::stats() const {
+void RenderDelegate::stats(ObscuraRenderStats& out) const {
     ObscuraRenderStats s{};
-    s.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
-    s.structSize = sizeof(s);
+    s.sType = out.sType;
+    s.pNext = out.pNext;
+    s.structSize = out.structSize;
     s.primsSynced = primsSynced_;
     for (const auto& [path, prim] : prims_) s.primsSkipped += prim->skipped() ? 1u : 0u;
     s.validationErrors = device_->context().validationErrorCount();
@@ -633,7 +686,18 @@ ObscuraRenderStats RenderDelegate::stats() const {
     s.geometryBytes = geometry_->residentBytes();
     s.frameSetupMilliseconds = frameSetupMilliseconds_;
     std::snprintf(s.deviceName, sizeof(s.deviceName), "%s", device_->context().summary().name.c_str());
-    return s;
+    out = s;
+    // Output structs chain Vulkan style; the header is const only because input structs share it.
+    for (auto* next = static_cast<const ObscuraStructHeader*>(out.pNext); next;
+         next = static_cast<const ObscuraStructHeader*>(next->pNext)) {
+        if (next->sType == OBSCURA_STRUCTURE_TYPE_MEMORY_STATS && next->structSize >= sizeof(ObscuraMemoryStats)) {
+            auto* memory = const_cast<ObscuraMemoryStats*>(reinterpret_cast<const ObscuraMemoryStats*>(next));
+            const gpu::MemoryAllocator& allocator = device_->memory();
+            memory->deviceMemoryReserved = allocator.bytesReserved();
+            memory->deviceMemoryInUse = allocator.bytesInUse();
+            memory->deviceMemoryBlocks = uint32_t(allocator.blockCount());
+        }
+    }
 }
 
 int32_t RenderDelegate::primId(const std::string& path) const {

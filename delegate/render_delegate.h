@@ -6,6 +6,7 @@
 #include "delegate/frame_scene_builder.h"
 #include "delegate/geometry_cache.h"
 #include "delegate/prims/camera.h"
+#include "delegate/prims/implicit_surface.h"
 #include "delegate/prims/instancer.h"
 #include "delegate/prims/light.h"
 #include "delegate/prims/material.h"
@@ -57,14 +58,19 @@ public:
     void map(const std::string& path, ObscuraMappedBuffer& out);
     void unmap(const std::string& path);
     const std::vector<gpu::PassTime>& passTimings() const { return timings_; }
-    ObscuraRenderStats stats() const;
+    // Fills the counters of `out` and of the structs chained to its pNext that this delegate knows
+    // (ObscuraMemoryStats), leaving every sType, pNext and structSize as the host set them.
+    void stats(ObscuraRenderStats& out) const;
+    // After a lost device every render is refused with OBSCURA_ERROR_DEVICE and `why`.
+    void deviceLost(const std::string& why) { deviceLost_ = why; }
     int32_t primId(const std::string& path) const;
 
     std::string& lastError() { return lastError_; }
     void log(ObscuraLogLevel level, const std::string& message) const;
 
 private:
-    void sync(double time, const Camera* camera);
+    // `desc`: the render pass, whose viewport size implicit surfaces are tessellated for.
+    void sync(double time, const Camera* camera, const ObscuraRenderPassDesc& desc);
     // Clip volumes, SSAO, the environment and deferred lighting of `scene` (built from `frame`)
     // into the light accumulation.
     // Deferred MSAA's part of the frame after the resolve (render setting msaa > 1): the
@@ -157,6 +163,7 @@ private:
     double frameSetupMilliseconds_ = 0.0;
     std::chrono::steady_clock::time_point frameRecorded_;
     std::string lastError_;
+    std::string deviceLost_;  // empty while the device works
 };
 
 }  // namespace obscura::delegate

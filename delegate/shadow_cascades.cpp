@@ -6,14 +6,6 @@
 namespace obscura::delegate {
 namespace {
 
-Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3d add(const Vec3d& a, const Vec3d& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-Vec3d scale(const Vec3d& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
 // Row-vector matrix whose columns are the basis vectors: p * M = (p.x', p.y', p.z').
 Matrix4d basisMatrix(const Vec3d& x, const Vec3d& y, const Vec3d& z) {
     return {x[0], y[0], z[0], 0, x[1], y[1], z[1], 0, x[2], y[2], z[2], 0, 0, 0, 0, 1};
@@ -148,6 +140,7 @@ Cascade fitStableCascade(const ShadowedCamera& camera, double sliceNear, double 
     ortho[14] = -zMin / (zMax - zMin);
     cascade.viewProjection = multiply(rotation, ortho);
     cascade.texelWorldSize = texel;
+    cascade.depthSpan = zMax - zMin;
     return cascade;
 }
 

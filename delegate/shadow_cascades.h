@@ -44,6 +44,7 @@ struct ShadowProjection {
 struct Cascade : ShadowProjection {
     Vec3d sphereCenter{};  // bounding sphere of the frustum slice the cascade covers
     double sphereRadius = 0.0;
+    double depthSpan = 0.0;  // world distance along the light between depths 0 and 1 of the map
 };
 
 // One cascade of a distant light travelling along `lightDirection`, covering the camera's

@@ -11,9 +11,9 @@ namespace {
 // 0.75 keeps the first cascade a useful size with a near plane close to the camera).
 constexpr double kCascadeSplitLambda = 0.75;
 
-// The filter of the lookup (shadow_sampling.glsl) reads up to 2.5 texels from the sample; cube
-// faces and spot maps extend their field of view by 3 texels so no lookup inside the face (or
-// the cone) needs texels beyond the map.
+// The minimum filter of the lookup (shadow_sampling.glsl) reads up to 2.5 texels from the sample;
+// cube faces and spot maps extend their field of view by 3 texels so no such lookup inside the
+// face (or the cone) needs texels beyond the map. Wider penumbra filters are clamped to the tile.
 constexpr uint32_t kGuardTexels = 3;
 
 // A ShapingAPI cone up to this half-angle gets one perspective map; wider cones get a cube. At
@@ -38,6 +38,9 @@ struct PendingView {
     Matrix4d viewProjection;
     double texelWorldSize;
     double cascadeEnd;  // cascades only, else 0
+    // ShadowViewData::params.zw: cascades the depth span along the light and 0, perspective views
+    // their near and far planes.
+    std::array<double, 2> depthRange;
 };
 
 // Where the camera's cascades end: the farthest scene point ahead of the camera, rounded up to
@@ -99,7 +102,7 @@ ShadowAtlasBuild buildShadowAtlas(const ShadowInputs& in, std::vector<passes::Li
             Vec3d direction = {light.directionAngle[0], light.directionAngle[1], light.directionAngle[2]};
             for (size_t c = 0; c + 1 < splits.size(); ++c) {
                 Cascade cascade = fitStableCascade(in.camera, splits[c], splits[c + 1], direction, scene, resolution);
-                lightViews.push_back({cascade.viewProjection, cascade.texelWorldSize, splits[c + 1]});
+                lightViews.push_back({cascade.viewProjection, cascade.texelWorldSize, splits[c + 1], {cascade.depthSpan, 0.0}});
             }
         } else if (type == passes::LightType::Sphere || type == passes::LightType::Rect ||
                    type == passes::LightType::Disk) {
@@ -124,11 +127,11 @@ ShadowAtlasBuild buildShadowAtlas(const ShadowInputs& in, std::vector<passes::Li
             if (cone <= kSpotMapMaxCone) {
                 Vec3d axis = {light.directionAngle[0], light.directionAngle[1], light.directionAngle[2]};
                 ShadowProjection spot = spotProjection(position, axis, cone, near, far, resolution, kGuardTexels);
-                lightViews.push_back({spot.viewProjection, spot.texelWorldSize, 0.0});
+                lightViews.push_back({spot.viewProjection, spot.texelWorldSize, 0.0, {near, far}});
                 projection = passes::ShadowProjection::Spot;
             } else {
                 for (const ShadowProjection& face : cubeFaceProjections(position, near, far, resolution, kGuardTexels))
-                    lightViews.push_back({face.viewProjection, face.texelWorldSize, 0.0});
+                    lightViews.push_back({face.viewProjection, face.texelWorldSize, 0.0, {near, far}});
                 projection = passes::ShadowProjection::Cube;
             }
         }
@@ -160,7 +163,8 @@ ShadowAtlasBuild buildShadowAtlas(const ShadowInputs& in, std::vector<passes::Li
         passes::ShadowViewData record{};
         record.worldToAtlas = toFloats<passes::Mat4>(multiply(pending.viewProjection, clipToAtlas(view.x, view.y, view.size)));
         record.tileRect = {float(view.x), float(view.y), float(view.x + view.size - 1), float(view.y + view.size - 1)};
-        record.params = {float(pending.texelWorldSize), float(pending.cascadeEnd), 0.0f, 0.0f};
+        record.params = {float(pending.texelWorldSize), float(pending.cascadeEnd), float(pending.depthRange[0]),
+                         float(pending.depthRange[1])};
         build.records.push_back(record);
         build.atlas.views.push_back(std::move(view));
     }

@@ -23,12 +23,12 @@ TemporalAaStep TemporalAccumulation::next(const TemporalAaKey& key, uint64_t sce
     // through the pixel centres.
     const bool settled = valid && !sceneChanged && held_ >= framesToConverge && !twoFrame;
     const bool sample = valid && !sceneChanged && !settled;
-    // A still's samples of the shutter take the jitter offsets in the order the mean counts them,
-    // as a still without motion blur does from its reset on: an unmoving pixel accumulates the same
-    // values in the same order, bit for bit.
-    uint32_t jitterIndex = uint32_t(frame_ % framesToConverge);
-    if (shutterStrata && sample) jitterIndex = held_;
-    if (!settled) step.jitter = passes::temporalAaJitter(mode, jitterIndex, framesToConverge);
+    // A still's samples of the shutter take the jitter offsets (and the shadow filter's turns) in
+    // the order the mean counts them, as a still without motion blur does from its reset on: an
+    // unmoving pixel accumulates the same values in the same order, bit for bit.
+    step.noiseFrame = uint32_t(frame_ % framesToConverge);
+    if (shutterStrata && sample) step.noiseFrame = held_;
+    if (!settled) step.jitter = passes::temporalAaJitter(mode, step.noiseFrame, framesToConverge);
     if (shutterStrata && sample) {
         double start = double(shutterStratum(held_, framesToConverge));
         step.shutterStratum = std::array<double, 2>{start / framesToConverge, (start + 1.0) / framesToConverge};

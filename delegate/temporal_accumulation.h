@@ -27,6 +27,9 @@ struct TemporalAaStep {
     passes::TemporalAaFrame pass;       // for addTemporalAaPass
     std::array<double, 2> jitter{};     // pixels, x right, y down
     Matrix4d clipJitter = kIdentity;    // applied after the camera's projection: clip x += 2 jitter_x / width * w ...
+    // The jitter's index in its cycle of framesToConverge: noise that turns with it (the shadow
+    // filter's taps) is integrated by a still's mean like the jitter.
+    uint32_t noiseFrame = 0;
     // Another render of the unchanged scene would add nothing: the accumulation holds taa:frames
     // frames (1TX) or both frames (2TX), and (1TX) this frame looked through the pixel centres, so
     // the depth, normal and id AOVs are the unjittered ones.

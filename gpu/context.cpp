@@ -173,6 +173,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     pinDriversForLeakChecking();
     std::unique_ptr<Context> ctx(new Context());
     ctx->log_ = options.log;
+    ctx->faults_ = options.faults;
     bool validation = options.validation;
     if (validation && !hasLayer(kValidationLayer)) {
         return Failure{"validation requested but VK_LAYER_KHRONOS_validation is not installed"};
@@ -291,11 +292,18 @@ Context::~Context() {
 }
 
 void Context::beginOneShot(VkCommandBuffer& cmd) {
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = commandPool_;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    vkCheck(vkAllocateCommandBuffers(device_, &ai, &cmd), "vkAllocateCommandBuffers");
+    // One command buffer, allocated once and reset for each submission: a steady frame creates no
+    // Vulkan object (issue 13).
+    if (!oneShot_) {
+        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        ai.commandPool = commandPool_;
+        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        ai.commandBufferCount = 1;
+        vkCheck(vkAllocateCommandBuffers(device_, &ai, &oneShot_), "vkAllocateCommandBuffers");
+    } else {
+        vkCheck(vkResetCommandBuffer(oneShot_, 0), "vkResetCommandBuffer");
+    }
+    cmd = oneShot_;
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     vkCheck(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
@@ -307,9 +315,10 @@ void Context::endOneShot(VkCommandBuffer cmd) {
     si.commandBufferCount = 1;
     si.pCommandBuffers = &cmd;
     vkCheck(vkResetFences(device_, 1, &fence_), "vkResetFences");
+    if (faults_.strikes(FaultInjection::Kind::DeviceLost))
+        vkCheck(VK_ERROR_DEVICE_LOST, "vkQueueSubmit (OBSCURA_FAULT_INJECTION)");
     vkCheck(vkQueueSubmit(queue_, 1, &si, fence_), "vkQueueSubmit");
     vkCheck(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-    vkFreeCommandBuffers(device_, commandPool_, 1, &cmd);
 }
 
 const char* vkResultName(VkResult r) {

@@ -2,6 +2,7 @@
 // Each delegate owns one Context: delegates in one process are fully independent.
 #pragma once
 
+#include "gpu/fault_injection.h"
 #include "gpu/log.h"
 #include "gpu/result.h"
 
@@ -9,6 +10,7 @@
 
 #include <atomic>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,7 @@ struct ContextOptions {
     std::string deviceSelector;  // name substring or index; empty: OBSCURA_DEVICE, then the best device
     bool validation = false;     // Khronos validation layer; its errors are counted
     LogSink log;
+    FaultInjection faults;
 };
 
 struct PhysicalDeviceSummary {
@@ -56,9 +59,12 @@ public:
     uint32_t validationErrorCount() const { return validationErrors_.load(); }
     void log(LogLevel level, const std::string& message) const;
 
-    // Runs a one-off command buffer to completion (uploads at sync time, readbacks).
+    // Records and runs a command buffer to completion (frames, uploads at sync time). Not re-entrant.
     template <typename F>
     void submitAndWait(F&& record);
+
+    // Simulated failures (gpu/fault_injection.h); the delegate counts its renders into it.
+    FaultInjection& faults() { return faults_; }
 
     VkCommandPool commandPool() const { return commandPool_; }
     VkFence fence() const { return fence_; }
@@ -73,6 +79,7 @@ private:
     void endOneShot(VkCommandBuffer cmd);
 
     LogSink log_;
+    FaultInjection faults_;
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     VkPhysicalDevice physical_ = VK_NULL_HANDLE;
@@ -86,14 +93,24 @@ private:
     PhysicalDeviceSummary summary_;
     VkCommandPool commandPool_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;
+    VkCommandBuffer oneShot_ = VK_NULL_HANDLE;  // reused by every submitAndWait
+    bool recording_ = false;
     std::atomic<uint32_t> validationErrors_{0};
 };
 
 template <typename F>
 void Context::submitAndWait(F&& record) {
+    if (recording_) throw std::logic_error("submitAndWait called while recording another submission");
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     beginOneShot(cmd);
-    record(cmd);
+    recording_ = true;
+    try {
+        record(cmd);
+    } catch (...) {
+        recording_ = false;
+        throw;
+    }
+    recording_ = false;
     endOneShot(cmd);
 }
 

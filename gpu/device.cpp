@@ -17,7 +17,7 @@ VkImageAspectFlags aspectsOf(VkFormat f) {
 }
 
 Device::Device(std::unique_ptr<Context> context) : context_(std::move(context)) {
-    memory_ = std::make_unique<MemoryAllocator>(context_->device(), context_->memoryProperties());
+    memory_ = std::make_unique<MemoryAllocator>(context_->device(), context_->memoryProperties(), &context_->faults());
     if (context_->validationEnabled())
         setObjectName_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
             vkGetDeviceProcAddr(context_->device(), "vkSetDebugUtilsObjectNameEXT"));
@@ -33,7 +33,7 @@ Device::Device(std::unique_ptr<Context> context) : context_(std::move(context)) 
     vkCheck(vkCreateSampler(vk(), &si, nullptr, &nearestClamp_), "vkCreateSampler");
 
     const VkDescriptorPoolSize sizes[] = {
-        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 256},         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 512},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 768},  // per-frame records too: shaders/common/frame_data.glsl says why
         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 512}, {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 512},
         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 256},
     };
@@ -93,7 +93,14 @@ BufferPtr Device::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, Memo
     vkCheck(vkCreateBuffer(vk(), &bi, nullptr, &b->buffer), "vkCreateBuffer");
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(vk(), b->buffer, &req);
-    b->allocation = memory_->allocate(req, memoryUsage, ResourceTiling::Linear);
+    try {
+        b->allocation = memory_->allocate(req, memoryUsage, ResourceTiling::Linear);
+    } catch (...) {
+        // Out of memory: the buffer without memory dies here, not with the device.
+        vkDestroyBuffer(vk(), b->buffer, nullptr);
+        delete b;
+        throw;
+    }
     vkCheck(vkBindBufferMemory(vk(), b->buffer, b->allocation.memory, b->allocation.offset), "vkBindBufferMemory");
     setName(VK_OBJECT_TYPE_BUFFER, reinterpret_cast<uint64_t>(b->buffer), debugName);
     return BufferPtr(b, [this](Buffer* p) {
@@ -121,7 +128,13 @@ ImagePtr Device::createImage(const ImageDesc& desc, const char* debugName) {
     vkCheck(vkCreateImage(vk(), &ii, nullptr, &img->image), "vkCreateImage");
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(vk(), img->image, &req);
-    img->allocation = memory_->allocate(req, MemoryUsage::DeviceLocal, ResourceTiling::Optimal);
+    try {
+        img->allocation = memory_->allocate(req, MemoryUsage::DeviceLocal, ResourceTiling::Optimal);
+    } catch (...) {
+        vkDestroyImage(vk(), img->image, nullptr);
+        delete img;
+        throw;
+    }
     vkCheck(vkBindImageMemory(vk(), img->image, img->allocation.memory, img->allocation.offset), "vkBindImageMemory");
     setName(VK_OBJECT_TYPE_IMAGE, reinterpret_cast<uint64_t>(img->image), debugName);
 

@@ -9,8 +9,9 @@ namespace {
 VkDeviceSize alignUp(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
 }  // namespace
 
-MemoryAllocator::MemoryAllocator(VkDevice device, const VkPhysicalDeviceMemoryProperties& properties)
-    : device_(device), properties_(properties) {}
+MemoryAllocator::MemoryAllocator(VkDevice device, const VkPhysicalDeviceMemoryProperties& properties,
+                                 const FaultInjection* faults)
+    : device_(device), properties_(properties), faults_(faults) {}
 
 MemoryAllocator::~MemoryAllocator() {
     for (auto& b : blocks_)
@@ -76,6 +77,8 @@ bool MemoryAllocator::tryPlace(Block& block, const VkMemoryRequirements& req, Vk
 }
 
 Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsage usage, ResourceTiling tiling) {
+    if (faults_ && faults_->strikes(FaultInjection::Kind::OutOfMemory))
+        vkCheck(VK_ERROR_OUT_OF_DEVICE_MEMORY, "device memory allocation (OBSCURA_FAULT_INJECTION)");
     uint32_t type = findMemoryType(req.memoryTypeBits, usage);
     Allocation a;
     for (uint32_t i = 0; i < blocks_.size(); ++i) {

@@ -4,6 +4,8 @@
 // use separate blocks so bufferImageGranularity never matters. Host-visible blocks stay mapped.
 #pragma once
 
+#include "gpu/fault_injection.h"
+
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -34,7 +36,9 @@ enum class ResourceTiling { Linear, Optimal };
 
 class MemoryAllocator {
 public:
-    MemoryAllocator(VkDevice device, const VkPhysicalDeviceMemoryProperties& properties);
+    // `faults` (may be null) can make allocations fail on cue.
+    MemoryAllocator(VkDevice device, const VkPhysicalDeviceMemoryProperties& properties,
+                    const FaultInjection* faults = nullptr);
     ~MemoryAllocator();
     MemoryAllocator(const MemoryAllocator&) = delete;
     MemoryAllocator& operator=(const MemoryAllocator&) = delete;
@@ -67,6 +71,7 @@ private:
 
     VkDevice device_;
     VkPhysicalDeviceMemoryProperties properties_;
+    const FaultInjection* faults_;
     std::vector<std::unique_ptr<Block>> blocks_;
     VkDeviceSize inUse_ = 0;
 };

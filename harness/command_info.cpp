@@ -11,7 +11,7 @@ namespace obscura::harness {
 int runInfo() {
     std::printf("obscura harness, ABI %d.%d\n", OBSCURA_ABI_VERSION_MAJOR, OBSCURA_ABI_VERSION_MINOR);
     const char* env = std::getenv("OBSCURA_PLUGINPATH");
-    DiscoveryResult found = discoverPlugins(env ? env : "", executableDir() / ".." / "plugin");
+    DiscoveryResult found = discoverPlugins(env ? env : "", defaultPluginDir());
     std::printf("plugins:\n");
     for (const auto& p : found.plugins)
         std::printf("  %s (%s) priority %d, ABI %s\n    %s\n    %s\n", p.displayName.c_str(), p.typeName.c_str(),

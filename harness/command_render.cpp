@@ -1,8 +1,10 @@
 #include "harness/aov_output.h"
 #include "harness/commands.h"
 #include "harness/exit_codes.h"
+#include "harness/frame_output.h"
 #include "harness/session.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,17 +14,6 @@ namespace {
 
 bool endsWith(const std::string& s, const std::string& suffix) {
     return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-// "####" (any run of #) becomes the zero-padded frame number.
-std::string framePath(const std::string& pattern, double frame) {
-    auto first = pattern.find('#');
-    if (first == std::string::npos) return pattern;
-    auto last = pattern.find_first_not_of('#', first);
-    size_t width = (last == std::string::npos ? pattern.size() : last) - first;
-    char number[64];
-    std::snprintf(number, sizeof(number), "%0*lld", int(width), static_cast<long long>(std::llround(frame)));
-    return pattern.substr(0, first) + number + (last == std::string::npos ? "" : pattern.substr(last));
 }
 
 std::variant<std::vector<double>, std::string> frameList(const RenderOptions& o, const usda::StageMetadata& meta) {
@@ -87,7 +78,7 @@ int runRender(const RenderOptions& o) {
         std::fprintf(stderr, "obscura: --width and --height must be positive\n");
         return kExitUsage;
     }
-    auto opened = Session::open(o.scene);
+    auto opened = Session::open(o.scene, o.limits);
     if (auto* error = std::get_if<SessionError>(&opened)) {
         std::fprintf(stderr, "obscura: %s\n", error->message.c_str());
         return error->exitCode;
@@ -121,9 +112,18 @@ int runRender(const RenderOptions& o) {
 
     int exitCode = kExitOk;
     const auto& frameTimes = std::get<std::vector<double>>(frames);
+    bool timeVaryingDirty = false;
     for (size_t fi = 0; fi < frameTimes.size(); ++fi) {
         double frame = frameTimes[fi];
-        if (fi > 0) session.host().markTimeVarying(session.api(), session.delegate());
+        std::string path = framePath(o.output, frame);
+        if (o.skipExisting && std::filesystem::exists(path)) {
+            std::fprintf(stderr, "obscura: frame %g (%zu/%zu): %s exists, skipped\n", frame, fi + 1, frameTimes.size(),
+                         path.c_str());
+            continue;
+        }
+        auto started = std::chrono::steady_clock::now();
+        if (timeVaryingDirty) session.host().markTimeVarying(session.api(), session.delegate());
+        timeVaryingDirty = true;
         ObscuraRenderPassDesc desc{OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC, nullptr, sizeof(ObscuraRenderPassDesc),
                                    camera.c_str(), {0, 0, o.width, o.height}, frame,
                                    static_cast<uint32_t>(bindings.size()), bindings.data()};
@@ -148,16 +148,21 @@ int runRender(const RenderOptions& o) {
             }
             mapped.push_back(m);
         }
-        std::string path = framePath(o.output, frame);
-        std::string problem = png ? writePngDisplay(path, mapped[0].buffer)
-                                  : writeExrAovs(path, mapped, depthConversion(session.host(), camera, frame));
+        std::string problem = writeAtomically(path, [&](const std::string& file) {
+            return png ? writePngDisplay(file, mapped[0].buffer)
+                       : writeExrAovs(file, mapped, depthConversion(session.host(), camera, frame));
+        });
         for (const auto& b : buffers) session.api().unmapRenderBuffer(session.delegate(), b.c_str());
         if (!problem.empty()) {
             std::fprintf(stderr, "obscura: cannot write %s: %s\n", path.c_str(), problem.c_str());
             return kExitBadInput;
         }
-        if (frameTimes.size() > 1)
-            std::fprintf(stderr, "obscura: frame %g (%zu/%zu) -> %s\n", frame, fi + 1, frameTimes.size(), path.c_str());
+        // A range (--frames) logs every frame: what a farm task's log needs to name.
+        if (!o.frames.empty()) {
+            double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+            std::fprintf(stderr, "obscura: frame %g (%zu/%zu) -> %s: %.0f ms on %s\n", frame, fi + 1, frameTimes.size(),
+                         path.c_str(), ms, session.deviceName().c_str());
+        }
     }
     return exitCode;
 }

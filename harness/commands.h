@@ -1,6 +1,8 @@
 // The harness's subcommands (DESIGN.md, CLI contract). main.cpp parses the command line.
 #pragma once
 
+#include "harness/usda/stage.h"
+
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +22,8 @@ struct RenderOptions {
     int reference = 0;  // sub-frames of the reference mode; 0: the normal frame
     std::optional<int> msaa;  // --msaa N: the render setting msaa
     bool verbose = false;     // print the plugin's info messages
+    bool skipExisting = false;  // frames whose output file exists are not rendered again (resumable ranges)
+    usda::CompositionLimits limits;  // --max-prims, --max-index-nodes, --max-stage-mib
 };
 
 struct CompareOptions {
@@ -42,11 +46,32 @@ struct BenchOptions {
     std::vector<std::string> settings;
     std::optional<int> msaa;  // --msaa N: the render setting msaa
     bool verbose = false;     // print the plugin's info messages (e.g. the MSAA tagged share per frame)
+    usda::CompositionLimits limits;
+};
+
+// obscura farm submit: a frame range as an array job of the scheduler (docs/FARM.md).
+struct FarmSubmitOptions {
+    std::string scene;
+    std::string output;                  // with #### for the frame number
+    std::string frames;                  // "A-B", integers
+    long long chunk = 1;                 // frames per task
+    std::string partition;
+    std::vector<std::string> renderArgs; // more `obscura render` arguments, split at whitespace
+    int maxRetries = 2;
+    bool force = false;                  // render frames that exist already
+};
+
+// obscura farm status|resubmit JOB: the id `farm submit` printed, or the job folder.
+struct FarmJobOptions {
+    std::string job;
 };
 
 int runInfo();
 int runRender(const RenderOptions& options);
 int runCompare(const CompareOptions& options);
 int runBench(const BenchOptions& options);
+int runFarmSubmit(const FarmSubmitOptions& options);
+int runFarmStatus(const FarmJobOptions& options);
+int runFarmResubmit(const FarmJobOptions& options);
 
 }  // namespace obscura::harness

@@ -5,6 +5,25 @@
 
 #include <CLI/CLI.hpp>
 
+namespace {
+
+// What composing the scene may build (usda::CompositionLimits); render and bench share them.
+void addCompositionLimits(CLI::App& command, obscura::usda::CompositionLimits& limits) {
+    command.add_option("--max-prims", limits.maxPrims, "stop composing beyond this many prims")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    command.add_option("--max-index-nodes", limits.maxIndexNodes, "composition arcs one prim may gather")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    command
+        .add_option_function<size_t>(
+            "--max-stage-mib", [&limits](size_t mib) { limits.maxMemoryBytes = mib << 20; },
+            "memory the composed stage may hold, MiB (default " + std::to_string(limits.maxMemoryBytes >> 20) + ")")
+        ->check(CLI::Range(size_t(1), size_t(1) << 40));
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     using namespace obscura::harness;
     CLI::App app{"obscura: render USD scenes with the Obscura render delegate plugin"};
@@ -30,7 +49,9 @@ int main(int argc, char** argv) {
         ->check(CLI::NonNegativeNumber);
     r->add_option("--msaa", render.msaa, "G-buffer samples per pixel (render setting `msaa`)");
     r->add_flag("-v,--verbose", render.verbose, "print the plugin's info messages");
+    r->add_flag("--skip-existing", render.skipExisting, "do not render frames whose output file exists (resume a range)");
     frameOpt->excludes(r->get_option("--frames"));
+    addCompositionLimits(*r, render.limits);
 
     CompareOptions compare;
     auto* c = app.add_subcommand("compare", "compare two images; exit 1 below a threshold");
@@ -52,6 +73,27 @@ int main(int argc, char** argv) {
     b->add_option("--set", bench.settings, "render setting key=value (repeatable)");
     b->add_option("--msaa", bench.msaa, "G-buffer samples per pixel (render setting `msaa`)");
     b->add_flag("-v,--verbose", bench.verbose, "print the plugin's info messages");
+    addCompositionLimits(*b, bench.limits);
+
+    FarmSubmitOptions farmSubmit;
+    FarmJobOptions farmJob;
+    auto* farm = app.add_subcommand("farm", "frame ranges as array jobs on a Slurm cluster (docs/FARM.md)");
+    farm->require_subcommand(1);
+    auto* fs = farm->add_subcommand("submit", "submit a frame range; prints the job id");
+    fs->add_option("scene", farmSubmit.scene, "scene file")->required();
+    fs->add_option("-o,--output", farmSubmit.output, "output pattern with #### (.exr or .png)")->required();
+    fs->add_option("--frames", farmSubmit.frames, "range A-B of frames")->required();
+    fs->add_option("--chunk", farmSubmit.chunk, "frames per task")->check(CLI::PositiveNumber);
+    fs->add_option("--partition", farmSubmit.partition, "scheduler partition (default: the cluster's)");
+    fs->add_option("--render-args", farmSubmit.renderArgs, "more `obscura render` arguments (repeatable)")
+        ->allow_extra_args(false);
+    fs->add_option("--max-retries", farmSubmit.maxRetries, "restarts of a task before it gives up")
+        ->check(CLI::NonNegativeNumber);
+    fs->add_flag("--force", farmSubmit.force, "render frames whose file exists too");
+    auto* fst = farm->add_subcommand("status", "frames done, running, pending and failed; exit 0 when complete");
+    fst->add_option("job", farmJob.job, "job id or job folder")->required();
+    auto* fr = farm->add_subcommand("resubmit", "submit again the tasks whose frames are missing");
+    fr->add_option("job", farmJob.job, "job id or job folder")->required();
 
     try {
         app.parse(argc, argv);
@@ -63,5 +105,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("info")) return runInfo();
     if (app.got_subcommand("render")) return runRender(render);
     if (app.got_subcommand("compare")) return runCompare(compare);
+    if (fs->parsed()) return runFarmSubmit(farmSubmit);
+    if (fst->parsed()) return runFarmStatus(farmJob);
+    if (fr->parsed()) return runFarmResubmit(farmJob);
     return runBench(bench);
 }

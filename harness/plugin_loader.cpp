@@ -136,4 +136,10 @@ fs::path executableDir() {
     return ec ? fs::current_path() : self.parent_path();
 }
 
+fs::path defaultPluginDir() {
+    std::error_code ec;
+    fs::path dir = fs::weakly_canonical(executableDir() / ".." / OBSCURA_PLUGIN_RELDIR, ec);
+    return ec ? executableDir() / ".." / OBSCURA_PLUGIN_RELDIR : dir;
+}
+
 }  // namespace obscura::harness

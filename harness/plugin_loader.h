@@ -1,5 +1,5 @@
 // Plugin discovery as OpenUSD does it: plugInfo.json files on OBSCURA_PLUGINPATH (colon-separated
-// folders or files) and in the default folder beside the harness (../plugin/*/). A renderer
+// folders or files) and in the default folder beside the harness (../lib/obscura/plugin/*/). A renderer
 // plugin is a "library" entry whose Info.Types has a type with "HdRendererPlugin" among its
 // bases; the harness dlopens its LibraryPath and negotiates the ABI through obscuraGetApi.
 #pragma once
@@ -52,7 +52,10 @@ private:
 std::variant<LoadedPlugin, std::string> loadPlugin(const PluginInfo& info, uint32_t major = OBSCURA_ABI_VERSION_MAJOR,
                                                    uint32_t minor = OBSCURA_ABI_VERSION_MINOR);
 
-// The folder of the running executable (for the default plugin location).
+// The folder of the running executable.
 std::filesystem::path executableDir();
+// The plugin folder beside the running executable: <prefix>/lib/obscura/plugin for <prefix>/bin/obscura,
+// in the build tree and in an installed prefix alike.
+std::filesystem::path defaultPluginDir();
 
 }  // namespace obscura::harness

@@ -10,7 +10,7 @@ namespace obscura::harness {
 
 std::variant<LoadedPlugin, SessionError> loadBestPlugin() {
     const char* env = std::getenv("OBSCURA_PLUGINPATH");
-    DiscoveryResult found = discoverPlugins(env ? env : "", executableDir() / ".." / "plugin");
+    DiscoveryResult found = discoverPlugins(env ? env : "", defaultPluginDir());
     for (const auto& problem : found.problems) std::fprintf(stderr, "obscura: warning: %s\n", problem.c_str());
     if (found.plugins.empty())
         return SessionError{kExitPluginOrDevice,
@@ -25,12 +25,39 @@ std::variant<LoadedPlugin, SessionError> loadBestPlugin() {
     return SessionError{kExitPluginOrDevice, "no plugin could be loaded:" + reasons};
 }
 
+namespace {
+
+// "file:line:column: " as compilers write it, or "" for no location.
+std::string locationPrefix(const usda::SourceLocation& where) {
+    if (where.file.empty() || where.line <= 0) return {};
+    return where.file + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) + ": ";
+}
+
+void printHostMessage(const HostMessage& m) {
+    std::fprintf(stderr, "obscura: %s%s: %s\n", locationPrefix(m.where).c_str(), m.error ? "error" : "warning",
+                 m.text.c_str());
+}
+
+}  // namespace
+
+// A message about a prim names where its offending attribute was authored (delegate_message.h).
 void Session::logToStderr(void* user, ObscuraLogLevel level, const char* message) {
     auto* self = static_cast<Session*>(user);
     if (level == OBSCURA_LOG_ERROR) ++self->loggedErrors_;
     if (level < (self->verbose_ ? OBSCURA_LOG_INFO : OBSCURA_LOG_WARNING)) return;
-    std::fprintf(stderr, "obscura: %s: %s\n",
+    std::string where;
+    if (self->host_)
+        if (auto about = parsePrimMessage(message))
+            if (auto location = self->host_->locate(*about)) where = locationPrefix(*location);
+    std::fprintf(stderr, "obscura: %s%s: %s\n", where.c_str(),
                  level == OBSCURA_LOG_ERROR ? "error" : level == OBSCURA_LOG_WARNING ? "warning" : "info", message);
+}
+
+std::string Session::deviceName() const {
+    ObscuraRenderStats stats{};
+    stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
+    stats.structSize = sizeof(stats);
+    return api().getRenderStats(delegate_, &stats) == OBSCURA_OK ? std::string(stats.deviceName) : std::string();
 }
 
 std::vector<std::string> withMsaaSetting(std::vector<std::string> settings, const std::optional<int>& msaa) {
@@ -38,7 +65,8 @@ std::vector<std::string> withMsaaSetting(std::vector<std::string> settings, cons
     return settings;
 }
 
-std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::string& scenePath) {
+std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::string& scenePath,
+                                                                  const usda::CompositionLimits& limits) {
     std::unique_ptr<Session> s(new Session());
     // glTF, FBX and OBJ arrive through Assimp as a USD layer: one scene model for every format.
     std::variant<std::unique_ptr<usda::Stage>, usda::Error> opened = usda::Error{};
@@ -47,9 +75,9 @@ std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::st
         if (auto* error = std::get_if<ImportError>(&imported)) return SessionError{kExitBadInput, error->message};
         for (const auto& w : std::get<ImportResult>(imported).warnings)
             std::fprintf(stderr, "obscura: warning: %s: %s\n", scenePath.c_str(), w.c_str());
-        opened = usda::Stage::openFromString(std::get<ImportResult>(imported).usda, scenePath);
+        opened = usda::Stage::openFromString(std::get<ImportResult>(imported).usda, scenePath, limits);
     } else {
-        opened = usda::Stage::open(scenePath);
+        opened = usda::Stage::open(scenePath, limits);
     }
     if (auto* error = std::get_if<usda::Error>(&opened)) return SessionError{kExitBadInput, error->str()};
     s->stage_ = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));
@@ -75,10 +103,10 @@ std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::st
     s->api().setRenderSetting(s->delegate_, "timeCodesPerSecond", &rate);
 
     s->host_ = std::make_unique<UsdSceneHost>(*s->stage_);
+    s->host_->setMessageSink(printHostMessage);
     if (s->api().setSceneDelegate(s->delegate_, &s->host_->sceneDelegate()) != OBSCURA_OK ||
         s->host_->populate(s->api(), s->delegate_) != OBSCURA_OK)
         return SessionError{kExitPluginOrDevice, s->lastError()};
-    for (const auto& m : s->host_->messages()) std::fprintf(stderr, "obscura: warning: %s\n", m.text.c_str());
     return s;
 }
 

@@ -23,7 +23,8 @@ std::vector<std::string> withMsaaSetting(std::vector<std::string> settings, cons
 class Session {
 public:
     // Loads the highest-priority plugin found (OBSCURA_PLUGINPATH, then beside the harness).
-    static std::variant<std::unique_ptr<Session>, SessionError> open(const std::string& scenePath);
+    static std::variant<std::unique_ptr<Session>, SessionError> open(const std::string& scenePath,
+                                                                     const usda::CompositionLimits& limits = {});
     ~Session();
 
     const ObscuraApiV1& api() const { return plugin_->api(); }
@@ -32,6 +33,8 @@ public:
     const usda::Stage& stage() const { return *stage_; }
     std::string lastError() const { return api().lastError(delegate_); }
     uint32_t loggedErrors() const { return loggedErrors_; }
+    // The Vulkan device the delegate renders with (from its render stats; empty before the first render).
+    std::string deviceName() const;
     // Also print the plugin's info messages (device, loaded textures, the MSAA tagged share).
     void setVerbose(bool verbose) { verbose_ = verbose; }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 namespace obscura::harness {
@@ -21,6 +22,14 @@ const std::map<std::string, std::string> kPrimTypes = {
     {"DomeLight", "domeLight"},
     {"Material", "material"},
     {"PointInstancer", "instancer"},
+    {"Cube", "cube"},
+    {"Sphere", "sphere"},
+    {"Cylinder", "cylinder"},
+    {"Cylinder_1", "cylinder1"},
+    {"Cone", "cone"},
+    {"Capsule", "capsule"},
+    {"Capsule_1", "capsule1"},
+    {"Plane", "plane"},
 };
 
 // Types that organise a scene and are not drawn themselves.
@@ -64,6 +73,25 @@ std::string flattenIndexed(usda::Value& value, const usda::Value& indices) {
     return {};
 }
 
+bool isIntegerType(const std::string& type) {
+    return startsWith(type, "int") || startsWith(type, "uint") || type == "uchar" || type == "bool";
+}
+
+// The ABI carries integers as int32; a larger number authored in the file is bad data, not
+// something to wrap around.
+std::string int32RangeProblem(const usda::Value& value) {
+    if (!isIntegerType(value.typeName)) return {};
+    for (size_t i = 0; i < value.numbers.size(); ++i) {
+        const double n = value.numbers[i];
+        if (n >= -2147483648.0 && n <= 2147483647.0) continue;
+        char text[64];
+        std::snprintf(text, sizeof(text), "%.17g", n);
+        return (value.isArray ? "element " + std::to_string(i / size_t(std::max(1, value.tupleSize))) : "value") +
+               " = " + text + " does not fit in a 32-bit integer";
+    }
+    return {};
+}
+
 }  // namespace
 
 UsdSceneHost::UsdSceneHost(const usda::Stage& stage) : stage_(stage) {
@@ -75,8 +103,47 @@ UsdSceneHost::UsdSceneHost(const usda::Stage& stage) : stage_(stage) {
     sceneDelegate_.sampleTransform = &UsdSceneHost::sampleTransformThunk;
 }
 
-void UsdSceneHost::warnOnce(const std::string& key, const std::string& text) {
-    if (warned_.insert(key).second) messages_.push_back({false, text});
+void UsdSceneHost::warnOnce(const std::string& key, const std::string& text, const usda::SourceLocation& where,
+                            bool error) {
+    if (!warned_.insert(key).second) return;
+    messages_.push_back({error, text, where});
+    if (sink_) sink_(messages_.back());
+}
+
+std::optional<usda::SourceLocation> UsdSceneHost::locate(const PrimMessage& message) const {
+    const usda::Prim* prim = stage_.find(message.primPath);
+    if (!prim) return std::nullopt;
+    if (!message.attribute.empty())
+        if (const usda::Attribute* a = resolveAttribute(message.primPath, message.attribute)) return a->where;
+    return prim->where;
+}
+
+// UsdGeomPrimvar: a primvar holds one element (of elementSize values) per constant prim, face
+// (uniform), point (vertex, varying) or face-vertex (faceVarying).
+std::string UsdSceneHost::primvarCountProblem(const usda::Prim& prim, const usda::Attribute& attribute,
+                                              const usda::Value& value, double time) const {
+    const auto interpolation = attribute.metadata.find("interpolation");
+    if (prim.typeName != "Mesh" || interpolation == attribute.metadata.end() || interpolation->second.strings.empty())
+        return {};
+    const std::string& mode = interpolation->second.strings.front();
+    auto countOf = [&](const char* name) -> size_t {
+        const usda::Attribute* a = prim.attribute(name);
+        auto v = a ? a->evaluate(time) : std::nullopt;
+        return v ? v->size() : 0;
+    };
+    size_t expected = 0;
+    std::string per;
+    if (mode == "constant") expected = 1, per = "constant";
+    else if (mode == "uniform") expected = countOf("faceVertexCounts"), per = "uniform (one per face)";
+    else if (mode == "vertex" || mode == "varying") expected = countOf("points"), per = mode + " (one per point)";
+    else if (mode == "faceVarying") expected = countOf("faceVertexIndices"), per = "faceVarying (one per face-vertex)";
+    else return {};
+    size_t elementSize = 1;
+    if (const auto it = attribute.metadata.find("elementSize"); it != attribute.metadata.end() && !it->second.numbers.empty())
+        elementSize = size_t(std::max(1.0, it->second.numbers.front()));
+    if (value.size() == expected * elementSize) return {};
+    return attribute.name + " has " + std::to_string(value.size()) + " values but " + per + " interpolation needs " +
+           std::to_string(expected * elementSize) + "; ignored";
 }
 
 ObscuraStatus UsdSceneHost::populate(const ObscuraApiV1& api, ObscuraDelegate delegate) {
@@ -161,6 +228,7 @@ std::string UsdSceneHost::defaultCamera() const {
 }
 
 std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDelegate delegate, double time) {
+    // XXX: only meshes' points are framed; implicit gprims (Cube, Sphere...) are left out of the bounds.
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (const usda::Prim* prim : stage_.prims()) {
         if (prim->typeName != "Mesh" || prototypeSpace(*prim)) continue;
@@ -343,8 +411,19 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     const usda::Attribute* indices = startsWith(a->name, "primvars:") ? prim->attribute(a->name + ":indices") : nullptr;
     if (auto indexValues = indices ? indices->evaluate(time) : std::nullopt) {
         if (std::string problem = flattenIndexed(*value, *indexValues); !problem.empty()) {
-            warnOnce("indices:" + path + a->name, path + ": " + a->name + ":" + problem);
+            warnOnce("indices:" + path + a->name, path + ": " + a->name + ":" + problem + " of " + a->name,
+                     indices->where, true);
             return OBSCURA_ERROR_INVALID_ARGUMENT;
+        }
+    }
+    if (std::string problem = int32RangeProblem(*value); !problem.empty()) {
+        warnOnce("range:" + path + a->name, path + ": " + a->name + ": " + problem, a->where, true);
+        return OBSCURA_ERROR_INVALID_ARGUMENT;
+    }
+    if (startsWith(a->name, "primvars:") || a->name == "normals") {
+        if (std::string problem = primvarCountProblem(*prim, *a, *value, time); !problem.empty()) {
+            warnOnce("count:" + path + a->name, path + ": " + problem, a->where);
+            return OBSCURA_ERROR_NOT_FOUND;
         }
     }
     return fill(*value, out);

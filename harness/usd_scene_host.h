@@ -3,11 +3,13 @@
 // transforms sampled over an interval). It uses only the public ABI.
 #pragma once
 
+#include "harness/delegate_message.h"
 #include "harness/usda/stage.h"
 
 #include <obscura/obscura.h>
 
 #include <array>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -19,6 +21,7 @@ namespace obscura::harness {
 struct HostMessage {
     bool error;
     std::string text;
+    usda::SourceLocation where;  // where the offending prim or attribute is authored; file "" if nowhere
 };
 
 class UsdSceneHost {
@@ -42,6 +45,11 @@ public:
     std::string addFramingCamera(const ObscuraApiV1& api, ObscuraDelegate delegate, double time);
     const usda::Stage& stage() const { return stage_; }
     const std::vector<HostMessage>& messages() const { return messages_; }
+    // Called with each message as it arises (values are checked when the delegate pulls them).
+    void setMessageSink(std::function<void(const HostMessage&)> sink) { sink_ = std::move(sink); }
+    // Where the prim or attribute a delegate's message is about was authored: the attribute's
+    // name in the file, else the prim's definition; nullopt for a prim the stage does not have.
+    std::optional<usda::SourceLocation> locate(const PrimMessage& message) const;
 
 private:
     static ObscuraStatus getValueThunk(void* user, const char* path, const char* attribute, double time,
@@ -54,7 +62,12 @@ private:
     ObscuraStatus fill(const usda::Value& value, ObscuraValue* out);
     // The attribute a delegate name maps to on the USD prim (materials read their surface shader).
     const usda::Attribute* resolveAttribute(const std::string& path, const std::string& attribute) const;
-    void warnOnce(const std::string& key, const std::string& text);
+    void warnOnce(const std::string& key, const std::string& text, const usda::SourceLocation& where = {},
+                  bool error = false);
+    // A problem with a value before it is handed over (an index outside the values, a count that
+    // does not fit the topology, an integer that does not fit int32); "" when it is fine.
+    std::string primvarCountProblem(const usda::Prim& prim, const usda::Attribute& attribute,
+                                    const usda::Value& value, double time) const;
 
     const usda::Stage& stage_;
     ObscuraSceneDelegate sceneDelegate_{};
@@ -79,6 +92,7 @@ private:
     std::optional<FramingCamera> framingCamera_;
     std::set<std::string> warned_;
     std::vector<HostMessage> messages_;
+    std::function<void(const HostMessage&)> sink_;
     // Storage that backs the last value returned (valid until the next callback, per the ABI).
     std::vector<float> floats_;
     std::vector<double> doubles_;

@@ -12,7 +12,7 @@ struct PackPush {
 
 gpu::ComputePipelineDesc describeAovPackPipeline() {
     return {"aov_pack.comp",
-            {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+            {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
              {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
              {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
              {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},

@@ -27,12 +27,17 @@ struct alignas(16) CameraData {
     // 1 where the camera sees a dome behind everything (render setting domeLightCameraVisibility):
     // the background is opaque, so every pixel's coverage (the colour AOV's alpha) is 1; else 0.
     float backdropCoverage;
+    // Where this frame lies in temporal AA's jitter cycle (0 without temporal AA): the shadow
+    // filter turns its taps by it, so a still's mean integrates over the turns
+    // (shaders/common/shadow_sampling.glsl).
+    uint32_t noiseFrame;
     // The share of the shutter this frame's velocities span, around shutterPosition: 1 in a
     // real-time frame, 1 / taa:frames in a sample of a still's accumulation (the motion AOV
     // divides by it to report the whole shutter's displacement).
     float shutterFraction;
+    float pad[3] = {0.0f, 0.0f, 0.0f};
 };
-static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16 + 16);
+static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16 + 16 + 16);
 
 // kInstanceEdgeAa: hybrid AA (seed 004) chose edge AA over temporal AA for this instance: it is
 // drawn without the jitter, its pixels keep no history and the edge AA passes smooth its edges.
@@ -125,7 +130,9 @@ struct alignas(16) ShadowViewData {
     Mat4 worldToAtlas;
     std::array<float, 4> tileRect;  // first and last texel of the view's tile: x0, y0, x1, y1
     // x: world size of one texel (perspective views: at distance 1 along the view axis);
-    // y: cascades: the view distance where the cascade ends.
+    // y: cascades: the view distance where the cascade ends; z: cascades: the world distance
+    // along the light that the depth range 0..1 spans, perspective views: the near plane; w:
+    // perspective views: the far plane (the penumbra's blocker search linearises depth with them).
     std::array<float, 4> params;
 };
 static_assert(sizeof(ShadowViewData) == 96);

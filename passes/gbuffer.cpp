@@ -40,7 +40,7 @@ bool deforms(Variant variant) { return variant == Variant::Deforming || variant 
 gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, VkSampleCountFlagBits samples) {
     gpu::GraphicsPipelineDesc d;
     d.fragmentShader = writesVelocity(variant) ? "gbuffer_moving.frag" : "gbuffer.frag";
-    d.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+    d.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};

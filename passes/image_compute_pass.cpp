@@ -18,7 +18,7 @@ void addImageComputePass(gpu::FrameGraph& graph, PipelineCache& pipelines, Image
         for (size_t i = 0; i < desc.inputs.size(); ++i)
             d.bindings.push_back({binding++, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
         for (size_t i = 0; i < desc.outputs.size(); ++i) d.bindings.push_back({binding++, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
-        if (withCamera) d.bindings.push_back({binding++, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER});
+        if (withCamera) d.bindings.push_back({binding++, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
         for (size_t i = 0; i < desc.storageBuffers.size(); ++i)
             d.bindings.push_back({binding++, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
         return d;

@@ -8,7 +8,7 @@ namespace {
 constexpr uint32_t kLightingTileSize = 16;  // lighting.comp's TILE_SIZE: one workgroup culls lights per tile
 
 std::vector<gpu::BindingDesc> pixelFrequencyBindings() {
-    return {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+    return {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
             {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
             {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
             {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -22,7 +22,7 @@ std::vector<gpu::BindingDesc> pixelFrequencyBindings() {
             {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
             {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
             {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-            {14, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+            {14, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
             {15, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
             {16, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
 }

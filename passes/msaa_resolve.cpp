@@ -13,7 +13,7 @@ gpu::GraphicsPipelineDesc describeFullScreenPass(const char* fragmentShader, boo
                   {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                   {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                  {4, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}};
+                  {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
     d.colorFormats = {kNormalRoughnessFormat, kAlbedoMetallicFormat, kInstanceFormat};
     if (velocity) {
         d.bindings.push_back({5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});

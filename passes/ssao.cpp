@@ -51,7 +51,7 @@ HalfResolutionGeometry addDownsamplePass(gpu::FrameGraph& graph, PipelineCache& 
                                 graph.createImage("ssaoHalfNormal", halfResolution(scene, kSsaoNormalFormat))};
     const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("ssao_downsample", [] {
         return gpu::ComputePipelineDesc{"ssao_downsample.comp",
-                                        {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                        {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                          {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                          {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                          {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
@@ -90,7 +90,7 @@ gpu::ImageHandle addObscurancePass(gpu::FrameGraph& graph, PipelineCache& pipeli
         graph.createImage("ssaoNoisy", halfResolution(scene, kSsaoAccessibilityFormat));
     const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("ssao_obscurance", [] {
         return gpu::ComputePipelineDesc{"ssao_obscurance.comp",
-                                        {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                        {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                          {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                          {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                          {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
@@ -179,7 +179,7 @@ gpu::ImageHandle addTemporalPass(gpu::FrameGraph& graph, PipelineCache& pipeline
 
     const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("ssao_temporal", [] {
         return gpu::ComputePipelineDesc{"ssao_temporal.comp",
-                                        {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                                        {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                          {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                          {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                          {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},

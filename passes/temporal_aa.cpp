@@ -78,7 +78,7 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
                                    frame.heldFrames, frame.framesToConverge,
                                    (frame.edgeAa ? kTemporalAaEdgeAa : 0u) |
                                        (frame.colorHasCoverage ? kTemporalAaColorHasCoverage : 0u)}};
-    gpu::BufferPtr constantBuffer = device.createBuffer(sizeof(constants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+    gpu::BufferPtr constantBuffer = device.createBuffer(sizeof(constants), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                                         gpu::MemoryUsage::Upload, "temporalAaConstants");
     std::memcpy(constantBuffer->mapped(), &constants, sizeof(constants));
 
@@ -94,8 +94,8 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
         resolvedDesc.usage = 0;
         resolved = graph.createImage("temporalAaResolved", resolvedDesc);
     }
-    std::vector<gpu::BindingDesc> bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                                              {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+    std::vector<gpu::BindingDesc> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                              {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                               {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                               {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                                               {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},

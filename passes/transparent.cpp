@@ -14,10 +14,10 @@ gpu::GraphicsPipelineDesc describeTransparentPipeline(VkFormat hdrFormat) {
     gpu::GraphicsPipelineDesc d;
     setSceneVertexInput(d);
     d.fragmentShader = "transparent.frag";
-    d.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},         {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    d.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},         {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},         {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}, {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}, {7, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                  {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}, {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                   {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},         {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
     d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
     d.pushConstantSize = sizeof(TransparentPush);

@@ -288,7 +288,7 @@ std::optional<Prim> readPrim(const fs::path& file, std::vector<std::string>& err
     Prim prim;
     const size_t errorsBefore = errors.size();
     try {
-        checkKeys(document, {"name", "usdType", "category", "doc", "attributes"}, {});
+        checkKeys(document, {"name", "usdType", "category", "doc", "attributes"}, {"inherits"});
         prim.name = getString(document, "name");
         // The file name is how people find a prim's schema, the name is how code finds it.
         if (prim.name != file.stem().string()) fail("name \"" + prim.name + "\" differs from the file name");
@@ -303,8 +303,35 @@ std::optional<Prim> readPrim(const fs::path& file, std::vector<std::string>& err
         return std::nullopt;
     }
 
+    // "inherits" names a file of attributes beside this one that several prim types share (as
+    // USD's schemas inherit UsdGeomGprim): they come first, then the prim's own.
+    json attributes = json::array();
+    if (document.contains("inherits")) {
+        const json& base = document.at("inherits");
+        const fs::path baseFile = file.parent_path() / ((base.is_string() ? base.get<std::string>() : "") + ".json");
+        std::ifstream baseStream(baseFile);
+        json baseDocument;
+        try {
+            if (!base.is_string() || !baseStream) throw SchemaError("inherits: cannot open " + baseFile.string());
+            baseDocument = json::parse(baseStream);
+            checkKeys(baseDocument, {"doc", "attributes"}, {});
+            if (!baseDocument.at("attributes").is_array()) throw SchemaError("inherits: \"attributes\" must be an array");
+        } catch (const std::exception& error) {
+            errors.push_back(where + ": " + error.what());
+            return std::nullopt;
+        }
+        attributes = baseDocument.at("attributes");
+    }
+    // An attribute of the prim's own under an inherited name replaces it (USD's fallback override:
+    // UsdGeomPlane is double-sided).
+    for (const json& own : document.at("attributes")) {
+        auto same = std::find_if(attributes.begin(), attributes.end(), [&](const json& inherited) {
+            return own.is_object() && own.contains("name") && inherited.at("name") == own.at("name");
+        });
+        if (same != attributes.end()) *same = own;
+        else attributes.push_back(own);
+    }
     std::set<std::string> names;
-    const json& attributes = document.at("attributes");
     for (size_t i = 0; i < attributes.size(); ++i) {
         const json& object = attributes[i];
         // Name the attribute in messages even when the rest of it is broken.

@@ -1,13 +1,8 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages Obscura builds and runs with, when any is missing.
+# Installs the Debian 12 packages Obscura builds and runs with (scripts/debian-packages.txt), when any is missing.
 set -euo pipefail
-packages=(
-  cmake ninja-build g++ pkg-config python3
-  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
-  glslang-dev glslang-tools spirv-tools
-  libopenexr-dev openexr libimath-dev libpng-dev libstb-dev libopencolorio-dev
-  nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev libosd-dev libassimp-dev
-)
+root=$(cd "$(dirname "$0")/.." && pwd)
+read -r -a packages <<< "$(sed 's/#.*//' "$root/scripts/debian-packages.txt" | tr '\n' ' ')"
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

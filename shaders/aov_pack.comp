@@ -20,7 +20,7 @@ const uint AOV_DISPLAY = 5u;
 const uint AOV_MOTION = 6u;
 const uint AOV_INSTANCE_ID = 7u;
 
-layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
+CAMERA_BLOCK(0);
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
 layout(set = 0, binding = 2) uniform sampler2D depthTexture;
 layout(set = 0, binding = 3) uniform sampler2D normalRoughnessTexture;

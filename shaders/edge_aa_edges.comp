@@ -21,7 +21,7 @@ layout(set = 0, binding = 1) uniform usampler2D instanceTarget;   // the G-buffe
 layout(set = 0, binding = 2) uniform sampler2D depthTarget;       // the G-buffer's device depth
 layout(set = 0, binding = 3) uniform sampler2D normalRoughness;   // the G-buffer's best-fit normals
 layout(set = 0, binding = 4, rg8) uniform writeonly image2D edges;
-layout(set = 0, binding = 5, std140) uniform Camera { CameraData camera; };
+CAMERA_BLOCK(5);
 layout(set = 0, binding = 6, std430) readonly buffer Instances { InstanceData instances[]; };
 
 // SMAA's defaults: a luma step of 0.1 is an edge, unless a step twice as large lies beside it

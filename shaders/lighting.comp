@@ -21,7 +21,7 @@ const uint TILE_SIZE = 16u;
 const uint MAX_TILE_LIGHTS = 1024u;  // lights beyond this many in one tile are dropped
 layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 
-layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
+CAMERA_BLOCK(0);
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Materials { MaterialData materials[]; };
 layout(set = 0, binding = 3, std430) readonly buffer Lights { uint lightCount; uint pad[3]; LightData lights[]; };
@@ -40,7 +40,7 @@ layout(set = 0, binding = 12) uniform sampler2D shadowAtlas;
 layout(set = 0, binding = 13) uniform usampler2D clipStencil;
 const uint CLIP_VOLUME_BITS = 0x7fu;  // per pixel, also for the samples of tagged pixels
 // The textured dome (a 1x1 black image and zero coefficients without one).
-layout(set = 0, binding = 14, std140) uniform Environment { EnvironmentData environment; };
+ENVIRONMENT_BLOCK(14);
 layout(set = 0, binding = 15, std430) readonly buffer EnvironmentIrradiance { vec4 irradianceSh[SH_COEFFICIENTS]; };
 layout(set = 0, binding = 16) uniform sampler2D prefilteredEnvironment;
 #ifdef PER_SAMPLE_LIGHTING
@@ -100,6 +100,7 @@ vec3 shadeSurface(uint instanceTarget, float depth, vec4 normalRoughness, vec4 a
     float screenSpaceAccess = sampleAmbientAccess(ambientAccessibility, ambientHalfDepth, pixel, viewDistance);
     s.ambientAccess = ambientAccessWithOcclusion(screenSpaceAccess, occlusionFromTarget(instanceTarget));
     s.environment = sampleEnvironment(s);
+    s.shadowTurn = shadowFilterTurn(vec2(pixel), camera.noiseFrame);
 
     vec3 radiance = mat.emissiveMetallic.rgb;
     uint count = min(tileLightCount, MAX_TILE_LIGHTS);

@@ -9,6 +9,7 @@
 // behind and seen through the centre's own blur (cone of the centre's velocity), or both blurred
 // along (the product of the two cylinders, twice).
 #include "common/motion_blur_common.glsl"
+#include "common/interleaved_gradient_noise.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -58,7 +59,7 @@ void main() {
     // McGuire's per-pixel jitter of the taps by up to half their spacing: how many taps land on a
     // moving edge then varies smoothly across pixels instead of in bands (interleaved gradient
     // noise, Jimenez 2014).
-    float jitter = fract(52.9829189 * fract(dot(vec2(pixel), vec2(0.06711056, 0.00583715)))) - 0.5;
+    float jitter = interleavedGradientNoise(vec2(pixel)) - 0.5;
     for (int s = 0; s < motionBlur.samples; ++s) {
         float t = -1.0 + (2.0 * (float(s) + jitter) + 1.0) / float(motionBlur.samples);
         vec2 offset = span * t;

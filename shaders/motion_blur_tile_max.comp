@@ -21,7 +21,7 @@ layout(set = 0, binding = 0) uniform sampler2D velocityTexture;
 layout(set = 0, binding = 1) uniform sampler2D depthTexture;
 layout(set = 0, binding = 2, rg16f) uniform writeonly image2D tileMax;
 layout(set = 0, binding = 3, rg16f) uniform writeonly image2D speedDepth;
-layout(set = 0, binding = 4, std140) uniform Camera { CameraData camera; };
+CAMERA_BLOCK(4);
 
 shared vec2 longest[256];
 

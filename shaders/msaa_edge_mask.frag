@@ -12,7 +12,7 @@
 layout(set = 0, binding = 0) uniform sampler2DMS depthSamples;
 layout(set = 0, binding = 1) uniform sampler2DMS normalRoughnessSamples;
 layout(set = 0, binding = 3) uniform usampler2DMS instanceSamples;
-layout(set = 0, binding = 4, std140) uniform Camera { CameraData camera; };
+CAMERA_BLOCK(4);
 
 void main() {
     // Helper invocations of quads that reach past the image's edge read its last texel.

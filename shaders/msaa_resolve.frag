@@ -19,7 +19,7 @@ layout(set = 0, binding = 0) uniform sampler2DMS depthSamples;
 layout(set = 0, binding = 1) uniform sampler2DMS normalRoughnessSamples;
 layout(set = 0, binding = 2) uniform sampler2DMS albedoMetallicSamples;
 layout(set = 0, binding = 3) uniform usampler2DMS instanceSamples;
-layout(set = 0, binding = 4, std140) uniform Camera { CameraData camera; };
+CAMERA_BLOCK(4);
 
 layout(location = 0) out vec4 outNormalRoughness;
 layout(location = 1) out vec4 outAlbedoMetallic;

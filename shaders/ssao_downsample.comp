@@ -15,7 +15,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
+CAMERA_BLOCK(0);
 layout(set = 0, binding = 1) uniform sampler2D depthTexture;
 layout(set = 0, binding = 2) uniform sampler2D normalRoughnessTexture;
 layout(set = 0, binding = 3, r32f) uniform writeonly image2D halfDepth;

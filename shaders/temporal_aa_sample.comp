@@ -12,7 +12,7 @@ layout(set = 0, binding = 0) uniform sampler2D hdrColor;
 layout(set = 0, binding = 1) uniform sampler2D depthTexture;
 layout(set = 0, binding = 2) uniform sampler2D transparentCoverage;  // passes/transparent.h
 layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D sampleColor;
-layout(set = 0, binding = 4, std140) uniform Camera { CameraData camera; };
+CAMERA_BLOCK(4);
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);

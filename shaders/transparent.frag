@@ -25,7 +25,7 @@ layout(location = 3) flat in uint inInstance;
 layout(location = 4) in vec2 inUv;
 layout(location = 5) in vec4 inTangent;
 
-layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
+CAMERA_BLOCK(0);
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Materials { MaterialData materials[]; };
 layout(set = 0, binding = 3, std430) readonly buffer Lights { uint lightCount; uint pad[3]; LightData lights[]; };
@@ -34,7 +34,7 @@ layout(set = 0, binding = 3, std430) readonly buffer Lights { uint lightCount; u
 layout(set = 0, binding = 4) uniform sampler2D sceneDepth;
 layout(set = 0, binding = 5, std430) readonly buffer ShadowViews { ShadowViewData shadowViews[]; };
 layout(set = 0, binding = 6) uniform sampler2D shadowAtlas;
-layout(set = 0, binding = 7, std140) uniform Environment { EnvironmentData environment; };
+ENVIRONMENT_BLOCK(7);
 layout(set = 0, binding = 8, std430) readonly buffer EnvironmentIrradiance { vec4 irradianceSh[SH_COEFFICIENTS]; };
 layout(set = 0, binding = 9) uniform sampler2D prefilteredEnvironment;
 // The draw's material textures, pushed per draw as in the G-buffer pass.
@@ -94,6 +94,7 @@ void main() {
     // No SSAO: its obscurance is the opaque surface's behind; the material's occlusion still holds.
     s.ambientAccess = occlusion;
     s.environment = sampleEnvironment(s);
+    s.shadowTurn = shadowFilterTurn(floor(gl_FragCoord.xy), camera.noiseFrame);
     // Coverage scales the diffuse layer only (see above): the lights' response is linear in it.
     s.diffuse *= opacity;
     float viewDistance = linearDepthFromDevice(camera.projection, gl_FragCoord.z);

@@ -60,6 +60,15 @@ private:
 // `exposureScale`: the distance tiled culling bounds it by.
 passes::LightData withInfluenceRange(passes::LightData light, double exposureScale);
 
+// The reference mode's stand-in for `light` in one sub-frame (docs/ARCHITECTURE.md "Reference
+// mode"): one point of its emitter, picked by `u` in [0, 1)^2, lighting and shadowing like a point
+// (hard shadow maps), so that the mean over stratified sub-frames converges to the integral over
+// the emitter of its visible, cosine-weighted radiance, penumbrae included (the accumulation
+// buffer's soft shadows, Haeberli & Akeley 1990). A distant light: a direction within its cone,
+// uniform in solid angle (concentric disc mapping), with the light's irradiance and no angle.
+// Every other light is returned as it is.
+passes::LightData emitterSample(const passes::LightData& light, std::array<double, 2> u);
+
 // Linear Rec.709 colour of a black body at `kelvin`, scaled to luminance 1 (UsdLux
 // colorTemperature: the light's colour is multiplied by it).
 std::array<float, 3> blackbodyColor(double kelvin);

@@ -14,7 +14,7 @@ void Mesh::reset() {
     localBounds_ = Aabb{};
 }
 
-void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
+void Mesh::pullGprim(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     if (bits & OBSCURA_DIRTY_TRANSFORM) {
         transform_ = s.sampleTransform(s.time(), s.time()).front().matrix;
         shutterTransforms_ = s.sampleTransform(ctx.shutterOpen, ctx.shutterClose);
@@ -22,6 +22,20 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     if (bits & OBSCURA_DIRTY_VISIBILITY) visible_ = s.getToken("visibility") != "invisible";
     if (bits & OBSCURA_DIRTY_DOUBLE_SIDED) doubleSided_ = s.getBool("doubleSided");
     if (bits & OBSCURA_DIRTY_MATERIAL_ID) material_ = s.getPath("material:binding");
+}
+
+void Mesh::setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std::string& path) {
+    warnings_ = geometry.warnings;
+    indexCount_ = static_cast<uint32_t>(geometry.indices.size());
+    localBounds_ = Aabb{};
+    for (const passes::Vertex& v : geometry.vertices) localBounds_.extend({v.position[0], v.position[1], v.position[2]});
+    SharedGeometry shared = ctx.geometry.get(geometry.vertices, geometry.indices, path.c_str());
+    vertices_ = std::move(shared.vertices);
+    indices_ = std::move(shared.indices);
+}
+
+void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
+    pullGprim(s, bits, ctx);
 
     constexpr ObscuraDirtyBits kGeometry =
         OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_TOPOLOGY | OBSCURA_DIRTY_NORMALS | OBSCURA_DIRTY_PRIMVAR;
@@ -81,13 +95,7 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     auto built = buildMeshGeometry(std::get<MeshInput>(refined));
     if (auto* problem = std::get_if<std::string>(&built)) throw PrimDataError(s.path() + ": " + *problem);
     auto& geometry = std::get<MeshGeometry>(built);
-    warnings_ = geometry.warnings;
-    indexCount_ = static_cast<uint32_t>(geometry.indices.size());
-    localBounds_ = Aabb{};
-    for (const passes::Vertex& v : geometry.vertices) localBounds_.extend({v.position[0], v.position[1], v.position[2]});
-    SharedGeometry shared = ctx.geometry.get(geometry.vertices, geometry.indices, s.path().c_str());
-    vertices_ = std::move(shared.vertices);
-    indices_ = std::move(shared.indices);
+    setGeometry(geometry, ctx, s.path());
     shutterPositions_.reset();
     if (shutterPoints_) {
         std::array<std::vector<float>, 2> ends{drawnPositions((*shutterPoints_)[0], level, s.path()),

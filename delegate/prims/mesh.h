@@ -1,5 +1,6 @@
 // The mesh rprim: topology, points and primvars pulled from the host, triangulated on the CPU
-// and uploaded as one vertex and one index buffer.
+// and uploaded as one vertex and one index buffer. Implicit surfaces (prims/implicit_surface.h)
+// are meshes whose polygons the delegate makes; they share everything drawn from here on.
 #pragma once
 
 #include "delegate/bounds.h"
@@ -11,7 +12,7 @@
 
 namespace obscura::delegate {
 
-class Mesh final : public Prim {
+class Mesh : public Prim {
 public:
     Mesh(std::string path, const schema::PrimSchema& schema, int32_t primId)
         : Prim(std::move(path), schema), primId_(primId) {}
@@ -37,9 +38,15 @@ public:
     bool hasDisplayColor() const { return input_.displayColor.has_value(); }
     const std::vector<std::string>& warnings() const { return warnings_; }
 
+protected:
+    void reset() override;
+    // What every gprim pulls: transform samples, visibility and purpose, sidedness, material.
+    void pullGprim(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx);
+    // Uploads the drawn polygons (shared through the geometry cache) and keeps their bounds and warnings.
+    void setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std::string& path);
+
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
-    void reset() override;
     // The drawn (refined, triangulated) vertex positions of the mesh with `points` instead of its own.
     std::vector<float> drawnPositions(const std::vector<float>& points, int level, const std::string& path);
 

@@ -1,5 +1,7 @@
 #include "delegate/prims/render_buffer.h"
 
+#include "gpu/device.h"
+
 namespace obscura::delegate {
 
 ObscuraFormat parseFormat(const std::string& t) {
@@ -22,13 +24,15 @@ size_t RenderBuffer::bytesPerPixel() const {
     }
 }
 
-void RenderBuffer::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
+void RenderBuffer::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     if (!(bits & OBSCURA_DIRTY_PARAMS)) return;
     auto dims = s.getInt2("dimensions");
-    constexpr int32_t kMaxDimension = 16384;
-    if (dims[0] <= 0 || dims[1] <= 0 || dims[0] > kMaxDimension || dims[1] > kMaxDimension)
+    // The frame's images are the buffer's size: the device's largest 2D image bounds it.
+    const int64_t maxDimension = ctx.device.context().properties().limits.maxImageDimension2D;
+    if (dims[0] <= 0 || dims[1] <= 0 || dims[0] > maxDimension || dims[1] > maxDimension)
         throw PrimDataError(s.path() + ": dimensions (" + std::to_string(dims[0]) + ", " + std::to_string(dims[1]) +
-                            ") must be within 1.." + std::to_string(kMaxDimension));
+                            ") must be within 1.." + std::to_string(maxDimension) +
+                            ", the device's largest image");
     ObscuraFormat f = parseFormat(s.getToken("format"));
     if (f == OBSCURA_FORMAT_UNKNOWN) throw PrimDataError(s.path() + ": unknown format");
     width_ = uint32_t(dims[0]);

@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "harness/import/convert.h"
+#include "harness/import/gltf_data_uris.h"
 
 namespace obscura::harness {
 
@@ -140,6 +141,7 @@ bool isAssimpFormat(const std::filesystem::path& file) { return formatOf(file).h
 std::variant<ImportResult, ImportError> importWithAssimp(const std::filesystem::path& file) {
     const std::optional<SourceFormat> format = formatOf(file);
     if (!format) return ImportError{file.string() + ": not a format imported through Assimp (.gltf, .glb, .fbx, .obj)"};
+    if (std::string problem = checkGltfDataUris(file); !problem.empty()) return ImportError{problem};
     Assimp::Importer reader;
     // FBX pivots and pre-rotations are folded into each node's transform rather than added as
     // "$AssimpFbx$" helper nodes, so animation channels target the nodes the file names.

@@ -87,22 +87,26 @@ void readStageMetadata(const Layer& layer, StageMetadata& out) {
 }
 
 // Child names from weakest to strongest opinion, as Pcp orders them: a referenced asset's
-// children keep their order and local additions follow.
+// children keep their order and local additions follow. Each carries its strongest spec's location.
 template <class Range>
-std::vector<std::string> childNames(const Range& strongestFirstSpecs) {
-    std::vector<std::string> names;
+std::vector<Composer::ChildName> childNames(const Range& strongestFirstSpecs) {
+    std::map<std::string, SourceLocation> strongest;
+    for (const PrimSpec* spec : strongestFirstSpecs)
+        for (const auto& child : spec->children) strongest.emplace(child->name, child->where);
+    std::vector<Composer::ChildName> names;
     std::set<std::string> seen;
     for (auto it = strongestFirstSpecs.rbegin(); it != strongestFirstSpecs.rend(); ++it)
         for (const auto& child : (*it)->children)
-            if (seen.insert(child->name).second) names.push_back(child->name);
+            if (seen.insert(child->name).second) names.push_back({child->name, strongest.at(child->name)});
     return names;
 }
 
 }  // namespace
 
-std::variant<std::unique_ptr<Stage>, Error> Composer::compose(std::string_view rootText, const std::string& identifier) {
+std::variant<std::unique_ptr<Stage>, Error> Composer::compose(std::string_view rootText, const std::string& identifier,
+                                                              const CompositionLimits& limits) {
     try {
-        Composer composer;
+        Composer composer(limits);
         return composer.composeStage(composer.layers_.addRoot(rootText, identifier));
     } catch (CompositionFailure& failure) {
         return std::move(failure.error);
@@ -123,12 +127,14 @@ std::unique_ptr<Stage> Composer::composeStage(const Layer& rootLayer) {
     return stage;
 }
 
-void Composer::composeChildren(Stage& stage, Prim& parent, const std::vector<std::string>& names) {
-    for (const std::string& name : names) {
-        const std::string path = sdfpath::appendChild(parent.path, name);
-        const std::vector<Opinion> opinions = opinionsOf(indexer_.index(*rootStack_, path, parent.where));
+void Composer::composeChildren(Stage& stage, Prim& parent, const std::vector<ChildName>& children) {
+    for (const ChildName& child : children) {
+        const std::string path = sdfpath::appendChild(parent.path, child.name);
+        const std::vector<Opinion> opinions = opinionsOf(indexer_.index(*rootStack_, path, child.where));
         if (opinions.empty()) continue;
+        budget_.addPrim(path, child.where);
         std::unique_ptr<Prim> prim = composePrim(path, opinions, parent);
+        budget_.hold(heldBytes(*prim), child.where);
         std::vector<const PrimSpec*> specs;
         for (const Opinion& opinion : opinions) specs.push_back(opinion.spec);
         composeChildren(stage, *prim, childNames(specs));

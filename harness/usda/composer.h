@@ -17,16 +17,25 @@ namespace obscura::usda {
 
 class Composer {
 public:
-    static std::variant<std::unique_ptr<Stage>, Error> compose(std::string_view rootText, const std::string& identifier);
+    static std::variant<std::unique_ptr<Stage>, Error> compose(std::string_view rootText, const std::string& identifier,
+                                                               const CompositionLimits& limits);
+
+    // A child prim's name and where its strongest spec is authored (blamed for its problems).
+    struct ChildName {
+        std::string name;
+        SourceLocation where;
+    };
 
 private:
-    Composer() : layers_(diagnostics_), indexer_(layers_, diagnostics_) {}
+    explicit Composer(const CompositionLimits& limits)
+        : budget_(limits), layers_(diagnostics_), indexer_(layers_, diagnostics_, budget_) {}
 
     std::unique_ptr<Stage> composeStage(const Layer& rootLayer);
-    void composeChildren(Stage& stage, Prim& parent, const std::vector<std::string>& names);
+    void composeChildren(Stage& stage, Prim& parent, const std::vector<ChildName>& children);
     std::unique_ptr<Prim> composePrim(const std::string& path, const std::vector<Opinion>& opinions, Prim& parent);
 
     DiagnosticSink diagnostics_;
+    CompositionBudget budget_;
     LayerRegistry layers_;
     PrimIndexer indexer_;
     const LayerStack* rootStack_ = nullptr;

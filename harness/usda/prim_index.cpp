@@ -9,8 +9,6 @@ namespace obscura::usda {
 namespace {
 
 constexpr size_t kMaxArcNesting = 128;
-// References fanning out at every level grow an index exponentially; fail instead of hanging.
-constexpr size_t kMaxIndexNodes = 10000;
 constexpr int kMaxNamespaceDepth = 400;
 // Variant selections can select further variants; bound the rounds in case they keep changing.
 constexpr int kMaxVariantRounds = 64;
@@ -122,12 +120,13 @@ const IndexNode& PrimIndexer::index(const LayerStack& stack, const std::string& 
     } else {
         root = *mirror(index(stack, parent, requestedAt), sdfpath::nameOf(primPath), true);
     }
+    // The memo's entry: its key and map node.
+    budget_.hold(heldBytes(root) + sizeof(Key) + primPath.capacity() + 32, requestedAt);
+    budget_.beginIndex(primPath, nodeCount(root), requestedAt);
     std::vector<const IndexNode*> chain;
     expandArcs(root, chain);
     selectVariants(root);
-    if (nodeCount(root) > kMaxIndexNodes)
-        throw CompositionFailure{Error{requestedAt, "more than " + std::to_string(kMaxIndexNodes) +
-                                                        " composition arcs contribute to <" + primPath + ">"}};
+    budget_.endIndex();
 
     inProgress_.erase(key);
     return memo_.emplace(key, std::move(root)).first->second;
@@ -149,10 +148,14 @@ void PrimIndexer::expandArcs(IndexNode& node, std::vector<const IndexNode*>& cha
                               "<" + arc.path + "> not found in '" + arc.stack->root().identifier + "'; arc ignored");
             continue;
         }
+        // Counted before the copy: a list naming one large prim many times must fail at the
+        // arc that passes the limit, not after building every copy.
+        budget_.addIndexNodes(nodeCount(target), arc.where);
         IndexNode graft = target;
         appendMappings(graft, PathMapping{arc.path, referringPath}, node.toRoot);
         graft.arc = arc.type;
         graft.arcDepth = sdfpath::depthOf(referringPath);
+        budget_.hold(heldBytes(graft), arc.where);
         node.children.push_back(std::move(graft));
     }
     sortChildren(node);
@@ -275,6 +278,8 @@ bool PrimIndexer::selectOneVariant(const IndexNode& root, IndexNode& node, std::
         if (!found && existing == node.children.end()) continue;
         if (existing != node.children.end()) node.children.erase(existing);
         if (found) {
+            budget_.addIndexNodes(1, where);
+            budget_.hold(heldBytesOfNode(variant), where);
             expandArcs(variant, chain);
             node.children.push_back(std::move(variant));
             sortChildren(node);

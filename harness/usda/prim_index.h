@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "harness/usda/composition_budget.h"
 #include "harness/usda/diagnostics.h"
 #include "harness/usda/layer_registry.h"
 
@@ -49,7 +50,8 @@ std::string mapToRoot(const IndexNode& node, const std::string& path);
 
 class PrimIndexer {
 public:
-    PrimIndexer(LayerRegistry& layers, DiagnosticSink& diagnostics) : layers_(layers), diagnostics_(diagnostics) {}
+    PrimIndexer(LayerRegistry& layers, DiagnosticSink& diagnostics, CompositionBudget& budget)
+        : layers_(layers), diagnostics_(diagnostics), budget_(budget) {}
 
     // The index of `primPath` in `stack` (memoized); `requestedAt` is blamed for cycles.
     const IndexNode& index(const LayerStack& stack, const std::string& primPath, const SourceLocation& requestedAt);
@@ -72,6 +74,7 @@ private:
 
     LayerRegistry& layers_;
     DiagnosticSink& diagnostics_;
+    CompositionBudget& budget_;
     std::map<Key, IndexNode> memo_;
     std::set<Key> inProgress_;
 };

@@ -7,8 +7,12 @@
 
 namespace obscura::usda::sdfpath {
 
-// A valid prim, property-namespace or variant name component: [A-Za-z_][A-Za-z0-9_]*, UTF-8 allowed.
+// A valid prim, property-namespace or variant name component: [A-Za-z_][A-Za-z0-9_]*, UTF-8 allowed
+// (well-formed sequences only).
 bool isIdentifier(std::string_view name);
+// The offset of the first byte that is not part of well-formed UTF-8 (RFC 3629: no overlong
+// forms, no surrogates, nothing above U+10FFFF), or npos.
+size_t invalidUtf8At(std::string_view text);
 
 std::string appendChild(std::string_view parent, std::string_view name);
 // "/A/B" -> "/A", "/A" -> "/". Variant selections stay with their prim: "/A{v=x}/B" -> "/A{v=x}".

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -99,6 +100,18 @@ struct StageMetadata {
     std::string doc;
 };
 
+// Bounds on what composing one stage may build, so that a small file cannot take the machine
+// down: arcs that fan out at every level grow a stage exponentially (a "billion laughs" of scene
+// description), and one list naming a large prim many times multiplies its index. Each limit is
+// checked as the structure grows, before the next piece is built. The defaults suit a 2-core
+// machine with 24 GB: the scene description may hold a twelfth of it, the renderer's copy of the
+// geometry and its images need the rest; a stage at the limits composes in well under a minute.
+struct CompositionLimits {
+    size_t maxPrims = 1'000'000;               // prims on the composed stage
+    size_t maxIndexNodes = 10'000;             // nodes (composition arcs) in one prim's index
+    size_t maxMemoryBytes = size_t(2) << 30;   // what the stage and its prim indexes hold (estimated)
+};
+
 // Diagnostics that are not errors (unknown types, unsupported features): one per kind.
 struct Warning {
     SourceLocation where;
@@ -109,10 +122,12 @@ class Stage {
 public:
     // Parse the root layer and everything it sublayers, references and payloads (asset paths
     // relative to the layer that names them), and compose one prim tree.
-    static std::variant<std::unique_ptr<Stage>, Error> open(const std::filesystem::path& file);
+    static std::variant<std::unique_ptr<Stage>, Error> open(const std::filesystem::path& file,
+                                                            const CompositionLimits& limits = {});
     // Same from text in memory (references resolve relative to `virtualPath`'s folder).
     static std::variant<std::unique_ptr<Stage>, Error> openFromString(const std::string& text,
-                                                                       const std::string& virtualPath);
+                                                                       const std::string& virtualPath,
+                                                                       const CompositionLimits& limits = {});
 
     const StageMetadata& metadata() const { return metadata_; }
     const Prim& pseudoRoot() const { return *root_; }

@@ -1,5 +1,7 @@
 #include "harness/usda/usda_parser.h"
 
+#include <cstdio>
+
 #include "harness/usda/sdf_path.h"
 #include "harness/usda/usda_keywords.h"
 
@@ -184,6 +186,11 @@ std::string Parser::parsePrim(PrimSpec& parent) {
     const Token nameToken = take();
     if (nameToken.kind != TokenKind::String)
         fail(nameToken, "expected a quoted prim name after '" + written + "', found " + describe(nameToken));
+    if (const size_t bad = sdfpath::invalidUtf8At(nameToken.value); bad != std::string_view::npos) {
+        char byte[8];
+        std::snprintf(byte, sizeof(byte), "0x%02X", static_cast<unsigned char>(nameToken.value[bad]));
+        fail(nameToken, "prim name has an invalid UTF-8 byte " + std::string(byte) + " at offset " + std::to_string(bad));
+    }
     if (!sdfpath::isIdentifier(nameToken.value)) fail(nameToken, "'" + nameToken.value + "' is not a valid prim name");
     const std::string path = sdfpath::appendChild(primPath_, nameToken.value);
     if (parent.child(nameToken.value)) fail(nameToken, "duplicate prim <" + path + ">");

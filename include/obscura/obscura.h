@@ -17,7 +17,19 @@
  *    have no delegate yet).
  *  - Extensible structs start with `sType`, `pNext`, `structSize` (Vulkan style). Published
  *    structs never change; new fields arrive as new chained structs, new functions as a new
- *    table version. A host sets structSize = sizeof(struct) as it was compiled.
+ *    table version. A host sets structSize = sizeof(struct) as it was compiled. Output structs
+ *    (ObscuraRenderStats, ObscuraMappedBuffer) are filled without touching the host's sType, pNext
+ *    and structSize; known structs chained to an output struct's pNext are filled too.
+ *  - Parameters are marked [in] (read by the call) or [out] (written by it). Every entry point
+ *    returns OBSCURA_ERROR_INVALID_ARGUMENT for a NULL delegate or a NULL required pointer,
+ *    OBSCURA_ERROR_INVALID_STATE for a call made while another call on the same delegate runs,
+ *    OBSCURA_ERROR_OUT_OF_MEMORY when host or device memory ran out and OBSCURA_ERROR_INTERNAL
+ *    for a bug; the codes each entry point adds are listed with it. A failed call changes
+ *    nothing unless its description says otherwise.
+ *  - Device failures: once a render returns OBSCURA_ERROR_DEVICE for a lost device, every later
+ *    render is refused with it; destroy the delegate (which always succeeds) and create a new
+ *    one. For tests, OBSCURA_FAULT_INJECTION=device-lost:N or out-of-memory:N, read when a
+ *    delegate is created, makes its N-th render (1-based) fail that way.
  *  - Matrices are 16 doubles in USD's GfMatrix4d convention: row-major, row vectors
  *    (p' = p * M), translation in elements 12, 13, 14.
  *  - Paths are absolute prim paths ("/World/Mesh"), UTF-8, NUL-terminated.
@@ -25,7 +37,11 @@
  * Thread-safety
  *  - `obscuraGetApi` and the table's `enumerateDevices` may be called from any thread.
  *  - Calls on one delegate must be serialised by the host (one thread at a time). Different
- *    delegates are independent and may be used concurrently from different threads.
+ *    delegates are independent and may be used concurrently from different threads. A call on a
+ *    delegate made while another call on it runs (from a scene-delegate or log callback inside
+ *    render, or from another thread) is refused with OBSCURA_ERROR_INVALID_STATE and changes
+ *    nothing; its message is in lastError(delegate) when it came from a callback, in
+ *    lastError(NULL) when it came from another thread. lastError itself may always be called.
  *  - Scene-delegate callbacks are invoked only on the thread that called `render`, unless the
  *    host sets OBSCURA_SCENE_DELEGATE_THREAD_SAFE in ObscuraSceneDelegate::flags.
  *  - Log callbacks may be invoked from the calling thread only.
@@ -47,7 +63,7 @@ extern "C" {
 #endif
 
 #define OBSCURA_ABI_VERSION_MAJOR 1
-#define OBSCURA_ABI_VERSION_MINOR 0
+#define OBSCURA_ABI_VERSION_MINOR 1  /* 1.1: ObscuraMemoryStats, PFN_ typedefs */
 
 /* ---------------------------------------------------------------------------------------------
  * Status codes
@@ -60,7 +76,7 @@ typedef enum ObscuraStatus {
     OBSCURA_ERROR_ALREADY_EXISTS = 4,    /* insertPrim on a path already in use */
     OBSCURA_ERROR_UNKNOWN_TYPE = 5,      /* prim type not supported (see plugInfo.json) */
     OBSCURA_ERROR_BAD_PRIM_DATA = 6,     /* render succeeded but some prims were skipped */
-    OBSCURA_ERROR_DEVICE = 7,            /* Vulkan device missing or lost */
+    OBSCURA_ERROR_DEVICE = 7,            /* Vulkan device missing, lost, or unable to do what was asked */
     OBSCURA_ERROR_VALIDATION = 8,        /* validation layer reported an error (OBSCURA_VALIDATION=1) */
     OBSCURA_ERROR_OUT_OF_MEMORY = 9,
     OBSCURA_ERROR_INVALID_STATE = 10,    /* e.g. map of a buffer never rendered, render without camera */
@@ -139,8 +155,16 @@ typedef enum ObscuraStructureType {
     OBSCURA_STRUCTURE_TYPE_MAPPED_BUFFER = 4,
     OBSCURA_STRUCTURE_TYPE_DEVICE_INFO = 5,
     OBSCURA_STRUCTURE_TYPE_PASS_TIMING = 6,
-    OBSCURA_STRUCTURE_TYPE_RENDER_STATS = 7
+    OBSCURA_STRUCTURE_TYPE_RENDER_STATS = 7,
+    OBSCURA_STRUCTURE_TYPE_MEMORY_STATS = 8     /* ABI 1.1 */
 } ObscuraStructureType;
+
+/* The head every extensible struct starts with, for walking pNext chains. */
+typedef struct ObscuraStructHeader {
+    ObscuraStructureType sType;
+    const void* pNext;
+    uint32_t structSize;
+} ObscuraStructHeader;
 
 typedef struct ObscuraDelegate_T* ObscuraDelegate;
 
@@ -236,7 +260,9 @@ typedef enum ObscuraFormat {
     OBSCURA_FORMAT_UNORM8_VEC4 = 5     /* RGBA 8-bit, display-referred */
 } ObscuraFormat;
 
-/* A mapped render buffer: rows top to bottom, `rowStride` bytes apart. Valid until unmap. */
+/* A mapped render buffer: rows top to bottom, `rowStride` bytes apart. `data` stays valid and
+ * unchanged until unmapRenderBuffer, removePrim of the buffer or destroyDelegate; render refuses to
+ * write a buffer that is mapped (see render). */
 typedef struct ObscuraMappedBuffer {
     ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_MAPPED_BUFFER */
     const void* pNext;
@@ -285,58 +311,113 @@ typedef struct ObscuraRenderStats {
     uint64_t geometryBytes;         /* vertex + index data on the GPU; identical meshes share one copy */
 } ObscuraRenderStats;
 
+/* ABI 1.1, chained to ObscuraRenderStats::pNext: the delegate's Vulkan memory now. A steady frame
+ * allocates none: these stay put while an unchanged scene renders. */
+typedef struct ObscuraMemoryStats {
+    ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_MEMORY_STATS */
+    const void* pNext;
+    uint32_t structSize;
+    uint32_t deviceMemoryBlocks;    /* VkDeviceMemory allocations held */
+    uint64_t deviceMemoryReserved;  /* bytes in those allocations */
+    uint64_t deviceMemoryInUse;     /* bytes of them holding live buffers and images */
+} ObscuraMemoryStats;
+
 /* ---------------------------------------------------------------------------------------------
- * The function table, version 1.0
+ * The function table, version 1.x (ABI 1.0's layout; 1.1 adds no function)
  * ------------------------------------------------------------------------------------------- */
+
+/* Create a delegate (owns a Vulkan device); several may live in one process. [in] info: NULL for
+ * defaults, else sType/structSize checked. [out] outDelegate (NULL on failure).
+ * OBSCURA_ERROR_INVALID_ARGUMENT: wrong sType or structSize. OBSCURA_ERROR_DEVICE: no usable
+ * Vulkan device (or validation asked for and not installed). Message: lastError(NULL). */
+typedef ObscuraStatus (*PFN_obscuraCreateDelegate)(const ObscuraDelegateCreateInfo* info, ObscuraDelegate* outDelegate);
+/* Destroy a delegate and every prim and buffer it holds (mappings end). NULL is ignored (OK).
+ * Succeeds after any failure, a lost device included; refused (INVALID_STATE) only from inside a
+ * call on the same delegate (a callback). */
+typedef ObscuraStatus (*PFN_obscuraDestroyDelegate)(ObscuraDelegate delegate);
+/* Message of the last failed call on `delegate` (NULL: the last failed call on this thread that
+ * had no delegate, or was refused as concurrent). Valid until the next call on that delegate.
+ * Never NULL; a successful call leaves the last message in place. */
+typedef const char* (*PFN_obscuraLastError)(ObscuraDelegate delegate);
+/* Install the scene delegate [in] (copied); every prim becomes fully dirty. Must be called before
+ * the first render. OBSCURA_ERROR_INVALID_ARGUMENT: NULL, wrong sType/structSize, getValue NULL. */
+typedef ObscuraStatus (*PFN_obscuraSetSceneDelegate)(ObscuraDelegate delegate, const ObscuraSceneDelegate* sceneDelegate);
+/* Insert a prim of [in] type at [in] path; it starts fully dirty. OBSCURA_ERROR_INVALID_ARGUMENT:
+ * path not absolute. OBSCURA_ERROR_UNKNOWN_TYPE: type not supported. OBSCURA_ERROR_ALREADY_EXISTS:
+ * a prim lives at path. */
+typedef ObscuraStatus (*PFN_obscuraInsertPrim)(ObscuraDelegate delegate, const char* type, const char* path);
+/* Remove the prim at [in] path (a mapped render buffer's mapping ends); its GPU resources are
+ * released at the end of the next frame. OBSCURA_ERROR_NOT_FOUND: no prim there. */
+typedef ObscuraStatus (*PFN_obscuraRemovePrim)(ObscuraDelegate delegate, const char* path);
+/* OR [in] bits into the prim at [in] path; the next render syncs it. OBSCURA_ERROR_NOT_FOUND. */
+typedef ObscuraStatus (*PFN_obscuraMarkDirty)(ObscuraDelegate delegate, const char* path, ObscuraDirtyBits bits);
+/* Set the render setting [in] key (see describeRenderSetting / `obscura info`) to [in] value; NULL
+ * resets it to its default. OBSCURA_ERROR_NOT_FOUND: unknown key. OBSCURA_ERROR_INVALID_ARGUMENT:
+ * wrong value type or a value out of range or not offered by the device (the setting keeps its
+ * previous value). */
+typedef ObscuraStatus (*PFN_obscuraSetRenderSetting)(ObscuraDelegate delegate, const char* key, const ObscuraValue* value);
+/* Sync dirty prims at desc->time, then render the camera into the bound render buffers [in] desc.
+ * OBSCURA_OK: every bound buffer holds this frame.
+ * OBSCURA_ERROR_BAD_PRIM_DATA: prims (meshes, lights, materials, render buffers, ...) were skipped
+ *   for bad data; the image is still rendered without them into every good buffer (a skipped
+ *   render buffer keeps what it held); the log names each, lastError the first.
+ * Refused, nothing rendered: OBSCURA_ERROR_INVALID_ARGUMENT (wrong sType/structSize, NULL names,
+ *   unknown AOV format pairing, buffers of differing sizes, an empty viewport without buffers, a
+ *   size beyond the device's largest image, colour management failing);
+ *   OBSCURA_ERROR_NOT_FOUND (no camera, render buffer or AOV of that name);
+ *   OBSCURA_ERROR_INVALID_STATE (no scene delegate; a bound buffer is mapped: unmap it first);
+ *   OBSCURA_ERROR_BAD_PRIM_DATA with the camera named when the camera itself is bad.
+ * OBSCURA_ERROR_DEVICE: the device failed or was lost (then every later render is refused: make a
+ *   new delegate). OBSCURA_ERROR_OUT_OF_MEMORY: the frame did not fit; the scene stays as it was
+ *   and a later render may succeed. OBSCURA_ERROR_VALIDATION: validation on and it reported an
+ *   error (the frame was rendered). */
+typedef ObscuraStatus (*PFN_obscuraRender)(ObscuraDelegate delegate, const ObscuraRenderPassDesc* desc);
+/* Map the render buffer at [in] path for reading into [out] out (structSize >= sizeof checked,
+ * sType/pNext left as set). The pointer stays valid and its contents unchanged until
+ * unmapRenderBuffer (or removePrim / destroyDelegate); mapping a mapped buffer again returns the
+ * same pointer. OBSCURA_ERROR_NOT_FOUND: no render buffer there. OBSCURA_ERROR_INVALID_STATE:
+ * never rendered since it was inserted or resized. */
+typedef ObscuraStatus (*PFN_obscuraMapRenderBuffer)(ObscuraDelegate delegate, const char* path, ObscuraMappedBuffer* out);
+/* End the mapping of [in] path (one unmap ends any number of maps; unmapping an unmapped buffer
+ * is OK). OBSCURA_ERROR_NOT_FOUND: no render buffer there. */
+typedef ObscuraStatus (*PFN_obscuraUnmapRenderBuffer)(ObscuraDelegate delegate, const char* path);
+/* Per-pass GPU timings of the last render: with [out] timings == NULL writes the count to
+ * [in,out] count, else fills min(*count, available) entries and writes that number. */
+typedef ObscuraStatus (*PFN_obscuraGetPassTimings)(ObscuraDelegate delegate, ObscuraPassTiming* timings, uint32_t* count);
+/* Counters of the last render into [out] out (structSize >= sizeof checked) and into the known
+ * structs chained to out->pNext (ObscuraMemoryStats); sType, pNext and structSize of each are
+ * left as the host set them. */
+typedef ObscuraStatus (*PFN_obscuraGetRenderStats)(ObscuraDelegate delegate, ObscuraRenderStats* out);
+/* Vulkan devices visible to the plugin: with [out] devices == NULL writes the count to [in,out]
+ * count, else fills min(*count, available). OBSCURA_ERROR_DEVICE: no Vulkan instance. */
+typedef ObscuraStatus (*PFN_obscuraEnumerateDevices)(ObscuraDeviceInfo* devices, uint32_t* count);
+/* The integer a prim writes into the primId AOV [out] outId (stable for the prim's lifetime; -1 is
+ * "nothing"). OBSCURA_ERROR_NOT_FOUND for unknown paths and for prims that draw nothing. */
+typedef ObscuraStatus (*PFN_obscuraGetPrimId)(ObscuraDelegate delegate, const char* path, int32_t* outId);
+/* Render settings: [out] name and description (either may be NULL) of setting [in] index
+ * (0-based); OBSCURA_ERROR_NOT_FOUND past the end. Strings are static. Thread-safe. */
+typedef ObscuraStatus (*PFN_obscuraDescribeRenderSetting)(uint32_t index, const char** name, const char** description);
+
 typedef struct ObscuraApiV1 {
     uint32_t structSize;
     uint16_t versionMajor;
     uint16_t versionMinor;
-
-    /* Create a delegate (owns a Vulkan device). Several may live in one process. */
-    ObscuraStatus (*createDelegate)(const ObscuraDelegateCreateInfo* info, ObscuraDelegate* outDelegate);
-    /* Destroy a delegate and every prim and buffer it holds. NULL is ignored. */
-    ObscuraStatus (*destroyDelegate)(ObscuraDelegate delegate);
-    /* Message of the last failed call on `delegate` (NULL: the last failed call on this thread
-     * that had no delegate). Valid until the next call on that delegate. Never NULL. */
-    const char* (*lastError)(ObscuraDelegate delegate);
-
-    /* Install the scene delegate (copied). Must be called before the first render. */
-    ObscuraStatus (*setSceneDelegate)(ObscuraDelegate delegate, const ObscuraSceneDelegate* sceneDelegate);
-
-    /* Insert a prim of `type` at `path`; it starts fully dirty. */
-    ObscuraStatus (*insertPrim)(ObscuraDelegate delegate, const char* type, const char* path);
-    /* Remove a prim; its GPU resources are released at the end of the next frame. */
-    ObscuraStatus (*removePrim)(ObscuraDelegate delegate, const char* path);
-    /* OR dirty bits into a prim; the next render syncs it. */
-    ObscuraStatus (*markDirty)(ObscuraDelegate delegate, const char* path, ObscuraDirtyBits bits);
-
-    /* Set a render setting by name (see `obscura info` for the list). A NULL value resets it. */
-    ObscuraStatus (*setRenderSetting)(ObscuraDelegate delegate, const char* key, const ObscuraValue* value);
-
-    /* Sync dirty prims at desc->time, then render the camera into the bound render buffers.
-     * Returns OBSCURA_ERROR_BAD_PRIM_DATA when some prims were skipped (the image is still
-     * rendered without them; messages went to the log). */
-    ObscuraStatus (*render)(ObscuraDelegate delegate, const ObscuraRenderPassDesc* desc);
-
-    /* Map a render buffer for reading; the pointer stays valid until unmapRenderBuffer or the
-     * next render. */
-    ObscuraStatus (*mapRenderBuffer)(ObscuraDelegate delegate, const char* path, ObscuraMappedBuffer* out);
-    ObscuraStatus (*unmapRenderBuffer)(ObscuraDelegate delegate, const char* path);
-
-    /* Per-pass GPU timings of the last render: with timings == NULL writes the count. */
-    ObscuraStatus (*getPassTimings)(ObscuraDelegate delegate, ObscuraPassTiming* timings, uint32_t* count);
-    ObscuraStatus (*getRenderStats)(ObscuraDelegate delegate, ObscuraRenderStats* out);
-
-    /* Vulkan devices visible to the plugin: with devices == NULL writes the count. */
-    ObscuraStatus (*enumerateDevices)(ObscuraDeviceInfo* devices, uint32_t* count);
-    /* The integer a prim writes into the primId AOV (stable for the prim's lifetime; -1 is
-     * "nothing"). OBSCURA_ERROR_NOT_FOUND for unknown paths and for prims that draw nothing. */
-    ObscuraStatus (*getPrimId)(ObscuraDelegate delegate, const char* path, int32_t* outId);
-
-    /* Render settings: name i (0-based) of the settings this plugin understands, with a short
-     * description; OBSCURA_ERROR_NOT_FOUND past the end. Strings are static. */
-    ObscuraStatus (*describeRenderSetting)(uint32_t index, const char** name, const char** description);
+    PFN_obscuraCreateDelegate createDelegate;
+    PFN_obscuraDestroyDelegate destroyDelegate;
+    PFN_obscuraLastError lastError;
+    PFN_obscuraSetSceneDelegate setSceneDelegate;
+    PFN_obscuraInsertPrim insertPrim;
+    PFN_obscuraRemovePrim removePrim;
+    PFN_obscuraMarkDirty markDirty;
+    PFN_obscuraSetRenderSetting setRenderSetting;
+    PFN_obscuraRender render;
+    PFN_obscuraMapRenderBuffer mapRenderBuffer;
+    PFN_obscuraUnmapRenderBuffer unmapRenderBuffer;
+    PFN_obscuraGetPassTimings getPassTimings;
+    PFN_obscuraGetRenderStats getRenderStats;
+    PFN_obscuraEnumerateDevices enumerateDevices;
+    PFN_obscuraGetPrimId getPrimId;
+    PFN_obscuraDescribeRenderSetting describeRenderSetting;
 } ObscuraApiV1;
 
 /*

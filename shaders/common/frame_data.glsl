@@ -22,8 +22,11 @@ struct CameraData {
     vec2 clipJitter;
     // 1 where a dome is seen behind everything (domeLightCameraVisibility): every pixel is covered.
     float backdropCoverage;
+    // Where this frame lies in temporal AA's jitter cycle (0 without it): the shadow filter's turn.
+    uint noiseFrame;
     // The share of the shutter the velocities span (the stratum's length; 1: the whole shutter).
     float shutterFraction;
+    float pad0, pad1, pad2;
 };
 
 // One per drawn rprim.
@@ -108,7 +111,9 @@ const uint SHADOW_SPOT = 2u;      // one perspective map along the light's axis 
 struct ShadowViewData {
     mat4 worldToAtlas;      // world -> clip whose x/w, y/w are atlas texel coordinates, z/w depth
     vec4 tileRect;          // first and last texel of the view's tile: x0, y0, x1, y1
-    vec4 params;            // x world size of a texel (perspective: at distance 1), y cascade's far end
+    vec4 params;            // x world size of a texel (perspective: at distance 1), y cascade's far end;
+                            // z cascades: world distance along the light of depth 0..1, perspective: near;
+                            // w perspective: far
 };
 
 // The textured dome's frame (its prefiltered maps and irradiance coefficients are in it).
@@ -120,6 +125,14 @@ struct EnvironmentData {
     vec4 backdrop;
     vec4 texturedBackdrop;
 };
+
+// Per-frame records are bound as storage buffers in std140 layout, never as uniform blocks: Mesa
+// 22.3's lavapipe inlines uniform-buffer (and push-constant) values that steer a large shader's
+// control flow, compiling a new variant at every bind whose values it has not seen and keeping each
+// until the device is destroyed (issue 13: ~1.3 MB a frame in the lighting pass, ~0.34 MB a frame
+// in temporal AA while a scene is edited). Storage-buffer loads are never inlined.
+#define CAMERA_BLOCK(b) layout(set = 0, binding = b, std140) readonly buffer Camera { CameraData camera; }
+#define ENVIRONMENT_BLOCK(b) layout(set = 0, binding = b, std140) readonly buffer Environment { EnvironmentData environment; }
 
 const uint INSTANCE_DOUBLE_SIDED = 1u;
 const uint INSTANCE_VERTEX_COLOR = 2u;

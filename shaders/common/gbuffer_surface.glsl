@@ -21,7 +21,7 @@ layout(location = 3) flat in uint inInstance;
 layout(location = 4) in vec2 inUv;
 layout(location = 5) in vec4 inTangent;
 
-layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
+CAMERA_BLOCK(0);
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Materials { MaterialData materials[]; };
 layout(set = 0, binding = 3) uniform sampler2D fittingScale;

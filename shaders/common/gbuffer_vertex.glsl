@@ -11,7 +11,7 @@ layout(location = 2) in vec3 inColor;
 layout(location = 3) in vec2 inSt;
 layout(location = 4) in vec4 inTangent;
 
-layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
+CAMERA_BLOCK(0);
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
 
 layout(push_constant) uniform Push { uint instanceIndex; } push;

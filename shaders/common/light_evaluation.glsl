@@ -28,6 +28,7 @@ struct SurfacePoint {
     float ambientAccess;  // SSAO and the material's occlusion: applied to the dome only (seed 004, "SSAO":
                           // ambient light only); ambientAccessWithOcclusion
     EnvironmentSample environment;  // what the textured dome sends this point, if there is one
+    float shadowTurn;  // the turn of its soft-shadow taps (shadow_sampling.glsl shadowFilterTurn)
 };
 
 // UsdPreviewSurface (https://openusd.org/release/spec_usdpreviewsurface.html): the metallic

@@ -50,7 +50,7 @@ bool lightReaches(LightData light, vec3 P) {
 vec3 reflectShadowedLight(SurfacePoint s, LightData light, float viewDistance) {
     vec3 reflected = reflectFromLight(s, light);
     if (light.shadow.y > 0u && any(greaterThan(reflected, vec3(0.0))))
-        reflected *= shadowVisibility(light, s.P, s.N, viewDistance);
+        reflected *= shadowVisibility(light, s.P, s.N, viewDistance, s.shadowTurn);
     return reflected;
 }
 

@@ -1,7 +1,8 @@
 // Shadow lookups, per pixel (seed 000 "Deferred MSAA \ performance shortcuts": sun shadows are
 // computed at pixel frequency): choose a light's view in the shadow atlas (a cascade by view
 // distance, a cube face by the major axis, a spot's one map), offset the receiver along its
-// normal, and filter.
+// normal, and filter: a penumbra as wide as the light's size makes it (percentage-closer soft
+// shadows), at least the 3x3-texel minimum filter.
 //
 // The includer declares, before including this file:
 //   ShadowViewData shadowViews[]   the frame's views (a storage buffer, frame_data.glsl)
@@ -9,11 +10,26 @@
 #ifndef OBSCURA_SHADOW_SAMPLING_GLSL
 #define OBSCURA_SHADOW_SAMPLING_GLSL
 
+#include "interleaved_gradient_noise.glsl"
+
 // Normal offset (Holbein 2011, "Normal offset shadows"): the receiver moves along its normal by
 // this many texels of its view before the lookup, which removes the acne that depth bias alone
 // leaves on surfaces at grazing angles to the light; the rasteriser's slope-scaled bias
 // (passes/shadow_maps.cpp) covers the filter's footprint.
 const float SHADOW_NORMAL_OFFSET_TEXELS = 1.5;
+
+// The minimum filter's half width (its 3x3-texel box): penumbrae narrower than this come out as
+// wide as it, and a light of no size keeps exactly this filter.
+const float SHADOW_MIN_FILTER_RADIUS_TEXELS = 1.5;
+// The widest penumbra filter, in texels of the view, and the farthest the blocker search looks.
+// Wider penumbrae (a large light far above its receiver, or a fine cascade) are cut to this
+// radius: their edges come out sharper than the light makes them.
+const float SHADOW_MAX_FILTER_RADIUS_TEXELS = 32.0;
+// Taps of the blocker search and of the penumbra filter, each a gather of 2x2 texels.
+const int SHADOW_BLOCKER_TAPS = 16;
+const int SHADOW_FILTER_TAPS = 16;
+// A receiver's depth slope is trusted up to this tangent of its angle to the light's view (84°).
+const float SHADOW_MAX_RECEIVER_SLOPE = 10.0;
 
 // Percentage-closer filtering (Reeves et al. 1987) with a 3x3-texel box that slides with the
 // sample: over the 4x4 texels it touches, the edge texels weigh by how much of them the box
@@ -46,27 +62,161 @@ float percentageCloserFilter(vec3 atlasPosition, vec4 tileRect) {
     return lit / 9.0;
 }
 
-// Fraction of the light reaching `position` through view `view`, sampled at the receiver moved
-// `normalOffset` world units along `normal`.
-float viewVisibility(uint view, vec3 position, vec3 normal, float normalOffset) {
-    vec4 clip = shadowViews[view].worldToAtlas * vec4(position + normal * normalOffset, 1.0);
-    return percentageCloserFilter(clip.xyz / clip.w, shadowViews[view].tileRect);
+// --- Percentage-closer soft shadows ---------------------------------------------------------
+// Fernando 2005, "Percentage-closer soft shadows": search the map for blockers over the region
+// the light subtends from the receiver, take their average depth, and filter over the penumbra a
+// planar blocker at that depth would cast: w = (d_receiver - d_blocker) tan(theta) for a distant
+// light of angular diameter theta, w = size (d_receiver - d_blocker) / d_blocker for a local
+// light of diameter `size` (similar triangles). Both regions are discs sampled by a Vogel
+// spiral (Vogel 1979; Jimenez 2014 uses it for shadows) turned per pixel by interleaved gradient
+// noise and per frame by the golden ratio, so a still's temporal mean (taa:frames jittered frames)
+// integrates the disc far more finely than one frame's taps. Each tap gathers 2x2 texels compared
+// against the receiver's plane (receiver-plane depth bias, Isidoro 2006), so wide footprints do not
+// shadow a receiver tilted to the light with its own depths.
+
+// What the filters know of the receiver in one view.
+struct ShadowReceiver {
+    vec3 atlas;       // atlas texel coordinates and depth of the (normal-offset) receiver
+    vec2 depthSlope;  // the receiver plane's depth change per texel along x and y
+    vec4 tileRect;    // the view's tile: first and last texel
+};
+
+// The receiver at world position `position` (already normal-offset) with unit normal `normal`,
+// seen through `view`; `texelWorld` is a texel's world size there (the tangents' length).
+ShadowReceiver shadowReceiver(uint view, vec3 position, vec3 normal, float texelWorld) {
+    mat4 toAtlas = shadowViews[view].worldToAtlas;
+    vec4 clip = toAtlas * vec4(position, 1.0);
+    ShadowReceiver r;
+    r.atlas = clip.xyz / clip.w;
+    r.tileRect = shadowViews[view].tileRect;
+    // Two tangents of the receiver's plane, projected: dz = slope . dxy for both gives the slope.
+    // Depth over the map is affine on a plane for orthographic and perspective views alike.
+    vec3 helper = abs(normal.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+    vec3 t1 = normalize(cross(helper, normal)) * texelWorld;
+    vec3 t2 = cross(normal, t1);
+    vec4 c1 = toAtlas * vec4(position + t1, 1.0);
+    vec4 c2 = toAtlas * vec4(position + t2, 1.0);
+    vec3 d1 = c1.xyz / c1.w - r.atlas, d2 = c2.xyz / c2.w - r.atlas;
+    mat2 tangentsInMap = mat2(d1.xy, d2.xy);
+    float det = determinant(tangentsInMap);
+    // Edge-on to the view (det ~ 0) the plane says nothing: no slope, the minimum filter's case.
+    r.depthSlope = abs(det) > 1e-8 ? inverse(transpose(tangentsInMap)) * vec2(d1.z, d2.z) : vec2(0.0);
+    // Limit the slope where the plane turns edge-on to the view: a plane tilted by a from facing
+    // the view changes depth by about tan(a) times what one texel of it along the view's depth
+    // axis adds, and the tangents measure sin(a) of that.
+    float depthPerTexel = length(d1.xy) > 0.0 ? max(abs(d1.z), abs(d2.z)) / max(length(d1.xy), length(d2.xy)) : 0.0;
+    float limit = SHADOW_MAX_RECEIVER_SLOPE * max(depthPerTexel, 1e-7);
+    float slope = length(r.depthSlope);
+    if (slope > limit) r.depthSlope *= limit / slope;
+    return r;
+}
+
+// Tap i of n of a Vogel spiral over the unit disc (equal areas per tap), turned by `turn`.
+vec2 vogelDiscTap(int i, int n, float turn) {
+    const float GOLDEN_ANGLE = 2.39996323;
+    float angle = float(i) * GOLDEN_ANGLE + turn;
+    return sqrt((float(i) + 0.5) / float(n)) * vec2(cos(angle), sin(angle));
+}
+
+// The 2x2 texels around atlas position q (kept inside the tile): their depths (gather order x, y,
+// z, w), where the receiver's plane lies at each of their centres, and q's place between their
+// centres (the bilinear fractions).
+void gatherAgainstPlane(ShadowReceiver r, vec2 q, out vec4 depths, out vec4 plane, out vec2 fraction) {
+    q = clamp(q, r.tileRect.xy + 0.5, r.tileRect.zw + 0.49) - 0.5;  // texel centres at whole numbers
+    vec2 base = floor(q);  // the lower texel of the pair in each axis
+    fraction = q - base;
+    depths = textureGather(shadowAtlas, (base + 1.0) / vec2(textureSize(shadowAtlas, 0)));
+    vec4 dx = base.x + 0.5 - r.atlas.x + vec4(0.0, 1.0, 1.0, 0.0);
+    vec4 dy = base.y + 0.5 - r.atlas.y + vec4(1.0, 1.0, 0.0, 0.0);
+    plane = r.atlas.z + r.depthSlope.x * dx + r.depthSlope.y * dy;
+}
+
+// Visible share of the disc of `radius` texels around the receiver: each tap's 2x2 texels with
+// bilinear weights at the tap's position (so the result moves smoothly with it).
+float discFilter(ShadowReceiver r, float radius, float turn) {
+    float lit = 0.0;
+    for (int i = 0; i < SHADOW_FILTER_TAPS; ++i) {
+        vec2 q = r.atlas.xy + radius * vogelDiscTap(i, SHADOW_FILTER_TAPS, turn);
+        vec4 depths, plane;
+        vec2 f;
+        gatherAgainstPlane(r, q, depths, plane, f);
+        vec4 weights = vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
+        lit += dot(step(plane, depths), weights);
+    }
+    return lit / float(SHADOW_FILTER_TAPS);
+}
+
+// How a view's stored depth maps to distance: orthographic (cascades) depth 0..1 spans
+// params.z world units along the light; perspective maps store z/w between params.z (near) and
+// params.w (far), so distance along the axis = near far / (far - depth (far - near)).
+float viewDistanceOfDepth(uint view, bool perspective, float depth) {
+    vec4 p = shadowViews[view].params;
+    return perspective ? p.z * p.w / (p.w - depth * (p.w - p.z)) : depth * p.z;
+}
+
+// Percentage-closer soft shadows for a light of `lightSize`: the tangent of a distant light's
+// half angle, or a local light's radius (world units). `texelWorld`: a texel's world size at the
+// receiver.
+float softShadowFilter(uint view, bool perspective, ShadowReceiver r, float lightSize, float texelWorld, float turn) {
+    float receiverDistance = viewDistanceOfDepth(view, perspective, r.atlas.z);
+    // The region of the map where blockers can hide part of the light: from the receiver the light
+    // spans a cone; its section is widest at the map's near end (depth 0, or the near plane).
+    float nearest = perspective ? shadowViews[view].params.z : 0.0;
+    // In texels: a section of world radius s at distance z covers s / (params.x z) texels of a
+    // perspective map.
+    float searchTexels = perspective ? lightSize * (receiverDistance - nearest) / receiverDistance
+                                         / (shadowViews[view].params.x * nearest)
+                                     : lightSize * receiverDistance / texelWorld;
+    float searchRadius = clamp(searchTexels, SHADOW_MIN_FILTER_RADIUS_TEXELS, SHADOW_MAX_FILTER_RADIUS_TEXELS);
+    float blockerDistance = 0.0, blockers = 0.0;
+    for (int i = 0; i < SHADOW_BLOCKER_TAPS; ++i) {
+        vec4 depths, plane;
+        vec2 unused;
+        gatherAgainstPlane(r, r.atlas.xy + searchRadius * vogelDiscTap(i, SHADOW_BLOCKER_TAPS, turn), depths, plane,
+                           unused);
+        vec4 blocking = vec4(lessThan(depths, plane));
+        blockers += dot(blocking, vec4(1.0));
+        for (int k = 0; k < 4; ++k)
+            blockerDistance += blocking[k] * viewDistanceOfDepth(view, perspective, depths[k]);
+    }
+    if (blockers == 0.0) return 1.0;
+    blockerDistance /= blockers;
+    float gap = max(receiverDistance - blockerDistance, 0.0);
+    float penumbraWorld = perspective ? lightSize * gap / max(blockerDistance, 1e-6) : lightSize * gap;
+    float radius = clamp(penumbraWorld / texelWorld, 0.0, SHADOW_MAX_FILTER_RADIUS_TEXELS);
+    if (radius <= SHADOW_MIN_FILTER_RADIUS_TEXELS) return percentageCloserFilter(r.atlas, r.tileRect);
+    return discFilter(r, radius, turn);
+}
+
+// Fraction of the light reaching `position` through view `view`: the receiver moved
+// SHADOW_NORMAL_OFFSET_TEXELS texels (of `texelWorld` world units) along `normal`, then the
+// minimum filter for a light of no size, else the soft shadow's.
+float viewVisibility(uint view, bool perspective, vec3 position, vec3 normal, float texelWorld, float lightSize,
+                     float turn) {
+    vec3 offsetPosition = position + normal * (texelWorld * SHADOW_NORMAL_OFFSET_TEXELS);
+    if (lightSize <= 0.0) {
+        vec4 clip = shadowViews[view].worldToAtlas * vec4(offsetPosition, 1.0);
+        return percentageCloserFilter(clip.xyz / clip.w, shadowViews[view].tileRect);
+    }
+    ShadowReceiver r = shadowReceiver(view, offsetPosition, normal, texelWorld);
+    return softShadowFilter(view, perspective, r, lightSize, texelWorld, turn);
 }
 
 // A distant light's cascades (shadow.x first view, shadow.y count): the first cascade whose range
-// holds the pixel's view distance; beyond the last one the light is unshadowed.
-float cascadeVisibility(uvec4 shadow, vec3 position, vec3 normal, float viewDistance) {
+// holds the pixel's view distance; beyond the last one the light is unshadowed. The penumbra is
+// sized in world units, so it keeps its width across cascade boundaries (only its texels change).
+float cascadeVisibility(uvec4 shadow, vec3 position, vec3 normal, float viewDistance, float lightSize, float turn) {
     for (uint c = 0u; c < shadow.y; ++c) {
         uint view = shadow.x + c;
         if (viewDistance <= shadowViews[view].params.y)
-            return viewVisibility(view, position, normal, shadowViews[view].params.x * SHADOW_NORMAL_OFFSET_TEXELS);
+            return viewVisibility(view, false, position, normal, shadowViews[view].params.x, lightSize, turn);
     }
     return 1.0;
 }
 
 // A local light's cube faces (+X, -X, +Y, -Y, +Z, -Z from shadow.x): the face of the major axis
 // of the direction from the light; a texel's world size grows with the distance along it.
-float cubeVisibility(uvec4 shadow, vec3 position, vec3 normal, vec3 lightPosition) {
+float cubeVisibility(uvec4 shadow, vec3 position, vec3 normal, vec3 lightPosition, float lightSize, float turn) {
     vec3 d = position - lightPosition;
     vec3 a = abs(d);
     uint face = a.x >= a.y && a.x >= a.z ? (d.x > 0.0 ? 0u : 1u)
@@ -74,23 +224,43 @@ float cubeVisibility(uvec4 shadow, vec3 position, vec3 normal, vec3 lightPositio
                                          : (d.z > 0.0 ? 4u : 5u);
     uint view = shadow.x + face;
     float distance = max(a.x, max(a.y, a.z));
-    return viewVisibility(view, position, normal, shadowViews[view].params.x * distance * SHADOW_NORMAL_OFFSET_TEXELS);
+    return viewVisibility(view, true, position, normal, shadowViews[view].params.x * distance, lightSize, turn);
 }
 
 // A spot light's one map along its axis.
-float spotVisibility(uvec4 shadow, vec3 position, vec3 normal, vec3 lightPosition, vec3 axis) {
+float spotVisibility(uvec4 shadow, vec3 position, vec3 normal, vec3 lightPosition, vec3 axis, float lightSize,
+                     float turn) {
     float distance = max(dot(position - lightPosition, axis), 0.0);
-    return viewVisibility(shadow.x, position, normal, shadowViews[shadow.x].params.x * distance * SHADOW_NORMAL_OFFSET_TEXELS);
+    return viewVisibility(shadow.x, true, position, normal, shadowViews[shadow.x].params.x * distance, lightSize, turn);
+}
+
+// The size the penumbra grows with: a distant light's tan(half angle); a sphere's radius (none
+// with treatAsPoint); a rect's or disk's radius of the disc of its area (XXX: a long rectangle's
+// penumbra is as wide along both its axes).
+float shadowLightSize(LightData light) {
+    uint type = uint(light.positionType.w);
+    if (type == LIGHT_DISTANT) return tan(light.directionAngle.w);
+    if (type == LIGHT_SPHERE) return light.factors.z > 0.0 ? 0.0 : light.radiance.a;
+    if (type == LIGHT_RECT) return sqrt(4.0 / PI * length(cross(light.axisX.xyz, light.axisY.xyz)));
+    if (type == LIGHT_DISK) return sqrt(length(cross(light.axisX.xyz, light.axisY.xyz)));
+    return 0.0;
+}
+
+// The turn of a pixel's soft-shadow taps: interleaved gradient noise of the pixel, moved on by the
+// golden ratio each frame of temporal AA's cycle (frame_data.glsl CameraData::noiseFrame).
+float shadowFilterTurn(vec2 pixel, uint noiseFrame) {
+    return 2.0 * PI * fract(interleavedGradientNoise(pixel) + 0.618034 * float(noiseFrame));
 }
 
 // Fraction of `light` reaching a surface point (world position and unit normal, view distance
-// along the camera's axis); 1 for lights without shadow views.
-float shadowVisibility(LightData light, vec3 position, vec3 normal, float viewDistance) {
+// along the camera's axis, the soft-shadow taps' turn); 1 for lights without shadow views.
+float shadowVisibility(LightData light, vec3 position, vec3 normal, float viewDistance, float turn) {
     uvec4 shadow = light.shadow;
     if (shadow.y == 0u) return 1.0;
-    if (shadow.z == SHADOW_CASCADES) return cascadeVisibility(shadow, position, normal, viewDistance);
-    if (shadow.z == SHADOW_CUBE) return cubeVisibility(shadow, position, normal, light.positionType.xyz);
-    return spotVisibility(shadow, position, normal, light.positionType.xyz, light.directionAngle.xyz);
+    float size = shadowLightSize(light);
+    if (shadow.z == SHADOW_CASCADES) return cascadeVisibility(shadow, position, normal, viewDistance, size, turn);
+    if (shadow.z == SHADOW_CUBE) return cubeVisibility(shadow, position, normal, light.positionType.xyz, size, turn);
+    return spotVisibility(shadow, position, normal, light.positionType.xyz, light.directionAngle.xyz, size, turn);
 }
 
 #endif

@@ -31,8 +31,8 @@ const uint TAA_FLAG_COLOR_HAS_COVERAGE = 2u;  // currentColor carries its covera
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(set = 0, binding = 0, std140) uniform Camera { CameraData camera; };
-layout(set = 0, binding = 1, std140) uniform Constants { TemporalAaConstants taa; };
+CAMERA_BLOCK(0);
+layout(set = 0, binding = 1, std140) readonly buffer Constants { TemporalAaConstants taa; };  // a storage buffer: see CAMERA_BLOCK
 layout(set = 0, binding = 2) uniform sampler2D currentColor;   // the light accumulation (nearest)
 layout(set = 0, binding = 3) uniform sampler2D currentDepth;   // the G-buffer's device depth (nearest)
 layout(set = 0, binding = 4) uniform sampler2D previousColor;  // last frame's history colour (texelFetch)

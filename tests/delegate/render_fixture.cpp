@@ -98,6 +98,25 @@ void expectRadiance(const std::vector<float>& color, int x, int y, std::array<do
     EXPECT_EQ(p[3], 1.0f);
 }
 
+void addBox(TestHost& host, const std::string& path, std::array<double, 3> lo, std::array<double, 3> hi,
+            const std::string& material) {
+    float x0 = float(lo[0]), y0 = float(lo[1]), z0 = float(lo[2]);
+    float x1 = float(hi[0]), y1 = float(hi[1]), z1 = float(hi[2]);
+    host.addPrim("mesh", path,
+                 {{"points", HostValue::points({{x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0},
+                                                {x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}})},
+                  {"faceVertexCounts", HostValue::intArray({4, 4, 4, 4, 4, 4})},
+                  {"faceVertexIndices", HostValue::intArray({0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7,
+                                                             6, 3, 0, 4, 7})},
+                  {"subdivisionScheme", HostValue::token("none")},
+                  {"material:binding", HostValue::path(material)}});
+}
+
+Matrix lookingAlongY(std::array<double, 3> eye, double pitchDegrees) {
+    double p = pitchDegrees * kPi / 180.0;
+    return {1, 0, 0, 0, 0, std::sin(p), std::cos(p), 0, 0, -std::cos(p), std::sin(p), 0, eye[0], eye[1], eye[2], 1};
+}
+
 Matrix turnedAndMoved(double degrees, double x, double y, double z) {
     double a = degrees * kPi / 180.0, c = std::cos(a), s = std::sin(a);
     return {c, s, 0, 0, -s, c, 0, 0, 0, 0, 1, 0, x, y, z, 1};

@@ -62,6 +62,13 @@ struct LitPlaneScene {
 // format (mantissa 6, 6, 5 bits: 1.6% for R and G, 3.1% for B).
 void expectRadiance(const std::vector<float>& color, int x, int y, std::array<double, 3> expected);
 
+// A closed box mesh between corners `lo` and `hi` (six quads, outward normals) with a material.
+void addBox(TestHost& host, const std::string& path, std::array<double, 3> lo, std::array<double, 3> hi,
+            const std::string& material);
+
+// A camera at `eye` looking along +Y, pitched down by `pitchDegrees` (Z is up).
+Matrix lookingAlongY(std::array<double, 3> eye, double pitchDegrees);
+
 // Rotation by `degrees` about Z (counter-clockwise seen from +Z), then a translation.
 Matrix turnedAndMoved(double degrees, double x, double y, double z);
 

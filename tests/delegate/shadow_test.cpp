@@ -48,20 +48,6 @@ bool segmentHitsBox(Vec3 origin, Vec3 direction, double tMax, const Box& box) {
     return t0 <= t1;
 }
 
-// A closed box mesh (six quads, outward normals) with a material.
-void addBox(TestHost& host, const std::string& path, const Box& b, const std::string& material) {
-    float x0 = float(b.min[0]), y0 = float(b.min[1]), z0 = float(b.min[2]);
-    float x1 = float(b.max[0]), y1 = float(b.max[1]), z1 = float(b.max[2]);
-    host.addPrim("mesh", path,
-                 {{"points", HostValue::points({{x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0},
-                                                {x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}})},
-                  {"faceVertexCounts", HostValue::intArray({4, 4, 4, 4, 4, 4})},
-                  {"faceVertexIndices", HostValue::intArray({0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7,
-                                                             6, 3, 0, 4, 7})},
-                  {"subdivisionScheme", HostValue::token("none")},
-                  {"material:binding", HostValue::path(material)}});
-}
-
 // A pinhole camera as the delegate builds it (Camera::projectionMatrix, "fit" conform; TestHost
 // gives both apertures the same value), for casting each pixel's ray.
 struct PinholeCamera {
@@ -87,12 +73,6 @@ struct PinholeCamera {
         return add(o, scale(d, -o[2] / d[2]));
     }
 };
-
-// A camera at `eye` looking along +Y, pitched down by `pitchDegrees` (Z is up).
-Matrix lookingAlongY(Vec3 eye, double pitchDegrees) {
-    double p = pitchDegrees * kPi / 180.0;
-    return {1, 0, 0, 0, 0, std::sin(p), std::cos(p), 0, 0, -std::cos(p), std::sin(p), 0, eye[0], eye[1], eye[2], 1};
-}
 
 // The light as seen from a ground point: its direction (towards the light), the distance to it
 // (infinite for a distant light) and the irradiance it delivers there.
@@ -124,7 +104,7 @@ struct ShadowScene {
     }
     void addOccluder(const std::string& path, Box box) {
         occluders.push_back(box);
-        addBox(host, path, box, "/Looks/Grey");
+        addBox(host, path, box.min, box.max, "/Looks/Grey");
     }
     void addDistantLight(Vec3 travel, double irradiance, std::map<std::string, HostValue> extra = {}) {
         Vec3 d = normalize(travel);

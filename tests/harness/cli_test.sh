@@ -31,6 +31,11 @@ if command -v exrheader >/dev/null; then
     check "EXR names Z, normal, albedo and motion layers" 0 $?
 fi
 
+# Every UsdGeom implicit surface renders, none reported as unsupported.
+"$obscura" render "$src/scenes/gprims.usda" -o "$tmp/gprims.png" --width 96 --height 40 --set taa:frames=2 >"$tmp/out" 2>&1
+check "render every implicit gprim" 0 $?
+! grep -q "not supported" "$tmp/out"; check "no gprim reported unsupported" 0 $?
+
 "$obscura" render "$src/scenes/demo.usda" -o "$tmp/frame.####.png" --frames 1-2 --width 32 --height 18 >"$tmp/out" 2>&1
 check "frame sequence" 0 $? "$tmp/out" 'frame 2 \(2/2\)'
 [ -s "$tmp/frame.0001.png" ] && [ -s "$tmp/frame.0002.png" ]; check "#### becomes the frame number" 0 $?
@@ -68,10 +73,45 @@ check "malformed scene names file:line:column" 3 $? "$tmp/out" 'malformed\.usda:
 "$obscura" render "$src/tests/harness/data/bad_prims.usda" -o "$tmp/bad.png" --width 64 --height 64 >"$tmp/out" 2>&1
 check "bad prims exit 3" 3 $? "$tmp/out" 'NaNPoints.*NaN'
 grep -q 'IndexOutOfRange' "$tmp/out"; check "every bad prim is reported" 0 $?
-grep -q "prim type 'Cube' is not supported" "$tmp/out"; check "unsupported prim types warned once" 0 $?
+grep -q "prim type 'BasisCurves' is not supported" "$tmp/out"; check "unsupported prim types warned once" 0 $?
+grep -q 'NegativeRadius: radius is -1' "$tmp/out"; check "a sphere of negative radius is reported" 0 $?
 [ -s "$tmp/bad.png" ]; check "the rest still renders" 0 $?
+# Bad data the delegate finds is located in the file as a compiler would: file:line:column of the
+# attribute, and the value's index (bad_data.usda holds one kind of bad data per prim).
+"$obscura" render "$src/tests/harness/data/bad_data.usda" -o "$tmp/bad_data.png" --width 32 --height 32 >"$tmp/out" 2>&1
+check "bad data exits 3" 3 $?
+located() {  # located NAME PATTERN: one line of the last output
+    grep -qE "bad_data\.usda:$2" "$tmp/out"; check "$1" 0 $? "$tmp/out" "bad_data\.usda:$2"
+}
+located "face index out of range" '18:15: error: skipped prim /World/IndexOutOfRange: faceVertexIndices\[2\] = 7'
+located "negative face count" '24:15: error: skipped prim /World/NegativeCount: faceVertexCounts\[0\] is -3'
+located "huge face count" '31:15: error: skipped prim /World/HugeCount: faceVertexCounts sum to 2000000000'
+located "count beyond int32" '38:15: error: /World/BeyondInt32: faceVertexCounts: element 1 = 99999999999 does not fit'
+located "counts that do not sum" '45:15: error: skipped prim /World/CountsDoNotSum: faceVertexCounts sum to 6'
+located "NaN points" '54:19: error: skipped prim /World/NaNPoints: points: element 1 is NaN'
+located "primvar index out of range" '65:15: error: /World/PrimvarIndexOutOfRange: primvars:st:indices\[2\] = 2 is outside'
+located "faceVarying count mismatch" '73:19: warning: /World/FaceVaryingCount: primvars:displayColor has 2 values but faceVarying'
+located "instancer protoIndices out of range" '81:15: error: skipped prim /World/ProtoIndexOutOfRange: protoIndices\[1\] = 1'
+located "instancer positions mismatch" '95:19: error: skipped prim /World/PositionsMismatch: positions has 1 entries for 2'
+[ -s "$tmp/bad_data.png" ]; check "the good prims of bad_data.usda still render" 0 $?
+printf '#usda 1.0\ndef Xform "Caf\xc3\xa9"\n{\n}\ndef Xform "Bad\xffName"\n{\n}\n' >"$tmp/utf8.usda"
+"$obscura" render "$tmp/utf8.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
+check "an invalid UTF-8 byte in a prim name" 3 $? "$tmp/out" 'utf8\.usda:5:11: prim name has an invalid UTF-8 byte 0xFF at offset 3'
+"$obscura" render "$src/tests/import/data/bad_base64.gltf" -o "$tmp/x.png" >"$tmp/out" 2>&1
+check "a glTF buffer with corrupt base64" 3 $? "$tmp/out" "bad_base64\.gltf:11:25: buffers\[0\]\.uri: base64 data has '!' at offset 20"
+
 "$obscura" render "$src/tests/harness/data/no_camera.usda" -o "$tmp/x.exr" --aov color,depth >"$tmp/out" 2>&1
 check "scene without camera is framed" 0 $? "$tmp/out" 'no camera; framing'
+
+# Composition has a budget: a file whose arcs fan out stops with its location, and the limits are options.
+"$obscura" render "$src/tests/usda/data/limits/laughs.usda" -o "$tmp/x.png" --max-prims 5000 >"$tmp/out" 2>&1
+check "--max-prims stops a fan-out of references" 3 $? "$tmp/out" 'laughs\.usda:[0-9]+:[0-9]+: composition stopped: .* the limit is 5000 prims'
+"$obscura" render "$src/tests/usda/data/limits/laughs.usda" -o "$tmp/x.png" --max-stage-mib 32 >"$tmp/out" 2>&1
+check "--max-stage-mib bounds the stage's memory" 3 $? "$tmp/out" 'laughs\.usda:[0-9]+:[0-9]+: .*more than 32 MiB'
+"$obscura" render "$src/tests/usda/data/limits/repeated_reference.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
+check "one prim named 1000 times stops at its arc" 3 $? "$tmp/out" 'repeated_reference\.usda:7:[0-9]+: .*more than 10000 composition arcs contribute to </T>'
+"$obscura" render "$src/tests/usda/data/limits/repeated_reference.usda" -o "$tmp/x.png" --max-index-nodes 20000 >"$tmp/out" 2>&1
+check "--max-index-nodes is settable" 3 $? "$tmp/out" 'more than 20000 composition arcs'
 
 "$obscura" render "$tmp/does-not-exist.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
 check "missing scene file" 3 $? "$tmp/out" 'does-not-exist'
@@ -99,9 +139,9 @@ OBSCURA_PLUGINPATH= "$tmp/lonely/bin/obscura" render "$src/scenes/demo.usda" -o 
 check "missing plugin" 4 $? "$tmp/out" 'no renderer plugin found'
 # A plugin that only speaks ABI 2: refused by version negotiation, exit 4.
 OBSCURA_PLUGINPATH="$fake_plugin" "$tmp/lonely/bin/obscura" render "$src/scenes/demo.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
-check "ABI mismatch" 4 $? "$tmp/out" 'does not provide ABI 1\.0'
-OBSCURA_PLUGINPATH="$(dirname "$obscura")/../plugin" "$tmp/lonely/bin/obscura" info >"$tmp/out" 2>&1
-check "OBSCURA_PLUGINPATH finds the plugin" 0 $? "$tmp/out" 'loaded: Obscura, ABI 1\.0'
+check "ABI mismatch" 4 $? "$tmp/out" 'does not provide ABI 1\.1'
+OBSCURA_PLUGINPATH="$(dirname "$obscura")/../lib/obscura/plugin" "$tmp/lonely/bin/obscura" info >"$tmp/out" 2>&1
+check "OBSCURA_PLUGINPATH finds the plugin" 0 $? "$tmp/out" 'loaded: Obscura, ABI 1\.1'
 
 # A UsdUVTexture network (Material -> UsdPreviewSurface <- UsdUVTexture <- UsdPrimvarReader_float2);
 # delegate_tests (TexturedUsda) checks its pixels.

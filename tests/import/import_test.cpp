@@ -487,6 +487,24 @@ TEST(AssimpImport, CorruptFileIsAnErrorNamingIt) {
     EXPECT_GT(message.size(), message.find(corrupt.string()) + corrupt.string().size() + 2) << message;
 }
 
+// Assimp decodes corrupt base64 into garbage without a word; the harness names the URI's place.
+TEST(AssimpImport, CorruptBase64BufferIsAnErrorNamingTheUri) {
+    const std::filesystem::path file = kData / "bad_base64.gltf";
+    auto result = importWithAssimp(file);
+    ASSERT_TRUE(std::holds_alternative<ImportError>(result));
+    EXPECT_EQ(std::get<ImportError>(result).message,
+              file.string() + ":11:25: buffers[0].uri: base64 data has '!' at offset 20, which base64 does not use");
+}
+
+TEST(AssimpImport, ShortBase64BufferIsAnError) {
+    // corrupt.gltf's buffer says 12 bytes but "AAAA" holds 3.
+    auto result = importWithAssimp(kData / "corrupt.gltf");
+    ASSERT_TRUE(std::holds_alternative<ImportError>(result));
+    EXPECT_NE(std::get<ImportError>(result).message.find("buffers[0].uri: base64 data holds 3 bytes but byteLength is 12"),
+              std::string::npos)
+        << std::get<ImportError>(result).message;
+}
+
 TEST(AssimpImport, FormatsByExtension) {
     for (const char* name : {"a.gltf", "a.glb", "a.fbx", "a.obj", "A.GLTF", "dir/b.Glb", "C.FBX", "d.OBJ"})
         EXPECT_TRUE(isAssimpFormat(name)) << name;

@@ -37,7 +37,9 @@ TEST(SchemaTables, EveryPrimTypeIsFound) {
         {"mesh", "rprim"},     {"camera", "sprim"},   {"distantLight", "sprim"},
         {"sphereLight", "sprim"}, {"material", "sprim"}, {"renderBuffer", "bprim"},
         {"instancer", "rprim"},   {"domeLight", "sprim"},  {"rectLight", "sprim"},
-        {"diskLight", "sprim"}};
+        {"diskLight", "sprim"},   {"cube", "rprim"},       {"sphere", "rprim"},
+        {"cylinder", "rprim"},    {"cylinder1", "rprim"},  {"cone", "rprim"},
+        {"capsule", "rprim"},     {"capsule1", "rprim"},   {"plane", "rprim"}};
     EXPECT_EQ(primSchemas().size(), std::size(expected));
     for (const auto& [name, category] : expected) {
         const PrimSchema* prim = findPrimSchema(name);
@@ -48,8 +50,9 @@ TEST(SchemaTables, EveryPrimTypeIsFound) {
 }
 
 TEST(SchemaTables, UnknownNamesGiveNull) {
-    EXPECT_EQ(findPrimSchema("cube"), nullptr);
-    EXPECT_EQ(findPrimSchema("Mesh"), nullptr);  // prim type tokens, not USD type names
+    EXPECT_EQ(findPrimSchema("nurbsPatch"), nullptr);
+    EXPECT_EQ(findPrimSchema("gprim"), nullptr);  // the attributes gprims share, not a prim type
+    EXPECT_EQ(findPrimSchema("Mesh"), nullptr);   // prim type tokens, not USD type names
     EXPECT_EQ(findPrimSchema(""), nullptr);
     const PrimSchema& mesh = *findPrimSchema("mesh");
     EXPECT_EQ(findAttribute(mesh, "inputs:roughness"), nullptr);

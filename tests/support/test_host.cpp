@@ -125,6 +125,12 @@ TestHost::~TestHost() {
     if (delegate_) api().destroyDelegate(delegate_);
 }
 
+ObscuraStatus TestHost::destroyDelegate() {
+    ObscuraStatus s = api().destroyDelegate(delegate_);
+    if (s == OBSCURA_OK) delegate_ = nullptr;
+    return s;
+}
+
 void TestHost::logThunk(void* user, ObscuraLogLevel level, const char* message) {
     auto* self = static_cast<TestHost*>(user);
     if (level == OBSCURA_LOG_ERROR) self->errors_.push_back(message);
@@ -142,6 +148,18 @@ void TestHost::addPrim(const std::string& type, const std::string& path, std::ma
 
 void TestHost::set(const std::string& path, const std::string& attribute, HostValue value) {
     values_[path][attribute] = std::move(value);
+}
+
+void TestHost::forgetScene() {
+    values_.clear();
+    interpolations_.clear();
+    timeSamples_.clear();
+    transforms_.clear();
+    motions_.clear();
+    errors_.clear();
+    warnings_.clear();
+    infos_.clear();
+    getValueCalls.clear();
 }
 
 void TestHost::setInterpolation(const std::string& path, const std::string& attribute, ObscuraInterpolation i) {
@@ -215,6 +233,7 @@ ObscuraStatus TestHost::getValueThunk(void* user, const char* path, const char* 
                                       ObscuraValue* out) {
     auto* self = static_cast<TestHost*>(user);
     self->getValueCalls[path]++;
+    if (self->onGetValue) self->onGetValue(path, attribute);
     const HostValue* found = nullptr;
     if (auto prim = self->timeSamples_.find(path); prim != self->timeSamples_.end())
         if (auto it = prim->second.find(attribute); it != prim->second.end() && !it->second.empty()) {

@@ -83,12 +83,20 @@ public:
     std::vector<int32_t> readInts(const std::string& buffer);
 
     std::string lastError() const { return api().lastError(delegate_); }
+    // Destroys the delegate now (the host keeps its logs), so a test can see what destruction logged.
+    ObscuraStatus destroyDelegate();
     const std::vector<std::string>& loggedErrors() const { return errors_; }
     const std::vector<std::string>& loggedWarnings() const { return warnings_; }
     const std::vector<std::string>& loggedInfos() const { return infos_; }
     // getValue callbacks per prim path since the last reset.
     std::map<std::string, int> getValueCalls;
+    // Called inside every getValue callback (path, attribute), before it answers: a host that calls
+    // back into the API from its callbacks.
+    std::function<void(const std::string&, const std::string&)> onGetValue;
     void resetCounters() { getValueCalls.clear(); }
+    // Forgets every value, transform and log this host holds (the delegate's prims stay): a fuzz
+    // input starts from a host that knows nothing.
+    void forgetScene();
 
 private:
     static void logThunk(void* user, ObscuraLogLevel level, const char* message);

@@ -99,6 +99,19 @@ const std::vector<ErrorCase>& errorCases() {
         {"unterminated block comment",
          "#usda 1.0\n/* open\ndef \"A\"\n{\n}\n",
          2, 1, "unterminated /* comment"},
+        // Well-formed UTF-8 ("Caf\xc3\xa9") is a name; a stray byte, an overlong form or a surrogate is not.
+        {"invalid UTF-8 byte in a prim name",
+         "#usda 1.0\ndef \"Caf\xc3\xa9\"\n{\n}\ndef \"Bad\xff" "Name\"\n{\n}\n",
+         5, 5, "prim name has an invalid UTF-8 byte 0xFF at offset 3"},
+        {"overlong UTF-8 in a prim name",
+         "#usda 1.0\ndef \"A\xc0\xaf" "B\"\n{\n}\n",
+         2, 5, "prim name has an invalid UTF-8 byte 0xC0 at offset 1"},
+        {"UTF-16 surrogate in a prim name",
+         "#usda 1.0\ndef \"A\xed\xa0\x80\"\n{\n}\n",
+         2, 5, "prim name has an invalid UTF-8 byte 0xED at offset 1"},
+        {"truncated UTF-8 sequence in a prim name",
+         "#usda 1.0\ndef \"A\xe2\x82\"\n{\n}\n",
+         2, 5, "prim name has an invalid UTF-8 byte 0xE2 at offset 1"},
     };
     return cases;
 }
