@@ -60,6 +60,13 @@ passes::EnvironmentData environmentData(const Light* dome) {
 
 double shutterCentre(const std::array<double, 2>& shutter) { return 0.5 * (shutter[0] + shutter[1]); }
 
+// The time codes a motion-blurred frame covers: its span of the shutter (std::lerp returns the
+// ends exactly, so a whole span is the shutter itself).
+std::array<double, 2> blurInterval(const FrameSceneInputs& in) {
+    const auto [open, close] = *in.shutter;
+    return {std::lerp(open, close, in.shutterSpan[0]), std::lerp(open, close, in.shutterSpan[1])};
+}
+
 }  // namespace
 
 const Light* environmentDome(const std::map<std::string, std::unique_ptr<Prim>>& prims,
@@ -78,7 +85,7 @@ FrameView frameView(const FrameSceneInputs& in) {
     const Camera& cam = in.camera;
     double aspect = double(in.width) / double(in.height);
     if (in.shutter && !in.sample)
-        return {cam.viewMatrix({0.0, 0.0}, shutterCentre(*in.shutter)), cam.projectionMatrix(aspect)};
+        return {cam.viewMatrix({0.0, 0.0}, shutterCentre(blurInterval(in))), cam.projectionMatrix(aspect)};
     if (!in.sample) return {cam.viewMatrix(), cam.projectionMatrix(aspect)};
     std::array<double, 2> ndcJitter{2.0 * in.sample->pixelJitter[0] / in.width, 2.0 * in.sample->pixelJitter[1] / in.height};
     return {cam.viewMatrix(in.sample->lensOffset, in.sample->time),
@@ -98,10 +105,13 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     Matrix4d projection = multiply(unjitteredProjection, in.clipJitter);
     Matrix4d cameraToWorld = kIdentity;
     invert(view, cameraToWorld);
-    // When the frame is seen: a sub-frame's time, the shutter's centre, or the sync time (none).
+    // When the frame is seen: a sub-frame's time, the centre of the shutter's part it blurs over,
+    // or the sync time (none).
     std::optional<double> frameTime;
+    std::array<double, 2> blurred{};
+    if (in.shutter && !in.sample) blurred = blurInterval(in);
     if (in.sample) frameTime = in.sample->time;
-    else if (in.shutter) frameTime = shutterCentre(*in.shutter);
+    else if (in.shutter) frameTime = shutterCentre(blurred);
     auto transformOf = [&](const Mesh& mesh) { return frameTime ? mesh.transformAt(*frameTime) : mesh.transform(); };
     // Where a mesh's transform is at the shutter's open and close, for meshes that move or deform
     // within it (motion blur's velocities); static meshes have none. A reference sub-frame draws
@@ -112,7 +122,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
             if (!mesh.shutterPositions()) return std::nullopt;
             return std::array<Matrix4d, 2>{transformOf(mesh), transformOf(mesh)};
         }
-        std::array<Matrix4d, 2> ends{mesh.transformAt((*in.shutter)[0]), mesh.transformAt((*in.shutter)[1])};
+        std::array<Matrix4d, 2> ends{mesh.transformAt(blurred[0]), mesh.transformAt(blurred[1])};
         if (ends[0] == ends[1] && !mesh.shutterPositions()) return std::nullopt;
         return ends;
     };
@@ -133,7 +143,8 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     cd.resolution = {float(in.width), float(in.height)};
     cd.exposureScale = float(cam.linearExposureScale() * std::exp2(in.exposureStops));
     cd.shutterOpenViewProjection = cd.shutterCloseViewProjection = toFloats<passes::Mat4>(multiply(view, unjitteredProjection));
-    cd.shutterPosition = 0.5f;
+    cd.shutterPosition = float(0.5 * (in.shutterSpan[0] + in.shutterSpan[1]));
+    cd.shutterFraction = float(in.shutterSpan[1] - in.shutterSpan[0]);
     cd.clipJitter = {float(in.clipJitter[12]), float(in.clipJitter[13])};
     cd.noiseFrame = in.noiseFrame;
     if (in.shutter && in.sample && (*in.shutter)[1] > (*in.shutter)[0])
@@ -141,7 +152,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     bool cameraMoves = false;
     if (in.shutter && !in.sample) {
         for (int end = 0; end < 2; ++end) {
-            Matrix4d atEnd = multiply(cam.viewMatrix({0.0, 0.0}, (*in.shutter)[end]), unjitteredProjection);
+            Matrix4d atEnd = multiply(cam.viewMatrix({0.0, 0.0}, blurred[size_t(end)]), unjitteredProjection);
             (end == 0 ? cd.shutterOpenViewProjection : cd.shutterCloseViewProjection) = toFloats<passes::Mat4>(atEnd);
         }
         cameraMoves = cd.shutterOpenViewProjection != cd.shutterCloseViewProjection;
@@ -338,8 +349,8 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
                     motion.emplace();
                     for (int end = 0; end < 2; ++end)
                         (*motion)[size_t(end)] =
-                            multiply(meshMotion ? (*meshMotion)[size_t(end)] : mesh->transformAt((*in.shutter)[size_t(end)]),
-                                     inst->instanceAtShutterEnd(size_t(proto), number, end));
+                            multiply(meshMotion ? (*meshMotion)[size_t(end)] : mesh->transformAt(blurred[size_t(end)]),
+                                     inst->instanceAt(size_t(proto), number, blurred[size_t(end)]));
                 } else if (meshMotion) {
                     motion = {{multiply((*meshMotion)[0], placement), multiply((*meshMotion)[1], placement)}};
                 }

@@ -65,6 +65,11 @@ struct FrameSceneInputs {
     // own time within it. None: the shutter is closed or not sampled (motionBlur off), the frame is
     // seen at the sync time.
     std::optional<std::array<double, 2>> shutter = std::nullopt;
+    // The part of `shutter` a motion-blurred frame (no `sample`) covers, as fractions of it
+    // [start, end]: the whole of it in a real-time frame; one stratum in a sample of a still's
+    // accumulation (TemporalAaStep::shutterStratum). The frame is seen at the part's middle and its
+    // velocities span the part alone.
+    std::array<double, 2> shutterSpan{0.0, 1.0};
     // Temporal AA: the last frame's models (instances whose model differs get an
     // InstanceReprojection record), and where this frame's go; null without temporal AA.
     const InstanceModels* lastModels = nullptr;

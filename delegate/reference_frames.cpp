@@ -27,15 +27,18 @@ uint32_t latticeMultiplier(uint32_t count) {
 
 }  // namespace
 
+uint32_t shutterStratum(uint32_t index, uint32_t count) {
+    return count > 0 ? uint32_t(uint64_t(index) * latticeMultiplier(count) % count) : 0;
+}
+
 std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::ApertureShape& aperture) {
     std::vector<ReferenceSubFrame> frames;
     frames.reserve(count);
-    uint64_t multiplier = latticeMultiplier(count);
     for (uint32_t k = 0; k < count; ++k) {
         // Both coordinates centred in their strata (the radical inverse steps by 1 / N for N = 2^m).
         std::array<double, 2> square{2.0 * (k + 0.5) / count - 1.0, 2.0 * (radicalInverse(k, 2) + 0.5 / count) - 1.0};
         passes::ApertureSample lens = passes::sampleAperture(square, aperture);
-        double shutter = (double(k * multiplier % count) + 0.5) / count;
+        double shutter = (double(shutterStratum(k, count)) + 0.5) / count;
         std::array<double, 2> emitter{radicalInverse(k, 7), radicalInverse(k, 11)};
         frames.push_back(
             {lens.position, lens.area, shutter, {radicalInverse(k, 3) - 0.5, radicalInverse(k, 5) - 0.5}, emitter});

@@ -26,4 +26,9 @@ struct ReferenceSubFrame {
 // those in bases 7 and 11 (Halton), so no dimension repeats another's pattern.
 std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::ApertureShape& aperture);
 
+// The stratum of the shutter sample `index` of `count` takes, in [0, count): the golden-ratio
+// rank-1 lattice above, shared by the reference's sub-frames and a still's accumulated frames
+// (TemporalAaStep::shutterStratum), so that both sample the shutter alike.
+uint32_t shutterStratum(uint32_t index, uint32_t count);
+
 }  // namespace obscura::delegate

@@ -411,8 +411,9 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         FrameView seen = frameView(frame);
         temporalAa = temporalAccumulation_.next({desc.cameraPath, width, height, settings_.version()}, sceneVersion_,
                                                 temporalAaSettings.mode, uint32_t(settings_.number("taa:frames")),
-                                                seen.view, seen.projection);
+                                                seen.view, seen.projection, frame.shutter.has_value());
         frame.clipJitter = temporalAa->clipJitter;
+        if (temporalAa->shutterStratum) frame.shutterSpan = *temporalAa->shutterStratum;
         frame.noiseFrame = temporalAa->noiseFrame;
         // Hybrid AA (seed 004) while anything changes; a still accumulates jittered frames of every
         // object, converging to the supersampled image, which edge AA never reaches.
@@ -484,6 +485,15 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         transparentCoverage = passes::addTransparentPass(graph, *pipelines_, scene, {}, gbuffer.depth, hdr, {}, {}, {});
     } else {
         hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frame, transparentCoverage, msaa ? &*msaa : nullptr);
+        const int motionBlurSamples = static_cast<int>(settings_.number("motionBlur:samples"));
+        // A still's sample of the shutter is blurred over its stratum alone, before it joins the
+        // mean: the post-process fills only what lies between the samples' times.
+        const bool stratumBlur = scene.motionBlur && temporalAa && temporalAa->shutterStratum;
+        if (stratumBlur) {
+            hdr = passes::addTemporalAaSamplePass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage);
+            hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr, motionBlurSamples);
+            temporalAa->pass.colorHasCoverage = true;
+        }
         if (temporalAa) {
             temporalAa->pass.edgeAa = scene.edgeAa;
             hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage,
@@ -499,10 +509,10 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
             hdr = passes::addDepthOfFieldPasses(graph, *pipelines_, scene, gbuffer, hdr, dof);
         }
         // After depth of field (seed 000 "MB or DOF first?": motion blur gathers with the
-        // geometry's depth and velocity, and is the error less seen when it comes last).
-        if (scene.motionBlur)
-            hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr,
-                                              static_cast<int>(settings_.number("motionBlur:samples")));
+        // geometry's depth and velocity, and is the error less seen when it comes last), over the
+        // whole shutter: unless the still's mean already holds it, sample by sample.
+        if (scene.motionBlur && !stratumBlur && !(temporalAa && temporalAa->shutterAccumulated))
+            hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr, motionBlurSamples);
     }
     // Temporal AA's accumulation carries coverage in alpha, and motion blur blurs it along; depth of
     // field writes none.

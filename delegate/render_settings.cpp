@@ -49,8 +49,9 @@ const RenderSettingInfo kSettings[] = {
             "reports converged (bool, default on)",
      OBSCURA_VALUE_BOOL, 1.0},
     {"taa:frames", "frames a still image accumulates (1TX): the jitter cycles through this many offsets of the "
-                   "Halton (2, 3) sequence, each weighted equally; `obscura render` renders until converged, "
-                   "1-1024 (int, default 16)",
+                   "Halton (2, 3) sequence, each weighted equally; with motion blur each also samples its own "
+                   "1/taa:frames of the shutter, as reference sub-frames do, blurred over that part alone; "
+                   "`obscura render` renders until converged, 1-1024 (int, default 16)",
      OBSCURA_VALUE_INT, 16.0, 1.0, 1024.0},
     {"taa:mode", "1tx: SMAA 1TX accumulation with neighbourhood clamp; 2tx: SMAA 2TX, two frames (2x jitter) "
                  "blended by velocity, no clamp (token, default 1tx)",
@@ -85,10 +86,12 @@ const RenderSettingInfo kSettings[] = {
     {"dof:taps", "taps per side of the depth of field's first gather pass (N x N taps; larger blurs reach further "
                  "and look smoother at a higher cost), 3-15 (int, default 7)",
      OBSCURA_VALUE_INT, 7.0, 3.0, 15.0},
-    {"motionBlur", "motion blur over the camera's shutter (shutter:open to shutter:close, in time codes): the frame "
-                   "is seen at the shutter's centre and blurred along the screen-space motion of the camera and of "
-                   "moving prims (McGuire 2012's reconstruction filter, separable); a camera whose shutter is closed "
-                   "(open = close) has none (bool, default on)",
+    {"motionBlur", "motion blur over the camera's shutter (shutter:open to shutter:close, in time codes): a "
+                   "real-time frame is seen at the shutter's centre and blurred along the screen-space motion of the "
+                   "camera and of moving prims (McGuire 2012's reconstruction filter, separable, streaks up to half "
+                   "the image); a still's accumulated frames (taa:frames) each sample their own part of the shutter "
+                   "and are blurred over it alone, converging to the shutter's integral; a camera whose shutter is "
+                   "closed (open = close) has none (bool, default on)",
      OBSCURA_VALUE_BOOL, 1.0},
     {"motionBlur:samples", "taps per motion blur gather pass; the two passes place samples^2 along a blur (more is "
                            "smoother and slower), 2-32 (int, default 8)",

@@ -1,15 +1,19 @@
 #include "delegate/temporal_accumulation.h"
 
+#include "delegate/reference_frames.h"
+
 #include <algorithm>
 
 namespace obscura::delegate {
 
 TemporalAaStep TemporalAccumulation::next(const TemporalAaKey& key, uint64_t sceneVersion, passes::TemporalAaMode mode,
-                                          uint32_t frames, const Matrix4d& view, const Matrix4d& projection) {
+                                          uint32_t frames, const Matrix4d& view, const Matrix4d& projection,
+                                          bool sampleShutter) {
     const bool twoFrame = mode == passes::TemporalAaMode::Smaa2tx;
     const uint32_t framesToConverge = twoFrame ? passes::kSmaa2txFrames : std::max(frames, 1u);
     const bool valid = last_ && *last_ == key;
     const bool sceneChanged = sceneVersion != lastSceneVersion_;
+    const bool shutterStrata = sampleShutter && !twoFrame;
     frame_ = valid ? frame_ + 1 : 0;
 
     TemporalAaStep step;
@@ -18,20 +22,33 @@ TemporalAaStep TemporalAccumulation::next(const TemporalAaKey& key, uint64_t sce
     // A settled 1TX still (the mean is complete and nothing changed) keeps its colour and looks
     // through the pixel centres.
     const bool settled = valid && !sceneChanged && held_ >= framesToConverge && !twoFrame;
+    const bool sample = valid && !sceneChanged && !settled;
+    // A still's samples of the shutter take the jitter offsets (and the shadow filter's turns) in
+    // the order the mean counts them, as a still without motion blur does from its reset on: an
+    // unmoving pixel accumulates the same values in the same order, bit for bit.
     step.noiseFrame = uint32_t(frame_ % framesToConverge);
+    if (shutterStrata && sample) step.noiseFrame = held_;
     if (!settled) step.jitter = passes::temporalAaJitter(mode, step.noiseFrame, framesToConverge);
+    if (shutterStrata && sample) {
+        double start = double(shutterStratum(held_, framesToConverge));
+        step.shutterStratum = std::array<double, 2>{start / framesToConverge, (start + 1.0) / framesToConverge};
+    }
+    step.shutterAccumulated = shutterStrata && settled;
     // The mean counts proper samples only: the first frame after a reset is one (its own jittered
     // image), but a frame of change leaves the reprojected, clamped blend, whose 1/n share of the
     // still's mean would outweigh the converged error; the still after it starts the mean afresh.
+    // With motion blur the first frame after a reset is no sample either: it is the real-time
+    // frame, blurred over the whole shutter.
     step.pass.unchanged = valid && !sceneChanged;
     if (!valid || sceneChanged) {
         step.pass.heldFrames = 0;
-        held_ = valid ? 0 : 1;
+        held_ = valid || shutterStrata ? 0 : 1;
     } else {
         step.pass.heldFrames = held_;
         held_ = std::min(held_ + 1, framesToConverge);
     }
-    step.converged = held_ >= framesToConverge && (twoFrame || (step.jitter[0] == 0.0 && step.jitter[1] == 0.0));
+    step.converged = held_ >= framesToConverge && !step.shutterStratum &&
+                     (twoFrame || (step.jitter[0] == 0.0 && step.jitter[1] == 0.0));
 
     step.clipJitter[12] = 2.0 * step.jitter[0] / key.width;
     step.clipJitter[13] = 2.0 * step.jitter[1] / key.height;

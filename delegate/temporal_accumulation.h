@@ -34,6 +34,16 @@ struct TemporalAaStep {
     // frames (1TX) or both frames (2TX), and (1TX) this frame looked through the pixel centres, so
     // the depth, normal and id AOVs are the unjittered ones.
     bool converged = false;
+    // Motion blur in a 1TX still (the shutter open): each frame the mean counts samples the
+    // shutter as the reference's sub-frames do, one stratum of taa:frames each (the fractions
+    // [start, end] of the shutter, shutterStratum()); its own motion blur spans the stratum alone
+    // and runs before the mean, which so converges to the shutter's integral whatever the streak's
+    // length. None: the frame is seen at the shutter's centre and blurred over the whole shutter
+    // after temporal AA (a real-time frame: the first after a reset or any change, which the
+    // mean does not count), unless the mean it keeps already holds every stratum
+    // (shutterAccumulated: a settled still).
+    std::optional<std::array<double, 2>> shutterStratum;
+    bool shutterAccumulated = false;
 };
 
 class TemporalAccumulation {
@@ -41,9 +51,10 @@ public:
     // `sceneVersion`: the delegate's counter of prim insertions, removals and dirty marks (the
     // camera's among them); when it moved, the history is reprojected and blended by the slide's
     // weights rather than averaged. `frames`: taa:frames. `view` and `projection`: the camera's,
-    // unjittered (row-vector convention).
+    // unjittered (row-vector convention), at the shutter's centre. `sampleShutter`: the frame is
+    // motion-blurred (the shutter is open and motionBlur on).
     TemporalAaStep next(const TemporalAaKey& key, uint64_t sceneVersion, passes::TemporalAaMode mode, uint32_t frames,
-                        const Matrix4d& view, const Matrix4d& projection);
+                        const Matrix4d& view, const Matrix4d& projection, bool sampleShutter);
     // Temporal AA is off: the next frame starts afresh.
     void reset() { last_.reset(); }
 

@@ -47,10 +47,10 @@ DepthConversion depthConversion(const UsdSceneHost& host, const std::string& cam
 }
 
 // A progressive render (temporal AA accumulating a still, ObscuraRenderStats::converged) runs until
-// it converges; the delegate converges after at most taa:frames + 1 renders (the maximum setting,
-// plus the frame that looks through the pixel centres), so this bound only guards against a
-// plugin that never does.
-constexpr int kMaxRendersPerFrame = 1025;
+// it converges; the delegate converges after at most taa:frames + 2 renders (the maximum setting,
+// the real-time frame a motion-blurred still starts with, and the frame that looks through the
+// pixel centres), so this bound only guards against a plugin that never does.
+constexpr int kMaxRendersPerFrame = 1026;
 
 ObscuraStatus renderUntilConverged(Session& session, const ObscuraRenderPassDesc& desc) {
     ObscuraStatus status = OBSCURA_OK;

@@ -18,7 +18,7 @@ struct alignas(16) CameraData {
     std::array<float, 4> position;
     std::array<float, 2> resolution;
     float exposureScale;
-    float shutterPosition;  // 0 the shutter's open .. 1 its close: where deforming meshes are drawn
+    float shutterPosition;  // 0 the shutter's open .. 1 its close: where the frame is seen (deforming meshes)
     Mat4 shutterOpenViewProjection;   // unjittered, for motion blur's velocities
     Mat4 shutterCloseViewProjection;
     // Temporal AA's sub-pixel shift of this frame, in clip space (clip += jitter * w): instances
@@ -31,8 +31,13 @@ struct alignas(16) CameraData {
     // filter turns its taps by it, so a still's mean integrates over the turns
     // (shaders/common/shadow_sampling.glsl).
     uint32_t noiseFrame;
+    // The share of the shutter this frame's velocities span, around shutterPosition: 1 in a
+    // real-time frame, 1 / taa:frames in a sample of a still's accumulation (the motion AOV
+    // divides by it to report the whole shutter's displacement).
+    float shutterFraction;
+    float pad[3] = {0.0f, 0.0f, 0.0f};
 };
-static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16 + 16);
+static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16 + 16 + 16);
 
 // kInstanceEdgeAa: hybrid AA (seed 004) chose edge AA over temporal AA for this instance: it is
 // drawn without the jitter, its pixels keep no history and the edge AA passes smooth its edges.

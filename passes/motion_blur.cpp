@@ -2,6 +2,7 @@
 
 #include "passes/image_compute_pass.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace obscura::passes {
@@ -16,7 +17,7 @@ struct MotionBlurConstants {
 };
 
 constexpr uint32_t kTileSize = 32;  // MOTION_BLUR_TILE_SIZE
-static_assert(float(kTileSize) == kMotionBlurMaxRadius);
+static_assert(float(kTileSize) == kMotionBlurTileSize);
 // Soft depth comparison over 1% of the centre's depth: surfaces that close blur together
 // (McGuire 2012's SOFT_Z_EXTENT, made relative so it does not depend on the scene's units).
 constexpr float kSoftDepthFraction = 0.01f;
@@ -26,13 +27,17 @@ constexpr VkFormat kTileVelocityFormat = VK_FORMAT_R16G16_SFLOAT;
 
 }  // namespace
 
+float motionBlurMaxRadius(uint32_t width, uint32_t height) {
+    return std::max(kMotionBlurTileSize, 0.25f * float(std::max(width, height)));
+}
+
 gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                                      const GBuffer& gbuffer, gpu::ImageHandle hdrColor, int samples) {
     if (samples < kMinMotionBlurSamples || samples > kMaxMotionBlurSamples)
         throw std::invalid_argument("motion blur: samples out of range");
     if (!gbuffer.velocity.valid()) throw std::invalid_argument("motion blur: the G-buffer has no velocity target");
     uint32_t tilesWide = (scene.width + kTileSize - 1) / kTileSize, tilesHigh = (scene.height + kTileSize - 1) / kTileSize;
-    MotionBlurConstants constants{kMotionBlurMaxRadius, 1.0f, samples, kSoftDepthFraction};
+    MotionBlurConstants constants{motionBlurMaxRadius(scene.width, scene.height), 1.0f, samples, kSoftDepthFraction};
 
     gpu::ImageHandle tileMax = graph.createImage("motionBlurTileMax", chainImage(kTileVelocityFormat, tilesWide, tilesHigh));
     gpu::ImageHandle speedDepth =

@@ -1,5 +1,7 @@
 #include "passes/temporal_aa.h"
 
+#include "passes/image_compute_pass.h"
+
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -20,8 +22,10 @@ struct TemporalAaConstants {
     Mat4 worldToPreviousClip;
     Mat4 worldToPreviousView;
     std::array<float, 4> weights;    // x K_lowfreq, y K_hifreq, z 2TX's velocity weight
-    std::array<uint32_t, 4> frames;  // x history valid, y held frames, z frames to converge, w hybrid AA
+    std::array<uint32_t, 4> frames;  // x history valid, y held frames, z frames to converge, w TemporalAaFlags
 };
+// Mirrors TAA_FLAG_* in shaders/common/temporal_aa_common.glsl.
+enum TemporalAaFlags : uint32_t { kTemporalAaEdgeAa = 1u, kTemporalAaColorHasCoverage = 2u };
 static_assert(sizeof(TemporalAaConstants) == 4 * 64 + 32);
 
 // Van der Corput: the digits of `index` in `base`, mirrored about the radix point.
@@ -71,7 +75,9 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
                                   frame.worldToPreviousView,
                                   {settings.kLowFreq, settings.kHighFreq, kSmaa2txVelocityWeight, 0.0f},
                                   {frame.historyValid && color.previousWritten ? 1u : 0u,
-                                   frame.heldFrames, frame.framesToConverge, frame.edgeAa ? 1u : 0u}};
+                                   frame.heldFrames, frame.framesToConverge,
+                                   (frame.edgeAa ? kTemporalAaEdgeAa : 0u) |
+                                       (frame.colorHasCoverage ? kTemporalAaColorHasCoverage : 0u)}};
     gpu::BufferPtr constantBuffer = device.createBuffer(sizeof(constants), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                                         gpu::MemoryUsage::Upload, "temporalAaConstants");
     std::memcpy(constantBuffer->mapped(), &constants, sizeof(constants));
@@ -137,6 +143,22 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
             gpu::dispatch2D(cmd, scene.width, scene.height);
         });
     return resolved;
+}
+
+gpu::ImageHandle addTemporalAaSamplePass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                                         const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
+                                         gpu::ImageHandle transparentCoverage) {
+    gpu::ImageHandle sample =
+        graph.createImage("temporalAaSample", chainImage(kTemporalAaColorFormat, scene.width, scene.height));
+    ImageComputePass pass{"temporal_aa_sample",
+                          {{hdrColor, SampledRead::Nearest},
+                           {gbuffer.depth, SampledRead::Depth},
+                           {transparentCoverage, SampledRead::Nearest}},
+                          {sample},
+                          {}};
+    pass.camera = scene.camera->buffer;
+    addImageComputePass(graph, pipelines, pass);
+    return sample;
 }
 
 void keepTemporalAaHistory(const gpu::FrameGraph& graph, TemporalAaHistory& history) {

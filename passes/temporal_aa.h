@@ -60,6 +60,9 @@ struct TemporalAaFrame {
     // Hybrid AA drew some instance on the pixel grid (FrameScene::edgeAa): temporal pixels beside
     // one leave it out of their reprojection and clamp.
     bool edgeAa = false;
+    // The frame's colour comes with its coverage in alpha (addTemporalAaSamplePass), processed
+    // before the mean: a still's sample motion-blurred over its stratum of the shutter.
+    bool colorHasCoverage = false;
     // This frame's clip space (jittered) to last frame's clip space (unjittered) with this frame's
     // jitter added back, so that an unchanged camera maps every pixel onto itself.
     Mat4 currentClipToPreviousClip{};
@@ -83,6 +86,13 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
                                    const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
                                    gpu::ImageHandle transparentCoverage, const TemporalAaSettings& settings,
                                    const TemporalAaFrame& frame, TemporalAaHistory& history);
+
+// This frame's colour as temporal AA accumulates it, for passes that run on a sample before the
+// mean (motion blur over a still's stratum of the shutter): the light accumulation with the
+// frame's coverage in alpha, kTemporalAaColorFormat.
+gpu::ImageHandle addTemporalAaSamplePass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                                         const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
+                                         gpu::ImageHandle transparentCoverage);
 
 // After the graph is compiled: records the layouts this frame leaves the history images in.
 void keepTemporalAaHistory(const gpu::FrameGraph& graph, TemporalAaHistory& history);

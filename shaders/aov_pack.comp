@@ -74,7 +74,9 @@ void main() {
         words[index] = packUnorm4x8(imageLoad(displayColor, pixel));
     } else if (push.aov == AOV_MOTION) {
         vec2 stored = texelFetch(velocityTexture, min(pixel, textureSize(velocityTexture, 0) - 1), 0).xy;
-        vec2 d = pixelDisplacement(stored, texelFetch(depthTexture, pixel, 0).r, pixel, camera);
+        // The whole shutter's displacement, also in a still's sample whose velocities span one
+        // stratum of it (at the stratum's rate).
+        vec2 d = pixelDisplacement(stored, texelFetch(depthTexture, pixel, 0).r, pixel, camera) / camera.shutterFraction;
         floats[index * 3u] = d.x;
         floats[index * 3u + 1u] = d.y;
         floats[index * 3u + 2u] = 0.0;

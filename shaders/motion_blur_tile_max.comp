@@ -5,7 +5,8 @@
 // composited with the camera's, reconstructed from depth, everywhere else ("An improved
 // reconstruction filter (3)": composite with camera velocity) — halved into McGuire's
 // half-velocity (the image spreads that far each way from the shutter's centre) and cut to the
-// tile side k; then the longest one of each k x k tile. One 16x16 workgroup per tile, each
+// longest blur radius (motionBlurMaxRadius, a quarter of the image); then the longest one of each
+// k x k tile. One 16x16 workgroup per tile, each
 // invocation 2x2 pixels. It also bakes |V| and the linear depth the gather weighs taps with
 // ("inputs: ... bake ||V|| and depth into a R8G8 target"; RG16F here, as 8 bits of depth are too
 // coarse for a soft depth test relative to the depth).

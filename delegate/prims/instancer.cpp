@@ -131,7 +131,7 @@ Matrix4d Instancer::instanceAt(size_t index, size_t k, double time) const {
     const Matrix4d& a = (*shutterPlacements_)[0].at(index).at(k);
     const Matrix4d& b = (*shutterPlacements_)[1].at(index).at(k);
     Matrix4d m;
-    for (size_t i = 0; i < m.size(); ++i) m[i] = a[i] + f * (b[i] - a[i]);
+    for (size_t i = 0; i < m.size(); ++i) m[i] = std::lerp(a[i], b[i], f);
     return m;
 }
 

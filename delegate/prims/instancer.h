@@ -28,12 +28,9 @@ public:
     // Whether the placements move within the camera's shutter (the instancer's transform, or
     // positions, orientations or scales sampled at the shutter's ends differ).
     bool movesWithinShutter() const { return shutterPlacements_.has_value(); }
-    // Instance `k` of prototype `index` at the shutter's open (end 0) or close (end 1); the
-    // frame's placement when the instancer holds still.
-    const Matrix4d& instanceAtShutterEnd(size_t index, size_t k, int end) const {
-        return shutterPlacements_ ? (*shutterPlacements_)[size_t(end)].at(index).at(k) : byPrototype_.at(index).at(k);
-    }
-    // The same at an absolute time within the shutter: between its ends, linearly.
+    // Instance `k` of prototype `index` at an absolute time within the shutter: between its
+    // placements at the shutter's ends, linearly (exactly them at the ends); the frame's placement
+    // when the instancer holds still.
     Matrix4d instanceAt(size_t index, size_t k, double time) const;
     bool visible() const { return visible_; }
     size_t instanceCount() const { return protoIndices_.size(); }

@@ -7,4 +7,11 @@
 
 float compositeCoverage(float opaque, float transparent) { return 1.0 - (1.0 - opaque) * (1.0 - transparent); }
 
+// A pixel's coverage in a frame: a G-buffer surface (the device depth short of the far plane the
+// G-buffer clears to) or a dome the camera sees (CameraData::backdropCoverage), with the
+// transparent surfaces over it.
+float pixelCoverage(float deviceDepth, float backdropCoverage, float transparent) {
+    return compositeCoverage(max(deviceDepth < 1.0 ? 1.0 : 0.0, backdropCoverage), transparent);
+}
+
 #endif

@@ -12,8 +12,9 @@ struct CameraData {
     vec2 resolution;     // render size in pixels
     float exposureScale; // camera exposure (UsdGeomCamera linear scale) x 2^(render setting exposure): pre-exposed accumulation
     float shutterPosition;  // where within the shutter the frame is seen, 0 open .. 1 close (deforming meshes)
-    // Motion blur: world -> clip (unjittered) at the shutter's open and close; the frame itself is
-    // seen at the shutter's centre. Without motion blur both are the frame's unjittered view.
+    // Motion blur: world -> clip (unjittered) at the start and end of the part of the shutter the
+    // frame blurs over (the whole shutter, or a still's sample's stratum of it); the frame itself
+    // is seen at its centre. Without motion blur both are the frame's unjittered view.
     mat4 shutterOpenViewProjection;
     mat4 shutterCloseViewProjection;
     // Temporal AA's sub-pixel shift in clip space (clip.xy += clipJitter * clip.w), already in the
@@ -23,6 +24,9 @@ struct CameraData {
     float backdropCoverage;
     // Where this frame lies in temporal AA's jitter cycle (0 without it): the shadow filter's turn.
     uint noiseFrame;
+    // The share of the shutter the velocities span (the stratum's length; 1: the whole shutter).
+    float shutterFraction;
+    float pad0, pad1, pad2;
 };
 
 // One per drawn rprim.

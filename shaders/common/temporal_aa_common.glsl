@@ -22,8 +22,12 @@ struct TemporalAaConstants {
     mat4 worldToPreviousView;        // world -> last frame's view space
     vec4 weights;                    // x K_lowfreq, y K_hifreq (1TX); z K of the 2TX velocity weight
     uvec4 frames;                    // x 1: the history may be read; y frames it holds (0: changed); z frames to converge;
-                                     // w 1: hybrid AA drew some instance for edge AA
+                                     // w TAA_FLAG_* bits
 };
+
+// Mirrors TemporalAaFlags in passes/temporal_aa.cpp.
+const uint TAA_FLAG_EDGE_AA = 1u;             // hybrid AA drew some instance for edge AA
+const uint TAA_FLAG_COLOR_HAS_COVERAGE = 2u;  // currentColor carries its coverage (temporal_aa_sample.comp)
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -44,7 +48,7 @@ bool historyReadable() { return taa.frames.x != 0u; }
 // Hybrid AA (seed 004): the pixel's surface was drawn on the pixel grid for edge AA and keeps no
 // history (the history there holds this frame's colour). Frames without hybrid AA skip the lookup.
 bool edgeAntiAliased(ivec2 pixel) {
-    if (taa.frames.w == 0u) return false;
+    if ((taa.frames.w & TAA_FLAG_EDGE_AA) == 0u) return false;
     uint instance = instanceIdFromTarget(texelFetch(instanceTarget, pixel, 0).r);
     return instance != 0u && (instances[instance - 1u].flags & INSTANCE_EDGE_AA) != 0u;
 }
@@ -72,11 +76,12 @@ CrossDepths loadCrossDepths(ivec2 pixel, ivec2 size) {
     return d;
 }
 
-// This frame's colour at `pixel`, with coverage in alpha.
+// This frame's colour at `pixel`, with coverage in alpha: composited here, or already (a still's
+// sample motion-blurred before the mean, its coverage blurred along).
 vec4 currentSample(ivec2 pixel, float deviceDepth) {
-    float opaque = max(deviceDepth < 1.0 ? 1.0 : 0.0, camera.backdropCoverage);
-    float coverage = compositeCoverage(opaque, texelFetch(transparentCoverage, pixel, 0).r);
-    return vec4(texelFetch(currentColor, pixel, 0).rgb, coverage);
+    vec4 colour = texelFetch(currentColor, pixel, 0);
+    if ((taa.frames.w & TAA_FLAG_COLOR_HAS_COVERAGE) != 0u) return colour;
+    return vec4(colour.rgb, pixelCoverage(deviceDepth, camera.backdropCoverage, texelFetch(transparentCoverage, pixel, 0).r));
 }
 
 // A history depth may differ from the one expected by this much (relative) and still hold the

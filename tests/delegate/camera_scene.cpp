@@ -77,6 +77,17 @@ image::CompareMetrics metrics(const image::Image& a, const image::Image& b) {
     return image::isError(result) ? image::CompareMetrics{} : std::get<image::CompareMetrics>(result);
 }
 
+double mappedPsnr(const image::Image& a, const image::Image& b) {
+    auto mapped = [](const image::Image& img) {
+        image::Image m = image::Image::make(img.width, img.height, {"R", "G", "B"});
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x)
+                for (int c = 0; c < 3; ++c) m.at(x, y, c) = img.at(x, y, c) / (1.0f + img.at(x, y, c));
+        return m;
+    };
+    return metrics(mapped(a), mapped(b)).psnr;
+}
+
 image::Image crop(const image::Image& img, int x0, int y0, int x1, int y1) {
     image::Image c = image::Image::make(x1 - x0, y1 - y0, img.channels);
     for (int y = y0; y < y1; ++y)

@@ -39,6 +39,9 @@ void addChequerCard(TestHost& host, const std::string& path, std::array<double, 
                     int cellsX, int cellsY, std::array<float, 3> light, std::array<float, 3> dark);
 
 image::CompareMetrics metrics(const image::Image& a, const image::Image& b);
+// PSNR (peak 1) of linear RGB mapped by x / (1 + x) first, the fidelity metric of comparisons
+// with path-traced ground truth: errors weigh as a display shows them, not by their linear size.
+double mappedPsnr(const image::Image& a, const image::Image& b);
 image::Image crop(const image::Image& img, int x0, int y0, int x1, int y1);
 
 // The frame-graph passes of the last render, by name.

@@ -23,11 +23,13 @@ float roundTripGamma2(float v) {
 }
 
 TEST(VelocityEncoding, HalfFloatsHoldStreaksFarCloserThanTheSeedsEightBits) {
-    // A displacement over the shutter up to twice the longest blur radius (the streak's length).
-    const double range = 2.0 * passes::kMotionBlurMaxRadius;
+    // A displacement over the shutter up to twice the longest blur radius (the streak's length)
+    // at 1920x1080.
+    const double range = 2.0 * passes::motionBlurMaxRadius(1920, 1080);
     double gamma2Max = 0.0, halfMax = 0.0, gamma2AtOnePixel = 0.0;
-    for (int i = 0; i <= 6400; ++i) {
-        double pixels = range * i / 6400.0;
+    const int steps = int(range * 100.0);  // every 0.01 px
+    for (int i = 0; i <= steps; ++i) {
+        double pixels = range * i / steps;
         double gamma2 = std::fabs(roundTripGamma2(float(pixels / range)) * range - pixels);
         double half = std::fabs(double(float(Imath::half(float(pixels)))) - pixels);
         gamma2Max = std::max(gamma2Max, gamma2);
@@ -38,7 +40,7 @@ TEST(VelocityEncoding, HalfFloatsHoldStreaksFarCloserThanTheSeedsEightBits) {
                 gamma2Max, gamma2AtOnePixel, halfMax);
     ::testing::Test::RecordProperty("R8G8 gamma2 max error px", std::to_string(gamma2Max));
     ::testing::Test::RecordProperty("RG16F max error px", std::to_string(halfMax));
-    // Half a code step of sqrt(|v|) at the top of the range: 2 x (0.5 / 127) x 64 px.
+    // Half a code step of sqrt(|v|) at the top of the range: 2 x (0.5 / 127) x the range.
     EXPECT_NEAR(gamma2Max, 2.0 * 0.5 / 127.0 * range, 0.05);
     EXPECT_LT(halfMax, 0.05 * gamma2Max);
 }
