@@ -26,7 +26,7 @@ gpu::BufferPtr uploadRecords(gpu::Device& device, const void* header, size_t hea
                              VkBufferUsageFlags usage, const char* name) {
     // Never empty: a binding without a resource is an error.
     size_t size = std::max<size_t>(headerSize + records.size() * sizeof(T), sizeof(T));
-    auto buffer = device.createBuffer(size, usage, gpu::MemoryUsage::Upload, name);
+    auto buffer = device.createFrameBuffer(size, usage, name);
     auto* dst = static_cast<char*>(buffer->mapped());
     std::memset(dst, 0, size);
     if (headerSize) std::memcpy(dst, header, headerSize);
@@ -202,7 +202,7 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         for (const passes::LightData& light : lights)
             if (light.positionType[3] == float(passes::LightType::Dome)) cd.backdropCoverage = 1.0f;
     scene.cameraData = cd;
-    scene.camera = device.createBuffer(sizeof(cd), kFrameConstantsUsage, gpu::MemoryUsage::Upload, "camera");
+    scene.camera = device.createFrameBuffer(sizeof(cd), kFrameConstantsUsage, "camera");
     std::memcpy(scene.camera->mapped(), &cd, sizeof(cd));
 
     // Prototype meshes draw only through their instancers.
@@ -429,8 +429,10 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         }
     }
     scene.environment =
-        device.createBuffer(sizeof(environment), kFrameConstantsUsage, gpu::MemoryUsage::Upload, "environment");
+        device.createFrameBuffer(sizeof(environment), kFrameConstantsUsage, "environment");
     std::memcpy(scene.environment->mapped(), &environment, sizeof(environment));
+    scene.instanceRecords = std::move(instances);
+    scene.materialRecords = std::move(materials);
     return scene;
 }
 

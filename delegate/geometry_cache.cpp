@@ -2,16 +2,9 @@
 
 #include <cstring>
 
+#include "gpu/content_hash.h"
+
 namespace obscura::delegate {
-namespace {
-
-// FNV-1a over the bytes: equal content, equal key; a hit is confirmed by comparing the bytes.
-uint64_t hashBytes(const char* data, size_t size, uint64_t h = 1469598103934665603ull) {
-    for (size_t i = 0; i < size; ++i) h = (h ^ uint8_t(data[i])) * 1099511628211ull;
-    return h;
-}
-
-}  // namespace
 
 SharedGeometry GeometryCache::get(const std::vector<passes::Vertex>& vertices, const std::vector<uint32_t>& indices,
                                   const char* debugName) {
@@ -20,8 +13,8 @@ SharedGeometry GeometryCache::get(const std::vector<passes::Vertex>& vertices, c
     std::vector<char> content(vertexBytes + indexBytes);
     if (vertexBytes) std::memcpy(content.data(), vertices.data(), vertexBytes);
     if (indexBytes) std::memcpy(content.data() + vertexBytes, indices.data(), indexBytes);
-    uint64_t key = hashBytes(content.data(), content.size(), hashBytes(reinterpret_cast<const char*>(&vertexBytes),
-                                                                         sizeof(vertexBytes)));
+    // A hit is confirmed by comparing the bytes.
+    uint64_t key = gpu::hashBytes(content.data(), content.size(), gpu::hashValue(vertexBytes, gpu::kContentHashSeed));
     auto [first, last] = entries_.equal_range(key);
     for (auto it = first; it != last; ++it) {
         if (it->second.vertexBytes != vertexBytes || it->second.content != content) continue;

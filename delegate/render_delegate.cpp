@@ -455,7 +455,8 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     // MSAA"). Reference mode's sub-frames carry their own pixel jitter, so it renders one sample.
     gpu::FrameGraph graph;
     gpu::ImageHandle shadowAtlas;
-    if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
+    shadowHistory_.importedInto = nullptr;  // a failed frame's import is not this graph's
+    if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene, &shadowHistory_);
     auto samples = VkSampleCountFlagBits(referenceSubFrames == 0 ? uint32_t(settings_.number("msaa")) : 1u);
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_, samples,
                                                      settings_.number("msaa:alphaToCoverage") != 0.0);
@@ -604,6 +605,7 @@ void RenderDelegate::executeFrame(gpu::FrameGraph& graph) {
     environmentInFrame_ = false;
     if (ssaoInFrame_) passes::keepSsaoHistory(graph, ssaoHistory_);
     if (temporalAaInFrame_) passes::keepTemporalAaHistory(graph, temporalAaHistory_);
+    passes::keepShadowAtlasHistory(graph, shadowHistory_);
     ssaoInFrame_ = temporalAaInFrame_ = false;
     device_->context().submitAndWait([&](VkCommandBuffer cmd) {
         timestamps_->reset(cmd);

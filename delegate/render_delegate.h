@@ -21,6 +21,7 @@
 #include "passes/gbuffer.h"
 #include "passes/lighting.h"
 #include "passes/pipeline_cache.h"
+#include "passes/shadow_maps.h"
 #include "passes/ssao.h"
 #include "passes/temporal_aa.h"
 
@@ -131,6 +132,7 @@ private:
     // Temporal AA: its history images, the bookkeeping that decides how each frame uses them, and
     // whether the frame being built runs it (executeFrame keeps its history layouts).
     passes::TemporalAaHistory temporalAaHistory_;
+    passes::ShadowAtlasHistory shadowHistory_;
     TemporalAccumulation temporalAccumulation_;
     bool temporalAaInFrame_ = false;
     bool converged_ = true;  // the last render's, for ObscuraRenderStats

@@ -2,6 +2,7 @@
 
 #include "gpu/vk_check.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace obscura::gpu {
@@ -48,6 +49,7 @@ Device::~Device() {
     vkDeviceWaitIdle(vk());
     pendingUploads_.clear();
     endFrame();
+    for (const RecycledBuffer& r : frameBuffers_) destroyBuffer(r.buffer);
     vkDestroyDescriptorPool(vk(), descriptorPool_, nullptr);
     vkDestroySampler(vk(), linearClamp_, nullptr);
     vkDestroySampler(vk(), nearestClamp_, nullptr);
@@ -69,6 +71,7 @@ void Device::endFrame() {
     auto retired = std::move(retired_);
     retired_.clear();
     for (auto& destroy : retired) destroy();
+    recycleFrameBuffers();
     vkResetDescriptorPool(vk(), descriptorPool_, 0);
 }
 
@@ -82,10 +85,11 @@ VkDescriptorSet Device::allocateDescriptorSet(VkDescriptorSetLayout layout) {
     return set;
 }
 
-BufferPtr Device::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memoryUsage,
-                               const char* debugName) {
+Buffer* Device::newBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memoryUsage,
+                          const char* debugName) {
     auto* b = new Buffer();
     b->size = size;
+    b->id = nextResourceId_++;
     VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     bi.size = size;
     bi.usage = usage;
@@ -103,18 +107,55 @@ BufferPtr Device::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, Memo
     }
     vkCheck(vkBindBufferMemory(vk(), b->buffer, b->allocation.memory, b->allocation.offset), "vkBindBufferMemory");
     setName(VK_OBJECT_TYPE_BUFFER, reinterpret_cast<uint64_t>(b->buffer), debugName);
-    return BufferPtr(b, [this](Buffer* p) {
-        retire([this, p] {
-            vkDestroyBuffer(vk(), p->buffer, nullptr);
-            memory_->free(p->allocation);
-            delete p;
-        });
+    return b;
+}
+
+void Device::destroyBuffer(Buffer* buffer) {
+    vkDestroyBuffer(vk(), buffer->buffer, nullptr);
+    memory_->free(buffer->allocation);
+    delete buffer;
+}
+
+BufferPtr Device::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memoryUsage,
+                               const char* debugName) {
+    return BufferPtr(newBuffer(size, usage, memoryUsage, debugName),
+                     [this](Buffer* p) { retire([this, p] { destroyBuffer(p); }); });
+}
+
+BufferPtr Device::createFrameBuffer(VkDeviceSize size, VkBufferUsageFlags usage, const char* debugName) {
+    // Same size and usage only: a shader may take an array's length from the buffer's range.
+    Buffer* buffer = nullptr;
+    const auto match = std::find_if(frameBuffers_.begin(), frameBuffers_.end(), [&](const RecycledBuffer& r) {
+        return r.buffer->size == size && r.usage == usage;
     });
+    if (match != frameBuffers_.end()) {
+        buffer = match->buffer;
+        buffer->id = nextResourceId_++;
+        frameBuffers_.erase(match);
+        setName(VK_OBJECT_TYPE_BUFFER, reinterpret_cast<uint64_t>(buffer->buffer), debugName);
+    } else {
+        buffer = newBuffer(size, usage, MemoryUsage::Upload, debugName);
+    }
+    // The GPU may read it until the frame ends: it is free again only after endFrame().
+    return BufferPtr(buffer, [this, usage](Buffer* p) { releasedFrameBuffers_.push_back({p, usage, 0}); });
+}
+
+void Device::recycleFrameBuffers() {
+    // A buffer no frame asked for within this many frames belongs to a scene that changed size.
+    constexpr int kMaxIdleFrames = 4;
+    std::erase_if(frameBuffers_, [&](RecycledBuffer& r) {
+        if (++r.idleFrames <= kMaxIdleFrames) return false;
+        destroyBuffer(r.buffer);
+        return true;
+    });
+    frameBuffers_.insert(frameBuffers_.end(), releasedFrameBuffers_.begin(), releasedFrameBuffers_.end());
+    releasedFrameBuffers_.clear();
 }
 
 ImagePtr Device::createImage(const ImageDesc& desc, const char* debugName) {
     auto* img = new Image();
     img->desc = desc;
+    img->id = nextResourceId_++;
     VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     ii.imageType = desc.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
     ii.format = desc.format;

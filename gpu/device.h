@@ -19,6 +19,9 @@ struct Buffer {
     VkBuffer buffer = VK_NULL_HANDLE;
     Allocation allocation;
     VkDeviceSize size = 0;
+    // Unique for the device's lifetime, and new each time a frame buffer is handed out: what a
+    // cache keys on to know the contents are the same (handles and addresses are reused).
+    uint64_t id = 0;
     void* mapped() const { return allocation.mapped; }
 };
 
@@ -41,6 +44,7 @@ struct Image {
     std::vector<VkImageView> levelViews;
     Allocation allocation;
     ImageDesc desc;
+    uint64_t id = 0;  // as Buffer::id
 };
 
 using BufferPtr = std::shared_ptr<Buffer>;
@@ -64,6 +68,12 @@ public:
     // Resources are shared_ptrs whose deleter queues destruction to the end of the frame.
     BufferPtr createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memoryUsage,
                            const char* debugName);
+    // A host-visible buffer for one frame's records (camera, instances, pass constants). A frame
+    // asks for the same sizes as the last one, so these are recycled instead of created: released
+    // buffers come back at the end of the frame and one not asked for again within a few frames
+    // is destroyed. The steady state of an unchanged scene allocates nothing, and memory stays
+    // bounded while sizes change.
+    BufferPtr createFrameBuffer(VkDeviceSize size, VkBufferUsageFlags usage, const char* debugName);
     ImagePtr createImage(const ImageDesc& desc, const char* debugName);
     // A device-local buffer whose contents arrive with the next flushUploads(): sync creates
     // many, and all their copies go to the GPU in one submission.
@@ -86,16 +96,27 @@ public:
 
 private:
     void setName(VkObjectType type, uint64_t handle, const char* name);
+    Buffer* newBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memoryUsage, const char* debugName);
+    void destroyBuffer(Buffer* buffer);
+    void recycleFrameBuffers();
 
     std::unique_ptr<Context> context_;
     std::unique_ptr<MemoryAllocator> memory_;
     std::vector<std::function<void()>> retired_;
+    uint64_t nextResourceId_ = 1;
     struct PendingUpload {
         BufferPtr staging;
         BufferPtr destination;
         VkDeviceSize size;
     };
     std::vector<PendingUpload> pendingUploads_;
+    struct RecycledBuffer {
+        Buffer* buffer;
+        VkBufferUsageFlags usage;
+        int idleFrames;  // frames ended since it was last released
+    };
+    std::vector<RecycledBuffer> frameBuffers_;          // free for this frame
+    std::vector<RecycledBuffer> releasedFrameBuffers_;  // released during this frame: free after it
     VkSampler linearClamp_ = VK_NULL_HANDLE;
     VkSampler nearestClamp_ = VK_NULL_HANDLE;
     VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;

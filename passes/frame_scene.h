@@ -68,6 +68,10 @@ struct FrameScene {
     gpu::BufferPtr lights;     // LightBufferHeader + LightData[] (storage)
     gpu::BufferPtr environment;  // EnvironmentData (uniform)
     std::vector<MaterialTextures> materialTextures;  // never empty: element 0 is all white
+    // What `instances` and `materials` hold, on the CPU: for passes that cache their results
+    // and must know whether what they draw changed (the shadow atlas).
+    std::vector<InstanceData> instanceRecords;
+    std::vector<MaterialData> materialRecords;
     std::vector<Draw> draws;
     uint32_t instanceCount = 0;  // InstanceData records in `instances`
     // The transparent draws (indices into `draws`), back to front: by the distance from the eye to

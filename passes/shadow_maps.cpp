@@ -2,6 +2,12 @@
 
 #include "passes/depth_only_draw.h"
 
+#include "gpu/content_hash.h"
+
+#include <array>
+#include <optional>
+#include <vector>
+
 namespace obscura::passes {
 namespace {
 
@@ -27,19 +33,43 @@ gpu::GraphicsPipelineDesc describeShadowDepthPipeline(bool cutout) {
     return d;
 }
 
-// Records the draws of every view that `cutout` selects, each view into its tile.
+bool casts(const Draw& draw) { return !draw.transparent; }  // docs/ARCHITECTURE.md "Transparent surfaces"
+
+// Everything a view's depth depends on: its projection and tile, and for each caster its geometry,
+// its instances' transforms and, when cut out, its material and opacity texture.
+uint64_t viewKey(const FrameScene& scene, const ShadowMapView& view) {
+    uint64_t h = gpu::hashValue(view.viewProjection, gpu::kContentHashSeed);
+    h = gpu::hashValue(std::array<uint32_t, 3>{view.x, view.y, view.size}, h);
+    for (uint32_t index : view.draws) {
+        const Draw& draw = scene.draws[index];
+        if (!casts(draw)) continue;
+        h = gpu::hashValue(std::array<uint64_t, 4>{draw.vertices->id, draw.indices->id, draw.indexCount,
+                                                   draw.opacityCutout},
+                           h);
+        for (uint32_t i = draw.instanceIndex; i < draw.instanceIndex + draw.instanceCount; ++i) {
+            const InstanceData& instance = scene.instanceRecords.at(i);
+            h = gpu::hashValue(instance.model, h);
+            if (!draw.opacityCutout) continue;
+            h = gpu::hashValue(scene.materialRecords.at(instance.materialIndex), h);
+            h = gpu::hashValue(scene.materialTextures[draw.textures].images[kTextureOpacity]->id, h);
+        }
+    }
+    return h;
+}
+
+// Records the draws of every view in `views` that `cutout` selects, each view into its tile.
 void recordViews(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& pipeline, const FrameScene& scene,
-                 bool cutout) {
+                 const std::vector<uint32_t>& views, bool cutout) {
     bool bound = false;
-    for (const ShadowMapView& view : scene.shadows.views) {
+    for (uint32_t v : views) {
+        const ShadowMapView& view = scene.shadows.views[v];
         VkViewport viewport{float(view.x), float(view.y), float(view.size), float(view.size), 0.0f, 1.0f};
         VkRect2D tile{{int32_t(view.x), int32_t(view.y)}, {view.size, view.size}};
         DepthOnlyPush push{view.viewProjection, 0};
         bool inTile = false;
         for (uint32_t index : view.draws) {
             const Draw& draw = scene.draws[index];
-            // Transparent surfaces cast no shadow (docs/ARCHITECTURE.md "Transparent surfaces").
-            if (draw.opacityCutout != cutout || draw.transparent) continue;
+            if (draw.opacityCutout != cutout || !casts(draw)) continue;
             if (!bound) {
                 gpu::DescriptorWriter writer(device, pipeline);
                 writer.buffer(0, scene.instances->buffer);
@@ -63,14 +93,54 @@ void recordViews(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& 
     }
 }
 
+// A kept atlas keeps its texels outside the views rendered again: those tiles alone are cleared.
+void clearTiles(VkCommandBuffer cmd, const FrameScene& scene, const std::vector<uint32_t>& views) {
+    std::vector<VkClearRect> rects;
+    for (uint32_t v : views) {
+        const ShadowMapView& view = scene.shadows.views[v];
+        rects.push_back({{{int32_t(view.x), int32_t(view.y)}, {view.size, view.size}}, 0, 1});
+    }
+    VkClearAttachment clear{VK_IMAGE_ASPECT_DEPTH_BIT, 0, {}};
+    clear.clearValue.depthStencil = {1.0f, 0};
+    if (!rects.empty()) vkCmdClearAttachments(cmd, 1, &clear, uint32_t(rects.size()), rects.data());
+}
+
 }  // namespace
 
-gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene) {
+gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                                  ShadowAtlasHistory* history) {
     gpu::ImageDesc desc;
     desc.format = kShadowAtlasFormat;
     desc.width = scene.shadows.width;
     desc.height = scene.shadows.height;
-    gpu::ImageHandle atlas = graph.createImage("shadowAtlas", desc);
+    const uint32_t viewCount = uint32_t(scene.shadows.views.size());
+    std::vector<uint32_t> views;  // those to render this frame
+    gpu::ImageHandle atlas;
+    bool wholeAtlas = true;
+    if (!history) {
+        atlas = graph.createImage("shadowAtlas", desc);
+        for (uint32_t v = 0; v < viewCount; ++v) views.push_back(v);
+    } else {
+        desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+        if (!history->atlas || !(history->atlas->desc == desc)) {
+            history->atlas = pipelines.device().createImage(desc, "shadow atlas");
+            history->layout = VK_IMAGE_LAYOUT_UNDEFINED;
+        }
+        // A new atlas holds nothing yet: every view is rendered, over a cleared image.
+        wholeAtlas = history->layout == VK_IMAGE_LAYOUT_UNDEFINED;
+        if (wholeAtlas) history->viewKeys.clear();
+        history->viewKeys.resize(viewCount, 0);
+        for (uint32_t v = 0; v < viewCount; ++v) {
+            const uint64_t key = viewKey(scene, scene.shadows.views[v]);
+            if (!wholeAtlas && key == history->viewKeys[v]) continue;
+            history->viewKeys[v] = key;
+            views.push_back(v);
+        }
+        atlas = history->imported = graph.importImage("shadowAtlas", history->atlas, history->layout);
+        history->importedInto = &graph;
+        // Nothing changed: the kept atlas is read as it is, and no pass runs.
+        if (!wholeAtlas && views.empty()) return atlas;
+    }
     const gpu::Pipeline& opaque = pipelines.get<gpu::GraphicsPipelineDesc>(
         "shadow_depth", [] { return describeShadowDepthPipeline(false); });
     const gpu::Pipeline& cutout = pipelines.get<gpu::GraphicsPipelineDesc>(
@@ -78,14 +148,23 @@ gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, PipelineCache& pipelin
     gpu::Device& device = pipelines.device();
 
     // An empty view list leaves the atlas cleared to the far depth: nothing casts.
+    std::optional<VkClearDepthStencilValue> clear;
+    if (wholeAtlas) clear = VkClearDepthStencilValue{1.0f, 0};
     graph.addPass(
         "shadow_maps", gpu::PassKind::Raster,
-        [&](gpu::FrameGraph::PassBuilder& pass) { pass.depthStencilAttachment(atlas, VkClearDepthStencilValue{1.0f, 0}); },
-        [&device, &opaque, &cutout, &scene](VkCommandBuffer cmd, const gpu::PassResources&) {
-            recordViews(device, cmd, opaque, scene, false);
-            recordViews(device, cmd, cutout, scene, true);
+        [&](gpu::FrameGraph::PassBuilder& pass) { pass.depthStencilAttachment(atlas, clear); },
+        [&device, &opaque, &cutout, &scene, views, wholeAtlas](VkCommandBuffer cmd, const gpu::PassResources&) {
+            if (!wholeAtlas) clearTiles(cmd, scene, views);
+            recordViews(device, cmd, opaque, scene, views, false);
+            recordViews(device, cmd, cutout, scene, views, true);
         });
     return atlas;
+}
+
+void keepShadowAtlasHistory(const gpu::FrameGraph& graph, ShadowAtlasHistory& history) {
+    if (history.importedInto != &graph) return;
+    history.layout = graph.finalLayout(history.imported);
+    history.importedInto = nullptr;
 }
 
 }  // namespace obscura::passes

@@ -7,13 +7,32 @@
 #include "passes/frame_scene.h"
 #include "passes/pipeline_cache.h"
 
+#include <cstdint>
+#include <vector>
+
 namespace obscura::passes {
 
 // 32-bit float depth: cascades span a whole scene along the light and cube faces a perspective
 // depth range, both beyond what 16 or 24 bits resolve without raising the bias.
 constexpr VkFormat kShadowAtlasFormat = VK_FORMAT_D32_SFLOAT;
 
-// Returns the atlas, written as a depth attachment; read it with Usage::SampledCompute.
-gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene);
+// The atlas kept from frame to frame: a view is rendered again only when what it shows changed
+// (its light, its tile, or a caster in it: geometry, transform, cut-out material). A static scene
+// renders no shadow map at all after its first frame.
+struct ShadowAtlasHistory {
+    gpu::ImagePtr atlas;
+    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    gpu::ImageHandle imported;                     // this frame's import...
+    const gpu::FrameGraph* importedInto = nullptr;  // ...into this graph
+    std::vector<uint64_t> viewKeys;  // of each view as the atlas holds it
+};
+
+// Returns the atlas, written as a depth attachment; read it with Usage::SampledCompute. With a
+// history, only views whose key changed are rendered (into the kept atlas); without one (reference
+// sub-frames, whose lights move every sub-frame) every view is.
+gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+                                  ShadowAtlasHistory* history = nullptr);
+// After graph.compile(): the layout this frame leaves the kept atlas in.
+void keepShadowAtlasHistory(const gpu::FrameGraph& graph, ShadowAtlasHistory& history);
 
 }  // namespace obscura::passes

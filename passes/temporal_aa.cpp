@@ -78,8 +78,8 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
                                    frame.heldFrames, frame.framesToConverge,
                                    (frame.edgeAa ? kTemporalAaEdgeAa : 0u) |
                                        (frame.colorHasCoverage ? kTemporalAaColorHasCoverage : 0u)}};
-    gpu::BufferPtr constantBuffer = device.createBuffer(sizeof(constants), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                                        gpu::MemoryUsage::Upload, "temporalAaConstants");
+    gpu::BufferPtr constantBuffer = device.createFrameBuffer(sizeof(constants), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                             "temporalAaConstants");
     std::memcpy(constantBuffer->mapped(), &constants, sizeof(constants));
 
     // 1TX's result is its accumulation; 2TX keeps the raw frame as history and resolves apart. An

@@ -19,10 +19,7 @@ CameraScene::CameraScene(const Lens& lens, int w, int h) : width(w), height(h) {
     setNumber("ssao", 0);
 }
 
-void CameraScene::setNumber(const char* name, double value) {
-    ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &value};
-    ASSERT_EQ(host.api().setRenderSetting(host.delegate(), name, &v), OBSCURA_OK) << host.lastError();
-}
+void CameraScene::setNumber(const char* name, double value) { test::setNumber(host, name, value); }
 
 void CameraScene::setShutter(double open, double close) {
     host.set("/Camera", "shutter:open", HostValue::doubleValue(open));

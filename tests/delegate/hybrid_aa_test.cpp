@@ -16,11 +16,6 @@ namespace {
 
 constexpr int kSupersampling = 8;
 
-void setNumber(TestHost& host, const char* name, double value) {
-    ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &value};
-    ASSERT_EQ(host.api().setRenderSetting(host.delegate(), name, &v), OBSCURA_OK) << host.lastError();
-}
-
 // PSNR (peak 1) over the pixels where `mask` is set, of the RGB values passed through `transfer`.
 double maskedPsnr(const std::vector<float>& a, const std::vector<float>& b, const std::vector<bool>& mask,
                   float (*transfer)(float) = nullptr) {

@@ -25,6 +25,11 @@ ObscuraRenderStats renderStats(TestHost& host) {
     return s;
 }
 
+void setNumber(TestHost& host, const char* name, double value) {
+    ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &value};
+    ASSERT_EQ(host.api().setRenderSetting(host.delegate(), name, &v), OBSCURA_OK) << host.lastError();
+}
+
 void addPlane(TestHost& host, const std::string& path, const std::string& material, double half, Matrix transform) {
     float h = float(half);
     std::map<std::string, HostValue> values = {

@@ -22,6 +22,9 @@ Matrix lightPointingAlong(std::array<double, 3> direction);
 // The delegate's counters after the last render.
 ObscuraRenderStats renderStats(TestHost& host);
 
+// Sets a numeric (or boolean: 0/1) render setting; a refusal fails the test.
+void setNumber(TestHost& host, const char* name, double value);
+
 // A unit-normal quad of half-size `half` at z = 0 facing +Z, with a material bound.
 void addPlane(TestHost& host, const std::string& path, const std::string& material, double half = 10.0,
               Matrix transform = identity());

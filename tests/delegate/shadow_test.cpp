@@ -6,6 +6,7 @@
 // lit pixels. The shadow's edge must lie where the occluder's edge projects along the light.
 #include "harness/image/png_io.h"
 #include "harness/usd_scene_host.h"
+#include "tests/delegate/camera_scene.h"
 #include "tests/delegate/render_fixture.h"
 
 #include <gtest/gtest.h>
@@ -485,6 +486,51 @@ def SphereLight "Default"
     // Not authored: the delegate falls back to the schema's default (on).
     ObscuraValue value{};
     EXPECT_NE(sd.getValue(sd.userData, "/Default", "inputs:shadow:enable", 0.0, &value), OBSCURA_OK);
+}
+
+}  // namespace
+}  // namespace obscura::test
+
+namespace obscura::test {
+namespace {
+
+// The atlas is kept between frames: a frame where nothing that casts or lights changed renders no
+// shadow map, and a frame after an edit renders the views it touched — the shadows must then be
+// where the moved box and the turned light put them, to the same analytic bar as a first frame.
+TEST(Shadows, KeptAtlasRendersNothingWhenStaticAndFollowsEveryEdit) {
+    ShadowScene s(topDownCamera(), 10.0, -10.0, 10.0);
+    // Every frame through the pixel centres: frames differ only by what the shadow atlas holds.
+    setNumber(s.host, "taa", 0.0);
+    addBoxUnderTheSun(s);
+    Verdict first = checkPixels(s, s.render());
+    EXPECT_TRUE(ranPass(s.host, "shadow_maps"));
+    EXPECT_GT(first.shadowedPixels, 200);
+
+    Verdict unchanged = checkPixels(s, s.render());
+    EXPECT_FALSE(ranPass(s.host, "shadow_maps")) << "nothing changed, yet the shadow map was rendered again";
+    EXPECT_EQ(unchanged.shadowedPixels, first.shadowedPixels);
+
+    // The box moves 0.3 units along +y: its old shadow's edge must be lit, its new one dark.
+    s.host.setTransform("/Box", translation(0, 0.3, 0));
+    ASSERT_EQ(s.host.api().markDirty(s.host.delegate(), "/Box", OBSCURA_DIRTY_TRANSFORM), OBSCURA_OK);
+    for (Box& box : s.occluders) box.min[1] += 0.3, box.max[1] += 0.3;
+    Verdict moved = checkPixels(s, s.render());
+    print("kept atlas, box moved", moved);
+    EXPECT_TRUE(ranPass(s.host, "shadow_maps"));
+    EXPECT_GT(moved.shadowedPixels, 200);
+
+    // The sun turns to travel along -y: the shadow falls on another side of the box.
+    const Vec3 travel = normalize({0.0, -1.0, -1.0});
+    s.host.setTransform("/Sun", lightPointingAlong(travel));
+    ASSERT_EQ(s.host.api().markDirty(s.host.delegate(), "/Sun", OBSCURA_DIRTY_TRANSFORM), OBSCURA_OK);
+    s.light = [travel](Vec3) { return LightAtPoint{scale(travel, -1.0), 1e30, 3.0 * -travel[2]}; };
+    Verdict turned = checkPixels(s, s.render());
+    print("kept atlas, light turned", turned);
+    EXPECT_TRUE(ranPass(s.host, "shadow_maps"));
+    EXPECT_GT(turned.shadowedPixels, 100);
+
+    checkPixels(s, s.render());
+    EXPECT_FALSE(ranPass(s.host, "shadow_maps"));
 }
 
 }  // namespace

@@ -11,11 +11,6 @@
 namespace obscura::test {
 namespace {
 
-void setNumber(TestHost& host, const char* name, double value) {
-    ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &value};
-    ASSERT_EQ(host.api().setRenderSetting(host.delegate(), name, &v), OBSCURA_OK) << host.lastError();
-}
-
 // Renders until temporal AA reports the still converged (a plain `obscura render`).
 std::vector<float> renderConverged(TestHost& host) {
     std::vector<float> color;
