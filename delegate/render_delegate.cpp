@@ -123,6 +123,7 @@ RenderDelegate::~RenderDelegate() {
     msaaTaggedPixels_.reset();
     ssaoHistory_ = {};
     temporalAaHistory_ = {};
+    shadowHistory_ = {};
     grading_ = passes::ColorGradingLut();
     timestamps_.reset();
     transients_.reset();
@@ -375,7 +376,14 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
 
     passes::ColorLutRequest colour{settings_.token("ocio:config"), settings_.token("ocio:display"),
                                    settings_.token("ocio:view"), settings_.token("ocio:look")};
-    if (std::string problem = grading_.update(*device_, colour); !problem.empty())
+    if (std::string problem = gradingChart_.load(settings_.token("grading:chart")); !problem.empty())
+        throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "colour grading: " + problem};
+    passes::DisplayGrade grade{gradingChart_.lattice(),
+                                         settings_.token("grading:interpolation") == "tetrahedral"
+                                             ? passes::LatticeInterpolation::Tetrahedral
+                                             : passes::LatticeInterpolation::Trilinear,
+                                         gradingChart_.key()};
+    if (std::string problem = grading_.update(*device_, colour, grade); !problem.empty())
         throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "colour management: " + problem};
 
     std::vector<std::string> ignoredDomes;

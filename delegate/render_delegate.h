@@ -5,6 +5,7 @@
 #include "delegate/environment_cache.h"
 #include "delegate/frame_scene_builder.h"
 #include "delegate/geometry_cache.h"
+#include "delegate/grading_chart.h"
 #include "delegate/prims/camera.h"
 #include "delegate/prims/implicit_surface.h"
 #include "delegate/prims/instancer.h"
@@ -145,6 +146,7 @@ private:
     // Textured domes beyond the first, last frame: warned about when the list changes.
     std::vector<std::string> ignoredDomes_;
     passes::ColorGradingLut grading_;
+    GradingChartFile gradingChart_;
 
     ObscuraSceneDelegate sceneDelegate_{};
     bool hasSceneDelegate_ = false;

@@ -108,6 +108,14 @@ const RenderSettingInfo kSettings[] = {
      OBSCURA_VALUE_TOKEN, 0.0},
     {"ocio:look", "OCIO looks, comma-separated, replacing the view's own (token; default: none)",
      OBSCURA_VALUE_TOKEN, 0.0},
+    {"grading:chart", "an image whose top-left corner holds a colour-grading chart (obscura grade-chart --write "
+                      "makes the neutral one; grade it, or a screenshot holding it, in any image editor): the 16^3 "
+                      "LUT read from it grades the display values after the OCIO view (token; default: none)",
+     OBSCURA_VALUE_TOKEN, 0.0},
+    {"grading:interpolation", "between the grading chart's lattice points: trilinear (seed 004's hardware "
+                              "filter) or tetrahedral (keeps neutral greys neutral) (token, default trilinear)",
+     OBSCURA_VALUE_TOKEN, 0.0, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+     "trilinear|tetrahedral"},
 };
 
 bool isTokenChoice(std::string_view choices, std::string_view token) {

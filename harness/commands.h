@@ -66,7 +66,15 @@ struct FarmJobOptions {
     std::string job;
 };
 
+// obscura grade-chart --write CHART.png [--into SCREENSHOT]: the neutral grading chart, alone or
+// over the top-left corner of a screenshot.
+struct GradeChartOptions {
+    std::string output;
+    std::string into;
+};
+
 int runInfo();
+int runGradeChart(const GradeChartOptions& options);
 int runRender(const RenderOptions& options);
 int runCompare(const CompareOptions& options);
 int runBench(const BenchOptions& options);

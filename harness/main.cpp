@@ -31,6 +31,11 @@ int main(int argc, char** argv) {
 
     app.add_subcommand("info", "plugins found, ABI versions, Vulkan devices, render settings");
 
+    GradeChartOptions gradeChart;
+    auto* gc = app.add_subcommand("grade-chart", "write the neutral colour-grading chart (render setting grading:chart)");
+    gc->add_option("--write", gradeChart.output, "the chart's .png")->required();
+    gc->add_option("--into", gradeChart.into, "a screenshot to put the chart over (its top-left corner)");
+
     RenderOptions render;
     double frame = 0;
     auto* r = app.add_subcommand("render", "render a scene to an image");
@@ -103,6 +108,7 @@ int main(int argc, char** argv) {
     }
     if (*frameOpt) render.frame = frame;
     if (app.got_subcommand("info")) return runInfo();
+    if (gc->parsed()) return runGradeChart(gradeChart);
     if (app.got_subcommand("render")) return runRender(render);
     if (app.got_subcommand("compare")) return runCompare(compare);
     if (fs->parsed()) return runFarmSubmit(farmSubmit);

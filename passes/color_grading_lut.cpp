@@ -1,5 +1,6 @@
 #include "passes/color_grading_lut.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 
@@ -27,12 +28,20 @@ uint16_t floatToHalf(float value) {
     return uint16_t(half);
 }
 
-std::string ColorGradingLut::update(gpu::Device& device, const ColorLutRequest& request) {
+std::string ColorGradingLut::update(gpu::Device& device, const ColorLutRequest& request, const DisplayGrade& grade) {
     std::string key = request.configPath + '\n' + request.display + '\n' + request.view + '\n' + request.look;
+    if (grade.lattice) key += '\n' + grade.key + '\n' + std::to_string(int(grade.interpolation));
     if (key_ && *key_ == key && texture_) return {};
     auto baked = bakeColorLut(request);
     if (auto* error = std::get_if<std::string>(&baked)) return *error;
     lut_ = std::move(std::get<ColorLut>(baked));
+    // The grade takes the display values the view gives, so it sees them clamped as a screen does.
+    if (grade.lattice)
+        for (size_t i = 0; i < lut_.rgba.size(); i += 4) {
+            auto graded = sampleLattice(*grade.lattice, {lut_.rgba[i], lut_.rgba[i + 1], lut_.rgba[i + 2]},
+                                        grade.interpolation);
+            std::copy(graded.begin(), graded.end(), lut_.rgba.begin() + ptrdiff_t(i));
+        }
     std::vector<uint16_t> texels(lut_.rgba.size());
     for (size_t i = 0; i < texels.size(); ++i) texels[i] = floatToHalf(lut_.rgba[i]);
     gpu::ImageDesc desc;

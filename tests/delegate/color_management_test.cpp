@@ -1,9 +1,15 @@
 // The display AOV goes through the OCIO view transform baked into a 3D LUT: compared with OCIO's
 // own CPU processor on colours the accumulation format stores exactly.
+#include "harness/image/png_io.h"
 #include "passes/color_lut.h"
 #include "tests/delegate/render_fixture.h"
+#include "tests/support/grading_chart_writer.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
 
 namespace obscura::test {
 namespace {
@@ -16,7 +22,8 @@ struct EmissivePlane {
         addPlane(host, "/Plane", "/Looks/Glow");
         host.addRenderBuffer("/Buffers/display", "unorm8Vec4", kWidth, kHeight);
     }
-    void setToken(const char* key, const char* value) {
+    void setToken(const char* key, const std::string& token) {
+        const char* value = token.c_str();
         ObscuraValue v{OBSCURA_VALUE_TOKEN, 0, 1, &value};
         ASSERT_EQ(host.api().setRenderSetting(host.delegate(), key, &v), OBSCURA_OK) << host.lastError();
     }
@@ -61,6 +68,65 @@ TEST(ColorManagement, UnknownViewIsRefusedWithTheValidNames) {
     scene.setToken("ocio:view", "Cinematic");
     EXPECT_EQ(scene.host.render("/Camera", {{"display", "/Buffers/display"}}), OBSCURA_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(scene.host.lastError().find("Filmic"), std::string::npos) << scene.host.lastError();
+}
+
+// ---- Grading from a chart (seed 004 "Color grading") ---------------------------------------
+
+float gamma12(float v) { return std::pow(v, 1.2f); }
+
+TEST(ColorGrading, NeutralChartRoundTripsToTheIdentity) {
+    std::string path = writeGradedChart("neutral_chart", [](float v) { return v; }, 40);
+    // Rendered through it, the display values do not move by more than one 8-bit step.
+    for (const char* interpolation : {"trilinear", "tetrahedral"}) {
+        EmissivePlane scene({0.1875f, 0.75f, 0.3f});
+        scene.setToken("ocio:view", "Standard");
+        auto plain = scene.centre();
+        scene.setToken("grading:chart", path);
+        scene.setToken("grading:interpolation", interpolation);
+        auto graded = scene.centre();
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(graded[c], plain[c], 1.0f / 255.0f) << interpolation << " channel " << c;
+    }
+    std::filesystem::remove(path);
+}
+
+TEST(ColorGrading, AGammaAppliedToTheChartGradesTheDisplayValues) {
+    std::string path = writeGradedChart("gamma_chart", gamma12);
+    // End to end: the display value is the view's, then the grade. Tolerances: the 33^3 view LUT's
+    // (expectDisplay's 0.006, steepened by the grade's slope, at most 1.2), the chart's 8-bit
+    // rounding (half a step), the lattice's linear interpolation of x^1.2 over a 1/15 cell (under
+    // 0.0011 above 0.3: h^2/8 max|f''|), and the output's rounding (expectDisplay).
+    const std::array<float, 3> radiance{0.1875f, 0.75f, 0.3f};
+    auto view = std::get<std::array<float, 3>>(passes::applyViewTransform({"", "", "Standard", ""}, radiance));
+    EmissivePlane scene(radiance);
+    scene.setToken("ocio:view", "Standard");
+    scene.setToken("grading:chart", path);
+    std::array<float, 3> want;
+    for (int c = 0; c < 3; ++c) want[c] = gamma12(view[c]);
+    expectDisplay(scene.centre(), want, 0.006f * 1.2f + 0.5f / 255.0f + 0.0011f);
+    std::filesystem::remove(path);
+}
+
+TEST(ColorGrading, UnreadableOrSmallChartsAreRefusedWithTheReason) {
+    EmissivePlane scene({0.5f, 0.5f, 0.5f});
+    scene.setToken("grading:chart", "/nonexistent/graded.png");
+    EXPECT_EQ(scene.host.render("/Camera", {{"display", "/Buffers/display"}}), OBSCURA_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(scene.host.lastError().find("/nonexistent/graded.png"), std::string::npos) << scene.host.lastError();
+
+    auto small = std::filesystem::temp_directory_path() / ("obscura_small_chart_" + std::to_string(getpid()) + ".png");
+    ASSERT_FALSE(image::isError(image::writePng(small.string(), image::Image::make(64, 16, {"R", "G", "B"}))));
+    scene.setToken("grading:chart", small.string());
+    EXPECT_EQ(scene.host.render("/Camera", {{"display", "/Buffers/display"}}), OBSCURA_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(scene.host.lastError().find("64x16"), std::string::npos) << scene.host.lastError();
+    std::filesystem::remove(small);
+
+    // Without a chart the frame renders again.
+    scene.setToken("grading:chart", "");
+    EXPECT_EQ(scene.host.render("/Camera", {{"display", "/Buffers/display"}}), OBSCURA_OK) << scene.host.lastError();
+
+    const char* bad = "cubic";
+    ObscuraValue v{OBSCURA_VALUE_TOKEN, 0, 1, &bad};
+    EXPECT_EQ(scene.host.api().setRenderSetting(scene.host.delegate(), "grading:interpolation", &v),
+              OBSCURA_ERROR_INVALID_ARGUMENT);
 }
 
 }  // namespace

@@ -531,6 +531,10 @@ TEST(Shadows, KeptAtlasRendersNothingWhenStaticAndFollowsEveryEdit) {
 
     checkPixels(s, s.render());
     EXPECT_FALSE(ranPass(s.host, "shadow_maps"));
+
+    // The kept atlas goes with the delegate: destruction leaves no object behind (validation).
+    ASSERT_EQ(s.host.destroyDelegate(), OBSCURA_OK);
+    EXPECT_TRUE(s.host.loggedErrors().empty()) << s.host.loggedErrors().front();
 }
 
 }  // namespace

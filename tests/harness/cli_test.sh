@@ -36,6 +36,18 @@ fi
 check "render every implicit gprim" 0 $?
 ! grep -q "not supported" "$tmp/out"; check "no gprim reported unsupported" 0 $?
 
+# Colour grading from a chart: the neutral chart over a rendered frame, read back as the grade.
+"$obscura" grade-chart --write "$tmp/chart.png" --into "$tmp/demo.png" >"$tmp/out" 2>&1
+check "grade-chart over a screenshot" 0 $? "$tmp/out" 'grading chart \(256x16'
+"$obscura" render "$src/scenes/demo.usda" -o "$tmp/graded.png" --width 32 --height 18 --set taa:frames=2 \
+    --set grading:chart="$tmp/chart.png" >"$tmp/out" 2>&1
+check "render graded by the chart" 0 $?
+"$obscura" render "$src/scenes/demo.usda" -o "$tmp/graded.png" --width 32 --height 18 --set taa:frames=2 \
+    --set grading:chart="$tmp/demo.png" >"$tmp/out" 2>&1
+check "a screenshot too small for the chart is refused" 3 $? "$tmp/out" 'smaller than the 256x16 chart'
+"$obscura" grade-chart --write "$tmp/c.png" --into "$tmp/missing.png" >"$tmp/out" 2>&1
+check "grade-chart names an unreadable screenshot" 3 $? "$tmp/out" 'missing.png'
+
 "$obscura" render "$src/scenes/demo.usda" -o "$tmp/frame.####.png" --frames 1-2 --width 32 --height 18 >"$tmp/out" 2>&1
 check "frame sequence" 0 $? "$tmp/out" 'frame 2 \(2/2\)'
 [ -s "$tmp/frame.0001.png" ] && [ -s "$tmp/frame.0002.png" ]; check "#### becomes the frame number" 0 $?
