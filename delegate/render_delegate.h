@@ -6,6 +6,7 @@
 #include "delegate/frame_scene_builder.h"
 #include "delegate/geometry_cache.h"
 #include "delegate/prims/camera.h"
+#include "delegate/prims/curves.h"
 #include "delegate/prims/implicit_surface.h"
 #include "delegate/prims/instancer.h"
 #include "delegate/prims/light.h"

@@ -30,6 +30,8 @@ const std::map<std::string, std::string> kPrimTypes = {
     {"Capsule", "capsule"},
     {"Capsule_1", "capsule1"},
     {"Plane", "plane"},
+    {"BasisCurves", "basisCurves"},
+    {"Points", "points"},
 };
 
 // Types that organise a scene and are not drawn themselves.
@@ -43,7 +45,8 @@ ObscuraDirtyBits dirtyBitFor(const std::string& attribute) {
     if (attribute == "invisibleIds") return OBSCURA_DIRTY_VISIBILITY;
     if (attribute == "normals") return OBSCURA_DIRTY_NORMALS;
     if (attribute.rfind("primvars:", 0) == 0) return OBSCURA_DIRTY_PRIMVAR;
-    if (attribute == "faceVertexCounts" || attribute == "faceVertexIndices") return OBSCURA_DIRTY_TOPOLOGY;
+    if (attribute == "faceVertexCounts" || attribute == "faceVertexIndices" || attribute == "curveVertexCounts")
+        return OBSCURA_DIRTY_TOPOLOGY;
     if (attribute == "visibility") return OBSCURA_DIRTY_VISIBILITY;
     if (attribute.rfind("xformOp", 0) == 0) return OBSCURA_DIRTY_TRANSFORM;
     return OBSCURA_DIRTY_PARAMS;
