@@ -65,15 +65,16 @@ constexpr double kNear = 0.1, kFar = 1000.0;
 double clipDepth(double z) { return kFar * (z - kNear) / (z * (kFar - kNear)); }
 double viewDistance(float depth) { return kNear * kFar / (kFar - double(depth) * (kFar - kNear)); }
 
-// A straight curve along X through the origin, `width` wide.
-void addStraightCurve(TestHost& host, const std::string& path, float width, bool ribbon) {
+// A straight curve along X through the origin, `width` wide (in `widthsName`).
+void addStraightCurve(TestHost& host, const std::string& path, float width, bool ribbon,
+                      const std::string& widthsName = "widths") {
     std::map<std::string, HostValue> values{{"points", HostValue::points({{-3, 0, 0}, {3, 0, 0}})},
                                             {"curveVertexCounts", HostValue::intArray({2})},
                                             {"type", HostValue::token("linear")},
-                                            {"widths", floats({width})}};
+                                            {widthsName, floats({width})}};
     if (ribbon) values["normals"] = HostValue::points({{0, 0, 1}});
     host.addPrim("basisCurves", path, values);
-    host.setInterpolation(path, "widths", OBSCURA_INTERPOLATION_CONSTANT);
+    host.setInterpolation(path, widthsName, OBSCURA_INTERPOLATION_CONSTANT);
     if (ribbon) host.setInterpolation(path, "normals", OBSCURA_INTERPOLATION_CONSTANT);
 }
 
@@ -102,18 +103,40 @@ TEST(Curves, TubeWidthOnScreenIsItsSilhouetteAndItsDepthTheNearSide) {
 }
 
 TEST(Curves, RibbonFacingTheCameraIsItsWidthOverDistanceWide) {
+    for (const char* widthsName : {"widths", "primvars:widths"}) {
+        TestHost host;
+        const double distance = 10.0;
+        addViewer(host, distance);
+        const float width = 1.0f;
+        addStraightCurve(host, "/Ribbon", width, true, widthsName);
+        ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}, {"depth", "/Buffers/depth"}}), OBSCURA_OK)
+            << host.lastError();
+        auto ids = host.readInts("/Buffers/id");
+        EXPECT_NEAR(columnPixels(ids, kSize / 2 + 10, primIdOf(host, "/Ribbon")),
+                    width / distance * kPixelsPerUnitAtUnitDistance, 1.0)
+            << widthsName;
+        const float depth = host.readFloats("/Buffers/depth")[size_t(kSize / 2 * kSize + kSize / 2)];
+        EXPECT_NEAR(viewDistance(depth), distance, 1e-3);
+    }
+}
+
+TEST(Curves, MotionAovIsTheDisplacementOnScreen) {
     TestHost host;
-    const double distance = 10.0;
+    const double distance = 10.0, travel = 0.3;
     addViewer(host, distance);
-    const float width = 1.0f;
-    addStraightCurve(host, "/Ribbon", width, true);
-    ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}, {"depth", "/Buffers/depth"}}), OBSCURA_OK)
+    host.set("/Camera", "shutter:open", HostValue::doubleValue(-0.5));
+    host.set("/Camera", "shutter:close", HostValue::doubleValue(0.5));
+    setNumber(host, "timeCodesPerSecond", 1.0);
+    host.addRenderBuffer("/Buffers/motion", "float32Vec3", kSize, kSize);
+    addStraightCurve(host, "/Ribbon", 1.0f, true);
+    host.set("/Ribbon", "velocities", HostValue::points({{0, float(travel), 0}, {0, float(travel), 0}}));
+    ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}, {"motion", "/Buffers/motion"}}), OBSCURA_OK)
         << host.lastError();
-    auto ids = host.readInts("/Buffers/id");
-    EXPECT_NEAR(columnPixels(ids, kSize / 2 + 10, primIdOf(host, "/Ribbon")), width / distance * kPixelsPerUnitAtUnitDistance,
-                1.0);
-    const float depth = host.readFloats("/Buffers/depth")[size_t(kSize / 2 * kSize + kSize / 2)];
-    EXPECT_NEAR(viewDistance(depth), distance, 1e-3);
+    auto motion = host.readFloats("/Buffers/motion");
+    const size_t centre = size_t(kSize / 2 * kSize + kSize / 2) * 3;
+    // Up the image is -y in the motion AOV (y down).
+    EXPECT_NEAR(motion[centre], 0.0, 0.05);
+    EXPECT_NEAR(motion[centre + 1], -travel / distance * kPixelsPerUnitAtUnitDistance, 0.05);
 }
 
 TEST(Points, SphereSilhouetteAndDepthAtItsCentre) {
