@@ -315,11 +315,6 @@ size_t samplesPerCurve(const CurvesInput& c, int segments, int steps) {
     return size_t(segments) * size_t(steps) + (c.wrap == CurveWrap::Periodic ? 0 : 1);
 }
 
-double pointRadius(const PointsInput& p, size_t i) {
-    if (!p.widths) return 0.5 * kDefaultWidth;
-    return 0.5 * p.widths->values[p.widths->values.size() == 1 ? 0 : i];
-}
-
 }  // namespace
 
 int curveSegmentCount(CurveBasis basis, CurveWrap wrap, int n) {
@@ -477,6 +472,11 @@ std::string pointsProblem(const PointsInput& p) {
     if (!p.widths) return {};
     const size_t count = p.points.size() / 3;
     return widthsProblem(*p.widths, p.widths->interpolation == OBSCURA_INTERPOLATION_CONSTANT ? 1 : count);
+}
+
+double pointRadius(const PointsInput& p, size_t i) {
+    if (!p.widths) return 0.5 * kDefaultWidth;
+    return 0.5 * p.widths->values[p.widths->values.size() == 1 ? 0 : i];
 }
 
 double pointsMaxRadius(const PointsInput& p) {

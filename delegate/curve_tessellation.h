@@ -82,6 +82,8 @@ struct PointsInput {
     std::optional<MeshPrimvar> displayColor;
 };
 std::string pointsProblem(const PointsInput& points);
+// Half the width of point `index` of validated points.
+double pointRadius(const PointsInput& points, size_t index);
 double pointsMaxRadius(const PointsInput& points);
 // A sphere of `segments` around its pole axis and segments / 2 bands from pole to pole makes
 // segments (segments - 2) triangles.

@@ -93,7 +93,8 @@ void Curves::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         if (!s.getFloatArray("widths")) input_.widths = pullWidths(s);
     }
     if (std::string problem = curvesProblem(input_); !problem.empty()) throw PrimDataError(s.path() + ": " + problem);
-    if (sidesLevel_ < 0) return;  // tessellated once the view is known (chooseViewDependentDetail)
+    if (input_.points.empty()) return reset();  // nothing to draw, nothing kept from before
+    if (sidesLevel_ < 0) return;                 // tessellated once the view is known (chooseViewDependentDetail)
     // The cap coarsens sides and steps together, one level at a time.
     const int finest = std::max(sidesLevel_, stepsLevel_);
     auto detailAt = [&](int level) {
@@ -110,9 +111,7 @@ void Curves::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
 }
 
 std::vector<DetailSphere> Points::detailSpheres() const {
-    return spheresAt(input_.points, [&](size_t i) {
-        return 0.5 * (input_.widths ? input_.widths->values[input_.widths->values.size() == 1 ? 0 : i] : 1.0);
-    });
+    return spheresAt(input_.points, [&](size_t i) { return pointRadius(input_, i); });
 }
 
 bool Points::chooseDetail(double pixelsPerUnit) {
@@ -134,7 +133,8 @@ void Points::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         shutterPoints_ = pullShutterPoints(s, input_.points, ctx);
     }
     if (std::string problem = pointsProblem(input_); !problem.empty()) throw PrimDataError(s.path() + ": " + problem);
-    if (level_ < 0 || input_.points.empty()) return;  // tessellated once the view is known
+    if (input_.points.empty()) return reset();  // nothing to draw, nothing kept from before
+    if (level_ < 0) return;                      // tessellated once the view is known
     CappedLevel capped = capTessellation(
         level_, kImplicitMinLevel, [&](int level) { return pointTriangleCount(input_, implicitSegments(level)); }, s.path());
     const int segments = implicitSegments(capped.level);

@@ -1,9 +1,8 @@
 // The implicit gprims (UsdGeomCube, Sphere, Cylinder, Cylinder_1, Cone, Capsule, Capsule_1,
 // Plane): meshes whose polygons the delegate tessellates from the shape's parameters
-// (implicit_tessellation.h), at a level chosen from their size on screen
-// (view_dependent_mesh.h). Everything else — the
-// transform over the shutter, instancing through PointInstancer prototypes, materials,
-// displayColor — is the mesh's.
+// (implicit_tessellation.h), at a level chosen from their size on screen (view_dependent_mesh.h).
+// Everything else — the transform over the shutter, instancing through PointInstancer prototypes,
+// materials, displayColor — is the mesh's.
 #pragma once
 
 #include "delegate/implicit_tessellation.h"

@@ -180,6 +180,36 @@ TEST(Points, MotionAovIsTheDisplacementOnScreen) {
     EXPECT_NEAR(motion[centre + 1], 0.0, 0.05);
 }
 
+TEST(CurvesAndPoints, EditsRetessellateAndEmptiedPrimsDrawNothing) {
+    TestHost host;
+    addViewer(host, 10.0);
+    host.addPrim("points", "/Dots", {{"points", HostValue::points({{0, 0, 0}})}, {"widths", floats({1.0f})}});
+    host.setInterpolation("/Dots", "widths", OBSCURA_INTERPOLATION_CONSTANT);
+    addStraightCurve(host, "/Wire", 0.5f, false);
+    ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}}), OBSCURA_OK) << host.lastError();
+    const int32_t dots = primIdOf(host, "/Dots"), wire = primIdOf(host, "/Wire");
+    const int before = pixelsOf(host.readInts("/Buffers/id"), dots);
+    EXPECT_GT(before, 0);
+    EXPECT_GT(pixelsOf(host.readInts("/Buffers/id"), wire), 0);
+    // Twice the width: the disc's radius f tan(asin(r / d)) (nearly) doubles, its pixels (nearly) fourfold;
+    // the tolerance is the pixels along the two rims (pixel centres sample them).
+    host.set("/Dots", "widths", floats({2.0f}));
+    host.api().markDirty(host.delegate(), "/Dots", OBSCURA_DIRTY_PARAMS);
+    ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}}), OBSCURA_OK) << host.lastError();
+    const double ratio = std::tan(std::asin(1.0 / 10.0)) / std::tan(std::asin(0.5 / 10.0));
+    const double rims = 2 * kPi * (1.0 + 2.0) * std::tan(std::asin(0.5 / 10.0)) * kPixelsPerUnitAtUnitDistance;
+    EXPECT_NEAR(pixelsOf(host.readInts("/Buffers/id"), dots), before * ratio * ratio, rims);
+    host.set("/Dots", "points", HostValue::points({}));
+    host.set("/Wire", "points", HostValue::points({}));
+    host.set("/Wire", "curveVertexCounts", HostValue::intArray({}));
+    host.api().markDirty(host.delegate(), "/Dots", OBSCURA_DIRTY_POINTS);
+    host.api().markDirty(host.delegate(), "/Wire", OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_TOPOLOGY);
+    ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}}), OBSCURA_OK) << host.lastError();
+    EXPECT_EQ(pixelsOf(host.readInts("/Buffers/id"), dots), 0);
+    EXPECT_EQ(pixelsOf(host.readInts("/Buffers/id"), wire), 0);
+    EXPECT_TRUE(host.loggedErrors().empty()) << host.loggedErrors().front();
+}
+
 TEST(CurvesAndPoints, InstancedThroughAPointInstancer) {
     TestHost host;
     addViewer(host, 12.0);
