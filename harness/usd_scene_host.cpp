@@ -231,10 +231,12 @@ std::string UsdSceneHost::defaultCamera() const {
 }
 
 std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDelegate delegate, double time) {
-    // XXX: only meshes' points are framed; implicit gprims (Cube, Sphere...) are left out of the bounds.
+    // XXX: only point-based prims (Mesh, BasisCurves, Points) are framed, by their points; implicit
+    // gprims (Cube, Sphere...) are left out of the bounds.
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (const usda::Prim* prim : stage_.prims()) {
-        if (prim->typeName != "Mesh" || prototypeSpace(*prim)) continue;
+        const bool pointBased = prim->typeName == "Mesh" || prim->typeName == "BasisCurves" || prim->typeName == "Points";
+        if (!pointBased || prototypeSpace(*prim)) continue;
         const usda::Attribute* points = prim->attribute("points");
         auto value = points ? points->evaluate(time) : std::nullopt;
         if (!value || value->tupleSize != 3) continue;
