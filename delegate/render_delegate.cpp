@@ -167,6 +167,8 @@ void RenderDelegate::insertPrim(const std::string& type, const std::string& path
     std::unique_ptr<Prim> prim;
     if (type == "mesh") prim = std::make_unique<Mesh>(path, *schema, nextPrimId_++);
     else if (auto kind = ImplicitSurface::kindOf(type)) prim = std::make_unique<ImplicitSurface>(path, *schema, nextPrimId_++, *kind);
+    else if (type == "basisCurves") prim = std::make_unique<Curves>(path, *schema, nextPrimId_++);
+    else if (type == "points") prim = std::make_unique<Points>(path, *schema, nextPrimId_++);
     else if (type == "camera") prim = std::make_unique<Camera>(path, *schema);
     else if (type == "distantLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Distant);
     else if (type == "sphereLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Sphere);
@@ -293,8 +295,8 @@ void RenderDelegate::sync(double time, const Camera* camera, const ObscuraRender
             log(OBSCURA_LOG_WARNING, cam->path() + ": " + cam->warning());
     };
     for (; next < dirty.size(); ++next) syncPrim(dirty[next]);
-    // Implicit surfaces refine with their size on screen: those whose level changed are
-    // tessellated again, with the transforms and instance placements just synced.
+    // Implicit surfaces, curves and points refine with their size on screen: those whose level
+    // changed are tessellated again, with the transforms and instance placements just synced.
     // The viewport's size, else the first bound render buffer's (checked when they are bound).
     uint32_t width = desc.viewport[2] > 0 ? uint32_t(desc.viewport[2]) : 0;
     uint32_t height = desc.viewport[3] > 0 ? uint32_t(desc.viewport[3]) : 0;
@@ -303,7 +305,7 @@ void RenderDelegate::sync(double time, const Camera* camera, const ObscuraRender
                                     : nullptr;
     if (width == 0 && first) width = first->width(), height = first->height();
     if (camera && !camera->skipped())
-        for (ImplicitSurface* surface : chooseImplicitLevels(prims_, *camera, width, height)) syncPrim(surface);
+        for (ViewDependentMesh* mesh : chooseViewDependentDetail(prims_, *camera, width, height)) syncPrim(mesh);
     // All uploads of this sync go to the GPU in one submission.
     device_->flushUploads();
 }

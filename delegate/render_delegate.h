@@ -7,6 +7,7 @@
 #include "delegate/geometry_cache.h"
 #include "delegate/grading_chart.h"
 #include "delegate/prims/camera.h"
+#include "delegate/prims/curves.h"
 #include "delegate/prims/implicit_surface.h"
 #include "delegate/prims/instancer.h"
 #include "delegate/prims/light.h"

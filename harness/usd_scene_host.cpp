@@ -30,6 +30,8 @@ const std::map<std::string, std::string> kPrimTypes = {
     {"Capsule", "capsule"},
     {"Capsule_1", "capsule1"},
     {"Plane", "plane"},
+    {"BasisCurves", "basisCurves"},
+    {"Points", "points"},
 };
 
 // Types that organise a scene and are not drawn themselves.
@@ -43,7 +45,8 @@ ObscuraDirtyBits dirtyBitFor(const std::string& attribute) {
     if (attribute == "invisibleIds") return OBSCURA_DIRTY_VISIBILITY;
     if (attribute == "normals") return OBSCURA_DIRTY_NORMALS;
     if (attribute.rfind("primvars:", 0) == 0) return OBSCURA_DIRTY_PRIMVAR;
-    if (attribute == "faceVertexCounts" || attribute == "faceVertexIndices") return OBSCURA_DIRTY_TOPOLOGY;
+    if (attribute == "faceVertexCounts" || attribute == "faceVertexIndices" || attribute == "curveVertexCounts")
+        return OBSCURA_DIRTY_TOPOLOGY;
     if (attribute == "visibility") return OBSCURA_DIRTY_VISIBILITY;
     if (attribute.rfind("xformOp", 0) == 0) return OBSCURA_DIRTY_TRANSFORM;
     return OBSCURA_DIRTY_PARAMS;
@@ -228,10 +231,12 @@ std::string UsdSceneHost::defaultCamera() const {
 }
 
 std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDelegate delegate, double time) {
-    // XXX: only meshes' points are framed; implicit gprims (Cube, Sphere...) are left out of the bounds.
+    // XXX: only point-based prims (Mesh, BasisCurves, Points) are framed, by their points; implicit
+    // gprims (Cube, Sphere...) are left out of the bounds.
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (const usda::Prim* prim : stage_.prims()) {
-        if (prim->typeName != "Mesh" || prototypeSpace(*prim)) continue;
+        const bool pointBased = prim->typeName == "Mesh" || prim->typeName == "BasisCurves" || prim->typeName == "Points";
+        if (!pointBased || prototypeSpace(*prim)) continue;
         const usda::Attribute* points = prim->attribute("points");
         auto value = points ? points->evaluate(time) : std::nullopt;
         if (!value || value->tupleSize != 3) continue;

@@ -34,30 +34,45 @@ void Mesh::setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std
     indices_ = std::move(shared.indices);
 }
 
+std::optional<std::array<std::vector<float>, 2>> Mesh::pullShutterPoints(SceneAccess& s, const std::vector<float>& points,
+                                                                         const SyncContext& ctx) {
+    if (!(ctx.shutterClose > ctx.shutterOpen)) return std::nullopt;
+    auto motion = pointMotion(s.getFloatArray("velocities"), s.getFloatArray("accelerations"), points.size() / 3);
+    std::array<std::vector<float>, 2> ends;
+    for (int end = 0; end < 2; ++end) {
+        double time = end == 0 ? ctx.shutterOpen : ctx.shutterClose;
+        ends[size_t(end)] = motion ? movePoints(points, *motion, secondsBetween(s.time(), time, ctx.timeCodesPerSecond))
+                                   : sampledOrFrame(s.getFloatArrayAt("points", time), points);
+    }
+    if (ends[0] == points && ends[1] == points) return std::nullopt;
+    return ends;
+}
+
+void Mesh::setShutterPositions(const std::optional<std::array<std::vector<float>, 2>>& ends, size_t vertexCount,
+                               SyncContext& ctx, const std::string& path) {
+    shutterPositions_.reset();
+    if (!ends) return;
+    if ((*ends)[0].size() != vertexCount * 3 || (*ends)[1].size() != (*ends)[0].size())
+        throw PrimDataError(path + ": points at the shutter's ends do not match the prim's topology");
+    std::vector<passes::ShutterPositions> positions(vertexCount);
+    for (size_t v = 0; v < positions.size(); ++v)
+        for (int k = 0; k < 3; ++k) {
+            positions[v].open[k] = (*ends)[0][v * 3 + k];
+            positions[v].close[k] = (*ends)[1][v * 3 + k];
+        }
+    shutterPositions_ = ctx.device.createBufferWithData(positions.data(), positions.size() * sizeof(positions[0]),
+                                                        VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, path.c_str());
+}
+
 void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     pullGprim(s, bits, ctx);
 
     constexpr ObscuraDirtyBits kGeometry =
         OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_TOPOLOGY | OBSCURA_DIRTY_NORMALS | OBSCURA_DIRTY_PRIMVAR;
     if (!(bits & kGeometry)) return;
-    // Points at the shutter's ends, when they differ from the frame's: the mesh deforms within
-    // the shutter (motion blur's velocities). Moved by their velocities where those are authored,
-    // else the host's samples (point_motion.h).
     if (bits & OBSCURA_DIRTY_POINTS) {
         input_.points = s.getFloatArray("points").value_or(std::vector<float>{});
-        shutterPoints_.reset();
-        if (ctx.shutterClose > ctx.shutterOpen) {
-            auto motion = pointMotion(s.getFloatArray("velocities"), s.getFloatArray("accelerations"),
-                                      input_.points.size() / 3);
-            std::array<std::vector<float>, 2> ends;
-            for (int end = 0; end < 2; ++end) {
-                double time = end == 0 ? ctx.shutterOpen : ctx.shutterClose;
-                ends[size_t(end)] = motion ? movePoints(input_.points, *motion,
-                                                        secondsBetween(s.time(), time, ctx.timeCodesPerSecond))
-                                           : sampledOrFrame(s.getFloatArrayAt("points", time), input_.points);
-            }
-            if (ends[0] != input_.points || ends[1] != input_.points) shutterPoints_ = std::move(ends);
-        }
+        shutterPoints_ = pullShutterPoints(s, input_.points, ctx);
     }
     if (bits & OBSCURA_DIRTY_TOPOLOGY) {
         input_.faceVertexCounts = s.getIntArray("faceVertexCounts").value_or(std::vector<int32_t>{});
@@ -96,21 +111,10 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     if (auto* problem = std::get_if<std::string>(&built)) throw PrimDataError(s.path() + ": " + *problem);
     auto& geometry = std::get<MeshGeometry>(built);
     setGeometry(geometry, ctx, s.path());
-    shutterPositions_.reset();
-    if (shutterPoints_) {
-        std::array<std::vector<float>, 2> ends{drawnPositions((*shutterPoints_)[0], level, s.path()),
-                                               drawnPositions((*shutterPoints_)[1], level, s.path())};
-        if (ends[0].size() != geometry.vertices.size() * 3 || ends[1].size() != ends[0].size())
-            throw PrimDataError(s.path() + ": points at the shutter's ends do not match the mesh's topology");
-        std::vector<passes::ShutterPositions> positions(geometry.vertices.size());
-        for (size_t v = 0; v < positions.size(); ++v)
-            for (int k = 0; k < 3; ++k) {
-                positions[v].open[k] = ends[0][v * 3 + k];
-                positions[v].close[k] = ends[1][v * 3 + k];
-            }
-        shutterPositions_ = ctx.device.createBufferWithData(positions.data(), positions.size() * sizeof(positions[0]),
-                                                            VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, s.path().c_str());
-    }
+    std::optional<std::array<std::vector<float>, 2>> ends;
+    if (shutterPoints_)
+        ends = {drawnPositions((*shutterPoints_)[0], level, s.path()), drawnPositions((*shutterPoints_)[1], level, s.path())};
+    setShutterPositions(ends, geometry.vertices.size(), ctx, s.path());
 }
 
 std::vector<float> Mesh::drawnPositions(const std::vector<float>& points, int level, const std::string& path) {

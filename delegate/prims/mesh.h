@@ -44,6 +44,16 @@ protected:
     void pullGprim(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx);
     // Uploads the drawn polygons (shared through the geometry cache) and keeps their bounds and warnings.
     void setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std::string& path);
+    // `points` at the shutter's open and close when they differ from the frame's (the prim
+    // deforms within the shutter: motion blur's velocities), moved by their velocities where those
+    // are authored, else the host's samples (point_motion.h); nullopt when they do not move.
+    static std::optional<std::array<std::vector<float>, 2>> pullShutterPoints(SceneAccess& scene,
+                                                                              const std::vector<float>& points,
+                                                                              const SyncContext& ctx);
+    // The drawn vertices' positions (xyz each) at the shutter's ends, or nullopt for a prim that
+    // does not deform; `vertexCount` is the drawn geometry's.
+    void setShutterPositions(const std::optional<std::array<std::vector<float>, 2>>& ends, size_t vertexCount,
+                             SyncContext& ctx, const std::string& path);
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;

@@ -85,7 +85,7 @@ check "malformed scene names file:line:column" 3 $? "$tmp/out" 'malformed\.usda:
 "$obscura" render "$src/tests/harness/data/bad_prims.usda" -o "$tmp/bad.png" --width 64 --height 64 >"$tmp/out" 2>&1
 check "bad prims exit 3" 3 $? "$tmp/out" 'NaNPoints.*NaN'
 grep -q 'IndexOutOfRange' "$tmp/out"; check "every bad prim is reported" 0 $?
-grep -q "prim type 'BasisCurves' is not supported" "$tmp/out"; check "unsupported prim types warned once" 0 $?
+grep -q "prim type 'NurbsPatch' is not supported" "$tmp/out"; check "unsupported prim types warned once" 0 $?
 grep -q 'NegativeRadius: radius is -1' "$tmp/out"; check "a sphere of negative radius is reported" 0 $?
 [ -s "$tmp/bad.png" ]; check "the rest still renders" 0 $?
 # Bad data the delegate finds is located in the file as a compiler would: file:line:column of the
@@ -105,6 +105,9 @@ located "primvar index out of range" '65:15: error: /World/PrimvarIndexOutOfRang
 located "faceVarying count mismatch" '73:19: warning: /World/FaceVaryingCount: primvars:displayColor has 2 values but faceVarying'
 located "instancer protoIndices out of range" '81:15: error: skipped prim /World/ProtoIndexOutOfRange: protoIndices\[1\] = 1'
 located "instancer positions mismatch" '95:19: error: skipped prim /World/PositionsMismatch: positions has 1 entries for 2'
+located "curve widths count" '109:17: error: skipped prim /World/WidthsCount: widths has 2 elements but its interpolation needs 3'
+located "curve vertex counts that do not sum" '117:15: error: skipped prim /World/CurveCountsDoNotSum: curveVertexCounts sum to 4 but there are 3 points'
+located "negative point width" '124:17: error: skipped prim /World/NegativeWidth: widths\[1\] is -0\.2'
 [ -s "$tmp/bad_data.png" ]; check "the good prims of bad_data.usda still render" 0 $?
 printf '#usda 1.0\ndef Xform "Caf\xc3\xa9"\n{\n}\ndef Xform "Bad\xffName"\n{\n}\n' >"$tmp/utf8.usda"
 "$obscura" render "$tmp/utf8.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1

@@ -39,7 +39,8 @@ TEST(SchemaTables, EveryPrimTypeIsFound) {
         {"instancer", "rprim"},   {"domeLight", "sprim"},  {"rectLight", "sprim"},
         {"diskLight", "sprim"},   {"cube", "rprim"},       {"sphere", "rprim"},
         {"cylinder", "rprim"},    {"cylinder1", "rprim"},  {"cone", "rprim"},
-        {"capsule", "rprim"},     {"capsule1", "rprim"},   {"plane", "rprim"}};
+        {"capsule", "rprim"},     {"capsule1", "rprim"},   {"plane", "rprim"},
+        {"basisCurves", "rprim"}, {"points", "rprim"}};
     EXPECT_EQ(primSchemas().size(), std::size(expected));
     for (const auto& [name, category] : expected) {
         const PrimSchema* prim = findPrimSchema(name);

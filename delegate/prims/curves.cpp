@@ -1,0 +1,148 @@
+#include "delegate/prims/curves.h"
+
+#include "delegate/implicit_tessellation.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace obscura::delegate {
+namespace {
+
+constexpr ObscuraDirtyBits kGeometryBits = OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_TOPOLOGY | OBSCURA_DIRTY_NORMALS |
+                                           OBSCURA_DIRTY_PRIMVAR | OBSCURA_DIRTY_PARAMS;
+
+std::optional<MeshPrimvar> pullPrimvar(SceneAccess& s, const char* name, size_t components) {
+    auto values = s.getFloatArray(name);
+    if (!values) return std::nullopt;
+    return MeshPrimvar{std::move(*values), s.interpolation(name), components};
+}
+
+// UsdGeomCurves / UsdGeomPoints: `widths`, else the primvar of the same name.
+std::optional<MeshPrimvar> pullWidths(SceneAccess& s) {
+    if (auto widths = pullPrimvar(s, "widths", 1)) return widths;
+    return pullPrimvar(s, "primvars:widths", 1);
+}
+
+CurveBasis basisOf(SceneAccess& s) {
+    if (s.getToken("type") == "linear") return CurveBasis::Linear;
+    const std::string basis = s.getToken("basis");
+    return basis == "bspline" ? CurveBasis::Bspline : basis == "catmullRom" ? CurveBasis::CatmullRom : CurveBasis::Bezier;
+}
+
+CurveWrap wrapOf(SceneAccess& s) {
+    const std::string wrap = s.getToken("wrap");
+    return wrap == "periodic" ? CurveWrap::Periodic : wrap == "pinned" ? CurveWrap::Pinned : CurveWrap::Nonperiodic;
+}
+
+// Every point as a sphere of `radius` (or its own).
+std::vector<DetailSphere> spheresAt(const std::vector<float>& points, const std::function<double(size_t)>& radius) {
+    std::vector<DetailSphere> spheres(points.size() / 3);
+    for (size_t i = 0; i < spheres.size(); ++i)
+        spheres[i] = {{points[3 * i], points[3 * i + 1], points[3 * i + 2]}, radius(i)};
+    return spheres;
+}
+
+// The drawn positions of the tessellation of `input` moved to the shutter's ends.
+template <typename Input, typename Tessellate>
+std::optional<std::array<std::vector<float>, 2>> shutterEnds(const std::optional<std::array<std::vector<float>, 2>>& points,
+                                                             Input input, const Tessellate& tessellate) {
+    if (!points) return std::nullopt;
+    std::array<std::vector<float>, 2> ends;
+    for (size_t end = 0; end < 2; ++end) {
+        input.points = (*points)[end];
+        ends[end] = positionsOf(tessellate(input));
+    }
+    return ends;
+}
+
+}  // namespace
+
+std::vector<DetailSphere> Curves::detailSpheres() const {
+    const double radius = curveMaxRadius(input_);
+    return spheresAt(input_.points, [&](size_t) { return radius; });
+}
+
+bool Curves::chooseDetail(double pixelsPerUnit) {
+    const int sides = chooseImplicitLevel(wantedImplicitLevel(curveMaxRadius(input_) * pixelsPerUnit, kMaxChordErrorPixels),
+                                          sidesLevel_);
+    // A segment cut into n steps stays within 6 M / (8 n^2) of its chords (curve_tessellation.h).
+    const double bendPixels = curveBendMagnitude(input_) * pixelsPerUnit;
+    const double wantedSteps = std::sqrt(0.75 * bendPixels / kMaxChordErrorPixels);
+    const int steps = chooseImplicitLevel(wantedSteps > 1.0 ? std::log2(wantedSteps) : 0.0, stepsLevel_);
+    if (sides == sidesLevel_ && steps == stepsLevel_) return false;
+    sidesLevel_ = sides;
+    stepsLevel_ = steps;
+    markDirty(OBSCURA_DIRTY_TOPOLOGY);
+    return true;
+}
+
+void Curves::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
+    pullGprim(s, bits, ctx);
+    if (!(bits & kGeometryBits)) return;
+    if (bits & (OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_TOPOLOGY | OBSCURA_DIRTY_PARAMS)) {
+        input_.points = s.getFloatArray("points").value_or(std::vector<float>{});
+        input_.curveVertexCounts = s.getIntArray("curveVertexCounts").value_or(std::vector<int32_t>{});
+        input_.basis = basisOf(s);
+        input_.wrap = wrapOf(s);
+        input_.widths = pullWidths(s);
+        shutterPoints_ = pullShutterPoints(s, input_.points, ctx);
+    }
+    if (bits & (OBSCURA_DIRTY_NORMALS | OBSCURA_DIRTY_TOPOLOGY)) input_.normals = pullPrimvar(s, "normals", 3);
+    if (bits & (OBSCURA_DIRTY_PRIMVAR | OBSCURA_DIRTY_TOPOLOGY)) {
+        input_.displayColor = pullPrimvar(s, "primvars:displayColor", 3);
+        if (!s.getFloatArray("widths")) input_.widths = pullWidths(s);
+    }
+    if (std::string problem = curvesProblem(input_); !problem.empty()) throw PrimDataError(s.path() + ": " + problem);
+    if (input_.points.empty()) return reset();  // nothing to draw, nothing kept from before
+    if (sidesLevel_ < 0) return;                 // tessellated once the view is known (chooseViewDependentDetail)
+    // The cap coarsens sides and steps together, one level at a time.
+    const int finest = std::max(sidesLevel_, stepsLevel_);
+    auto detailAt = [&](int level) {
+        return CurveDetail{implicitSegments(sidesLevel_ - (finest - level)), 1 << std::max(0, stepsLevel_ - (finest - level))};
+    };
+    CappedLevel capped = capTessellation(finest, 0, [&](int level) { return curveTriangleCount(input_, detailAt(level)); },
+                                         s.path());
+    detail_ = detailAt(capped.level);
+    MeshGeometry geometry = tessellateCurves(input_, detail_);
+    if (!capped.warning.empty()) geometry.warnings.push_back(capped.warning);
+    setGeometry(geometry, ctx, s.path());
+    setShutterPositions(shutterEnds(shutterPoints_, input_, [&](const CurvesInput& in) { return tessellateCurves(in, detail_); }),
+                        geometry.vertices.size(), ctx, s.path());
+}
+
+std::vector<DetailSphere> Points::detailSpheres() const {
+    return spheresAt(input_.points, [&](size_t i) { return pointRadius(input_, i); });
+}
+
+bool Points::chooseDetail(double pixelsPerUnit) {
+    const int level =
+        chooseImplicitLevel(wantedImplicitLevel(pointsMaxRadius(input_) * pixelsPerUnit, kMaxChordErrorPixels), level_);
+    if (level == level_) return false;
+    level_ = level;
+    markDirty(OBSCURA_DIRTY_TOPOLOGY);
+    return true;
+}
+
+void Points::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
+    pullGprim(s, bits, ctx);
+    if (!(bits & kGeometryBits)) return;
+    if (bits & (OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_TOPOLOGY | OBSCURA_DIRTY_PARAMS | OBSCURA_DIRTY_PRIMVAR)) {
+        input_.points = s.getFloatArray("points").value_or(std::vector<float>{});
+        input_.widths = pullWidths(s);
+        input_.displayColor = pullPrimvar(s, "primvars:displayColor", 3);
+        shutterPoints_ = pullShutterPoints(s, input_.points, ctx);
+    }
+    if (std::string problem = pointsProblem(input_); !problem.empty()) throw PrimDataError(s.path() + ": " + problem);
+    if (input_.points.empty()) return reset();  // nothing to draw, nothing kept from before
+    if (level_ < 0) return;                      // tessellated once the view is known
+    CappedLevel capped = capTessellation(
+        level_, kImplicitMinLevel, [&](int level) { return pointTriangleCount(input_, implicitSegments(level)); }, s.path());
+    const int segments = implicitSegments(capped.level);
+    MeshGeometry geometry = tessellatePoints(input_, segments);
+    if (!capped.warning.empty()) geometry.warnings.push_back(capped.warning);
+    setGeometry(geometry, ctx, s.path());
+    setShutterPositions(shutterEnds(shutterPoints_, input_, [&](const PointsInput& in) { return tessellatePoints(in, segments); }),
+                        geometry.vertices.size(), ctx, s.path());
+}
+
+}  // namespace obscura::delegate
