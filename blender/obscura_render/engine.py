@@ -1,0 +1,234 @@
+"""The render session behind the RenderEngine: the plugin, one delegate, the scene sync, and the
+final render and viewport paths (Cycles' add-on layout: __init__.py hands over to here)."""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+
+import numpy as np
+
+from . import convert, locate
+
+logger = logging.getLogger("obscura_render")
+
+# AOV -> (render buffer format, Blender pass, its channels and channel ids, pass type).
+# Blender's passes (RenderEngine.register_pass): Depth is the distance along the view axis,
+# Normal world-space, IndexOB the object's pass index, Vector the motion in pixels.
+PASSES = {
+    "depth": ("float32", "Depth", 1, "Z", "VALUE", "use_pass_z"),
+    "normal": ("float32Vec3", "Normal", 3, "XYZ", "VECTOR", "use_pass_normal"),
+    "primId": ("int32", "IndexOB", 1, "X", "VALUE", "use_pass_object_index"),
+    "motion": ("float32Vec3", "Vector", 4, "XYZW", "VECTOR", "use_pass_vector"),
+}
+
+
+@dataclasses.dataclass
+class PluginStatus:
+    library: str = ""
+    error: str = ""
+
+
+_renderer = None
+_status = PluginStatus()
+
+
+def plugin_status() -> PluginStatus:
+    return _status
+
+
+def renderer():
+    """The process's one obscura.Renderer (the plugin is loaded once); raises locate.PluginMissing,
+    and keeps the message for the panel."""
+    global _renderer
+    if _renderer is None:
+        try:
+            _renderer = locate.load_renderer()
+        except locate.PluginMissing as e:
+            _status.error = str(e)
+            logger.error("%s", e)
+            raise
+        _status.error, _status.library = "", str(_renderer.info.library)
+    return _renderer
+
+
+def requested_passes(view_layer) -> list[str]:
+    return [aov for aov, spec in PASSES.items() if getattr(view_layer, spec[5])]
+
+
+def register_passes(engine, scene, view_layer) -> None:
+    """RenderEngine.update_render_passes: the passes the view layer asks for."""
+    engine.register_pass(scene, view_layer, "Combined", 4, "RGBA", "COLOR")
+    for aov in requested_passes(view_layer):
+        _, name, channels, chan_id, kind, _ = PASSES[aov]
+        engine.register_pass(scene, view_layer, name, channels, chan_id, kind)
+
+
+class Session:
+    """One delegate and its scene."""
+
+    def __init__(self):
+        self.delegate = renderer().delegate(logger=logging.getLogger("obscura_render.plugin"))
+        from .sync import SceneSync  # imports the obscura package, which renderer() located
+
+        self.sync = SceneSync(self.delegate, logger)
+        self.size: tuple[int, int] | None = None
+        self.aovs: dict[str, str] = {}
+
+    def close(self) -> None:
+        self.delegate.close()
+
+    def set_buffers(self, width: int, height: int, aovs: list[str]) -> None:
+        if self.size == (width, height) and list(self.aovs) == aovs:
+            return
+        for path in self.aovs.values():
+            self.delegate.remove_prim(path)
+        self.aovs = {}
+        for aov in aovs:
+            fmt = "float32Vec4" if aov == "color" else PASSES[aov][0]
+            path = f"/Buffers/{aov}"
+            self.delegate.insert_prim("renderBuffer", path, dimensions=(width, height), format=fmt)
+            self.aovs[aov] = path
+        self.size = (width, height)
+
+    def apply_settings(self, scene) -> None:
+        self.delegate.set_render_settings(scene.obscura.values())
+
+    def render(self, time: float) -> None:
+        """One render; prims with bad data are skipped by the plugin, which logs why."""
+        self.delegate.render(convert.CAMERA_PATH, self.aovs, time=time, check=False)
+
+    def read(self, aov: str) -> np.ndarray:
+        """The AOV with Blender's row order (bottom row first)."""
+        return np.ascontiguousarray(self.delegate.read(self.aovs[aov])[::-1])
+
+    def report_warnings(self, engine) -> None:
+        for message in self.sync.warnings:
+            engine.report({"WARNING"}, message)
+        self.sync.warnings.clear()
+
+
+def render_size(scene) -> tuple[int, int]:
+    scale = scene.render.resolution_percentage / 100.0
+    return max(int(scene.render.resolution_x * scale), 1), max(int(scene.render.resolution_y * scale), 1)
+
+
+def final_render(engine, depsgraph) -> None:
+    """RenderEngine.render: every requested pass of the view layer into the Render Result."""
+    try:
+        session = Session()
+    except locate.PluginMissing as e:
+        engine.report({"ERROR"}, str(e))
+        return
+    try:
+        _final_render(engine, depsgraph, session)
+    finally:
+        session.close()
+
+
+def _final_render(engine, depsgraph, session: Session) -> None:
+    scene, view_layer = depsgraph.scene, depsgraph.view_layer
+    width, height = render_size(scene)
+    session.apply_settings(scene)
+    engine.update_stats("Obscura", "Syncing the scene")
+    session.sync.sync(depsgraph, width, height)
+    session.report_warnings(engine)
+    if scene.camera is None:
+        engine.report({"ERROR"}, "the scene has no camera")
+        return
+    aovs = ["color"] + requested_passes(view_layer)
+    session.set_buffers(width, height, aovs)
+    frames = scene.obscura.taa_frames if scene.obscura.taa else 1
+    for i in range(frames + 1):  # taa:frames accumulated, then the final (converged) render
+        if engine.test_break():
+            return
+        session.render(float(scene.frame_current))
+        engine.update_progress(min((i + 1) / (frames + 1), 1.0))
+        engine.update_stats("Obscura", f"Frame {i + 1} of {frames + 1}")
+        if session.delegate.converged:
+            break
+    for message in session.delegate.logged_errors:
+        engine.report({"ERROR"}, message)
+    result = engine.begin_result(0, 0, width, height)
+    layer = result.layers[0]
+    layer.passes["Combined"].rect = session.read("color").reshape(-1, 4)
+    camera = session.sync.camera_values(depsgraph, width, height)[0]
+    for aov in aovs[1:]:
+        layer.passes[PASSES[aov][1]].rect = blender_pass(session, aov, camera).reshape(width * height, -1)
+    engine.end_result(result)
+
+
+def blender_pass(session: Session, aov: str, camera: dict) -> np.ndarray:
+    """An Obscura AOV as the Blender pass of the same meaning."""
+    data = session.read(aov)
+    if aov == "depth":
+        near, far = camera["clippingRange"]
+        return convert.linear_depth(data, near, far, camera["projection"] == "orthographic")
+    if aov == "normal":
+        # Eye space (Hydra's Neye) to world space: rows of the camera's GfMatrix4d are its axes.
+        camera_prim = session.delegate.scene.prims[convert.CAMERA_PATH]
+        rotation = np.asarray(camera_prim.transform, np.float64).reshape(4, 4)[:3, :3]
+        return (data.reshape(-1, 3) @ rotation).astype(np.float32)
+    if aov == "primId":
+        ids = {session.delegate.prim_id(p): i for p, i in session.sync.pass_index.items()}
+        table = np.zeros(max(ids, default=0) + 2, np.float32)  # index 0 holds -1: nothing drawn
+        for prim_id, index in ids.items():
+            table[prim_id + 1] = index
+        return table[np.clip(data.astype(np.int64) + 1, 0, len(table) - 1)]
+    # motion: pixels x right, y down over the shutter; Blender's Vector holds the motion towards
+    # the previous frame (XY) and the next (ZW), y up.
+    x, y = data[..., 0], -data[..., 1]
+    return np.stack([-x / 2, -y / 2, x / 2, y / 2], axis=-1).astype(np.float32)
+
+
+# --- viewport ---------------------------------------------------------------------------------
+
+class Viewport:
+    """A viewport's session: synced once, then updated from depsgraph updates; drawn progressively."""
+
+    def __init__(self):
+        self.session = Session()
+        self.synced = False
+        self.last_camera = None
+
+    def update(self, engine, depsgraph, width: int, height: int) -> int:
+        """RenderEngine.view_update: the whole scene the first time, then only what changed."""
+        session = self.session
+        if not self.synced:
+            session.apply_settings(depsgraph.scene)
+            session.sync.sync(depsgraph, width, height)
+            self.synced = True
+            dirtied = len(session.delegate.scene.prims)
+        else:
+            session.apply_settings(depsgraph.scene)
+            dirtied = session.sync.update(depsgraph)
+        session.report_warnings(engine)
+        return dirtied
+
+    def draw(self, engine, context, depsgraph) -> None:
+        """RenderEngine.view_draw: follow the viewport's camera, render once, draw the colour AOV."""
+        import gpu
+        from gpu_extras.presets import draw_texture_2d
+
+        region, view = context.region, context.region_data
+        width, height = region.width, region.height
+        session = self.session
+        session.set_buffers(width, height, ["color"])
+        mpu = session.sync.meters_per_unit(depsgraph.scene)
+        camera = convert.camera_from_projection(view.window_matrix, mpu)
+        transform = convert.usd_matrix(view.view_matrix.inverted())
+        key = (tuple(sorted(camera.items())), tuple(transform))
+        if key != self.last_camera:  # the camera moved: a changed camera restarts accumulation
+            session.sync.put("camera", convert.CAMERA_PATH, camera, transform)
+            self.last_camera = key
+        session.render(float(depsgraph.scene.frame_current))
+        pixels = session.read("color")
+        buffer = gpu.types.Buffer("FLOAT", width * height * 4, pixels.ravel())
+        texture = gpu.types.GPUTexture((width, height), format="RGBA16F", data=buffer)
+        gpu.state.blend_set("ALPHA_PREMULT")
+        engine.bind_display_space_shader(depsgraph.scene)
+        draw_texture_2d(texture, (0, 0), width, height)
+        engine.unbind_display_space_shader()
+        gpu.state.blend_set("NONE")
+        if not session.delegate.converged:
+            engine.tag_redraw()  # temporal AA goes on accumulating while nothing changes
