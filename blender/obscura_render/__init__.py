@@ -31,7 +31,7 @@ class ObscuraRenderEngine(bpy.types.RenderEngine):
 
     def __del__(self):
         try:
-            viewport = self.viewport
+            viewport = getattr(self, "viewport", None)
         except ReferenceError:  # Blender freed the engine's RNA first; the delegate goes with Python's objects
             return
         if viewport is not None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import logging
+import math
 
 import numpy as np
 
@@ -68,9 +69,10 @@ class Session:
     """One delegate and its scene."""
 
     def __init__(self):
-        self.delegate = renderer().delegate(logger=logging.getLogger("obscura_render.plugin"))
-        from .sync import SceneSync  # imports the obscura package, which renderer() located
+        plugin = renderer()
+        from .sync import SceneSync, ShutterScene  # import the obscura package, which renderer() located
 
+        self.delegate = plugin.delegate(ShutterScene(), logger=logging.getLogger("obscura_render.plugin"))
         self.sync = SceneSync(self.delegate, logger)
         self.size: tuple[int, int] | None = None
         self.aovs: dict[str, str] = {}
@@ -136,6 +138,8 @@ def _final_render(engine, depsgraph, session: Session) -> None:
     if scene.camera is None:
         engine.report({"ERROR"}, "the scene has no camera")
         return
+    if scene.render.use_motion_blur and scene.render.motion_blur_shutter > 0.0:
+        sample_shutter(engine, depsgraph, session, scene.render.motion_blur_shutter)
     aovs = ["color"] + requested_passes(view_layer)
     session.set_buffers(width, height, aovs)
     frames = scene.obscura.taa_frames if scene.obscura.taa else 1
@@ -156,6 +160,24 @@ def _final_render(engine, depsgraph, session: Session) -> None:
     for aov in aovs[1:]:
         layer.passes[PASSES[aov][1]].rect = blender_pass(session, aov, camera).reshape(width * height, -1)
     engine.end_result(result)
+
+
+def sample_shutter(engine, depsgraph, session: Session, shutter: float) -> None:
+    """Motion blur over Blender's shutter (Render > Motion Blur > Shutter, in frames, centred on the
+    frame as Cycles' default position): every object's and the camera's transform at the shutter's
+    open, the frame and its close (RenderEngine.frame_set evaluates the depsgraph there), and the
+    camera's shutter:open/close. Instances and deforming meshes are sampled at the frame only."""
+    frame = depsgraph.scene.frame_current
+    samples: dict[str, list] = {}
+    for offset in (-shutter / 2.0, 0.0, shutter / 2.0):
+        whole = math.floor(frame + offset)
+        engine.frame_set(int(whole), frame + offset - whole)
+        for path, matrix in session.sync.world_matrices(depsgraph).items():
+            samples.setdefault(path, []).append((frame + offset, matrix))
+    engine.frame_set(frame, 0.0)
+    session.delegate.scene.samples = samples
+    session.delegate.set(convert.CAMERA_PATH, "shutter:open", -shutter / 2.0)
+    session.delegate.set(convert.CAMERA_PATH, "shutter:close", shutter / 2.0)
 
 
 def blender_pass(session: Session, aov: str, camera: dict) -> np.ndarray:

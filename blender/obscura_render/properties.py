@@ -5,8 +5,7 @@ lists it; its description and range are the plugin's. Defaults are the plugin's 
 (delegate/render_settings.cpp), so a scene that never touched them renders as ``obscura render``.
 """
 
-from __future__ import annotations
-
+# No `from __future__ import annotations`: Blender reads the property annotations as objects.
 import bpy
 
 # Property name -> Obscura render setting name.

@@ -80,6 +80,23 @@ def mesh_parts(obj) -> list[tuple[int, dict]]:
         obj.to_mesh_clear()
 
 
+class ShutterScene(obscura.Scene):
+    """The in-memory scene, with transforms sampled over the shutter where the add-on recorded
+    them (``samples``: path -> [(time code, GfMatrix4d numbers)], sorted by time)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.samples: dict[str, list] = {}
+
+    def sample_transform(self, path, time0, time1, max_samples):
+        # The recorded samples inside [time0, time1] (the delegate asks [t, t] for the frame's own).
+        eps = 1e-6
+        inside = [s for s in self.samples.get(path, []) if time0 - eps <= s[0] <= time1 + eps]
+        if not inside or len(inside) > max_samples:
+            return super().sample_transform(path, time0, time1, max_samples)
+        return inside
+
+
 class SceneSync:
     """Owns the prims of one Blender scene in ``delegate`` (whose scene is an ``obscura.Scene``)."""
 
@@ -264,6 +281,18 @@ class SceneSync:
             path = "/Lights/" + prim_name(name)
             self._light(obj, path, obj.matrix_world)
             self.object_prims[name] = [path]
+
+    def world_matrices(self, depsgraph) -> dict[str, list[float]]:
+        """The world transform of every prim of a non-instanced object and of the camera, now."""
+        matrices = {}
+        for instance in depsgraph.object_instances:
+            if not instance.is_instance:
+                matrix = convert.usd_matrix(instance.object.matrix_world)
+                for path in self.object_prims.get(instance.object.original.name, []):
+                    matrices[path] = matrix
+        if depsgraph.scene.camera is not None:
+            matrices[CAMERA] = convert.usd_matrix(depsgraph.scene.camera.evaluated_get(depsgraph).matrix_world)
+        return matrices
 
     def sync(self, depsgraph, width: int, height: int) -> None:
         """Translates the whole depsgraph: every visible object, instance, the camera and world."""

@@ -33,6 +33,9 @@ class OBSCURA_PT_render_settings(bpy.types.Panel):
         layout.use_property_split = True
         for prop in properties.SETTINGS:
             layout.prop(settings, prop)
+        # The shutter is Blender's own (Cycles reads the same properties).
+        layout.prop(context.scene.render, "use_motion_blur")
+        layout.prop(context.scene.render, "motion_blur_shutter")
 
 
 CLASSES = (OBSCURA_PT_render_settings,)
