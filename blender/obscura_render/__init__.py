@@ -25,6 +25,8 @@ class ObscuraRenderEngine(bpy.types.RenderEngine):
     bl_label = "Obscura"
     bl_use_preview = False
     bl_use_postprocess = True
+    bl_use_shading_nodes_custom = False  # Blender's own shader nodes (the Principled BSDF is translated)
+    bl_use_eevee_viewport = True  # Material Preview shading stays EEVEE's
 
     def __init__(self):
         self.viewport = None
@@ -38,22 +40,22 @@ class ObscuraRenderEngine(bpy.types.RenderEngine):
             viewport.session.close()
 
     def render(self, depsgraph):
-        engine.final_render(self, depsgraph)
+        with engine.reported(self):
+            engine.final_render(self, depsgraph)
 
     def update_render_passes(self, scene=None, renderlayer=None):
         engine.register_passes(self, scene, renderlayer)
 
     def view_update(self, context, depsgraph):
-        try:
+        with engine.reported(self):
             if self.viewport is None:
                 self.viewport = engine.Viewport()
             self.viewport.update(self, depsgraph, context.region.width, context.region.height)
-        except engine.locate.PluginMissing as e:
-            self.report({"ERROR"}, str(e))
 
     def view_draw(self, context, depsgraph):
         if self.viewport is not None:
-            self.viewport.draw(self, context, depsgraph)
+            with engine.reported(self):
+                self.viewport.draw(self, context, depsgraph)
 
 
 def register():

@@ -3,6 +3,7 @@ final render and viewport paths (Cycles' add-on layout: __init__.py hands over t
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import logging
 import math
@@ -51,6 +52,18 @@ def renderer():
             raise
         _status.error, _status.library = "", str(_renderer.info.library)
     return _renderer
+
+
+@contextlib.contextmanager
+def reported(engine):
+    """Nothing raises into Blender: a failure is reported (status bar, console) and logged."""
+    try:
+        yield
+    except locate.PluginMissing as e:
+        engine.report({"ERROR"}, str(e))
+    except Exception as e:  # the plugin's errors, bad scene data the translation did not expect
+        logger.exception("Obscura failed")
+        engine.report({"ERROR"}, f"Obscura: {type(e).__name__}: {e}")
 
 
 def requested_passes(view_layer) -> list[str]:
@@ -117,11 +130,7 @@ def render_size(scene) -> tuple[int, int]:
 
 def final_render(engine, depsgraph) -> None:
     """RenderEngine.render: every requested pass of the view layer into the Render Result."""
-    try:
-        session = Session()
-    except locate.PluginMissing as e:
-        engine.report({"ERROR"}, str(e))
-        return
+    session = Session()
     try:
         _final_render(engine, depsgraph, session)
     finally:
