@@ -234,6 +234,34 @@ def test_sun_on_a_lambert_plane_and_the_passes():
     expect_no_plugin_errors()
 
 
+def test_image_texture_on_base_color():
+    """An Image Texture node on Base Color: a uniform sRGB PNG of code 188 is the albedo the
+    untextured plane had, so the radiance is the same."""
+    from lit_plane import ALBEDO, radiance_tolerance
+
+    scene = empty_scene()
+    add_camera(scene)
+    generated = bpy.data.images.new("Uniform", 8, 8, alpha=False)
+    generated.pixels.foreach_set(np.tile([188 / 255, 188 / 255, 188 / 255, 1.0], 64).astype(np.float32))
+    path = str(Path(tempfile.mkdtemp(prefix="obscura-texture-")) / "uniform.png")
+    generated.filepath_raw, generated.file_format = path, "PNG"
+    generated.save()
+    material = principled("Textured", 0.0)  # black unless the texture is read
+    texture = material.node_tree.nodes.new("ShaderNodeTexImage")
+    texture.image = bpy.data.images.load(path)
+    material.node_tree.links.new(texture.outputs["Color"],
+                                 material.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
+    add_plane("Plane", 10.0, material)
+    strength = 4.0
+    add_light("SUN", strength, angle=0.0)
+    image = render_passes(scene)["Image"]
+    expected = ALBEDO / math.pi * strength / 4.0
+    for c in range(3):
+        value = image[SIZE // 2, SIZE // 2, c]
+        expect(abs(value - expected) <= radiance_tolerance(expected, c), f"channel {c}: {value} vs {expected}")
+    expect_no_plugin_errors()
+
+
 def test_point_light_at_a_known_distance():
     """A normalised sphere light of intensity P / pi (P the Blender power) gives E = P / (4 pi d^2)
     on a surface facing it at distance d: L = albedo / pi * E."""
@@ -474,6 +502,9 @@ def main() -> int:
     expect(os.environ.get("OBSCURA_VALIDATION") == "1", "OBSCURA_VALIDATION=1 keeps the validation layer on")
     bpy.ops.preferences.addon_install(filepath=ZIP, overwrite=True)
     bpy.ops.preferences.addon_enable(module="obscura_render")
+    from obscura_render import locate
+
+    locate.import_package()  # the add-on's way to the Python package, which lit_plane.py imports too
     failed = []
     tests = [(name, fn) for name, fn in globals().items() if name.startswith("test_")]
     for name, fn in tests:
