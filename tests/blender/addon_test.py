@@ -262,6 +262,28 @@ def test_image_texture_on_base_color():
     expect_no_plugin_errors()
 
 
+def test_world_colour_as_a_dome():
+    """A world of constant radiance Lw: the camera sees Lw where nothing is drawn, and a Lambert
+    plane under the open sky (irradiance pi Lw) reflects albedo x Lw."""
+    from lit_plane import ALBEDO, radiance_tolerance
+
+    scene = empty_scene()
+    scene.obscura.ssao = False  # ambient occlusion would darken the dome's light
+    scene.world = bpy.data.worlds.new("Sky")
+    scene.world.use_nodes = False
+    radiance = 0.5
+    scene.world.color = (radiance, radiance, radiance)
+    add_camera(scene)
+    add_plane("Plane", 1.0, principled("Grey", ALBEDO))
+    image = render_passes(scene)["Image"]
+    expected = ALBEDO * radiance
+    for c in range(3):
+        lit, sky = image[SIZE // 2, SIZE // 2, c], image[2, 2, c]
+        expect(abs(lit - expected) <= radiance_tolerance(expected, c), f"plane {c}: {lit} vs {expected}")
+        expect(abs(sky - radiance) <= radiance_tolerance(radiance, c), f"sky {c}: {sky} vs {radiance}")
+    expect_no_plugin_errors()
+
+
 def test_point_light_at_a_known_distance():
     """A normalised sphere light of intensity P / pi (P the Blender power) gives E = P / (4 pi d^2)
     on a surface facing it at distance d: L = albedo / pi * E."""
