@@ -471,6 +471,31 @@ def test_camera_lens_and_depth_of_field():
     expect(close(value(prim, "obscura:apertureRotation"), 15.0), "aperture rotation")
 
 
+def test_viewport_camera_from_the_projection_matches_the_camera():
+    """view_draw's camera comes from the viewport's projection matrix: for Blender's own projection
+    of the scene camera (Object.calc_matrix_camera) it is the camera's frustum (field of view, shift,
+    clip), perspective and orthographic."""
+    from obscura_render import convert, engine
+
+    scene = empty_scene()
+    scene.render.resolution_x = 2 * SIZE
+    camera = add_camera(scene, lens=35.0, shift_x=0.1)
+    camera.data.shift_y = -0.05
+    for kind in ("PERSP", "ORTHO"):
+        camera.data.type = kind
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        width, height = engine.render_size(scene)
+        projection = camera.evaluated_get(depsgraph).calc_matrix_camera(depsgraph, x=width, y=height)
+        ours = convert.camera_from_projection(projection, 1.0)
+        truth = synced_prims(scene)["/Camera"]
+        scale = 1.0 if kind == "ORTHO" else value(truth, "focalLength") / ours["focalLength"]
+        for name in ("horizontalAperture", "verticalAperture", "horizontalApertureOffset", "verticalApertureOffset"):
+            expect(abs(ours[name] * scale - value(truth, name)) <= 1e-4 * max(1.0, abs(value(truth, name))),
+                   f"{kind} {name}: {ours[name] * scale} vs {value(truth, name)}")
+        near, far = ours["clippingRange"]
+        expect(abs(near - 0.1) <= 1e-4 and abs(far - 100.0) <= 1e-2, f"{kind} clip {near}, {far}")
+
+
 def test_collection_instances_render_through_an_instancer():
     scene = empty_scene()
     add_camera(scene)
