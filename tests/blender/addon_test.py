@@ -369,7 +369,8 @@ def test_unsupported_nodes_fall_back_with_one_warning_naming_the_material():
 
 
 def test_an_edit_resyncs_only_that_prim():
-    """view_update's path: after a full sync, moving one object marks only its prim dirty."""
+    """view_update's path: after a full sync, moving an object, changing a light or a material
+    marks only that prim dirty, and the delegate syncs only it."""
     from obscura_render import engine
 
     scene = empty_scene()
@@ -377,7 +378,7 @@ def test_an_edit_resyncs_only_that_prim():
     grey = principled("Grey", 0.5)
     moved = add_plane("Moved", 0.5, grey)
     add_plane("Still", 0.5, grey).location.x = 1.5
-    add_light("SUN", 4.0)
+    sun = add_light("SUN", 4.0)
     session = engine.Session()
     try:
         depsgraph = bpy.context.evaluated_depsgraph_get()
@@ -388,15 +389,21 @@ def test_an_edit_resyncs_only_that_prim():
         dirtied = []
         handler = lambda _scene, graph: dirtied.append(session.sync.update(graph))  # noqa: E731
         bpy.app.handlers.depsgraph_update_post.append(handler)
+        roughness = grey.node_tree.nodes["Principled BSDF"].inputs["Roughness"]
+        edits = {"move an object": lambda: setattr(moved.location, "x", -1.0),
+                 "change the sun": lambda: setattr(sun.data, "energy", 2.0),
+                 "change the material": lambda: setattr(roughness, "default_value", 0.5)}
         try:
-            moved.location.x = -1.0
-            bpy.context.view_layer.update()
+            for what, edit in edits.items():
+                dirtied.clear()
+                edit()
+                bpy.context.view_layer.update()
+                session.render(0.0)
+                synced = session.delegate.stats.prims_synced
+                expect(dirtied == [1], f"{what}: prims marked dirty: {dirtied}")
+                expect(synced == 1 and total > 1, f"{what}: prims synced: {synced} after it, {total} at first")
         finally:
             bpy.app.handlers.depsgraph_update_post.remove(handler)
-        session.render(0.0)
-        synced = session.delegate.stats.prims_synced
-        expect(dirtied == [1], f"prims marked dirty: {dirtied}")
-        expect(synced == 1 and total > 1, f"prims synced: {synced} after the edit, {total} at first")
         expect(session.delegate.stats.validation_errors == 0, "validation errors")
     finally:
         session.close()
