@@ -22,7 +22,7 @@ class Unsupported(Exception):
     """The node tree uses something this mapping does not know: the reason, for the warning."""
 
 
-def _linked_node(socket):
+def linked_node(socket):
     if not socket.is_linked:
         return None
     link = socket.links[0]
@@ -31,7 +31,7 @@ def _linked_node(socket):
     return link.from_node
 
 
-def _image_file(node) -> str:
+def image_file(node) -> str:
     image = node.image
     if image is None:
         raise Unsupported(f"the Image Texture node {node.name!r} has no image")
@@ -46,7 +46,7 @@ def _texture(node, usd_input: str, channel: str) -> dict:
     raw = node.image is not None and node.image.colorspace_settings.is_data
     wrap = {"REPEAT": "repeat", "EXTEND": "clamp", "MIRROR": "mirror", "CLIP": "black"}.get(node.extension, "repeat")
     prefix = f"obscura:{usd_input}:"
-    return {prefix + "file": _image_file(node), prefix + "channel": channel, prefix + "wrapS": wrap,
+    return {prefix + "file": image_file(node), prefix + "channel": channel, prefix + "wrapS": wrap,
             prefix + "wrapT": wrap, prefix + "sourceColorSpace": "raw" if raw else "sRGB"}
 
 
@@ -55,7 +55,7 @@ def principled_values(bsdf) -> dict:
     inputs = bsdf.inputs
     values = {"inputs:useSpecularWorkflow": 0}
     for socket_name, (usd_input, channel) in _TEXTURED.items():
-        node = _linked_node(inputs[socket_name])
+        node = linked_node(inputs[socket_name])
         if node is not None:
             values.update(_texture(node, usd_input, channel))
     base = inputs["Base Color"].default_value
@@ -70,11 +70,11 @@ def principled_values(bsdf) -> dict:
     values["inputs:ior"] = float(inputs["IOR"].default_value)
     values["inputs:clearcoat"] = float(inputs["Clearcoat"].default_value)
     values["inputs:clearcoatRoughness"] = float(inputs["Clearcoat Roughness"].default_value)
-    normal = _linked_node(inputs["Normal"])
+    normal = linked_node(inputs["Normal"])
     if normal is not None:
         if normal.bl_idname != "ShaderNodeNormalMap" or normal.space != "TANGENT":
             raise Unsupported(f"a {normal.bl_label} node on Normal (only a tangent-space Normal Map node maps)")
-        image = _linked_node(normal.inputs["Color"])
+        image = linked_node(normal.inputs["Color"])
         if image is not None:
             values.update(_texture(image, "normal", "rgb"))
             # Tangent-space texels in [0, 1] to [-1, 1] (UsdPreviewSurface's normal input), the
@@ -90,7 +90,7 @@ def _surface_bsdf(material):
     output = material.node_tree.get_output_node("ALL") if material.node_tree else None
     if output is None:
         raise Unsupported("no Material Output node")
-    node = _linked_node(output.inputs["Surface"])
+    node = linked_node(output.inputs["Surface"])
     if node is None:
         raise Unsupported("nothing connected to the Material Output's Surface")
     if node.bl_idname != "ShaderNodeBsdfPrincipled":

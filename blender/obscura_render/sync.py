@@ -218,13 +218,13 @@ class SceneSync:
         color, strength, texture = tuple(world.color), 1.0, None
         if world.use_nodes and world.node_tree:
             output = world.node_tree.get_output_node("ALL")
-            background = materials._linked_node(output.inputs["Surface"]) if output else None
+            background = materials.linked_node(output.inputs["Surface"]) if output else None
             if background is not None and background.bl_idname == "ShaderNodeBackground":
                 color = tuple(background.inputs["Color"].default_value)[:3]
                 strength = float(background.inputs["Strength"].default_value)
-                env = materials._linked_node(background.inputs["Color"])
+                env = materials.linked_node(background.inputs["Color"])
                 if env is not None and env.bl_idname == "ShaderNodeTexEnvironment" and env.image is not None:
-                    texture = materials._image_file(env)
+                    texture = materials.image_file(env)
                 elif env is not None:
                     self._warn("world:" + world.name, f"world {world.name!r}: a {env.bl_label} node on the "
                                "Background colour; rendered with the Background node's colour")

@@ -298,6 +298,31 @@ def test_point_light_at_a_known_distance():
     expect_no_plugin_errors()
 
 
+def test_spot_light_cone_from_the_spot_size():
+    """A spot of Size 60 degrees (cone half-angle 30, Blend 0) straight above the plane at height h
+    lights the disc of radius h tan(30) like a point light of the same power, and nothing outside."""
+    from lit_plane import ALBEDO, radiance_tolerance
+
+    scene = empty_scene()
+    add_camera(scene)
+    add_plane("Plane", 10.0, principled("Grey", ALBEDO))
+    power, height = 100.0, 2.0
+    spot = add_light("SPOT", power, shadow_soft_size=0.05, spot_size=math.radians(60.0), spot_blend=0.0)
+    spot.location = (0.0, 0.0, height)
+    image = render_passes(scene)["Image"][..., 0]
+    metres_per_px = 2 * (SENSOR / 2 / LENS) * CAMERA_DISTANCE / SIZE
+    edge_px = height * math.tan(math.radians(30.0)) / metres_per_px  # the cone's edge, from the centre
+    centre = SIZE / 2
+    x = np.arange(SIZE) + 0.5 - centre
+    radius = np.hypot(x[None, :], x[:, None])
+    expected = ALBEDO / math.pi * power / (4 * math.pi * height * height)
+    inside, outside = image[radius < edge_px - 2], image[radius > edge_px + 2]
+    expect(abs(image[SIZE // 2, SIZE // 2] - expected) <= radiance_tolerance(expected, 0),
+           f"centre {image[SIZE // 2, SIZE // 2]} vs {expected}")
+    expect(inside.min() > 0.0 and outside.max() == 0.0, f"inside min {inside.min()}, outside max {outside.max()}")
+    expect_no_plugin_errors()
+
+
 def test_point_and_sun_against_cycles_direct_light():
     """The same scenes in Cycles, direct light only: a point light agrees (both E = P / (4 pi d^2));
     a sun is four times brighter in Cycles (E = Strength), the factor of Blender's USD exporter."""
