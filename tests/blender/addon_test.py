@@ -231,14 +231,9 @@ def test_image_texture_on_base_color():
 
     scene = empty_scene()
     add_camera(scene)
-    generated = bpy.data.images.new("Uniform", 8, 8, alpha=False)
-    generated.pixels.foreach_set(np.tile([188 / 255, 188 / 255, 188 / 255, 1.0], 64).astype(np.float32))
-    path = str(Path(tempfile.mkdtemp(prefix="obscura-texture-")) / "uniform.png")
-    generated.filepath_raw, generated.file_format = path, "PNG"
-    generated.save()
     material = principled("Textured", 0.0)  # black unless the texture is read
     texture = material.node_tree.nodes.new("ShaderNodeTexImage")
-    texture.image = bpy.data.images.load(path)
+    texture.image = bpy.data.images.load(uniform_png("uniform", (188, 188, 188)))
     material.node_tree.links.new(texture.outputs["Color"],
                                  material.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
     add_plane("Plane", 10.0, material)
@@ -271,6 +266,44 @@ def test_world_colour_as_a_dome():
         lit, sky = image[SIZE // 2, SIZE // 2, c], image[2, 2, c]
         expect(abs(lit - expected) <= radiance_tolerance(expected, c), f"plane {c}: {lit} vs {expected}")
         expect(abs(sky - radiance) <= radiance_tolerance(radiance, c), f"sky {c}: {sky} vs {radiance}")
+    expect_no_plugin_errors()
+
+
+def uniform_png(name, rgb_codes) -> str:
+    """A 8 x 8 PNG of one colour (8-bit codes), as a file on disk."""
+    generated = bpy.data.images.new(name, 8, 8, alpha=False)
+    generated.pixels.foreach_set(np.tile([c / 255 for c in rgb_codes] + [1.0], 64).astype(np.float32))
+    path = str(Path(tempfile.mkdtemp(prefix="obscura-texture-")) / f"{name}.png")
+    generated.filepath_raw, generated.file_format = path, "PNG"
+    generated.save()
+    return path
+
+
+def test_normal_map_tilts_the_shading_normal():
+    """A tangent-space normal map of one texel (191, 128, 238): n = 2 t - 1, about 30 degrees off
+    the surface normal; under a sun straight overhead the radiance is albedo / pi x E x n_z / |n|."""
+    from lit_plane import ALBEDO, radiance_tolerance
+
+    scene = empty_scene()
+    add_camera(scene)
+    material = principled("Bumpy", ALBEDO)
+    tree = material.node_tree
+    texture = tree.nodes.new("ShaderNodeTexImage")
+    texture.image = bpy.data.images.load(uniform_png("normal", (191, 128, 238)))
+    texture.image.colorspace_settings.name = "Non-Color"
+    normal_map = tree.nodes.new("ShaderNodeNormalMap")
+    tree.links.new(texture.outputs["Color"], normal_map.inputs["Color"])
+    tree.links.new(normal_map.outputs["Normal"], tree.nodes["Principled BSDF"].inputs["Normal"])
+    plane = add_plane("Plane", 10.0, material)
+    plane.data.uv_layers.new(name="UVMap")
+    strength = 4.0
+    add_light("SUN", strength, angle=0.0)
+    image = render_passes(scene)["Image"]
+    n = np.array([191, 128, 238]) / 255 * 2 - 1
+    expected = ALBEDO / math.pi * strength / 4.0 * n[2] / np.linalg.norm(n)
+    flat = ALBEDO / math.pi * strength / 4.0
+    value = image[SIZE // 2, SIZE // 2, 0]
+    expect(abs(value - expected) <= radiance_tolerance(expected, 0), f"{value} vs {expected} (flat: {flat})")
     expect_no_plugin_errors()
 
 
