@@ -10,6 +10,8 @@ if [[ ! -x $blender ]]; then
 fi
 rm -rf "$work"
 mkdir -p "$work"
+# As an artist starts Blender: the Python package comes through the add-on, not a PYTHONPATH.
+unset PYTHONPATH
 export BLENDER_USER_SCRIPTS=$work/scripts BLENDER_USER_CONFIG=$work/config BLENDER_USER_DATAFILES=$work/datafiles
 exec "$blender" -b --factory-startup --python-exit-code 1 --python "$tests/blender/addon_test.py" -- \
     "$zip" "$tests/python"
