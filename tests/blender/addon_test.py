@@ -487,6 +487,8 @@ def test_light_types_and_sizes_as_blenders_usd_exporter_writes_them():
     add_light("SPOT", 30.0, shadow_soft_size=0.1, spot_size=math.radians(60.0), spot_blend=0.2)
     add_light("AREA", 20.0, shape="RECTANGLE", size=2.0, size_y=0.5).name = "Rect"
     add_light("AREA", 10.0, shape="DISK", size=1.0).name = "Disk"
+    add_light("AREA", 10.0, shape="SQUARE", size=1.5).name = "Square"
+    add_light("AREA", 10.0, shape="ELLIPSE", size=1.0, size_y=2.0).name = "Ellipse"
     prims = synced_prims(scene)
     sun, point, spot = prims["/Lights/SUN"], prims["/Lights/POINT"], prims["/Lights/SPOT"]
     rect, disk = prims["/Lights/Rect"], prims["/Lights/Disk"]
@@ -503,6 +505,10 @@ def test_light_types_and_sizes_as_blenders_usd_exporter_writes_them():
     expect(close(value(spot, "inputs:shaping:cone:softness"), 0.2), "spot blend")
     expect(close(value(rect, "inputs:width"), 2.0) and close(value(rect, "inputs:height"), 0.5), "rect size")
     expect(close(value(disk, "inputs:radius"), 0.5), "disk radius")
+    square, ellipse = prims["/Lights/Square"], prims["/Lights/Ellipse"]
+    expect(square.type == "rectLight" and close(value(square, "inputs:width"), 1.5)
+           and close(value(square, "inputs:height"), 1.5), "square")
+    expect(ellipse.type == "diskLight" and close(value(ellipse, "inputs:radius"), 0.75), "ellipse: mean diameter")
 
 
 def test_camera_lens_and_depth_of_field():
