@@ -557,6 +557,42 @@ def test_viewport_camera_from_the_projection_matches_the_camera():
         expect(abs(near - 0.1) <= 1e-4 and abs(far - 100.0) <= 1e-2, f"{kind} clip {near}, {far}")
 
 
+def test_progress_and_cancel():
+    """render()'s loop reports its progress per frame and stops when Blender asks (Esc: test_break),
+    leaving the Render Result unwritten."""
+    from obscura_render import engine
+
+    class Engine:  # the RenderEngine calls render() makes, recorded
+        def __init__(self, break_after):
+            self.break_after, self.progress, self.results, self.reports = break_after, [], 0, []
+
+        def test_break(self):
+            return len(self.progress) >= self.break_after
+
+        def update_progress(self, value):
+            self.progress.append(value)
+
+        def update_stats(self, *_):
+            pass
+
+        def report(self, kinds, message):
+            self.reports.append(message)
+
+        def begin_result(self, *_):
+            self.results += 1
+            raise AssertionError("a result begun after the cancel")
+
+    scene = empty_scene()
+    scene.obscura.taa_frames = 8
+    add_camera(scene)
+    add_plane("Plane", 1.0, principled("Grey", 0.5))
+    cancelled = Engine(break_after=3)
+    engine.final_render(cancelled, bpy.context.evaluated_depsgraph_get())
+    expect(cancelled.progress == [1 / 9, 2 / 9, 3 / 9], f"progress {cancelled.progress}")
+    expect(cancelled.results == 0 and not cancelled.reports, f"{cancelled.results} results, {cancelled.reports}")
+    expect_no_plugin_errors()
+
+
 def test_collection_instances_render_through_an_instancer():
     scene = empty_scene()
     add_camera(scene)
