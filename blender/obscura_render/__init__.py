@@ -37,7 +37,7 @@ class ObscuraRenderEngine(bpy.types.RenderEngine):
         except ReferenceError:  # Blender freed the engine's RNA first; the delegate goes with Python's objects
             return
         if viewport is not None:
-            viewport.session.close()
+            viewport.stage.close()
 
     def render(self, depsgraph):
         with engine.reported(self):

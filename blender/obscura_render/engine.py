@@ -1,5 +1,5 @@
-"""The render session behind the RenderEngine: the plugin, one delegate, the scene sync, and the
-final render and viewport paths (Cycles' add-on layout: __init__.py hands over to here)."""
+"""What stands behind the RenderEngine: the plugin, a Stage (one delegate and the scene synced
+into it), the final render and the viewport (Cycles' add-on layout: __init__.py hands over here)."""
 
 from __future__ import annotations
 
@@ -78,8 +78,8 @@ def register_passes(engine, scene, view_layer) -> None:
         engine.register_pass(scene, view_layer, name, channels, chan_id, kind)
 
 
-class Session:
-    """One delegate and its scene."""
+class Stage:
+    """One delegate and the Blender scene synced into it."""
 
     def __init__(self):
         plugin = renderer()
@@ -130,48 +130,48 @@ def render_size(scene) -> tuple[int, int]:
 
 def final_render(engine, depsgraph) -> None:
     """RenderEngine.render: every requested pass of the view layer into the Render Result."""
-    session = Session()
+    stage = Stage()
     try:
-        _final_render(engine, depsgraph, session)
+        _final_render(engine, depsgraph, stage)
     finally:
-        session.close()
+        stage.close()
 
 
-def _final_render(engine, depsgraph, session: Session) -> None:
+def _final_render(engine, depsgraph, stage: Stage) -> None:
     scene, view_layer = depsgraph.scene, depsgraph.view_layer
     width, height = render_size(scene)
-    session.apply_settings(scene)
+    stage.apply_settings(scene)
     engine.update_stats("Obscura", "Syncing the scene")
-    session.sync.sync(depsgraph, width, height)
-    session.report_warnings(engine)
+    stage.sync.sync(depsgraph, width, height)
+    stage.report_warnings(engine)
     if scene.camera is None:
         engine.report({"ERROR"}, "the scene has no camera")
         return
     if scene.render.use_motion_blur and scene.render.motion_blur_shutter > 0.0:
-        sample_shutter(engine, depsgraph, session, scene.render.motion_blur_shutter)
+        sample_shutter(engine, depsgraph, stage, scene.render.motion_blur_shutter)
     aovs = ["color"] + requested_passes(view_layer)
-    session.set_buffers(width, height, aovs)
+    stage.set_buffers(width, height, aovs)
     frames = scene.obscura.taa_frames if scene.obscura.taa else 1
     for i in range(frames + 1):  # taa:frames accumulated, then the final (converged) render
         if engine.test_break():
             return
-        session.render(float(scene.frame_current))
+        stage.render(float(scene.frame_current))
         engine.update_progress(min((i + 1) / (frames + 1), 1.0))
         engine.update_stats("Obscura", f"Frame {i + 1} of {frames + 1}")
-        if session.delegate.converged:
+        if stage.delegate.converged:
             break
-    for message in session.delegate.logged_errors:
+    for message in stage.delegate.logged_errors:
         engine.report({"ERROR"}, message)
     result = engine.begin_result(0, 0, width, height)
     layer = result.layers[0]
-    layer.passes["Combined"].rect = session.read("color").reshape(-1, 4)
-    camera = session.sync.camera_values(depsgraph, width, height)[0]
+    layer.passes["Combined"].rect = stage.read("color").reshape(-1, 4)
+    camera = stage.sync.camera_values(depsgraph, width, height)[0]
     for aov in aovs[1:]:
-        layer.passes[PASSES[aov][1]].rect = blender_pass(session, aov, camera).reshape(width * height, -1)
+        layer.passes[PASSES[aov][1]].rect = blender_pass(stage, aov, camera).reshape(width * height, -1)
     engine.end_result(result)
 
 
-def sample_shutter(engine, depsgraph, session: Session, shutter: float) -> None:
+def sample_shutter(engine, depsgraph, stage: Stage, shutter: float) -> None:
     """Motion blur over Blender's shutter (Render > Motion Blur > Shutter, in frames, centred on the
     frame as Cycles' default position): every object's and the camera's transform at the shutter's
     open, the frame and its close (RenderEngine.frame_set evaluates the depsgraph there), and the
@@ -181,27 +181,27 @@ def sample_shutter(engine, depsgraph, session: Session, shutter: float) -> None:
     for offset in (-shutter / 2.0, 0.0, shutter / 2.0):
         whole = math.floor(frame + offset)
         engine.frame_set(int(whole), frame + offset - whole)
-        for path, matrix in session.sync.world_matrices(depsgraph).items():
+        for path, matrix in stage.sync.world_matrices(depsgraph).items():
             samples.setdefault(path, []).append((frame + offset, matrix))
     engine.frame_set(frame, 0.0)
-    session.delegate.scene.samples = samples
-    session.delegate.set(convert.CAMERA_PATH, "shutter:open", -shutter / 2.0)
-    session.delegate.set(convert.CAMERA_PATH, "shutter:close", shutter / 2.0)
+    stage.delegate.scene.samples = samples
+    stage.delegate.set(convert.CAMERA_PATH, "shutter:open", -shutter / 2.0)
+    stage.delegate.set(convert.CAMERA_PATH, "shutter:close", shutter / 2.0)
 
 
-def blender_pass(session: Session, aov: str, camera: dict) -> np.ndarray:
+def blender_pass(stage: Stage, aov: str, camera: dict) -> np.ndarray:
     """An Obscura AOV as the Blender pass of the same meaning."""
-    data = session.read(aov)
+    data = stage.read(aov)
     if aov == "depth":
         near, far = camera["clippingRange"]
         return convert.linear_depth(data, near, far, camera["projection"] == "orthographic")
     if aov == "normal":
         # Eye space (Hydra's Neye) to world space: rows of the camera's GfMatrix4d are its axes.
-        camera_prim = session.delegate.scene.prims[convert.CAMERA_PATH]
+        camera_prim = stage.delegate.scene.prims[convert.CAMERA_PATH]
         rotation = np.asarray(camera_prim.transform, np.float64).reshape(4, 4)[:3, :3]
         return (data.reshape(-1, 3) @ rotation).astype(np.float32)
     if aov == "primId":
-        ids = {session.delegate.prim_id(p): i for p, i in session.sync.pass_index.items()}
+        ids = {stage.delegate.prim_id(p): i for p, i in stage.sync.pass_index.items()}
         table = np.zeros(max(ids, default=0) + 2, np.float32)  # index 0 holds -1: nothing drawn
         for prim_id, index in ids.items():
             table[prim_id + 1] = index
@@ -215,25 +215,25 @@ def blender_pass(session: Session, aov: str, camera: dict) -> np.ndarray:
 # --- viewport ---------------------------------------------------------------------------------
 
 class Viewport:
-    """A viewport's session: synced once, then updated from depsgraph updates; drawn progressively."""
+    """A viewport's stage: synced once, then updated from depsgraph updates; drawn progressively."""
 
     def __init__(self):
-        self.session = Session()
+        self.stage = Stage()
         self.synced = False
         self.last_camera = None
 
     def update(self, engine, depsgraph, width: int, height: int) -> int:
         """RenderEngine.view_update: the whole scene the first time, then only what changed."""
-        session = self.session
+        stage = self.stage
         if not self.synced:
-            session.apply_settings(depsgraph.scene)
-            session.sync.sync(depsgraph, width, height)
+            stage.apply_settings(depsgraph.scene)
+            stage.sync.sync(depsgraph, width, height)
             self.synced = True
-            dirtied = len(session.delegate.scene.prims)
+            dirtied = len(stage.delegate.scene.prims)
         else:
-            session.apply_settings(depsgraph.scene)
-            dirtied = session.sync.update(depsgraph)
-        session.report_warnings(engine)
+            stage.apply_settings(depsgraph.scene)
+            dirtied = stage.sync.update(depsgraph)
+        stage.report_warnings(engine)
         return dirtied
 
     def draw(self, engine, context, depsgraph) -> None:
@@ -243,17 +243,17 @@ class Viewport:
 
         region, view = context.region, context.region_data
         width, height = region.width, region.height
-        session = self.session
-        session.set_buffers(width, height, ["color"])
-        mpu = session.sync.meters_per_unit(depsgraph.scene)
+        stage = self.stage
+        stage.set_buffers(width, height, ["color"])
+        mpu = stage.sync.meters_per_unit(depsgraph.scene)
         camera = convert.camera_from_projection(view.window_matrix, mpu)
         transform = convert.usd_matrix(view.view_matrix.inverted())
         key = (tuple(sorted(camera.items())), tuple(transform))
         if key != self.last_camera:  # the camera moved: a changed camera restarts accumulation
-            session.sync.put("camera", convert.CAMERA_PATH, camera, transform)
+            stage.sync.put("camera", convert.CAMERA_PATH, camera, transform)
             self.last_camera = key
-        session.render(float(depsgraph.scene.frame_current))
-        pixels = session.read("color")
+        stage.render(float(depsgraph.scene.frame_current))
+        pixels = stage.read("color")
         buffer = gpu.types.Buffer("FLOAT", width * height * 4, pixels.ravel())
         texture = gpu.types.GPUTexture((width, height), format="RGBA16F", data=buffer)
         gpu.state.blend_set("ALPHA_PREMULT")
@@ -261,5 +261,5 @@ class Viewport:
         draw_texture_2d(texture, (0, 0), width, height)
         engine.unbind_display_space_shader()
         gpu.state.blend_set("NONE")
-        if not session.delegate.converged:
+        if not stage.delegate.converged:
             engine.tag_redraw()  # temporal AA goes on accumulating while nothing changes

@@ -427,15 +427,15 @@ def test_an_edit_resyncs_only_that_prim():
     moved = add_plane("Moved", 0.5, grey)
     add_plane("Still", 0.5, grey).location.x = 1.5
     sun = add_light("SUN", 4.0)
-    session = engine.Session()
+    stage = engine.Stage()
     try:
         depsgraph = bpy.context.evaluated_depsgraph_get()
-        session.sync.sync(depsgraph, SIZE, SIZE)
-        session.set_buffers(SIZE, SIZE, ["color"])
-        session.render(0.0)
-        total = session.delegate.stats.prims_synced
+        stage.sync.sync(depsgraph, SIZE, SIZE)
+        stage.set_buffers(SIZE, SIZE, ["color"])
+        stage.render(0.0)
+        total = stage.delegate.stats.prims_synced
         dirtied = []
-        handler = lambda _scene, graph: dirtied.append(session.sync.update(graph))  # noqa: E731
+        handler = lambda _scene, graph: dirtied.append(stage.sync.update(graph))  # noqa: E731
         bpy.app.handlers.depsgraph_update_post.append(handler)
         roughness = grey.node_tree.nodes["Principled BSDF"].inputs["Roughness"]
         edits = {"move an object": lambda: setattr(moved.location, "x", -1.0),
@@ -446,15 +446,15 @@ def test_an_edit_resyncs_only_that_prim():
                 dirtied.clear()
                 edit()
                 bpy.context.view_layer.update()
-                session.render(0.0)
-                synced = session.delegate.stats.prims_synced
+                stage.render(0.0)
+                synced = stage.delegate.stats.prims_synced
                 expect(dirtied == [1], f"{what}: prims marked dirty: {dirtied}")
                 expect(synced == 1 and total > 1, f"{what}: prims synced: {synced} after it, {total} at first")
         finally:
             bpy.app.handlers.depsgraph_update_post.remove(handler)
-        expect(session.delegate.stats.validation_errors == 0, "validation errors")
+        expect(stage.delegate.stats.validation_errors == 0, "validation errors")
     finally:
-        session.close()
+        stage.close()
     expect_no_plugin_errors()
 
 
@@ -462,12 +462,12 @@ def synced_prims(scene) -> dict:
     """The prims the add-on makes of the scene: path -> obscura.scene.Prim (no render)."""
     from obscura_render import engine
 
-    session = engine.Session()
+    stage = engine.Stage()
     try:
-        session.sync.sync(bpy.context.evaluated_depsgraph_get(), *engine.render_size(scene))
-        return dict(session.delegate.scene.prims)
+        stage.sync.sync(bpy.context.evaluated_depsgraph_get(), *engine.render_size(scene))
+        return dict(stage.delegate.scene.prims)
     finally:
-        session.close()
+        stage.close()
 
 
 def value(prim, name):
