@@ -5,7 +5,7 @@
 the prims of the objects that changed, with the dirty bits of what changed (transform, geometry,
 material, light, camera), as hdEmbree's prims sync only what their bits say.
 
-Prim paths: /Objects/<object> (a mesh of several materials: one prim per material,
+Prim paths (names escaped one to one: prim_name): /Objects/<object> (a mesh of several materials: one prim per material,
 /Objects/<object>/m<slot>), /Instancers/<parent>/<object> with the instanced mesh under
 /Prototypes/<object>, /Looks/<material>, /Lights/<object>, /Camera, /World.
 """
@@ -13,7 +13,6 @@ Prim paths: /Objects/<object> (a mesh of several materials: one prim per materia
 from __future__ import annotations
 
 import logging
-import re
 
 import bpy
 import numpy as np
@@ -32,9 +31,14 @@ _FACE_VARYING = {"normals": obscura.Interpolation.FACE_VARYING, "primvars:st": o
 
 
 def prim_name(name: str) -> str:
-    """A Blender name as a USD prim name (identifiers: letters, digits, underscores; no leading digit)."""
-    ident = re.sub(r"[^A-Za-z0-9_]", "_", name) or "_"
-    return "_" + ident if ident[0].isdigit() else ident
+    """A Blender name as a USD prim name (letters, digits, underscores; no leading digit), one to
+    one: every other character, an underscore and a leading digit become _<hex code>_, so
+    "Cube.001" and "Cube_001" stay two prims."""
+    def escaped(i: int, c: str) -> str:
+        plain = c.isascii() and (c.isalpha() or (c.isdigit() and i > 0))
+        return c if plain else f"_{ord(c):X}_"
+
+    return "".join(escaped(i, c) for i, c in enumerate(name)) or "_"
 
 
 def mesh_parts(obj) -> list[tuple[int, dict]]:

@@ -489,6 +489,7 @@ def test_light_types_and_sizes_as_blenders_usd_exporter_writes_them():
     add_light("AREA", 10.0, shape="DISK", size=1.0).name = "Disk"
     add_light("AREA", 10.0, shape="SQUARE", size=1.5).name = "Square"
     add_light("AREA", 10.0, shape="ELLIPSE", size=1.0, size_y=2.0).name = "Ellipse"
+    add_light("POINT", 1.0).name, add_light("POINT", 2.0).name = "Lamp.1", "Lamp_1"  # two names, two prims
     prims = synced_prims(scene)
     sun, point, spot = prims["/Lights/SUN"], prims["/Lights/POINT"], prims["/Lights/SPOT"]
     rect, disk = prims["/Lights/Rect"], prims["/Lights/Disk"]
@@ -509,6 +510,9 @@ def test_light_types_and_sizes_as_blenders_usd_exporter_writes_them():
     expect(square.type == "rectLight" and close(value(square, "inputs:width"), 1.5)
            and close(value(square, "inputs:height"), 1.5), "square")
     expect(ellipse.type == "diskLight" and close(value(ellipse, "inputs:radius"), 0.75), "ellipse: mean diameter")
+    lamps = sorted(value(p, "inputs:intensity") * math.pi for path, p in prims.items()
+                   if path.startswith("/Lights/Lamp"))
+    expect(len(lamps) == 2 and close(lamps[0], 1.0) and close(lamps[1], 2.0), f"Lamp.1 and Lamp_1: {lamps}")
 
 
 def test_camera_lens_and_depth_of_field():
