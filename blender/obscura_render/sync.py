@@ -5,9 +5,9 @@
 the prims of the objects that changed, with the dirty bits of what changed (transform, geometry,
 material, light, camera), as hdEmbree's prims sync only what their bits say.
 
-Prim paths (names escaped one to one: prim_name): /Objects/<object> (a mesh of several materials: one prim per material,
-/Objects/<object>/m<slot>), /Instancers/<parent>/<object> with the instanced mesh under
-/Prototypes/<object>, /Looks/<material>, /Lights/<object>, /Camera, /World.
+Prim paths (names escaped one to one by prim_name): /Objects/<object> (a mesh of several
+materials: one prim per material, /Objects/<object>/m<slot>), /Instancers/<parent>/<object> with
+the instanced mesh under /Prototypes/<object>, /Looks/<material>, /Lights/<object>, /Camera, /World.
 """
 
 from __future__ import annotations
