@@ -30,7 +30,8 @@ prefix)
   cmake --install "$build" --prefix "$prefix" >/dev/null
   for f in bin/obscura lib/obscura/plugin/obscura/plugInfo.json lib/obscura/plugin/obscura/libobscuraDelegate.so \
            include/obscura/obscura.h lib/cmake/Obscura/ObscuraConfig.cmake lib/cmake/Obscura/ObscuraConfigVersion.cmake \
-           lib/pkgconfig/obscura.pc lib/python3/dist-packages/obscura/__init__.py; do
+           lib/pkgconfig/obscura.pc lib/python3/dist-packages/obscura/__init__.py \
+           share/obscura/blender/obscura_render.zip; do
     [ -e "$prefix/$f" ] || fail "$f not installed"
   done
   ;;
