@@ -16,11 +16,6 @@ constexpr float kFocalLength = 50.0f, kAperture = 20.955f;  // tenths of a scene
 constexpr double kTanHalfFov = (kAperture / 2.0) / kFocalLength;
 constexpr double kPixelsPerUnitAtUnitDistance = kSize / 2.0 / kTanHalfFov;
 
-void setNumber(TestHost& host, const char* name, double number) {
-    ObscuraValue value{OBSCURA_VALUE_DOUBLE, 0, 1, &number};
-    ASSERT_EQ(host.api().setRenderSetting(host.delegate(), name, &value), OBSCURA_OK) << host.lastError();
-}
-
 void setBool(TestHost& host, const char* name, bool on) {
     int32_t v = on ? 1 : 0;
     ObscuraValue value{OBSCURA_VALUE_BOOL, 0, 1, &v};
