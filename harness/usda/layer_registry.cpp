@@ -94,6 +94,7 @@ const Layer& LayerRegistry::open(const std::string& resolvedPath, const std::str
         diagnostics_.warn("mtlx", at, "MaterialX document '" + assetPath + "' is not read; the arc to it adds nothing");
         auto empty = std::make_unique<Layer>();
         empty->identifier = resolvedPath;
+        empty->placeholder = true;
         return *(layers_[key] = std::move(empty));
     }
     std::optional<std::string> bytes;
