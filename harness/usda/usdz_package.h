@@ -17,6 +17,11 @@ namespace obscura::usda {
 std::optional<std::pair<std::string, std::string>> splitPackagePath(std::string_view path);
 std::string joinPackagePath(const std::string& archive, const std::string& entry);
 
+// A file inside a package ("a.usdz[tex/b.png]") as a path that readers of plain files (the
+// delegate's texture loader) can open: extracted once per process into a temporary folder that
+// is removed at exit. "" (and `error` set) when it cannot be read.
+std::string extractPackagedFile(const std::string& packagePath, std::string* error);
+
 class UsdzPackage {
 public:
     // The archive from its bytes; on failure returns nullptr and sets `error`.
