@@ -187,6 +187,9 @@ void File::readPaths(Section section) {
                 const std::string& token = tokens_[tokenIndex];
                 const PathNode& parentNode = paths_[static_cast<size_t>(parent)];
                 node.parent = parent;
+                node.depth = parentNode.depth + 1;
+                if (node.depth > kMaxPathDepth)
+                    throw bad("paths nested deeper than " + std::to_string(kMaxPathDepth) + " levels");
                 if (element < 0) {
                     node.kind = PathNode::Kind::Property;
                     node.name = token;

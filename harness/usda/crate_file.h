@@ -98,7 +98,12 @@ struct PathNode {
     std::string name;        // prim or property name; the variant set of a Variant
     std::string variant;     // the selection of a Variant ("" for the variant set's own spec)
     std::string text;        // "/A/B", "/A.prop", "/A{set=sel}", "/A{set=sel}/B" (harness convention)
+    int depth = 0;           // elements below the root
 };
+
+// Paths nested deeper than this are refused, as the text reader refuses deeper nesting: the
+// composer recurses once per level.
+constexpr int kMaxPathDepth = 200;
 
 class File {
 public:

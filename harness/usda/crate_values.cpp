@@ -140,6 +140,13 @@ void appendElements(Value& out, const TypeInfo& info, std::span<const char> byte
 
 }  // namespace
 
+void ValueReader::spend(uint64_t elements, uint64_t at) {
+    decoded_ += elements;
+    if (decoded_ > kMaxDecodedElements)
+        throw Failure{at, "the file's values decode to more than " + std::to_string(kMaxDecodedElements) +
+                              " elements (shared values repeated without bound?)"};
+}
+
 std::optional<Value> ValueReader::value(ValueRep rep) { return value(rep, 0); }
 
 std::optional<Value> ValueReader::value(ValueRep rep, int depth) {
@@ -161,6 +168,7 @@ std::optional<Value> ValueReader::value(ValueRep rep, int depth) {
         ByteReader reader(file_.bytes(), at);
         const uint64_t count = reader.read<uint64_t>();
         if (count > reader.size() / 8) throw Failure{at, "double vector of " + std::to_string(count) + " elements"};
+        spend(count, at);
         Value value = emptyValue(*typeInfo(Type::Double), true);
         appendElements(value, *typeInfo(Type::Double), reader.take(count * 8), count);
         return value;
@@ -211,6 +219,7 @@ Value ValueReader::readArray(ValueRep rep, uint64_t at) {
     const Version& version = file_.version();
     if (!version.atLeast(0, 5)) reader.read<uint32_t>();  // rank, always 1
     const uint64_t count = version.atLeast(0, 7) ? reader.read<uint64_t>() : reader.read<uint32_t>();
+    spend(count, at);
     const uint64_t elementBytes = componentBytes(info.component) * static_cast<uint64_t>(info.count);
     auto raw = [&] {
         if (count > reader.size() / elementBytes)
@@ -281,6 +290,7 @@ std::vector<std::string> ValueReader::readNames(ByteReader& reader, Type element
     const uint64_t at = reader.tell();
     const uint64_t count = reader.read<uint64_t>();
     if (count > reader.size() / 4) throw Failure{at, "list of " + std::to_string(count) + " names cannot fit in the file"};
+    spend(count, at);
     std::vector<std::string> out;
     out.reserve(count);
     for (uint64_t i = 0; i < count; ++i) {
@@ -378,6 +388,7 @@ void ValueReader::readDictionary(ByteReader& reader, const std::string& prefix, 
     const uint64_t at = reader.tell();
     const uint64_t count = reader.read<uint64_t>();
     if (count > reader.size() / 12) throw Failure{at, "dictionary of " + std::to_string(count) + " entries cannot fit in the file"};
+    spend(count, at);
     for (uint64_t i = 0; i < count; ++i) {
         const std::string key = prefix + file_.string(reader.read<uint32_t>(), reader.tell() - 4);
         // Each value: a forward offset (from where it is written) to its ValueRep.
@@ -430,6 +441,7 @@ std::map<double, Value> ValueReader::timeSamples(ValueRep rep) {
         throw Failure{timesAt, "time samples hold " + std::to_string(count) + " values for " +
                                    std::to_string(times ? times->numbers.size() : 0) + " times"};
     if (count > reader.size() / 8) throw Failure{valuesAt, "time samples cannot fit in the file"};
+    spend(count, valuesAt);
     std::map<double, Value> samples;
     for (uint64_t i = 0; i < count; ++i) {
         const uint64_t sampleAt = reader.tell();

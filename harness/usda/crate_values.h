@@ -41,8 +41,15 @@ private:
     Value readArray(ValueRep rep, uint64_t at);
     std::vector<std::string> readNames(ByteReader& reader, Type element);
     Reference readArc(ByteReader& reader, bool isPayload, const SourceLocation& where, bool* offsetNote);
+    // Counts decoded elements against the budget below.
+    void spend(uint64_t elements, uint64_t at);
 
     const File& file_;
+    // Values may be shared (time samples naming one array, dictionaries naming one dictionary), so
+    // a small file can describe far more data than it holds; decoding stops at this many numbers,
+    // strings and dictionary entries for one layer (2 GB of numbers, CompositionLimits' share).
+    static constexpr uint64_t kMaxDecodedElements = uint64_t(1) << 28;
+    uint64_t decoded_ = 0;
 };
 
 }  // namespace obscura::usda::crate
