@@ -113,7 +113,7 @@ void File::readStrings(Section section) {
     const uint64_t count = checkedCount(reader.read<uint64_t>(), 4, section.start);
     strings_.resize(count);
     const auto data = reader.take(count * 4);
-    std::memcpy(strings_.data(), data.data(), data.size());
+    if (count > 0) std::memcpy(strings_.data(), data.data(), data.size());
 }
 
 void File::readFields(Section section) {

@@ -88,7 +88,7 @@ private:
     }
 
     PrimSpec* child(PrimSpec& parent, const std::string& name) {
-        if (PrimSpec* existing = parent.childByName.count(name) ? parent.childByName[name] : nullptr) return existing;
+        if (const auto it = parent.childByName.find(name); it != parent.childByName.end()) return it->second;
         auto spec = std::make_unique<PrimSpec>();
         spec->name = name;
         spec->where = where_;
