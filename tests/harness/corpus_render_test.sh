@@ -13,8 +13,10 @@ for scene in full_assets/OpenChessSet/assets/Rook/Rook.usd full_assets/OpenChess
              test_assets/NormalsTextureBiasAndScale/NormalsTextureBiasAndScale.usdz; do
     "$obscura" render "$corpus/$scene" -o "$tmp/out.png" --width 48 --height 48 >"$tmp/log" 2>&1
     code=$?
-    # Words about reading the scene: its format, a layer, a value, a package.
-    if [ $code -ne 0 ] || grep -qiE 'not supported|unsupported|error|cannot (open|read)|corrupt|crate|package' "$tmp/log"; then
+    # Words about reading the scene (its format, a layer, a value, a package); prim types the
+    # renderer does not draw yet (UsdSkel's) are no reading problem.
+    if [ $code -ne 0 ] || grep -vE "prim type '[A-Za-z]+' is not supported yet" "$tmp/log" |
+            grep -qiE 'not supported|unsupported|error|cannot (open|read)|corrupt|byte [0-9]+:'; then
         echo "FAIL $scene: exit $code"; sed 's/^/    /' "$tmp/log"; fail=$((fail + 1))
     elif [ ! -s "$tmp/out.png" ]; then
         echo "FAIL $scene: no image written"; fail=$((fail + 1))

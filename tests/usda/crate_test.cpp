@@ -138,8 +138,9 @@ void expectValidMeshes(const Stage& stage, size_t* meshCount, bool exactExtents 
         if (const Attribute* st = prim->attribute("primvars:st"); st && st->defaultValue) {
             auto interpolation = st->metadata.find("interpolation");
             ASSERT_NE(interpolation, st->metadata.end());
-            if (interpolation->second.strings.at(0) == "faceVarying")
+            if (interpolation->second.strings.at(0) == "faceVarying") {
                 EXPECT_EQ(st->defaultValue->size(), indices.size()) << prim->path;
+            }
         }
     }
 }
@@ -266,7 +267,9 @@ TEST(CrateErrors, CorruptBytesNeverCrash) {
         const int flips = 1 + static_cast<int>(next() % 8);
         for (int f = 0; f < flips; ++f) bytes[next() % bytes.size()] = static_cast<char>(next());
         auto result = Stage::openFromString(bytes, "fuzz.usdc");
-        if (const Error* error = std::get_if<Error>(&result)) EXPECT_FALSE(error->message.empty());
+        if (const Error* error = std::get_if<Error>(&result)) {
+            EXPECT_FALSE(error->message.empty());
+        }
     }
 }
 
