@@ -345,6 +345,21 @@ TEST(Package, ArcsIntoAPackageByItsPathOrAnEntry) {
     EXPECT_NE(missing.message.find("no file 'nothing.usda' in the package"), std::string::npos) << missing.str();
 }
 
+// Textures in a package reach file readers as extracted files: the packaged normal map is the one
+// shipped beside the package.
+TEST(Package, PackagedFilesAreExtractedForFileReaders) {
+    REQUIRE_CORPUS();
+    const std::string archive = (kNormals / "NormalsTextureBiasAndScale.usdz").string();
+    std::string problem;
+    const std::string file = extractPackagedFile(joinPackagePath(archive, "r_normal_map.png"), &problem);
+    ASSERT_FALSE(file.empty()) << problem;
+    EXPECT_EQ(fs::path(file).filename(), "r_normal_map.png");
+    EXPECT_EQ(bytesOf(file), bytesOf(kNormals / "r_normal_map.png"));
+    EXPECT_EQ(extractPackagedFile(joinPackagePath(archive, "r_normal_map.png"), &problem), file);  // once
+    EXPECT_TRUE(extractPackagedFile(joinPackagePath(archive, "missing.png"), &problem).empty());
+    EXPECT_EQ(problem, "no file 'missing.png' in the package");
+}
+
 TEST(Package, MaterialXReferencesWarnAndAddNothing) {
     auto stage = open("#usda 1.0\ndef \"M\" (references = @looks.mtlx@)\n{\n    def \"Child\" {\n    }\n}\n");
     ASSERT_TRUE(stage);
