@@ -24,5 +24,14 @@ for scene in full_assets/OpenChessSet/assets/Rook/Rook.usd full_assets/OpenChess
         echo "ok   $scene"; pass=$((pass + 1))
     fi
 done
+# A truncated crate file: exit 3 (bad input) with the byte and what is wrong.
+head -c 5000 "$corpus/full_assets/OpenChessSet/assets/Rook/Rook_geom.usd" >"$tmp/truncated.usd"
+"$obscura" render "$tmp/truncated.usd" -o "$tmp/out.png" --width 16 --height 16 >"$tmp/log" 2>&1
+code=$?
+if [ $code -eq 3 ] && grep -q "truncated.usd: byte 16: table of contents at byte .* lies outside the file of 5000 bytes" "$tmp/log"; then
+    echo "ok   truncated crate file"; pass=$((pass + 1))
+else
+    echo "FAIL truncated crate file: exit $code"; sed 's/^/    /' "$tmp/log"; fail=$((fail + 1))
+fi
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
