@@ -19,6 +19,8 @@ set_target_properties(OpenSubdiv::osdCPU PROPERTIES
   INTERFACE_INCLUDE_DIRECTORIES ${OSD_INCLUDE_DIR})
 # Debian's OpenColorIO CMake config is unusable; its pkg-config file works.
 pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET GLOBAL OpenColorIO>=2.1)
+pkg_check_modules(LZ4 REQUIRED IMPORTED_TARGET GLOBAL liblz4)      # USD crate files' compression
+pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET GLOBAL libzip)   # USDZ packages
 if(OBSCURA_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()

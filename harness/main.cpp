@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     RenderOptions render;
     double frame = 0;
     auto* r = app.add_subcommand("render", "render a scene to an image");
-    r->add_option("scene", render.scene, "scene file (.usda)")->required();
+    r->add_option("scene", render.scene, "scene file (.usda, .usdc, .usd, .usdz, .gltf, .glb, .fbx, .obj)")->required();
     r->add_option("-o,--output", render.output, "output .exr (all AOVs, linear) or .png (display); #### = frame")->required();
     r->add_option("--camera", render.camera, "camera prim path (default: the first camera)");
     auto* frameOpt = r->add_option("--frame", frame, "time code to render");
@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
 
     BenchOptions bench;
     auto* b = app.add_subcommand("bench", "per-pass GPU timestamp medians");
-    b->add_option("scene", bench.scene, "scene file (.usda)")->required();
+    b->add_option("scene", bench.scene, "scene file (.usda, .usdc, .usd, .usdz, .gltf, .glb, .fbx, .obj)")->required();
     b->add_option("--frames", bench.frames, "measured frames")->check(CLI::PositiveNumber);
     b->add_option("--width", bench.width, "image width")->check(CLI::PositiveNumber);
     b->add_option("--height", bench.height, "image height")->check(CLI::PositiveNumber);

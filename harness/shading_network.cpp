@@ -1,5 +1,7 @@
 #include "harness/shading_network.h"
 
+#include "harness/usda/usdz_package.h"
+
 #include <array>
 #include <filesystem>
 #include <string_view>
@@ -115,6 +117,13 @@ std::optional<usda::Value> flattenedTextureAttribute(const usda::Stage& stage, c
 }
 
 std::string resolveAssetPath(const std::string& asset, const usda::Attribute& attribute) {
+    // Inside a USDZ package, relative assets are files in the package, handed on extracted.
+    if (const auto package = usda::splitPackagePath(attribute.where.file); package && !asset.empty() && asset[0] != '/') {
+        const auto entry = (std::filesystem::path(package->second).parent_path() / asset).lexically_normal().string();
+        std::string problem;
+        if (std::string file = usda::extractPackagedFile(usda::joinPackagePath(package->first, entry), &problem); !file.empty())
+            return file;
+    }
     std::filesystem::path path = asset;
     if (path.is_relative()) path = std::filesystem::path(attribute.where.file).parent_path() / path;
     return std::filesystem::absolute(path).lexically_normal().string();

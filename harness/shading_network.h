@@ -30,7 +30,8 @@ std::optional<usda::Value> flattenedTextureAttribute(const usda::Stage& stage, c
                                                      const std::string& attribute, double time);
 
 // An asset path as an absolute file path: relative paths are anchored to the folder of the layer
-// that authored `attribute` (USD's ArDefaultResolver).
+// that authored `attribute` (USD's ArDefaultResolver); in a USDZ package, to its folder in the
+// package, the file extracted to a temporary one (usda::extractPackagedFile).
 std::string resolveAssetPath(const std::string& asset, const usda::Attribute& attribute);
 
 // The primvar the shader's textures look up (inputs:varname of the UsdPrimvarReader_float2

@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
-#include "harness/usda/usda_parser.h"
+#include "harness/usda/layer_reader.h"
 
 namespace obscura::usda {
 
@@ -19,14 +20,50 @@ std::string cacheKey(const std::string& identifier) {
     return (ec ? fs::path(identifier) : absolute).lexically_normal().string();
 }
 
-}  // namespace
-
-const Layer& LayerRegistry::addRoot(std::string_view text, const std::string& identifier) {
-    return add(text, identifier);
+bool endsWithNoCase(std::string text, std::string_view suffix) {
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return text.ends_with(suffix);
 }
 
-const Layer& LayerRegistry::add(std::string_view text, const std::string& identifier) {
-    auto parsed = parseLayer(text, identifier);
+std::optional<std::string> readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::error_code ec;
+    if (!in || fs::is_directory(path, ec)) return std::nullopt;
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    return bytes.str();
+}
+
+}  // namespace
+
+const Layer& LayerRegistry::addRoot(std::string_view bytes, const std::string& identifier) {
+    return add(bytes, identifier, SourceLocation{identifier, 0, 0});
+}
+
+const UsdzPackage& LayerRegistry::package(const std::string& archivePath, const SourceLocation& at) {
+    const std::string key = cacheKey(archivePath);
+    if (const auto it = packages_.find(key); it != packages_.end()) return *it->second;
+    std::optional<std::string> bytes = readFile(archivePath);
+    if (!bytes) throw CompositionFailure{Error{at, "cannot open package '" + archivePath + "'"}};
+    std::string problem;
+    auto opened = UsdzPackage::open(std::move(*bytes), &problem);
+    if (!opened) throw CompositionFailure{Error{SourceLocation{archivePath, 0, 0}, problem}};
+    return *(packages_[key] = std::move(opened));
+}
+
+const Layer& LayerRegistry::add(std::string_view bytes, const std::string& identifier, const SourceLocation& at) {
+    if (isZipData(bytes)) {
+        // A package opened as a layer: its root layer, named inside the package so that its
+        // relative asset paths resolve there.
+        const UsdzPackage& archive = package(identifier, at);
+        if (archive.rootLayer().empty())
+            throw CompositionFailure{Error{SourceLocation{identifier, 0, 0}, "the package holds no .usd, .usda or .usdc layer"}};
+        const std::string inner = joinPackagePath(identifier, archive.rootLayer());
+        const Layer& root = open(inner, inner, at);
+        packageRoots_[cacheKey(identifier)] = &root;
+        return root;
+    }
+    auto parsed = readLayer(bytes, identifier);
     if (auto* error = std::get_if<Error>(&parsed)) throw CompositionFailure{std::move(*error)};
     auto layer = std::move(std::get<std::unique_ptr<Layer>>(parsed));
     for (const Diagnostic& diagnostic : layer->diagnostics)
@@ -37,20 +74,40 @@ const Layer& LayerRegistry::add(std::string_view text, const std::string& identi
 }
 
 std::string LayerRegistry::resolve(const Layer& anchor, const std::string& assetPath) const {
+    // "other.usdz[inner.usda]": the archive resolves like any file, the part inside as written.
+    if (auto packaged = splitPackagePath(assetPath))
+        return joinPackagePath(resolve(anchor, packaged->first), fs::path(packaged->second).lexically_normal().string());
     const fs::path asset(assetPath);
     if (asset.is_absolute()) return asset.lexically_normal().string();
+    if (auto inPackage = splitPackagePath(anchor.identifier))
+        return joinPackagePath(inPackage->first,
+                               (fs::path(inPackage->second).parent_path() / asset).lexically_normal().string());
     return (fs::path(anchor.identifier).parent_path() / asset).lexically_normal().string();
 }
 
 const Layer& LayerRegistry::open(const std::string& resolvedPath, const std::string& assetPath, const SourceLocation& at) {
-    if (const auto it = layers_.find(cacheKey(resolvedPath)); it != layers_.end()) return *it->second;
-    std::ifstream in(resolvedPath, std::ios::binary);
-    std::error_code ec;
-    if (!in || fs::is_directory(resolvedPath, ec))
-        throw CompositionFailure{Error{at, "cannot open layer '" + assetPath + "' (resolved to '" + resolvedPath + "')"}};
-    std::ostringstream text;
-    text << in.rdbuf();
-    return add(text.str(), resolvedPath);
+    const std::string key = cacheKey(resolvedPath);
+    if (const auto it = layers_.find(key); it != layers_.end()) return *it->second;
+    if (const auto it = packageRoots_.find(key); it != packageRoots_.end()) return *it->second;
+    if (endsWithNoCase(resolvedPath, ".mtlx")) {
+        // MaterialX documents are no USD layers; the arc contributes nothing.
+        diagnostics_.warn("mtlx", at, "MaterialX document '" + assetPath + "' is not read; the arc to it adds nothing");
+        auto empty = std::make_unique<Layer>();
+        empty->identifier = resolvedPath;
+        empty->placeholder = true;
+        return *(layers_[key] = std::move(empty));
+    }
+    std::optional<std::string> bytes;
+    std::string problem;
+    if (auto packaged = splitPackagePath(resolvedPath)) {
+        bytes = package(packaged->first, at).read(packaged->second, &problem);
+    } else {
+        bytes = readFile(resolvedPath);
+    }
+    if (!bytes)
+        throw CompositionFailure{Error{at, "cannot open layer '" + assetPath + "' (resolved to '" + resolvedPath + "')" +
+                                               (problem.empty() ? "" : ": " + problem)}};
+    return add(*bytes, resolvedPath, at);
 }
 
 const LayerStack& LayerRegistry::stackOf(const Layer& root) {

@@ -191,6 +191,7 @@ std::vector<PrimIndexer::Arc> PrimIndexer::arcsAuthoredAt(const IndexNode& node)
                 continue;
             }
             const Layer& layer = layers_.open(ref.layerPath, ref.written, ref.where);
+            if (layer.placeholder) continue;
             const std::string path = ref.primPath.empty() ? defaultPrimOf(layer, ref.where) : ref.primPath;
             arcs.push_back(Arc{type, &layers_.stackOf(layer), path, ref.where});
         }

@@ -1,5 +1,6 @@
-// libFuzzer target: USD's text format through the whole reader (lexer, parser, composition) and
-// the stage's evaluation. Any input must end in a Stage or an Error, within the limits.
+// libFuzzer target: USD layers (text, or crate files by their first bytes) through the whole reader (lexer,
+// parser or crate decoding, composition) and the stage's evaluation. Any input must end in a Stage or an
+// Error, within the limits.
 #include <cstddef>
 #include <cstdint>
 #include <string>

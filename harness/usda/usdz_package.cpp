@@ -1,0 +1,149 @@
+#include "harness/usda/usdz_package.h"
+
+#include <zip.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+namespace obscura::usda {
+
+namespace {
+
+// Larger files inside a package are refused rather than read into memory.
+constexpr zip_uint64_t kMaxEntryBytes = zip_uint64_t(1) << 31;
+
+bool isLayerFile(std::string name) {
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return name.ends_with(".usd") || name.ends_with(".usda") || name.ends_with(".usdc");
+}
+
+}  // namespace
+
+std::optional<std::pair<std::string, std::string>> splitPackagePath(std::string_view path) {
+    if (!path.ends_with(']')) return std::nullopt;
+    // The innermost package is the outermost bracket's content; nested packages are not read.
+    const size_t open = path.find('[');
+    if (open == std::string_view::npos || open == 0) return std::nullopt;
+    return std::pair{std::string(path.substr(0, open)), std::string(path.substr(open + 1, path.size() - open - 2))};
+}
+
+std::string joinPackagePath(const std::string& archive, const std::string& entry) { return archive + "[" + entry + "]"; }
+
+namespace {
+
+// The extracted files of this process, removed with their folder at exit.
+class ExtractedFiles {
+public:
+    ~ExtractedFiles() {
+        std::error_code ec;
+        if (!folder_.empty()) std::filesystem::remove_all(folder_, ec);
+    }
+    std::string extract(const std::string& packagePath, std::string* error) {
+        std::lock_guard lock(mutex_);
+        if (const auto it = files_.find(packagePath); it != files_.end()) return it->second;
+        const auto parts = splitPackagePath(packagePath);
+        if (!parts) {
+            *error = "'" + packagePath + "' names no file in a package";
+            return "";
+        }
+        std::ifstream in(parts->first, std::ios::binary);
+        std::ostringstream archiveBytes;
+        archiveBytes << in.rdbuf();
+        auto package = in ? UsdzPackage::open(archiveBytes.str(), error) : nullptr;
+        if (!in) *error = "cannot open package '" + parts->first + "'";
+        if (!package) return "";
+        auto bytes = package->read(parts->second, error);
+        if (!bytes) return "";
+        std::error_code ec;
+        if (folder_.empty()) {
+            folder_ = std::filesystem::temp_directory_path(ec) / ("obscura-usdz-" + std::to_string(::getpid()));
+            std::filesystem::create_directories(folder_, ec);
+        }
+        // One folder per file keeps its name (and extension, which image readers look at).
+        const auto dir = folder_ / std::to_string(files_.size());
+        std::filesystem::create_directories(dir, ec);
+        const auto file = dir / std::filesystem::path(parts->second).filename();
+        std::ofstream out(file, std::ios::binary);
+        out.write(bytes->data(), static_cast<std::streamsize>(bytes->size()));
+        if (!out) {
+            *error = "cannot write '" + file.string() + "'";
+            return "";
+        }
+        return files_[packagePath] = file.string();
+    }
+
+private:
+    std::mutex mutex_;
+    std::filesystem::path folder_;
+    std::map<std::string, std::string> files_;
+};
+
+}  // namespace
+
+std::string extractPackagedFile(const std::string& packagePath, std::string* error) {
+    static ExtractedFiles files;
+    return files.extract(packagePath, error);
+}
+
+std::unique_ptr<UsdzPackage> UsdzPackage::open(std::string bytes, std::string* error) {
+    std::unique_ptr<UsdzPackage> package(new UsdzPackage());
+    package->bytes_ = std::move(bytes);
+    zip_error_t zipError;
+    zip_error_init(&zipError);
+    zip_source_t* source = zip_source_buffer_create(package->bytes_.data(), package->bytes_.size(), 0, &zipError);
+    if (source) package->archive_ = zip_open_from_source(source, ZIP_RDONLY, &zipError);
+    if (!package->archive_) {
+        *error = std::string("not a readable zip archive: ") + zip_error_strerror(&zipError);
+        if (source) zip_source_free(source);
+        zip_error_fini(&zipError);
+        return nullptr;
+    }
+    zip_error_fini(&zipError);
+    const zip_int64_t count = zip_get_num_entries(package->archive_, 0);
+    for (zip_int64_t i = 0; i < count; ++i) {
+        const char* name = zip_get_name(package->archive_, static_cast<zip_uint64_t>(i), 0);
+        if (name && isLayerFile(name)) {
+            package->rootLayer_ = name;
+            break;
+        }
+    }
+    return package;
+}
+
+UsdzPackage::~UsdzPackage() {
+    if (archive_) zip_discard(archive_);
+}
+
+std::optional<std::string> UsdzPackage::read(const std::string& entry, std::string* error) const {
+    const zip_int64_t index = zip_name_locate(archive_, entry.c_str(), 0);
+    zip_stat_t stat;
+    if (index < 0 || zip_stat_index(archive_, static_cast<zip_uint64_t>(index), 0, &stat) != 0) {
+        *error = "no file '" + entry + "' in the package";
+        return std::nullopt;
+    }
+    if (!(stat.valid & ZIP_STAT_SIZE) || stat.size > kMaxEntryBytes) {
+        *error = "file '" + entry + "' in the package is too large";
+        return std::nullopt;
+    }
+    zip_file_t* file = zip_fopen_index(archive_, static_cast<zip_uint64_t>(index), 0);
+    if (!file) {
+        *error = "cannot read '" + entry + "' from the package: " + zip_strerror(archive_);
+        return std::nullopt;
+    }
+    std::string bytes(stat.size, '\0');
+    const zip_int64_t got = zip_fread(file, bytes.data(), stat.size);
+    zip_fclose(file);
+    if (got < 0 || static_cast<zip_uint64_t>(got) != stat.size) {
+        *error = "file '" + entry + "' in the package is truncated or corrupt";
+        return std::nullopt;
+    }
+    return bytes;
+}
+
+}  // namespace obscura::usda
