@@ -2,6 +2,8 @@
 
 #include "delegate/prims/point_motion.h"
 
+#include <algorithm>
+
 namespace obscura::delegate {
 
 void Mesh::reset() {
@@ -19,13 +21,29 @@ void Mesh::pullGprim(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         transform_ = s.sampleTransform(s.time(), s.time()).front().matrix;
         shutterTransforms_ = s.sampleTransform(ctx.shutterOpen, ctx.shutterClose);
     }
-    if (bits & OBSCURA_DIRTY_VISIBILITY) visible_ = s.getToken("visibility") != "invisible";
+    if (bits & OBSCURA_DIRTY_VISIBILITY) {
+        visible_ = s.getToken("visibility") != "invisible";
+        purpose_ = purposeBit(s.getToken("purpose"));
+    }
     if (bits & OBSCURA_DIRTY_DOUBLE_SIDED) doubleSided_ = s.getBool("doubleSided");
     if (bits & OBSCURA_DIRTY_MATERIAL_ID) material_ = s.getPath("material:binding");
+    if (bits & OBSCURA_DIRTY_PRIMVAR) {
+        displayOpacity_ = 1.0f;
+        opacityWarning_.clear();
+        // XXX: opacity varying over the surface (uniform, vertex, faceVarying) would need a vertex
+        // attribute of its own; such a primvar is reported and the prim drawn opaque.
+        if (auto opacity = s.getFloatArray("primvars:displayOpacity"); opacity && !opacity->empty()) {
+            if (s.interpolation("primvars:displayOpacity") == OBSCURA_INTERPOLATION_CONSTANT)
+                displayOpacity_ = std::clamp(opacity->front(), 0.0f, 1.0f);
+            else
+                opacityWarning_ = "primvars:displayOpacity is used only with constant interpolation; ignored";
+        }
+    }
 }
 
 void Mesh::setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std::string& path) {
     warnings_ = geometry.warnings;
+    if (!opacityWarning_.empty()) warnings_.push_back(opacityWarning_);
     indexCount_ = static_cast<uint32_t>(geometry.indices.size());
     localBounds_ = Aabb{};
     for (const passes::Vertex& v : geometry.vertices) localBounds_.extend({v.position[0], v.position[1], v.position[2]});
