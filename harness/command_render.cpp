@@ -95,6 +95,8 @@ std::variant<RenderOptions, SessionError> withStageRenderSettings(RenderOptions 
         settings.emplace_back(text);
     }
     if (s.includedPurposes) settings.push_back("includedPurposes=" + *s.includedPurposes);
+    if (s.disableMotionBlur) settings.push_back(*s.disableMotionBlur ? "motionBlur=off" : "motionBlur=on");
+    if (s.disableDepthOfField) settings.push_back(*s.disableDepthOfField ? "dof=off" : "dof=on");
     settings.insert(settings.end(), o.settings.begin(), o.settings.end());
     o.settings = std::move(settings);
     return o;

@@ -74,6 +74,17 @@ public:
             if (aspect->numbers.size() == 1 && aspect->numbers[0] > 0.0) out.pixelAspectRatio = aspect->numbers[0];
             else warn(prim, "pixelAspectRatio must be positive; ignored", prim.attribute("pixelAspectRatio")->where);
         }
+        if (auto blur = value(prim, "disableMotionBlur", {"bool"})) out.disableMotionBlur = blur->numbers.front() != 0.0;
+        if (auto dof = value(prim, "disableDepthOfField", {"bool"})) out.disableDepthOfField = dof->numbers.front() != 0.0;
+        // The camera's aperture widens to the image's aspect (camera.cpp's "fit"): UsdRender's
+        // expandAperture, its default.
+        if (auto policy = value(prim, "aspectRatioConformPolicy", {"token"}); policy && policy->strings.front() != "expandAperture")
+            warn(prim, "aspectRatioConformPolicy " + policy->strings.front() + " is not supported; expandAperture is used",
+                 prim.attribute("aspectRatioConformPolicy")->where);
+        if (auto window = value(prim, "dataWindowNDC", {"float4"});
+            window && window->numbers != std::vector<double>{0.0, 0.0, 1.0, 1.0})
+            warn(prim, "dataWindowNDC other than (0, 0, 1, 1) is not supported; the whole image is rendered",
+                 prim.attribute("dataWindowNDC")->where);
     }
 
     void readProduct(const usda::Prim& product, StageRenderSettings& out) {

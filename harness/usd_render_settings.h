@@ -15,7 +15,9 @@
 
 namespace obscura::harness {
 
-// What a RenderSettings prim and its first RenderProduct ask for; unset fields are not authored
+// What a RenderSettings prim and its first RenderProduct ask for (aspectRatioConformPolicy other
+// than expandAperture, Obscura's only one, and dataWindowNDC other than the whole image are
+// reported and not honoured); unset fields are not authored
 // (the product's own opinions win over the settings', as UsdRenderProduct inherits
 // UsdRenderSettingsBase).
 struct StageRenderSettings {
@@ -24,6 +26,8 @@ struct StageRenderSettings {
     std::optional<std::array<int, 2>> resolution;   // pixels
     std::optional<double> pixelAspectRatio;
     std::optional<std::string> includedPurposes;    // comma-separated, as the render setting of the name
+    std::optional<bool> disableMotionBlur;          // the render setting motionBlur off
+    std::optional<bool> disableDepthOfField;        // the render setting dof off
     std::string productName;                        // the product's file name, "" when none
     std::vector<std::string> aovs;                  // Obscura's AOV names, from the product's orderedVars
 };

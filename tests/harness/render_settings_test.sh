@@ -50,6 +50,19 @@ check "the prims' choices equal the flags'" 0 $? "$tmp/out" 'psnr inf'
 "$obscura" compare "$tmp/render_settings.exr" "$tmp/front.exr" --psnr-min 60 >"$tmp/out" 2>&1
 check "and differ from the defaults (first camera, no guides)" 1 $?
 
+# disableMotionBlur is the render setting motionBlur off: a stage that sublayers the motion-blur
+# scene and turns it off renders as the scene does with --set motionBlur=off.
+printf '#usda 1.0\n(\n    renderSettingsPrimPath = "/Settings"\n    startTimeCode = 1\n    subLayers = [@%s@]\n)\ndef RenderSettings "Settings"\n{\n    uniform bool disableMotionBlur = 1\n    uniform int2 resolution = (48, 27)\n}\n' \
+    "$src/scenes/motion_blur.usda" >"$tmp/still.usda"
+"$obscura" render "$tmp/still.usda" -o "$tmp/still.exr" $fast >"$tmp/out" 2>&1
+check "a stage with disableMotionBlur renders" 0 $?
+"$obscura" render "$src/scenes/motion_blur.usda" -o "$tmp/unblurred.exr" --width 48 --height 27 --set motionBlur=off $fast >"$tmp/out" 2>&1
+"$obscura" compare "$tmp/still.exr" "$tmp/unblurred.exr" --psnr-min 60 >"$tmp/out" 2>&1
+check "disableMotionBlur is motionBlur off" 0 $? "$tmp/out" 'psnr inf'
+"$obscura" render "$src/scenes/motion_blur.usda" -o "$tmp/blurred.exr" --width 48 --height 27 $fast >"$tmp/out" 2>&1
+"$obscura" compare "$tmp/still.exr" "$tmp/blurred.exr" --psnr-min 60 >"$tmp/out" 2>&1
+check "which differs from the blurred scene" 1 $?
+
 # Flags override the prims.
 "$obscura" render "$data/render_settings.usda" -o "$tmp/small.exr" --width 20 --aov color $fast >"$tmp/out" 2>&1
 check "--width overrides the resolution" 0 $?
@@ -65,6 +78,8 @@ check "broken render settings still render" 0 $?
 check "a missing camera" 0 0 "$tmp/out" 'render_settings\.usda:[0-9]+:[0-9]+: warning: /Render/Broken: camera target </Missing> does not exist'
 check "a resolution of the wrong type" 0 0 "$tmp/out" 'render_settings\.usda:[0-9]+:[0-9]+: warning: /Render/Broken: resolution is a uniform float2, not a int2'
 check "a negative pixel aspect" 0 0 "$tmp/out" '/Render/Broken: pixelAspectRatio must be positive'
+check "a conform policy Obscura lacks" 0 0 "$tmp/out" '/Render/Broken: aspectRatioConformPolicy cropAperture is not supported; expandAperture is used'
+check "a partial data window" 0 0 "$tmp/out" '/Render/Broken: dataWindowNDC other than \(0, 0, 1, 1\) is not supported'
 check "a product that is a var" 0 0 "$tmp/out" '/Render/Broken: products target </Render/Vars/Color> is a RenderVar, not a RenderProduct'
 check "a var no AOV answers is reported where it is authored" 0 0 "$tmp/out" \
     'render_settings\.usda:[0-9]+:[0-9]+: warning: /Render/Vars/Diffuse: no AOV answers sourceName "C<RD>\.\*" of sourceType lpe'
