@@ -163,6 +163,19 @@ def Material "Cycle"
         token outputs:b.connect = </Cycle/Graph.outputs:a>
     }
 }
+def Material "OtherShader"
+{
+    token outputs:surface.connect = </OtherShader/Graph.outputs:surface>
+    def NodeGraph "Graph"
+    {
+        token outputs:surface.connect = </OtherShader/Graph/Standard.outputs:surface>
+        def Shader "Standard"
+        {
+            uniform token info:id = "ND_standard_surface_surfaceshader"
+            token outputs:surface
+        }
+    }
+}
 def Material "MissingInterface"
 {
     token outputs:surface.connect = </MissingInterface/Surface.outputs:surface>
@@ -193,7 +206,57 @@ def Material "MissingInterface"
     ASSERT_EQ(sd.getValue(sd.userData, "/MissingInterface", "inputs:roughness", 0.0, &value), OBSCURA_OK);
     EXPECT_FLOAT_EQ(static_cast<const float*>(value.data)[0], 0.25f);
     EXPECT_TRUE(located("/MissingInterface: inputs:roughness: its connection target </MissingInterface.inputs:rough> "
-                        "does not exist", 33));
+                        "does not exist", 46));
+    EXPECT_TRUE(located("/OtherShader: no UsdPreviewSurface on outputs:surface (it leads to "
+                        "/OtherShader/Graph/Standard.outputs:surface); material skipped", 28));
+}
+
+TEST(NodeGraphUsda, AnAnimatedInterfaceInputAnimatesTheMaterial) {
+    // The colour is sampled on the Material's interface only; the surface shader's input connects
+    // to it through the NodeGraph's. Each frame's albedo follows the samples (sRGB codes 200 then 40).
+    const std::string text = R"(#usda 1.0
+def Camera "Camera"
+{
+    float focalLength = 50
+    float horizontalAperture = 20.955
+    float verticalAperture = 20.955
+    double3 xformOp:translate = (0, 0, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Mesh "Plane"
+{
+    point3f[] points = [(-2, -2, 0), (2, -2, 0), (2, 2, 0), (-2, 2, 0)]
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    uniform token subdivisionScheme = "none"
+    rel material:binding = </M>
+}
+def Material "M"
+{
+    color3f inputs:tint.timeSamples = { 0: (0.577581, 0.577581, 0.577581), 1: (0.021219, 0.021219, 0.021219) }
+    token outputs:surface.connect = </M/Graph.outputs:surface>
+    def NodeGraph "Graph"
+    {
+        color3f inputs:tint.connect = </M.inputs:tint>
+        token outputs:surface.connect = </M/Graph/Surface.outputs:surface>
+        def Shader "Surface"
+        {
+            uniform token info:id = "UsdPreviewSurface"
+            color3f inputs:diffuseColor.connect = </M/Graph.inputs:tint>
+            token outputs:surface
+        }
+    }
+}
+)";
+    HostedStage scene(usda::Stage::openFromString(text, OBSCURA_TEST_DATA_DIR "/animated.usda"));
+    auto first = scene.renderAov("albedo", 3, 0.0);
+    ASSERT_EQ(first.size(), size_t(kWidth) * kHeight * 3);
+    expectLinear(first, 32, 32, {200, 200, 200}, "time 0");
+    ASSERT_EQ(scene.host->markTimeVarying(scene.api(), scene.delegate), OBSCURA_OK);
+    auto second = scene.renderAov("albedo", 3, 1.0);
+    ASSERT_EQ(second.size(), size_t(kWidth) * kHeight * 3);
+    expectLinear(second, 32, 32, {40, 40, 40}, "time 1");
+    EXPECT_TRUE(scene.errors.empty()) << scene.errors.front();
 }
 
 }  // namespace
