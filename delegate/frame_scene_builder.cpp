@@ -288,10 +288,11 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     // Cut-outs (opacityThreshold) discard texels in the G-buffer and the shadow maps alike.
     auto hasCutout = [&](const Mesh& mesh) { return materials[materialOf(mesh)].opacity[1] > 0.0f; };
     // UsdPreviewSurface opacity without a threshold blends (the spec: opacityThreshold 0 means no
-    // masking): below 1, or textured, the surface is transparent. So does the fallback material's
-    // displayOpacity below 1.
+    // masking): below 1, or textured, the surface is transparent. So is a prim without a material
+    // whose displayOpacity is below 1 anywhere.
     auto isTransparent = [&](const Mesh& mesh) {
         const passes::MaterialData& m = materials[materialOf(mesh)];
+        if (!boundMaterial(mesh) && mesh.hasTranslucentVertices()) return true;
         return m.opacity[1] <= 0.0f && (m.opacity[0] < 1.0f || m.textures[passes::kTextureOpacity].sampled != 0);
     };
     auto drawable = [&](const Prim& prim) -> const Mesh* {

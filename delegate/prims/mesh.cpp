@@ -29,21 +29,19 @@ void Mesh::pullGprim(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     if (bits & OBSCURA_DIRTY_MATERIAL_ID) material_ = s.getPath("material:binding");
     if (bits & OBSCURA_DIRTY_PRIMVAR) {
         displayOpacity_ = 1.0f;
-        opacityWarning_.clear();
-        // XXX: opacity varying over the surface (uniform, vertex, faceVarying) would need a vertex
-        // attribute of its own; such a primvar is reported and the prim drawn opaque.
+        varyingOpacity_.reset();
         if (auto opacity = s.getFloatArray("primvars:displayOpacity"); opacity && !opacity->empty()) {
-            if (s.interpolation("primvars:displayOpacity") == OBSCURA_INTERPOLATION_CONSTANT)
-                displayOpacity_ = std::clamp(opacity->front(), 0.0f, 1.0f);
-            else
-                opacityWarning_ = "primvars:displayOpacity is used only with constant interpolation; ignored";
+            ObscuraInterpolation interpolation = s.interpolation("primvars:displayOpacity");
+            if (interpolation == OBSCURA_INTERPOLATION_CONSTANT) displayOpacity_ = std::clamp(opacity->front(), 0.0f, 1.0f);
+            else varyingOpacity_ = MeshPrimvar{std::move(*opacity), interpolation, 1};
         }
     }
 }
 
 void Mesh::setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std::string& path) {
     warnings_ = geometry.warnings;
-    if (!opacityWarning_.empty()) warnings_.push_back(opacityWarning_);
+    translucentVertices_ = std::any_of(geometry.vertices.begin(), geometry.vertices.end(),
+                                       [](const passes::Vertex& v) { return v.color[3] < 1.0f; });
     indexCount_ = static_cast<uint32_t>(geometry.indices.size());
     localBounds_ = Aabb{};
     for (const passes::Vertex& v : geometry.vertices) localBounds_.extend({v.position[0], v.position[1], v.position[2]});
@@ -100,6 +98,7 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         input_.displayColor.reset();
         if (auto c = s.getFloatArray("primvars:displayColor"))
             input_.displayColor = MeshPrimvar{std::move(*c), s.interpolation("primvars:displayColor")};
+        input_.displayOpacity = varyingOpacity_;
         input_.st.reset();
         if (auto st = s.getFloatArray("primvars:st"))
             input_.st = MeshPrimvar{std::move(*st), s.interpolation("primvars:st"), 2};

@@ -39,9 +39,12 @@ public:
     bool doubleSided() const { return doubleSided_; }
     const std::optional<std::string>& materialPath() const { return material_; }
     bool hasDisplayColor() const { return input_.displayColor.has_value(); }
-    // Constant primvars:displayOpacity in [0, 1] (1 when not authored): without a material, below
-    // 1 the prim is transparent (Hydra's fallback material reads displayOpacity).
+    // Constant primvars:displayOpacity in [0, 1] (1 when not authored or not constant): without a
+    // material, below 1 the prim is transparent (Hydra's fallback material reads displayOpacity).
     float displayOpacity() const { return displayOpacity_; }
+    // Some drawn vertex's displayOpacity (uniform, vertex or faceVarying, in the vertex alpha) is
+    // below 1: without a material the prim is transparent.
+    bool hasTranslucentVertices() const { return translucentVertices_; }
     const std::vector<std::string>& warnings() const { return warnings_; }
 
 protected:
@@ -51,6 +54,8 @@ protected:
     void pullGprim(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx);
     // Uploads the drawn polygons (shared through the geometry cache) and keeps their bounds and warnings.
     void setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std::string& path);
+    // Non-constant primvars:displayOpacity as pulled; null when constant or not authored.
+    std::optional<MeshPrimvar> varyingOpacity_;
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
@@ -69,7 +74,7 @@ private:
     bool visible_ = true;
     uint32_t purpose_ = kPurposeDefault;
     float displayOpacity_ = 1.0f;
-    std::string opacityWarning_;
+    bool translucentVertices_ = false;
     std::optional<std::string> material_;
     gpu::BufferPtr vertices_;
     gpu::BufferPtr indices_;

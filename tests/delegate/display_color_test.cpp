@@ -126,17 +126,61 @@ TEST(DisplayColor, ConstantOpacityBelowOneIsTransparent) {
     EXPECT_NEAR(p[3], opacity, 1.0f / 255.0f);
 }
 
-TEST(DisplayColor, OpacityVaryingOverThePrimIsReportedAndDrawnOpaque) {
+// Opacity varying over the prim: premultiplied colour opacity x lit and alpha opacity where it is
+// below 1, the plain lit colour (alpha 1) where it is 1.
+void expectOver(const std::vector<float>& color, int x, int y, const Rgb& albedo, double opacity) {
+    auto expected = lambert(albedo, opacity);
+    const float* p = &color[(size_t(y) * kWidth + size_t(x)) * 4];
+    const int mantissa[3] = {6, 6, 5};
+    for (size_t c = 0; c < 3; ++c)
+        EXPECT_NEAR(p[c], expected[c], 0.01 * expected[c] + smallFloatStep(float(expected[c]), mantissa[c]))
+            << "pixel (" << x << ", " << y << ") channel " << c;
+    EXPECT_NEAR(p[3], opacity, 1.0f / 255.0f) << "pixel (" << x << ", " << y << ")";
+}
+
+HostValue floats(std::vector<float> values) {
+    HostValue v;
+    v.type = OBSCURA_VALUE_FLOAT;
+    v.isArray = true;
+    v.count = values.size();
+    v.floats = std::move(values);
+    return v;
+}
+
+TEST(DisplayColor, UniformOpacityMakesOneFaceTransparent) {
     DisplayColorScene s;
-    s.addHalves({kRed}, OBSCURA_INTERPOLATION_CONSTANT, 0.5f);
+    s.addHalves({kRed}, OBSCURA_INTERPOLATION_CONSTANT);
+    s.host.set("/Halves", "primvars:displayOpacity", floats({1.0f, 0.25f}));
     s.host.setInterpolation("/Halves", "primvars:displayOpacity", OBSCURA_INTERPOLATION_UNIFORM);
-    EXPECT_EQ(s.host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_OK) << s.host.lastError();
-    auto color = s.host.readFloats("/Buffers/color");
-    expectRadiance(color, 32, 32, lambert(kRed));
-    bool warned = false;
-    for (const auto& m : s.host.loggedWarnings())
-        warned |= m.find("/Halves") != std::string::npos && m.find("displayOpacity is used only with constant") != std::string::npos;
-    EXPECT_TRUE(warned);
+    s.host.api().markDirty(s.host.delegate(), "/Halves", OBSCURA_DIRTY_PRIMVAR);
+    auto color = s.render();
+    expectOver(color, 16, 32, kRed, 1.0);
+    expectOver(color, 48, 32, kRed, 0.25);
+}
+
+TEST(DisplayColor, FaceVaryingOpacityFollowsEachFacesCorners) {
+    DisplayColorScene s;
+    s.addHalves({kBlue}, OBSCURA_INTERPOLATION_CONSTANT);
+    s.host.set("/Halves", "primvars:displayOpacity", floats({0.5f, 0.5f, 0.5f, 0.5f, 1.0f, 1.0f, 1.0f, 1.0f}));
+    s.host.setInterpolation("/Halves", "primvars:displayOpacity", OBSCURA_INTERPOLATION_FACE_VARYING);
+    s.host.api().markDirty(s.host.delegate(), "/Halves", OBSCURA_DIRTY_PRIMVAR);
+    auto color = s.render();
+    expectOver(color, 16, 32, kBlue, 0.5);
+    expectOver(color, 48, 32, kBlue, 1.0);
+}
+
+TEST(DisplayColor, VertexOpacityInterpolatesBetweenPoints) {
+    // Opacity 0.2 on the left column, 1 on the right, 0.6 in the middle: affine in x.
+    DisplayColorScene s;
+    s.addHalves({kGreen}, OBSCURA_INTERPOLATION_CONSTANT);
+    s.host.set("/Halves", "primvars:displayOpacity", floats({0.2f, 0.6f, 1.0f, 0.2f, 0.6f, 1.0f}));
+    s.host.setInterpolation("/Halves", "primvars:displayOpacity", OBSCURA_INTERPOLATION_VERTEX);
+    s.host.api().markDirty(s.host.delegate(), "/Halves", OBSCURA_DIRTY_PRIMVAR);
+    auto color = s.render();
+    for (int x : {4, 20, 40, 56}) {
+        double u = (planePointAtPixel(x, 32, kLitPlaneCameraDistance, kLitPlaneTanHalfFov)[0] + kHalf) / (2.0 * kHalf);
+        expectOver(color, x, 32, kGreen, 0.2 + 0.8 * u);
+    }
 }
 
 }  // namespace
