@@ -83,7 +83,7 @@ const Light* environmentDome(const std::map<std::string, std::unique_ptr<Prim>>&
 
 FrameView frameView(const FrameSceneInputs& in) {
     const Camera& cam = in.camera;
-    double aspect = double(in.width) / double(in.height);
+    double aspect = double(in.width) * in.pixelAspectRatio / double(in.height);
     if (in.shutter && !in.sample)
         return {cam.viewMatrix({0.0, 0.0}, shutterCentre(blurInterval(in))), cam.projectionMatrix(aspect)};
     if (!in.sample) return {cam.viewMatrix(), cam.projectionMatrix(aspect)};
@@ -216,6 +216,26 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         return false;
     };
 
+    // The material record a mesh draws with: its bound material's, else Hydra's fallback material
+    // (displayColor as the vertex colour, the default grey's other inputs) with its constant
+    // displayOpacity, one record per opacity (record 0: opaque).
+    auto boundMaterial = [&](const Mesh& mesh) -> std::optional<uint32_t> {
+        if (!mesh.materialPath()) return std::nullopt;
+        auto it = materialIndex.find(*mesh.materialPath());
+        return it == materialIndex.end() ? std::nullopt : std::optional(it->second);
+    };
+    std::map<float, uint32_t> fallbackMaterials{{1.0f, 0u}};
+    auto materialOf = [&](const Mesh& mesh) -> uint32_t {
+        if (auto bound = boundMaterial(mesh)) return *bound;
+        auto [it, added] = fallbackMaterials.emplace(mesh.displayOpacity(), uint32_t(materials.size()));
+        if (added) {
+            passes::MaterialData fallback = materials[0];
+            fallback.opacity[0] = mesh.displayOpacity();
+            materials.push_back(fallback);
+        }
+        return it->second;
+    };
+
     std::vector<passes::InstanceData> instances;
     std::vector<passes::InstanceMotion> motions;
     std::vector<passes::InstanceReprojection> reprojections;
@@ -246,14 +266,10 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         inst.model = toFloats<passes::Mat4>(model);
         inst.normalMatrix = toFloats<passes::Mat4>(normalMatrix(model));
         inst.primId = mesh.primId();
-        inst.materialIndex = 0;
-        if (mesh.materialPath()) {
-            auto it = materialIndex.find(*mesh.materialPath());
-            if (it != materialIndex.end()) inst.materialIndex = it->second;
-        }
+        inst.materialIndex = materialOf(mesh);
         // UsdPreviewSurface wins over displayColor; without a material, displayColor is the
         // surface colour (as Hydra's fallback material).
-        if (inst.materialIndex == 0) inst.flags |= passes::kInstanceVertexColor;
+        if (!boundMaterial(mesh)) inst.flags |= passes::kInstanceVertexColor;
         if (mesh.doubleSided()) inst.flags |= passes::kInstanceDoubleSided;
         // Hybrid AA, per object (seed 004): near the eye the view vector turns fastest as the camera
         // moves, so view-dependent shading defeats reprojection there; edge AA takes those.
@@ -270,23 +286,18 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         return it == texturesOfMaterial.end() ? 0 : it->second;
     };
     // Cut-outs (opacityThreshold) discard texels in the G-buffer and the shadow maps alike.
-    auto hasCutout = [&](const Mesh& mesh) {
-        if (!mesh.materialPath()) return false;
-        auto it = materialIndex.find(*mesh.materialPath());
-        return it != materialIndex.end() && materials[it->second].opacity[1] > 0.0f;
-    };
+    auto hasCutout = [&](const Mesh& mesh) { return materials[materialOf(mesh)].opacity[1] > 0.0f; };
     // UsdPreviewSurface opacity without a threshold blends (the spec: opacityThreshold 0 means no
-    // masking): below 1, or textured, the surface is transparent.
+    // masking): below 1, or textured, the surface is transparent. So is a prim without a material
+    // whose displayOpacity is below 1 anywhere.
     auto isTransparent = [&](const Mesh& mesh) {
-        if (!mesh.materialPath()) return false;
-        auto it = materialIndex.find(*mesh.materialPath());
-        if (it == materialIndex.end()) return false;
-        const passes::MaterialData& m = materials[it->second];
+        const passes::MaterialData& m = materials[materialOf(mesh)];
+        if (!boundMaterial(mesh) && mesh.hasTranslucentVertices()) return true;
         return m.opacity[1] <= 0.0f && (m.opacity[0] < 1.0f || m.textures[passes::kTextureOpacity].sampled != 0);
     };
-    auto drawable = [](const Prim& prim) -> const Mesh* {
+    auto drawable = [&](const Prim& prim) -> const Mesh* {
         auto* mesh = dynamic_cast<const Mesh*>(&prim);
-        return mesh && !mesh->skipped() && mesh->drawable() ? mesh : nullptr;
+        return mesh && !mesh->skipped() && mesh->drawable() && (mesh->purpose() & in.includedPurposes) ? mesh : nullptr;
     };
     // Meshes with the same geometry (repeated references share buffers through the geometry
     // cache) and the same textures become one instanced draw, in the order they first appear.

@@ -5,6 +5,7 @@
 #include "delegate/prims/camera.h"
 #include "delegate/prims/light.h"
 #include "delegate/prims/prim.h"
+#include "delegate/purposes.h"
 #include "delegate/shadow_views.h"
 #include "delegate/texture_cache.h"
 #include "passes/frame_scene.h"
@@ -58,6 +59,11 @@ struct FrameSceneInputs {
     // Render setting domeLightCameraVisibility (Hydra's): visible domes are the background the
     // camera sees where nothing is drawn, and it is opaque.
     bool domeBackdrop = true;
+    // Render setting pixelAspectRatio (UsdRenderSettingsBase's): a pixel's width over its height;
+    // the image the camera's aperture is conformed to is width x pixelAspectRatio wide.
+    double pixelAspectRatio = 1.0;
+    // Render setting includedPurposes (purposes.h): the purposes drawn; prims of others are not.
+    uint32_t includedPurposes = kPurposeDefault | kPurposeRender;
     // The camera's shutter, absolute time codes [open, close], when the frame samples it: a
     // motion-blurred frame (no `sample`) is seen at its centre (the reconstruction filter spreads
     // each pixel both ways along its velocity, McGuire et al. 2012) and the passes get where the

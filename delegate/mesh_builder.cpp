@@ -1,5 +1,6 @@
 #include "delegate/mesh_builder.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -83,6 +84,7 @@ std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh)
     };
     const MeshPrimvar* normals = usable(mesh.normals, "normals");
     const MeshPrimvar* colors = usable(mesh.displayColor, "primvars:displayColor");
+    const MeshPrimvar* opacities = usable(mesh.displayOpacity, "primvars:displayOpacity");
     const MeshPrimvar* st = usable(mesh.st, "primvars:st");
 
     // Smooth vertex normals when none are authored: area-weighted sum of face normals (the
@@ -164,6 +166,8 @@ std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh)
             const float kGrey = 0.18f;
             for (int j = 0; j < 3; ++j)
                 v.color[j] = colors ? colors->values[3 * primvarIndex(colors->interpolation, f, fv, pi) + size_t(j)] : kGrey;
+            v.color[3] = opacities ? std::clamp(opacities->values[primvarIndex(opacities->interpolation, f, fv, pi)], 0.0f, 1.0f)
+                                   : 1.0f;
             for (int j = 0; j < 2 && st; ++j) v.uv[j] = st->values[2 * primvarIndex(st->interpolation, f, fv, pi) + size_t(j)];
             setTangent(v, st ? &tangentSum[pi] : nullptr, st ? &bitangentSum[pi] : nullptr);
             out.vertices.push_back(v);

@@ -26,6 +26,7 @@ struct MeshInput {
     bool leftHanded = false;
     std::optional<MeshPrimvar> normals;
     std::optional<MeshPrimvar> displayColor;
+    std::optional<MeshPrimvar> displayOpacity;  // 1 component
     std::optional<MeshPrimvar> st;  // texture coordinates, 2 components
 };
 

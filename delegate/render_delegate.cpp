@@ -399,9 +399,12 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
                            uint32_t(settings_.number("shadows:cascades"))};
     FrameSceneInputs frame{prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows, dome};
     frame.domeBackdrop = settings_.number("domeLightCameraVisibility") != 0.0;
+    frame.includedPurposes = purposeMask(settings_.token("includedPurposes"));
+    frame.pixelAspectRatio = settings_.number("pixelAspectRatio");
     // The `dof` setting turns the lens off for the post-process and the reference alike, and
     // `motionBlur` the shutter.
-    passes::ThinLens lens = settings_.number("dof") != 0.0 ? camera->thinLens(double(width) / double(height))
+    // XXX: the circle of confusion stays round in pixels when pixels are not square.
+    passes::ThinLens lens = settings_.number("dof") != 0.0 ? camera->thinLens(double(width) * frame.pixelAspectRatio / double(height))
                                                            : passes::ThinLens{};
     const CameraParams& cameraParams = camera->params();
     std::array<double, 2> shutter{desc.time, desc.time};

@@ -1,5 +1,6 @@
 #include "delegate/render_settings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
@@ -101,6 +102,14 @@ const RenderSettingInfo kSettings[] = {
                   "(the dof and motionBlur settings still decide whether the lens and the shutter are sampled); 0 "
                   "renders the normal frame (int, default 0)",
      OBSCURA_VALUE_INT, 0.0, 0.0, 65536.0},
+    {"pixelAspectRatio", "a pixel's width over its height, as UsdRenderSettings' pixelAspectRatio: the camera's "
+                         "aperture is conformed to an image width x pixelAspectRatio wide, 0.01-100 (float, default 1)",
+     OBSCURA_VALUE_FLOAT, 1.0, 0.01, 100.0},
+    {"includedPurposes", "the purposes drawn, comma-separated from default, render, proxy and guide (Hydra's "
+                         "render tags; a prim's purpose is UsdGeomImageable's computed purpose): a stage's proxies "
+                         "and guides are left out unless named (token, default default,render)",
+     OBSCURA_VALUE_TOKEN, 0.0, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+     "default|render|proxy|guide", "default,render", true},
     {"ocio:config", "OpenColorIO config file (token; default: $OCIO, else the built-in ACES-based config)",
      OBSCURA_VALUE_TOKEN, 0.0},
     {"ocio:display", "OCIO display (token; default: the config's default display)", OBSCURA_VALUE_TOKEN, 0.0},
@@ -125,6 +134,23 @@ bool isTokenChoice(std::string_view choices, std::string_view token) {
         if (end == std::string_view::npos) return false;
         start = end + 1;
     }
+}
+
+// Why `token` is not a value of the setting, or "".
+std::string tokenProblem(const RenderSettingInfo& info, std::string_view token) {
+    if (!info.tokenChoices) return {};
+    if (!info.tokenList)
+        return isTokenChoice(info.tokenChoices, token)
+                   ? std::string()
+                   : "'" + std::string(token) + "' is not one of " + info.tokenChoices;
+    for (size_t start = 0; start <= token.size();) {
+        size_t end = std::min(token.find(',', start), token.size());
+        std::string_view entry = token.substr(start, end - start);
+        if (!isTokenChoice(info.tokenChoices, entry))
+            return "'" + std::string(entry) + "' in '" + std::string(token) + "' is not one of " + info.tokenChoices;
+        start = end + 1;
+    }
+    return {};
 }
 
 }  // namespace
@@ -152,8 +178,7 @@ std::string RenderSettings::set(const std::string& name, const ObscuraValue* val
     if (info->type == OBSCURA_VALUE_TOKEN) {
         const char* const* text = static_cast<const char* const*>(value->data);
         if (value->type != OBSCURA_VALUE_TOKEN || !text[0]) return name + ": expected a token";
-        if (info->tokenChoices && !isTokenChoice(info->tokenChoices, text[0]))
-            return name + ": '" + text[0] + "' is not one of " + info->tokenChoices;
+        if (std::string problem = tokenProblem(*info, text[0]); !problem.empty()) return name + ": " + problem;
         tokens_[name] = text[0];
         ++version_;
         return {};
@@ -180,7 +205,9 @@ std::string RenderSettings::set(const std::string& name, const ObscuraValue* val
 
 std::string RenderSettings::token(const std::string& name) const {
     auto it = tokens_.find(name);
-    return it == tokens_.end() ? std::string() : it->second;
+    if (it != tokens_.end()) return it->second;
+    const RenderSettingInfo* info = findRenderSetting(name);
+    return info && info->defaultToken ? info->defaultToken : std::string();
 }
 
 double RenderSettings::number(const std::string& name) const {

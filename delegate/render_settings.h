@@ -22,6 +22,10 @@ struct RenderSettingInfo {
     double maximum = std::numeric_limits<double>::infinity();
     // Tokens: the accepted values, '|'-separated (none given: any token).
     const char* tokenChoices = nullptr;
+    // Tokens: the value when unset (none given: "").
+    const char* defaultToken = nullptr;
+    // Tokens: a comma-separated list, each entry one of tokenChoices.
+    bool tokenList = false;
 };
 
 const RenderSettingInfo* findRenderSetting(const std::string& name);
@@ -32,7 +36,7 @@ public:
     // Stores a value after checking its type; returns a reason on failure. nullptr resets.
     std::string set(const std::string& name, const ObscuraValue* value);
     double number(const std::string& name) const;
-    std::string token(const std::string& name) const;  // "" when unset
+    std::string token(const std::string& name) const;  // the default token when unset
     uint64_t version() const { return version_; }
 
 private:

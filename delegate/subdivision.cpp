@@ -177,8 +177,9 @@ struct TopologyKey {
     SubdivisionScheme scheme = SubdivisionScheme::None;
     SubdivisionTags tags;
     int level = 0;
-    // displayColor or st is face-varying: the refiner carries a face-varying channel. Both have a
-    // value per face-vertex (the host expands indexed primvars), so one channel serves both.
+    // displayColor, displayOpacity or st is face-varying: the refiner carries a face-varying
+    // channel. Each has a value per face-vertex (the host expands indexed primvars), so one channel
+    // serves all.
     bool faceVaryingChannel = false;
 
     bool operator==(const TopologyKey&) const = default;
@@ -187,6 +188,7 @@ struct TopologyKey {
 TopologyKey makeKey(const MeshInput& mesh, SubdivisionScheme scheme, const SubdivisionTags& tags, int level) {
     return {mesh.faceVertexCounts, mesh.faceVertexIndices, mesh.points.size() / 3, mesh.leftHanded, scheme, tags, level,
             (isFaceVarying(mesh.displayColor) && fitsMesh(mesh, mesh.displayColor)) ||
+                (isFaceVarying(mesh.displayOpacity) && fitsMesh(mesh, mesh.displayOpacity)) ||
                 (isFaceVarying(mesh.st) && fitsMesh(mesh, mesh.st))};
 }
 
@@ -385,6 +387,7 @@ MeshInput evaluate(const SubdivisionTopology& topology, const MeshInput& mesh) {
     out.leftHanded = false;
     out.normals = MeshPrimvar{limitNormals(*topology.refiner, points), OBSCURA_INTERPOLATION_VERTEX};
     if (fitsMesh(mesh, mesh.displayColor)) out.displayColor = refinePrimvar(topology, *mesh.displayColor);
+    if (fitsMesh(mesh, mesh.displayOpacity)) out.displayOpacity = refinePrimvar(topology, *mesh.displayOpacity);
     if (fitsMesh(mesh, mesh.st)) out.st = refinePrimvar(topology, *mesh.st);
     return out;
 }

@@ -3,6 +3,7 @@
 #include "harness/exit_codes.h"
 #include "harness/frame_output.h"
 #include "harness/session.h"
+#include "harness/usd_render_settings.h"
 
 #include <chrono>
 #include <cmath>
@@ -66,24 +67,70 @@ ObscuraStatus renderUntilConverged(Session& session, const ObscuraRenderPassDesc
     return status;
 }
 
+// The stage's render settings (UsdRender) under the flags: what a flag leaves unset comes from the
+// RenderSettings prim --render-settings names, else the one the stage's renderSettingsPrimPath names.
+std::variant<RenderOptions, SessionError> withStageRenderSettings(RenderOptions o, const usda::Stage& stage) {
+    const bool chosen = !o.renderSettings.empty();
+    const std::string path = chosen ? o.renderSettings : stage.metadata().renderSettingsPrimPath;
+    if (path.empty()) return o;
+    std::vector<HostMessage> messages;
+    auto read = readStageRenderSettings(stage, path, messages);
+    for (const HostMessage& m : messages) printHostMessage(m);
+    if (auto* problem = std::get_if<std::string>(&read)) {
+        if (chosen) return SessionError{kExitBadInput, "--render-settings: " + *problem};
+        printHostMessage({false, "renderSettingsPrimPath: " + *problem + "; rendering without them", stage.metadata().where});
+        return o;
+    }
+    const StageRenderSettings& s = std::get<StageRenderSettings>(read);
+    if (o.camera.empty()) o.camera = s.camera;
+    if (!o.width && s.resolution) o.width = (*s.resolution)[0];
+    if (!o.height && s.resolution) o.height = (*s.resolution)[1];
+    if (o.aovs.empty()) o.aovs = s.aovs;
+    if (o.output.empty()) o.output = s.productName;
+    // Ahead of the --set ones, which override them.
+    std::vector<std::string> settings;
+    if (s.pixelAspectRatio) {
+        char text[64];
+        std::snprintf(text, sizeof(text), "pixelAspectRatio=%.17g", *s.pixelAspectRatio);
+        settings.emplace_back(text);
+    }
+    if (s.includedPurposes) settings.push_back("includedPurposes=" + *s.includedPurposes);
+    if (s.disableMotionBlur) settings.push_back(*s.disableMotionBlur ? "motionBlur=off" : "motionBlur=on");
+    if (s.disableDepthOfField) settings.push_back(*s.disableDepthOfField ? "dof=off" : "dof=on");
+    settings.insert(settings.end(), o.settings.begin(), o.settings.end());
+    o.settings = std::move(settings);
+    return o;
+}
+
 }  // namespace
 
-int runRender(const RenderOptions& o) {
-    bool exr = endsWith(o.output, ".exr"), png = endsWith(o.output, ".png");
-    if (!exr && !png) {
-        std::fprintf(stderr, "obscura: output must end in .exr or .png: %s\n", o.output.c_str());
-        return kExitUsage;
-    }
-    if (o.width <= 0 || o.height <= 0) {
-        std::fprintf(stderr, "obscura: --width and --height must be positive\n");
-        return kExitUsage;
-    }
-    auto opened = Session::open(o.scene, o.limits);
+int runRender(const RenderOptions& options) {
+    auto opened = Session::open(options.scene, options.limits);
     if (auto* error = std::get_if<SessionError>(&opened)) {
         std::fprintf(stderr, "obscura: %s\n", error->message.c_str());
         return error->exitCode;
     }
     Session& session = *std::get<std::unique_ptr<Session>>(opened);
+    auto resolved = withStageRenderSettings(options, session.stage());
+    if (auto* error = std::get_if<SessionError>(&resolved)) {
+        std::fprintf(stderr, "obscura: %s\n", error->message.c_str());
+        return error->exitCode;
+    }
+    const RenderOptions& o = std::get<RenderOptions>(resolved);
+    const int width = o.width.value_or(960), height = o.height.value_or(540);
+    if (o.output.empty()) {
+        std::fprintf(stderr, "obscura: no output: give -o, or render settings whose product has a productName\n");
+        return kExitUsage;
+    }
+    bool exr = endsWith(o.output, ".exr"), png = endsWith(o.output, ".png");
+    if (!exr && !png) {
+        std::fprintf(stderr, "obscura: output must end in .exr or .png: %s\n", o.output.c_str());
+        return kExitUsage;
+    }
+    if (width <= 0 || height <= 0) {
+        std::fprintf(stderr, "obscura: --width and --height must be positive\n");
+        return kExitUsage;
+    }
     session.setVerbose(o.verbose);
     std::vector<std::string> settings = withMsaaSetting(o.settings, o.msaa);
     if (o.reference > 0) settings.push_back("reference=" + std::to_string(o.reference));
@@ -107,7 +154,7 @@ int runRender(const RenderOptions& o) {
                                         : (o.aovs.empty() ? std::vector<std::string>{"color"} : o.aovs);
     std::vector<std::string> buffers;
     std::vector<ObscuraAovBinding> bindings;
-    for (const auto& aov : aovs) buffers.push_back(session.host().addRenderBuffer(session.api(), session.delegate(), aov, o.width, o.height));
+    for (const auto& aov : aovs) buffers.push_back(session.host().addRenderBuffer(session.api(), session.delegate(), aov, width, height));
     for (size_t i = 0; i < aovs.size(); ++i) bindings.push_back({aovs[i].c_str(), buffers[i].c_str()});
 
     int exitCode = kExitOk;
@@ -125,7 +172,7 @@ int runRender(const RenderOptions& o) {
         if (timeVaryingDirty) session.host().markTimeVarying(session.api(), session.delegate());
         timeVaryingDirty = true;
         ObscuraRenderPassDesc desc{OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC, nullptr, sizeof(ObscuraRenderPassDesc),
-                                   camera.c_str(), {0, 0, o.width, o.height}, frame,
+                                   camera.c_str(), {0, 0, width, height}, frame,
                                    static_cast<uint32_t>(bindings.size()), bindings.data()};
         // Each frame of a sequence converges too: the first render of a frame syncs what changed
         // (the history is reprojected), the following ones accumulate the still.

@@ -13,10 +13,12 @@ struct RenderOptions {
     std::string scene;
     std::string output;
     std::string camera;
+    std::string renderSettings;  // --render-settings: a RenderSettings prim; "": the stage's renderSettingsPrimPath
     std::optional<double> frame;
     std::string frames;  // "A-B"
-    int width = 960;
-    int height = 540;
+    // Unset: the render settings' resolution, else 960 x 540.
+    std::optional<int> width;
+    std::optional<int> height;
     std::vector<std::string> aovs;
     std::vector<std::string> settings;
     int reference = 0;  // sub-frames of the reference mode; 0: the normal frame

@@ -40,12 +40,19 @@ int main(int argc, char** argv) {
     double frame = 0;
     auto* r = app.add_subcommand("render", "render a scene to an image");
     r->add_option("scene", render.scene, "scene file (.usda, .usdc, .usd, .usdz, .gltf, .glb, .fbx, .obj)")->required();
-    r->add_option("-o,--output", render.output, "output .exr (all AOVs, linear) or .png (display); #### = frame")->required();
-    r->add_option("--camera", render.camera, "camera prim path (default: the first camera)");
+    r->add_option("-o,--output", render.output,
+                  "output .exr (all AOVs, linear) or .png (display); #### = frame (default: the render product's "
+                  "productName)");
+    r->add_option("--camera", render.camera, "camera prim path (default: the render settings', else the first camera)");
+    r->add_option("--render-settings", render.renderSettings,
+                  "RenderSettings prim whose camera, resolution, pixel aspect, purposes and product's AOVs are used "
+                  "(default: the stage's renderSettingsPrimPath); flags override them");
     auto* frameOpt = r->add_option("--frame", frame, "time code to render");
     r->add_option("--frames", render.frames, "range A-B of frames");
-    r->add_option("--width", render.width, "image width in pixels")->check(CLI::PositiveNumber);
-    r->add_option("--height", render.height, "image height in pixels")->check(CLI::PositiveNumber);
+    r->add_option("--width", render.width, "image width in pixels (default: the render settings', else 960)")
+        ->check(CLI::PositiveNumber);
+    r->add_option("--height", render.height, "image height in pixels (default: the render settings', else 540)")
+        ->check(CLI::PositiveNumber);
     r->add_option("--aov", render.aovs, "AOVs for .exr: color,depth,normal,albedo,motion,primId,instanceId")->delimiter(',');
     r->add_option("--set", render.settings, "render setting key=value (repeatable)");
     r->add_option("--reference", render.reference,

@@ -27,18 +27,19 @@ std::variant<LoadedPlugin, SessionError> loadBestPlugin() {
 
 namespace {
 
-// "file:line:column: " as compilers write it, or "" for no location.
+// "file:line:column: " as compilers write it, "file: " without a line, or "" for no location.
 std::string locationPrefix(const usda::SourceLocation& where) {
-    if (where.file.empty() || where.line <= 0) return {};
+    if (where.file.empty()) return {};
+    if (where.line <= 0) return where.file + ": ";
     return where.file + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) + ": ";
 }
+
+}  // namespace
 
 void printHostMessage(const HostMessage& m) {
     std::fprintf(stderr, "obscura: %s%s: %s\n", locationPrefix(m.where).c_str(), m.error ? "error" : "warning",
                  m.text.c_str());
 }
-
-}  // namespace
 
 // A message about a prim names where its offending attribute was authored (delegate_message.h).
 void Session::logToStderr(void* user, ObscuraLogLevel level, const char* message) {

@@ -53,6 +53,9 @@ private:
     bool verbose_ = false;
 };
 
+// Prints a host message to stderr as "obscura: file:line:column: warning: text".
+void printHostMessage(const HostMessage& message);
+
 // Loads the best plugin without a scene (for `obscura info`).
 std::variant<LoadedPlugin, SessionError> loadBestPlugin();
 

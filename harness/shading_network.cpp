@@ -24,25 +24,12 @@ std::pair<std::string, std::string> splitPropertyPath(const std::string& path) {
     return {path.substr(0, dot), path.substr(dot + 1)};
 }
 
-std::string shaderId(const usda::Prim& prim) {
-    const usda::Attribute* id = prim.attribute("info:id");
-    auto value = id ? id->evaluate(0) : std::nullopt;
-    return value && !value->strings.empty() ? value->strings[0] : "";
-}
-
 // The value of a shader input at `time`, following its connection to another input (a Material's
 // or NodeGraph's interface) when it has one; `from` receives the attribute that held the value.
 std::optional<usda::Value> evaluateInput(const usda::Stage& stage, const usda::Prim& prim, const std::string& name,
                                          double time, const usda::Attribute** from = nullptr) {
-    const usda::Attribute* attribute = prim.attribute(name);
-    for (int depth = 0; attribute && attribute->connection && depth < kMaxConnectionDepth; ++depth) {
-        auto [sourcePath, property] = splitPropertyPath(*attribute->connection);
-        const usda::Prim* source = stage.find(sourcePath);
-        const usda::Attribute* next =
-            source && property.rfind("inputs:", 0) == 0 ? source->attribute(property) : nullptr;
-        if (!next) break;
-        attribute = next;
-    }
+    const usda::Attribute* input = prim.attribute(name);
+    const usda::Attribute* attribute = input ? valueProducingAttribute(stage, *input) : nullptr;
     if (!attribute) return std::nullopt;
     auto value = attribute->evaluate(time);
     if (!value || value->empty()) return std::nullopt;
@@ -61,7 +48,7 @@ usda::Value tokenValue(std::string text) {
 std::optional<std::string> readerPrimvar(const usda::Stage& stage, const usda::Prim& texture) {
     const usda::Attribute* st = texture.attribute("inputs:st");
     if (!st || !st->connection) return std::nullopt;
-    const usda::Prim* reader = stage.find(splitPropertyPath(*st->connection).first);
+    const usda::Prim* reader = connectedShader(stage, *st);
     if (!reader || shaderId(*reader) != "UsdPrimvarReader_float2") return std::nullopt;
     // varname names a primvar, not something that varies over time.
     auto name = evaluateInput(stage, *reader, "inputs:varname", 0.0);
@@ -71,6 +58,50 @@ std::optional<std::string> readerPrimvar(const usda::Stage& stage, const usda::P
 
 }  // namespace
 
+std::variant<ConnectionSource, std::string> connectionSource(const usda::Stage& stage, const usda::Attribute& connected) {
+    const usda::Attribute* attribute = &connected;
+    for (int depth = 0; depth < kMaxConnectionDepth; ++depth) {
+        auto [sourcePath, property] = splitPropertyPath(*attribute->connection);
+        const usda::Prim* source = stage.find(sourcePath);
+        if (!source) return "its connection target <" + *attribute->connection + "> does not exist";
+        const bool isOutput = property.rfind("outputs:", 0) == 0;
+        if (!isOutput && property.rfind("inputs:", 0) != 0)
+            return "its connection target <" + *attribute->connection + "> is neither an input nor an output";
+        // A shader's output is where a value is computed.
+        if (isOutput && source->typeName == "Shader") return ConnectionSource{source, property, nullptr};
+        const usda::Attribute* next = source->attribute(property);
+        if (!next) return "its connection target <" + *attribute->connection + "> does not exist";
+        // A NodeGraph's (or Material's) output passes on what it connects to inside.
+        if (isOutput && !next->connection) return "<" + *attribute->connection + "> is an output connected to nothing";
+        // An input without a connection of its own holds the value.
+        if (!next->connection) return ConnectionSource{source, property, next};
+        attribute = next;
+    }
+    return "its connections form a cycle (or a chain longer than " + std::to_string(kMaxConnectionDepth) + ")";
+}
+
+const usda::Prim* connectedShader(const usda::Stage& stage, const usda::Attribute& connected, std::string* output) {
+    if (!connected.connection) return nullptr;
+    auto source = connectionSource(stage, connected);
+    auto* found = std::get_if<ConnectionSource>(&source);
+    if (!found || found->attribute) return nullptr;
+    if (output) *output = found->property;
+    return found->prim;
+}
+
+const usda::Attribute* valueProducingAttribute(const usda::Stage& stage, const usda::Attribute& input) {
+    if (!input.connection) return &input;
+    auto source = connectionSource(stage, input);
+    auto* found = std::get_if<ConnectionSource>(&source);
+    return found ? found->attribute : nullptr;
+}
+
+std::string shaderId(const usda::Prim& prim) {
+    const usda::Attribute* id = prim.attribute("info:id");
+    auto value = id ? id->evaluate(0) : std::nullopt;
+    return value && !value->strings.empty() ? value->strings[0] : "";
+}
+
 bool isTexturableInput(const std::string& input) {
     for (std::string_view name : kTexturableInputs)
         if (name == input) return true;
@@ -78,10 +109,9 @@ bool isTexturableInput(const std::string& input) {
 }
 
 std::optional<TextureConnection> textureConnection(const usda::Stage& stage, const usda::Attribute& input) {
-    if (!input.connection) return std::nullopt;
-    auto [shaderPath, output] = splitPropertyPath(*input.connection);
-    const usda::Prim* shader = stage.find(shaderPath);
-    if (!shader || shaderId(*shader) != "UsdUVTexture" || output.rfind("outputs:", 0) != 0) return std::nullopt;
+    std::string output;
+    const usda::Prim* shader = connectedShader(stage, input, &output);
+    if (!shader || shaderId(*shader) != "UsdUVTexture") return std::nullopt;
     std::string channel = output.substr(8);
     for (std::string_view known : kTextureOutputs)
         if (known == channel) return TextureConnection{shader, channel};

@@ -7,9 +7,32 @@
 #include "harness/usda/stage.h"
 
 #include <optional>
+#include <variant>
 #include <string>
 
 namespace obscura::harness {
+
+// Where a connection leads as USD composes shading networks (UsdShadeConnectableAPI,
+// UsdShadeUtils::GetValueProducingAttributes, first target): through NodeGraph and Material
+// outputs to what they connect, through interface inputs (a NodeGraph's or Material's, or any
+// connected input) to their own connection, until a Shader's output or an input that holds a value.
+struct ConnectionSource {
+    const usda::Prim* prim = nullptr;            // the shader, or the prim whose input holds the value
+    std::string property;                        // "outputs:rgb", "inputs:baseColor"
+    const usda::Attribute* attribute = nullptr;  // the input holding the value; null for a shader's output
+};
+// The source of `connected`'s connection (which it must have), or why there is none: a missing
+// target, an unconnected NodeGraph output, a cycle.
+std::variant<ConnectionSource, std::string> connectionSource(const usda::Stage& stage, const usda::Attribute& connected);
+// The source when it is a Shader's output, else null (no connection, or one that ends in a value).
+const usda::Prim* connectedShader(const usda::Stage& stage, const usda::Attribute& connected,
+                                  std::string* output = nullptr);
+// The attribute that holds an input's value: the input itself, or the interface input its
+// connection leads to; null when it leads to a shader's output or nowhere.
+const usda::Attribute* valueProducingAttribute(const usda::Stage& stage, const usda::Attribute& input);
+
+// A shader's info:id ("UsdPreviewSurface"), or "".
+std::string shaderId(const usda::Prim& shader);
 
 // The surface inputs the delegate reads textures for.
 bool isTexturableInput(const std::string& input);  // "inputs:diffuseColor", ...

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <variant>
 
 namespace obscura::harness {
 namespace {
@@ -97,6 +98,25 @@ std::string int32RangeProblem(const usda::Value& value) {
 
 }  // namespace
 
+const usda::Prim* UsdSceneHost::surfaceShader(const usda::Prim& material, std::string& problem) const {
+    const usda::Attribute* surface = material.attribute("outputs:surface");
+    if (!surface || !surface->connection) {
+        problem = "outputs:surface is not connected";
+        return nullptr;
+    }
+    auto source = connectionSource(stage_, *surface);
+    if (auto* reason = std::get_if<std::string>(&source)) {
+        problem = "outputs:surface: " + *reason;
+        return nullptr;
+    }
+    const ConnectionSource& found = std::get<ConnectionSource>(source);
+    if (found.attribute || shaderId(*found.prim) != "UsdPreviewSurface") {
+        problem = "no UsdPreviewSurface on outputs:surface (it leads to " + found.prim->path + "." + found.property + ")";
+        return nullptr;
+    }
+    return found.prim;
+}
+
 UsdSceneHost::UsdSceneHost(const usda::Stage& stage) : stage_(stage) {
     sceneDelegate_.sType = OBSCURA_STRUCTURE_TYPE_SCENE_DELEGATE;
     sceneDelegate_.structSize = sizeof(ObscuraSceneDelegate);
@@ -158,17 +178,14 @@ ObscuraStatus UsdSceneHost::populate(const ObscuraApiV1& api, ObscuraDelegate de
             continue;
         }
         if (it->second == "material") {
-            // UsdShade: outputs:surface connects to a UsdPreviewSurface shader.
-            const usda::Attribute* surface = prim->attribute("outputs:surface");
-            const usda::Prim* shader = nullptr;
-            if (surface && surface->connection) {
-                std::string target = surface->connection->substr(0, surface->connection->find('.'));
-                shader = stage_.find(target);
-            }
-            const usda::Attribute* id = shader ? shader->attribute("info:id") : nullptr;
-            auto idValue = id ? id->evaluate(0) : std::nullopt;
-            if (!shader || !idValue || idValue->strings.empty() || idValue->strings[0] != "UsdPreviewSurface") {
-                warnOnce("material:" + prim->path, prim->path + ": no UsdPreviewSurface on outputs:surface; material skipped");
+            // UsdShade: outputs:surface connects to a UsdPreviewSurface shader, directly or through
+            // NodeGraph outputs.
+            std::string problem;
+            const usda::Prim* shader = surfaceShader(*prim, problem);
+            if (!shader) {
+                const usda::Attribute* surface = prim->attribute("outputs:surface");
+                warnOnce("material:" + prim->path, prim->path + ": " + problem + "; material skipped",
+                         surface ? surface->where : prim->where);
                 continue;
             }
             surfaces_[prim->path] = shader;
@@ -193,9 +210,13 @@ ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDele
         const usda::Prim* prim = stage_.find(path);
         ObscuraDirtyBits bits = 0;
         if (!stage_.transformSampleTimes(*prim).empty()) bits |= OBSCURA_DIRTY_TRANSFORM;
+        // Visibility is inherited: an ancestor's samples change the prim's computed visibility.
+        if (stage_.hasAnimatedVisibility(*prim)) bits |= OBSCURA_DIRTY_VISIBILITY;
         const usda::Prim* valuesFrom = type == "material" ? surfaces_.at(path) : prim;
         for (const auto& [name, attr] : valuesFrom->attributes) {
-            if (attr.isAnimated()) bits |= dirtyBitFor(name);
+            // A surface input takes its value from the interface input it connects to.
+            const usda::Attribute* source = type == "material" && attr.connection ? valueProducingAttribute(stage_, attr) : &attr;
+            if (source && source->isAnimated()) bits |= dirtyBitFor(name);
             // A texture's inputs are parameters of the material it feeds.
             if (auto texture = type == "material" ? textureConnection(stage_, attr) : std::nullopt)
                 for (const auto& [textureInput, textureAttr] : texture->texture->attributes)
@@ -361,6 +382,7 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     }
     const usda::Prim* prim = stage_.find(path);
     if (!prim) return OBSCURA_ERROR_NOT_FOUND;
+    if (attribute == "purpose") return computedPurpose(*prim, out);
     if (attribute == "visibility") {
         strings_ = {stage_.isVisible(*prim, time) ? "inherited" : "invisible"};
         stringPointers_ = {strings_[0].c_str()};
@@ -399,12 +421,23 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     }
     const usda::Attribute* a = resolveAttribute(path, attribute);
     if (!a) return OBSCURA_ERROR_NOT_FOUND;
-    // Textures on the inputs the delegate textures arrive as obscura:<input>:* (above).
+    // Textures on the inputs the delegate textures arrive as obscura:<input>:* (above); an input
+    // connected to an interface input (a Material's or NodeGraph's) takes its value there.
     bool textured = surface != surfaces_.end() && isTexturableInput(attribute) && textureConnection(stage_, *a);
     if (a->connection && !textured) {
-        warnOnce("connection:" + path + attribute,
-                 path + ": " + attribute + " is connected to a shading network, which is not supported yet; "
-                                           "its authored value or the default is used");
+        if (const usda::Attribute* source = valueProducingAttribute(stage_, *a)) {
+            a = source;
+        } else {
+            auto reason = connectionSource(stage_, *a);
+            auto* shader = std::get_if<ConnectionSource>(&reason);
+            warnOnce("connection:" + path + attribute,
+                     path + ": " + attribute +
+                         (shader ? " is connected to " + shader->prim->path + "." + shader->property +
+                                       ", a shading network which is not supported yet"
+                                 : ": " + std::get<std::string>(reason)) +
+                         "; its authored value or the default is used",
+                     a->where);
+        }
     }
     auto value = a->evaluate(time);
     // A declared but valueless attribute is unauthored; an empty array is an authored value.
@@ -432,6 +465,19 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         }
     }
     return fill(*value, out);
+}
+
+ObscuraStatus UsdSceneHost::computedPurpose(const usda::Prim& prim, ObscuraValue* out) {
+    const usda::Attribute* opinion = stage_.purposeOpinion(prim);
+    if (!opinion) return OBSCURA_ERROR_NOT_FOUND;  // the schema's fallback, default
+    const usda::Value& value = *opinion->defaultValue;
+    if (value.typeName != "token" || value.isArray || value.strings.size() != 1) {
+        warnOnce("purpose:" + opinion->where.file + std::to_string(opinion->where.line),
+                 prim.path + ": purpose is authored as " + opinion->typeName + ", not a token; default is used",
+                 opinion->where);
+        return OBSCURA_ERROR_NOT_FOUND;
+    }
+    return fill(value, out);
 }
 
 std::optional<std::string> UsdSceneHost::boundMaterial(const usda::Prim& prim) const {

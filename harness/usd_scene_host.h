@@ -60,6 +60,11 @@ private:
                                               double* times, double* matrices, uint32_t* count);
     ObscuraStatus getValue(const std::string& path, const std::string& attribute, double time, ObscuraValue* out);
     ObscuraStatus fill(const usda::Value& value, ObscuraValue* out);
+    // The UsdPreviewSurface a Material's outputs:surface leads to (through NodeGraph outputs), or
+    // null with the reason.
+    const usda::Prim* surfaceShader(const usda::Prim& material, std::string& problem) const;
+    // UsdGeomImageable's computed purpose, inherited from the nearest ancestor that authors one.
+    ObscuraStatus computedPurpose(const usda::Prim& prim, ObscuraValue* out);
     // The attribute a delegate name maps to on the USD prim (materials read their surface shader).
     const usda::Attribute* resolveAttribute(const std::string& path, const std::string& attribute) const;
     void warnOnce(const std::string& key, const std::string& text, const usda::SourceLocation& where = {},

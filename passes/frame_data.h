@@ -158,13 +158,13 @@ struct alignas(16) LightBufferHeader {
 struct Vertex {
     float position[3];
     float normal[3];
-    float color[3];
+    float color[4];  // primvars:displayColor (rgb) and primvars:displayOpacity (a)
     float uv[2];  // primvars:st as authored (origin at the bottom left); the shader flips v
     // Direction of increasing u on the surface (xyz) and the bitangent's handedness (w = +-1):
     // the frame tangent-space normal maps are read in.
     float tangent[4];
 };
-static_assert(sizeof(Vertex) == 60);
+static_assert(sizeof(Vertex) == 64);
 
 // Where a deforming mesh's drawn vertices are at the shutter's open and close (motion blur): a
 // second vertex stream beside Vertex, one per drawn vertex.

@@ -77,7 +77,7 @@ void setSceneVertexInput(gpu::GraphicsPipelineDesc& d) {
     d.vertexStrides = {sizeof(Vertex)};
     d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
                           {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
-                          {2, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, color)},
+                          {2, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color)},
                           {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
                           {4, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}};
 }

@@ -19,7 +19,7 @@
 #include "common/view_depth.glsl"
 
 layout(location = 0) in vec3 inNormal;
-layout(location = 1) in vec3 inColor;
+layout(location = 1) in vec4 inColor;  // displayColor, displayOpacity
 layout(location = 2) in vec3 inWorldPosition;
 layout(location = 3) flat in uint inInstance;
 layout(location = 4) in vec2 inUv;
@@ -76,11 +76,14 @@ void main() {
     if ((inst.flags & INSTANCE_DOUBLE_SIDED) != 0u && !gl_FrontFacing) n = -n;
     n = perturbedNormal(n, inTangent, mat.textures[TEXTURE_NORMAL], normalTexture, inUv);
     vec3 albedo = (inst.flags & INSTANCE_VERTEX_COLOR) != 0u
-                      ? inColor
+                      ? inColor.rgb
                       : colorInput(mat.diffuseRoughness.rgb, mat.textures[TEXTURE_DIFFUSE], diffuseTexture, inUv);
     float roughness = scalarInput(mat.diffuseRoughness.a, mat.textures[TEXTURE_ROUGHNESS], roughnessTexture, inUv);
     float metallic = scalarInput(mat.emissiveMetallic.a, mat.textures[TEXTURE_METALLIC], metallicTexture, inUv);
     float opacity = scalarInput(mat.opacity.x, mat.textures[TEXTURE_OPACITY], opacityTexture, inUv);
+    // Hydra's fallback material: displayOpacity varying over the prim (the constant one is the
+    // material record's).
+    if ((inst.flags & INSTANCE_VERTEX_COLOR) != 0u) opacity *= inColor.a;
     float occlusion = scalarInput(mat.opacity.z, mat.textures[TEXTURE_OCCLUSION], occlusionTexture, inUv);
 
     float fade = depthFade(sceneDepth, ivec2(gl_FragCoord.xy), gl_FragCoord.z, push.fadeDistance);

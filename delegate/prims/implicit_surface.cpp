@@ -57,6 +57,9 @@ void ImplicitSurface::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& c
                 colorWarning_ = "primvars:displayColor of an implicit surface is used only with constant interpolation "
                                 "(its polygons are the delegate's, with no elements of their own to vary over); ignored";
         }
+        if (varyingOpacity_)
+            colorWarning_ += std::string(colorWarning_.empty() ? "" : "; ") +
+                             "primvars:displayOpacity of an implicit surface is used only with constant interpolation; ignored";
     }
     if (level_ < 0) return;  // tessellated once the view is known (chooseImplicitLevels)
     MeshInput input = tessellateImplicitShape(shape_, implicitSegments(level_), leftHanded_);

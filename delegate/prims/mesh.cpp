@@ -2,6 +2,8 @@
 
 #include "delegate/prims/point_motion.h"
 
+#include <algorithm>
+
 namespace obscura::delegate {
 
 void Mesh::reset() {
@@ -19,13 +21,27 @@ void Mesh::pullGprim(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         transform_ = s.sampleTransform(s.time(), s.time()).front().matrix;
         shutterTransforms_ = s.sampleTransform(ctx.shutterOpen, ctx.shutterClose);
     }
-    if (bits & OBSCURA_DIRTY_VISIBILITY) visible_ = s.getToken("visibility") != "invisible";
+    if (bits & OBSCURA_DIRTY_VISIBILITY) {
+        visible_ = s.getToken("visibility") != "invisible";
+        purpose_ = purposeBit(s.getToken("purpose"));
+    }
     if (bits & OBSCURA_DIRTY_DOUBLE_SIDED) doubleSided_ = s.getBool("doubleSided");
     if (bits & OBSCURA_DIRTY_MATERIAL_ID) material_ = s.getPath("material:binding");
+    if (bits & OBSCURA_DIRTY_PRIMVAR) {
+        displayOpacity_ = 1.0f;
+        varyingOpacity_.reset();
+        if (auto opacity = s.getFloatArray("primvars:displayOpacity"); opacity && !opacity->empty()) {
+            ObscuraInterpolation interpolation = s.interpolation("primvars:displayOpacity");
+            if (interpolation == OBSCURA_INTERPOLATION_CONSTANT) displayOpacity_ = std::clamp(opacity->front(), 0.0f, 1.0f);
+            else varyingOpacity_ = MeshPrimvar{std::move(*opacity), interpolation, 1};
+        }
+    }
 }
 
 void Mesh::setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std::string& path) {
     warnings_ = geometry.warnings;
+    translucentVertices_ = std::any_of(geometry.vertices.begin(), geometry.vertices.end(),
+                                       [](const passes::Vertex& v) { return v.color[3] < 1.0f; });
     indexCount_ = static_cast<uint32_t>(geometry.indices.size());
     localBounds_ = Aabb{};
     for (const passes::Vertex& v : geometry.vertices) localBounds_.extend({v.position[0], v.position[1], v.position[2]});
@@ -97,6 +113,7 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         input_.displayColor.reset();
         if (auto c = s.getFloatArray("primvars:displayColor"))
             input_.displayColor = MeshPrimvar{std::move(*c), s.interpolation("primvars:displayColor")};
+        input_.displayOpacity = varyingOpacity_;
         input_.st.reset();
         if (auto st = s.getFloatArray("primvars:st"))
             input_.st = MeshPrimvar{std::move(*st), s.interpolation("primvars:st"), 2};

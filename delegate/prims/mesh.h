@@ -6,6 +6,7 @@
 #include "delegate/bounds.h"
 #include "delegate/geometry_cache.h"
 #include "delegate/mesh_builder.h"
+#include "delegate/purposes.h"
 #include "delegate/prims/prim.h"
 #include "delegate/subdivision.h"
 #include "gpu/device.h"
@@ -19,6 +20,8 @@ public:
 
     int32_t primId() const { return primId_; }
     bool drawable() const { return visible_ && hasGeometry(); }
+    // The computed purpose (purposes.h): drawn when the render setting includedPurposes names it.
+    uint32_t purpose() const { return purpose_; }
     bool hasGeometry() const { return vertices_ && indexCount_ > 0; }  // drawn or not (clip volumes)
     const gpu::BufferPtr& vertices() const { return vertices_; }
     const gpu::BufferPtr& indices() const { return indices_; }
@@ -36,11 +39,18 @@ public:
     bool doubleSided() const { return doubleSided_; }
     const std::optional<std::string>& materialPath() const { return material_; }
     bool hasDisplayColor() const { return input_.displayColor.has_value(); }
+    // Constant primvars:displayOpacity in [0, 1] (1 when not authored or not constant): without a
+    // material, below 1 the prim is transparent (Hydra's fallback material reads displayOpacity).
+    float displayOpacity() const { return displayOpacity_; }
+    // Some drawn vertex's displayOpacity (uniform, vertex or faceVarying, in the vertex alpha) is
+    // below 1: without a material the prim is transparent.
+    bool hasTranslucentVertices() const { return translucentVertices_; }
     const std::vector<std::string>& warnings() const { return warnings_; }
 
 protected:
     void reset() override;
-    // What every gprim pulls: transform samples, visibility and purpose, sidedness, material.
+    // What every gprim pulls: transform samples, visibility and purpose, sidedness, material,
+    // display opacity.
     void pullGprim(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx);
     // Uploads the drawn polygons (shared through the geometry cache) and keeps their bounds and warnings.
     void setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std::string& path);
@@ -54,6 +64,8 @@ protected:
     // does not deform; `vertexCount` is the drawn geometry's.
     void setShutterPositions(const std::optional<std::array<std::vector<float>, 2>>& ends, size_t vertexCount,
                              SyncContext& ctx, const std::string& path);
+    // Non-constant primvars:displayOpacity as pulled; null when constant or not authored.
+    std::optional<MeshPrimvar> varyingOpacity_;
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
@@ -70,6 +82,9 @@ private:
     std::vector<TransformSample> shutterTransforms_;  // over the shutter: reference sub-frames, motion blur
     bool doubleSided_ = false;
     bool visible_ = true;
+    uint32_t purpose_ = kPurposeDefault;
+    float displayOpacity_ = 1.0f;
+    bool translucentVertices_ = false;
     std::optional<std::string> material_;
     gpu::BufferPtr vertices_;
     gpu::BufferPtr indices_;

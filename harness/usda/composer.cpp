@@ -78,6 +78,8 @@ void readStageMetadata(const Layer& layer, StageMetadata& out) {
     };
     if (const std::string* upAxis = text("upAxis")) out.upAxis = *upAxis;
     if (const std::string* defaultPrim = text("defaultPrim")) out.defaultPrim = *defaultPrim;
+    if (const std::string* path = text("renderSettingsPrimPath")) out.renderSettingsPrimPath = *path;
+    out.where = SourceLocation{layer.identifier, 0, 0};
     if (const std::string* doc = text("documentation")) out.doc = *doc;
     if (auto value = number("metersPerUnit")) out.metersPerUnit = *value;
     if (auto value = number("timeCodesPerSecond")) out.timeCodesPerSecond = *value;

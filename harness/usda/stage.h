@@ -97,6 +97,8 @@ struct StageMetadata {
     std::optional<double> startTimeCode;
     std::optional<double> endTimeCode;
     std::string defaultPrim;
+    std::string renderSettingsPrimPath;  // UsdRenderSettings::GetStageRenderSettings; "" when unset
+    SourceLocation where;                // the root layer (no line), for messages about its metadata
     std::string doc;
 };
 
@@ -147,6 +149,13 @@ public:
     std::vector<double> transformSampleTimes(const Prim& prim) const;
     // Computed visibility: "invisible" on the prim or any ancestor at `time`.
     bool isVisible(const Prim& prim, double time) const;
+    // Whether the computed visibility can change over time: the prim's or an ancestor's
+    // visibility is time-sampled.
+    bool hasAnimatedVisibility(const Prim& prim) const;
+    // Computed purpose (UsdGeomImageable::ComputePurpose): the purpose authored on the prim, else
+    // its nearest imageable ancestor's; null when none is authored (the fallback, "default").
+    // Purpose is uniform: its value is the attribute's default.
+    const Attribute* purposeOpinion(const Prim& prim) const;
 
 private:
     Stage();

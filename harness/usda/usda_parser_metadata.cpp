@@ -12,7 +12,7 @@ namespace {
 
 // Metadata whose type USD fixes; any other key gets the type its value looks like.
 const ValueType* metadataType(std::string_view key) {
-    constexpr std::array<std::pair<std::string_view, std::string_view>, 18> kTypes = {{
+    constexpr std::array<std::pair<std::string_view, std::string_view>, 19> kTypes = {{
         {"active", "bool"},
         {"hidden", "bool"},
         {"instanceable", "bool"},
@@ -25,6 +25,7 @@ const ValueType* metadataType(std::string_view key) {
         {"colorSpace", "token"},
         {"upAxis", "token"},
         {"defaultPrim", "token"},
+        {"renderSettingsPrimPath", "string"},
         {"metersPerUnit", "double"},
         {"timeCodesPerSecond", "double"},
         {"framesPerSecond", "double"},

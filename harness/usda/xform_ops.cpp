@@ -123,4 +123,30 @@ bool Stage::isVisible(const Prim& prim, double time) const {
     return true;
 }
 
+bool Stage::hasAnimatedVisibility(const Prim& prim) const {
+    for (const Prim* p = &prim; p; p = p->parent)
+        if (const Attribute* visibility = p->attribute("visibility"); visibility && visibility->isAnimated())
+            return true;
+    return false;
+}
+
+namespace {
+// Prim types that are not UsdGeomImageable: a purpose authored on them is not theirs to pass on
+// (typeless prims, shading and render-settings prims, GeomSubset).
+bool isImageable(const Prim& prim) {
+    static const std::set<std::string> kNotImageable = {"",          "Material",       "Shader",        "NodeGraph",
+                                                        "GeomSubset", "RenderSettings", "RenderProduct", "RenderVar"};
+    return !kNotImageable.count(prim.typeName);
+}
+}  // namespace
+
+const Attribute* Stage::purposeOpinion(const Prim& prim) const {
+    for (const Prim* p = &prim; p; p = p->parent) {
+        if (!isImageable(*p)) continue;
+        const Attribute* purpose = p->attribute("purpose");
+        if (purpose && purpose->defaultValue && !purpose->defaultValue->empty()) return purpose;
+    }
+    return nullptr;
+}
+
 }  // namespace obscura::usda

@@ -15,7 +15,7 @@
 #include "msaa_samples.glsl"
 
 layout(location = 0) in vec3 inNormal;
-layout(location = 1) in vec3 inColor;
+layout(location = 1) in vec4 inColor;
 layout(location = 2) in vec3 inWorldPosition;
 layout(location = 3) flat in uint inInstance;
 layout(location = 4) in vec2 inUv;
@@ -81,7 +81,7 @@ void writeSurface() {
     if ((inst.flags & INSTANCE_DOUBLE_SIDED) != 0u && !gl_FrontFacing) n = -n;
     n = perturbedNormal(n, inTangent, mat.textures[TEXTURE_NORMAL], normalTexture, inUv);
     vec3 albedo = (inst.flags & INSTANCE_VERTEX_COLOR) != 0u
-                      ? inColor
+                      ? inColor.rgb
                       : colorInput(mat.diffuseRoughness.rgb, mat.textures[TEXTURE_DIFFUSE], diffuseTexture, inUv);
     float roughness = scalarInput(mat.diffuseRoughness.a, mat.textures[TEXTURE_ROUGHNESS], roughnessTexture, inUv);
     float metallic = scalarInput(mat.emissiveMetallic.a, mat.textures[TEXTURE_METALLIC], metallicTexture, inUv);

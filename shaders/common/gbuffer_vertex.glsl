@@ -7,7 +7,7 @@
 
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
-layout(location = 2) in vec3 inColor;
+layout(location = 2) in vec4 inColor;  // displayColor, displayOpacity
 layout(location = 3) in vec2 inSt;
 layout(location = 4) in vec4 inTangent;
 
@@ -17,7 +17,7 @@ layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData in
 layout(push_constant) uniform Push { uint instanceIndex; } push;
 
 layout(location = 0) out vec3 outNormal;
-layout(location = 1) out vec3 outColor;
+layout(location = 1) out vec4 outColor;
 layout(location = 2) out vec3 outWorldPosition;
 layout(location = 3) flat out uint outInstance;
 layout(location = 4) out vec2 outUv;

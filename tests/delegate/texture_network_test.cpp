@@ -3,7 +3,7 @@
 // diffuseColor from a UsdUVTexture (an 8x8 PNG of four colour blocks, named relative to the
 // layer), whose st comes from a UsdPrimvarReader_float2 with its varname on the material's
 // interface, reading an indexed face-varying primvar "uv".
-#include "harness/usd_scene_host.h"
+#include "tests/delegate/hosted_stage.h"
 #include "tests/delegate/render_fixture.h"
 
 #include <gtest/gtest.h>
@@ -13,62 +13,6 @@
 
 namespace obscura::test {
 namespace {
-
-struct HostedStage {
-    std::unique_ptr<usda::Stage> stage;
-    std::optional<harness::LoadedPlugin> plugin;
-    ObscuraDelegate delegate = nullptr;
-    std::optional<harness::UsdSceneHost> host;
-    std::vector<std::string> errors;
-
-    explicit HostedStage(std::variant<std::unique_ptr<usda::Stage>, usda::Error> opened) {
-        if (auto* error = std::get_if<usda::Error>(&opened)) throw std::runtime_error(error->str());
-        stage = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));
-        auto loaded = harness::loadPlugin(builtPlugin());
-        if (auto* error = std::get_if<std::string>(&loaded)) throw std::runtime_error(*error);
-        plugin.emplace(std::move(std::get<harness::LoadedPlugin>(loaded)));
-        ObscuraDelegateCreateInfo info{
-            OBSCURA_STRUCTURE_TYPE_DELEGATE_CREATE_INFO, nullptr, sizeof(info), nullptr, 1, &HostedStage::log, this};
-        if (api().createDelegate(&info, &delegate) != OBSCURA_OK) throw std::runtime_error(api().lastError(nullptr));
-        host.emplace(*stage);
-        if (api().setSceneDelegate(delegate, &host->sceneDelegate()) != OBSCURA_OK ||
-            host->populate(api(), delegate) != OBSCURA_OK)
-            throw std::runtime_error(api().lastError(delegate));
-    }
-    ~HostedStage() {
-        if (delegate) api().destroyDelegate(delegate);
-    }
-    const ObscuraApiV1& api() const { return plugin->api(); }
-    static void log(void* user, ObscuraLogLevel level, const char* message) {
-        if (level == OBSCURA_LOG_ERROR) static_cast<HostedStage*>(user)->errors.push_back(message);
-    }
-
-    std::vector<float> renderAlbedo() {
-        std::string buffer = host->addRenderBuffer(api(), delegate, "albedo", kWidth, kHeight);
-        ObscuraAovBinding binding{"albedo", buffer.c_str()};
-        std::string camera = host->defaultCamera();
-        ObscuraRenderPassDesc desc{OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC,
-                                   nullptr,
-                                   sizeof(desc),
-                                   camera.c_str(),
-                                   {0, 0, 0, 0},
-                                   0.0,
-                                   1,
-                                   &binding};
-        EXPECT_EQ(api().render(delegate, &desc), OBSCURA_OK) << api().lastError(delegate);
-        ObscuraMappedBuffer mapped{OBSCURA_STRUCTURE_TYPE_MAPPED_BUFFER, nullptr, sizeof(mapped)};
-        if (api().mapRenderBuffer(delegate, buffer.c_str(), &mapped) != OBSCURA_OK) return {};
-        const auto* p = static_cast<const float*>(mapped.data);
-        std::vector<float> out(p, p + size_t(mapped.width) * mapped.height * 3);
-        api().unmapRenderBuffer(delegate, buffer.c_str());
-        return out;
-    }
-    bool warned(const std::string& fragment) const {
-        for (const auto& m : host->messages())
-            if (m.text.find(fragment) != std::string::npos) return true;
-        return false;
-    }
-};
 
 void expectLinear(const std::vector<float>& albedo, int x, int y, std::array<int, 3> srgbCodes, const char* what) {
     for (size_t c = 0; c < 3; ++c)
@@ -167,6 +111,152 @@ TEST(TexturedUsda, DomeTextureFileIsResolvedAgainstItsLayer) {
     EXPECT_EQ(std::filesystem::path(file),
               std::filesystem::absolute(OBSCURA_TEST_DATA_DIR "/textures/checker.png").lexically_normal());
     EXPECT_TRUE(std::filesystem::exists(file)) << file;
+}
+
+// tests/harness/data/nodegraph.usda: a material's outputs:surface through a NodeGraph output to
+// the UsdPreviewSurface inside it, its diffuseColor through the NodeGraph's interface input to
+// the Material's (left half); a texture's rgb through a NodeGraph output (right half).
+TEST(NodeGraphUsda, ConnectionsResolveThroughNodeGraphsAndInterfaces) {
+    HostedStage scene(usda::Stage::open(OBSCURA_TEST_DATA_DIR "/nodegraph.usda"));
+    auto albedo = scene.renderAlbedo();
+    ASSERT_EQ(albedo.size(), size_t(kWidth) * kHeight * 3);
+    EXPECT_TRUE(scene.errors.empty()) << scene.errors.front();
+    EXPECT_TRUE(scene.host->messages().empty()) << scene.host->messages().front().text;
+    expectLinear(albedo, 16, 16, {180, 60, 20}, "the Material's baseColor");
+    expectLinear(albedo, 16, 48, {180, 60, 20}, "the Material's baseColor");
+    expectLinear(albedo, 40, 16, {200, 40, 40}, "top left block");
+    expectLinear(albedo, 56, 16, {40, 200, 40}, "top right block");
+    expectLinear(albedo, 40, 48, {40, 40, 200}, "bottom left block");
+    expectLinear(albedo, 56, 48, {220, 220, 60}, "bottom right block");
+    // A value held on the NodeGraph's own interface.
+    const ObscuraSceneDelegate& sd = scene.host->sceneDelegate();
+    ObscuraValue value{};
+    ASSERT_EQ(sd.getValue(sd.userData, "/Looks/Interface", "inputs:roughness", 0.0, &value), OBSCURA_OK);
+    EXPECT_FLOAT_EQ(static_cast<const float*>(value.data)[0], 0.4f);
+}
+
+TEST(NodeGraphUsda, BrokenConnectionsAreReportedWhereAuthored) {
+    // Each material breaks one link; each warning names the material and the line of the
+    // connection, the prims still render (with no material, or the input's own value).
+    const std::string text = R"(#usda 1.0
+def Material "MissingOutput"
+{
+    token outputs:surface.connect = </MissingOutput/Graph.outputs:nothing>
+    def NodeGraph "Graph"
+    {
+    }
+}
+def Material "Unconnected"
+{
+    token outputs:surface.connect = </Unconnected/Graph.outputs:surface>
+    def NodeGraph "Graph"
+    {
+        token outputs:surface
+    }
+}
+def Material "Cycle"
+{
+    token outputs:surface.connect = </Cycle/Graph.outputs:a>
+    def NodeGraph "Graph"
+    {
+        token outputs:a.connect = </Cycle/Graph.outputs:b>
+        token outputs:b.connect = </Cycle/Graph.outputs:a>
+    }
+}
+def Material "OtherShader"
+{
+    token outputs:surface.connect = </OtherShader/Graph.outputs:surface>
+    def NodeGraph "Graph"
+    {
+        token outputs:surface.connect = </OtherShader/Graph/Standard.outputs:surface>
+        def Shader "Standard"
+        {
+            uniform token info:id = "ND_standard_surface_surfaceshader"
+            token outputs:surface
+        }
+    }
+}
+def Material "MissingInterface"
+{
+    token outputs:surface.connect = </MissingInterface/Surface.outputs:surface>
+    def Shader "Surface"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        float inputs:roughness = 0.25
+        float inputs:roughness.connect = </MissingInterface.inputs:rough>
+        token outputs:surface
+    }
+}
+)";
+    HostedStage scene(usda::Stage::openFromString(text, OBSCURA_TEST_DATA_DIR "/broken.usda"));
+    auto located = [&](const std::string& fragment, int line) {
+        for (const auto& m : scene.host->messages())
+            if (m.text.find(fragment) != std::string::npos)
+                return m.where.file == OBSCURA_TEST_DATA_DIR "/broken.usda" && m.where.line == line;
+        ADD_FAILURE() << "no message with " << fragment;
+        return false;
+    };
+    EXPECT_TRUE(located("/MissingOutput: outputs:surface: its connection target </MissingOutput/Graph.outputs:nothing> "
+                        "does not exist; material skipped", 4));
+    EXPECT_TRUE(located("/Unconnected: outputs:surface: </Unconnected/Graph.outputs:surface> is an output connected "
+                        "to nothing", 11));
+    EXPECT_TRUE(located("/Cycle: outputs:surface: its connections form a cycle", 19));
+    const ObscuraSceneDelegate& sd = scene.host->sceneDelegate();
+    ObscuraValue value{};
+    ASSERT_EQ(sd.getValue(sd.userData, "/MissingInterface", "inputs:roughness", 0.0, &value), OBSCURA_OK);
+    EXPECT_FLOAT_EQ(static_cast<const float*>(value.data)[0], 0.25f);
+    EXPECT_TRUE(located("/MissingInterface: inputs:roughness: its connection target </MissingInterface.inputs:rough> "
+                        "does not exist", 46));
+    EXPECT_TRUE(located("/OtherShader: no UsdPreviewSurface on outputs:surface (it leads to "
+                        "/OtherShader/Graph/Standard.outputs:surface); material skipped", 28));
+}
+
+TEST(NodeGraphUsda, AnAnimatedInterfaceInputAnimatesTheMaterial) {
+    // The colour is sampled on the Material's interface only; the surface shader's input connects
+    // to it through the NodeGraph's. Each frame's albedo follows the samples (sRGB codes 200 then 40).
+    const std::string text = R"(#usda 1.0
+def Camera "Camera"
+{
+    float focalLength = 50
+    float horizontalAperture = 20.955
+    float verticalAperture = 20.955
+    double3 xformOp:translate = (0, 0, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Mesh "Plane"
+{
+    point3f[] points = [(-2, -2, 0), (2, -2, 0), (2, 2, 0), (-2, 2, 0)]
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    uniform token subdivisionScheme = "none"
+    rel material:binding = </M>
+}
+def Material "M"
+{
+    color3f inputs:tint.timeSamples = { 0: (0.577581, 0.577581, 0.577581), 1: (0.021219, 0.021219, 0.021219) }
+    token outputs:surface.connect = </M/Graph.outputs:surface>
+    def NodeGraph "Graph"
+    {
+        color3f inputs:tint.connect = </M.inputs:tint>
+        token outputs:surface.connect = </M/Graph/Surface.outputs:surface>
+        def Shader "Surface"
+        {
+            uniform token info:id = "UsdPreviewSurface"
+            color3f inputs:diffuseColor.connect = </M/Graph.inputs:tint>
+            token outputs:surface
+        }
+    }
+}
+)";
+    HostedStage scene(usda::Stage::openFromString(text, OBSCURA_TEST_DATA_DIR "/animated.usda"));
+    auto first = scene.renderAov("albedo", 3, 0.0);
+    ASSERT_EQ(first.size(), size_t(kWidth) * kHeight * 3);
+    expectLinear(first, 32, 32, {200, 200, 200}, "time 0");
+    ASSERT_EQ(scene.host->markTimeVarying(scene.api(), scene.delegate), OBSCURA_OK);
+    auto second = scene.renderAov("albedo", 3, 1.0);
+    ASSERT_EQ(second.size(), size_t(kWidth) * kHeight * 3);
+    expectLinear(second, 32, 32, {40, 40, 40}, "time 1");
+    EXPECT_TRUE(scene.errors.empty()) << scene.errors.front();
 }
 
 }  // namespace

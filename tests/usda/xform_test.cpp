@@ -206,6 +206,41 @@ TEST(Xform, VisibilityIsInherited) {
     EXPECT_FALSE(stage->isVisible(*stage->find("/Parent/Child/Leaf"), 10));
 }
 
+TEST(Xform, VisibilityAnimatedOnAnAncestorIsSeenByItsDescendants) {
+    const auto stage = stageWith(kHierarchy);
+    ASSERT_TRUE(stage);
+    EXPECT_TRUE(stage->hasAnimatedVisibility(*stage->find("/Parent/Child/Leaf")));
+    EXPECT_FALSE(stage->hasAnimatedVisibility(*stage->find("/Hidden/Inside")));  // invisible, but not animated
+}
+
+// UsdGeomImageable::ComputePurpose: the prim's own opinion, else the nearest imageable ancestor's;
+// a typeless ancestor (not imageable) passes nothing on.
+TEST(Xform, PurposeIsTheNearestImageableOpinion) {
+    const auto stage = stageWith(R"(
+def Xform "Guides" {
+    uniform token purpose = "guide"
+    def Xform "Group" {
+        def Mesh "Inherits" {}
+        def Mesh "Own" {
+            uniform token purpose = "render"
+        }
+    }
+}
+def "Typeless" {
+    uniform token purpose = "proxy"
+    def Mesh "Default" {}
+}
+)");
+    ASSERT_TRUE(stage);
+    auto purpose = [&](const char* path) {
+        const Attribute* opinion = stage->purposeOpinion(*stage->find(path));
+        return opinion ? opinion->defaultValue->strings.at(0) : std::string("default");
+    };
+    EXPECT_EQ(purpose("/Guides/Group/Inherits"), "guide");
+    EXPECT_EQ(purpose("/Guides/Group/Own"), "render");
+    EXPECT_EQ(purpose("/Typeless/Default"), "default");
+}
+
 TEST(Xform, NoOpsIsIdentity) {
     const auto stage = stageWith("def \"P\"\n{\n}\n");
     ASSERT_TRUE(stage);

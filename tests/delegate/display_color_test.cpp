@@ -1,0 +1,187 @@
+// displayColor and displayOpacity shade a prim that has no material, as Hydra's fallback material
+// does (Storm): one test per interpolation. A two-face mesh (left and right halves, sharing the
+// middle column of points) fills the view of a camera at (0, 0, 5) looking down -Z, lit head-on by
+// a normalized distant light with no specular, so a pixel's radiance is Lambert's
+// displayColor / pi * E; colours are values 8-bit sRGB (the albedo G-buffer target) holds exactly.
+#include "tests/delegate/render_fixture.h"
+
+#include <gtest/gtest.h>
+
+namespace obscura::test {
+namespace {
+
+constexpr double kIrradiance = 3.0;
+using Rgb = std::array<float, 3>;
+const Rgb kRed{srgb8Exact(200), srgb8Exact(40), srgb8Exact(40)};
+const Rgb kBlue{srgb8Exact(40), srgb8Exact(40), srgb8Exact(200)};
+const Rgb kGreen{srgb8Exact(40), srgb8Exact(200), srgb8Exact(40)};
+constexpr float kHalf = 1.2f;  // beyond the view's half-size at z = 0 (1.04775)
+
+struct DisplayColorScene {
+    TestHost host;
+    DisplayColorScene() {
+        host.addCamera("/Camera", translation(0, 0, kLitPlaneCameraDistance), kLitPlaneFocalLength, kLitPlaneAperture);
+        host.addPrim("distantLight", "/Sun",
+                     {{"inputs:intensity", HostValue::floatValue(float(kIrradiance))},
+                      {"inputs:normalize", HostValue::boolean(true)},
+                      {"inputs:specular", HostValue::floatValue(0.0f)}},
+                     lightPointingAlong({0.0, 0.0, -1.0}));
+        host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+    }
+    // Points: bottom row left to right (0, 1, 2), top row (3, 4, 5); faces: left, right.
+    void addHalves(const std::vector<Rgb>& colours, ObscuraInterpolation interpolation,
+                   std::optional<float> opacity = std::nullopt) {
+        std::map<std::string, HostValue> values = {
+            {"points", HostValue::points({{-kHalf, -kHalf, 0}, {0, -kHalf, 0}, {kHalf, -kHalf, 0},
+                                          {-kHalf, kHalf, 0}, {0, kHalf, 0}, {kHalf, kHalf, 0}})},
+            {"faceVertexCounts", HostValue::intArray({4, 4})},
+            {"faceVertexIndices", HostValue::intArray({0, 1, 4, 3, 1, 2, 5, 4})},
+            {"subdivisionScheme", HostValue::token("none")},
+            {"primvars:displayColor", HostValue::points(colours)},
+        };
+        if (opacity) {
+            HostValue o;
+            o.type = OBSCURA_VALUE_FLOAT;
+            o.isArray = true;
+            o.floats = {*opacity};
+            values["primvars:displayOpacity"] = o;
+        }
+        host.addPrim("mesh", "/Halves", values);
+        host.setInterpolation("/Halves", "primvars:displayColor", interpolation);
+        if (opacity) host.setInterpolation("/Halves", "primvars:displayOpacity", OBSCURA_INTERPOLATION_CONSTANT);
+    }
+    std::vector<float> render() {
+        EXPECT_EQ(host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_OK) << host.lastError();
+        EXPECT_TRUE(host.loggedErrors().empty()) << host.loggedErrors().front();
+        return host.readFloats("/Buffers/color");
+    }
+};
+
+std::array<double, 3> lambert(const Rgb& albedo, double scale = 1.0) {
+    return {albedo[0] / kPi * kIrradiance * scale, albedo[1] / kPi * kIrradiance * scale,
+            albedo[2] / kPi * kIrradiance * scale};
+}
+
+TEST(DisplayColor, ConstantColoursTheWholePrim) {
+    DisplayColorScene s;
+    s.addHalves({kRed}, OBSCURA_INTERPOLATION_CONSTANT);
+    auto color = s.render();
+    for (auto [x, y] : {std::pair{8, 8}, {32, 32}, {56, 60}}) expectRadiance(color, x, y, lambert(kRed));
+}
+
+TEST(DisplayColor, UniformColoursEachFace) {
+    DisplayColorScene s;
+    s.addHalves({kRed, kBlue}, OBSCURA_INTERPOLATION_UNIFORM);
+    auto color = s.render();
+    for (auto [x, y] : {std::pair{4, 8}, {28, 56}}) expectRadiance(color, x, y, lambert(kRed));
+    for (auto [x, y] : {std::pair{36, 8}, {60, 56}}) expectRadiance(color, x, y, lambert(kBlue));
+}
+
+TEST(DisplayColor, FaceVaryingColoursEachCornerApartFromItsNeighbours) {
+    // Both faces share the middle points, yet each face's corners hold its own colour: the split
+    // at the middle stays sharp (vertex interpolation could not do this).
+    DisplayColorScene s;
+    s.addHalves({kGreen, kGreen, kGreen, kGreen, kRed, kRed, kRed, kRed}, OBSCURA_INTERPOLATION_FACE_VARYING);
+    auto color = s.render();
+    for (auto [x, y] : {std::pair{4, 8}, {31, 40}}) expectRadiance(color, x, y, lambert(kGreen));
+    for (auto [x, y] : {std::pair{32, 8}, {60, 40}}) expectRadiance(color, x, y, lambert(kRed));
+}
+
+TEST(DisplayColor, VertexColoursInterpolateBetweenPoints) {
+    // Red on the left column, blue on the right, their mean in the middle: the colour is affine in
+    // x, which both triangles of each face reproduce exactly. The G-buffer keeps the interpolated
+    // albedo to one 8-bit sRGB step, so that is added to the tolerance.
+    DisplayColorScene s;
+    Rgb middle{};
+    for (size_t c = 0; c < 3; ++c) middle[c] = 0.5f * (kRed[c] + kBlue[c]);
+    s.addHalves({kRed, middle, kBlue, kRed, middle, kBlue}, OBSCURA_INTERPOLATION_VERTEX);
+    auto color = s.render();
+    for (int x : {2, 20, 32, 45, 61}) {
+        double u = (planePointAtPixel(x, 32, kLitPlaneCameraDistance, kLitPlaneTanHalfFov)[0] + kHalf) / (2.0 * kHalf);
+        const float* p = &color[(size_t(32) * kWidth + size_t(x)) * 4];
+        for (size_t c = 0; c < 3; ++c) {
+            double albedo = kRed[c] + (kBlue[c] - kRed[c]) * u;
+            int code = int(std::lround(255.0 * (albedo <= 0.0031308 ? albedo * 12.92
+                                                                     : 1.055 * std::pow(albedo, 1.0 / 2.4) - 0.055)));
+            double storageStep = srgb8Exact(std::min(code + 1, 255)) - srgb8Exact(code);
+            double expected = albedo / kPi * kIrradiance;
+            double tolerance = 0.01 * expected + smallFloatStep(float(expected), c == 2 ? 5 : 6) +
+                               storageStep / kPi * kIrradiance;
+            EXPECT_NEAR(p[c], expected, tolerance) << "pixel x " << x << " channel " << c;
+        }
+    }
+}
+
+TEST(DisplayColor, ConstantOpacityBelowOneIsTransparent) {
+    // Over an empty (black, transparent) background: premultiplied colour opacity x lit, alpha opacity.
+    DisplayColorScene s;
+    const float opacity = 0.5f;
+    s.addHalves({kRed}, OBSCURA_INTERPOLATION_CONSTANT, opacity);
+    auto color = s.render();
+    auto expected = lambert(kRed, opacity);
+    const float* p = &color[(size_t(32) * kWidth + 16) * 4];
+    const int mantissa[3] = {6, 6, 5};
+    for (size_t c = 0; c < 3; ++c)
+        EXPECT_NEAR(p[c], expected[c], 0.01 * expected[c] + smallFloatStep(float(expected[c]), mantissa[c])) << c;
+    EXPECT_NEAR(p[3], opacity, 1.0f / 255.0f);
+}
+
+// Opacity varying over the prim: premultiplied colour opacity x lit and alpha opacity where it is
+// below 1, the plain lit colour (alpha 1) where it is 1.
+void expectOver(const std::vector<float>& color, int x, int y, const Rgb& albedo, double opacity) {
+    auto expected = lambert(albedo, opacity);
+    const float* p = &color[(size_t(y) * kWidth + size_t(x)) * 4];
+    const int mantissa[3] = {6, 6, 5};
+    for (size_t c = 0; c < 3; ++c)
+        EXPECT_NEAR(p[c], expected[c], 0.01 * expected[c] + smallFloatStep(float(expected[c]), mantissa[c]))
+            << "pixel (" << x << ", " << y << ") channel " << c;
+    EXPECT_NEAR(p[3], opacity, 1.0f / 255.0f) << "pixel (" << x << ", " << y << ")";
+}
+
+HostValue floats(std::vector<float> values) {
+    HostValue v;
+    v.type = OBSCURA_VALUE_FLOAT;
+    v.isArray = true;
+    v.count = values.size();
+    v.floats = std::move(values);
+    return v;
+}
+
+TEST(DisplayColor, UniformOpacityMakesOneFaceTransparent) {
+    DisplayColorScene s;
+    s.addHalves({kRed}, OBSCURA_INTERPOLATION_CONSTANT);
+    s.host.set("/Halves", "primvars:displayOpacity", floats({1.0f, 0.25f}));
+    s.host.setInterpolation("/Halves", "primvars:displayOpacity", OBSCURA_INTERPOLATION_UNIFORM);
+    s.host.api().markDirty(s.host.delegate(), "/Halves", OBSCURA_DIRTY_PRIMVAR);
+    auto color = s.render();
+    expectOver(color, 16, 32, kRed, 1.0);
+    expectOver(color, 48, 32, kRed, 0.25);
+}
+
+TEST(DisplayColor, FaceVaryingOpacityFollowsEachFacesCorners) {
+    DisplayColorScene s;
+    s.addHalves({kBlue}, OBSCURA_INTERPOLATION_CONSTANT);
+    s.host.set("/Halves", "primvars:displayOpacity", floats({0.5f, 0.5f, 0.5f, 0.5f, 1.0f, 1.0f, 1.0f, 1.0f}));
+    s.host.setInterpolation("/Halves", "primvars:displayOpacity", OBSCURA_INTERPOLATION_FACE_VARYING);
+    s.host.api().markDirty(s.host.delegate(), "/Halves", OBSCURA_DIRTY_PRIMVAR);
+    auto color = s.render();
+    expectOver(color, 16, 32, kBlue, 0.5);
+    expectOver(color, 48, 32, kBlue, 1.0);
+}
+
+TEST(DisplayColor, VertexOpacityInterpolatesBetweenPoints) {
+    // Opacity 0.2 on the left column, 1 on the right, 0.6 in the middle: affine in x.
+    DisplayColorScene s;
+    s.addHalves({kGreen}, OBSCURA_INTERPOLATION_CONSTANT);
+    s.host.set("/Halves", "primvars:displayOpacity", floats({0.2f, 0.6f, 1.0f, 0.2f, 0.6f, 1.0f}));
+    s.host.setInterpolation("/Halves", "primvars:displayOpacity", OBSCURA_INTERPOLATION_VERTEX);
+    s.host.api().markDirty(s.host.delegate(), "/Halves", OBSCURA_DIRTY_PRIMVAR);
+    auto color = s.render();
+    for (int x : {4, 20, 40, 56}) {
+        double u = (planePointAtPixel(x, 32, kLitPlaneCameraDistance, kLitPlaneTanHalfFov)[0] + kHalf) / (2.0 * kHalf);
+        expectOver(color, x, 32, kGreen, 0.2 + 0.8 * u);
+    }
+}
+
+}  // namespace
+}  // namespace obscura::test

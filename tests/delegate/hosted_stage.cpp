@@ -1,0 +1,76 @@
+#include "tests/delegate/hosted_stage.h"
+
+#include "tests/delegate/render_fixture.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+namespace obscura::test {
+
+HostedStage::HostedStage(std::variant<std::unique_ptr<usda::Stage>, usda::Error> opened) {
+    if (auto* error = std::get_if<usda::Error>(&opened)) throw std::runtime_error(error->str());
+    stage = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));
+    auto loaded = harness::loadPlugin(builtPlugin());
+    if (auto* error = std::get_if<std::string>(&loaded)) throw std::runtime_error(*error);
+    plugin.emplace(std::move(std::get<harness::LoadedPlugin>(loaded)));
+    ObscuraDelegateCreateInfo info{
+        OBSCURA_STRUCTURE_TYPE_DELEGATE_CREATE_INFO, nullptr, sizeof(info), nullptr, 1, &HostedStage::log, this};
+    if (api().createDelegate(&info, &delegate) != OBSCURA_OK) throw std::runtime_error(api().lastError(nullptr));
+    host.emplace(*stage);
+    if (api().setSceneDelegate(delegate, &host->sceneDelegate()) != OBSCURA_OK ||
+        host->populate(api(), delegate) != OBSCURA_OK)
+        throw std::runtime_error(api().lastError(delegate));
+}
+
+HostedStage::~HostedStage() {
+    if (delegate) api().destroyDelegate(delegate);
+}
+
+void HostedStage::log(void* user, ObscuraLogLevel level, const char* message) {
+    if (level == OBSCURA_LOG_ERROR) static_cast<HostedStage*>(user)->errors.push_back(message);
+}
+
+std::vector<float> HostedStage::renderAov(const std::string& aov, size_t channels, double time) {
+    std::string buffer = host->addRenderBuffer(api(), delegate, aov, kWidth, kHeight);
+    ObscuraAovBinding binding{aov.c_str(), buffer.c_str()};
+    std::string camera = host->defaultCamera();
+    ObscuraRenderPassDesc desc{OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC,
+                               nullptr,
+                               sizeof(desc),
+                               camera.c_str(),
+                               {0, 0, 0, 0},
+                               time,
+                               1,
+                               &binding};
+    lastStatus = api().render(delegate, &desc);
+    // Bad prim data is skipped and reported; the rest renders.
+    EXPECT_TRUE(lastStatus == OBSCURA_OK || lastStatus == OBSCURA_ERROR_BAD_PRIM_DATA) << api().lastError(delegate);
+    ObscuraMappedBuffer mapped{OBSCURA_STRUCTURE_TYPE_MAPPED_BUFFER, nullptr, sizeof(mapped)};
+    if (api().mapRenderBuffer(delegate, buffer.c_str(), &mapped) != OBSCURA_OK) return {};
+    size_t count = size_t(mapped.width) * mapped.height * channels;
+    std::vector<float> out(count);
+    if (aov == "primId" || aov == "instanceId") {
+        const auto* p = static_cast<const int32_t*>(mapped.data);
+        for (size_t i = 0; i < count; ++i) out[i] = float(p[i]);
+    } else {
+        const auto* p = static_cast<const float*>(mapped.data);
+        out.assign(p, p + count);
+    }
+    api().unmapRenderBuffer(delegate, buffer.c_str());
+    return out;
+}
+
+void HostedStage::setToken(const std::string& name, const std::string& token) {
+    const char* text = token.c_str();
+    ObscuraValue value{OBSCURA_VALUE_TOKEN, 0, 1, &text};
+    EXPECT_EQ(api().setRenderSetting(delegate, name.c_str(), &value), OBSCURA_OK) << api().lastError(delegate);
+}
+
+bool HostedStage::warned(const std::string& fragment) const {
+    for (const auto& m : host->messages())
+        if (m.text.find(fragment) != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace obscura::test

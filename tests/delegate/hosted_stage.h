@@ -1,0 +1,46 @@
+// A composed USD stage rendered through the harness's scene host (harness/usd_scene_host.h) and
+// the plugin, as `obscura render` does: for tests of what the host computes from a stage (texture
+// networks, purpose, inherited visibility, displayColor) and what the plugin draws from it.
+#pragma once
+
+#include "harness/plugin_loader.h"
+#include "harness/usd_scene_host.h"
+
+#include <obscura/obscura.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace obscura::test {
+
+struct HostedStage {
+    std::unique_ptr<usda::Stage> stage;
+    std::optional<harness::LoadedPlugin> plugin;
+    ObscuraDelegate delegate = nullptr;
+    std::optional<harness::UsdSceneHost> host;
+    std::vector<std::string> errors;  // logged by the plugin
+    ObscuraStatus lastStatus = OBSCURA_OK;  // of the last render
+
+    explicit HostedStage(std::variant<std::unique_ptr<usda::Stage>, usda::Error> opened);
+    ~HostedStage();
+    HostedStage(const HostedStage&) = delete;
+    HostedStage& operator=(const HostedStage&) = delete;
+
+    const ObscuraApiV1& api() const { return plugin->api(); }
+    // Renders one AOV at `time` through the stage's first camera (kWidth x kHeight) and returns
+    // its values, `channels` per pixel; int32 AOVs (primId) come back converted to float.
+    std::vector<float> renderAov(const std::string& aov, size_t channels, double time = 0.0);
+    std::vector<float> renderAlbedo() { return renderAov("albedo", 3); }
+    // A render setting that is one token.
+    void setToken(const std::string& name, const std::string& token);
+    // Whether the host reported a message containing `fragment`.
+    bool warned(const std::string& fragment) const;
+
+private:
+    static void log(void* user, ObscuraLogLevel level, const char* message);
+};
+
+}  // namespace obscura::test
