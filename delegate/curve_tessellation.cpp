@@ -143,6 +143,7 @@ passes::Vertex vertexAt(V3 position, V3 normal, V3 tangent, const std::array<dou
         out.tangent[k] = float(tangent[size_t(k)]);
     }
     out.tangent[3] = 1.0f;
+    out.color[3] = 1.0f;  // opaque: displayOpacity is not read for curves and points
     out.uv[0] = float(u);
     out.uv[1] = float(v);
     return out;

@@ -27,15 +27,12 @@ int runGradeChart(const GradeChartOptions& options) {
             for (int x = 0; x < frame.width; ++x)
                 for (int c = 0; c < 3; ++c) out.pixels[out.index(x, y, c)] = frame.pixels[frame.index(x, y, c)];
     }
-    for (uint32_t b = 0; b < OBSCURA_GRADING_CHART_LATTICE; ++b)
-        for (uint32_t g = 0; g < OBSCURA_GRADING_CHART_LATTICE; ++g)
-            for (uint32_t r = 0; r < OBSCURA_GRADING_CHART_LATTICE; ++r) {
-                uint32_t x = 0, y = 0;
-                obscuraGradingChartPixel(r, g, b, &x, &y);
-                const uint32_t index[3] = {r, g, b};
-                for (int c = 0; c < 3; ++c)
-                    out.pixels[out.index(int(x), int(y), c)] = obscuraGradingChartValue(index[c]) / 255.0f;
-            }
+    for (uint32_t y = 0; y < OBSCURA_GRADING_CHART_HEIGHT; ++y)
+        for (uint32_t x = 0; x < OBSCURA_GRADING_CHART_WIDTH; ++x) {
+            uint8_t rgb[3];
+            obscuraGradingChartNeutral(x, y, rgb);
+            for (int c = 0; c < 3; ++c) out.pixels[out.index(int(x), int(y), c)] = rgb[c] / 255.0f;
+        }
     if (auto written = image::writePng(options.output, out); image::isError(written)) {
         std::fprintf(stderr, "obscura: %s\n", image::errorOf(written).c_str());
         return kExitBadInput;

@@ -25,4 +25,11 @@ static inline uint8_t obscuraGradingChartValue(uint32_t i) {
     return (uint8_t)(i * (255u / (OBSCURA_GRADING_CHART_LATTICE - 1u)));
 }
 
+/* The identity chart's 8-bit RGB at pixel (x, y) of the chart: the inverse of the layout above. */
+static inline void obscuraGradingChartNeutral(uint32_t x, uint32_t y, uint8_t rgb[3]) {
+    rgb[0] = obscuraGradingChartValue(x % OBSCURA_GRADING_CHART_LATTICE);
+    rgb[1] = obscuraGradingChartValue(y);
+    rgb[2] = obscuraGradingChartValue(x / OBSCURA_GRADING_CHART_LATTICE);
+}
+
 #endif

@@ -16,12 +16,6 @@ constexpr float kFocalLength = 50.0f, kAperture = 20.955f;  // tenths of a scene
 constexpr double kTanHalfFov = (kAperture / 2.0) / kFocalLength;
 constexpr double kPixelsPerUnitAtUnitDistance = kSize / 2.0 / kTanHalfFov;
 
-void setBool(TestHost& host, const char* name, bool on) {
-    int32_t v = on ? 1 : 0;
-    ObscuraValue value{OBSCURA_VALUE_BOOL, 0, 1, &v};
-    ASSERT_EQ(host.api().setRenderSetting(host.delegate(), name, &value), OBSCURA_OK) << host.lastError();
-}
-
 // A camera at (0, 0, distance) looking down -Z; no jitter, so ids and depths are the pixel centres'.
 void addViewer(TestHost& host, double distance) {
     host.addCamera("/Camera", translation(0, 0, distance), kFocalLength, kAperture);

@@ -25,12 +25,6 @@ ObscuraStatus setInt(TestHost& host, const char* name, int32_t value) {
     ObscuraValue v{OBSCURA_VALUE_INT, 0, 1, &value};
     return host.api().setRenderSetting(host.delegate(), name, &v);
 }
-void setBool(TestHost& host, const char* name, bool on) {
-    int32_t flag = on ? 1 : 0;
-    ObscuraValue v{OBSCURA_VALUE_BOOL, 0, 1, &flag};
-    ASSERT_EQ(host.api().setRenderSetting(host.delegate(), name, &v), OBSCURA_OK) << host.lastError();
-}
-
 // The resolve's tone map for grey values (shaders/common/hdr_resolve.glsl): Reinhard on luma.
 float reinhard(float v) { return v / (1.0f + v); }
 double inverseReinhard(double t) { return t / (1.0 - t); }

@@ -30,6 +30,12 @@ void setNumber(TestHost& host, const char* name, double value) {
     ASSERT_EQ(host.api().setRenderSetting(host.delegate(), name, &v), OBSCURA_OK) << host.lastError();
 }
 
+void setBool(TestHost& host, const char* name, bool on) {
+    int32_t flag = on ? 1 : 0;
+    ObscuraValue v{OBSCURA_VALUE_BOOL, 0, 1, &flag};
+    ASSERT_EQ(host.api().setRenderSetting(host.delegate(), name, &v), OBSCURA_OK) << host.lastError();
+}
+
 void addPlane(TestHost& host, const std::string& path, const std::string& material, double half, Matrix transform) {
     float h = float(half);
     std::map<std::string, HostValue> values = {

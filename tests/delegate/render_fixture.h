@@ -24,6 +24,8 @@ ObscuraRenderStats renderStats(TestHost& host);
 
 // Sets a numeric (or boolean: 0/1) render setting; a refusal fails the test.
 void setNumber(TestHost& host, const char* name, double value);
+// Sets a boolean render setting as a host passing OBSCURA_VALUE_BOOL does.
+void setBool(TestHost& host, const char* name, bool on);
 
 // A unit-normal quad of half-size `half` at z = 0 facing +Z, with a material bound.
 void addPlane(TestHost& host, const std::string& path, const std::string& material, double half = 10.0,

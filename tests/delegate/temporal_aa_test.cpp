@@ -20,10 +20,6 @@ void setSetting(TestHost& host, const char* name, ObscuraValueType type, const v
     ObscuraValue v{type, 0, 1, data};
     ASSERT_EQ(host.api().setRenderSetting(host.delegate(), name, &v), OBSCURA_OK) << host.lastError();
 }
-void setBool(TestHost& host, const char* name, bool on) {
-    int32_t flag = on ? 1 : 0;
-    setSetting(host, name, OBSCURA_VALUE_BOOL, &flag);
-}
 void setInt(TestHost& host, const char* name, int32_t value) { setSetting(host, name, OBSCURA_VALUE_INT, &value); }
 void setToken(TestHost& host, const char* name, const char* token) {
     setSetting(host, name, OBSCURA_VALUE_TOKEN, &token);

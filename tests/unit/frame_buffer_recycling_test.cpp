@@ -3,6 +3,8 @@
 // memory stays bounded while sizes change. Validation on, no error allowed.
 #include "gpu/device.h"
 
+#include "tests/unit/validated_device_test.h"
+
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -14,18 +16,8 @@ namespace {
 
 constexpr VkBufferUsageFlags kUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 
-class FrameBufferRecycling : public ::testing::Test {
+class FrameBufferRecycling : public ValidatedDeviceTest {
 protected:
-    void SetUp() override {
-        ContextOptions options;
-        options.validation = true;
-        auto context = Context::create(options);
-        ASSERT_TRUE(context.ok()) << context.error();
-        device_ = std::make_unique<Device>(std::move(*context));
-    }
-    void TearDown() override {
-        if (device_) EXPECT_EQ(device_->context().validationErrorCount(), 0u);
-    }
 
     // One frame's records: buffers of the given sizes, released before the frame ends.
     std::set<VkBuffer> frame(const std::vector<VkDeviceSize>& sizes) {
@@ -43,7 +35,6 @@ protected:
         return handles;
     }
 
-    std::unique_ptr<Device> device_;
 };
 
 TEST_F(FrameBufferRecycling, AnUnchangedFrameGetsTheSameBuffersAndAllocatesNothing) {

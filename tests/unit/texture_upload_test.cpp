@@ -3,6 +3,8 @@
 // validation layer on and no error allowed.
 #include "gpu/texture_upload.h"
 
+#include "tests/unit/validated_device_test.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,18 +15,8 @@
 namespace obscura::gpu {
 namespace {
 
-class TextureUpload : public ::testing::Test {
+class TextureUpload : public ValidatedDeviceTest {
 protected:
-    void SetUp() override {
-        ContextOptions options;
-        options.validation = true;
-        auto context = Context::create(options);
-        ASSERT_TRUE(context.ok()) << context.error();
-        device_ = std::make_unique<Device>(std::move(*context));
-    }
-    void TearDown() override {
-        if (device_) EXPECT_EQ(device_->context().validationErrorCount(), 0u);
-    }
 
     // The bytes of one level of a texture createMipmappedTexture left SHADER_READ_ONLY_OPTIMAL.
     std::vector<uint8_t> readLevel(const Image& image, uint32_t level, size_t texelBytes) {
@@ -72,7 +64,6 @@ protected:
         return level;
     }
 
-    std::unique_ptr<Device> device_;
 };
 
 TEST(MipLevelCount, ReachesOneTexel) {
