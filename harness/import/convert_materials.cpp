@@ -1,12 +1,15 @@
 // Materials: one UsdPreviewSurface per Assimp material, with the base colour texture when the file
 // names one.
 #include <assimp/material.h>
+#include <assimp/scene.h>
+#include <assimp/texture.h>
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "harness/import/convert.h"
+#include "harness/usda/temporary_files.h"
 
 namespace obscura::harness::importer {
 
@@ -46,6 +49,33 @@ std::optional<aiColor3D> emissiveOf(const aiMaterial& material) {
     return emissive;
 }
 
+// An image embedded in the file (glTF's data: URIs and buffer views, GLB, FBX) written out once per
+// process (usda::temporaryFile), so the delegate reads it like any texture file. Assimp keeps such
+// images as the file's bytes (mHeight 0, the format in achFormatHint); decoded texels it would
+// have to re-encode are not written.
+std::optional<std::string> embeddedTexture(const Source& source, const aiTexture& texture, const std::string& name,
+                                           const std::string& label, Warnings& warnings) {
+    if (texture.mHeight != 0) {
+        warnings.add(label + ": embedded texture " + name + " is stored decoded; base colour texture ignored");
+        return std::nullopt;
+    }
+    std::string extension = texture.achFormatHint[0] ? texture.achFormatHint : "bin";
+    std::string error;
+    std::string path = usda::temporaryFile(
+        source.file.generic_string() + "#" + name, "embedded." + extension,
+        [&](std::string*) -> std::optional<std::string> {
+            return std::string(reinterpret_cast<const char*>(texture.pcData), texture.mWidth);
+        },
+        &error);
+    if (path.empty()) {
+        warnings.add(label + ": embedded texture " + name + ": " + error + "; base colour texture ignored");
+        return std::nullopt;
+    }
+    std::optional<std::string> asset = assetPath(path);
+    if (!asset) warnings.add(label + ": embedded texture " + name + " cannot be written as an asset path; ignored");
+    return asset;
+}
+
 // The base colour texture as an absolute asset path (relative paths are relative to the imported
 // file); nullopt when there is none or it cannot be referenced.
 std::optional<std::string> baseColorTexture(const Source& source, const aiMaterial& material, const std::string& label,
@@ -54,10 +84,8 @@ std::optional<std::string> baseColorTexture(const Source& source, const aiMateri
     if (material.GetTexture(aiTextureType_BASE_COLOR, 0, &file) != aiReturn_SUCCESS &&
         material.GetTexture(aiTextureType_DIFFUSE, 0, &file) != aiReturn_SUCCESS)
         return std::nullopt;
-    if (source.scene.GetEmbeddedTexture(file.C_Str())) {
-        warnings.add(label + ": embedded textures are not extracted; base colour texture ignored");
-        return std::nullopt;
-    }
+    if (const aiTexture* embedded = source.scene.GetEmbeddedTexture(file.C_Str())) return embeddedTexture(
+        source, *embedded, file.C_Str(), label, warnings);
     // Files written on Windows separate folders with backslashes.
     std::string written = file.C_Str();
     std::replace(written.begin(), written.end(), '\\', '/');

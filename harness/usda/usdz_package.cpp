@@ -1,14 +1,11 @@
 #include "harness/usda/usdz_package.h"
 
+#include "harness/usda/temporary_files.h"
+
 #include <zip.h>
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <filesystem>
 #include <fstream>
-#include <map>
-#include <mutex>
 #include <sstream>
 
 namespace obscura::usda {
@@ -35,60 +32,24 @@ std::optional<std::pair<std::string, std::string>> splitPackagePath(std::string_
 
 std::string joinPackagePath(const std::string& archive, const std::string& entry) { return archive + "[" + entry + "]"; }
 
-namespace {
-
-// The extracted files of this process, removed with their folder at exit.
-class ExtractedFiles {
-public:
-    ~ExtractedFiles() {
-        std::error_code ec;
-        if (!folder_.empty()) std::filesystem::remove_all(folder_, ec);
+std::string extractPackagedFile(const std::string& packagePath, std::string* error) {
+    const auto parts = splitPackagePath(packagePath);
+    if (!parts) {
+        *error = "'" + packagePath + "' names no file in a package";
+        return "";
     }
-    std::string extract(const std::string& packagePath, std::string* error) {
-        std::lock_guard lock(mutex_);
-        if (const auto it = files_.find(packagePath); it != files_.end()) return it->second;
-        const auto parts = splitPackagePath(packagePath);
-        if (!parts) {
-            *error = "'" + packagePath + "' names no file in a package";
-            return "";
-        }
+    return temporaryFile(packagePath, parts->second, [&](std::string* problem) -> std::optional<std::string> {
         std::ifstream in(parts->first, std::ios::binary);
         std::ostringstream archiveBytes;
         archiveBytes << in.rdbuf();
-        auto package = in ? UsdzPackage::open(archiveBytes.str(), error) : nullptr;
-        if (!in) *error = "cannot open package '" + parts->first + "'";
-        if (!package) return "";
-        auto bytes = package->read(parts->second, error);
-        if (!bytes) return "";
-        std::error_code ec;
-        if (folder_.empty()) {
-            folder_ = std::filesystem::temp_directory_path(ec) / ("obscura-usdz-" + std::to_string(::getpid()));
-            std::filesystem::create_directories(folder_, ec);
+        if (!in) {
+            *problem = "cannot open package '" + parts->first + "'";
+            return std::nullopt;
         }
-        // One folder per file keeps its name (and extension, which image readers look at).
-        const auto dir = folder_ / std::to_string(files_.size());
-        std::filesystem::create_directories(dir, ec);
-        const auto file = dir / std::filesystem::path(parts->second).filename();
-        std::ofstream out(file, std::ios::binary);
-        out.write(bytes->data(), static_cast<std::streamsize>(bytes->size()));
-        if (!out) {
-            *error = "cannot write '" + file.string() + "'";
-            return "";
-        }
-        return files_[packagePath] = file.string();
-    }
-
-private:
-    std::mutex mutex_;
-    std::filesystem::path folder_;
-    std::map<std::string, std::string> files_;
-};
-
-}  // namespace
-
-std::string extractPackagedFile(const std::string& packagePath, std::string* error) {
-    static ExtractedFiles files;
-    return files.extract(packagePath, error);
+        auto package = UsdzPackage::open(archiveBytes.str(), problem);
+        if (!package) return std::nullopt;
+        return package->read(parts->second, problem);
+    }, error);
 }
 
 std::unique_ptr<UsdzPackage> UsdzPackage::open(std::string bytes, std::string* error) {

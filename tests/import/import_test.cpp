@@ -1,5 +1,7 @@
 // glTF, OBJ and FBX files (tests/import/data) converted to USD text, composed by the harness's
 // stage and checked against the values in the source files.
+#include "harness/image/png_io.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -254,12 +256,29 @@ TEST(GltfImport, BaseColorTextureIsScaledByTheBaseColorFactor) {
     EXPECT_EQ(gltf.token(reader, "inputs:varname"), "st");
 }
 
-TEST(GltfImport, EmbeddedTexturesAreNotExtracted) {
+// The Embedded material's base colour is a 1x1 PNG of (255, 128, 0) in a data: URI
+// (make_scene_gltf.py): written out as a file the delegate reads like any texture.
+TEST(GltfImport, EmbeddedTexturesAreWrittenOutAndBound) {
     const Imported gltf("scene.gltf");
     ASSERT_TRUE(gltf.stage);
-    gltf.prim(kLooks + "/Embedded", "Material");
-    EXPECT_FALSE(gltf.stage->find(kLooks + "/Embedded/BaseColorTexture"));
-    EXPECT_TRUE(gltf.warned("material 'Embedded': embedded textures are not extracted"));
+    const std::string material = kLooks + "/Embedded";
+    const std::string texture = material + "/BaseColorTexture";
+    gltf.prim(texture, "Shader");
+    EXPECT_EQ(gltf.connection(material + "/Surface", "inputs:diffuseColor"), texture + ".outputs:rgb");
+    const std::string file = gltf.token(texture, "inputs:file");
+    EXPECT_TRUE(file.ends_with(".png")) << file;
+    auto image = image::readStbImage(file);
+    ASSERT_FALSE(image::isError(image)) << image::errorOf(image);
+    const auto& pixels = std::get<image::Image>(image);
+    ASSERT_EQ(pixels.width, 1);
+    ASSERT_EQ(pixels.height, 1);
+    EXPECT_FLOAT_EQ(pixels.pixels[0], 1.0f);
+    EXPECT_FLOAT_EQ(pixels.pixels[1], 128.0f / 255.0f);
+    EXPECT_FLOAT_EQ(pixels.pixels[2], 0.0f);
+    // A second import of the same file reuses the file written.
+    const Imported again("scene.gltf");
+    EXPECT_EQ(again.token(texture, "inputs:file"), file);
+    EXPECT_FALSE(gltf.warned("material 'Embedded'"));
 }
 
 TEST(GltfImport, PerspectiveCameraKeepsTheFieldOfView) {
