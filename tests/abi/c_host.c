@@ -1,5 +1,6 @@
 /* A host written in C99: finds the plugin through its plugInfo.json, dlopens it, negotiates the
  * ABI, supplies a scene delegate in C and reads an AOV back. Exits 0 when every check passes. */
+#include <obscura/grading_chart.h> /* compiles as C too */
 #include <obscura/obscura.h>
 
 #include <dlfcn.h>
