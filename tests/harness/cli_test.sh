@@ -5,17 +5,7 @@ set -u
 obscura=$1; src=$2; fake_plugin=$3
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 export OBSCURA_VALIDATION=1
-pass=0; fail=0
-check() {  # check NAME EXPECTED_CODE ACTUAL_CODE [OUTPUT_FILE PATTERN]
-    local name=$1 want=$2 got=$3
-    if [ "$got" != "$want" ]; then
-        echo "FAIL $name: exit $got, expected $want"; [ -n "${4:-}" ] && sed 's/^/    /' "$4"; fail=$((fail + 1)); return
-    fi
-    if [ -n "${4:-}" ] && ! grep -qE "$5" "$4"; then
-        echo "FAIL $name: output lacks /$5/:"; sed 's/^/    /' "$4"; fail=$((fail + 1)); return
-    fi
-    echo "ok   $name"; pass=$((pass + 1))
-}
+source "$(dirname "$0")/check.sh"
 
 "$obscura" render "$src/scenes/demo.usda" -o "$tmp/demo.exr" --width 96 --height 54 \
     --aov color,depth,normal,albedo,motion,primId >"$tmp/out" 2>&1
@@ -164,5 +154,4 @@ check "OBSCURA_PLUGINPATH finds the plugin" 0 $? "$tmp/out" 'loaded: Obscura, AB
     --aov albedo >"$tmp/out" 2>&1
 check "textured scene renders to EXR" 0 $?
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

@@ -7,17 +7,7 @@ obscura=$1; src=$2
 data="$src/tests/harness/data"
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 export OBSCURA_VALIDATION=1
-pass=0; fail=0
-check() {  # check NAME EXPECTED_CODE ACTUAL_CODE [OUTPUT_FILE PATTERN]
-    local name=$1 want=$2 got=$3
-    if [ "$got" != "$want" ]; then
-        echo "FAIL $name: exit $got, expected $want"; [ -n "${4:-}" ] && sed 's/^/    /' "$4"; fail=$((fail + 1)); return
-    fi
-    if [ -n "${4:-}" ] && ! grep -qE "$5" "$4"; then
-        echo "FAIL $name: output lacks /$5/:"; sed 's/^/    /' "$4"; fail=$((fail + 1)); return
-    fi
-    echo "ok   $name"; pass=$((pass + 1))
-}
+source "$(dirname "$0")/check.sh"
 fast="--set taa:frames=2"
 
 # No -o: the product's productName (relative to the working folder), its vars as the AOVs, the
@@ -87,5 +77,4 @@ check "a var that is a mesh" 0 0 "$tmp/out" '/Render/BrokenProduct: orderedVars 
 "$obscura" render "$tmp/empty.usda" -o "$tmp/x.exr" --width 16 --height 16 >"$tmp/out" 2>&1
 check "a stage naming missing settings renders without them" 0 $? "$tmp/out" 'empty\.usda: warning: renderSettingsPrimPath: render settings </Nothing> do not exist'
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish
