@@ -84,9 +84,17 @@ const Light* environmentDome(const std::map<std::string, std::unique_ptr<Prim>>&
 FrameView frameView(const FrameSceneInputs& in) {
     const Camera& cam = in.camera;
     double aspect = double(in.width) * in.pixelAspectRatio / double(in.height);
-    if (in.shutter && !in.sample)
-        return {cam.viewMatrix({0.0, 0.0}, shutterCentre(blurInterval(in))), cam.projectionMatrix(aspect)};
-    if (!in.sample) return {cam.viewMatrix(), cam.projectionMatrix(aspect)};
+    if (!in.sample) {
+        // A still's frame seen from its stratum of the aperture shears like a reference sub-frame.
+        const std::array<double, 2> noJitter{0.0, 0.0};
+        Matrix4d projection = in.lensOffset == noJitter ? cam.projectionMatrix(aspect)
+                                                        : cam.projectionMatrix(aspect, in.lensOffset, noJitter);
+        if (in.shutter) return {cam.viewMatrix(in.lensOffset, shutterCentre(blurInterval(in))), projection};
+        Matrix4d lensShift = kIdentity;
+        lensShift[12] = -in.lensOffset[0];
+        lensShift[13] = -in.lensOffset[1];
+        return {multiply(cam.viewMatrix(), lensShift), projection};
+    }
     std::array<double, 2> ndcJitter{2.0 * in.sample->pixelJitter[0] / in.width, 2.0 * in.sample->pixelJitter[1] / in.height};
     return {cam.viewMatrix(in.sample->lensOffset, in.sample->time),
             cam.projectionMatrix(aspect, in.sample->lensOffset, ndcJitter)};
@@ -147,12 +155,13 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
     cd.shutterFraction = float(in.shutterSpan[1] - in.shutterSpan[0]);
     cd.clipJitter = {float(in.clipJitter[12]), float(in.clipJitter[13])};
     cd.noiseFrame = in.noiseFrame;
+    cd.linearResolve = in.linearResolve ? 1u : 0u;
     if (in.shutter && in.sample && (*in.shutter)[1] > (*in.shutter)[0])
         cd.shutterPosition = float((in.sample->time - (*in.shutter)[0]) / ((*in.shutter)[1] - (*in.shutter)[0]));
     bool cameraMoves = false;
     if (in.shutter && !in.sample) {
         for (int end = 0; end < 2; ++end) {
-            Matrix4d atEnd = multiply(cam.viewMatrix({0.0, 0.0}, blurred[size_t(end)]), unjitteredProjection);
+            Matrix4d atEnd = multiply(cam.viewMatrix(in.lensOffset, blurred[size_t(end)]), unjitteredProjection);
             (end == 0 ? cd.shutterOpenViewProjection : cd.shutterCloseViewProjection) = toFloats<passes::Mat4>(atEnd);
         }
         cameraMoves = cd.shutterOpenViewProjection != cd.shutterCloseViewProjection;

@@ -76,6 +76,12 @@ struct FrameSceneInputs {
     // accumulation (TemporalAaStep::shutterStratum). The frame is seen at the part's middle and its
     // velocities span the part alone.
     std::array<double, 2> shutterSpan{0.0, 1.0};
+    // Where on the aperture a still's accumulated frame (no `sample`) looks from
+    // (TemporalAaStep::lensStratum): camera space x right, y up, scene units, the focus plane kept
+    // in place (Camera::projectionMatrix with a lens offset). Zero: the lens's centre.
+    std::array<double, 2> lensOffset{0.0, 0.0};
+    // A sample of a still's mean: MSAA samples resolve linearly (CameraData::linearResolve).
+    bool linearResolve = false;
     // Temporal AA: the last frame's models (instances whose model differs get an
     // InstanceReprojection record), and where this frame's go; null without temporal AA.
     const InstanceModels* lastModels = nullptr;

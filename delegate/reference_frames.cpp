@@ -13,11 +13,15 @@ double radicalInverse(uint32_t index, uint32_t base) {
     return inverse;
 }
 
-// The multiplier of a rank-1 lattice k -> (k g mod N) / N: the integer nearest N (sqrt 5 - 1) / 2
-// that shares no factor with N, so that the lattice is a permutation (every 1/N of the interval
-// gets one point) and far from aligned with k / N (Korobov's golden-ratio choice).
-uint32_t latticeMultiplier(uint32_t count) {
-    uint32_t ideal = static_cast<uint32_t>(std::lround(count * 0.6180339887498949));
+// The multiplier of a rank-1 lattice k -> (k g mod N) / N: the integer nearest N `ratio` that
+// shares no factor with N, so that the lattice is a permutation (every 1/N of the interval gets
+// one point) and, for an irrational ratio, far from aligned with k / N (Korobov's golden-ratio
+// choice, (sqrt 5 - 1) / 2).
+constexpr double kGoldenRatio = 0.6180339887498949;
+constexpr double kPlasticRatio = 0.7548776662466927;  // 1 / rho, rho^3 = rho + 1
+
+uint32_t latticeMultiplier(uint32_t count, double ratio) {
+    uint32_t ideal = static_cast<uint32_t>(std::lround(count * ratio));
     for (uint32_t step = 0;; ++step) {
         for (uint32_t g : {ideal + step, ideal - step})
             if (g > 0 && g < count && std::gcd(g, count) == 1) return g;
@@ -25,25 +29,38 @@ uint32_t latticeMultiplier(uint32_t count) {
     }
 }
 
+// Point k of the Hammersley set of `count` on [-1, 1]^2, both coordinates centred in their strata
+// (the radical inverse steps by 1 / N for N = 2^m).
+std::array<double, 2> hammersleyPoint(uint32_t k, uint32_t count) {
+    return {2.0 * (k + 0.5) / count - 1.0, 2.0 * (radicalInverse(k, 2) + 0.5 / count) - 1.0};
+}
+
 }  // namespace
 
 uint32_t shutterStratum(uint32_t index, uint32_t count) {
-    return count > 0 ? uint32_t(uint64_t(index) * latticeMultiplier(count) % count) : 0;
+    return count > 0 ? uint32_t(uint64_t(index) * latticeMultiplier(count, kGoldenRatio) % count) : 0;
 }
 
-std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::ApertureShape& aperture) {
+std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::ApertureShape& aperture,
+                                                  const PixelFilter& filter) {
+    PixelFilterWarp warp(filter);
     std::vector<ReferenceSubFrame> frames;
     frames.reserve(count);
     for (uint32_t k = 0; k < count; ++k) {
-        // Both coordinates centred in their strata (the radical inverse steps by 1 / N for N = 2^m).
-        std::array<double, 2> square{2.0 * (k + 0.5) / count - 1.0, 2.0 * (radicalInverse(k, 2) + 0.5 / count) - 1.0};
-        passes::ApertureSample lens = passes::sampleAperture(square, aperture);
+        passes::ApertureSample lens = passes::sampleAperture(hammersleyPoint(k, count), aperture);
         double shutter = (double(shutterStratum(k, count)) + 0.5) / count;
         std::array<double, 2> emitter{radicalInverse(k, 7), radicalInverse(k, 11)};
         frames.push_back(
-            {lens.position, lens.area, shutter, {radicalInverse(k, 3) - 0.5, radicalInverse(k, 5) - 0.5}, emitter});
+            {lens.position, lens.area, shutter,
+             {warp.offset(radicalInverse(k, 3) - 0.5), warp.offset(radicalInverse(k, 5) - 0.5)}, emitter});
     }
     return frames;
+}
+
+std::array<double, 2> stillApertureSample(uint32_t index, uint32_t count, const passes::ApertureShape& aperture) {
+    if (count == 0) return {0.0, 0.0};
+    uint32_t stratum = uint32_t(uint64_t(index % count) * latticeMultiplier(count, kPlasticRatio) % count);
+    return passes::sampleAperture(hammersleyPoint(stratum, count), aperture).position;
 }
 
 }  // namespace obscura::delegate

@@ -3,6 +3,7 @@
 // shutter interval and the pixel.
 #pragma once
 
+#include "delegate/pixel_filter.h"
 #include "passes/thin_lens.h"
 
 #include <array>
@@ -15,7 +16,7 @@ struct ReferenceSubFrame {
     std::array<double, 2> aperture;     // on the unit aperture (x right, y up), passes::sampleAperture
     double weight;                      // the aperture area the sample stands for: a flat bokeh
     double shutter;                     // fraction of the shutter interval, [0, 1)
-    std::array<double, 2> pixelJitter;  // pixels, [-0.5, 0.5)^2: a box pixel filter
+    std::array<double, 2> pixelJitter;  // pixels: [-0.5, 0.5)^2 for the box of width 1, else distributed as the filter
     std::array<double, 2> emitter;      // [0, 1)^2: the point of each light's emitter (emitterSample)
 };
 
@@ -23,12 +24,24 @@ struct ReferenceSubFrame {
 // and the base-2 radical inverse) over the square, mapped with the same concentric + n-gon mapping
 // as the depth-of-field taps; the shutter from a golden-ratio rank-1 lattice (each 1/N of the
 // interval once); the jitter from the radical inverses in bases 3 and 5, the lights' emitters from
-// those in bases 7 and 11 (Halton), so no dimension repeats another's pattern.
-std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::ApertureShape& aperture);
+// those in bases 7 and 11 (Halton), so no dimension repeats another's pattern; the jitter then
+// warped to the pixel filter (PixelFilterWarp).
+std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::ApertureShape& aperture,
+                                                  const PixelFilter& filter = {});
 
 // The stratum of the shutter sample `index` of `count` takes, in [0, count): the golden-ratio
 // rank-1 lattice above, shared by the reference's sub-frames and a still's accumulated frames
 // (TemporalAaStep::shutterStratum), so that both sample the shutter alike.
 uint32_t shutterStratum(uint32_t index, uint32_t count);
+
+// The point of the unit aperture (as ReferenceSubFrame::aperture) a still's accumulated frame
+// `index` of `count` looks through (TemporalAaStep::lensStratum): the centre of a Hammersley
+// stratum, mapped like the reference's, so that `count` frames cover the aperture once. The
+// strata are visited in the order of a rank-1 lattice whose multiplier (near 0.7549 N, the plastic
+// ratio, and sharing no factor with N) differs from the shutter's, so that a frame's lens position
+// does not follow its time in the shutter. XXX: an odd multiplier keeps the index's parity, which
+// is the top bit of both the Hammersley y and the jitter's base-2 x: for 16 frames they correlate
+// (-0.57); a scrambled set would part them.
+std::array<double, 2> stillApertureSample(uint32_t index, uint32_t count, const passes::ApertureShape& aperture);
 
 }  // namespace obscura::delegate

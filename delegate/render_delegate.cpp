@@ -19,6 +19,7 @@
 #include "passes/transparent.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -411,7 +412,8 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (settings_.number("motionBlur") != 0.0 && cameraParams.shutterClose > cameraParams.shutterOpen)
         shutter = {desc.time + cameraParams.shutterOpen, desc.time + cameraParams.shutterClose};
     uint32_t referenceSubFrames = static_cast<uint32_t>(settings_.number("reference"));
-    if (referenceSubFrames > 0) accumulateReference(frame, lens, referenceSubFrames, shutter);
+    const PixelFilter pixelFilter{pixelFilterKind(settings_.token("pixelFilter")), settings_.number("pixelFilter:width")};
+    if (referenceSubFrames > 0) accumulateReference(frame, lens, referenceSubFrames, shutter, pixelFilter);
     else if (shutter[1] > shutter[0]) frame.shutter = shutter;
 
     // Temporal AA picks this frame's jitter before the scene's camera constants are packed. The
@@ -424,10 +426,20 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         FrameView seen = frameView(frame);
         temporalAa = temporalAccumulation_.next({desc.cameraPath, width, height, settings_.version()}, sceneVersion_,
                                                 temporalAaSettings.mode, uint32_t(settings_.number("taa:frames")),
-                                                seen.view, seen.projection, frame.shutter.has_value());
+                                                seen.view, seen.projection,
+                                                {frame.shutter.has_value(), passes::hasDepthOfField(lens),
+                                                 1.0 / std::sqrt(settings_.number("msaa")), pixelFilter});
         frame.clipJitter = temporalAa->clipJitter;
         if (temporalAa->shutterStratum) frame.shutterSpan = *temporalAa->shutterStratum;
+        if (temporalAa->lensStratum) {
+            // The accumulation-buffer camera's lens, as the reference spreads its sub-frames.
+            double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
+            auto onAperture = stillApertureSample(*temporalAa->lensStratum, temporalAa->pass.framesToConverge,
+                                                  camera->apertureShape());
+            frame.lensOffset = {onAperture[0] * apertureRadius, onAperture[1] * apertureRadius};
+        }
         frame.noiseFrame = temporalAa->noiseFrame;
+        frame.linearResolve = temporalAa->pass.unchanged;
         // Hybrid AA (seed 004) while anything changes; a still accumulates jittered frames of every
         // object, converging to the supersampled image, which edge AA never reaches.
         if (temporalAaSettings.mode == passes::TemporalAaMode::Smaa1tx && !temporalAa->pass.unchanged)
@@ -487,6 +499,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     }
     gpu::ImageHandle hdr;
     gpu::ImageHandle transparentCoverage;
+    bool dofAfterTemporalAa = false;
     if (referenceSubFrames > 0) {
         gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
         hdr = passes::addAccumulationResolvePass(graph, *pipelines_, sum,
@@ -503,9 +516,23 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
         // A still's sample of the shutter is blurred over its stratum alone, before it joins the
         // mean: the post-process fills only what lies between the samples' times.
         const bool stratumBlur = scene.motionBlur && temporalAa && temporalAa->shutterStratum;
-        if (stratumBlur) {
+        // A still's sample of the lens likewise is blurred over its stratum of the aperture alone:
+        // 1/N of the aperture's area, a circle of confusion 1/sqrt(N) as wide.
+        const bool lensSample = temporalAa && temporalAa->lensStratum;
+        auto depthOfField = [&](double cocShare) {
+            passes::CocFromDepth coc = passes::cocFromDepth(lens, cameraParams.clippingRange[0],
+                                                            cameraParams.clippingRange[1], double(width));
+            coc.scale *= cocShare;
+            coc.bias *= cocShare;
+            return passes::DepthOfFieldSettings{coc, camera->apertureShape(), static_cast<int>(settings_.number("dof:taps"))};
+        };
+        if (stratumBlur || lensSample) {
             hdr = passes::addTemporalAaSamplePass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage);
-            hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr, motionBlurSamples);
+            if (lensSample)
+                hdr = passes::addDepthOfFieldPasses(
+                    graph, *pipelines_, scene, gbuffer, hdr,
+                    depthOfField(1.0 / std::sqrt(double(temporalAa->pass.framesToConverge))));
+            if (stratumBlur) hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr, motionBlurSamples);
             temporalAa->pass.colorHasCoverage = true;
         }
         if (temporalAa) {
@@ -515,13 +542,10 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
             temporalAaInFrame_ = true;
             if (scene.edgeAa) hdr = passes::addEdgeAaPasses(graph, *pipelines_, scene, gbuffer, hdr);
         }
-        if (passes::hasDepthOfField(lens)) {
-            const CameraParams& p = camera->params();
-            passes::DepthOfFieldSettings dof{
-                passes::cocFromDepth(lens, p.clippingRange[0], p.clippingRange[1], double(width)),
-                camera->apertureShape(), static_cast<int>(settings_.number("dof:taps"))};
-            hdr = passes::addDepthOfFieldPasses(graph, *pipelines_, scene, gbuffer, hdr, dof);
-        }
+        // Over the whole aperture, unless the still's mean holds it, sample by sample.
+        dofAfterTemporalAa = passes::hasDepthOfField(lens) && !lensSample && !(temporalAa && temporalAa->lensAccumulated);
+        if (dofAfterTemporalAa)
+            hdr = passes::addDepthOfFieldPasses(graph, *pipelines_, scene, gbuffer, hdr, depthOfField(1.0));
         // After depth of field (seed 000 "MB or DOF first?": motion blur gathers with the
         // geometry's depth and velocity, and is the error less seen when it comes last), over the
         // whole shutter: unless the still's mean already holds it, sample by sample.
@@ -529,9 +553,9 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
             hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr, motionBlurSamples);
     }
     // Temporal AA's accumulation carries coverage in alpha, and motion blur blurs it along; depth of
-    // field writes none.
+    // field keeps a sample's coverage where it runs before the mean, and writes none after it.
     passes::HdrAlpha hdrAlpha = passes::HdrAlpha::None;
-    if (temporalAa && !passes::hasDepthOfField(lens)) hdrAlpha = passes::HdrAlpha::Coverage;
+    if (temporalAa && !dofAfterTemporalAa) hdrAlpha = passes::HdrAlpha::Coverage;
     gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance,
                                                       transparentCoverage, grading_);
     gpu::ImageHandle velocity =
@@ -631,7 +655,7 @@ void RenderDelegate::executeFrame(gpu::FrameGraph& graph) {
 }
 
 void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const passes::ThinLens& lens, uint32_t count,
-                                         const std::array<double, 2>& shutter) {
+                                         const std::array<double, 2>& shutter, const PixelFilter& pixelFilter) {
     const gpu::ImageDesc* current = accumulation_.image ? &accumulation_.image->desc : nullptr;
     if (!current || current->width != frame.width || current->height != frame.height) {
         gpu::ImageDesc desc;
@@ -646,7 +670,7 @@ void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const pa
     double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
     const auto [open, close] = shutter;
     std::vector<ReferenceSubFrame> subFrames =
-        referenceSubFrames(count, lensBlur ? frame.camera.apertureShape() : passes::ApertureShape{});
+        referenceSubFrames(count, lensBlur ? frame.camera.apertureShape() : passes::ApertureShape{}, pixelFilter);
     for (size_t k = 0; k < subFrames.size(); ++k) {
         const ReferenceSubFrame& sub = subFrames[k];
         FrameSceneInputs inputs = frame;

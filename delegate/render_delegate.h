@@ -94,9 +94,10 @@ private:
     // Compiles, records and submits one frame graph, and waits for it.
     void executeFrame(gpu::FrameGraph& graph);
     // Reference mode: `count` sub-frames of `frame` sampling `lens`'s aperture, the `shutter`
-    // interval (absolute time codes; empty: the frame's time) and the pixel, summed into accumulation_.
+    // interval (absolute time codes; empty: the frame's time) and the pixel through `pixelFilter`,
+    // summed into accumulation_.
     void accumulateReference(const FrameSceneInputs& frame, const passes::ThinLens& lens, uint32_t count,
-                             const std::array<double, 2>& shutter);
+                             const std::array<double, 2>& shutter, const PixelFilter& pixelFilter);
     template <typename T>
     T* find(const std::string& path) const;
 

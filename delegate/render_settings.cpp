@@ -51,7 +51,9 @@ const RenderSettingInfo kSettings[] = {
      OBSCURA_VALUE_BOOL, 1.0},
     {"taa:frames", "frames a still image accumulates (1TX): the jitter cycles through this many offsets of the "
                    "Halton (2, 3) sequence, each weighted equally; with motion blur each also samples its own "
-                   "1/taa:frames of the shutter, as reference sub-frames do, blurred over that part alone; "
+                   "1/taa:frames of the shutter, as reference sub-frames do, blurred over that part alone; with "
+                   "depth of field each looks through its own 1/taa:frames of the aperture, its post-process "
+                   "circle of confusion 1/sqrt(taa:frames) as wide; "
                    "`obscura render` renders until converged, 1-1024 (int, default 16)",
      OBSCURA_VALUE_INT, 16.0, 1.0, 1024.0},
     {"taa:mode", "1tx: SMAA 1TX accumulation with neighbourhood clamp; 2tx: SMAA 2TX, two frames (2x jitter) "
@@ -82,7 +84,10 @@ const RenderSettingInfo kSettings[] = {
                            "moved by their velocities within the shutter; hosts set it (float, default 24)",
      OBSCURA_VALUE_FLOAT, 24.0, 1e-6},
     {"dof", "depth of field from the camera's lens (focalLength, fStop, focusDistance, obscura:apertureBlades, "
-            "obscura:apertureRotation); a camera with fStop 0 has none (bool, default on)",
+            "obscura:apertureRotation): a real-time frame is seen through the lens's centre and blurred by the "
+            "post-process over the whole aperture (seed 000); a still's accumulated frames (taa:frames) each look "
+            "through their own part of the aperture and are blurred over it alone, converging to the lens's "
+            "integral; a camera with fStop 0 has none (bool, default on)",
      OBSCURA_VALUE_BOOL, 1.0},
     {"dof:taps", "taps per side of the depth of field's first gather pass (N x N taps; larger blurs reach further "
                  "and look smoother at a higher cost), 3-15 (int, default 7)",
@@ -102,6 +107,16 @@ const RenderSettingInfo kSettings[] = {
                   "(the dof and motionBlur settings still decide whether the lens and the shutter are sampled); 0 "
                   "renders the normal frame (int, default 0)",
      OBSCURA_VALUE_INT, 0.0, 0.0, 65536.0},
+    {"pixelFilter", "the pixel filter of a still (and of the reference): its accumulated frames take their sub-pixel "
+                    "offsets distributed as the filter (importance sampling, as offline renderers draw film "
+                    "samples), so their mean is the filtered image: box (the pixel's square at width 1), gaussian "
+                    "(standard deviation width / 12) or blackman-harris (4-term, over the width), as Cycles "
+                    "defines them; a changing scene's frames keep temporal AA's jitter within the pixel "
+                    "(token, default box)",
+     OBSCURA_VALUE_TOKEN, 0.0, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+     "box|gaussian|blackman-harris", "box"},
+    {"pixelFilter:width", "the pixel filter's support in pixels, 0.25-8 (float, default 1)", OBSCURA_VALUE_FLOAT, 1.0,
+     0.25, 8.0},
     {"pixelAspectRatio", "a pixel's width over its height, as UsdRenderSettings' pixelAspectRatio: the camera's "
                          "aperture is conformed to an image width x pixelAspectRatio wide, 0.01-100 (float, default 1)",
      OBSCURA_VALUE_FLOAT, 1.0, 0.01, 100.0},

@@ -8,12 +8,16 @@ namespace obscura::delegate {
 
 TemporalAaStep TemporalAccumulation::next(const TemporalAaKey& key, uint64_t sceneVersion, passes::TemporalAaMode mode,
                                           uint32_t frames, const Matrix4d& view, const Matrix4d& projection,
-                                          bool sampleShutter) {
+                                          const StillSampling& sampling) {
     const bool twoFrame = mode == passes::TemporalAaMode::Smaa2tx;
     const uint32_t framesToConverge = twoFrame ? passes::kSmaa2txFrames : std::max(frames, 1u);
     const bool valid = last_ && *last_ == key;
     const bool sceneChanged = sceneVersion != lastSceneVersion_;
-    const bool shutterStrata = sampleShutter && !twoFrame;
+    const bool shutterStrata = sampling.shutter && !twoFrame;
+    const bool lensStrata = sampling.lens && !twoFrame;
+    // Either kind of stratum makes the first frame after a reset the real-time one, which the mean
+    // does not count.
+    const bool strata = shutterStrata || lensStrata;
     frame_ = valid ? frame_ + 1 : 0;
 
     TemporalAaStep step;
@@ -27,27 +31,38 @@ TemporalAaStep TemporalAccumulation::next(const TemporalAaKey& key, uint64_t sce
     // the order the mean counts them, as a still without motion blur does from its reset on: an
     // unmoving pixel accumulates the same values in the same order, bit for bit.
     step.noiseFrame = uint32_t(frame_ % framesToConverge);
-    if (shutterStrata && sample) step.noiseFrame = held_;
-    if (!settled) step.jitter = passes::temporalAaJitter(mode, step.noiseFrame, framesToConverge);
+    if (strata && sample) step.noiseFrame = held_;
+    if (!settled) {
+        step.jitter = passes::temporalAaJitter(mode, step.noiseFrame, framesToConverge);
+        // The frames the mean counts: the samples, and the first after a reset where no stratum
+        // makes it the real-time one.
+        if (!twoFrame && (sample || (!valid && !strata))) {
+            PixelFilterWarp warp(sampling.filter);
+            step.jitter = {warp.offset(step.jitter[0]), warp.offset(step.jitter[1])};
+        }
+        if (!twoFrame) step.jitter = {step.jitter[0] * sampling.jitterScale, step.jitter[1] * sampling.jitterScale};
+    }
     if (shutterStrata && sample) {
         double start = double(shutterStratum(held_, framesToConverge));
         step.shutterStratum = std::array<double, 2>{start / framesToConverge, (start + 1.0) / framesToConverge};
     }
     step.shutterAccumulated = shutterStrata && settled;
+    if (lensStrata && sample) step.lensStratum = held_;
+    step.lensAccumulated = lensStrata && settled;
     // The mean counts proper samples only: the first frame after a reset is one (its own jittered
     // image), but a frame of change leaves the reprojected, clamped blend, whose 1/n share of the
     // still's mean would outweigh the converged error; the still after it starts the mean afresh.
-    // With motion blur the first frame after a reset is no sample either: it is the real-time
-    // frame, blurred over the whole shutter.
+    // With motion blur or depth of field the first frame after a reset is no sample either: it is
+    // the real-time frame, blurred over the whole shutter and the whole aperture.
     step.pass.unchanged = valid && !sceneChanged;
     if (!valid || sceneChanged) {
         step.pass.heldFrames = 0;
-        held_ = valid || shutterStrata ? 0 : 1;
+        held_ = valid || strata ? 0 : 1;
     } else {
         step.pass.heldFrames = held_;
         held_ = std::min(held_ + 1, framesToConverge);
     }
-    step.converged = held_ >= framesToConverge && !step.shutterStratum &&
+    step.converged = held_ >= framesToConverge && !step.shutterStratum && !step.lensStratum &&
                      (twoFrame || (step.jitter[0] == 0.0 && step.jitter[1] == 0.0));
 
     step.clipJitter[12] = 2.0 * step.jitter[0] / key.width;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "delegate/matrix.h"
+#include "delegate/pixel_filter.h"
 #include "passes/temporal_aa.h"
 
 #include <array>
@@ -44,6 +45,28 @@ struct TemporalAaStep {
     // (shutterAccumulated: a settled still).
     std::optional<std::array<double, 2>> shutterStratum;
     bool shutterAccumulated = false;
+    // Depth of field in a 1TX still (a lens that blurs): each frame the mean counts looks through
+    // its own stratum of the aperture, as the reference's sub-frames do: stratum `lensStratum` of
+    // taa:frames (stillApertureSample()), its own depth of field spanning the stratum alone and
+    // run before the mean, which so converges to the lens's integral, the diaphragm's shape
+    // included. None: the frame looks through the lens's centre and the post-process blurs over
+    // the whole aperture after temporal AA (a real-time frame), unless the mean already holds
+    // every stratum (lensAccumulated: a settled still).
+    std::optional<uint32_t> lensStratum;
+    bool lensAccumulated = false;
+};
+
+// What a still samples besides the pixel, and how the jitter spans the pixel.
+struct StillSampling {
+    bool shutter = false;  // the shutter is open and motionBlur on: strata of the shutter
+    bool lens = false;     // the lens blurs (dof on, an aperture): strata of the aperture
+    // The 1TX jitter's extent in pixels: 1 spans the pixel; with MSAA the samples' own pattern
+    // already spans it, and each frame shifts it by 1/sqrt(samples) of a pixel at most, so that the
+    // still's samples stay within the pixel's box rather than reaching up to 7/8 of a pixel beyond it.
+    double jitterScale = 1.0;
+    // The frames the still's mean counts take their offsets distributed as this filter (times
+    // jitterScale); frames of a changing scene keep the plain jitter within the pixel.
+    PixelFilter filter;
 };
 
 class TemporalAccumulation {
@@ -51,10 +74,9 @@ public:
     // `sceneVersion`: the delegate's counter of prim insertions, removals and dirty marks (the
     // camera's among them); when it moved, the history is reprojected and blended by the slide's
     // weights rather than averaged. `frames`: taa:frames. `view` and `projection`: the camera's,
-    // unjittered (row-vector convention), at the shutter's centre. `sampleShutter`: the frame is
-    // motion-blurred (the shutter is open and motionBlur on).
+    // unjittered (row-vector convention), at the shutter's centre.
     TemporalAaStep next(const TemporalAaKey& key, uint64_t sceneVersion, passes::TemporalAaMode mode, uint32_t frames,
-                        const Matrix4d& view, const Matrix4d& projection, bool sampleShutter);
+                        const Matrix4d& view, const Matrix4d& projection, const StillSampling& sampling = {});
     // Temporal AA is off: the next frame starts afresh.
     void reset() { last_.reset(); }
 

@@ -35,7 +35,11 @@ struct alignas(16) CameraData {
     // real-time frame, 1 / taa:frames in a sample of a still's accumulation (the motion AOV
     // divides by it to report the whole shutter's displacement).
     float shutterFraction;
-    float pad[3] = {0.0f, 0.0f, 0.0f};
+    // 1: per-sample lighting resolves a pixel's MSAA samples by their plain mean, not by
+    // tone-mapped weights (shaders/common/hdr_resolve.glsl): a sample of a still's accumulation,
+    // whose mean converges to the box-filtered pixel integral only if every step of it is linear.
+    uint32_t linearResolve = 0;
+    float pad[2] = {0.0f, 0.0f};
 };
 static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16 + 16 + 16);
 

@@ -56,12 +56,15 @@ vec3 hiddenBehindNearPixel(ivec2 pixel, float nearRadius) {
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, imageSize(outputColor)))) return;
-    vec3 sharp = texelFetch(lightAccumulation, pixel, 0).rgb;
+    // Alpha passes through: a still's sample (addTemporalAaSamplePass) keeps its coverage for the
+    // mean. XXX: the coverage itself is not blurred.
+    vec4 sharpTexel = texelFetch(lightAccumulation, pixel, 0);
+    vec3 sharp = sharpTexel.rgb;
     float maxRadius = halfResolutionMaxRadius();
     float sharpRadius = 0.5 * DOF_SHARP_RADIUS;
     vec2 tile = texelFetch(neighbourhoodCoc, (pixel / 2) / DOF_TILE_SIZE, 0).xy * maxRadius;
     if (tile.x <= sharpRadius && tile.y <= sharpRadius) {
-        imageStore(outputColor, pixel, vec4(sharp, 0.0));
+        imageStore(outputColor, pixel, sharpTexel);
         return;
     }
     vec2 halfSize = vec2(textureSize(nearField, 0));
@@ -90,5 +93,5 @@ void main() {
         if (nearSelf > 0.0) colour = mix(colour, hiddenBehindNearPixel(pixel, coc), nearSelf);
         colour = colour * (1.0 - near.a) + near.rgb;
     }
-    imageStore(outputColor, pixel, vec4(colour, 0.0));
+    imageStore(outputColor, pixel, vec4(colour, sharpTexel.a));
 }

@@ -166,10 +166,12 @@ ShadingJob sampleJob(uint pair, uint pairs, uint sampleCount) {
 }
 
 // Gathers one round's sample radiance and resolves the pixels of the round with tone-mapped
-// weights (hdr_resolve.glsl); alpha is the share of samples that hit a surface. Called by every
+// weights (hdr_resolve.glsl), or by the plain mean in a still's sample (CameraData::linearResolve:
+// the seed's weights are for few samples; the still's mean of many must stay linear to converge
+// to the pixel integral); alpha is the share of samples that hit a surface. Called by every
 // invocation (it holds barriers).
 void resolveSampleRound(uint first, vec3 radiance, bool hit, uint sampleCount) {
-    float w = hdrResolveWeight(radiance);
+    float w = camera.linearResolve != 0u ? 1.0 : hdrResolveWeight(radiance);
     tileSampleRadiance[gl_LocalInvocationIndex] = vec4(radiance * w, hit ? w : -w);
     barrier();
     uint slot = first / sampleCount + gl_LocalInvocationIndex;

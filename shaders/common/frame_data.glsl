@@ -26,7 +26,9 @@ struct CameraData {
     uint noiseFrame;
     // The share of the shutter the velocities span (the stratum's length; 1: the whole shutter).
     float shutterFraction;
-    float pad0, pad1, pad2;
+    // 1: MSAA samples resolve by their plain mean (a sample of a still's accumulation).
+    uint linearResolve;
+    float pad0, pad1;
 };
 
 // One per drawn rprim.

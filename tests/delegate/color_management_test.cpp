@@ -22,11 +22,7 @@ struct EmissivePlane {
         addPlane(host, "/Plane", "/Looks/Glow");
         host.addRenderBuffer("/Buffers/display", "unorm8Vec4", kWidth, kHeight);
     }
-    void setToken(const char* key, const std::string& token) {
-        const char* value = token.c_str();
-        ObscuraValue v{OBSCURA_VALUE_TOKEN, 0, 1, &value};
-        ASSERT_EQ(host.api().setRenderSetting(host.delegate(), key, &v), OBSCURA_OK) << host.lastError();
-    }
+    void setToken(const char* key, const std::string& token) { test::setToken(host, key, token); }
     std::array<float, 4> centre() {
         EXPECT_EQ(host.render("/Camera", {{"display", "/Buffers/display"}}), OBSCURA_OK) << host.lastError();
         ObscuraMappedBuffer m{OBSCURA_STRUCTURE_TYPE_MAPPED_BUFFER, nullptr, sizeof(m)};

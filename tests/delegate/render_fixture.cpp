@@ -30,6 +30,12 @@ void setNumber(TestHost& host, const char* name, double value) {
     ASSERT_EQ(host.api().setRenderSetting(host.delegate(), name, &v), OBSCURA_OK) << host.lastError();
 }
 
+void setToken(TestHost& host, const char* name, const std::string& value) {
+    const char* text = value.c_str();
+    ObscuraValue v{OBSCURA_VALUE_TOKEN, 0, 1, &text};
+    ASSERT_EQ(host.api().setRenderSetting(host.delegate(), name, &v), OBSCURA_OK) << host.lastError();
+}
+
 void setBool(TestHost& host, const char* name, bool on) {
     int32_t flag = on ? 1 : 0;
     ObscuraValue v{OBSCURA_VALUE_BOOL, 0, 1, &flag};

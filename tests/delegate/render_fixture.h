@@ -24,6 +24,7 @@ ObscuraRenderStats renderStats(TestHost& host);
 
 // Sets a numeric (or boolean: 0/1) render setting; a refusal fails the test.
 void setNumber(TestHost& host, const char* name, double value);
+void setToken(TestHost& host, const char* name, const std::string& value);
 // Sets a boolean render setting as a host passing OBSCURA_VALUE_BOOL does.
 void setBool(TestHost& host, const char* name, bool on);
 

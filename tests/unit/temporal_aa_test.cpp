@@ -101,13 +101,13 @@ TEST(TemporalAccumulation, ResetsAndConvergence) {
     uint64_t scene = 0;  // the delegate's scene version
     TemporalAaKey key{"/Camera", 64, 64, 7};
     Matrix4d view = viewFrom({0, 0, 5});
-    TemporalAaStep first = taa.next(key, ++scene, TemporalAaMode::Smaa1tx, 4, view, kProjection, false);
+    TemporalAaStep first = taa.next(key, ++scene, TemporalAaMode::Smaa1tx, 4, view, kProjection);
     EXPECT_FALSE(first.pass.historyValid);
     EXPECT_EQ(first.jitter, (std::array<double, 2>{0.0, 0.0}));
     EXPECT_FALSE(first.converged);
     // Three more frames of the still: the mean grows, the jitter walks the sequence.
     for (uint32_t held = 1; held < 4; ++held) {
-        TemporalAaStep step = taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection, false);
+        TemporalAaStep step = taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection);
         EXPECT_TRUE(step.pass.historyValid);
         EXPECT_EQ(step.pass.heldFrames, held);
         EXPECT_TRUE(step.pass.unchanged);
@@ -116,43 +116,43 @@ TEST(TemporalAccumulation, ResetsAndConvergence) {
     }
     // The mean is complete: one frame through the pixel centres, and it says so.
     for (int again = 0; again < 2; ++again) {
-        TemporalAaStep settled = taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection, false);
+        TemporalAaStep settled = taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection);
         EXPECT_EQ(settled.pass.heldFrames, 4u);
         EXPECT_EQ(settled.jitter, (std::array<double, 2>{0.0, 0.0}));
         EXPECT_TRUE(settled.converged);
     }
     // The scene changed: the history is kept (reprojected, clamped) but the mean restarts.
-    TemporalAaStep changed = taa.next(key, ++scene, TemporalAaMode::Smaa1tx, 4, view, kProjection, false);
+    TemporalAaStep changed = taa.next(key, ++scene, TemporalAaMode::Smaa1tx, 4, view, kProjection);
     EXPECT_TRUE(changed.pass.historyValid);
     EXPECT_EQ(changed.pass.heldFrames, 0u);
     EXPECT_FALSE(changed.pass.unchanged);
     EXPECT_FALSE(changed.converged);
     // The still after it starts its mean afresh: four frames of its own, then the settled one.
     for (uint32_t held = 0; held < 4; ++held) {
-        TemporalAaStep step = taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection, false);
+        TemporalAaStep step = taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection);
         EXPECT_TRUE(step.pass.unchanged);
         EXPECT_EQ(step.pass.heldFrames, held);
         EXPECT_FALSE(step.converged);
     }
-    EXPECT_TRUE(taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection, false).converged);
+    EXPECT_TRUE(taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection).converged);
     // A new size, another camera, a changed setting: the history is gone.
     for (TemporalAaKey other : {TemporalAaKey{"/Camera", 32, 64, 7}, TemporalAaKey{"/Other", 64, 64, 7},
                                 TemporalAaKey{"/Camera", 64, 64, 8}}) {
-        TemporalAaStep reset = taa.next(other, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection, false);
+        TemporalAaStep reset = taa.next(other, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection);
         EXPECT_FALSE(reset.pass.historyValid);
         EXPECT_EQ(reset.jitter, (std::array<double, 2>{0.0, 0.0}));
-        taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection, false);
+        taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection);
     }
     // Off and on again: afresh.
     taa.reset();
-    EXPECT_FALSE(taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection, false).pass.historyValid);
+    EXPECT_FALSE(taa.next(key, scene, TemporalAaMode::Smaa1tx, 4, view, kProjection).pass.historyValid);
     // One frame to converge: the first, unjittered, frame is final.
     TemporalAccumulation single;
-    EXPECT_TRUE(single.next(key, 1, TemporalAaMode::Smaa1tx, 1, view, kProjection, false).converged);
+    EXPECT_TRUE(single.next(key, 1, TemporalAaMode::Smaa1tx, 1, view, kProjection).converged);
     // 2TX: two frames.
     TemporalAccumulation twoFrame;
-    EXPECT_FALSE(twoFrame.next(key, 1, TemporalAaMode::Smaa2tx, 16, view, kProjection, false).converged);
-    EXPECT_TRUE(twoFrame.next(key, 1, TemporalAaMode::Smaa2tx, 16, view, kProjection, false).converged);
+    EXPECT_FALSE(twoFrame.next(key, 1, TemporalAaMode::Smaa2tx, 16, view, kProjection).converged);
+    EXPECT_TRUE(twoFrame.next(key, 1, TemporalAaMode::Smaa2tx, 16, view, kProjection).converged);
 }
 
 // Motion blur in a still: the first frame after a reset is the real-time one (whole shutter, not
@@ -165,12 +165,12 @@ TEST(TemporalAccumulation, StillSamplesTheShutterInStrata) {
     TemporalAaKey key{"/Camera", 64, 64, 0};
     Matrix4d view = viewFrom({0, 0, 5});
     constexpr uint32_t kFrames = 8;
-    TemporalAaStep first = taa.next(key, scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, true);
+    TemporalAaStep first = taa.next(key, scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, {.shutter = true});
     EXPECT_FALSE(first.shutterStratum.has_value());
     EXPECT_FALSE(first.shutterAccumulated);
     std::vector<int> covered(kFrames, 0);
     for (uint32_t held = 0; held < kFrames; ++held) {
-        TemporalAaStep step = taa.next(key, scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, true);
+        TemporalAaStep step = taa.next(key, scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, {.shutter = true});
         EXPECT_EQ(step.pass.heldFrames, held);
         EXPECT_TRUE(step.pass.unchanged);
         EXPECT_EQ(step.jitter, passes::temporalAaJitter(TemporalAaMode::Smaa1tx, held, kFrames));
@@ -181,23 +181,63 @@ TEST(TemporalAccumulation, StillSamplesTheShutterInStrata) {
         EXPECT_FALSE(step.converged);
     }
     EXPECT_EQ(covered, std::vector<int>(kFrames, 1));
-    TemporalAaStep settled = taa.next(key, scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, true);
+    TemporalAaStep settled = taa.next(key, scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, {.shutter = true});
     EXPECT_FALSE(settled.shutterStratum.has_value());
     EXPECT_TRUE(settled.shutterAccumulated);
     EXPECT_EQ(settled.jitter, (std::array<double, 2>{0.0, 0.0}));
     EXPECT_TRUE(settled.converged);
     // A change: the real-time frame again, then the strata afresh.
-    TemporalAaStep changed = taa.next(key, ++scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, true);
+    TemporalAaStep changed = taa.next(key, ++scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, {.shutter = true});
     EXPECT_FALSE(changed.shutterStratum.has_value() || changed.shutterAccumulated || changed.converged);
-    TemporalAaStep again = taa.next(key, scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, true);
+    TemporalAaStep again = taa.next(key, scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, {.shutter = true});
     EXPECT_EQ(again.pass.heldFrames, 0u);
     ASSERT_TRUE(again.shutterStratum.has_value());
     EXPECT_EQ((*again.shutterStratum)[0], 0.0);
     // 2TX keeps no mean: every frame is the real-time one.
     TemporalAccumulation twoFrame;
     for (int frame = 0; frame < 3; ++frame) {
-        TemporalAaStep step = twoFrame.next(key, 1, TemporalAaMode::Smaa2tx, kFrames, view, kProjection, true);
+        TemporalAaStep step = twoFrame.next(key, 1, TemporalAaMode::Smaa2tx, kFrames, view, kProjection, {.shutter = true});
         EXPECT_FALSE(step.shutterStratum.has_value() || step.shutterAccumulated);
+    }
+}
+
+// Depth of field in a still: the first frame after a reset looks through the lens's centre (the
+// real-time one, not in the mean); then taa:frames samples, each its own stratum of the aperture
+// (every one once), with the jitter offsets in the order of a still without depth of field; then
+// the settled frame, through the lens's centre and the pixel centres, keeping the mean.
+TEST(TemporalAccumulation, StillSamplesTheLensInStrata) {
+    TemporalAccumulation taa;
+    uint64_t scene = 1;
+    TemporalAaKey key{"/Camera", 64, 64, 0};
+    Matrix4d view = viewFrom({0, 0, 5});
+    constexpr uint32_t kFrames = 8;
+    for (bool shutter : {false, true}) {
+        taa.reset();
+        TemporalAaStep first = taa.next(key, scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, {.shutter = shutter, .lens = true});
+        EXPECT_FALSE(first.lensStratum.has_value() || first.lensAccumulated || first.converged);
+        std::vector<int> covered(kFrames, 0);
+        for (uint32_t held = 0; held < kFrames; ++held) {
+            TemporalAaStep step = taa.next(key, scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, {.shutter = shutter, .lens = true});
+            EXPECT_EQ(step.pass.heldFrames, held);
+            EXPECT_EQ(step.jitter, passes::temporalAaJitter(TemporalAaMode::Smaa1tx, held, kFrames));
+            ASSERT_TRUE(step.lensStratum.has_value());
+            ASSERT_LT(*step.lensStratum, kFrames);
+            ++covered[*step.lensStratum];
+            EXPECT_EQ(step.shutterStratum.has_value(), shutter);
+            EXPECT_FALSE(step.converged);
+        }
+        EXPECT_EQ(covered, std::vector<int>(kFrames, 1));
+        TemporalAaStep settled = taa.next(key, scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, {.shutter = shutter, .lens = true});
+        EXPECT_FALSE(settled.lensStratum.has_value());
+        EXPECT_TRUE(settled.lensAccumulated);
+        EXPECT_EQ(settled.shutterAccumulated, shutter);
+        EXPECT_TRUE(settled.converged);
+    }
+    // 2TX keeps no mean: every frame looks through the lens's centre.
+    TemporalAccumulation twoFrame;
+    for (int frame = 0; frame < 3; ++frame) {
+        TemporalAaStep step = twoFrame.next(key, 1, TemporalAaMode::Smaa2tx, kFrames, view, kProjection, {.lens = true});
+        EXPECT_FALSE(step.lensStratum.has_value() || step.lensAccumulated);
     }
 }
 
@@ -206,9 +246,9 @@ TEST(TemporalAccumulation, ReprojectionMapsPixelsToLastFramesImage) {
     uint64_t scene = 0;
     TemporalAaKey key{"/Camera", 64, 64, 0};
     Matrix4d view = viewFrom({0, 0, 5});
-    taa.next(key, ++scene, TemporalAaMode::Smaa1tx, 16, view, kProjection, false);
+    taa.next(key, ++scene, TemporalAaMode::Smaa1tx, 16, view, kProjection);
     // Same camera, another jitter: every clip position maps onto itself.
-    TemporalAaStep still = taa.next(key, scene, TemporalAaMode::Smaa1tx, 16, view, kProjection, false);
+    TemporalAaStep still = taa.next(key, scene, TemporalAaMode::Smaa1tx, 16, view, kProjection);
     ASSERT_NE(still.jitter, (std::array<double, 2>{0.0, 0.0}));
     for (std::array<double, 4> clip : {std::array<double, 4>{0.3, -0.7, 0.9, 1.0}, {-1.0, 1.0, 0.2, 1.0}}) {
         auto mapped = transformRow(still.pass.currentClipToPreviousClip, clip);
@@ -218,7 +258,7 @@ TEST(TemporalAccumulation, ReprojectionMapsPixelsToLastFramesImage) {
     // The camera moves right: a world point seen now maps to where last frame's (jittered) image
     // showed it, and to its depth along last frame's view axis.
     Matrix4d moved = viewFrom({0.2, 0.1, 4.5});
-    TemporalAaStep step = taa.next(key, ++scene, TemporalAaMode::Smaa1tx, 16, moved, kProjection, false);
+    TemporalAaStep step = taa.next(key, ++scene, TemporalAaMode::Smaa1tx, 16, moved, kProjection);
     std::array<double, 4> world{0.4, -0.3, -2.0, 1.0};
     auto current = transformRow(multiply(moved, multiply(kProjection, step.clipJitter)), world);
     auto previous = transformRow(multiply(view, multiply(kProjection, step.clipJitter)), world);

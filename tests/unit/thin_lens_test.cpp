@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <set>
 #include <numbers>
 
 namespace obscura::passes {
@@ -208,6 +210,34 @@ TEST(ReferenceSubFrames, StratifiedOverTheApertureShutterAndPixel) {
     for (int n : hundredths) EXPECT_EQ(n, 1) << "any count: one sub-frame per 1/N of the shutter";
     // Halton points in bases 3 and 5 are stratified exactly only at powers of those bases.
     for (int n : jitterStrata) EXPECT_NEAR(n, 16, 5) << "every sixteenth of the pixel gets about its share";
+}
+
+// A still's frames look through the aperture's strata: N frames cover it evenly (the centroid on
+// the axis, every quarter of the aperture's width and height its share).
+TEST(StillApertureSamples, CoverTheApertureOnceApartFromTheJitter) {
+    for (int blades : {0, 6}) {
+        passes::ApertureShape shape = passes::apertureShape(blades, 0.0, 2.8);
+        constexpr uint32_t kCount = 16;
+        double cx = 0.0, cy = 0.0;
+        std::set<std::pair<long, long>> distinct;
+        std::vector<int> columns(4, 0), rows(4, 0);
+        for (uint32_t k = 0; k < kCount; ++k) {
+            auto [x, y] = stillApertureSample(k, kCount, shape);
+            EXPECT_LE(std::hypot(x, y), 1.0 + 1e-12);
+            distinct.insert({std::lround(x * 1e6), std::lround(y * 1e6)});
+            cx += x / kCount;
+            cy += y / kCount;
+            // The square's quarters before the mapping hold 4 points each; after it, the disc's
+            // columns still hold about their share.
+            ++columns[size_t(std::clamp(int((x + 1.0) * 2.0), 0, 3))];
+            ++rows[size_t(std::clamp(int((y + 1.0) * 2.0), 0, 3))];
+        }
+        EXPECT_EQ(distinct.size(), kCount) << "every stratum once";
+        EXPECT_NEAR(cx, 0.0, 0.02);
+        EXPECT_NEAR(cy, 0.0, 0.02);
+        for (int n : columns) EXPECT_GE(n, 2);
+        for (int n : rows) EXPECT_GE(n, 2);
+    }
 }
 
 }  // namespace
