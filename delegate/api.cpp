@@ -2,7 +2,7 @@
 // ladder (after OpenFX): no exception crosses the boundary, every failure becomes a status and
 // a message the host reads with lastError.
 #include "delegate/render_delegate.h"
-#include "delegate/render_settings.h"
+#include "renderer/render_settings.h"
 #include "gpu/context.h"
 #include "gpu/vk_check.h"
 
@@ -272,7 +272,7 @@ ObscuraStatus getPrimId(ObscuraDelegate d, const char* path, int32_t* outId) {
 }
 
 ObscuraStatus describeRenderSetting(uint32_t index, const char** name, const char** description) {
-    const auto* info = obscura::delegate::renderSettingAt(index);
+    const auto* info = obscura::renderer::renderSettingAt(index);
     if (!info) return OBSCURA_ERROR_NOT_FOUND;
     if (name) *name = info->name;
     if (description) *description = info->description;

@@ -2,7 +2,7 @@
 // against a view (a shadow map's cascade or cube face, a camera).
 #pragma once
 
-#include "delegate/matrix.h"
+#include "renderer/matrix.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "delegate/curve_tessellation.h"
 
-#include "delegate/matrix.h"
+#include "renderer/matrix.h"
 
 #include <algorithm>
 #include <cmath>

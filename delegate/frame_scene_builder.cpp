@@ -100,176 +100,216 @@ FrameView frameView(const FrameSceneInputs& in) {
             cam.projectionMatrix(aspect, in.sample->lensOffset, ndcJitter)};
 }
 
-passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& in, FrameSceneShortfalls& shortfalls) {
-    passes::FrameScene scene;
-    scene.width = in.width;
-    scene.height = in.height;
+namespace {
 
-    const Camera& cam = in.camera;
+// Packs one frame's scene, step by step in the order the records depend on each other: the
+// camera (and its motion), materials and lights, the camera constants, the draws (batched meshes,
+// then instancers' prototypes), the transparent order, the shadow atlas, clip volumes, the dome.
+class FrameScenePacker {
+public:
+    FrameScenePacker(gpu::Device& device, const FrameSceneInputs& in, FrameSceneShortfalls& shortfalls)
+        : device_(device), in_(in), shortfalls_(shortfalls) {}
+
+    passes::FrameScene pack() {
+        scene_.width = in_.width;
+        scene_.height = in_.height;
+        packCamera();
+        packMaterialsAndLights();
+        uploadCamera();
+        packDraws();
+        packInstancedDraws();
+        orderTransparents();
+        packShadowAtlas();
+        packClipVolumes();
+        uploadBuffers();
+        packEnvironment();
+        return std::move(scene_);
+    }
+
+private:
     // The frame's view (the camera's, or a reference sub-frame's), then temporal AA's jitter for
     // everything that rasterises or reads the G-buffer; shadow cascades keep the unjittered
-    // frustum, so their texel grids do not move with the jitter.
-    auto [view, unjitteredProjection] = frameView(in);
-    Matrix4d projection = multiply(unjitteredProjection, in.clipJitter);
-    Matrix4d cameraToWorld = kIdentity;
-    invert(view, cameraToWorld);
-    // When the frame is seen: a sub-frame's time, the centre of the shutter's part it blurs over,
-    // or the sync time (none).
-    std::optional<double> frameTime;
-    std::array<double, 2> blurred{};
-    if (in.shutter && !in.sample) blurred = blurInterval(in);
-    if (in.sample) frameTime = in.sample->time;
-    else if (in.shutter) frameTime = shutterCentre(blurred);
-    auto transformOf = [&](const Mesh& mesh) { return frameTime ? mesh.transformAt(*frameTime) : mesh.transform(); };
+    // frustum, so their texel grids do not move with the jitter. With motion blur, where the
+    // camera is at both ends of the part of the shutter the frame blurs over.
+    void packCamera() {
+        const Camera& cam = in_.camera;
+        auto [view, unjitteredProjection] = frameView(in_);
+        view_ = view;
+        unjitteredProjection_ = unjitteredProjection;
+        Matrix4d projection = multiply(unjitteredProjection, in_.clipJitter);
+        Matrix4d cameraToWorld = kIdentity;
+        invert(view, cameraToWorld);
+        // When the frame is seen: a sub-frame's time, the centre of the shutter's part it blurs
+        // over, or the sync time (none).
+        if (in_.shutter && !in_.sample) blurred_ = blurInterval(in_);
+        if (in_.sample) frameTime_ = in_.sample->time;
+        else if (in_.shutter) frameTime_ = shutterCentre(blurred_);
+        Matrix4d viewProjection = multiply(view, projection);
+        Matrix4d inverseViewProjection = kIdentity;
+        invert(viewProjection, inverseViewProjection);
+        passes::CameraData& cd = cd_;
+        cd.view = toFloats<passes::Mat4>(view);
+        cd.projection = toFloats<passes::Mat4>(projection);
+        cd.viewProjection = toFloats<passes::Mat4>(viewProjection);
+        cd.inverseViewProjection = toFloats<passes::Mat4>(inverseViewProjection);
+        Matrix4d inverseProjection = kIdentity;
+        invert(projection, inverseProjection);
+        cd.inverseProjection = toFloats<passes::Mat4>(inverseProjection);
+        eye_ = transformPoint({0, 0, 0}, cameraToWorld);
+        cd.position = {float(eye_[0]), float(eye_[1]), float(eye_[2]), 1.0f};
+        cd.resolution = {float(in_.width), float(in_.height)};
+        cd.exposureScale = float(cam.linearExposureScale() * std::exp2(in_.exposureStops));
+        cd.shutterOpenViewProjection = cd.shutterCloseViewProjection =
+            toFloats<passes::Mat4>(multiply(view, unjitteredProjection));
+        cd.shutterPosition = float(0.5 * (in_.shutterSpan[0] + in_.shutterSpan[1]));
+        cd.shutterFraction = float(in_.shutterSpan[1] - in_.shutterSpan[0]);
+        cd.clipJitter = {float(in_.clipJitter[12]), float(in_.clipJitter[13])};
+        cd.noiseFrame = in_.noiseFrame;
+        cd.linearResolve = in_.linearResolve ? 1u : 0u;
+        if (in_.shutter && in_.sample && (*in_.shutter)[1] > (*in_.shutter)[0])
+            cd.shutterPosition =
+                float((in_.sample->time - (*in_.shutter)[0]) / ((*in_.shutter)[1] - (*in_.shutter)[0]));
+        if (in_.shutter && !in_.sample) {
+            for (int end = 0; end < 2; ++end) {
+                Matrix4d atEnd = multiply(cam.viewMatrix(in_.lensOffset, blurred_[size_t(end)]), unjitteredProjection);
+                (end == 0 ? cd.shutterOpenViewProjection : cd.shutterCloseViewProjection) = toFloats<passes::Mat4>(atEnd);
+            }
+            cameraMoves_ = cd.shutterOpenViewProjection != cd.shutterCloseViewProjection;
+        }
+    }
+
+    Matrix4d transformOf(const Mesh& mesh) const {
+        return frameTime_ ? mesh.transformAt(*frameTime_) : mesh.transform();
+    }
     // Where a mesh's transform is at the shutter's open and close, for meshes that move or deform
     // within it (motion blur's velocities); static meshes have none. A reference sub-frame draws
     // deforming meshes between their shutter positions, through the same records.
-    auto motionOf = [&](const Mesh& mesh) -> std::optional<std::array<Matrix4d, 2>> {
-        if (!in.shutter) return std::nullopt;
-        if (in.sample) {
+    std::optional<std::array<Matrix4d, 2>> motionOf(const Mesh& mesh) const {
+        if (!in_.shutter) return std::nullopt;
+        if (in_.sample) {
             if (!mesh.shutterPositions()) return std::nullopt;
             return std::array<Matrix4d, 2>{transformOf(mesh), transformOf(mesh)};
         }
-        std::array<Matrix4d, 2> ends{mesh.transformAt(blurred[0]), mesh.transformAt(blurred[1])};
+        std::array<Matrix4d, 2> ends{mesh.transformAt(blurred_[0]), mesh.transformAt(blurred_[1])};
         if (ends[0] == ends[1] && !mesh.shutterPositions()) return std::nullopt;
         return ends;
-    };
-    auto shutterPositionsOf = [&](const Mesh& mesh) { return in.shutter ? mesh.shutterPositions() : nullptr; };
-    Matrix4d viewProjection = multiply(view, projection);
-    Matrix4d inverseViewProjection = kIdentity;
-    invert(viewProjection, inverseViewProjection);
-    passes::CameraData cd{};
-    cd.view = toFloats<passes::Mat4>(view);
-    cd.projection = toFloats<passes::Mat4>(projection);
-    cd.viewProjection = toFloats<passes::Mat4>(viewProjection);
-    cd.inverseViewProjection = toFloats<passes::Mat4>(inverseViewProjection);
-    Matrix4d inverseProjection = kIdentity;
-    invert(projection, inverseProjection);
-    cd.inverseProjection = toFloats<passes::Mat4>(inverseProjection);
-    Vec3d eye = transformPoint({0, 0, 0}, cameraToWorld);
-    cd.position = {float(eye[0]), float(eye[1]), float(eye[2]), 1.0f};
-    cd.resolution = {float(in.width), float(in.height)};
-    cd.exposureScale = float(cam.linearExposureScale() * std::exp2(in.exposureStops));
-    cd.shutterOpenViewProjection = cd.shutterCloseViewProjection = toFloats<passes::Mat4>(multiply(view, unjitteredProjection));
-    cd.shutterPosition = float(0.5 * (in.shutterSpan[0] + in.shutterSpan[1]));
-    cd.shutterFraction = float(in.shutterSpan[1] - in.shutterSpan[0]);
-    cd.clipJitter = {float(in.clipJitter[12]), float(in.clipJitter[13])};
-    cd.noiseFrame = in.noiseFrame;
-    cd.linearResolve = in.linearResolve ? 1u : 0u;
-    if (in.shutter && in.sample && (*in.shutter)[1] > (*in.shutter)[0])
-        cd.shutterPosition = float((in.sample->time - (*in.shutter)[0]) / ((*in.shutter)[1] - (*in.shutter)[0]));
-    bool cameraMoves = false;
-    if (in.shutter && !in.sample) {
-        for (int end = 0; end < 2; ++end) {
-            Matrix4d atEnd = multiply(cam.viewMatrix(in.lensOffset, blurred[size_t(end)]), unjitteredProjection);
-            (end == 0 ? cd.shutterOpenViewProjection : cd.shutterCloseViewProjection) = toFloats<passes::Mat4>(atEnd);
-        }
-        cameraMoves = cd.shutterOpenViewProjection != cd.shutterCloseViewProjection;
+    }
+    gpu::BufferPtr shutterPositionsOf(const Mesh& mesh) const {
+        return in_.shutter ? mesh.shutterPositions() : nullptr;
     }
 
-    // Materials: index 0 is the fallback for meshes without a (valid) binding.
-    std::vector<passes::MaterialData> materials(1);
-    materials[0].diffuseRoughness = {0.18f, 0.18f, 0.18f, 0.5f};
-    materials[0].opacity = {1.0f, 0, 1.0f, 0};
-    // Material textures: element 0 (all white) serves untextured materials.
-    passes::MaterialTextures white;
-    white.images.fill(in.textures.white());
-    white.samplers.fill(in.textures.sampler(WrapMode::Repeat, WrapMode::Repeat));
-    scene.materialTextures = {white};
-    std::map<std::string, uint32_t> texturesOfMaterial;
-    std::map<std::string, uint32_t> materialIndex;
-    std::vector<passes::LightData> lights;
-    std::vector<bool> lightCastsShadows;
-    std::vector<const Light*> lightPrims;
-    for (const auto& [path, prim] : in.prims) {
-        if (prim->skipped()) continue;
-        if (auto* m = dynamic_cast<const Material*>(prim.get())) {
-            materialIndex[path] = static_cast<uint32_t>(materials.size());
-            materials.push_back(m->data());
-            passes::MaterialTextures textures = white;
-            for (uint32_t slot = 0; slot < passes::kMaterialTextureSlots; ++slot)
-                if (const auto& bound = m->textures()[slot]) {
-                    textures.images[slot] = bound->texture->image;
-                    textures.samplers[slot] = bound->sampler;
+    // Materials (index 0 is the fallback for meshes without a valid binding) with their textures
+    // (element 0, all white, serves untextured materials), and the visible lights.
+    void packMaterialsAndLights() {
+        materials_.resize(1);
+        materials_[0].diffuseRoughness = {0.18f, 0.18f, 0.18f, 0.5f};
+        materials_[0].opacity = {1.0f, 0, 1.0f, 0};
+        passes::MaterialTextures white;
+        white.images.fill(in_.textures.white());
+        white.samplers.fill(in_.textures.sampler(WrapMode::Repeat, WrapMode::Repeat));
+        scene_.materialTextures = {white};
+        for (const auto& [path, prim] : in_.prims) {
+            if (prim->skipped()) continue;
+            if (auto* m = dynamic_cast<const Material*>(prim.get())) {
+                materialIndex_[path] = static_cast<uint32_t>(materials_.size());
+                materials_.push_back(m->data());
+                passes::MaterialTextures textures = white;
+                for (uint32_t slot = 0; slot < passes::kMaterialTextureSlots; ++slot)
+                    if (const auto& bound = m->textures()[slot]) {
+                        textures.images[slot] = bound->texture->image;
+                        textures.samplers[slot] = bound->sampler;
+                    }
+                if (std::any_of(m->textures().begin(), m->textures().end(), [](const auto& t) { return t.has_value(); })) {
+                    texturesOfMaterial_[path] = static_cast<uint32_t>(scene_.materialTextures.size());
+                    scene_.materialTextures.push_back(textures);
                 }
-            if (std::any_of(m->textures().begin(), m->textures().end(), [](const auto& t) { return t.has_value(); })) {
-                texturesOfMaterial[path] = static_cast<uint32_t>(scene.materialTextures.size());
-                scene.materialTextures.push_back(textures);
-            }
-        } else if (auto* l = dynamic_cast<const Light*>(prim.get())) {
-            if (l->visible()) {
-                lights.push_back(withInfluenceRange(frameTime ? l->dataAt(*frameTime) : l->data(), cd.exposureScale));
-                if (in.sample) lights.back() = emitterSample(lights.back(), in.sample->emitter);
-                lightCastsShadows.push_back(l->castsShadows());
-                lightPrims.push_back(l);
-                if (l == in.environmentDome) lights.back().factors[2] = 1.0f;
+            } else if (auto* l = dynamic_cast<const Light*>(prim.get())) {
+                if (l->visible()) {
+                    lights_.push_back(withInfluenceRange(frameTime_ ? l->dataAt(*frameTime_) : l->data(), cd_.exposureScale));
+                    if (in_.sample) lights_.back() = emitterSample(lights_.back(), in_.sample->emitter);
+                    lightCastsShadows_.push_back(l->castsShadows());
+                    lightPrims_.push_back(l);
+                    if (l == in_.environmentDome) lights_.back().factors[2] = 1.0f;
+                }
             }
         }
     }
-    // Hydra's domeLightCameraVisibility: a visible dome is the background, opaque.
-    if (in.domeBackdrop)
-        for (const passes::LightData& light : lights)
-            if (light.positionType[3] == float(passes::LightType::Dome)) cd.backdropCoverage = 1.0f;
-    scene.cameraData = cd;
-    scene.camera = device.createFrameBuffer(sizeof(cd), kFrameConstantsUsage, "camera");
-    std::memcpy(scene.camera->mapped(), &cd, sizeof(cd));
 
-    // Prototype meshes draw only through their instancers.
-    std::vector<const Instancer*> instancers;
-    for (const auto& [path, prim] : in.prims)
-        if (auto* inst = dynamic_cast<const Instancer*>(prim.get()); inst && !inst->skipped() && inst->visible())
-            instancers.push_back(inst);
-    auto isPrototype = [&](const std::string& path) {
-        for (const Instancer* inst : instancers)
-            if (inst->prototypeOf(path) >= 0) return true;
-        return false;
-    };
+    // Hydra's domeLightCameraVisibility: a visible dome is the background, opaque.
+    void uploadCamera() {
+        if (in_.domeBackdrop)
+            for (const passes::LightData& light : lights_)
+                if (light.positionType[3] == float(passes::LightType::Dome)) cd_.backdropCoverage = 1.0f;
+        scene_.cameraData = cd_;
+        scene_.camera = device_.createFrameBuffer(sizeof(cd_), kFrameConstantsUsage, "camera");
+        std::memcpy(scene_.camera->mapped(), &cd_, sizeof(cd_));
+    }
 
     // The material record a mesh draws with: its bound material's, else Hydra's fallback material
     // (displayColor as the vertex colour, the default grey's other inputs) with its constant
     // displayOpacity, one record per opacity (record 0: opaque).
-    auto boundMaterial = [&](const Mesh& mesh) -> std::optional<uint32_t> {
+    std::optional<uint32_t> boundMaterial(const Mesh& mesh) const {
         if (!mesh.materialPath()) return std::nullopt;
-        auto it = materialIndex.find(*mesh.materialPath());
-        return it == materialIndex.end() ? std::nullopt : std::optional(it->second);
-    };
-    std::map<float, uint32_t> fallbackMaterials{{1.0f, 0u}};
-    auto materialOf = [&](const Mesh& mesh) -> uint32_t {
+        auto it = materialIndex_.find(*mesh.materialPath());
+        return it == materialIndex_.end() ? std::nullopt : std::optional(it->second);
+    }
+    uint32_t materialOf(const Mesh& mesh) {
         if (auto bound = boundMaterial(mesh)) return *bound;
-        auto [it, added] = fallbackMaterials.emplace(mesh.displayOpacity(), uint32_t(materials.size()));
+        auto [it, added] = fallbackMaterials_.emplace(mesh.displayOpacity(), uint32_t(materials_.size()));
         if (added) {
-            passes::MaterialData fallback = materials[0];
+            passes::MaterialData fallback = materials_[0];
             fallback.opacity[0] = mesh.displayOpacity();
-            materials.push_back(fallback);
+            materials_.push_back(fallback);
         }
         return it->second;
-    };
+    }
+    // A draw's instances share its mesh's material, and so its textures.
+    uint32_t texturesOf(const Mesh& mesh) const {
+        if (!mesh.materialPath()) return 0;
+        auto it = texturesOfMaterial_.find(*mesh.materialPath());
+        return it == texturesOfMaterial_.end() ? 0 : it->second;
+    }
+    // Cut-outs (opacityThreshold) discard texels in the G-buffer and the shadow maps alike.
+    bool hasCutout(const Mesh& mesh) { return materials_[materialOf(mesh)].opacity[1] > 0.0f; }
+    // UsdPreviewSurface opacity without a threshold blends (the spec: opacityThreshold 0 means no
+    // masking): below 1, or textured, the surface is transparent. So is a prim without a material
+    // whose displayOpacity is below 1 anywhere.
+    bool isTransparent(const Mesh& mesh) {
+        const passes::MaterialData& m = materials_[materialOf(mesh)];
+        if (!boundMaterial(mesh) && mesh.hasTranslucentVertices()) return true;
+        return m.opacity[1] <= 0.0f && (m.opacity[0] < 1.0f || m.textures[passes::kTextureOpacity].sampled != 0);
+    }
+    const Mesh* drawable(const Prim& prim) const {
+        auto* mesh = dynamic_cast<const Mesh*>(&prim);
+        return mesh && !mesh->skipped() && mesh->drawable() && (mesh->purpose() & in_.includedPurposes) ? mesh : nullptr;
+    }
+    // Prototype meshes draw only through their instancers.
+    bool isPrototype(const std::string& path) const {
+        for (const Instancer* inst : instancers_)
+            if (inst->prototypeOf(path) >= 0) return true;
+        return false;
+    }
 
-    std::vector<passes::InstanceData> instances;
-    std::vector<passes::InstanceMotion> motions;
-    std::vector<passes::InstanceReprojection> reprojections;
-    std::vector<Aabb> drawBounds;  // world bounds of each draw, all its instances
-    // `key`: the instance's identity from frame to frame beside its prim's id (an instancer's
-    // ordinal and the instance's number), for temporal AA's object motion; none for records that
-    // are not drawn into the G-buffer (clip volumes).
-    auto record = [&](const Mesh& mesh, const Matrix4d& model,
-                      const std::optional<std::array<Matrix4d, 2>>& motion = std::nullopt,
-                      std::optional<uint64_t> key = 0, int32_t instanceId = -1) {
+    // One instance record. `key`: the instance's identity from frame to frame beside its prim's
+    // id (an instancer's ordinal and the instance's number), for temporal AA's object motion; none
+    // for records that are not drawn into the G-buffer (clip volumes).
+    void record(const Mesh& mesh, const Matrix4d& model, const std::optional<std::array<Matrix4d, 2>>& motion = std::nullopt,
+                std::optional<uint64_t> key = 0, int32_t instanceId = -1) {
         passes::InstanceData inst{};
         inst.instanceId = instanceId;
         if (motion) {
-            inst.motionIndex = static_cast<uint32_t>(motions.size());
-            motions.push_back({toFloats<passes::Mat4>((*motion)[0]), toFloats<passes::Mat4>((*motion)[1])});
+            inst.motionIndex = static_cast<uint32_t>(motions_.size());
+            motions_.push_back({toFloats<passes::Mat4>((*motion)[0]), toFloats<passes::Mat4>((*motion)[1])});
         }
-        if (in.models && key) {
+        if (in_.models && key) {
             uint64_t identity = *key | uint64_t(uint32_t(mesh.primId())) << 32;
-            (*in.models)[identity] = model;
-            auto last = in.lastModels ? in.lastModels->find(identity) : InstanceModels::const_iterator{};
+            (*in_.models)[identity] = model;
+            auto last = in_.lastModels ? in_.lastModels->find(identity) : InstanceModels::const_iterator{};
             Matrix4d inverse = kIdentity;
-            if (in.lastModels && last != in.lastModels->end() && last->second != model && invert(model, inverse)) {
+            if (in_.lastModels && last != in_.lastModels->end() && last->second != model && invert(model, inverse)) {
                 // Row vectors: p_last = p_world x model^-1 x lastModel.
-                reprojections.push_back({toFloats<passes::Mat4>(multiply(inverse, last->second))});
-                inst.reprojection = static_cast<uint32_t>(reprojections.size());
+                reprojections_.push_back({toFloats<passes::Mat4>(multiply(inverse, last->second))});
+                inst.reprojection = static_cast<uint32_t>(reprojections_.size());
             }
         }
         inst.model = toFloats<passes::Mat4>(model);
@@ -282,178 +322,219 @@ passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& 
         if (mesh.doubleSided()) inst.flags |= passes::kInstanceDoubleSided;
         // Hybrid AA, per object (seed 004): near the eye the view vector turns fastest as the camera
         // moves, so view-dependent shading defeats reprojection there; edge AA takes those.
-        if (key && in.edgeAaDistance > 0.0 && distanceTo(transformAabb(mesh.localBounds(), model), eye) < in.edgeAaDistance) {
+        if (key && in_.edgeAaDistance > 0.0 &&
+            distanceTo(transformAabb(mesh.localBounds(), model), eye_) < in_.edgeAaDistance) {
             inst.flags |= passes::kInstanceEdgeAa;
-            scene.edgeAa = true;
+            scene_.edgeAa = true;
         }
-        instances.push_back(inst);
-    };
-    // A draw's instances share its mesh's material, and so its textures.
-    auto texturesOf = [&](const Mesh& mesh) -> uint32_t {
-        if (!mesh.materialPath()) return 0;
-        auto it = texturesOfMaterial.find(*mesh.materialPath());
-        return it == texturesOfMaterial.end() ? 0 : it->second;
-    };
-    // Cut-outs (opacityThreshold) discard texels in the G-buffer and the shadow maps alike.
-    auto hasCutout = [&](const Mesh& mesh) { return materials[materialOf(mesh)].opacity[1] > 0.0f; };
-    // UsdPreviewSurface opacity without a threshold blends (the spec: opacityThreshold 0 means no
-    // masking): below 1, or textured, the surface is transparent. So is a prim without a material
-    // whose displayOpacity is below 1 anywhere.
-    auto isTransparent = [&](const Mesh& mesh) {
-        const passes::MaterialData& m = materials[materialOf(mesh)];
-        if (!boundMaterial(mesh) && mesh.hasTranslucentVertices()) return true;
-        return m.opacity[1] <= 0.0f && (m.opacity[0] < 1.0f || m.textures[passes::kTextureOpacity].sampled != 0);
-    };
-    auto drawable = [&](const Prim& prim) -> const Mesh* {
-        auto* mesh = dynamic_cast<const Mesh*>(&prim);
-        return mesh && !mesh->skipped() && mesh->drawable() && (mesh->purpose() & in.includedPurposes) ? mesh : nullptr;
-    };
+        instances_.push_back(inst);
+    }
+
     // Meshes with the same geometry (repeated references share buffers through the geometry
     // cache) and the same textures become one instanced draw, in the order they first appear.
-    std::vector<std::vector<const Mesh*>> batches;
-    std::map<std::tuple<const void*, const void*, uint32_t, bool, bool, const void*>, size_t> batchOf;
-    for (const auto& [path, prim] : in.prims) {
-        const Mesh* mesh = drawable(*prim);
-        if (!mesh || isPrototype(path)) continue;
-        // Transparent meshes draw one by one: the transparent pass sorts draws, not instances.
-        if (isTransparent(*mesh)) {
-            batches.push_back({mesh});
-            continue;
+    void packDraws() {
+        for (const auto& [path, prim] : in_.prims)
+            if (auto* inst = dynamic_cast<const Instancer*>(prim.get()); inst && !inst->skipped() && inst->visible())
+                instancers_.push_back(inst);
+        std::vector<std::vector<const Mesh*>> batches;
+        std::map<std::tuple<const void*, const void*, uint32_t, bool, bool, const void*>, size_t> batchOf;
+        for (const auto& [path, prim] : in_.prims) {
+            const Mesh* mesh = drawable(*prim);
+            if (!mesh || isPrototype(path)) continue;
+            // Transparent meshes draw one by one: the transparent pass sorts draws, not instances.
+            if (isTransparent(*mesh)) {
+                batches.push_back({mesh});
+                continue;
+            }
+            // Opaque and cut-out draws stay apart: the shadow maps rasterise them differently;
+            // moving and static ones too: only moving draws write velocities.
+            auto key = std::make_tuple(static_cast<const void*>(mesh->vertices().get()),
+                                       static_cast<const void*>(mesh->indices().get()), texturesOf(*mesh),
+                                       hasCutout(*mesh), motionOf(*mesh).has_value(),
+                                       static_cast<const void*>(shutterPositionsOf(*mesh).get()));
+            auto [it, added] = batchOf.emplace(key, batches.size());
+            if (added) batches.emplace_back();
+            batches[it->second].push_back(mesh);
         }
-        // Opaque and cut-out draws stay apart: the shadow maps rasterise them differently; moving
-        // and static ones too: only moving draws write velocities.
-        auto key = std::make_tuple(static_cast<const void*>(mesh->vertices().get()),
-                                   static_cast<const void*>(mesh->indices().get()), texturesOf(*mesh), hasCutout(*mesh),
-                                   motionOf(*mesh).has_value(),
-                                   static_cast<const void*>(shutterPositionsOf(*mesh).get()));
-        auto [it, added] = batchOf.emplace(key, batches.size());
-        if (added) batches.emplace_back();
-        batches[it->second].push_back(mesh);
-    }
-    for (const auto& batch : batches) {
-        const Mesh& first = *batch.front();
-        scene.draws.push_back({first.vertices(), first.indices(), first.indexCount(),
-                               static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(batch.size()),
-                               texturesOf(first), hasCutout(first), isTransparent(first), motionOf(first).has_value(),
-                               shutterPositionsOf(first)});
-        Aabb bounds;
-        for (const Mesh* mesh : batch) {
-            record(*mesh, transformOf(*mesh), motionOf(*mesh));
-            bounds.merge(transformAabb(mesh->localBounds(), transformOf(*mesh)));
+        for (const auto& batch : batches) {
+            const Mesh& first = *batch.front();
+            scene_.draws.push_back({first.vertices(), first.indices(), first.indexCount(),
+                                    static_cast<uint32_t>(instances_.size()), static_cast<uint32_t>(batch.size()),
+                                    texturesOf(first), hasCutout(first), isTransparent(first),
+                                    motionOf(first).has_value(), shutterPositionsOf(first)});
+            Aabb bounds;
+            for (const Mesh* mesh : batch) {
+                record(*mesh, transformOf(*mesh), motionOf(*mesh));
+                bounds.merge(transformAabb(mesh->localBounds(), transformOf(*mesh)));
+            }
+            drawBounds_.push_back(bounds);
         }
-        drawBounds.push_back(bounds);
     }
+
     // One draw per (instancer, prototype mesh): the mesh's transform relative to the instancer,
     // then each instance's transform.
-    for (size_t ordinal = 0; ordinal < instancers.size(); ++ordinal) {
-        const Instancer* inst = instancers[ordinal];
-        for (const auto& [path, prim] : in.prims) {
-            const Mesh* mesh = drawable(*prim);
-            int proto = mesh ? inst->prototypeOf(path) : -1;
-            if (proto < 0) continue;
-            const auto& placements = inst->instancesOf(size_t(proto));
-            if (placements.empty()) continue;
-            // The prototype's own transform and the placements may both move within the shutter.
-            auto meshMotion = motionOf(*mesh);
-            const bool placementsMove = in.shutter && !in.sample && inst->movesWithinShutter();
-            scene.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
-                                   static_cast<uint32_t>(instances.size()), static_cast<uint32_t>(placements.size()),
-                                   texturesOf(*mesh), hasCutout(*mesh), isTransparent(*mesh),
-                                   meshMotion.has_value() || placementsMove, shutterPositionsOf(*mesh)});
-            Aabb bounds;
-            for (size_t number = 0; number < placements.size(); ++number) {
-                Matrix4d placement = frameTime ? inst->instanceAt(size_t(proto), number, *frameTime) : placements[number];
-                Matrix4d model = multiply(transformOf(*mesh), placement);
-                std::optional<std::array<Matrix4d, 2>> motion;
-                if (placementsMove) {
-                    motion.emplace();
-                    for (int end = 0; end < 2; ++end)
-                        (*motion)[size_t(end)] =
-                            multiply(meshMotion ? (*meshMotion)[size_t(end)] : mesh->transformAt(blurred[size_t(end)]),
-                                     inst->instanceAt(size_t(proto), number, blurred[size_t(end)]));
-                } else if (meshMotion) {
-                    motion = {{multiply((*meshMotion)[0], placement), multiply((*meshMotion)[1], placement)}};
+    void packInstancedDraws() {
+        for (size_t ordinal = 0; ordinal < instancers_.size(); ++ordinal) {
+            const Instancer* inst = instancers_[ordinal];
+            for (const auto& [path, prim] : in_.prims) {
+                const Mesh* mesh = drawable(*prim);
+                int proto = mesh ? inst->prototypeOf(path) : -1;
+                if (proto < 0) continue;
+                const auto& placements = inst->instancesOf(size_t(proto));
+                if (placements.empty()) continue;
+                // The prototype's own transform and the placements may both move within the shutter.
+                auto meshMotion = motionOf(*mesh);
+                const bool placementsMove = in_.shutter && !in_.sample && inst->movesWithinShutter();
+                scene_.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
+                                        static_cast<uint32_t>(instances_.size()), static_cast<uint32_t>(placements.size()),
+                                        texturesOf(*mesh), hasCutout(*mesh), isTransparent(*mesh),
+                                        meshMotion.has_value() || placementsMove, shutterPositionsOf(*mesh)});
+                Aabb bounds;
+                for (size_t number = 0; number < placements.size(); ++number) {
+                    Matrix4d placement =
+                        frameTime_ ? inst->instanceAt(size_t(proto), number, *frameTime_) : placements[number];
+                    Matrix4d model = multiply(transformOf(*mesh), placement);
+                    std::optional<std::array<Matrix4d, 2>> motion;
+                    if (placementsMove) {
+                        motion.emplace();
+                        for (int end = 0; end < 2; ++end)
+                            (*motion)[size_t(end)] = multiply(
+                                meshMotion ? (*meshMotion)[size_t(end)] : mesh->transformAt(blurred_[size_t(end)]),
+                                inst->instanceAt(size_t(proto), number, blurred_[size_t(end)]));
+                    } else if (meshMotion) {
+                        motion = {{multiply((*meshMotion)[0], placement), multiply((*meshMotion)[1], placement)}};
+                    }
+                    record(*mesh, model, motion, (uint64_t(ordinal + 1) << 24) | (number & 0xFFFFFFu),
+                           inst->instanceIndexOf(size_t(proto), number));
+                    bounds.merge(transformAabb(mesh->localBounds(), model));
                 }
-                record(*mesh, model, motion, (uint64_t(ordinal + 1) << 24) | (number & 0xFFFFFFu),
-                       inst->instanceIndexOf(size_t(proto), number));
-                bounds.merge(transformAabb(mesh->localBounds(), model));
+                drawBounds_.push_back(bounds);
             }
-            drawBounds.push_back(bounds);
         }
     }
+
     // Transparent draws back to front: the "over" blend needs what lies behind drawn first.
-    std::vector<std::pair<double, uint32_t>> transparentByDistance;
-    for (uint32_t i = 0; i < scene.draws.size(); ++i) {
-        if (!scene.draws[i].transparent) continue;
-        Vec3d centre = drawBounds[i].centre();
-        Vec3d toEye{centre[0] - eye[0], centre[1] - eye[1], centre[2] - eye[2]};
-        transparentByDistance.push_back({toEye[0] * toEye[0] + toEye[1] * toEye[1] + toEye[2] * toEye[2], i});
+    void orderTransparents() {
+        std::vector<std::pair<double, uint32_t>> transparentByDistance;
+        for (uint32_t i = 0; i < scene_.draws.size(); ++i) {
+            if (!scene_.draws[i].transparent) continue;
+            Vec3d centre = drawBounds_[i].centre();
+            Vec3d toEye{centre[0] - eye_[0], centre[1] - eye_[1], centre[2] - eye_[2]};
+            transparentByDistance.push_back({toEye[0] * toEye[0] + toEye[1] * toEye[1] + toEye[2] * toEye[2], i});
+        }
+        // Farthest first; equal distances keep submission order (path order), so the result is stable.
+        std::stable_sort(transparentByDistance.begin(), transparentByDistance.end(),
+                         [](const auto& a, const auto& b) { return a.first > b.first; });
+        for (const auto& [distance, index] : transparentByDistance) scene_.transparentDraws.push_back(index);
     }
-    // Farthest first; equal distances keep submission order (path order), so the result is stable.
-    std::stable_sort(transparentByDistance.begin(), transparentByDistance.end(),
-                     [](const auto& a, const auto& b) { return a.first > b.first; });
-    for (const auto& [distance, index] : transparentByDistance) scene.transparentDraws.push_back(index);
 
     // Shadow maps: the views of every shadow-casting light, and each light's place among them.
-    ShadowedCamera shadowed{view, unjitteredProjection};
-    ShadowAtlasBuild shadows = buildShadowAtlas(
-        {in.shadows, shadowed, cam.params().clippingRange[0], cam.params().clippingRange[1], drawBounds}, lights,
-        lightCastsShadows);
-    shortfalls.lightsWithoutShadowRoom = shadows.lightsLeftUnshadowed;
-    scene.shadows = std::move(shadows.atlas);
-    scene.shadows.records =
-        uploadRecords(device, nullptr, 0, shadows.records, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "shadow views");
+    void packShadowAtlas() {
+        const Camera& cam = in_.camera;
+        ShadowedCamera shadowed{view_, unjitteredProjection_};
+        ShadowAtlasBuild shadows = buildShadowAtlas(
+            {in_.shadows, shadowed, cam.params().clippingRange[0], cam.params().clippingRange[1], drawBounds_}, lights_,
+            lightCastsShadows_);
+        shortfalls_.lightsWithoutShadowRoom = shadows.lightsLeftUnshadowed;
+        scene_.shadows = std::move(shadows.atlas);
+        scene_.shadows.records =
+            upload(nullptr, 0, shadows.records, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "shadow views");
+    }
 
     // Clip volumes: each clipped light's mesh gets a stencil bit and an instance record of its own
     // (the mesh may be invisible: it is drawn only into the stencil).
-    for (size_t i = 0; i < lights.size(); ++i) {
-        const auto& clip = lightPrims[i]->clipVolume();
-        if (!clip) continue;
-        auto it = in.prims.find(*clip);
-        const Mesh* mesh = it == in.prims.end() ? nullptr : dynamic_cast<const Mesh*>(it->second.get());
-        std::string problem = !mesh ? "obscura:clipVolume " + *clip + " is not a mesh"
-                              : mesh->skipped() || !mesh->hasGeometry() ? "clip volume " + *clip + " has no geometry"
-                              : scene.clipVolumes.size() == passes::kMaxClipVolumes
-                                  ? "more than " + std::to_string(passes::kMaxClipVolumes) + " clipped lights"
-                                  : std::string();
-        if (!problem.empty()) {
-            shortfalls.unclippedLights.push_back(lightPrims[i]->path() + ": " + problem + "; the light is not clipped");
-            continue;
+    void packClipVolumes() {
+        for (size_t i = 0; i < lights_.size(); ++i) {
+            const auto& clip = lightPrims_[i]->clipVolume();
+            if (!clip) continue;
+            auto it = in_.prims.find(*clip);
+            const Mesh* mesh = it == in_.prims.end() ? nullptr : dynamic_cast<const Mesh*>(it->second.get());
+            std::string problem = !mesh ? "obscura:clipVolume " + *clip + " is not a mesh"
+                                  : mesh->skipped() || !mesh->hasGeometry() ? "clip volume " + *clip + " has no geometry"
+                                  : scene_.clipVolumes.size() == passes::kMaxClipVolumes
+                                      ? "more than " + std::to_string(passes::kMaxClipVolumes) + " clipped lights"
+                                      : std::string();
+            if (!problem.empty()) {
+                shortfalls_.unclippedLights.push_back(lightPrims_[i]->path() + ": " + problem +
+                                                      "; the light is not clipped");
+                continue;
+            }
+            uint32_t bit = 1u << scene_.clipVolumes.size();
+            scene_.clipVolumes.push_back({{mesh->vertices(), mesh->indices(), mesh->indexCount(),
+                                           static_cast<uint32_t>(instances_.size()), 1, 0, false},
+                                          bit});
+            record(*mesh, mesh->transform(), std::nullopt, std::nullopt);
+            lights_[i].shadow[3] = bit;
         }
-        uint32_t bit = 1u << scene.clipVolumes.size();
-        scene.clipVolumes.push_back({{mesh->vertices(), mesh->indices(), mesh->indexCount(),
-                                      static_cast<uint32_t>(instances.size()), 1, 0, false},
-                                     bit});
-        record(*mesh, mesh->transform(), std::nullopt, std::nullopt);
-        lights[i].shadow[3] = bit;
     }
 
-    scene.instanceCount = static_cast<uint32_t>(std::min<size_t>(instances.size(), UINT32_MAX));
-    passes::LightBufferHeader header{static_cast<uint32_t>(lights.size()), {0, 0, 0}};
-    scene.instances = uploadRecords(device, nullptr, 0, instances, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instances");
-    scene.instanceMotions =
-        uploadRecords(device, nullptr, 0, motions, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instance motions");
-    scene.instanceReprojections =
-        uploadRecords(device, nullptr, 0, reprojections, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "instance reprojections");
-    scene.motionBlur = in.shutter && !in.sample && (cameraMoves || !motions.empty());
-    scene.materials = uploadRecords(device, nullptr, 0, materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "materials");
-    scene.lights = uploadRecords(device, &header, sizeof(header), lights, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights");
-    passes::EnvironmentData environment = environmentData(in.environmentDome);
-    // The domes the camera sees: each one's radiance, the textured one's times its texture.
-    if (cd.backdropCoverage > 0.0f) {
-        environment.backdrop[3] = 1.0f;
-        for (const passes::LightData& light : lights) {
-            if (light.positionType[3] != float(passes::LightType::Dome)) continue;
-            auto& sum = light.factors[2] > 0.5f ? environment.texturedBackdrop : environment.backdrop;
-            for (size_t c = 0; c < 3; ++c) sum[c] += light.radiance[c];
-        }
+    template <typename T>
+    gpu::BufferPtr upload(const void* header, size_t headerSize, const std::vector<T>& records, VkBufferUsageFlags usage,
+                          const char* name) {
+        return uploadRecords(device_, header, headerSize, records, usage, name);
     }
-    scene.environment =
-        device.createFrameBuffer(sizeof(environment), kFrameConstantsUsage, "environment");
-    std::memcpy(scene.environment->mapped(), &environment, sizeof(environment));
-    scene.instanceRecords = std::move(instances);
-    scene.materialRecords = std::move(materials);
-    return scene;
+
+    void uploadBuffers() {
+        scene_.instanceCount = static_cast<uint32_t>(std::min<size_t>(instances_.size(), UINT32_MAX));
+        passes::LightBufferHeader header{static_cast<uint32_t>(lights_.size()), {0, 0, 0}};
+        constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        scene_.instances = upload(nullptr, 0, instances_, storage, "instances");
+        scene_.instanceMotions = upload(nullptr, 0, motions_, storage, "instance motions");
+        scene_.instanceReprojections = upload(nullptr, 0, reprojections_, storage, "instance reprojections");
+        scene_.motionBlur = in_.shutter && !in_.sample && (cameraMoves_ || !motions_.empty());
+        scene_.materials = upload(nullptr, 0, materials_, storage, "materials");
+        scene_.lights = upload(&header, sizeof(header), lights_, storage, "lights");
+    }
+
+    // The dome's frame, and the domes the camera sees: each one's radiance, the textured one's
+    // times its texture.
+    void packEnvironment() {
+        passes::EnvironmentData environment = environmentData(in_.environmentDome);
+        if (cd_.backdropCoverage > 0.0f) {
+            environment.backdrop[3] = 1.0f;
+            for (const passes::LightData& light : lights_) {
+                if (light.positionType[3] != float(passes::LightType::Dome)) continue;
+                auto& sum = light.factors[2] > 0.5f ? environment.texturedBackdrop : environment.backdrop;
+                for (size_t c = 0; c < 3; ++c) sum[c] += light.radiance[c];
+            }
+        }
+        scene_.environment = device_.createFrameBuffer(sizeof(environment), kFrameConstantsUsage, "environment");
+        std::memcpy(scene_.environment->mapped(), &environment, sizeof(environment));
+        scene_.instanceRecords = std::move(instances_);
+        scene_.materialRecords = std::move(materials_);
+    }
+
+    gpu::Device& device_;
+    const FrameSceneInputs& in_;
+    FrameSceneShortfalls& shortfalls_;
+    passes::FrameScene scene_;
+    // The camera.
+    Matrix4d view_ = kIdentity, unjitteredProjection_ = kIdentity;
+    Vec3d eye_{};
+    std::optional<double> frameTime_;
+    std::array<double, 2> blurred_{};
+    passes::CameraData cd_{};
+    bool cameraMoves_ = false;
+    // Materials and lights.
+    std::vector<passes::MaterialData> materials_;
+    std::map<std::string, uint32_t> texturesOfMaterial_;
+    std::map<std::string, uint32_t> materialIndex_;
+    std::map<float, uint32_t> fallbackMaterials_{{1.0f, 0u}};
+    std::vector<passes::LightData> lights_;
+    std::vector<bool> lightCastsShadows_;
+    std::vector<const Light*> lightPrims_;
+    // Draws.
+    std::vector<const Instancer*> instancers_;
+    std::vector<passes::InstanceData> instances_;
+    std::vector<passes::InstanceMotion> motions_;
+    std::vector<passes::InstanceReprojection> reprojections_;
+    std::vector<Aabb> drawBounds_;  // world bounds of each draw, all its instances
+};
+
+}  // namespace
+
+passes::FrameScene buildFrameScene(gpu::Device& device, const FrameSceneInputs& in, FrameSceneShortfalls& shortfalls) {
+    return FrameScenePacker(device, in, shortfalls).pack();
 }
 
 }  // namespace obscura::delegate

@@ -1,22 +1,8 @@
 #include "delegate/render_delegate.h"
 
-#include "passes/clip_volumes.h"
-
-#include "delegate/frame_scene_builder.h"
-#include "delegate/reference_frames.h"
+#include "delegate/purposes.h"
 #include "gpu/vk_check.h"
-#include "passes/accumulate.h"
 #include "passes/aov_readback.h"
-#include "passes/best_fit_normals.h"
-#include "passes/depth_of_field.h"
-#include "passes/edge_aa.h"
-#include "passes/gbuffer.h"
-#include "passes/lighting.h"
-#include "passes/msaa_resolve.h"
-#include "passes/motion_blur.h"
-#include "passes/shadow_maps.h"
-#include "passes/tonemap.h"
-#include "passes/transparent.h"
 
 #include <chrono>
 #include <cmath>
@@ -77,36 +63,21 @@ RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
     options.validation = validation;
     std::string faultProblem;
     options.faults = gpu::FaultInjection::fromEnvironment(&faultProblem);
-    options.log = [this](LogLevel level, const std::string& message) {
+    logSink_ = [this](LogLevel level, const std::string& message) {
         log(level == LogLevel::Error     ? OBSCURA_LOG_ERROR
             : level == LogLevel::Warning ? OBSCURA_LOG_WARNING
             : level == LogLevel::Info    ? OBSCURA_LOG_INFO
                                          : OBSCURA_LOG_DEBUG,
             message);
     };
+    options.log = logSink_;
     auto context = gpu::Context::create(options);
     if (!context) throw ApiError{OBSCURA_ERROR_DEVICE, context.error()};
     device_ = std::make_unique<gpu::Device>(std::move(*context));
-    pipelines_ = std::make_unique<passes::PipelineCache>(*device_);
-    transients_ = std::make_unique<gpu::TransientImagePool>(*device_);
-    timestamps_ = std::make_unique<gpu::Timestamps>(*device_);
-    bestFitNormals_ = passes::createBestFitNormalsTexture(*device_);
-    // With SSAO off the lighting pass reads one unoccluded texel.
-    const uint8_t open = 255;
-    const float farDepth = 0.0f;
-    gpu::ImageDesc one;
-    one.width = one.height = 1;
-    one.format = passes::kSsaoAccessibilityFormat;
-    unoccluded_.accessibility = device_->createTextureWithData(one, &open, sizeof(open), "ssao off");
-    one.format = passes::kSsaoDepthFormat;
-    unoccluded_.halfDepth = device_->createTextureWithData(one, &farDepth, sizeof(farDepth), "ssao off depth");
-    const uint16_t still[2] = {0xFBFF, 0};  // half floats: kStaticVelocity (-65504), 0
-    static_assert(passes::kStaticVelocity == -65504.0f);
-    one.format = passes::kVelocityFormat;
-    stillVelocity_ = device_->createTextureWithData(one, still, sizeof(still), "still velocity");
     textures_ = std::make_unique<TextureCache>(*device_, options.log);
     geometry_ = std::make_unique<GeometryCache>(*device_);
-    environment_ = std::make_unique<EnvironmentCache>(*device_, textures_->sampler(WrapMode::Repeat, WrapMode::Clamp));
+    frame_ = std::make_unique<renderer::FrameRenderer>(*device_, textures_->sampler(WrapMode::Repeat, WrapMode::Clamp),
+                                                       options.log);
     log(OBSCURA_LOG_INFO, "device: " + device_->context().summary().name);
     if (!faultProblem.empty()) log(OBSCURA_LOG_WARNING, faultProblem);
 }
@@ -114,21 +85,9 @@ RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
 RenderDelegate::~RenderDelegate() {
     vkDeviceWaitIdle(device_->vk());
     prims_.clear();
-    environment_.reset();
+    frame_.reset();
     textures_.reset();
     geometry_.reset();
-    bestFitNormals_.reset();
-    unoccluded_ = {};
-    stillVelocity_.reset();
-    accumulation_ = {};
-    msaaTaggedPixels_.reset();
-    ssaoHistory_ = {};
-    temporalAaHistory_ = {};
-    shadowHistory_ = {};
-    grading_ = passes::ColorGradingLut();
-    timestamps_.reset();
-    transients_.reset();
-    pipelines_.reset();
     device_.reset();
 }
 
@@ -212,15 +171,16 @@ VkSampleCountFlags RenderDelegate::offeredMsaaSampleCounts() const {
 }
 
 void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue* value) {
-    double previousRefineLevel = settings_.number("refineLevel");
-    double previousTimeCodesPerSecond = settings_.number("timeCodesPerSecond");
-    int32_t previousMsaa = int32_t(settings_.number("msaa"));
+    const renderer::FrameSettings& values = settings_.values();
+    const int32_t previousRefineLevel = values.refineLevel;
+    const double previousTimeCodesPerSecond = values.timeCodesPerSecond;
+    int32_t previousMsaa = int32_t(values.msaaSamples);
     std::string problem = settings_.set(key, value);
     if (!problem.empty())
-        throw ApiError{findRenderSetting(key) ? OBSCURA_ERROR_INVALID_ARGUMENT : OBSCURA_ERROR_NOT_FOUND, problem};
+        throw ApiError{renderer::findRenderSetting(key) ? OBSCURA_ERROR_INVALID_ARGUMENT : OBSCURA_ERROR_NOT_FOUND, problem};
     // A sample count the device does not offer is refused (not clamped: a host asking for 8 samples
     // and silently getting 4 would compare the wrong images), and the previous count stays.
-    if (int32_t samples = int32_t(settings_.number("msaa")); key == "msaa" && samples != previousMsaa) {
+    if (int32_t samples = int32_t(values.msaaSamples); key == "msaa" && samples != previousMsaa) {
         std::string offered;
         for (int32_t n = 1; n <= 64; n *= 2)
             if (offeredMsaaSampleCounts() & VkSampleCountFlags(n)) offered += (offered.empty() ? "" : ", ") + std::to_string(n);
@@ -240,11 +200,11 @@ void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue
                                      "per-sample positions will be slightly off");
     }
     // A new refinement level re-refines every mesh (Hydra's display-style change).
-    if (settings_.number("refineLevel") != previousRefineLevel)
+    if (values.refineLevel != previousRefineLevel)
         for (auto& [path, prim] : prims_)
             if (dynamic_cast<Mesh*>(prim.get())) markDirty(path, OBSCURA_DIRTY_TOPOLOGY);
     // Velocities are per second: another rate moves points and instances elsewhere in the shutter.
-    if (settings_.number("timeCodesPerSecond") != previousTimeCodesPerSecond)
+    if (values.timeCodesPerSecond != previousTimeCodesPerSecond)
         for (auto& [path, prim] : prims_)
             if (dynamic_cast<Mesh*>(prim.get()) || dynamic_cast<Instancer*>(prim.get()))
                 markDirty(path, OBSCURA_DIRTY_POINTS);
@@ -259,8 +219,9 @@ void RenderDelegate::sync(double time, const Camera* camera, const ObscuraRender
         int oa = a == camera ? -1 : syncOrder(*a), ob = b == camera ? -1 : syncOrder(*b);
         return oa != ob ? oa < ob : a->path() < b->path();
     });
-    SyncContext ctx{sceneDelegate_, *device_, time, time, time, static_cast<int>(settings_.number("refineLevel")),
-                    settings_.number("timeCodesPerSecond"), *textures_, *geometry_};
+    const renderer::FrameSettings& settings = settings_.values();
+    SyncContext ctx{sceneDelegate_, *device_,      time, time, time, settings.refineLevel, settings.timeCodesPerSecond,
+                    *textures_,     *geometry_};
     auto takeShutter = [&] {
         if (!camera || camera->skipped()) return;
         ctx.shutterOpen = time + camera->params().shutterOpen;
@@ -377,17 +338,9 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
                                                            " exceeds " + std::to_string(maxSize) +
                                                            " pixels a side, the device's largest image"};
 
-    passes::ColorLutRequest colour{settings_.token("ocio:config"), settings_.token("ocio:display"),
-                                   settings_.token("ocio:view"), settings_.token("ocio:look")};
-    if (std::string problem = gradingChart_.load(settings_.token("grading:chart")); !problem.empty())
-        throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "colour grading: " + problem};
-    passes::DisplayGrade grade{gradingChart_.lattice(),
-                                         settings_.token("grading:interpolation") == "tetrahedral"
-                                             ? passes::LatticeInterpolation::Tetrahedral
-                                             : passes::LatticeInterpolation::Trilinear,
-                                         gradingChart_.key()};
-    if (std::string problem = grading_.update(*device_, colour, grade); !problem.empty())
-        throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "colour management: " + problem};
+    const renderer::FrameSettings& settings = settings_.values();
+    if (std::string problem = frame_->updateDisplay(settings); !problem.empty())
+        throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, problem};
 
     std::vector<std::string> ignoredDomes;
     const Light* dome = environmentDome(prims_, ignoredDomes);
@@ -396,185 +349,30 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
             log(OBSCURA_LOG_WARNING, path + ": only one textured dome is supported (" + dome->path() +
                                          " lights the scene); this one uses its constant colour");
     ignoredDomes_ = std::move(ignoredDomes);
-    ShadowSettings shadows{settings_.number("shadows") != 0.0, uint32_t(settings_.number("shadows:resolution")),
-                           uint32_t(settings_.number("shadows:cascades"))};
-    FrameSceneInputs frame{prims_, *camera, width, height, settings_.number("exposure"), *textures_, shadows, dome};
-    frame.domeBackdrop = settings_.number("domeLightCameraVisibility") != 0.0;
-    frame.includedPurposes = purposeMask(settings_.token("includedPurposes"));
-    frame.pixelAspectRatio = settings_.number("pixelAspectRatio");
-    // The `dof` setting turns the lens off for the post-process and the reference alike, and
-    // `motionBlur` the shutter.
-    // XXX: the circle of confusion stays round in pixels when pixels are not square.
-    passes::ThinLens lens = settings_.number("dof") != 0.0 ? camera->thinLens(double(width) * frame.pixelAspectRatio / double(height))
-                                                           : passes::ThinLens{};
+    ShadowSettings shadows{settings.shadows, settings.shadowResolution, settings.shadowCascades};
+    FrameSceneInputs frame{{}, prims_, *camera, width, height, settings.exposureStops, *textures_, shadows, dome};
+    frame.domeBackdrop = settings.domeLightCameraVisibility;
+    frame.includedPurposes = purposeMask(settings.includedPurposes);
+    frame.pixelAspectRatio = settings.pixelAspectRatio;
+
+    renderer::FrameRequest request;
     const CameraParams& cameraParams = camera->params();
-    std::array<double, 2> shutter{desc.time, desc.time};
-    if (settings_.number("motionBlur") != 0.0 && cameraParams.shutterClose > cameraParams.shutterOpen)
-        shutter = {desc.time + cameraParams.shutterOpen, desc.time + cameraParams.shutterClose};
-    uint32_t referenceSubFrames = static_cast<uint32_t>(settings_.number("reference"));
-    const PixelFilter pixelFilter{pixelFilterKind(settings_.token("pixelFilter")), settings_.number("pixelFilter:width")};
-    if (referenceSubFrames > 0) accumulateReference(frame, lens, referenceSubFrames, shutter, pixelFilter);
-    else if (shutter[1] > shutter[0]) frame.shutter = shutter;
-
-    // Temporal AA picks this frame's jitter before the scene's camera constants are packed. The
-    // reference is its own ground truth, jittered per sub-frame: no temporal AA there.
-    std::optional<TemporalAaStep> temporalAa;
-    passes::TemporalAaSettings temporalAaSettings{
-        settings_.token("taa:mode") == "2tx" ? passes::TemporalAaMode::Smaa2tx : passes::TemporalAaMode::Smaa1tx,
-        float(settings_.number("taa:kLowFreq")), float(settings_.number("taa:kHighFreq"))};
-    if (settings_.number("taa") != 0.0 && referenceSubFrames == 0) {
-        FrameView seen = frameView(frame);
-        temporalAa = temporalAccumulation_.next({desc.cameraPath, width, height, settings_.version()}, sceneVersion_,
-                                                temporalAaSettings.mode, uint32_t(settings_.number("taa:frames")),
-                                                seen.view, seen.projection,
-                                                {frame.shutter.has_value(), passes::hasDepthOfField(lens),
-                                                 1.0 / std::sqrt(settings_.number("msaa")), pixelFilter});
-        frame.clipJitter = temporalAa->clipJitter;
-        if (temporalAa->shutterStratum) frame.shutterSpan = *temporalAa->shutterStratum;
-        if (temporalAa->lensStratum) {
-            // The accumulation-buffer camera's lens, as the reference spreads its sub-frames.
-            double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
-            auto onAperture = stillApertureSample(*temporalAa->lensStratum, temporalAa->pass.framesToConverge,
-                                                  camera->apertureShape());
-            frame.lensOffset = {onAperture[0] * apertureRadius, onAperture[1] * apertureRadius};
-        }
-        frame.noiseFrame = temporalAa->noiseFrame;
-        frame.linearResolve = temporalAa->pass.unchanged;
-        // Hybrid AA (seed 004) while anything changes; a still accumulates jittered frames of every
-        // object, converging to the supersampled image, which edge AA never reaches.
-        if (temporalAaSettings.mode == passes::TemporalAaMode::Smaa1tx && !temporalAa->pass.unchanged)
-            frame.edgeAaDistance = settings_.number("taa:hybridDistance") / settings_.number("metersPerUnit");
-    } else {
-        temporalAccumulation_.reset();
-    }
-
-    // Temporal AA reprojects what moved since the last frame along its own motion.
-    InstanceModels models;
-    if (temporalAa) {
-        frame.lastModels = &lastModels_;
-        frame.models = &models;
-    }
-    FrameSceneShortfalls shortfalls;
-    passes::FrameScene scene = buildFrameScene(*device_, frame, shortfalls);
-    lastModels_ = std::move(models);
-    if (shortfalls.lightsWithoutShadowRoom != lightsWithoutShadowRoom_ && shortfalls.lightsWithoutShadowRoom > 0)
-        log(OBSCURA_LOG_WARNING, std::to_string(shortfalls.lightsWithoutShadowRoom) +
-                                     " light(s) cast no shadow: the shadow atlas is full (lower shadows:resolution)");
-    lightsWithoutShadowRoom_ = shortfalls.lightsWithoutShadowRoom;
-    if (shortfalls.unclippedLights != unclippedLights_)
-        for (const auto& problem : shortfalls.unclippedLights) log(OBSCURA_LOG_WARNING, problem);
-    unclippedLights_ = shortfalls.unclippedLights;
-    if (scene.instanceCount > passes::kMaxInstanceRecords)
-        throw ApiError{OBSCURA_ERROR_OUT_OF_MEMORY, std::to_string(scene.instanceCount) +
-                                                        " instances: the G-buffer addresses at most " +
-                                                        std::to_string(passes::kMaxInstanceRecords)};
-    trianglesDrawn_ = 0;
-    for (const auto& d : scene.draws) trianglesDrawn_ += uint64_t(d.indexCount / 3) * d.instanceCount;
-
-    // The frame (DESIGN.md "The frame"): shadow maps, G-buffer, clip volumes into stencil, SSAO,
-    // lighting, temporal AA, depth of field, tone mapping, AOV readback. In reference mode the
-    // accumulated sub-frames replace all between the G-buffer and tone mapping; the other AOVs come
-    // from the pinhole camera.
-    // With msaa > 1 the G-buffer is multisampled and the custom resolve hands the single-sample
-    // one to everything after it; the lighting pass alone reads the samples (seed 000 "Deferred
-    // MSAA"). Reference mode's sub-frames carry their own pixel jitter, so it renders one sample.
-    gpu::FrameGraph graph;
-    gpu::ImageHandle shadowAtlas;
-    shadowHistory_.importedInto = nullptr;  // a failed frame's import is not this graph's
-    if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene, &shadowHistory_);
-    auto samples = VkSampleCountFlagBits(referenceSubFrames == 0 ? uint32_t(settings_.number("msaa")) : 1u);
-    passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_, samples,
-                                                     settings_.number("msaa:alphaToCoverage") != 0.0);
-    std::optional<MsaaFrame> msaa;
-    if (samples != VK_SAMPLE_COUNT_1_BIT) {
-        if (!msaaTaggedPixels_)
-            msaaTaggedPixels_ = device_->createBuffer(sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                                      gpu::MemoryUsage::Readback, "msaa tagged pixels");
-        *static_cast<uint32_t*>(msaaTaggedPixels_->mapped()) = 0;
-        passes::PerSampleLighting perSample{gbuffer, graph.importBuffer("msaaTaggedPixels", msaaTaggedPixels_)};
-        graph.markOutput(perSample.taggedPixelCount);
-        passes::MsaaResolve resolve = passes::addMsaaResolvePass(graph, *pipelines_, scene, gbuffer);
-        gbuffer = resolve.resolved;
-        msaa = MsaaFrame{perSample, resolve.maxDepth};
-    }
-    gpu::ImageHandle hdr;
-    gpu::ImageHandle transparentCoverage;
-    bool dofAfterTemporalAa = false;
-    if (referenceSubFrames > 0) {
-        gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
-        hdr = passes::addAccumulationResolvePass(graph, *pipelines_, sum,
-                                                 lightAccumulation() == passes::LightAccumulation::HalfFloat
-                                                     ? VK_FORMAT_R16G16B16A16_SFLOAT
-                                                     : VK_FORMAT_B10G11R11_UFLOAT_PACK32);
-        // The sub-frames blended the transparent surfaces into the accumulation. XXX: the alpha of
-        // the reference's colour is the pinhole G-buffer's coverage alone (this clears the
-        // transparent coverage): transparents over the background are not in it.
-        transparentCoverage = passes::addTransparentPass(graph, *pipelines_, scene, {}, gbuffer.depth, hdr, {}, {}, {});
-    } else {
-        hdr = addLighting(graph, scene, gbuffer, shadowAtlas, frame, transparentCoverage, msaa ? &*msaa : nullptr);
-        const int motionBlurSamples = static_cast<int>(settings_.number("motionBlur:samples"));
-        // A still's sample of the shutter is blurred over its stratum alone, before it joins the
-        // mean: the post-process fills only what lies between the samples' times.
-        const bool stratumBlur = scene.motionBlur && temporalAa && temporalAa->shutterStratum;
-        // A still's sample of the lens likewise is blurred over its stratum of the aperture alone:
-        // 1/N of the aperture's area, a circle of confusion 1/sqrt(N) as wide.
-        const bool lensSample = temporalAa && temporalAa->lensStratum;
-        auto depthOfField = [&](double cocShare) {
-            passes::CocFromDepth coc = passes::cocFromDepth(lens, cameraParams.clippingRange[0],
-                                                            cameraParams.clippingRange[1], double(width));
-            coc.scale *= cocShare;
-            coc.bias *= cocShare;
-            return passes::DepthOfFieldSettings{coc, camera->apertureShape(), static_cast<int>(settings_.number("dof:taps"))};
-        };
-        if (stratumBlur || lensSample) {
-            hdr = passes::addTemporalAaSamplePass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage);
-            if (lensSample)
-                hdr = passes::addDepthOfFieldPasses(
-                    graph, *pipelines_, scene, gbuffer, hdr,
-                    depthOfField(1.0 / std::sqrt(double(temporalAa->pass.framesToConverge))));
-            if (stratumBlur) hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr, motionBlurSamples);
-            temporalAa->pass.colorHasCoverage = true;
-        }
-        if (temporalAa) {
-            temporalAa->pass.edgeAa = scene.edgeAa;
-            hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage,
-                                            temporalAaSettings, temporalAa->pass, temporalAaHistory_);
-            temporalAaInFrame_ = true;
-            if (scene.edgeAa) hdr = passes::addEdgeAaPasses(graph, *pipelines_, scene, gbuffer, hdr);
-        }
-        // Over the whole aperture, unless the still's mean holds it, sample by sample.
-        dofAfterTemporalAa = passes::hasDepthOfField(lens) && !lensSample && !(temporalAa && temporalAa->lensAccumulated);
-        if (dofAfterTemporalAa)
-            hdr = passes::addDepthOfFieldPasses(graph, *pipelines_, scene, gbuffer, hdr, depthOfField(1.0));
-        // After depth of field (seed 000 "MB or DOF first?": motion blur gathers with the
-        // geometry's depth and velocity, and is the error less seen when it comes last), over the
-        // whole shutter: unless the still's mean already holds it, sample by sample.
-        if (scene.motionBlur && !stratumBlur && !(temporalAa && temporalAa->shutterAccumulated))
-            hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr, motionBlurSamples);
-    }
-    // Temporal AA's accumulation carries coverage in alpha, and motion blur blurs it along; depth of
-    // field keeps a sample's coverage where it runs before the mean, and writes none after it.
-    passes::HdrAlpha hdrAlpha = passes::HdrAlpha::None;
-    if (temporalAa && !dofAfterTemporalAa) hdrAlpha = passes::HdrAlpha::Coverage;
-    gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance,
-                                                      transparentCoverage, grading_);
-    gpu::ImageHandle velocity =
-        gbuffer.velocity.valid()
-            ? gbuffer.velocity
-            : graph.importImage("velocity.still", stillVelocity_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, hdrAlpha, transparentCoverage, display,
-                               velocity, requests);
-    executeFrame(graph);
-    converged_ = !temporalAa || temporalAa->converged;
-    if (msaa) {
-        // Issue 5: the share of pixels the per-sample mask sends to sample-frequency lighting.
-        uint32_t tagged = *static_cast<const uint32_t*>(msaaTaggedPixels_->mapped());
-        char line[160];
-        std::snprintf(line, sizeof(line), "msaa %ux: %.2f%% of pixels tagged for per-sample lighting (%u of %u)",
-                      uint32_t(samples), 100.0 * tagged / (double(width) * height), tagged, width * height);
-        log(OBSCURA_LOG_INFO, line);
-    }
-    frameSetupMilliseconds_ = std::chrono::duration<double, std::milli>(frameRecorded_ - syncEnd).count();
+    // XXX: the circle of confusion stays round in pixels when pixels are not square.
+    request.camera = {desc.cameraPath,
+                      width,
+                      height,
+                      camera->thinLens(double(width) * frame.pixelAspectRatio / double(height)),
+                      camera->apertureShape(),
+                      {cameraParams.clippingRange[0], cameraParams.clippingRange[1]},
+                      desc.time,
+                      {desc.time + cameraParams.shutterOpen, desc.time + cameraParams.shutterClose}};
+    request.sceneVersion = sceneVersion_;
+    request.settingsVersion = settings_.version();
+    request.environment = dome && dome->environment() ? dome->environment()->image : nullptr;
+    request.aovs = std::move(requests);
+    FrameSceneSource source(*device_, frame, sceneReport_, logSink_);
+    frame_->render(source, request, settings);
+    frameSetupMilliseconds_ = std::chrono::duration<double, std::milli>(frame_->recorded() - syncEnd).count();
     for (RenderBuffer* rb : targets) rb->setRendered(true);
 
     if (failOnValidation_ && device_->context().validationErrorCount() > 0)
@@ -586,111 +384,6 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
             return OBSCURA_ERROR_BAD_PRIM_DATA;
         }
     return OBSCURA_OK;
-}
-
-gpu::ImageHandle RenderDelegate::addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
-                                             const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
-                                             const FrameSceneInputs& frame, gpu::ImageHandle& transparentCoverage,
-                                             const MsaaFrame* msaa) {
-    FrameView seen = frameView(frame);
-    passes::addClipVolumePass(graph, *pipelines_, scene, gbuffer);
-    passes::SsaoResult ambient;
-    const bool ssaoOn = settings_.number("ssao") != 0.0;
-    if (ssaoOn) {
-        // The radius is authored in metres; the passes work in scene units (USD metersPerUnit).
-        passes::SsaoSettings ssao{float(settings_.number("ssao:radius") / settings_.number("metersPerUnit")),
-                                  float(settings_.number("ssao:intensity"))};
-        // The history reprojects through the camera's motion; anything else that changes what a
-        // texel means (size, projection, settings) restarts it.
-        auto& last = ssaoHistoryFrame_;
-        ssaoHistory_.valid = last.valid && last.width == scene.width && last.height == scene.height &&
-                             last.projection == seen.projection && last.settingsVersion == settings_.version();
-        Matrix4d inverseView = kIdentity;
-        invert(seen.view, inverseView);
-        ssaoHistory_.viewToPreviousView = toFloats<passes::Mat4>(multiply(inverseView, last.view));
-        ambient = passes::addSsaoPasses(graph, *pipelines_, scene, gbuffer, ssao, ssaoHistory_);
-        ssaoInFrame_ = true;
-    } else {
-        ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
-                   graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
-    }
-    ssaoHistoryFrame_ = {ssaoOn, seen.view, seen.projection, scene.width, scene.height, settings_.version()};
-    const Light* dome = frame.environmentDome;
-    passes::EnvironmentLighting environment =
-        environment_->addToFrame(graph, *pipelines_, dome ? dome->environment() : nullptr);
-    environmentInFrame_ = true;
-    gpu::ImageHandle hdr = passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas,
-                                                   environment, lightAccumulation(), msaa ? &msaa->perSample : nullptr);
-    // Transparent surfaces over the lit opaque ones, before temporal AA (DESIGN.md "The frame").
-    // The fade distance is authored in metres, like the SSAO radius.
-    passes::TransparentSettings transparents{
-        float(settings_.number("transparents:fadeDistance") / settings_.number("metersPerUnit"))};
-    transparentCoverage =
-        passes::addTransparentPass(graph, *pipelines_, scene, scene.transparentDraws, msaa ? msaa->maxDepth : gbuffer.depth,
-                                   hdr, shadowAtlas, environment, transparents);
-    return hdr;
-}
-
-passes::LightAccumulation RenderDelegate::lightAccumulation() const {
-    return settings_.number("lighting:halfFloat") != 0.0 ? passes::LightAccumulation::HalfFloat
-                                                         : passes::LightAccumulation::SmallFloat;
-}
-
-void RenderDelegate::executeFrame(gpu::FrameGraph& graph) {
-    graph.compile();
-    if (environmentInFrame_) environment_->frameCompiled(graph);
-    environmentInFrame_ = false;
-    if (ssaoInFrame_) passes::keepSsaoHistory(graph, ssaoHistory_);
-    if (temporalAaInFrame_) passes::keepTemporalAaHistory(graph, temporalAaHistory_);
-    passes::keepShadowAtlasHistory(graph, shadowHistory_);
-    ssaoInFrame_ = temporalAaInFrame_ = false;
-    device_->context().submitAndWait([&](VkCommandBuffer cmd) {
-        timestamps_->reset(cmd);
-        graph.execute(*transients_, cmd, timestamps_.get());
-        frameRecorded_ = std::chrono::steady_clock::now();
-    });
-    timings_ = timestamps_->resolve();
-    device_->endFrame();
-    transients_->endFrame();
-}
-
-void RenderDelegate::accumulateReference(const FrameSceneInputs& frame, const passes::ThinLens& lens, uint32_t count,
-                                         const std::array<double, 2>& shutter, const PixelFilter& pixelFilter) {
-    const gpu::ImageDesc* current = accumulation_.image ? &accumulation_.image->desc : nullptr;
-    if (!current || current->width != frame.width || current->height != frame.height) {
-        gpu::ImageDesc desc;
-        desc.format = passes::kAccumulationFormat;
-        desc.width = frame.width;
-        desc.height = frame.height;
-        desc.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-        accumulation_ = {device_->createImage(desc, "reference accumulation"), VK_IMAGE_LAYOUT_UNDEFINED};
-    }
-    // Without depth of field the lens is a pinhole: every sub-frame looks from its centre.
-    bool lensBlur = passes::hasDepthOfField(lens);
-    double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
-    const auto [open, close] = shutter;
-    std::vector<ReferenceSubFrame> subFrames =
-        referenceSubFrames(count, lensBlur ? frame.camera.apertureShape() : passes::ApertureShape{}, pixelFilter);
-    for (size_t k = 0; k < subFrames.size(); ++k) {
-        const ReferenceSubFrame& sub = subFrames[k];
-        FrameSceneInputs inputs = frame;
-        if (close > open) inputs.shutter = shutter;
-        inputs.sample = FrameSample{open + sub.shutter * (close - open),
-                                    {sub.aperture[0] * apertureRadius, sub.aperture[1] * apertureRadius},
-                                    sub.pixelJitter, sub.emitter};
-        FrameSceneShortfalls shortfalls;  // reported by the frame itself
-        passes::FrameScene scene = buildFrameScene(*device_, inputs, shortfalls);
-        gpu::FrameGraph graph;
-        gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
-        passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
-        // Each sub-frame blends its transparent surfaces into its lighting; their coverage is not kept.
-        gpu::ImageHandle transparentCoverage;
-        gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, inputs, transparentCoverage);
-        gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
-        passes::addAccumulatePass(graph, *pipelines_, hdr, sum, float(sub.weight), k == 0);
-        executeFrame(graph);
-        accumulation_.layout = graph.finalLayout(sum);
-    }
 }
 
 void RenderDelegate::map(const std::string& path, ObscuraMappedBuffer& out) {
@@ -719,8 +412,8 @@ void RenderDelegate::stats(ObscuraRenderStats& out) const {
     s.primsSynced = primsSynced_;
     for (const auto& [path, prim] : prims_) s.primsSkipped += prim->skipped() ? 1u : 0u;
     s.validationErrors = device_->context().validationErrorCount();
-    s.converged = converged_ ? 1u : 0u;
-    s.trianglesDrawn = trianglesDrawn_;
+    s.converged = frame_->converged() ? 1u : 0u;
+    s.trianglesDrawn = sceneReport_.trianglesDrawn;
     s.syncMilliseconds = syncMilliseconds_;
     s.geometryBytes = geometry_->residentBytes();
     s.frameSetupMilliseconds = frameSetupMilliseconds_;

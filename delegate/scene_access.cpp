@@ -23,7 +23,6 @@ std::optional<ObscuraValue> SceneAccess::fetch(const schema::AttributeSchema& a)
 std::optional<ObscuraValue> SceneAccess::fetchAt(const schema::AttributeSchema& a, double time) {
     if (!sd_.getValue) return std::nullopt;
     ObscuraValue v{};
-    ++callbacks_;
     ObscuraStatus s = sd_.getValue(sd_.userData, path_.c_str(), a.name, time, &v);
     if (s == OBSCURA_ERROR_NOT_FOUND) return std::nullopt;
     if (s != OBSCURA_OK) fail(std::string("the host failed to provide ") + a.name + " (status " + std::to_string(s) + ")");

@@ -3,7 +3,7 @@
 // NaN/Inf is bad prim data: it throws PrimDataError, and the delegate skips the prim.
 #pragma once
 
-#include "delegate/matrix.h"
+#include "renderer/matrix.h"
 #include "schemas/schema.h"
 
 #include <obscura/obscura.h>
@@ -58,9 +58,6 @@ public:
     // World transform samples over [time0, time1] (at least one).
     std::vector<TransformSample> sampleTransform(double time0, double time1);
 
-    // Number of getValue callbacks made through this accessor.
-    uint32_t callbackCount() const { return callbacks_; }
-
 private:
     // A fixed-size numeric value (float2/3/4, int2), or the schema default.
     template <typename T, size_t N>
@@ -75,7 +72,6 @@ private:
     const schema::PrimSchema& schema_;
     std::string path_;
     double time_;
-    uint32_t callbacks_ = 0;
 };
 
 }  // namespace obscura::delegate

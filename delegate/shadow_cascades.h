@@ -1,10 +1,10 @@
 // The projections of shadow maps, computed on the CPU each frame: cascades of a distant light
 // (cascaded shadow maps, stable under camera motion) and the six cube faces of a sphere light.
-// Pure math in the row-vector convention of delegate/matrix.h; unit-tested without a GPU.
+// Pure math in the row-vector convention of renderer/matrix.h; unit-tested without a GPU.
 #pragma once
 
 #include "delegate/bounds.h"
-#include "delegate/matrix.h"
+#include "renderer/matrix.h"
 
 #include <array>
 #include <cstdint>

@@ -45,7 +45,6 @@ public:
     VkPhysicalDevice physicalDevice() const { return physical_; }
     VkDevice device() const { return device_; }
     VkQueue queue() const { return queue_; }
-    uint32_t queueFamily() const { return queueFamily_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     // The core features the device was created with (each one the passes use, where supported).
     const VkPhysicalDeviceFeatures& enabledFeatures() const { return enabledFeatures_; }

@@ -4,7 +4,8 @@
 // then averaged into the format tone mapping reads.
 #pragma once
 
-#include "passes/gbuffer.h"
+#include "passes/frame_resources.h"
+#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 

@@ -2,7 +2,8 @@
 // following Hydra's AOV conventions (include/obscura/obscura.h).
 #pragma once
 
-#include "passes/gbuffer.h"
+#include "passes/frame_resources.h"
+#include "passes/pipeline_cache.h"
 #include "passes/hdr_color.h"
 
 #include <vector>

@@ -13,8 +13,9 @@
 //                         weights (Sigg & Hadwiger 2005), blended non-linearly over the sharp image.
 #pragma once
 
-#include "passes/gbuffer.h"
-#include "passes/thin_lens.h"
+#include "passes/frame_resources.h"
+#include "passes/pipeline_cache.h"
+#include "pass_support/thin_lens.h"
 
 namespace obscura::passes {
 

@@ -9,7 +9,7 @@
 #pragma once
 
 #include "passes/frame_scene.h"
-#include "passes/gbuffer.h"
+#include "passes/frame_resources.h"
 #include "passes/pipeline_cache.h"
 
 namespace obscura::passes {

@@ -5,24 +5,10 @@
 #pragma once
 
 #include "gpu/frame_graph.h"
+#include "passes/frame_resources.h"
 #include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
-
-// Level i holds GGX perceptual roughness i / (kPrefilteredLevels - 1); level 0, the mirror, is
-// kPrefilteredWidth x kPrefilteredWidth / 2 (latlong), the last 16 x 8.
-constexpr VkFormat kPrefilteredFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-constexpr uint32_t kPrefilteredWidth = 512;
-constexpr uint32_t kPrefilteredLevels = 6;
-// vec4 per coefficient (rgb A_l L_lm, a unused), std430.
-constexpr uint32_t kIrradianceCoefficients = 9;
-constexpr VkDeviceSize kIrradianceBufferSize = kIrradianceCoefficients * 4 * sizeof(float);
-
-struct EnvironmentLighting {
-    gpu::ImageHandle prefiltered;  // kPrefilteredFormat, kPrefilteredLevels mips, storage + sampled
-    gpu::BufferHandle irradiance;  // kIrradianceBufferSize bytes, storage
-    VkSampler sampler = VK_NULL_HANDLE;  // trilinear, repeating in longitude, clamped in latitude
-};
 
 // The pass that writes `prefiltered` (its name in the frame graph and in pass timings).
 constexpr const char* kEnvironmentPrefilterPass = "environment_prefilter";

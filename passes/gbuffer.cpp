@@ -1,6 +1,7 @@
 #include "passes/gbuffer.h"
 
 #include "passes/frame_data.h"
+#include "passes/material_draw.h"
 
 #include <cstddef>
 #include <string>
@@ -71,56 +72,6 @@ Variant variantOf(const Draw& draw, bool velocityTarget) {
 }
 
 }  // namespace
-
-void setSceneVertexInput(gpu::GraphicsPipelineDesc& d) {
-    d.vertexShader = "gbuffer.vert";
-    d.vertexStrides = {sizeof(Vertex)};
-    d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
-                          {1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
-                          {2, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color)},
-                          {3, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
-                          {4, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}};
-}
-
-void recordMaterialDraw(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& pipeline,
-                        const FrameScene& scene, const Draw& draw, const MaterialTextures*& pushed,
-                        const void* push, uint32_t pushSize) {
-    // Textures change per material: pushed, not allocated (VK_KHR_push_descriptor).
-    const MaterialTextures& textures = scene.materialTextures[draw.textures];
-    if (&textures != pushed) {
-        std::vector<VkDescriptorImageInfo> images;
-        for (uint32_t slot = 0; slot < kMaterialTextureSlots; ++slot)
-            images.push_back(
-                {textures.samplers[slot], textures.images[slot]->view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
-        gpu::pushSampledImages(device, cmd, pipeline, images);
-        pushed = &textures;
-    }
-    // A deforming draw's second stream: where its vertices are at the shutter's ends (pipelines
-    // without that binding ignore it).
-    VkBuffer streams[] = {draw.vertices->buffer, draw.shutterPositions ? draw.shutterPositions->buffer : VK_NULL_HANDLE};
-    VkDeviceSize offsets[] = {0, 0};
-    vkCmdBindVertexBuffers(cmd, 0, draw.shutterPositions ? 2 : 1, streams, offsets);
-    vkCmdBindIndexBuffer(cmd, draw.indices->buffer, 0, VK_INDEX_TYPE_UINT32);
-    vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, pushSize,
-                       push);
-    vkCmdDrawIndexed(cmd, draw.indexCount, draw.instanceCount, 0, 0, 0);
-}
-
-GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkSampleCountFlagBits samples,
-                            const std::string& prefix) {
-    auto image = [&](const char* name, VkFormat format) {
-        gpu::ImageDesc desc;
-        desc.format = format;
-        desc.width = scene.width;
-        desc.height = scene.height;
-        desc.samples = samples;
-        return graph.createImage(prefix + "." + name, desc);
-    };
-    GBuffer gb{image("depth", kDepthFormat), image("normalRoughness", kNormalRoughnessFormat),
-               image("albedoMetallic", kAlbedoMetallicFormat), image("instance", kInstanceFormat), {}};
-    if (scene.motionBlur) gb.velocity = image("velocity", kVelocityFormat);
-    return gb;
-}
 
 GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
                        const gpu::ImagePtr& bestFitNormals, VkSampleCountFlagBits samples, bool alphaToCoverage) {

@@ -2,9 +2,8 @@
 // pass over the G-buffer that writes the light accumulation buffer.
 #pragma once
 
-#include "passes/environment_prefilter.h"
-#include "passes/gbuffer.h"
-#include "passes/ssao.h"
+#include "passes/frame_resources.h"
+#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 

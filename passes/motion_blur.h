@@ -11,13 +11,12 @@
 #pragma once
 
 #include "passes/frame_scene.h"
-#include "passes/gbuffer.h"
+#include "passes/frame_resources.h"
 #include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 
-// Taps per gather pass: the two passes place samples^2 along a blur.
-constexpr int kDefaultMotionBlurSamples = 8;
+// Taps per gather pass (render setting motionBlur:samples): the two passes place samples^2 along a blur.
 constexpr int kMinMotionBlurSamples = 2;
 constexpr int kMaxMotionBlurSamples = 32;
 

@@ -4,7 +4,8 @@
 // the 2x2 quads whose samples differ in the reserved stencil bit of that G-buffer's stencil.
 #pragma once
 
-#include "passes/gbuffer.h"
+#include "passes/frame_resources.h"
+#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 

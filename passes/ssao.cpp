@@ -1,6 +1,6 @@
 #include "passes/ssao.h"
 
-#include "passes/ssao_pattern.h"
+#include "pass_support/ssao_pattern.h"
 
 #include <cmath>
 

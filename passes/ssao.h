@@ -5,17 +5,11 @@
 #pragma once
 
 #include "gpu/history_images.h"
-#include "passes/gbuffer.h"
+#include "passes/frame_resources.h"
+#include "passes/frame_scene.h"
+#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
-
-// Linear view depth (distance along the view axis) at half resolution. Seed 004 packs depth into
-// two 8-bit channels beside the AO so that the blur fetches both at once; a [0, 1] fixed-point
-// encoding over USD's default clipping range (1 to 1e6) is far too coarse for depths compared to a
-// fraction of the sampling radius, so depth keeps 32-bit float and the blur fetches twice.
-constexpr VkFormat kSsaoDepthFormat = VK_FORMAT_R32_SFLOAT;
-// Ambient accessibility, 1 = unoccluded.
-constexpr VkFormat kSsaoAccessibilityFormat = VK_FORMAT_R8_UNORM;
 
 // Accumulated accessibility (x) and the frames it holds / kSsaoHistoryFrames (y).
 constexpr VkFormat kSsaoHistoryFormat = VK_FORMAT_R16G16_SFLOAT;
@@ -35,13 +29,6 @@ struct SsaoHistory {
     bool valid = false;      // set by the caller: last frame's images may be reprojected
     Mat4 viewToPreviousView{};  // set by the caller (column-major, as the shader reads it)
     uint64_t frame = 0;      // turns the sample pattern
-};
-
-// Both images are ceil(width / 2) x ceil(height / 2): half-resolution texel (x, y) covers
-// full-resolution pixels (2x..2x+1, 2y..2y+1).
-struct SsaoResult {
-    gpu::ImageHandle accessibility;  // kSsaoAccessibilityFormat
-    gpu::ImageHandle halfDepth;      // kSsaoDepthFormat, the depths the accessibility belongs to
 };
 
 SsaoResult addSsaoPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,

@@ -7,7 +7,8 @@
 #pragma once
 
 #include "gpu/history_images.h"
-#include "passes/gbuffer.h"
+#include "passes/frame_resources.h"
+#include "passes/pipeline_cache.h"
 
 #include <array>
 #include <cstdint>
@@ -43,7 +44,7 @@ struct TemporalAaSettings {
     float kHighFreq;
 };
 
-// What the delegate decided for this frame (delegate/temporal_accumulation.h), in the shader's
+// What the renderer decided for this frame (renderer/temporal_accumulation.h), in the shader's
 // layout: matrices column-major.
 struct TemporalAaFrame {
     bool historyValid = false;  // last frame's history may be read at all

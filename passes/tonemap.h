@@ -2,8 +2,9 @@
 // gamut and encoding), baked into a 3D LUT behind a log2 shaper, to an 8-bit display image.
 #pragma once
 
-#include "passes/color_grading_lut.h"
-#include "passes/gbuffer.h"
+#include "pass_support/color_grading_lut.h"
+#include "passes/frame_resources.h"
+#include "passes/pipeline_cache.h"
 #include "passes/hdr_color.h"
 
 namespace obscura::passes {

@@ -1,6 +1,7 @@
 #include "passes/transparent.h"
 
 #include "passes/frame_data.h"
+#include "passes/material_draw.h"
 
 namespace obscura::passes {
 namespace {

@@ -4,8 +4,8 @@
 // (shaders/transparent.frag).
 #pragma once
 
-#include "passes/environment_prefilter.h"
-#include "passes/gbuffer.h"
+#include "passes/frame_resources.h"
+#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 

@@ -9,7 +9,7 @@
 // samples land, a right-angled crease half occluded and a closed pit fully.
 // The samples are two point-symmetric pairs of offsets in the plane through the centre
 // perpendicular to the view axis, turning from pixel to pixel over 4x4 blocks
-// (passes/ssao_pattern.cpp); the blur averages the turns back out, and the whole pattern turns from
+// (pass_support/ssao_pattern.cpp); the blur averages the turns back out, and the whole pattern turns from
 // frame to frame so that the temporal accumulation (ssao_temporal.comp) gathers new directions.
 #include "common/frame_data.glsl"
 #include "common/best_fit_normals.glsl"
@@ -102,7 +102,7 @@ void main() {
         if (all(greaterThanEqual(sampleTexel, ivec2(0))) && all(lessThan(sampleTexel, size)))
             chords += chordAboveTangentPlane(centre, sampleTexel);
     }
-    // The samples stand for equal areas of the disc (passes/ssao_pattern.cpp), so the chords'
+    // The samples stand for equal areas of the disc (pass_support/ssao_pattern.cpp), so the chords'
     // lengths weigh the volumes: occlusion is the occupied share of the sphere's upper part.
     float occlusion = chords.x > 0.0 ? chords.y / chords.x : 0.0;
     imageStore(accessibilityImage, texel, vec4(clamp(1.0 - push.intensity * occlusion, 0.0, 1.0)));

@@ -24,7 +24,7 @@ layout(push_constant) uniform Push {
     float backdropCoverage;  // CameraData::backdropCoverage: a dome is seen behind everything
 } push;
 
-// passes/color_lut.cpp shaperEncode: log2 stops around middle grey, with a linear toe that is the
+// pass_support/color_lut.cpp shaperEncode: log2 stops around middle grey, with a linear toe that is the
 // tangent from the origin (so 0 maps to 0 without a kink).
 vec3 shaperEncode(vec3 x) {
     const float ln2 = 0.69314718;

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "delegate/prims/prim.h"
-#include "passes/thin_lens.h"
+#include "pass_support/thin_lens.h"
 
 namespace obscura::delegate {
 
@@ -46,7 +46,7 @@ public:
     // (100 x fStop^2) (the photographic exposure H ~ t S / N^2, normalised to 1 at the defaults).
     double linearExposureScale() const;
 
-    // The lens for depth of field (passes/thin_lens.h): scene units, the film gate conformed to the
+    // The lens for depth of field (pass_support/thin_lens.h): scene units, the film gate conformed to the
     // image aspect. Orthographic cameras have no lens (fStop 0).
     passes::ThinLens thinLens(double imageAspect) const;
     passes::ApertureShape apertureShape() const;

@@ -1,6 +1,6 @@
 #include "delegate/prims/light.h"
 
-#include "passes/thin_lens.h"
+#include "pass_support/thin_lens.h"
 
 #include <algorithm>
 #include <cmath>

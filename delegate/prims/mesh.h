@@ -38,7 +38,6 @@ public:
     const gpu::BufferPtr& shutterPositions() const { return shutterPositions_; }
     bool doubleSided() const { return doubleSided_; }
     const std::optional<std::string>& materialPath() const { return material_; }
-    bool hasDisplayColor() const { return input_.displayColor.has_value(); }
     // Constant primvars:displayOpacity in [0, 1] (1 when not authored or not constant): without a
     // material, below 1 the prim is transparent (Hydra's fallback material reads displayOpacity).
     float displayOpacity() const { return displayOpacity_; }

@@ -13,7 +13,6 @@ void Prim::sync(SyncContext& ctx) {
         problem_ = e.what();
         reset();
     }
-    lastCallbacks_ = scene.callbackCount();
     dirty_ = OBSCURA_DIRTY_CLEAN;
 }
 

@@ -45,7 +45,6 @@ public:
     void sync(SyncContext& ctx);
     bool skipped() const { return !problem_.empty(); }
     const std::string& problem() const { return problem_; }
-    uint32_t lastSyncCallbacks() const { return lastCallbacks_; }
 
 protected:
     virtual void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) = 0;
@@ -56,7 +55,6 @@ private:
     const schema::PrimSchema& schema_;
     ObscuraDirtyBits dirty_ = OBSCURA_DIRTY_ALL;
     std::string problem_;
-    uint32_t lastCallbacks_ = 0;
 };
 
 }  // namespace obscura::delegate

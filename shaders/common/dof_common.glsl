@@ -1,6 +1,6 @@
 // Shared by the depth-of-field passes (passes/depth_of_field.cpp, seed 000 "Depth of field"): the
 // lens constants, the per-pixel circle of confusion and the aperture mapping of the gather taps.
-// The aperture mapping mirrors passes/thin_lens.cpp (sampleAperture, squareGridCell), which the
+// The aperture mapping mirrors pass_support/thin_lens.cpp (sampleAperture, squareGridCell), which the
 // reference mode's lens sampling uses on the CPU: change them together.
 #ifndef OBSCURA_DOF_COMMON_GLSL
 #define OBSCURA_DOF_COMMON_GLSL
@@ -8,7 +8,7 @@
 // Mirrors DofConstants in passes/depth_of_field.cpp.
 layout(push_constant) uniform DofConstants {
     float cocScale;       // signed CoC radius in full-resolution pixels = depth * cocScale + cocBias
-    float cocBias;        // (thin lens, one multiply-add: passes/thin_lens.h cocFromDepth)
+    float cocBias;        // (thin lens, one multiply-add: pass_support/thin_lens.h cocFromDepth)
     float maxRadius;      // largest CoC radius in full-resolution pixels ("limit offset range")
     float polygonBlend;   // the slide's f: 0 a round aperture, 1 the full polygon
     float rotation;       // radians, the slide's theta_shutter_max

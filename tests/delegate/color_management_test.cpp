@@ -1,7 +1,7 @@
 // The display AOV goes through the OCIO view transform baked into a 3D LUT: compared with OCIO's
 // own CPU processor on colours the accumulation format stores exactly.
 #include "harness/image/png_io.h"
-#include "passes/color_lut.h"
+#include "pass_support/color_lut.h"
 #include "tests/delegate/render_fixture.h"
 #include "tests/support/grading_chart_writer.h"
 

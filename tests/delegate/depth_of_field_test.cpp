@@ -90,7 +90,7 @@ Bokeh findBokeh(const image::Image& img) {
 }
 
 // Support function of a regular polygon of `blades` inscribed in a circle of `radius`, with the
-// middle of an edge at angle `rotation` (passes/thin_lens.h: vertices at pi/n + 2 pi k/n).
+// middle of an edge at angle `rotation` (pass_support/thin_lens.h: vertices at pi/n + 2 pi k/n).
 double polygonSupport(double angle, double radius, int blades, double rotation) {
     double reach = -1e9;
     for (int k = 0; k < blades; ++k) reach = std::max(reach, radius * std::cos(angle - (rotation + kPi / blades + 2.0 * kPi * k / blades)));

@@ -3,6 +3,7 @@
 #include "schemas/schema.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -47,6 +48,22 @@ TEST(SchemaTables, EveryPrimTypeIsFound) {
         ASSERT_NE(prim, nullptr) << name;
         EXPECT_STREQ(prim->category, category) << name;
         EXPECT_GT(prim->attributeCount, 0u) << name;
+    }
+}
+
+// plugInfo.json's primTypes are made from the schema files: every prim type, under its category,
+// and nothing else.
+TEST(SchemaTables, PlugInfoDeclaresEveryPrimType) {
+    std::ifstream file(OBSCURA_PLUGIN_INFO);
+    ASSERT_TRUE(file) << OBSCURA_PLUGIN_INFO;
+    nlohmann::json info = nlohmann::json::parse(file);
+    const nlohmann::json& types = info["Plugins"][0]["Info"]["Types"]["ObscuraRendererPlugin"]["primTypes"];
+    size_t declared = 0;
+    for (const char* category : {"rprim", "sprim", "bprim"}) declared += types[std::string(category) + "s"].size();
+    EXPECT_EQ(declared, primSchemas().size());
+    for (const PrimSchema& prim : primSchemas()) {
+        const nlohmann::json& list = types[std::string(prim.category) + "s"];
+        EXPECT_NE(std::find(list.begin(), list.end(), prim.name), list.end()) << prim.name << " in " << prim.category << "s";
     }
 }
 

@@ -1,6 +1,6 @@
 // Seed 004 appendix A: best-fit normals quantise with less error than plain normalised 8-bit
 // storage, measured on a dense set of directions.
-#include "passes/best_fit_normals.h"
+#include "pass_support/best_fit_normals.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Seed 004 "Color grading" (Selan 2007): the display/view transform baked into a shaper + 3D LUT
 // must reproduce OpenColorIO's own evaluation, and the built-in config's views must be what they
 // claim (sRGB encoding, identity, a bounded monotonic filmic curve).
-#include "passes/color_lut.h"
+#include "pass_support/color_lut.h"
 
 #include <gtest/gtest.h>
 

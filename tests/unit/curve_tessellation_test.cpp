@@ -5,7 +5,7 @@
 // triangle counts equal to what is made, tubes at their radius with outward faces, spheres at
 // theirs, and bad data named.
 #include "delegate/curve_tessellation.h"
-#include "delegate/matrix.h"
+#include "renderer/matrix.h"
 #include "delegate/prims/view_dependent_mesh.h"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // reference sub-frames' emitter coordinates: a distant light's directions fill its cone uniformly in
 // solid angle; other lights stay whole.
 #include "delegate/prims/light.h"
-#include "delegate/reference_frames.h"
+#include "renderer/reference_frames.h"
 
 #include <gtest/gtest.h>
 
@@ -10,6 +10,9 @@
 
 namespace obscura::delegate {
 namespace {
+
+using renderer::ReferenceSubFrame;
+using renderer::referenceSubFrames;
 
 constexpr double kPi = std::numbers::pi;
 

@@ -1,7 +1,7 @@
-// Reading the graded chart back (delegate/grading_chart.h): the neutral chart is the identity
+// Reading the graded chart back (renderer/grading_chart.h): the neutral chart is the identity
 // lattice and a known curve applied to the chart is recovered at every lattice point, each within
 // one 8-bit step (the chart's storage).
-#include "delegate/grading_chart.h"
+#include "renderer/grading_chart.h"
 #include "tests/support/grading_chart_writer.h"
 
 #include <obscura/grading_chart.h>
@@ -15,7 +15,7 @@ namespace obscura::test {
 namespace {
 
 void expectLattice(const std::string& path, const std::function<float(float)>& grade) {
-    auto read = delegate::readGradingChart(path);
+    auto read = renderer::readGradingChart(path);
     ASSERT_TRUE(std::holds_alternative<passes::GradingLattice>(read)) << std::get<std::string>(read);
     const auto& lattice = std::get<passes::GradingLattice>(read);
     ASSERT_EQ(lattice.size, OBSCURA_GRADING_CHART_LATTICE);
@@ -41,7 +41,7 @@ TEST(GradingChart, AGammaAppliedToTheChartIsRecoveredAtEveryLatticePoint) {
 }
 
 TEST(GradingChart, AnUnreadableFileIsRefusedWithTheReason) {
-    auto read = delegate::readGradingChart("/nonexistent/chart.png");
+    auto read = renderer::readGradingChart("/nonexistent/chart.png");
     ASSERT_TRUE(std::holds_alternative<std::string>(read));
     EXPECT_NE(std::get<std::string>(read).find("cannot read image"), std::string::npos);
 }

@@ -1,7 +1,7 @@
-// Interpolation between the grading chart's lattice points (passes/grading_lattice.h): both ways
+// Interpolation between the grading chart's lattice points (pass_support/grading_lattice.h): both ways
 // reproduce the lattice at its points and an identity lattice everywhere; tetrahedral keeps greys
 // neutral under a grade that keeps greys neutral, which trilinear does not.
-#include "passes/grading_lattice.h"
+#include "pass_support/grading_lattice.h"
 
 #include <gtest/gtest.h>
 

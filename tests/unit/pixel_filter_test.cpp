@@ -1,7 +1,7 @@
 // The pixel filter's offsets against the filters themselves: equally weighted offsets drawn
 // through PixelFilterWarp have the filter's distribution. Each filter's variance is integrated
 // here from its textbook formula (Cycles' definitions), independently of the warp's table.
-#include "delegate/pixel_filter.h"
+#include "renderer/pixel_filter.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <functional>
 #include <numbers>
 
-namespace obscura::delegate {
+namespace obscura::renderer {
 namespace {
 
 // The variance of the density proportional to `f` over [-w/2, w/2], by the midpoint rule.
@@ -78,4 +78,4 @@ TEST(PixelFilter, TokensName) {
 }
 
 }  // namespace
-}  // namespace obscura::delegate
+}  // namespace obscura::renderer

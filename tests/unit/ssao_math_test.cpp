@@ -1,7 +1,7 @@
-// The SSAO sample pattern (passes/ssao_pattern.h), checked as the obscurance shader decodes it from
+// The SSAO sample pattern (pass_support/ssao_pattern.h), checked as the obscurance shader decodes it from
 // its push constants: 4 samples per pixel in two point-symmetric pairs, and over a 4x4 block of
 // pixels 64 samples that cover the disc evenly in angle and in area.
-#include "passes/ssao_pattern.h"
+#include "pass_support/ssao_pattern.h"
 
 #include <gtest/gtest.h>
 

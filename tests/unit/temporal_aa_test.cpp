@@ -2,7 +2,7 @@
 // spread, the first at the centre), the history's resets and the converged flag, and the
 // reprojection matrix (an unchanged camera maps each pixel onto itself whatever the jitter; a
 // moved camera maps a point to where last frame saw it).
-#include "delegate/temporal_accumulation.h"
+#include "renderer/temporal_accumulation.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <set>
 #include <vector>
 
-namespace obscura::delegate {
+namespace obscura::renderer {
 namespace {
 
 using passes::TemporalAaMode;
@@ -270,4 +270,4 @@ TEST(TemporalAccumulation, ReprojectionMapsPixelsToLastFramesImage) {
 }
 
 }  // namespace
-}  // namespace obscura::delegate
+}  // namespace obscura::renderer

@@ -1,8 +1,8 @@
-// The lens of depth of field (passes/thin_lens.h): the CoC against Potmesil's formula, the
+// The lens of depth of field (pass_support/thin_lens.h): the CoC against Potmesil's formula, the
 // field-of-view relation, the concentric mapping and the diaphragm's polygon, and the reference
-// mode's sub-frames (delegate/reference_frames.h).
-#include "delegate/reference_frames.h"
-#include "passes/thin_lens.h"
+// mode's sub-frames (renderer/reference_frames.h).
+#include "renderer/reference_frames.h"
+#include "pass_support/thin_lens.h"
 
 #include <gtest/gtest.h>
 
@@ -178,7 +178,7 @@ TEST(Aperture, AreaWeightsMakeThePolygonEvenlyCovered) {
 }  // namespace
 }  // namespace obscura::passes
 
-namespace obscura::delegate {
+namespace obscura::renderer {
 namespace {
 
 TEST(ReferenceSubFrames, StratifiedOverTheApertureShutterAndPixel) {
@@ -241,4 +241,4 @@ TEST(StillApertureSamples, CoverTheApertureOnceApartFromTheJitter) {
 }
 
 }  // namespace
-}  // namespace obscura::delegate
+}  // namespace obscura::renderer

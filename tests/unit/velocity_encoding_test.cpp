@@ -1,7 +1,7 @@
 // The velocity target's format: seed 000 ("An improved reconstruction filter (3)") stores
 // velocities in R8G8, gamma 2.0 encoded ("precision still insufficient, but not much noticeable in
 // practice"). Its error is measured here over the range motion blur uses, against the half floats
-// (RG16F) the G-buffer keeps instead (passes/gbuffer.h kVelocityFormat).
+// (RG16F) the G-buffer keeps instead (passes/frame_resources.h kVelocityFormat).
 #include "passes/motion_blur.h"
 
 #include <Imath/half.h>

@@ -1,9 +1,9 @@
-#include "delegate/environment_cache.h"
+#include "renderer/environment_cache.h"
 
 #include <algorithm>
 #include <array>
 
-namespace obscura::delegate {
+namespace obscura::renderer {
 
 EnvironmentCache::EnvironmentCache(gpu::Device& device, VkSampler sampler) : device_(device), sampler_(sampler) {
     gpu::ImageDesc one;
@@ -16,7 +16,7 @@ EnvironmentCache::EnvironmentCache(gpu::Device& device, VkSampler sampler) : dev
 }
 
 passes::EnvironmentLighting EnvironmentCache::addToFrame(gpu::FrameGraph& graph, passes::PipelineCache& pipelines,
-                                                         const TexturePtr& source) {
+                                                         const gpu::ImagePtr& source) {
     pending_.reset();
     prefilteredHandle_ = {};
     if (!source) {
@@ -44,7 +44,7 @@ passes::EnvironmentLighting EnvironmentCache::addToFrame(gpu::FrameGraph& graph,
     prefilteredHandle_ = lighting.prefiltered;
     if (source != source_) {
         gpu::ImageHandle texture =
-            graph.importImage("environment.source", source->image, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            graph.importImage("environment.source", source, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         passes::addEnvironmentPrefilterPasses(graph, pipelines, texture, lighting);
         pending_ = source;
     }
@@ -62,4 +62,4 @@ void EnvironmentCache::frameCompiled(const gpu::FrameGraph& graph) {
     if (prefiltered) source_ = pending_;
 }
 
-}  // namespace obscura::delegate
+}  // namespace obscura::renderer

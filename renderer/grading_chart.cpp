@@ -1,4 +1,4 @@
-#include "delegate/grading_chart.h"
+#include "renderer/grading_chart.h"
 
 #include <obscura/grading_chart.h>
 
@@ -8,7 +8,7 @@
 #include <memory>
 #include <system_error>
 
-namespace obscura::delegate {
+namespace obscura::renderer {
 
 std::variant<passes::GradingLattice, std::string> readGradingChart(const std::string& path) {
     int width = 0, height = 0, channels = 0;
@@ -59,4 +59,4 @@ std::string GradingChartFile::reload(const std::string& path) {
     return {};
 }
 
-}  // namespace obscura::delegate
+}  // namespace obscura::renderer

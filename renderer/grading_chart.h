@@ -2,13 +2,13 @@
 // LUT read back from an image an artist graded; layout in <obscura/grading_chart.h>).
 #pragma once
 
-#include "passes/grading_lattice.h"
+#include "pass_support/grading_lattice.h"
 
 #include <optional>
 #include <string>
 #include <variant>
 
-namespace obscura::delegate {
+namespace obscura::renderer {
 
 // Reads the chart in the top-left corner of an image (8 or 16 bits a channel, any format
 // stb_image reads) into a lattice of display values. Returns the reason when it cannot.
@@ -29,4 +29,4 @@ private:
     std::optional<passes::GradingLattice> lattice_;
 };
 
-}  // namespace obscura::delegate
+}  // namespace obscura::renderer

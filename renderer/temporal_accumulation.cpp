@@ -1,10 +1,10 @@
-#include "delegate/temporal_accumulation.h"
+#include "renderer/temporal_accumulation.h"
 
-#include "delegate/reference_frames.h"
+#include "renderer/reference_frames.h"
 
 #include <algorithm>
 
-namespace obscura::delegate {
+namespace obscura::renderer {
 
 TemporalAaStep TemporalAccumulation::next(const TemporalAaKey& key, uint64_t sceneVersion, passes::TemporalAaMode mode,
                                           uint32_t frames, const Matrix4d& view, const Matrix4d& projection,
@@ -90,4 +90,4 @@ TemporalAaStep TemporalAccumulation::next(const TemporalAaKey& key, uint64_t sce
     return step;
 }
 
-}  // namespace obscura::delegate
+}  // namespace obscura::renderer

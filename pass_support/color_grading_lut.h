@@ -6,8 +6,8 @@
 #pragma once
 
 #include "gpu/device.h"
-#include "passes/color_lut.h"
-#include "passes/grading_lattice.h"
+#include "pass_support/color_lut.h"
+#include "pass_support/grading_lattice.h"
 
 #include <optional>
 #include <string>

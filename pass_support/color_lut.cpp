@@ -1,6 +1,6 @@
 // Seed 004 "Color grading" / Selan 2007: the display/view transform evaluated once on a lattice by
 // OpenColorIO's CPU processor, then looked up per pixel on the GPU.
-#include "passes/color_lut.h"
+#include "pass_support/color_lut.h"
 
 #include <OpenColorIO/OpenColorIO.h>
 

@@ -1,4 +1,4 @@
-#include "passes/thin_lens.h"
+#include "pass_support/thin_lens.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,10 +4,9 @@
 // pass rotates its lookups).
 #pragma once
 
-#include "delegate/texture_cache.h"
 #include "passes/environment_prefilter.h"
 
-namespace obscura::delegate {
+namespace obscura::renderer {
 
 class EnvironmentCache {
 public:
@@ -16,10 +15,10 @@ public:
     EnvironmentCache(gpu::Device& device, VkSampler sampler);
 
     // Imports the frame's environment resources into `graph` and adds the prefilter passes when
-    // `source` is not the texture the maps were made from. Without a source: placeholders (a
+    // `source` (the dome's latlong texture) is not the image the maps were made from. Without a source: placeholders (a
     // 1x1 black image, zero coefficients), and the maps are released.
     passes::EnvironmentLighting addToFrame(gpu::FrameGraph& graph, passes::PipelineCache& pipelines,
-                                           const TexturePtr& source);
+                                           const gpu::ImagePtr& source);
     // After graph.compile(): remembers the layout the frame leaves the maps in, and which texture
     // they now hold (unless the graph culled the prefilter).
     void frameCompiled(const gpu::FrameGraph& graph);
@@ -27,8 +26,8 @@ public:
 private:
     gpu::Device& device_;
     VkSampler sampler_;
-    TexturePtr source_;   // what the maps hold
-    TexturePtr pending_;  // what this frame's prefilter writes into them
+    gpu::ImagePtr source_;   // what the maps hold
+    gpu::ImagePtr pending_;  // what this frame's prefilter writes into them
     gpu::ImagePtr prefiltered_;
     VkImageLayout prefilteredLayout_ = VK_IMAGE_LAYOUT_UNDEFINED;
     gpu::ImageHandle prefilteredHandle_;
@@ -37,4 +36,4 @@ private:
     gpu::BufferPtr placeholderIrradiance_;
 };
 
-}  // namespace obscura::delegate
+}  // namespace obscura::renderer

@@ -8,7 +8,7 @@
 #include <array>
 #include <string_view>
 
-namespace obscura::delegate {
+namespace obscura::renderer {
 
 enum class PixelFilterKind { Box, Gaussian, BlackmanHarris };
 
@@ -35,4 +35,4 @@ private:
     std::array<double, kBins + 1> cumulative_{};  // normalised: 0 at -width / 2, 1 at width / 2
 };
 
-}  // namespace obscura::delegate
+}  // namespace obscura::renderer

@@ -1,4 +1,4 @@
-#include "passes/grading_lattice.h"
+#include "pass_support/grading_lattice.h"
 
 #include <algorithm>
 #include <utility>

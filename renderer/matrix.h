@@ -7,7 +7,7 @@
 #include <array>
 #include <cmath>
 
-namespace obscura::delegate {
+namespace obscura {
 
 using Matrix4d = std::array<double, 16>;
 using Vec3d = std::array<double, 3>;
@@ -67,4 +67,4 @@ Out toFloats(const Matrix4d& m) {
     return r;
 }
 
-}  // namespace obscura::delegate
+}  // namespace obscura

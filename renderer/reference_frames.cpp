@@ -1,9 +1,9 @@
-#include "delegate/reference_frames.h"
+#include "renderer/reference_frames.h"
 
 #include <cmath>
 #include <numeric>
 
-namespace obscura::delegate {
+namespace obscura::renderer {
 namespace {
 
 // Van der Corput: the digits of `index` in `base`, mirrored about the radix point.
@@ -63,4 +63,4 @@ std::array<double, 2> stillApertureSample(uint32_t index, uint32_t count, const 
     return passes::sampleAperture(hammersleyPoint(stratum, count), aperture).position;
 }
 
-}  // namespace obscura::delegate
+}  // namespace obscura::renderer

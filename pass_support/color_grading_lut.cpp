@@ -1,4 +1,4 @@
-#include "passes/color_grading_lut.h"
+#include "pass_support/color_grading_lut.h"
 
 #include <algorithm>
 #include <bit>

@@ -1,6 +1,6 @@
-#include "delegate/matrix.h"
+#include "renderer/matrix.h"
 
-namespace obscura::delegate {
+namespace obscura {
 
 bool invert(const Matrix4d& m, Matrix4d& out) {
     Matrix4d inv;
@@ -26,4 +26,4 @@ bool invert(const Matrix4d& m, Matrix4d& out) {
     return true;
 }
 
-}  // namespace obscura::delegate
+}  // namespace obscura

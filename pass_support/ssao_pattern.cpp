@@ -1,4 +1,4 @@
-#include "passes/ssao_pattern.h"
+#include "pass_support/ssao_pattern.h"
 
 #include <algorithm>
 #include <cmath>

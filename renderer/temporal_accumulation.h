@@ -3,15 +3,15 @@
 // still image has converged. Bookkeeping only, no GPU: the delegate asks it once per frame.
 #pragma once
 
-#include "delegate/matrix.h"
-#include "delegate/pixel_filter.h"
+#include "renderer/matrix.h"
+#include "renderer/pixel_filter.h"
 #include "passes/temporal_aa.h"
 
 #include <array>
 #include <optional>
 #include <string>
 
-namespace obscura::delegate {
+namespace obscura::renderer {
 
 // What a frame's history was rendered with. Any difference resets the history, as hdEmbree
 // restarts its accumulation: a camera cut (another camera prim), a resize, a render setting
@@ -89,4 +89,4 @@ private:
     uint32_t held_ = 0;   // frames the history holds as an equal-weight mean
 };
 
-}  // namespace obscura::delegate
+}  // namespace obscura::renderer

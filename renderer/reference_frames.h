@@ -3,14 +3,14 @@
 // shutter interval and the pixel.
 #pragma once
 
-#include "delegate/pixel_filter.h"
-#include "passes/thin_lens.h"
+#include "renderer/pixel_filter.h"
+#include "pass_support/thin_lens.h"
 
 #include <array>
 #include <cstdint>
 #include <vector>
 
-namespace obscura::delegate {
+namespace obscura::renderer {
 
 struct ReferenceSubFrame {
     std::array<double, 2> aperture;     // on the unit aperture (x right, y up), passes::sampleAperture
@@ -44,4 +44,4 @@ uint32_t shutterStratum(uint32_t index, uint32_t count);
 // (-0.57); a scrambled set would part them.
 std::array<double, 2> stillApertureSample(uint32_t index, uint32_t count, const passes::ApertureShape& aperture);
 
-}  // namespace obscura::delegate
+}  // namespace obscura::renderer

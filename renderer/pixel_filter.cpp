@@ -1,10 +1,10 @@
-#include "delegate/pixel_filter.h"
+#include "renderer/pixel_filter.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-namespace obscura::delegate {
+namespace obscura::renderer {
 namespace {
 
 // Cycles' filter functions (intern/cycles/scene/film.cpp), v in [-width / 2, width / 2]: a
@@ -53,4 +53,4 @@ double PixelFilterWarp::offset(double u) const {
     return ((double(bin) + within) / kBins - 0.5) * filter_.width;
 }
 
-}  // namespace obscura::delegate
+}  // namespace obscura::renderer

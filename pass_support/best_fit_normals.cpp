@@ -1,4 +1,4 @@
-#include "passes/best_fit_normals.h"
+#include "pass_support/best_fit_normals.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,42 @@
+#include "delegate/frame_scene_source.h"
+
+#include "delegate/api_error.h"
+#include "passes/frame_resources.h"
+
+namespace obscura::delegate {
+
+renderer::FrameView FrameSceneSource::view(const renderer::FrameViewpoint& viewpoint) const {
+    return frameView(inputs(viewpoint));
+}
+
+passes::FrameScene FrameSceneSource::scene(const renderer::FrameViewpoint& viewpoint) {
+    FrameSceneShortfalls shortfalls;
+    passes::FrameScene scene = buildFrameScene(device_, inputs(viewpoint), shortfalls);
+    // The frame's own scene reports; the reference's sub-frames see the same prims.
+    if (!viewpoint.sample) report(scene, shortfalls);
+    return scene;
+}
+
+FrameSceneInputs FrameSceneSource::inputs(const renderer::FrameViewpoint& viewpoint) const {
+    FrameSceneInputs inputs = frame_;
+    static_cast<renderer::FrameViewpoint&>(inputs) = viewpoint;
+    return inputs;
+}
+
+void FrameSceneSource::report(const passes::FrameScene& scene, const FrameSceneShortfalls& shortfalls) {
+    if (shortfalls.lightsWithoutShadowRoom != report_.lightsWithoutShadowRoom && shortfalls.lightsWithoutShadowRoom > 0)
+        log_(LogLevel::Warning, std::to_string(shortfalls.lightsWithoutShadowRoom) +
+                                    " light(s) cast no shadow: the shadow atlas is full (lower shadows:resolution)");
+    report_.lightsWithoutShadowRoom = shortfalls.lightsWithoutShadowRoom;
+    if (shortfalls.unclippedLights != report_.unclippedLights)
+        for (const auto& problem : shortfalls.unclippedLights) log_(LogLevel::Warning, problem);
+    report_.unclippedLights = shortfalls.unclippedLights;
+    if (scene.instanceCount > passes::kMaxInstanceRecords)
+        throw ApiError{OBSCURA_ERROR_OUT_OF_MEMORY, std::to_string(scene.instanceCount) +
+                                                        " instances: the G-buffer addresses at most " +
+                                                        std::to_string(passes::kMaxInstanceRecords)};
+    report_.trianglesDrawn = 0;
+    for (const auto& draw : scene.draws) report_.trianglesDrawn += uint64_t(draw.indexCount / 3) * draw.instanceCount;
+}
+
+}  // namespace obscura::delegate

@@ -1,0 +1,21 @@
+#include "passes/frame_resources.h"
+
+namespace obscura::passes {
+
+GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkSampleCountFlagBits samples,
+                            const std::string& prefix) {
+    auto image = [&](const char* name, VkFormat format) {
+        gpu::ImageDesc desc;
+        desc.format = format;
+        desc.width = scene.width;
+        desc.height = scene.height;
+        desc.samples = samples;
+        return graph.createImage(prefix + "." + name, desc);
+    };
+    GBuffer gb{image("depth", kDepthFormat), image("normalRoughness", kNormalRoughnessFormat),
+               image("albedoMetallic", kAlbedoMetallicFormat), image("instance", kInstanceFormat), {}};
+    if (scene.motionBlur) gb.velocity = image("velocity", kVelocityFormat);
+    return gb;
+}
+
+}  // namespace obscura::passes

@@ -1,0 +1,312 @@
+#include "renderer/frame_renderer.h"
+
+#include "passes/accumulate.h"
+#include "pass_support/best_fit_normals.h"
+#include "passes/clip_volumes.h"
+#include "passes/depth_of_field.h"
+#include "passes/edge_aa.h"
+#include "passes/motion_blur.h"
+#include "passes/msaa_resolve.h"
+#include "passes/tonemap.h"
+#include "passes/transparent.h"
+#include "renderer/reference_frames.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace obscura::renderer {
+
+FrameRenderer::FrameRenderer(gpu::Device& device, VkSampler environmentSampler, LogSink log)
+    : device_(device), log_(std::move(log)) {
+    pipelines_ = std::make_unique<passes::PipelineCache>(device_);
+    transients_ = std::make_unique<gpu::TransientImagePool>(device_);
+    timestamps_ = std::make_unique<gpu::Timestamps>(device_);
+    bestFitNormals_ = passes::createBestFitNormalsTexture(device_);
+    // With SSAO off the lighting pass reads one unoccluded texel.
+    const uint8_t open = 255;
+    const float farDepth = 0.0f;
+    gpu::ImageDesc one;
+    one.width = one.height = 1;
+    one.format = passes::kSsaoAccessibilityFormat;
+    unoccluded_.accessibility = device_.createTextureWithData(one, &open, sizeof(open), "ssao off");
+    one.format = passes::kSsaoDepthFormat;
+    unoccluded_.halfDepth = device_.createTextureWithData(one, &farDepth, sizeof(farDepth), "ssao off depth");
+    const uint16_t still[2] = {0xFBFF, 0};  // half floats: kStaticVelocity (-65504), 0
+    static_assert(passes::kStaticVelocity == -65504.0f);
+    one.format = passes::kVelocityFormat;
+    stillVelocity_ = device_.createTextureWithData(one, still, sizeof(still), "still velocity");
+    environment_ = std::make_unique<EnvironmentCache>(device_, environmentSampler);
+}
+
+FrameRenderer::~FrameRenderer() {
+    vkDeviceWaitIdle(device_.vk());
+}
+
+std::string FrameRenderer::updateDisplay(const FrameSettings& settings) {
+    passes::ColorLutRequest colour{settings.ocioConfig, settings.ocioDisplay, settings.ocioView, settings.ocioLook};
+    if (std::string problem = gradingChart_.load(settings.gradingChart); !problem.empty())
+        return "colour grading: " + problem;
+    passes::DisplayGrade grade{gradingChart_.lattice(), settings.gradingInterpolation, gradingChart_.key()};
+    if (std::string problem = grading_.update(device_, colour, grade); !problem.empty())
+        return "colour management: " + problem;
+    return {};
+}
+
+void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request, const FrameSettings& settings) {
+    const FrameCamera& camera = request.camera;
+    const uint32_t width = camera.width, height = camera.height;
+    // The `dof` setting turns the lens off for the post-process and the reference alike, and
+    // `motionBlur` the shutter.
+    const passes::ThinLens lens = settings.depthOfField ? camera.lens : passes::ThinLens{};
+    std::array<double, 2> shutter{camera.time, camera.time};
+    if (settings.motionBlur && camera.shutter[1] > camera.shutter[0]) shutter = camera.shutter;
+    const uint32_t referenceSubFrames = settings.referenceSubFrames;
+    FrameViewpoint viewpoint;
+    if (referenceSubFrames > 0) accumulateReference(source, request, settings, lens, shutter);
+    else if (shutter[1] > shutter[0]) viewpoint.shutter = shutter;
+
+    // Temporal AA picks this frame's jitter before the scene's camera constants are packed. The
+    // reference is its own ground truth, jittered per sub-frame: no temporal AA there.
+    std::optional<TemporalAaStep> temporalAa;
+    passes::TemporalAaSettings temporalAaSettings{settings.temporalAaMode, settings.temporalAaKLowFreq,
+                                                  settings.temporalAaKHighFreq};
+    if (settings.temporalAa && referenceSubFrames == 0) {
+        FrameView seen = source.view(viewpoint);
+        temporalAa = temporalAccumulation_.next({camera.key, width, height, request.settingsVersion},
+                                                request.sceneVersion, temporalAaSettings.mode,
+                                                settings.temporalAaFrames, seen.view, seen.projection,
+                                                {viewpoint.shutter.has_value(), passes::hasDepthOfField(lens),
+                                                 1.0 / std::sqrt(double(settings.msaaSamples)), settings.pixelFilter});
+        viewpoint.clipJitter = temporalAa->clipJitter;
+        if (temporalAa->shutterStratum) viewpoint.shutterSpan = *temporalAa->shutterStratum;
+        if (temporalAa->lensStratum) {
+            // The accumulation-buffer camera's lens, as the reference spreads its sub-frames.
+            double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
+            auto onAperture =
+                stillApertureSample(*temporalAa->lensStratum, temporalAa->pass.framesToConverge, camera.aperture);
+            viewpoint.lensOffset = {onAperture[0] * apertureRadius, onAperture[1] * apertureRadius};
+        }
+        viewpoint.noiseFrame = temporalAa->noiseFrame;
+        viewpoint.linearResolve = temporalAa->pass.unchanged;
+        // Hybrid AA (seed 004) while anything changes; a still accumulates jittered frames of every
+        // object, converging to the supersampled image, which edge AA never reaches.
+        if (temporalAaSettings.mode == passes::TemporalAaMode::Smaa1tx && !temporalAa->pass.unchanged)
+            viewpoint.edgeAaDistance = settings.hybridAaDistanceMetres / settings.metersPerUnit;
+    } else {
+        temporalAccumulation_.reset();
+    }
+
+    // Temporal AA reprojects what moved since the last frame along its own motion.
+    InstanceModels models;
+    if (temporalAa) {
+        viewpoint.lastModels = &lastModels_;
+        viewpoint.models = &models;
+    }
+    passes::FrameScene scene = source.scene(viewpoint);
+    lastModels_ = std::move(models);
+
+    // The frame (DESIGN.md "The frame"): shadow maps, G-buffer, clip volumes into stencil, SSAO,
+    // lighting, temporal AA, depth of field, tone mapping, AOV readback. In reference mode the
+    // accumulated sub-frames replace all between the G-buffer and tone mapping; the other AOVs come
+    // from the pinhole camera.
+    // With msaa > 1 the G-buffer is multisampled and the custom resolve hands the single-sample
+    // one to everything after it; the lighting pass alone reads the samples (seed 000 "Deferred
+    // MSAA"). Reference mode's sub-frames carry their own pixel jitter, so it renders one sample.
+    gpu::FrameGraph graph;
+    gpu::ImageHandle shadowAtlas;
+    shadowHistory_.importedInto = nullptr;  // a failed frame's import is not this graph's
+    if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene, &shadowHistory_);
+    auto samples = VkSampleCountFlagBits(referenceSubFrames == 0 ? settings.msaaSamples : 1u);
+    passes::GBuffer gbuffer =
+        passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_, samples, settings.msaaAlphaToCoverage);
+    std::optional<MsaaFrame> msaa;
+    if (samples != VK_SAMPLE_COUNT_1_BIT) {
+        if (!msaaTaggedPixels_)
+            msaaTaggedPixels_ = device_.createBuffer(sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                     gpu::MemoryUsage::Readback, "msaa tagged pixels");
+        *static_cast<uint32_t*>(msaaTaggedPixels_->mapped()) = 0;
+        passes::PerSampleLighting perSample{gbuffer, graph.importBuffer("msaaTaggedPixels", msaaTaggedPixels_)};
+        graph.markOutput(perSample.taggedPixelCount);
+        passes::MsaaResolve resolve = passes::addMsaaResolvePass(graph, *pipelines_, scene, gbuffer);
+        gbuffer = resolve.resolved;
+        msaa = MsaaFrame{perSample, resolve.maxDepth};
+    }
+    gpu::ImageHandle hdr;
+    gpu::ImageHandle transparentCoverage;
+    bool dofAfterTemporalAa = false;
+    if (referenceSubFrames > 0) {
+        gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
+        hdr = passes::addAccumulationResolvePass(graph, *pipelines_, sum,
+                                                 settings.lightAccumulation == passes::LightAccumulation::HalfFloat
+                                                     ? VK_FORMAT_R16G16B16A16_SFLOAT
+                                                     : VK_FORMAT_B10G11R11_UFLOAT_PACK32);
+        // The sub-frames blended the transparent surfaces into the accumulation. XXX: the alpha of
+        // the reference's colour is the pinhole G-buffer's coverage alone (this clears the
+        // transparent coverage): transparents over the background are not in it.
+        transparentCoverage = passes::addTransparentPass(graph, *pipelines_, scene, {}, gbuffer.depth, hdr, {}, {}, {});
+    } else {
+        hdr = addLighting(graph, scene, gbuffer, shadowAtlas, source.view(viewpoint), request, settings,
+                          transparentCoverage, msaa ? &*msaa : nullptr);
+        // A still's sample of the shutter is blurred over its stratum alone, before it joins the
+        // mean: the post-process fills only what lies between the samples' times.
+        const bool stratumBlur = scene.motionBlur && temporalAa && temporalAa->shutterStratum;
+        // A still's sample of the lens likewise is blurred over its stratum of the aperture alone:
+        // 1/N of the aperture's area, a circle of confusion 1/sqrt(N) as wide.
+        const bool lensSample = temporalAa && temporalAa->lensStratum;
+        auto depthOfField = [&](double cocShare) {
+            passes::CocFromDepth coc =
+                passes::cocFromDepth(lens, camera.clippingRange[0], camera.clippingRange[1], double(width));
+            coc.scale *= cocShare;
+            coc.bias *= cocShare;
+            return passes::DepthOfFieldSettings{coc, camera.aperture, settings.depthOfFieldTaps};
+        };
+        if (stratumBlur || lensSample) {
+            hdr = passes::addTemporalAaSamplePass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage);
+            if (lensSample)
+                hdr = passes::addDepthOfFieldPasses(
+                    graph, *pipelines_, scene, gbuffer, hdr,
+                    depthOfField(1.0 / std::sqrt(double(temporalAa->pass.framesToConverge))));
+            if (stratumBlur)
+                hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr, settings.motionBlurSamples);
+            temporalAa->pass.colorHasCoverage = true;
+        }
+        if (temporalAa) {
+            temporalAa->pass.edgeAa = scene.edgeAa;
+            hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage,
+                                            temporalAaSettings, temporalAa->pass, temporalAaHistory_);
+            temporalAaInFrame_ = true;
+            if (scene.edgeAa) hdr = passes::addEdgeAaPasses(graph, *pipelines_, scene, gbuffer, hdr);
+        }
+        // Over the whole aperture, unless the still's mean holds it, sample by sample.
+        dofAfterTemporalAa = passes::hasDepthOfField(lens) && !lensSample && !(temporalAa && temporalAa->lensAccumulated);
+        if (dofAfterTemporalAa)
+            hdr = passes::addDepthOfFieldPasses(graph, *pipelines_, scene, gbuffer, hdr, depthOfField(1.0));
+        // After depth of field (seed 000 "MB or DOF first?": motion blur gathers with the
+        // geometry's depth and velocity, and is the error less seen when it comes last), over the
+        // whole shutter: unless the still's mean already holds it, sample by sample.
+        if (scene.motionBlur && !stratumBlur && !(temporalAa && temporalAa->shutterAccumulated))
+            hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr, settings.motionBlurSamples);
+    }
+    // Temporal AA's accumulation carries coverage in alpha, and motion blur blurs it along; depth of
+    // field keeps a sample's coverage where it runs before the mean, and writes none after it.
+    passes::HdrAlpha hdrAlpha = passes::HdrAlpha::None;
+    if (temporalAa && !dofAfterTemporalAa) hdrAlpha = passes::HdrAlpha::Coverage;
+    gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance,
+                                                      transparentCoverage, grading_);
+    gpu::ImageHandle velocity =
+        gbuffer.velocity.valid()
+            ? gbuffer.velocity
+            : graph.importImage("velocity.still", stillVelocity_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, hdrAlpha, transparentCoverage, display,
+                               velocity, request.aovs);
+    executeFrame(graph);
+    converged_ = !temporalAa || temporalAa->converged;
+    if (msaa) {
+        // Issue 5: the share of pixels the per-sample mask sends to sample-frequency lighting.
+        uint32_t tagged = *static_cast<const uint32_t*>(msaaTaggedPixels_->mapped());
+        char line[160];
+        std::snprintf(line, sizeof(line), "msaa %ux: %.2f%% of pixels tagged for per-sample lighting (%u of %u)",
+                      uint32_t(samples), 100.0 * tagged / (double(width) * height), tagged, width * height);
+        log_(LogLevel::Info, line);
+    }
+}
+
+gpu::ImageHandle FrameRenderer::addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
+                                            const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
+                                            const FrameView& seen, const FrameRequest& request,
+                                            const FrameSettings& settings, gpu::ImageHandle& transparentCoverage,
+                                            const MsaaFrame* msaa) {
+    passes::addClipVolumePass(graph, *pipelines_, scene, gbuffer);
+    passes::SsaoResult ambient;
+    if (settings.ssao) {
+        // The radius is authored in metres; the passes work in scene units (USD metersPerUnit).
+        passes::SsaoSettings ssao{float(settings.ssaoRadiusMetres / settings.metersPerUnit),
+                                  float(settings.ssaoIntensity)};
+        // The history reprojects through the camera's motion; anything else that changes what a
+        // texel means (size, projection, settings) restarts it.
+        auto& last = ssaoHistoryFrame_;
+        ssaoHistory_.valid = last.valid && last.width == scene.width && last.height == scene.height &&
+                             last.projection == seen.projection && last.settingsVersion == request.settingsVersion;
+        Matrix4d inverseView = kIdentity;
+        invert(seen.view, inverseView);
+        ssaoHistory_.viewToPreviousView = toFloats<passes::Mat4>(multiply(inverseView, last.view));
+        ambient = passes::addSsaoPasses(graph, *pipelines_, scene, gbuffer, ssao, ssaoHistory_);
+        ssaoInFrame_ = true;
+    } else {
+        ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
+                   graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
+    }
+    ssaoHistoryFrame_ = {settings.ssao, seen.view, seen.projection, scene.width, scene.height, request.settingsVersion};
+    passes::EnvironmentLighting environment = environment_->addToFrame(graph, *pipelines_, request.environment);
+    environmentInFrame_ = true;
+    gpu::ImageHandle hdr = passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas, environment,
+                                                   settings.lightAccumulation, msaa ? &msaa->perSample : nullptr);
+    // Transparent surfaces over the lit opaque ones, before temporal AA (DESIGN.md "The frame").
+    // The fade distance is authored in metres, like the SSAO radius.
+    passes::TransparentSettings transparents{float(settings.transparentFadeMetres / settings.metersPerUnit)};
+    transparentCoverage =
+        passes::addTransparentPass(graph, *pipelines_, scene, scene.transparentDraws, msaa ? msaa->maxDepth : gbuffer.depth,
+                                   hdr, shadowAtlas, environment, transparents);
+    return hdr;
+}
+
+void FrameRenderer::executeFrame(gpu::FrameGraph& graph) {
+    graph.compile();
+    if (environmentInFrame_) environment_->frameCompiled(graph);
+    environmentInFrame_ = false;
+    if (ssaoInFrame_) passes::keepSsaoHistory(graph, ssaoHistory_);
+    if (temporalAaInFrame_) passes::keepTemporalAaHistory(graph, temporalAaHistory_);
+    passes::keepShadowAtlasHistory(graph, shadowHistory_);
+    ssaoInFrame_ = temporalAaInFrame_ = false;
+    device_.context().submitAndWait([&](VkCommandBuffer cmd) {
+        timestamps_->reset(cmd);
+        graph.execute(*transients_, cmd, timestamps_.get());
+        recorded_ = std::chrono::steady_clock::now();
+    });
+    timings_ = timestamps_->resolve();
+    device_.endFrame();
+    transients_->endFrame();
+}
+
+void FrameRenderer::accumulateReference(FrameSceneSource& source, const FrameRequest& request,
+                                        const FrameSettings& settings, const passes::ThinLens& lens,
+                                        const std::array<double, 2>& shutter) {
+    const uint32_t width = request.camera.width, height = request.camera.height;
+    const gpu::ImageDesc* current = accumulation_.image ? &accumulation_.image->desc : nullptr;
+    if (!current || current->width != width || current->height != height) {
+        gpu::ImageDesc desc;
+        desc.format = passes::kAccumulationFormat;
+        desc.width = width;
+        desc.height = height;
+        desc.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+        accumulation_ = {device_.createImage(desc, "reference accumulation"), VK_IMAGE_LAYOUT_UNDEFINED};
+    }
+    // Without depth of field the lens is a pinhole: every sub-frame looks from its centre.
+    bool lensBlur = passes::hasDepthOfField(lens);
+    double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
+    const auto [open, close] = shutter;
+    std::vector<ReferenceSubFrame> subFrames = referenceSubFrames(
+        settings.referenceSubFrames, lensBlur ? request.camera.aperture : passes::ApertureShape{}, settings.pixelFilter);
+    for (size_t k = 0; k < subFrames.size(); ++k) {
+        const ReferenceSubFrame& sub = subFrames[k];
+        FrameViewpoint viewpoint;
+        if (close > open) viewpoint.shutter = shutter;
+        viewpoint.sample = FrameSample{open + sub.shutter * (close - open),
+                                       {sub.aperture[0] * apertureRadius, sub.aperture[1] * apertureRadius},
+                                       sub.pixelJitter, sub.emitter};
+        passes::FrameScene scene = source.scene(viewpoint);
+        gpu::FrameGraph graph;
+        gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
+        passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
+        // Each sub-frame blends its transparent surfaces into its lighting; their coverage is not kept.
+        gpu::ImageHandle transparentCoverage;
+        gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, source.view(viewpoint), request,
+                                           settings, transparentCoverage);
+        gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
+        passes::addAccumulatePass(graph, *pipelines_, hdr, sum, float(sub.weight), k == 0);
+        executeFrame(graph);
+        accumulation_.layout = graph.finalLayout(sum);
+    }
+}
+
+}  // namespace obscura::renderer
