@@ -117,7 +117,7 @@ BufferHandle FrameGraph::PassBuilder::write(BufferHandle h, Usage usage) {
     graph_.passes_[pass_].accesses.push_back({h.index, false, usage});
     return h;
 }
-void FrameGraph::PassBuilder::colorAttachment(ImageHandle h, std::optional<VkClearColorValue> clear) {
+ImageHandle FrameGraph::PassBuilder::colorAttachment(ImageHandle h, std::optional<VkClearColorValue> clear) {
     write(h, Usage::ColorAttachment);
     Attachment a;
     a.image = h;
@@ -126,8 +126,10 @@ void FrameGraph::PassBuilder::colorAttachment(ImageHandle h, std::optional<VkCle
         a.clear.color = *clear;
     }
     graph_.passes_[pass_].attachments.push_back(a);
+    return h;
 }
-void FrameGraph::PassBuilder::depthStencilAttachment(ImageHandle h, std::optional<VkClearDepthStencilValue> clear) {
+ImageHandle FrameGraph::PassBuilder::depthStencilAttachment(ImageHandle h,
+                                                           std::optional<VkClearDepthStencilValue> clear) {
     write(h, Usage::DepthStencilAttachment);
     Attachment a;
     a.image = h;
@@ -137,6 +139,7 @@ void FrameGraph::PassBuilder::depthStencilAttachment(ImageHandle h, std::optiona
         a.clear.depthStencil = *clear;
     }
     graph_.passes_[pass_].attachments.push_back(a);
+    return h;
 }
 
 ImageHandle FrameGraph::createImage(const std::string& name, const ImageDesc& desc) {
@@ -281,11 +284,12 @@ void FrameGraph::compile() {
     for (size_t i = 0; i < images_.size(); ++i) images_[i].finalLayout = imageTrack[i].layout;
 }
 
-void FrameGraph::execute(TransientImagePool& pool, VkCommandBuffer cmd, Timestamps* timestamps) {
+void FrameGraph::execute(TransientImagePool& pool, PipelineCache& pipelines, VkCommandBuffer cmd,
+                         Timestamps* timestamps) {
     for (auto& img : images_)
         if (img.transient && !img.image && img.desc.usage != 0) img.image = pool.acquire(img.desc, img.name);
 
-    PassResources resources(*this);
+    PassResources resources(*this, pool.device(), pipelines);
     for (size_t p = 0; p < passes_.size(); ++p) {
         const CompiledPass& cp = compiled_[p];
         if (cp.culled) continue;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "gpu/device.h"
+#include "gpu/pipeline_cache.h"
 
 #include <functional>
 #include <optional>
@@ -64,9 +65,14 @@ struct Attachment {
     VkClearValue clear{};
 };
 
+// What a pass's record callback works with: the device, its pipelines (compiled the first time a
+// pass records), and the Vulkan objects behind the graph's handles.
 class PassResources {
 public:
-    explicit PassResources(const class FrameGraph& graph) : graph_(graph) {}
+    PassResources(const class FrameGraph& graph, Device& device, PipelineCache& pipelines)
+        : graph_(graph), device_(device), pipelines_(pipelines) {}
+    Device& device() const { return device_; }
+    PipelineCache& pipelines() const { return pipelines_; }
     VkImage image(ImageHandle h) const;
     VkImageView view(ImageHandle h) const;
     VkImageView stencilView(ImageHandle h) const;
@@ -78,6 +84,8 @@ public:
 
 private:
     const class FrameGraph& graph_;
+    Device& device_;
+    PipelineCache& pipelines_;
 };
 
 // Transient images live across frames here, so a steady frame allocates nothing: an image is
@@ -86,6 +94,7 @@ private:
 class TransientImagePool {
 public:
     explicit TransientImagePool(Device& device) : device_(device) {}
+    Device& device() { return device_; }
     ImagePtr acquire(const ImageDesc& desc, const std::string& name);
     void endFrame();
 
@@ -109,8 +118,8 @@ public:
         BufferHandle read(BufferHandle h, Usage usage);
         BufferHandle write(BufferHandle h, Usage usage);
         // A raster pass's attachments; clears happen through the load op.
-        void colorAttachment(ImageHandle h, std::optional<VkClearColorValue> clear = std::nullopt);
-        void depthStencilAttachment(ImageHandle h, std::optional<VkClearDepthStencilValue> clear = std::nullopt);
+        ImageHandle colorAttachment(ImageHandle h, std::optional<VkClearColorValue> clear = std::nullopt);
+        ImageHandle depthStencilAttachment(ImageHandle h, std::optional<VkClearDepthStencilValue> clear = std::nullopt);
 
     private:
         friend class FrameGraph;
@@ -137,7 +146,7 @@ public:
     // Throws std::logic_error for a read of a resource nothing wrote.
     void compile();
     // Takes transient images from `pool` and records every pass that was not culled.
-    void execute(TransientImagePool& pool, VkCommandBuffer cmd, Timestamps* timestamps);
+    void execute(TransientImagePool& pool, PipelineCache& pipelines, VkCommandBuffer cmd, Timestamps* timestamps);
 
     // Introspection for tests and the benchmark.
     struct CompiledPass {

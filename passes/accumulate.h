@@ -5,7 +5,6 @@
 #pragma once
 
 #include "passes/frame_resources.h"
-#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 
@@ -14,12 +13,12 @@ constexpr VkFormat kAccumulationFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 // accumulation = (first ? 0 : accumulation) + weight * (hdrColor, 1). `accumulation` is a persistent
 // (imported) image of kAccumulationFormat, the size of the frame; alpha sums the weights.
-void addAccumulatePass(gpu::FrameGraph& graph, PipelineCache& pipelines, gpu::ImageHandle hdrColor,
-                       gpu::ImageHandle accumulation, float weight, bool first);
+// Returns the sum as the pass leaves it.
+gpu::ImageHandle addAccumulatePass(gpu::FrameGraph& graph, gpu::ImageHandle hdrColor, gpu::ImageHandle accumulation,
+                                   float weight, bool first);
 
 // The weighted mean, accumulation.rgb / accumulation.a, into a new image of `format` (the light
 // accumulation's).
-gpu::ImageHandle addAccumulationResolvePass(gpu::FrameGraph& graph, PipelineCache& pipelines,
-                                            gpu::ImageHandle accumulation, VkFormat format);
+gpu::ImageHandle addAccumulationResolvePass(gpu::FrameGraph& graph, gpu::ImageHandle accumulation, VkFormat format);
 
 }  // namespace obscura::passes

@@ -1,8 +1,11 @@
 #include "passes/aov_readback.h"
 
+#include "passes/shader_pass.h"
+
 namespace obscura::passes {
 namespace {
 
+// Mirrors the push constants of shaders/aov_pack.comp.
 struct PackPush {
     uint32_t aov;
     uint32_t width;
@@ -10,90 +13,48 @@ struct PackPush {
     uint32_t alphaIsCoverage;
 };
 
-gpu::ComputePipelineDesc describeAovPackPipeline() {
-    return {"aov_pack.comp",
-            {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-             {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-             {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-             {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-             {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-             {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-             {11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
-            sizeof(PackPush)};
-}
-
 }  // namespace
 
-void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                        const GBuffer& gb, gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha,
-                        gpu::ImageHandle transparentCoverage, gpu::ImageHandle display, gpu::ImageHandle velocity,
-                        const std::vector<AovRequest>& requests) {
+void addAovReadbackPass(gpu::FrameGraph& graph, const FrameScene& scene, const GBuffer& gb, gpu::ImageHandle hdrColor,
+                        HdrAlpha hdrAlpha, gpu::ImageHandle transparentCoverage, gpu::ImageHandle display,
+                        gpu::ImageHandle velocity, const std::vector<AovRequest>& requests) {
     if (requests.empty()) return;
-    // The pack writes `targets`; where a device-local staging buffer exists, a copy pass then
-    // moves it to the host-visible destination.
-    std::vector<gpu::BufferHandle> targets, copySources, copyDestinations;
+    // The pack writes one buffer per AOV, one dispatch each; where a device-local staging buffer
+    // exists, a copy pass then moves it to the host-visible destination.
+    std::vector<ComputePass> packs;
+    std::vector<gpu::BufferHandle> destinations;
+    std::vector<bool> staged;
     for (const auto& r : requests) {
-        gpu::BufferHandle destination = graph.importBuffer("aov", r.destination);
-        graph.markOutput(destination);
-        if (r.deviceStaging) {
-            targets.push_back(graph.importBuffer("aov.staging", r.deviceStaging));
-            copySources.push_back(targets.back());
-            copyDestinations.push_back(destination);
+        destinations.push_back(graph.importBuffer("aov", r.destination));
+        staged.push_back(r.deviceStaging != nullptr);
+        gpu::BufferHandle target = r.deviceStaging ? graph.importBuffer("aov.staging", r.deviceStaging) : destinations.back();
+        PackPush push{static_cast<uint32_t>(r.aov), scene.width, scene.height, hdrAlpha == HdrAlpha::Coverage ? 1u : 0u};
+        ComputePass pack{"aov_pack",
+                         {sceneBuffer(scene.camera->buffer), sceneBuffer(scene.instances->buffer), sampled(gb.depth),
+                          sampled(gb.normalRoughness), sampled(gb.albedoMetallic), sampled(gb.instance),
+                          sampled(hdrColor), storageRead(display), bufferWrite(target), bufferWrite(target),
+                          sampled(transparentCoverage), sampled(velocity)},
+                         pushConstantBytes(push)};
+        pack.texels = std::array<uint32_t, 2>{scene.width, scene.height};
+        packs.push_back(std::move(pack));
+    }
+    std::vector<gpu::BufferHandle> packed = addComputeDispatches(graph, "aov_readback", std::move(packs)).buffers;
+    std::vector<gpu::BufferHandle> copySources, copyDestinations;
+    for (size_t i = 0; i < requests.size(); ++i) {
+        if (staged[i]) {
+            copySources.push_back(packed[i]);
+            copyDestinations.push_back(destinations[i]);
         } else {
-            targets.push_back(destination);
+            graph.markOutput(packed[i]);
         }
     }
-    const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("aov_pack", describeAovPackPipeline);
-    gpu::Device& device = pipelines.device();
-    graph.addPass(
-        "aov_readback", gpu::PassKind::Compute,
-        [&](gpu::FrameGraph::PassBuilder& pass) {
-            pass.read(gb.depth, gpu::Usage::SampledCompute);
-            pass.read(gb.normalRoughness, gpu::Usage::SampledCompute);
-            pass.read(gb.albedoMetallic, gpu::Usage::SampledCompute);
-            pass.read(gb.instance, gpu::Usage::SampledCompute);
-            pass.read(hdrColor, gpu::Usage::SampledCompute);
-            pass.read(transparentCoverage, gpu::Usage::SampledCompute);
-            pass.read(velocity, gpu::Usage::SampledCompute);
-            pass.read(display, gpu::Usage::StorageImageRead);
-            for (auto h : targets) pass.write(h, gpu::Usage::StorageBufferWrite);
-        },
-        [&device, &pipeline, &scene, gb, hdrColor, hdrAlpha, transparentCoverage, display, velocity, targets, requests](
-            VkCommandBuffer cmd, const gpu::PassResources& res) {
-            VkSampler nearest = device.nearestClampSampler();
-            for (size_t i = 0; i < requests.size(); ++i) {
-                gpu::DescriptorWriter(device, pipeline)
-                    .buffer(0, scene.camera->buffer)
-                    .buffer(1, scene.instances->buffer)
-                    .sampled(2, res.view(gb.depth), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
-                    .sampled(3, res.view(gb.normalRoughness), nearest)
-                    .sampled(4, res.view(gb.albedoMetallic), nearest)
-                    .sampled(5, res.view(gb.instance), nearest)
-                    .sampled(6, res.view(hdrColor), nearest)
-                    .storageImage(7, res.view(display))
-                    .buffer(8, res.buffer(targets[i]))
-                    .buffer(9, res.buffer(targets[i]))
-                    .sampled(10, res.view(transparentCoverage), nearest)
-                    .sampled(11, res.view(velocity), nearest)
-                    .bind(cmd);
-                PackPush push{static_cast<uint32_t>(requests[i].aov), scene.width, scene.height,
-                              hdrAlpha == HdrAlpha::Coverage ? 1u : 0u};
-                vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-                gpu::dispatch2D(cmd, scene.width, scene.height);
-            }
-        });
     if (copySources.empty()) return;
     graph.addPass(
         "aov_copy", gpu::PassKind::Transfer,
         [&](gpu::FrameGraph::PassBuilder& pass) {
             for (size_t i = 0; i < copySources.size(); ++i) {
                 pass.read(copySources[i], gpu::Usage::TransferSrc);
-                pass.write(copyDestinations[i], gpu::Usage::TransferDst);
+                graph.markOutput(pass.write(copyDestinations[i], gpu::Usage::TransferDst));
             }
         },
         [copySources, copyDestinations](VkCommandBuffer cmd, const gpu::PassResources& res) {

@@ -3,7 +3,6 @@
 #pragma once
 
 #include "passes/frame_resources.h"
-#include "passes/pipeline_cache.h"
 #include "passes/hdr_color.h"
 
 #include <vector>
@@ -31,8 +30,7 @@ struct AovRequest {
 // composited with `transparentCoverage` (passes/transparent.h).
 // `velocity`: the G-buffer's velocity target, or a 1x1 image holding kStaticVelocity where the frame
 // has none (the motion AOV is then the camera's motion within the shutter).
-void addAovReadbackPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                        const GBuffer& gbuffer, gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha,
+void addAovReadbackPass(gpu::FrameGraph& graph, const FrameScene& scene, const GBuffer& gbuffer, gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha,
                         gpu::ImageHandle transparentCoverage, gpu::ImageHandle display, gpu::ImageHandle velocity,
                         const std::vector<AovRequest>& requests);
 

@@ -21,23 +21,21 @@ gpu::GraphicsPipelineDesc describeClipVolumePipeline() {
 
 }  // namespace
 
-gpu::ImageHandle addClipVolumePass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                   const GBuffer& gbuffer) {
-    if (scene.clipVolumes.empty()) return gbuffer.depth;
-    const gpu::Pipeline& pipeline =
-        pipelines.get<gpu::GraphicsPipelineDesc>("clip_volumes", describeClipVolumePipeline);
-    gpu::Device& device = pipelines.device();
+gpu::ImageHandle addClipVolumePass(gpu::FrameGraph& graph, const FrameScene& scene, gpu::ImageHandle depthStencil) {
+    if (scene.clipVolumes.empty()) return depthStencil;
     graph.addPass(
         "clip_volumes", gpu::PassKind::Raster,
-        [&](gpu::FrameGraph::PassBuilder& pass) { pass.depthStencilAttachment(gbuffer.depth); },
-        [&device, &pipeline, &scene](VkCommandBuffer cmd, const gpu::PassResources&) {
-            gpu::DescriptorWriter(device, pipeline).buffer(0, scene.instances->buffer).bind(cmd);
+        [&](gpu::FrameGraph::PassBuilder& pass) { depthStencil = pass.depthStencilAttachment(depthStencil); },
+        [&scene](VkCommandBuffer cmd, const gpu::PassResources& res) {
+            const gpu::Pipeline& pipeline =
+                res.pipelines().get<gpu::GraphicsPipelineDesc>("clip_volumes", describeClipVolumePipeline);
+            gpu::DescriptorWriter(res.device(), pipeline).buffer(0, scene.instances->buffer).bind(cmd);
             for (const ClipVolume& volume : scene.clipVolumes) {
                 vkCmdSetStencilWriteMask(cmd, VK_STENCIL_FACE_FRONT_AND_BACK, volume.stencilBit);
                 recordDepthOnlyDraw(cmd, pipeline, volume.draw, {scene.cameraData.viewProjection, 0});
             }
         });
-    return gbuffer.depth;
+    return depthStencil;
 }
 
 }  // namespace obscura::passes

@@ -8,14 +8,13 @@
 
 #include "passes/frame_scene.h"
 #include "passes/frame_resources.h"
-#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 
 constexpr uint32_t kMaxClipVolumes = 7;
 
 // Writes the clip-volume bits of `gbuffer.depth`'s stencil; returns the same image, now holding them.
-gpu::ImageHandle addClipVolumePass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                   const GBuffer& gbuffer);
+// Returns the depth/stencil image (the G-buffer's) with the volumes' bits.
+gpu::ImageHandle addClipVolumePass(gpu::FrameGraph& graph, const FrameScene& scene, gpu::ImageHandle depthStencil);
 
 }  // namespace obscura::passes

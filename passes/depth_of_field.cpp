@@ -1,6 +1,6 @@
 #include "passes/depth_of_field.h"
 
-#include "passes/image_compute_pass.h"
+#include "passes/shader_pass.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -30,19 +30,18 @@ constexpr VkFormat kCocFormat = VK_FORMAT_R8G8_UNORM;
 // The gathered fields carry their coverage in alpha, which R11G11B10F has no room for.
 constexpr VkFormat kFieldFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
-// One pass of the chain, one invocation per texel of its first output.
-void addDofPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const std::string& name,
-                std::vector<SampledInput> inputs, std::vector<gpu::ImageHandle> outputs, const DofConstants& constants) {
-    addImageComputePass(graph, pipelines, {name, std::move(inputs), std::move(outputs), pushConstantBytes(constants)});
+// One pass of the chain, one invocation per texel of its first output; returns what it wrote.
+std::vector<gpu::ImageHandle> addDofPass(gpu::FrameGraph& graph, const std::string& name,
+                                         std::vector<ShaderBinding> bindings, const DofConstants& constants) {
+    return addComputePass(graph, {name, std::move(bindings), pushConstantBytes(constants)}).images;
 }
 
 }  // namespace
 
 double maxDofRadiusPixels(int tapsPerSide) { return 4.0 * tapsPerSide; }
 
-gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                       const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
-                                       const DepthOfFieldSettings& settings) {
+gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, const FrameScene& scene, const GBuffer& gbuffer,
+                                       gpu::ImageHandle hdrColor, const DepthOfFieldSettings& settings) {
     if (settings.tapsPerSide < kMinDofTapsPerSide || settings.tapsPerSide > kMaxDofTapsPerSide)
         throw std::invalid_argument("depth of field: taps per side out of range");
     double maxRadius = maxDofRadiusPixels(settings.tapsPerSide);
@@ -57,36 +56,43 @@ gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, PipelineCache& pi
 
     uint32_t halfWidth = (scene.width + 1) / 2, halfHeight = (scene.height + 1) / 2;
     uint32_t tilesWide = (halfWidth + kTileSize - 1) / kTileSize, tilesHigh = (halfHeight + kTileSize - 1) / kTileSize;
-    gpu::ImageHandle nearLayer = graph.createImage("dofNearLayer", chainImage(kFieldInputFormat, halfWidth, halfHeight));
-    gpu::ImageHandle farLayer = graph.createImage("dofFarLayer", chainImage(kFieldInputFormat, halfWidth, halfHeight));
-    gpu::ImageHandle halfCoc = graph.createImage("dofHalfCoc", chainImage(kCocFormat, halfWidth, halfHeight));
-    addDofPass(graph, pipelines, "dof_downsample", {{hdrColor, SampledRead::Nearest}, {gbuffer.depth, SampledRead::Depth}},
-               {nearLayer, farLayer, halfCoc}, constants);
+    auto half = [&](const char* name, VkFormat format) {
+        return graph.createImage(name, imageDesc2D(format, halfWidth, halfHeight));
+    };
+    auto tiles = [&](const char* name) { return graph.createImage(name, imageDesc2D(kCocFormat, tilesWide, tilesHigh)); };
+    const SampledRead linear = SampledRead::Linear;
 
-    gpu::ImageHandle tiles = graph.createImage("dofTileCoc", chainImage(kCocFormat, tilesWide, tilesHigh));
-    addDofPass(graph, pipelines, "dof_tile_min_max", {{halfCoc, SampledRead::Nearest}}, {tiles}, constants);
-    gpu::ImageHandle neighbourhood = graph.createImage("dofTileNeighbourhood", chainImage(kCocFormat, tilesWide, tilesHigh));
-    addDofPass(graph, pipelines, "dof_tile_neighbourhood", {{tiles, SampledRead::Nearest}}, {neighbourhood}, constants);
+    std::vector<gpu::ImageHandle> layers = addDofPass(
+        graph, "dof_downsample",
+        {sampled(hdrColor), sampled(gbuffer.depth), storageWrite(half("dofNearLayer", kFieldInputFormat)),
+         storageWrite(half("dofFarLayer", kFieldInputFormat)), storageWrite(half("dofHalfCoc", kCocFormat))},
+        constants);
+    const gpu::ImageHandle nearLayer = layers[0], farLayer = layers[1], halfCoc = layers[2];
 
-    gpu::ImageHandle nearGathered = graph.createImage("dofNearGathered", chainImage(kFieldFormat, halfWidth, halfHeight));
-    gpu::ImageHandle farGathered = graph.createImage("dofFarGathered", chainImage(kFieldFormat, halfWidth, halfHeight));
-    addDofPass(graph, pipelines, "dof_gather",
-               {{nearLayer, SampledRead::Linear}, {farLayer, SampledRead::Linear}, {halfCoc, SampledRead::Linear}, {neighbourhood, SampledRead::Nearest}},
-               {nearGathered, farGathered}, constants);
+    gpu::ImageHandle tileCoc =
+        addDofPass(graph, "dof_tile_min_max", {sampled(halfCoc), storageWrite(tiles("dofTileCoc"))}, constants)[0];
+    gpu::ImageHandle neighbourhood = addDofPass(
+        graph, "dof_tile_neighbourhood", {sampled(tileCoc), storageWrite(tiles("dofTileNeighbourhood"))}, constants)[0];
 
-    gpu::ImageHandle nearField = graph.createImage("dofNearField", chainImage(kFieldFormat, halfWidth, halfHeight));
-    gpu::ImageHandle farField = graph.createImage("dofFarField", chainImage(kFieldFormat, halfWidth, halfHeight));
-    addDofPass(graph, pipelines, "dof_flood_fill",
-               {{nearGathered, SampledRead::Linear}, {farGathered, SampledRead::Linear}, {halfCoc, SampledRead::Nearest},
-                {neighbourhood, SampledRead::Nearest}},
-               {nearField, farField}, constants);
+    std::vector<gpu::ImageHandle> gathered = addDofPass(
+        graph, "dof_gather",
+        {sampled(nearLayer, linear), sampled(farLayer, linear), sampled(halfCoc, linear), sampled(neighbourhood),
+         storageWrite(half("dofNearGathered", kFieldFormat)), storageWrite(half("dofFarGathered", kFieldFormat))},
+        constants);
 
-    gpu::ImageHandle output = graph.createImage("dofColor", chainImage(graph.imageDesc(hdrColor).format, scene.width, scene.height));
-    addDofPass(graph, pipelines, "dof_composite",
-               {{hdrColor, SampledRead::Nearest}, {gbuffer.depth, SampledRead::Depth}, {nearField, SampledRead::Linear},
-                {farField, SampledRead::Linear}, {halfCoc, SampledRead::Linear}, {neighbourhood, SampledRead::Nearest}},
-               {output}, constants);
-    return output;
+    std::vector<gpu::ImageHandle> fields = addDofPass(
+        graph, "dof_flood_fill",
+        {sampled(gathered[0], linear), sampled(gathered[1], linear), sampled(halfCoc), sampled(neighbourhood),
+         storageWrite(half("dofNearField", kFieldFormat)), storageWrite(half("dofFarField", kFieldFormat))},
+        constants);
+
+    gpu::ImageHandle output =
+        graph.createImage("dofColor", imageDesc2D(graph.imageDesc(hdrColor).format, scene.width, scene.height));
+    return addDofPass(graph, "dof_composite",
+                      {sampled(hdrColor), sampled(gbuffer.depth), sampled(fields[0], linear),
+                       sampled(fields[1], linear), sampled(halfCoc, linear), sampled(neighbourhood),
+                       storageWrite(output)},
+                      constants)[0];
 }
 
 }  // namespace obscura::passes

@@ -14,7 +14,6 @@
 #pragma once
 
 #include "passes/frame_resources.h"
-#include "passes/pipeline_cache.h"
 #include "pass_support/thin_lens.h"
 
 namespace obscura::passes {
@@ -37,7 +36,7 @@ double maxDofRadiusPixels(int tapsPerSide);
 
 // Reads the light accumulation (pre-exposed, either format of lighting.h) and the G-buffer depth;
 // returns a new image of the same format with depth of field, which tone mapping reads.
-gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, const FrameScene& scene,
                                        const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
                                        const DepthOfFieldSettings& settings);
 

@@ -1,6 +1,6 @@
 #include "passes/edge_aa.h"
 
-#include "passes/image_compute_pass.h"
+#include "passes/shader_pass.h"
 
 namespace obscura::passes {
 namespace {
@@ -12,29 +12,23 @@ constexpr VkFormat kBlendedFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
 }  // namespace
 
-gpu::ImageHandle addEdgeAaPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                 const GBuffer& gbuffer, gpu::ImageHandle hdrColor) {
-    gpu::ImageHandle edges = graph.createImage("edgeAaEdges", chainImage(kEdgesFormat, scene.width, scene.height));
-    ImageComputePass detect{"edge_aa_edges",
-                            {{hdrColor, SampledRead::Nearest},
-                             {gbuffer.instance, SampledRead::Nearest},
-                             {gbuffer.depth, SampledRead::Depth},
-                             {gbuffer.normalRoughness, SampledRead::Nearest}},
-                            {edges},
-                            {}};
-    detect.camera = scene.camera->buffer;
-    detect.storageBuffers = {scene.instances->buffer};
-    addImageComputePass(graph, pipelines, detect);
+gpu::ImageHandle addEdgeAaPasses(gpu::FrameGraph& graph, const FrameScene& scene, const GBuffer& gbuffer,
+                                 gpu::ImageHandle hdrColor) {
+    gpu::ImageHandle edges = graph.createImage("edgeAaEdges", imageDesc2D(kEdgesFormat, scene.width, scene.height));
+    edges = addComputePass(graph, {"edge_aa_edges",
+                                   {sampled(hdrColor), sampled(gbuffer.instance), sampled(gbuffer.depth),
+                                    sampled(gbuffer.normalRoughness), storageWrite(edges),
+                                    sceneBuffer(scene.camera->buffer), sceneBuffer(scene.instances->buffer)}})
+                .images[0];
 
     gpu::ImageHandle weights =
-        graph.createImage("edgeAaWeights", chainImage(kWeightsFormat, scene.width, scene.height));
-    addImageComputePass(graph, pipelines, {"edge_aa_weights", {{edges, SampledRead::Nearest}}, {weights}, {}});
+        graph.createImage("edgeAaWeights", imageDesc2D(kWeightsFormat, scene.width, scene.height));
+    weights = addComputePass(graph, {"edge_aa_weights", {sampled(edges), storageWrite(weights)}}).images[0];
 
     gpu::ImageHandle blended =
-        graph.createImage("edgeAaColor", chainImage(kBlendedFormat, scene.width, scene.height));
-    addImageComputePass(graph, pipelines,
-                        {"edge_aa_blend", {{hdrColor, SampledRead::Nearest}, {weights, SampledRead::Nearest}}, {blended}, {}});
-    return blended;
+        graph.createImage("edgeAaColor", imageDesc2D(kBlendedFormat, scene.width, scene.height));
+    return addComputePass(graph, {"edge_aa_blend", {sampled(hdrColor), sampled(weights), storageWrite(blended)}})
+        .images[0];
 }
 
 }  // namespace obscura::passes

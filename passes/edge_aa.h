@@ -10,13 +10,12 @@
 
 #include "passes/frame_scene.h"
 #include "passes/frame_resources.h"
-#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 
 // Reads the anti-aliased HDR colour (RGBA16F, coverage in alpha) and the G-buffer's instance target,
 // depth and normals; returns a new RGBA16F image.
-gpu::ImageHandle addEdgeAaPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+gpu::ImageHandle addEdgeAaPasses(gpu::FrameGraph& graph, const FrameScene& scene,
                                  const GBuffer& gbuffer, gpu::ImageHandle hdrColor);
 
 }  // namespace obscura::passes

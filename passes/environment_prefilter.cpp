@@ -1,5 +1,7 @@
 #include "passes/environment_prefilter.h"
 
+#include "passes/shader_pass.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -26,69 +28,42 @@ constexpr uint32_t kIrradianceSourceWidth = 256;
 
 }  // namespace
 
-void addEnvironmentPrefilterPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, gpu::ImageHandle source,
-                                   const EnvironmentLighting& target) {
-    gpu::Device& device = pipelines.device();
-    const gpu::Pipeline& prefilter = pipelines.get<gpu::ComputePipelineDesc>("environment_prefilter", [] {
-        return gpu::ComputePipelineDesc{"environment_prefilter.comp",
-                                        {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
-                                        sizeof(PrefilterPush)};
-    });
-    const gpu::ImageDesc& sourceDesc = graph.imageDesc(source);
+EnvironmentLighting addEnvironmentPrefilterPasses(gpu::FrameGraph& graph, gpu::ImageHandle source,
+                                                  const EnvironmentLighting& target) {
+    const gpu::ImageDesc sourceDesc = graph.imageDesc(source);
     const double sourceLevels = double(sourceDesc.mipLevels);
     const PrefilterPush common{
         0.0f,
         float(std::clamp(std::log2(double(sourceDesc.width) / double(kPrefilteredWidth)), 0.0, sourceLevels - 1.0)),
         float(4.0 * std::numbers::pi / (double(sourceDesc.width) * double(sourceDesc.height))),
         float(sourceLevels - 1.0)};
-    graph.addPass(
-        kEnvironmentPrefilterPass, gpu::PassKind::Compute,
-        [&](gpu::FrameGraph::PassBuilder& pass) {
-            pass.read(source, gpu::Usage::SampledCompute);
-            pass.write(target.prefiltered, gpu::Usage::StorageImageWrite);
-        },
-        [&device, &prefilter, source, target, common](VkCommandBuffer cmd, const gpu::PassResources& res) {
-            // Levels are independent (each reads only the source): no barrier between dispatches.
-            for (uint32_t level = 0; level < kPrefilteredLevels; ++level) {
-                gpu::DescriptorWriter(device, prefilter)
-                    .sampled(0, res.view(source), target.sampler)
-                    .storageImage(1, res.levelView(target.prefiltered, level))
-                    .bind(cmd);
-                PrefilterPush push = common;
-                push.roughness = float(level) / float(kPrefilteredLevels - 1);
-                vkCmdPushConstants(cmd, prefilter.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-                const gpu::ImageDesc& size = res.desc(target.prefiltered);
-                gpu::dispatch2D(cmd, std::max(size.width >> level, 1u), std::max(size.height >> level, 1u));
-            }
-        });
+    // Levels are independent (each reads only the source): no barrier between dispatches.
+    std::vector<ComputePass> levels;
+    const gpu::ImageDesc prefiltered = graph.imageDesc(target.prefiltered);
+    for (uint32_t level = 0; level < kPrefilteredLevels; ++level) {
+        PrefilterPush push = common;
+        push.roughness = float(level) / float(kPrefilteredLevels - 1);
+        ComputePass pass{"environment_prefilter",
+                         {sampled(source, target.sampler), storageWriteLevel(target.prefiltered, level)},
+                         pushConstantBytes(push)};
+        pass.texels = std::array<uint32_t, 2>{std::max(prefiltered.width >> level, 1u),
+                                              std::max(prefiltered.height >> level, 1u)};
+        levels.push_back(std::move(pass));
+    }
+    EnvironmentLighting written = target;
+    written.prefiltered = addComputeDispatches(graph, kEnvironmentPrefilterPass, std::move(levels)).images[0];
 
-    const gpu::Pipeline& irradiance = pipelines.get<gpu::ComputePipelineDesc>("environment_irradiance", [] {
-        return gpu::ComputePipelineDesc{"environment_irradiance.comp",
-                                        {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
-                                        sizeof(IrradiancePush)};
-    });
     IrradiancePush irradiancePush{0};
     while (uint32_t(irradiancePush.level) + 1 < sourceDesc.mipLevels &&
            (sourceDesc.width >> irradiancePush.level) > kIrradianceSourceWidth)
         ++irradiancePush.level;
-    graph.addPass(
-        "environment_irradiance", gpu::PassKind::Compute,
-        [&](gpu::FrameGraph::PassBuilder& pass) {
-            pass.read(source, gpu::Usage::SampledCompute);
-            pass.write(target.irradiance, gpu::Usage::StorageBufferWrite);
-        },
-        [&device, &irradiance, source, target, irradiancePush](VkCommandBuffer cmd,
-                                                                         const gpu::PassResources& res) {
-            gpu::DescriptorWriter(device, irradiance)
-                .sampled(0, res.view(source), target.sampler)
-                .buffer(1, res.buffer(target.irradiance))
-                .bind(cmd);
-            vkCmdPushConstants(cmd, irradiance.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(irradiancePush),
-                               &irradiancePush);
-            vkCmdDispatch(cmd, 1, 1, 1);
-        });
+    ComputePass irradiance{"environment_irradiance",
+                           {sampled(source, target.sampler), bufferWrite(target.irradiance)},
+                           pushConstantBytes(irradiancePush)};
+    irradiance.texels = std::array<uint32_t, 2>{1, 1};  // one workgroup projects the whole source
+    irradiance.texelsPerGroup = 1;
+    written.irradiance = addComputePass(graph, std::move(irradiance)).buffers[0];
+    return written;
 }
 
 }  // namespace obscura::passes

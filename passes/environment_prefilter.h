@@ -6,7 +6,6 @@
 
 #include "gpu/frame_graph.h"
 #include "passes/frame_resources.h"
-#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 
@@ -16,7 +15,8 @@ constexpr const char* kEnvironmentPrefilterPass = "environment_prefilter";
 // Writes both from `source`, a latlong radiance texture with its full mip chain, read through
 // target.sampler. Two compute passes: environment_prefilter (one dispatch per level) and
 // environment_irradiance.
-void addEnvironmentPrefilterPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, gpu::ImageHandle source,
-                                   const EnvironmentLighting& target);
+// Returns `target` as the passes leave it.
+EnvironmentLighting addEnvironmentPrefilterPasses(gpu::FrameGraph& graph, gpu::ImageHandle source,
+                                                  const EnvironmentLighting& target);
 
 }  // namespace obscura::passes

@@ -73,20 +73,13 @@ Variant variantOf(const Draw& draw, bool velocityTarget) {
 
 }  // namespace
 
-GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                       const gpu::ImagePtr& bestFitNormals, VkSampleCountFlagBits samples, bool alphaToCoverage) {
+GBuffer addGBufferPass(gpu::FrameGraph& graph, const FrameScene& scene, const gpu::ImagePtr& bestFitNormals,
+                       VkSampleCountFlagBits samples, bool alphaToCoverage) {
     GBuffer gb = createGBufferImages(graph, scene, samples, "gbuffer");
-    gpu::Device& device = pipelines.device();
-    auto pipelineOf = [&pipelines, samples](Variant variant) -> const gpu::Pipeline& {
-        return pipelines.get<gpu::GraphicsPipelineDesc>(
-            std::string(pipelineName(variant)) + "." + std::to_string(samples),
-            [variant, samples] { return describeGBufferPipeline(variant, samples); });
-    };
     // Moving geometry is drawn last (seed 000 "An improved reconstruction filter (3)"), so static
     // surfaces never cover a velocity a moving one wrote; draws are grouped by pipeline.
     struct Ordered {
         Variant variant;
-        const gpu::Pipeline* pipeline;
         const Draw* draw;
     };
     std::vector<Ordered> ordered;
@@ -94,23 +87,33 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const F
                             Variant::Moving, Variant::Deforming})
         for (const Draw& draw : scene.draws)
             // Transparent surfaces are drawn after lighting (passes/transparent.h).
-            if (!draw.transparent && variantOf(draw, scene.motionBlur) == variant)
-                ordered.push_back({variant, &pipelineOf(variant), &draw});
+            if (!draw.transparent && variantOf(draw, scene.motionBlur) == variant) ordered.push_back({variant, &draw});
 
     graph.addPass(
         "gbuffer", gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {
-            pass.depthStencilAttachment(gb.depth, VkClearDepthStencilValue{1.0f, 0});
-            pass.colorAttachment(gb.normalRoughness, VkClearColorValue{{0.5f, 0.5f, 1.0f, 1.0f}});
-            pass.colorAttachment(gb.albedoMetallic, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
-            pass.colorAttachment(gb.instance, VkClearColorValue{.uint32 = {0, 0, 0, 0}});
-            if (gb.velocity.valid()) pass.colorAttachment(gb.velocity, VkClearColorValue{{kStaticVelocity, 0.0f, 0.0f, 0.0f}});
+            gb.depth = pass.depthStencilAttachment(gb.depth, VkClearDepthStencilValue{1.0f, 0});
+            gb.normalRoughness = pass.colorAttachment(gb.normalRoughness, VkClearColorValue{{0.5f, 0.5f, 1.0f, 1.0f}});
+            gb.albedoMetallic = pass.colorAttachment(gb.albedoMetallic, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
+            gb.instance = pass.colorAttachment(gb.instance, VkClearColorValue{.uint32 = {0, 0, 0, 0}});
+            if (gb.velocity.valid())
+                gb.velocity =
+                    pass.colorAttachment(gb.velocity, VkClearColorValue{{kStaticVelocity, 0.0f, 0.0f, 0.0f}});
         },
-        [&device, ordered, &scene, bestFitNormals, samples, alphaToCoverage](VkCommandBuffer cmd,
-                                                                              const gpu::PassResources&) {
+        [ordered, &scene, bestFitNormals, samples, alphaToCoverage](VkCommandBuffer cmd, const gpu::PassResources& res) {
+            gpu::Device& device = res.device();
             const gpu::Pipeline* bound = nullptr;
+            Variant boundVariant = Variant::Static;
             const MaterialTextures* pushed = nullptr;
-            for (auto [variant, pipeline, draw] : ordered) {
+            for (auto [variant, draw] : ordered) {
+                // Draws come grouped by variant: the pipeline changes only between groups.
+                const gpu::Pipeline* pipeline = bound;
+                if (!bound || variant != boundVariant) {
+                    pipeline = &res.pipelines().get<gpu::GraphicsPipelineDesc>(
+                        std::string(pipelineName(variant)) + "." + std::to_string(samples),
+                        [variant, samples] { return describeGBufferPipeline(variant, samples); });
+                    boundVariant = variant;
+                }
                 if (pipeline != bound) {
                     gpu::DescriptorWriter writer(device, *pipeline);
                     writer.buffer(0, scene.camera->buffer)

@@ -4,7 +4,6 @@
 #include "gpu/frame_graph.h"
 #include "passes/frame_resources.h"
 #include "passes/frame_scene.h"
-#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 
@@ -14,7 +13,7 @@ namespace obscura::passes {
 // Cut-out materials (opacityThreshold) cover the samples their opacity passes at each sample's
 // position (alpha-test supersampling), or with `alphaToCoverage` the fraction of the samples their
 // opacity gives (seed 000 "Deferred MSAA \ alpha test SSAA", "performance shortcuts (3)").
-GBuffer addGBufferPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+GBuffer addGBufferPass(gpu::FrameGraph& graph, const FrameScene& scene,
                        const gpu::ImagePtr& bestFitNormals, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT,
                        bool alphaToCoverage = false);
 

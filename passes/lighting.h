@@ -3,7 +3,6 @@
 #pragma once
 
 #include "passes/frame_resources.h"
-#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 
@@ -24,7 +23,7 @@ struct PerSampleLighting {
 // filtered per pixel for each light with shadow views (FrameScene::shadows). `environment` holds
 // the textured dome's prefiltered maps (environment_prefilter.h; placeholders when the scene has
 // none).
-gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, const FrameScene& scene,
                                  const GBuffer& gbuffer, const SsaoResult& ambient, gpu::ImageHandle shadowAtlas,
                                  const EnvironmentLighting& environment,
                                  LightAccumulation accumulation = LightAccumulation::SmallFloat,

@@ -1,6 +1,6 @@
 #include "passes/motion_blur.h"
 
-#include "passes/image_compute_pass.h"
+#include "passes/shader_pass.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -31,51 +31,49 @@ float motionBlurMaxRadius(uint32_t width, uint32_t height) {
     return std::max(kMotionBlurTileSize, 0.25f * float(std::max(width, height)));
 }
 
-gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                     const GBuffer& gbuffer, gpu::ImageHandle hdrColor, int samples) {
+gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, const FrameScene& scene, const GBuffer& gbuffer,
+                                     gpu::ImageHandle hdrColor, int samples) {
     if (samples < kMinMotionBlurSamples || samples > kMaxMotionBlurSamples)
         throw std::invalid_argument("motion blur: samples out of range");
     if (!gbuffer.velocity.valid()) throw std::invalid_argument("motion blur: the G-buffer has no velocity target");
     uint32_t tilesWide = (scene.width + kTileSize - 1) / kTileSize, tilesHigh = (scene.height + kTileSize - 1) / kTileSize;
     MotionBlurConstants constants{motionBlurMaxRadius(scene.width, scene.height), 1.0f, samples, kSoftDepthFraction};
 
-    gpu::ImageHandle tileMax = graph.createImage("motionBlurTileMax", chainImage(kTileVelocityFormat, tilesWide, tilesHigh));
+    gpu::ImageHandle tileMax = graph.createImage("motionBlurTileMax", imageDesc2D(kTileVelocityFormat, tilesWide, tilesHigh));
     gpu::ImageHandle speedDepth =
-        graph.createImage("motionBlurSpeedDepth", chainImage(kSpeedDepthFormat, scene.width, scene.height));
-    ImageComputePass tiles{"motion_blur_tile_max",
-                           {{gbuffer.velocity, SampledRead::Nearest}, {gbuffer.depth, SampledRead::Depth}},
-                           {tileMax, speedDepth},
-                           pushConstantBytes(constants)};
-    tiles.camera = scene.camera->buffer;
+        graph.createImage("motionBlurSpeedDepth", imageDesc2D(kSpeedDepthFormat, scene.width, scene.height));
+    ComputePass tiles{"motion_blur_tile_max",
+                      {sampled(gbuffer.velocity), sampled(gbuffer.depth), storageWrite(tileMax),
+                       storageWrite(speedDepth), sceneBuffer(scene.camera->buffer)},
+                      pushConstantBytes(constants)};
     tiles.texelsPerGroup = 1;
-    addImageComputePass(graph, pipelines, tiles);
+    std::vector<gpu::ImageHandle> tiled = addComputePass(graph, tiles).images;
+    tileMax = tiled[0];
+    speedDepth = tiled[1];
 
     gpu::ImageHandle neighbourMax =
-        graph.createImage("motionBlurNeighbourMax", chainImage(kTileVelocityFormat, tilesWide, tilesHigh));
-    addImageComputePass(graph, pipelines,
-                        {"motion_blur_neighbour_max", {{tileMax, SampledRead::Nearest}}, {neighbourMax},
-                         pushConstantBytes(constants)});
+        graph.createImage("motionBlurNeighbourMax", imageDesc2D(kTileVelocityFormat, tilesWide, tilesHigh));
+    neighbourMax = addComputePass(graph, {"motion_blur_neighbour_max", {sampled(tileMax), storageWrite(neighbourMax)},
+                                          pushConstantBytes(constants)})
+                       .images[0];
 
     // Separable [Sousa08]: the first pass covers one tap spacing of the second.
     VkFormat format = graph.imageDesc(hdrColor).format;
     auto gather = [&](gpu::ImageHandle input, const char* name, float spanScale, const char* label) {
-        gpu::ImageHandle result = graph.createImage(name, chainImage(format, scene.width, scene.height));
+        gpu::ImageHandle result = graph.createImage(name, imageDesc2D(format, scene.width, scene.height));
         MotionBlurConstants pass = constants;
         pass.spanScale = spanScale;
-        ImageComputePass desc{"motion_blur_gather",
-                              {{input, SampledRead::Nearest},
-                               {speedDepth, SampledRead::Nearest},
-                               {neighbourMax, SampledRead::Nearest}},
-                              {result},
-                              pushConstantBytes(pass)};
-        desc.label = label;
-        addImageComputePass(graph, pipelines, desc);
-        return result;
+        return addComputePass(graph, {"motion_blur_gather",
+                                      {sampled(input), sampled(speedDepth), sampled(neighbourMax), storageWrite(result)},
+                                      pushConstantBytes(pass),
+                                      {},
+                                      8,
+                                      label})
+            .images[0];
     };
     gpu::ImageHandle prefiltered =
         gather(hdrColor, "motionBlurPrefiltered", 1.0f / float(samples), "motion_blur_gather_fine");
-    gpu::ImageHandle output = gather(prefiltered, "motionBlurColor", 1.0f, "motion_blur_gather_coarse");
-    return output;
+    return gather(prefiltered, "motionBlurColor", 1.0f, "motion_blur_gather_coarse");
 }
 
 }  // namespace obscura::passes

@@ -12,7 +12,6 @@
 
 #include "passes/frame_scene.h"
 #include "passes/frame_resources.h"
-#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 
@@ -29,7 +28,7 @@ float motionBlurMaxRadius(uint32_t width, uint32_t height);
 
 // Reads the light accumulation (pre-exposed, either format of lighting.h), the G-buffer's depth
 // and velocity (FrameScene::motionBlur); returns a new image of the same format.
-gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, const FrameScene& scene,
                                      const GBuffer& gbuffer, gpu::ImageHandle hdrColor, int samples);
 
 }  // namespace obscura::passes

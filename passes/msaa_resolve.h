@@ -5,7 +5,6 @@
 #pragma once
 
 #include "passes/frame_resources.h"
-#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 
@@ -25,7 +24,6 @@ struct MsaaResolve {
 
 // `multisampled` comes from addGBufferPass with more than one sample (its velocity target, if
 // any, is resolved too).
-MsaaResolve addMsaaResolvePass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                               const GBuffer& multisampled);
+MsaaResolve addMsaaResolvePass(gpu::FrameGraph& graph, const FrameScene& scene, const GBuffer& multisampled);
 
 }  // namespace obscura::passes

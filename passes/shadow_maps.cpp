@@ -107,7 +107,7 @@ void clearTiles(VkCommandBuffer cmd, const FrameScene& scene, const std::vector<
 
 }  // namespace
 
-gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, gpu::Device& device, const FrameScene& scene,
                                   ShadowAtlasHistory* history) {
     gpu::ImageDesc desc;
     desc.format = kShadowAtlasFormat;
@@ -123,7 +123,7 @@ gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, PipelineCache& pipelin
     } else {
         desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
         if (!history->atlas || !(history->atlas->desc == desc)) {
-            history->atlas = pipelines.device().createImage(desc, "shadow atlas");
+            history->atlas = device.createImage(desc, "shadow atlas");
             history->layout = VK_IMAGE_LAYOUT_UNDEFINED;
         }
         // A new atlas holds nothing yet: every view is rendered, over a cleared image.
@@ -141,22 +141,20 @@ gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, PipelineCache& pipelin
         // Nothing changed: the kept atlas is read as it is, and no pass runs.
         if (!wholeAtlas && views.empty()) return atlas;
     }
-    const gpu::Pipeline& opaque = pipelines.get<gpu::GraphicsPipelineDesc>(
-        "shadow_depth", [] { return describeShadowDepthPipeline(false); });
-    const gpu::Pipeline& cutout = pipelines.get<gpu::GraphicsPipelineDesc>(
-        "shadow_depth_cutout", [] { return describeShadowDepthPipeline(true); });
-    gpu::Device& device = pipelines.device();
-
     // An empty view list leaves the atlas cleared to the far depth: nothing casts.
     std::optional<VkClearDepthStencilValue> clear;
     if (wholeAtlas) clear = VkClearDepthStencilValue{1.0f, 0};
     graph.addPass(
         "shadow_maps", gpu::PassKind::Raster,
-        [&](gpu::FrameGraph::PassBuilder& pass) { pass.depthStencilAttachment(atlas, clear); },
-        [&device, &opaque, &cutout, &scene, views, wholeAtlas](VkCommandBuffer cmd, const gpu::PassResources&) {
+        [&](gpu::FrameGraph::PassBuilder& pass) { atlas = pass.depthStencilAttachment(atlas, clear); },
+        [&scene, views, wholeAtlas](VkCommandBuffer cmd, const gpu::PassResources& res) {
             if (!wholeAtlas) clearTiles(cmd, scene, views);
-            recordViews(device, cmd, opaque, scene, views, false);
-            recordViews(device, cmd, cutout, scene, views, true);
+            const gpu::Pipeline& opaque = res.pipelines().get<gpu::GraphicsPipelineDesc>(
+                "shadow_depth", [] { return describeShadowDepthPipeline(false); });
+            const gpu::Pipeline& cutout = res.pipelines().get<gpu::GraphicsPipelineDesc>(
+                "shadow_depth_cutout", [] { return describeShadowDepthPipeline(true); });
+            recordViews(res.device(), cmd, opaque, scene, views, false);
+            recordViews(res.device(), cmd, cutout, scene, views, true);
         });
     return atlas;
 }

@@ -5,7 +5,6 @@
 
 #include "gpu/frame_graph.h"
 #include "passes/frame_scene.h"
-#include "passes/pipeline_cache.h"
 
 #include <cstdint>
 #include <vector>
@@ -30,7 +29,7 @@ struct ShadowAtlasHistory {
 // Returns the atlas, written as a depth attachment; read it with Usage::SampledCompute. With a
 // history, only views whose key changed are rendered (into the kept atlas); without one (reference
 // sub-frames, whose lights move every sub-frame) every view is.
-gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, gpu::Device& device, const FrameScene& scene,
                                   ShadowAtlasHistory* history = nullptr);
 // After graph.compile(): the layout this frame leaves the kept atlas in.
 void keepShadowAtlasHistory(const gpu::FrameGraph& graph, ShadowAtlasHistory& history);

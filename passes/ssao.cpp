@@ -1,6 +1,7 @@
 #include "passes/ssao.h"
 
 #include "pass_support/ssao_pattern.h"
+#include "passes/shader_pass.h"
 
 #include <cmath>
 
@@ -45,124 +46,50 @@ struct HalfResolutionGeometry {
 };
 
 // Full-resolution depth and normals to one texel per 2x2 pixels (shaders/ssao_downsample.comp).
-HalfResolutionGeometry addDownsamplePass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                         const GBuffer& gb) {
-    HalfResolutionGeometry half{graph.createImage("ssaoHalfDepth", halfResolution(scene, kSsaoDepthFormat)),
-                                graph.createImage("ssaoHalfNormal", halfResolution(scene, kSsaoNormalFormat))};
-    const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("ssao_downsample", [] {
-        return gpu::ComputePipelineDesc{"ssao_downsample.comp",
-                                        {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                                         {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
-                                        0};
-    });
-    gpu::Device& device = pipelines.device();
-    graph.addPass(
-        "ssao_downsample", gpu::PassKind::Compute,
-        [&](gpu::FrameGraph::PassBuilder& pass) {
-            pass.read(gb.depth, gpu::Usage::SampledCompute);
-            pass.read(gb.normalRoughness, gpu::Usage::SampledCompute);
-            pass.write(half.depth, gpu::Usage::StorageImageWrite);
-            pass.write(half.normal, gpu::Usage::StorageImageWrite);
-        },
-        [&device, &pipeline, &scene, gb, half](VkCommandBuffer cmd, const gpu::PassResources& res) {
-            VkSampler nearest = device.nearestClampSampler();
-            gpu::DescriptorWriter(device, pipeline)
-                .buffer(0, scene.camera->buffer)
-                .sampled(1, res.view(gb.depth), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
-                .sampled(2, res.view(gb.normalRoughness), nearest)
-                .storageImage(3, res.view(half.depth))
-                .storageImage(4, res.view(half.normal))
-                .bind(cmd);
-            const gpu::ImageDesc& size = res.desc(half.depth);
-            gpu::dispatch2D(cmd, size.width, size.height);
-        });
-    return half;
+HalfResolutionGeometry addDownsamplePass(gpu::FrameGraph& graph, const FrameScene& scene, const GBuffer& gb) {
+    std::vector<gpu::ImageHandle> half =
+        addComputePass(graph, {"ssao_downsample",
+                               {sceneBuffer(scene.camera->buffer), sampled(gb.depth), sampled(gb.normalRoughness),
+                                storageWrite(graph.createImage("ssaoHalfDepth", halfResolution(scene, kSsaoDepthFormat))),
+                                storageWrite(graph.createImage("ssaoHalfNormal",
+                                                               halfResolution(scene, kSsaoNormalFormat)))}})
+            .images;
+    return {half[0], half[1]};
 }
 
 // Volumetric obscurance with 4 samples per half-resolution pixel (shaders/ssao_obscurance.comp).
-gpu::ImageHandle addObscurancePass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                   const HalfResolutionGeometry& half, const SsaoSettings& settings,
-                                   uint64_t frame) {
-    gpu::ImageHandle accessibility =
-        graph.createImage("ssaoNoisy", halfResolution(scene, kSsaoAccessibilityFormat));
-    const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("ssao_obscurance", [] {
-        return gpu::ComputePipelineDesc{"ssao_obscurance.comp",
-                                        {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
-                                        sizeof(ObscurancePush)};
-    });
+gpu::ImageHandle addObscurancePass(gpu::FrameGraph& graph, const FrameScene& scene, const HalfResolutionGeometry& half,
+                                   const SsaoSettings& settings, uint64_t frame) {
     static const auto kPattern = packSsaoSamplePattern(ssaoSamplePattern());
     // The golden angle turns each frame's pattern away from all earlier ones.
     const double turn = 2.39996322972865332 * double(frame % 1024);
     ObscurancePush push{kPattern, settings.radius, settings.intensity,
                         {float(std::cos(turn)), float(std::sin(turn))}};
-    gpu::Device& device = pipelines.device();
-    graph.addPass(
-        "ssao_obscurance", gpu::PassKind::Compute,
-        [&](gpu::FrameGraph::PassBuilder& pass) {
-            pass.read(half.depth, gpu::Usage::SampledCompute);
-            pass.read(half.normal, gpu::Usage::SampledCompute);
-            pass.write(accessibility, gpu::Usage::StorageImageWrite);
-        },
-        [&device, &pipeline, &scene, half, accessibility, push](VkCommandBuffer cmd, const gpu::PassResources& res) {
-            VkSampler nearest = device.nearestClampSampler();
-            gpu::DescriptorWriter(device, pipeline)
-                .buffer(0, scene.camera->buffer)
-                .sampled(1, res.view(half.depth), nearest)
-                .sampled(2, res.view(half.normal), nearest)
-                .storageImage(3, res.view(accessibility))
-                .bind(cmd);
-            vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-            const gpu::ImageDesc& size = res.desc(accessibility);
-            gpu::dispatch2D(cmd, size.width, size.height);
-        });
-    return accessibility;
+    gpu::ImageHandle accessibility = graph.createImage("ssaoNoisy", halfResolution(scene, kSsaoAccessibilityFormat));
+    return addComputePass(graph, {"ssao_obscurance",
+                                  {sceneBuffer(scene.camera->buffer), sampled(half.depth), sampled(half.normal),
+                                   storageWrite(accessibility)},
+                                  pushConstantBytes(push)})
+        .images[0];
 }
 
 // One axis of the separable bilateral blur (shaders/ssao_blur.comp).
-gpu::ImageHandle addBlurPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                             const std::string& name, gpu::ImageHandle input, gpu::ImageHandle halfDepth,
-                             BlurPush push) {
+gpu::ImageHandle addBlurPass(gpu::FrameGraph& graph, const FrameScene& scene, const std::string& name,
+                             gpu::ImageHandle input, gpu::ImageHandle halfDepth, BlurPush push) {
     gpu::ImageHandle output = graph.createImage(name, halfResolution(scene, kSsaoAccessibilityFormat));
-    const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("ssao_blur", [] {
-        return gpu::ComputePipelineDesc{"ssao_blur.comp",
-                                        {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
-                                        sizeof(BlurPush)};
-    });
-    gpu::Device& device = pipelines.device();
-    graph.addPass(
-        name, gpu::PassKind::Compute,
-        [&](gpu::FrameGraph::PassBuilder& pass) {
-            pass.read(input, gpu::Usage::SampledCompute);
-            pass.read(halfDepth, gpu::Usage::SampledCompute);
-            pass.write(output, gpu::Usage::StorageImageWrite);
-        },
-        [&device, &pipeline, input, halfDepth, output, push](VkCommandBuffer cmd, const gpu::PassResources& res) {
-            VkSampler nearest = device.nearestClampSampler();
-            gpu::DescriptorWriter(device, pipeline)
-                .sampled(0, res.view(input), nearest)
-                .sampled(1, res.view(halfDepth), nearest)
-                .storageImage(2, res.view(output))
-                .bind(cmd);
-            vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-            const gpu::ImageDesc& size = res.desc(output);
-            gpu::dispatch2D(cmd, size.width, size.height);
-        });
-    return output;
+    return addComputePass(graph, {"ssao_blur",
+                                  {sampled(input), sampled(halfDepth), storageWrite(output)},
+                                  pushConstantBytes(push),
+                                  {},
+                                  8,
+                                  name})
+        .images[0];
 }
 
 // Temporal accumulation with reprojection (shaders/ssao_temporal.comp): writes this frame's history
 // images from the noisy obscurance and last frame's; returns the accumulated accessibility.
-gpu::ImageHandle addTemporalPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+gpu::ImageHandle addTemporalPass(gpu::FrameGraph& graph, gpu::Device& device, const FrameScene& scene,
                                  const HalfResolutionGeometry& half, gpu::ImageHandle noisy, SsaoHistory& history) {
-    gpu::Device& device = pipelines.device();
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     gpu::ImageDesc accessibilityDesc = halfResolution(scene, kSsaoHistoryFormat);
     gpu::ImageDesc depthDesc = halfResolution(scene, kSsaoDepthFormat);
@@ -174,65 +101,25 @@ gpu::ImageHandle addTemporalPass(gpu::FrameGraph& graph, PipelineCache& pipeline
     gpu::HistoryImages::Imported depth = history.depth.import(graph, "ssaoHistoryDepth");
     TemporalPush push{history.viewToPreviousView, float(kSsaoHistoryFrames),
                       history.valid && accessibility.previousWritten ? 1u : 0u};
-    gpu::ImageHandle previous = accessibility.previous, previousDepth = depth.previous;
     ++history.frame;
-
-    const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("ssao_temporal", [] {
-        return gpu::ComputePipelineDesc{"ssao_temporal.comp",
-                                        {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                                         {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
-                                        sizeof(TemporalPush)};
-    });
-    gpu::ImageHandle out = accessibility.current, outDepth = depth.current;
-    graph.addPass(
-        "ssao_temporal", gpu::PassKind::Compute,
-        [&](gpu::FrameGraph::PassBuilder& pass) {
-            pass.read(noisy, gpu::Usage::SampledCompute);
-            pass.read(half.depth, gpu::Usage::SampledCompute);
-            pass.read(half.normal, gpu::Usage::SampledCompute);
-            pass.read(previous, gpu::Usage::SampledCompute);
-            pass.read(previousDepth, gpu::Usage::SampledCompute);
-            pass.write(out, gpu::Usage::StorageImageWrite);
-            pass.write(outDepth, gpu::Usage::StorageImageWrite);
-        },
-        [&device, &pipeline, &scene, half, noisy, previous, previousDepth, out, outDepth,
-         push](VkCommandBuffer cmd, const gpu::PassResources& res) {
-            VkSampler nearest = device.nearestClampSampler();
-            gpu::DescriptorWriter(device, pipeline)
-                .buffer(0, scene.camera->buffer)
-                .sampled(1, res.view(noisy), nearest)
-                .sampled(2, res.view(half.depth), nearest)
-                .sampled(3, res.view(half.normal), nearest)
-                .sampled(4, res.view(previous), nearest)
-                .sampled(5, res.view(previousDepth), nearest)
-                .storageImage(6, res.view(out))
-                .storageImage(7, res.view(outDepth))
-                .bind(cmd);
-            vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-            const gpu::ImageDesc& size = res.desc(out);
-            gpu::dispatch2D(cmd, size.width, size.height);
-        });
-    return out;
+    return addComputePass(graph, {"ssao_temporal",
+                                  {sceneBuffer(scene.camera->buffer), sampled(noisy), sampled(half.depth),
+                                   sampled(half.normal), sampled(accessibility.previous), sampled(depth.previous),
+                                   storageWrite(accessibility.current), storageWrite(depth.current)},
+                                  pushConstantBytes(push)})
+        .images[0];
 }
 
 }  // namespace
 
-SsaoResult addSsaoPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                         const GBuffer& gbuffer, const SsaoSettings& settings, SsaoHistory& history) {
-    HalfResolutionGeometry half = addDownsamplePass(graph, pipelines, scene, gbuffer);
-    gpu::ImageHandle noisy = addObscurancePass(graph, pipelines, scene, half, settings, history.frame);
+SsaoResult addSsaoPasses(gpu::FrameGraph& graph, gpu::Device& device, const FrameScene& scene, const GBuffer& gbuffer,
+                         const SsaoSettings& settings, SsaoHistory& history) {
+    HalfResolutionGeometry half = addDownsamplePass(graph, scene, gbuffer);
+    gpu::ImageHandle noisy = addObscurancePass(graph, scene, half, settings, history.frame);
     SsaoResult result;
-    gpu::ImageHandle accumulated = addTemporalPass(graph, pipelines, scene, half, noisy, history);
-    gpu::ImageHandle horizontal =
-        addBlurPass(graph, pipelines, scene, "ssao_blur_horizontal", accumulated, half.depth, {{1, 0}});
-    result.accessibility =
-        addBlurPass(graph, pipelines, scene, "ssao_blur_vertical", horizontal, half.depth, {{0, 1}});
+    gpu::ImageHandle accumulated = addTemporalPass(graph, device, scene, half, noisy, history);
+    gpu::ImageHandle horizontal = addBlurPass(graph, scene, "ssao_blur_horizontal", accumulated, half.depth, {{1, 0}});
+    result.accessibility = addBlurPass(graph, scene, "ssao_blur_vertical", horizontal, half.depth, {{0, 1}});
     result.halfDepth = half.depth;
     return result;
 }

@@ -7,7 +7,6 @@
 #include "gpu/history_images.h"
 #include "passes/frame_resources.h"
 #include "passes/frame_scene.h"
-#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 
@@ -31,7 +30,7 @@ struct SsaoHistory {
     uint64_t frame = 0;      // turns the sample pattern
 };
 
-SsaoResult addSsaoPasses(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+SsaoResult addSsaoPasses(gpu::FrameGraph& graph, gpu::Device& device, const FrameScene& scene,
                          const GBuffer& gbuffer, const SsaoSettings& settings, SsaoHistory& history);
 
 // After the graph is compiled: records the layouts this frame leaves the history images in.

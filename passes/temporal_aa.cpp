@@ -1,6 +1,6 @@
 #include "passes/temporal_aa.h"
 
-#include "passes/image_compute_pass.h"
+#include "passes/shader_pass.h"
 
 #include <cmath>
 #include <cstring>
@@ -51,11 +51,10 @@ std::array<double, 2> temporalAaJitter(TemporalAaMode mode, uint32_t index, uint
     return {centredRotation(radicalInverse(i, 2)), centredRotation(radicalInverse(i, 3))};
 }
 
-gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, gpu::Device& device, const FrameScene& scene,
                                    const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
                                    gpu::ImageHandle transparentCoverage, const TemporalAaSettings& settings,
                                    const TemporalAaFrame& frame, TemporalAaHistory& history) {
-    gpu::Device& device = pipelines.device();
     gpu::ImageDesc colorDesc;
     colorDesc.format = kTemporalAaColorFormat;
     colorDesc.width = scene.width;
@@ -88,77 +87,30 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
     const bool twoFrame = settings.mode == TemporalAaMode::Smaa2tx;
     const bool still = !twoFrame && constants.frames[0] != 0 && frame.unchanged;
     const char* variant = twoFrame ? "temporal_aa_2tx" : still ? "temporal_aa_still" : "temporal_aa";
-    gpu::ImageHandle resolved = color.current;
+    ShaderBinding resolved = unbound();
     if (twoFrame) {
         gpu::ImageDesc resolvedDesc = colorDesc;
         resolvedDesc.usage = 0;
-        resolved = graph.createImage("temporalAaResolved", resolvedDesc);
+        resolved = storageWrite(graph.createImage("temporalAaResolved", resolvedDesc));
     }
-    std::vector<gpu::BindingDesc> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                              {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                              {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                              {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                              {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                              {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                              {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                                              {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                                              {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                              {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                              {11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                              {12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
-    if (twoFrame) bindings.push_back({8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
-    const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>(
-        variant, [&] { return gpu::ComputePipelineDesc{std::string(variant) + ".comp", bindings, 0}; });
-    graph.addPass(
-        variant, gpu::PassKind::Compute,
-        [&](gpu::FrameGraph::PassBuilder& pass) {
-            pass.read(hdrColor, gpu::Usage::SampledCompute);
-            pass.read(gbuffer.depth, gpu::Usage::SampledCompute);
-            pass.read(transparentCoverage, gpu::Usage::SampledCompute);
-            pass.read(gbuffer.instance, gpu::Usage::SampledCompute);
-            pass.read(color.previous, gpu::Usage::SampledCompute);
-            pass.read(depth.previous, gpu::Usage::SampledCompute);
-            pass.write(color.current, gpu::Usage::StorageImageWrite);
-            pass.write(depth.current, gpu::Usage::StorageImageWrite);
-            if (twoFrame) pass.write(resolved, gpu::Usage::StorageImageWrite);
-        },
-        [&device, &pipeline, &scene, gbuffer, hdrColor, transparentCoverage, color, depth, resolved, twoFrame,
-         constantBuffer](VkCommandBuffer cmd, const gpu::PassResources& res) {
-            VkSampler nearest = device.nearestClampSampler();
-            gpu::DescriptorWriter writer(device, pipeline);
-            writer.buffer(0, scene.camera->buffer)
-                .buffer(1, constantBuffer->buffer)
-                .sampled(2, res.view(hdrColor), nearest)
-                .sampled(3, res.view(gbuffer.depth), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
-                .sampled(4, res.view(color.previous), nearest)
-                .sampled(5, res.view(depth.previous), nearest)
-                .storageImage(6, res.view(color.current))
-                .storageImage(7, res.view(depth.current))
-                .sampled(9, res.view(transparentCoverage), nearest)
-                .sampled(10, res.view(gbuffer.instance), nearest)
-                .buffer(11, scene.instances->buffer)
-                .buffer(12, scene.instanceReprojections->buffer);
-            if (twoFrame) writer.storageImage(8, res.view(resolved));
-            writer.bind(cmd);
-            gpu::dispatch2D(cmd, scene.width, scene.height);
-        });
-    return resolved;
+    ComputeOutputs written = addComputePass(
+        graph, {variant,
+                {sceneBuffer(scene.camera->buffer), bufferRead(graph.importBuffer("temporalAaConstants", constantBuffer)),
+                 sampled(hdrColor), sampled(gbuffer.depth), sampled(color.previous), sampled(depth.previous),
+                 storageWrite(color.current), storageWrite(depth.current), resolved, sampled(transparentCoverage),
+                 sampled(gbuffer.instance), sceneBuffer(scene.instances->buffer),
+                 sceneBuffer(scene.instanceReprojections->buffer)}});
+    return written.images[twoFrame ? 2 : 0];
 }
 
-gpu::ImageHandle addTemporalAaSamplePass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                         const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
-                                         gpu::ImageHandle transparentCoverage) {
+gpu::ImageHandle addTemporalAaSamplePass(gpu::FrameGraph& graph, const FrameScene& scene, const GBuffer& gbuffer,
+                                         gpu::ImageHandle hdrColor, gpu::ImageHandle transparentCoverage) {
     gpu::ImageHandle sample =
-        graph.createImage("temporalAaSample", chainImage(kTemporalAaColorFormat, scene.width, scene.height));
-    ImageComputePass pass{"temporal_aa_sample",
-                          {{hdrColor, SampledRead::Nearest},
-                           {gbuffer.depth, SampledRead::Depth},
-                           {transparentCoverage, SampledRead::Nearest}},
-                          {sample},
-                          {}};
-    pass.camera = scene.camera->buffer;
-    addImageComputePass(graph, pipelines, pass);
-    return sample;
+        graph.createImage("temporalAaSample", imageDesc2D(kTemporalAaColorFormat, scene.width, scene.height));
+    return addComputePass(graph, {"temporal_aa_sample",
+                                  {sampled(hdrColor), sampled(gbuffer.depth), sampled(transparentCoverage),
+                                   storageWrite(sample), sceneBuffer(scene.camera->buffer)}})
+        .images[0];
 }
 
 void keepTemporalAaHistory(const gpu::FrameGraph& graph, TemporalAaHistory& history) {

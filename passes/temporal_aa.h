@@ -8,7 +8,6 @@
 
 #include "gpu/history_images.h"
 #include "passes/frame_resources.h"
-#include "passes/pipeline_cache.h"
 
 #include <array>
 #include <cstdint>
@@ -83,7 +82,7 @@ struct TemporalAaHistory {
 // Returns the anti-aliased HDR colour (kTemporalAaColorFormat, coverage in alpha; in 1TX the
 // history written this frame itself). `hdrColor` is the light accumulation, rendered with the
 // jittered projection.
-gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, gpu::Device& device, const FrameScene& scene,
                                    const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
                                    gpu::ImageHandle transparentCoverage, const TemporalAaSettings& settings,
                                    const TemporalAaFrame& frame, TemporalAaHistory& history);
@@ -91,7 +90,7 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, PipelineCache& pipeli
 // This frame's colour as temporal AA accumulates it, for passes that run on a sample before the
 // mean (motion blur over a still's stratum of the shutter): the light accumulation with the
 // frame's coverage in alpha, kTemporalAaColorFormat.
-gpu::ImageHandle addTemporalAaSamplePass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+gpu::ImageHandle addTemporalAaSamplePass(gpu::FrameGraph& graph, const FrameScene& scene,
                                          const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
                                          gpu::ImageHandle transparentCoverage);
 

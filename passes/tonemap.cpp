@@ -1,5 +1,7 @@
 #include "passes/tonemap.h"
 
+#include "passes/shader_pass.h"
+
 namespace obscura::passes {
 
 namespace {
@@ -14,49 +16,20 @@ struct TonemapPush {
 };
 }  // namespace
 
-gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                gpu::ImageHandle hdrColor, HdrAlpha hdrAlpha, gpu::ImageHandle coverage,
-                                gpu::ImageHandle transparentCoverage, const ColorGradingLut& grading) {
-    gpu::ImageDesc desc;
-    desc.format = kDisplayFormat;
-    desc.width = scene.width;
-    desc.height = scene.height;
-    gpu::ImageHandle display = graph.createImage("display", desc);
-    const gpu::Pipeline& pipeline = pipelines.get<gpu::ComputePipelineDesc>("tonemap", [] {
-        return gpu::ComputePipelineDesc{"tonemap.comp",
-                                        {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                                         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                                         {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
-                                        sizeof(TonemapPush)};
-    });
-    gpu::Device& device = pipelines.device();
-    graph.addPass(
-        "tonemap", gpu::PassKind::Compute,
-        [&](gpu::FrameGraph::PassBuilder& pass) {
-            pass.read(hdrColor, gpu::Usage::SampledCompute);
-            pass.read(coverage, gpu::Usage::SampledCompute);
-            pass.read(transparentCoverage, gpu::Usage::SampledCompute);
-            pass.write(display, gpu::Usage::StorageImageWrite);
-        },
-        [&device, &pipeline, &scene, &grading, hdrColor, hdrAlpha, coverage, transparentCoverage, display](
-            VkCommandBuffer cmd, const gpu::PassResources& res) {
-            gpu::DescriptorWriter(device, pipeline)
-                .sampled(0, res.view(hdrColor), device.nearestClampSampler())
-                .storageImage(1, res.view(display))
-                .sampled(2, res.view(coverage), device.nearestClampSampler())
-                .sampled(3, grading.texture()->view, device.linearClampSampler())
-                .sampled(4, res.view(transparentCoverage), device.nearestClampSampler())
-                .bind(cmd);
-            const ColorLut& lut = grading.lut();
-            TonemapPush push{lut.shaperMinStops, lut.shaperMaxStops - lut.shaperMinStops, kShaperMiddleGrey,
-                             float(lut.size), hdrAlpha == HdrAlpha::Coverage ? 1u : 0u,
-                             scene.cameraData.backdropCoverage};
-            vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-            gpu::dispatch2D(cmd, scene.width, scene.height);
-        });
-    return display;
+gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, const FrameScene& scene, gpu::ImageHandle hdrColor,
+                                HdrAlpha hdrAlpha, gpu::ImageHandle coverage, gpu::ImageHandle transparentCoverage,
+                                const ColorGradingLut& grading) {
+    gpu::ImageHandle display = graph.createImage("display", imageDesc2D(kDisplayFormat, scene.width, scene.height));
+    gpu::ImageHandle lut =
+        graph.importImage("displayLut", grading.texture(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    const ColorLut& shaper = grading.lut();
+    TonemapPush push{shaper.shaperMinStops, shaper.shaperMaxStops - shaper.shaperMinStops, kShaperMiddleGrey,
+                     float(shaper.size), hdrAlpha == HdrAlpha::Coverage ? 1u : 0u, scene.cameraData.backdropCoverage};
+    return addComputePass(graph, {"tonemap",
+                                  {sampled(hdrColor), storageWrite(display), sampled(coverage),
+                                   sampled(lut, SampledRead::Linear), sampled(transparentCoverage)},
+                                  pushConstantBytes(push)})
+        .images[0];
 }
 
 }  // namespace obscura::passes

@@ -32,37 +32,37 @@ gpu::GraphicsPipelineDesc describeTransparentPipeline(VkFormat hdrFormat) {
 
 }  // namespace
 
-gpu::ImageHandle addTransparentPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
-                                    const std::vector<uint32_t>& draws, gpu::ImageHandle opaqueDepth,
-                                    gpu::ImageHandle hdr, gpu::ImageHandle shadowAtlas,
-                                    const EnvironmentLighting& environment, const TransparentSettings& settings) {
+TransparentResult addTransparentPass(gpu::FrameGraph& graph, const FrameScene& scene,
+                                     const std::vector<uint32_t>& draws, gpu::ImageHandle opaqueDepth,
+                                     gpu::ImageHandle hdr, gpu::ImageHandle shadowAtlas,
+                                     const EnvironmentLighting& environment, const TransparentSettings& settings) {
     gpu::ImageDesc desc;
     desc.format = kTransparentCoverageFormat;
     desc.width = scene.width;
     desc.height = scene.height;
-    gpu::ImageHandle coverage = graph.createImage("transparentCoverage", desc);
+    TransparentResult result{hdr, graph.createImage("transparentCoverage", desc)};
     const bool anyDraws = !draws.empty();
-    VkFormat hdrFormat = graph.imageDesc(hdr).format;
-    const gpu::Pipeline& pipeline = pipelines.get<gpu::GraphicsPipelineDesc>(
-        hdrFormat == VK_FORMAT_R16G16B16A16_SFLOAT ? "transparent.halfFloat" : "transparent",
-        [hdrFormat] { return describeTransparentPipeline(hdrFormat); });
-    gpu::Device& device = pipelines.device();
+    const VkFormat hdrFormat = graph.imageDesc(hdr).format;
 
     graph.addPass(
         "transparent", gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {
             // Attachments in the pipeline's order; without draws only the coverage is cleared.
-            if (anyDraws) pass.colorAttachment(hdr);
-            pass.colorAttachment(coverage, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
+            if (anyDraws) result.hdr = pass.colorAttachment(hdr);
+            result.coverage = pass.colorAttachment(result.coverage, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
             if (!anyDraws) return;
             pass.read(opaqueDepth, gpu::Usage::SampledFragment);
             pass.read(shadowAtlas, gpu::Usage::SampledFragment);
             pass.read(environment.prefiltered, gpu::Usage::SampledFragment);
             pass.read(environment.irradiance, gpu::Usage::StorageBufferReadFragment);
         },
-        [&device, &pipeline, &scene, draws, opaqueDepth, shadowAtlas, environment, settings, anyDraws](
+        [&scene, draws, opaqueDepth, shadowAtlas, environment, settings, anyDraws, hdrFormat](
             VkCommandBuffer cmd, const gpu::PassResources& res) {
             if (!anyDraws) return;
+            gpu::Device& device = res.device();
+            const gpu::Pipeline& pipeline = res.pipelines().get<gpu::GraphicsPipelineDesc>(
+                hdrFormat == VK_FORMAT_R16G16B16A16_SFLOAT ? "transparent.halfFloat" : "transparent",
+                [hdrFormat] { return describeTransparentPipeline(hdrFormat); });
             VkSampler nearest = device.nearestClampSampler();
             gpu::DescriptorWriter(device, pipeline)
                 .buffer(0, scene.camera->buffer)
@@ -85,7 +85,7 @@ gpu::ImageHandle addTransparentPass(gpu::FrameGraph& graph, PipelineCache& pipel
                 recordMaterialDraw(device, cmd, pipeline, scene, draw, pushed, &push, sizeof(push));
             }
         });
-    return coverage;
+    return result;
 }
 
 }  // namespace obscura::passes

@@ -5,7 +5,6 @@
 #pragma once
 
 #include "passes/frame_resources.h"
-#include "passes/pipeline_cache.h"
 
 namespace obscura::passes {
 
@@ -26,7 +25,13 @@ struct TransparentSettings {
 // 000 "Deferred MSAA \ performance shortcuts (2)"). `hdr` is the light accumulation, blended
 // into in place. Returns the transparent coverage (kTransparentCoverageFormat; all 0 when there
 // are no draws: then the pass only clears it).
-gpu::ImageHandle addTransparentPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,
+// The frame's colour with the transparent surfaces over it, and their coverage.
+struct TransparentResult {
+    gpu::ImageHandle hdr;
+    gpu::ImageHandle coverage;  // kTransparentCoverageFormat
+};
+
+TransparentResult addTransparentPass(gpu::FrameGraph& graph, const FrameScene& scene,
                                     const std::vector<uint32_t>& draws, gpu::ImageHandle opaqueDepth,
                                     gpu::ImageHandle hdr, gpu::ImageHandle shadowAtlas,
                                     const EnvironmentLighting& environment, const TransparentSettings& settings);

@@ -15,8 +15,7 @@ EnvironmentCache::EnvironmentCache(gpu::Device& device, VkSampler sampler) : dev
                                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "no environment irradiance");
 }
 
-passes::EnvironmentLighting EnvironmentCache::addToFrame(gpu::FrameGraph& graph, passes::PipelineCache& pipelines,
-                                                         const gpu::ImagePtr& source) {
+passes::EnvironmentLighting EnvironmentCache::addToFrame(gpu::FrameGraph& graph, const gpu::ImagePtr& source) {
     pending_.reset();
     prefilteredHandle_ = {};
     if (!source) {
@@ -45,7 +44,7 @@ passes::EnvironmentLighting EnvironmentCache::addToFrame(gpu::FrameGraph& graph,
     if (source != source_) {
         gpu::ImageHandle texture =
             graph.importImage("environment.source", source, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-        passes::addEnvironmentPrefilterPasses(graph, pipelines, texture, lighting);
+        lighting = passes::addEnvironmentPrefilterPasses(graph, texture, lighting);
         pending_ = source;
     }
     return lighting;

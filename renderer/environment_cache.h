@@ -17,8 +17,7 @@ public:
     // Imports the frame's environment resources into `graph` and adds the prefilter passes when
     // `source` (the dome's latlong texture) is not the image the maps were made from. Without a source: placeholders (a
     // 1x1 black image, zero coefficients), and the maps are released.
-    passes::EnvironmentLighting addToFrame(gpu::FrameGraph& graph, passes::PipelineCache& pipelines,
-                                           const gpu::ImagePtr& source);
+    passes::EnvironmentLighting addToFrame(gpu::FrameGraph& graph, const gpu::ImagePtr& source);
     // After graph.compile(): remembers the layout the frame leaves the maps in, and which texture
     // they now hold (unless the graph culled the prefilter).
     void frameCompiled(const gpu::FrameGraph& graph);

@@ -18,7 +18,7 @@ namespace obscura::renderer {
 
 FrameRenderer::FrameRenderer(gpu::Device& device, VkSampler environmentSampler, LogSink log)
     : device_(device), log_(std::move(log)) {
-    pipelines_ = std::make_unique<passes::PipelineCache>(device_);
+    pipelines_ = std::make_unique<gpu::PipelineCache>(device_);
     transients_ = std::make_unique<gpu::TransientImagePool>(device_);
     timestamps_ = std::make_unique<gpu::Timestamps>(device_);
     bestFitNormals_ = passes::createBestFitNormalsTexture(device_);
@@ -115,10 +115,10 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
     gpu::FrameGraph graph;
     gpu::ImageHandle shadowAtlas;
     shadowHistory_.importedInto = nullptr;  // a failed frame's import is not this graph's
-    if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene, &shadowHistory_);
+    if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, device_, scene, &shadowHistory_);
     auto samples = VkSampleCountFlagBits(referenceSubFrames == 0 ? settings.msaaSamples : 1u);
     passes::GBuffer gbuffer =
-        passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_, samples, settings.msaaAlphaToCoverage);
+        passes::addGBufferPass(graph, scene, bestFitNormals_, samples, settings.msaaAlphaToCoverage);
     std::optional<MsaaFrame> msaa;
     if (samples != VK_SAMPLE_COUNT_1_BIT) {
         if (!msaaTaggedPixels_)
@@ -127,7 +127,7 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
         *static_cast<uint32_t*>(msaaTaggedPixels_->mapped()) = 0;
         passes::PerSampleLighting perSample{gbuffer, graph.importBuffer("msaaTaggedPixels", msaaTaggedPixels_)};
         graph.markOutput(perSample.taggedPixelCount);
-        passes::MsaaResolve resolve = passes::addMsaaResolvePass(graph, *pipelines_, scene, gbuffer);
+        passes::MsaaResolve resolve = passes::addMsaaResolvePass(graph, scene, gbuffer);
         gbuffer = resolve.resolved;
         msaa = MsaaFrame{perSample, resolve.maxDepth};
     }
@@ -136,14 +136,16 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
     bool dofAfterTemporalAa = false;
     if (referenceSubFrames > 0) {
         gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
-        hdr = passes::addAccumulationResolvePass(graph, *pipelines_, sum,
+        hdr = passes::addAccumulationResolvePass(graph, sum,
                                                  settings.lightAccumulation == passes::LightAccumulation::HalfFloat
                                                      ? VK_FORMAT_R16G16B16A16_SFLOAT
                                                      : VK_FORMAT_B10G11R11_UFLOAT_PACK32);
         // The sub-frames blended the transparent surfaces into the accumulation. XXX: the alpha of
         // the reference's colour is the pinhole G-buffer's coverage alone (this clears the
         // transparent coverage): transparents over the background are not in it.
-        transparentCoverage = passes::addTransparentPass(graph, *pipelines_, scene, {}, gbuffer.depth, hdr, {}, {}, {});
+        passes::TransparentResult transparent = passes::addTransparentPass(graph, scene, {}, gbuffer.depth, hdr, {}, {}, {});
+        hdr = transparent.hdr;
+        transparentCoverage = transparent.coverage;
     } else {
         hdr = addLighting(graph, scene, gbuffer, shadowAtlas, source.view(viewpoint), request, settings,
                           transparentCoverage, msaa ? &*msaa : nullptr);
@@ -161,43 +163,43 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
             return passes::DepthOfFieldSettings{coc, camera.aperture, settings.depthOfFieldTaps};
         };
         if (stratumBlur || lensSample) {
-            hdr = passes::addTemporalAaSamplePass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage);
+            hdr = passes::addTemporalAaSamplePass(graph, scene, gbuffer, hdr, transparentCoverage);
             if (lensSample)
                 hdr = passes::addDepthOfFieldPasses(
-                    graph, *pipelines_, scene, gbuffer, hdr,
+                    graph, scene, gbuffer, hdr,
                     depthOfField(1.0 / std::sqrt(double(temporalAa->pass.framesToConverge))));
             if (stratumBlur)
-                hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr, settings.motionBlurSamples);
+                hdr = passes::addMotionBlurPasses(graph, scene, gbuffer, hdr, settings.motionBlurSamples);
             temporalAa->pass.colorHasCoverage = true;
         }
         if (temporalAa) {
             temporalAa->pass.edgeAa = scene.edgeAa;
-            hdr = passes::addTemporalAaPass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage,
+            hdr = passes::addTemporalAaPass(graph, device_, scene, gbuffer, hdr, transparentCoverage,
                                             temporalAaSettings, temporalAa->pass, temporalAaHistory_);
             temporalAaInFrame_ = true;
-            if (scene.edgeAa) hdr = passes::addEdgeAaPasses(graph, *pipelines_, scene, gbuffer, hdr);
+            if (scene.edgeAa) hdr = passes::addEdgeAaPasses(graph, scene, gbuffer, hdr);
         }
         // Over the whole aperture, unless the still's mean holds it, sample by sample.
         dofAfterTemporalAa = passes::hasDepthOfField(lens) && !lensSample && !(temporalAa && temporalAa->lensAccumulated);
         if (dofAfterTemporalAa)
-            hdr = passes::addDepthOfFieldPasses(graph, *pipelines_, scene, gbuffer, hdr, depthOfField(1.0));
+            hdr = passes::addDepthOfFieldPasses(graph, scene, gbuffer, hdr, depthOfField(1.0));
         // After depth of field (seed 000 "MB or DOF first?": motion blur gathers with the
         // geometry's depth and velocity, and is the error less seen when it comes last), over the
         // whole shutter: unless the still's mean already holds it, sample by sample.
         if (scene.motionBlur && !stratumBlur && !(temporalAa && temporalAa->shutterAccumulated))
-            hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr, settings.motionBlurSamples);
+            hdr = passes::addMotionBlurPasses(graph, scene, gbuffer, hdr, settings.motionBlurSamples);
     }
     // Temporal AA's accumulation carries coverage in alpha, and motion blur blurs it along; depth of
     // field keeps a sample's coverage where it runs before the mean, and writes none after it.
     passes::HdrAlpha hdrAlpha = passes::HdrAlpha::None;
     if (temporalAa && !dofAfterTemporalAa) hdrAlpha = passes::HdrAlpha::Coverage;
-    gpu::ImageHandle display = passes::addTonemapPass(graph, *pipelines_, scene, hdr, hdrAlpha, gbuffer.instance,
+    gpu::ImageHandle display = passes::addTonemapPass(graph, scene, hdr, hdrAlpha, gbuffer.instance,
                                                       transparentCoverage, grading_);
     gpu::ImageHandle velocity =
         gbuffer.velocity.valid()
             ? gbuffer.velocity
             : graph.importImage("velocity.still", stillVelocity_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    passes::addAovReadbackPass(graph, *pipelines_, scene, gbuffer, hdr, hdrAlpha, transparentCoverage, display,
+    passes::addAovReadbackPass(graph, scene, gbuffer, hdr, hdrAlpha, transparentCoverage, display,
                                velocity, request.aovs);
     executeFrame(graph);
     converged_ = !temporalAa || temporalAa->converged;
@@ -212,11 +214,11 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
 }
 
 gpu::ImageHandle FrameRenderer::addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
-                                            const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
+                                            passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
                                             const FrameView& seen, const FrameRequest& request,
                                             const FrameSettings& settings, gpu::ImageHandle& transparentCoverage,
                                             const MsaaFrame* msaa) {
-    passes::addClipVolumePass(graph, *pipelines_, scene, gbuffer);
+    gbuffer.depth = passes::addClipVolumePass(graph, scene, gbuffer.depth);
     passes::SsaoResult ambient;
     if (settings.ssao) {
         // The radius is authored in metres; the passes work in scene units (USD metersPerUnit).
@@ -230,24 +232,25 @@ gpu::ImageHandle FrameRenderer::addLighting(gpu::FrameGraph& graph, const passes
         Matrix4d inverseView = kIdentity;
         invert(seen.view, inverseView);
         ssaoHistory_.viewToPreviousView = toFloats<passes::Mat4>(multiply(inverseView, last.view));
-        ambient = passes::addSsaoPasses(graph, *pipelines_, scene, gbuffer, ssao, ssaoHistory_);
+        ambient = passes::addSsaoPasses(graph, device_, scene, gbuffer, ssao, ssaoHistory_);
         ssaoInFrame_ = true;
     } else {
         ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
                    graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
     }
     ssaoHistoryFrame_ = {settings.ssao, seen.view, seen.projection, scene.width, scene.height, request.settingsVersion};
-    passes::EnvironmentLighting environment = environment_->addToFrame(graph, *pipelines_, request.environment);
+    passes::EnvironmentLighting environment = environment_->addToFrame(graph, request.environment);
     environmentInFrame_ = true;
-    gpu::ImageHandle hdr = passes::addLightingPass(graph, *pipelines_, scene, gbuffer, ambient, shadowAtlas, environment,
+    gpu::ImageHandle hdr = passes::addLightingPass(graph, scene, gbuffer, ambient, shadowAtlas, environment,
                                                    settings.lightAccumulation, msaa ? &msaa->perSample : nullptr);
     // Transparent surfaces over the lit opaque ones, before temporal AA (DESIGN.md "The frame").
     // The fade distance is authored in metres, like the SSAO radius.
     passes::TransparentSettings transparents{float(settings.transparentFadeMetres / settings.metersPerUnit)};
-    transparentCoverage =
-        passes::addTransparentPass(graph, *pipelines_, scene, scene.transparentDraws, msaa ? msaa->maxDepth : gbuffer.depth,
-                                   hdr, shadowAtlas, environment, transparents);
-    return hdr;
+    passes::TransparentResult transparent =
+        passes::addTransparentPass(graph, scene, scene.transparentDraws, msaa ? msaa->maxDepth : gbuffer.depth, hdr,
+                                   shadowAtlas, environment, transparents);
+    transparentCoverage = transparent.coverage;
+    return transparent.hdr;
 }
 
 void FrameRenderer::executeFrame(gpu::FrameGraph& graph) {
@@ -260,7 +263,7 @@ void FrameRenderer::executeFrame(gpu::FrameGraph& graph) {
     ssaoInFrame_ = temporalAaInFrame_ = false;
     device_.context().submitAndWait([&](VkCommandBuffer cmd) {
         timestamps_->reset(cmd);
-        graph.execute(*transients_, cmd, timestamps_.get());
+        graph.execute(*transients_, *pipelines_, cmd, timestamps_.get());
         recorded_ = std::chrono::steady_clock::now();
     });
     timings_ = timestamps_->resolve();
@@ -296,14 +299,14 @@ void FrameRenderer::accumulateReference(FrameSceneSource& source, const FrameReq
                                        sub.pixelJitter, sub.emitter};
         passes::FrameScene scene = source.scene(viewpoint);
         gpu::FrameGraph graph;
-        gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, *pipelines_, scene);
-        passes::GBuffer gbuffer = passes::addGBufferPass(graph, *pipelines_, scene, bestFitNormals_);
+        gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, device_, scene);
+        passes::GBuffer gbuffer = passes::addGBufferPass(graph, scene, bestFitNormals_);
         // Each sub-frame blends its transparent surfaces into its lighting; their coverage is not kept.
         gpu::ImageHandle transparentCoverage;
         gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, source.view(viewpoint), request,
                                            settings, transparentCoverage);
         gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
-        passes::addAccumulatePass(graph, *pipelines_, hdr, sum, float(sub.weight), k == 0);
+        sum = passes::addAccumulatePass(graph, hdr, sum, float(sub.weight), k == 0);
         executeFrame(graph);
         accumulation_.layout = graph.finalLayout(sum);
     }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "gpu/frame_graph.h"
+#include "gpu/pipeline_cache.h"
 #include "gpu/log.h"
 #include "gpu/timestamps.h"
 #include "passes/aov_readback.h"
@@ -14,7 +15,6 @@
 #include "passes/frame_scene.h"
 #include "passes/gbuffer.h"
 #include "passes/lighting.h"
-#include "passes/pipeline_cache.h"
 #include "passes/shadow_maps.h"
 #include "passes/ssao.h"
 #include "passes/temporal_aa.h"
@@ -161,12 +161,12 @@ private:
         passes::PerSampleLighting perSample;
         gpu::ImageHandle maxDepth;
     };
-    // Clip volumes, SSAO, the environment, deferred lighting and the transparent surfaces of
-    // `scene`, seen through `seen`, into the light accumulation.
-    gpu::ImageHandle addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
-                                 const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas, const FrameView& seen,
-                                 const FrameRequest& request, const FrameSettings& settings,
-                                 gpu::ImageHandle& transparentCoverage, const MsaaFrame* msaa = nullptr);
+    // Clip volumes (into `gbuffer`'s stencil), SSAO, the environment, deferred lighting and the
+    // transparent surfaces of `scene`, seen through `seen`, into the light accumulation.
+    gpu::ImageHandle addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene, passes::GBuffer& gbuffer,
+                                 gpu::ImageHandle shadowAtlas, const FrameView& seen, const FrameRequest& request,
+                                 const FrameSettings& settings, gpu::ImageHandle& transparentCoverage,
+                                 const MsaaFrame* msaa = nullptr);
     // Compiles, records and submits one frame graph, and waits for it.
     void executeFrame(gpu::FrameGraph& graph);
     // Reference mode: `count` sub-frames sampling `lens`'s aperture, the `shutter` interval (absolute
@@ -177,7 +177,7 @@ private:
 
     gpu::Device& device_;
     LogSink log_;
-    std::unique_ptr<passes::PipelineCache> pipelines_;
+    std::unique_ptr<gpu::PipelineCache> pipelines_;
     std::unique_ptr<gpu::TransientImagePool> transients_;
     std::unique_ptr<gpu::Timestamps> timestamps_;
     gpu::ImagePtr bestFitNormals_;
