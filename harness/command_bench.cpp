@@ -82,9 +82,14 @@ int runBench(const BenchOptions& o) {
     }
     order.push_back("total");
     std::erase_if(warmupOrder, [&](const std::string& pass) { return samples.count(pass) > 0; });
+    // The delegate's Vulkan memory after the measured frames: what a steady frame holds.
+    ObscuraMemoryStats memory{OBSCURA_STRUCTURE_TYPE_MEMORY_STATS, nullptr, sizeof(memory), 0, 0, 0};
     ObscuraRenderStats stats{};
+    stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
+    stats.pNext = &memory;
     stats.structSize = sizeof(stats);
     session.api().getRenderStats(session.delegate(), &stats);
+    constexpr double kMiB = 1024.0 * 1024.0;
 
     if (o.json) {
         std::printf("{\"scene\": \"%s\", \"device\": \"%s\", \"width\": %d, \"height\": %d, \"frames\": %d, "
@@ -97,13 +102,16 @@ int runBench(const BenchOptions& o) {
         for (size_t i = 0; i < warmupOrder.size(); ++i)
             std::printf("%s\"%s\": {\"last_ms\": %.4f}", i ? ", " : "", warmupOrder[i].c_str(),
                         warmupOnly[warmupOrder[i]]);
-        std::printf("}}\n");
+        std::printf("}, \"device_memory_mib\": {\"in_use\": %.1f, \"reserved\": %.1f}}\n",
+                    double(memory.deviceMemoryInUse) / kMiB, double(memory.deviceMemoryReserved) / kMiB);
     } else {
         std::printf("%s on %s, %dx%d, %d frames, %llu triangles (GPU timestamp medians)\n", o.scene.c_str(),
                     stats.deviceName, o.width, o.height, o.frames, static_cast<unsigned long long>(stats.trianglesDrawn));
         for (const auto& name : order) std::printf("  %-16s %10.4f ms\n", name.c_str(), median(samples[name]));
         if (!warmupOrder.empty()) std::printf("once (in warm-up, when their inputs changed; last run):\n");
         for (const auto& name : warmupOrder) std::printf("  %-16s %10.4f ms\n", name.c_str(), warmupOnly[name]);
+        std::printf("device memory: %.1f MiB in use, %.1f MiB reserved\n", double(memory.deviceMemoryInUse) / kMiB,
+                    double(memory.deviceMemoryReserved) / kMiB);
     }
     return kExitOk;
 }
