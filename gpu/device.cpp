@@ -152,10 +152,9 @@ void Device::recycleFrameBuffers() {
     releasedFrameBuffers_.clear();
 }
 
-ImagePtr Device::createImage(const ImageDesc& desc, const char* debugName) {
-    auto* img = new Image();
-    img->desc = desc;
-    img->id = nextResourceId_++;
+namespace {
+
+VkImageCreateInfo imageCreateInfo(const ImageDesc& desc) {
     VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     ii.imageType = desc.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
     ii.format = desc.format;
@@ -166,17 +165,55 @@ ImagePtr Device::createImage(const ImageDesc& desc, const char* debugName) {
     ii.tiling = VK_IMAGE_TILING_OPTIMAL;
     ii.usage = desc.usage;
     ii.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    return ii;
+}
+
+}  // namespace
+
+VkMemoryRequirements Device::imageMemoryRequirements(const ImageDesc& desc) const {
+    VkImageCreateInfo ii = imageCreateInfo(desc);
+    VkDeviceImageMemoryRequirements info{VK_STRUCTURE_TYPE_DEVICE_IMAGE_MEMORY_REQUIREMENTS};
+    info.pCreateInfo = &ii;
+    VkMemoryRequirements2 requirements{VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2};
+    vkGetDeviceImageMemoryRequirements(vk(), &info, &requirements);
+    return requirements.memoryRequirements;
+}
+
+ImageMemoryPtr Device::allocateImageMemory(const VkMemoryRequirements& requirements) {
+    auto* memory = new Allocation(memory_->allocate(requirements, MemoryUsage::DeviceLocal, ResourceTiling::Optimal));
+    // Only the images placed in it hold it, and they are retired after the GPU is done with them.
+    return ImageMemoryPtr(memory, [this](const Allocation* a) {
+        memory_->free(*a);
+        delete a;
+    });
+}
+
+ImagePtr Device::createImage(const ImageDesc& desc, const char* debugName) {
+    return createImage(desc, debugName, nullptr, 0);
+}
+
+ImagePtr Device::createImage(const ImageDesc& desc, const char* debugName, ImageMemoryPtr memory,
+                             VkDeviceSize offset) {
+    auto* img = new Image();
+    img->desc = desc;
+    img->id = nextResourceId_++;
+    VkImageCreateInfo ii = imageCreateInfo(desc);
     vkCheck(vkCreateImage(vk(), &ii, nullptr, &img->image), "vkCreateImage");
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(vk(), img->image, &req);
-    try {
-        img->allocation = memory_->allocate(req, MemoryUsage::DeviceLocal, ResourceTiling::Optimal);
-    } catch (...) {
-        vkDestroyImage(vk(), img->image, nullptr);
-        delete img;
-        throw;
+    if (memory) {
+        img->placedIn = std::move(memory);
+    } else {
+        VkMemoryRequirements req;
+        vkGetImageMemoryRequirements(vk(), img->image, &req);
+        try {
+            img->allocation = memory_->allocate(req, MemoryUsage::DeviceLocal, ResourceTiling::Optimal);
+        } catch (...) {
+            vkDestroyImage(vk(), img->image, nullptr);
+            delete img;
+            throw;
+        }
     }
-    vkCheck(vkBindImageMemory(vk(), img->image, img->allocation.memory, img->allocation.offset), "vkBindImageMemory");
+    const Allocation& bound = img->placedIn ? *img->placedIn : img->allocation;
+    vkCheck(vkBindImageMemory(vk(), img->image, bound.memory, bound.offset + offset), "vkBindImageMemory");
     setName(VK_OBJECT_TYPE_IMAGE, reinterpret_cast<uint64_t>(img->image), debugName);
 
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
@@ -206,7 +243,7 @@ ImagePtr Device::createImage(const ImageDesc& desc, const char* debugName) {
             if (p->stencilView) vkDestroyImageView(vk(), p->stencilView, nullptr);
             vkDestroyImage(vk(), p->image, nullptr);
             memory_->free(p->allocation);
-            delete p;
+            delete p;  // the last image placed in a memory frees it
         });
     });
 }
@@ -266,6 +303,7 @@ ImagePtr Device::createTextureWithData(const ImageDesc& descIn, const void* pixe
         b.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
         vkCmdPipelineBarrier2(cmd, &dep);
     });
+    image->layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     return image;
 }
 

@@ -36,15 +36,23 @@ struct ImageDesc {
     bool operator==(const ImageDesc&) const = default;
 };
 
+// Device memory that images are placed in side by side or over each other (the frame graph's
+// transient images whose lifetimes do not overlap); freed with the last image placed in it.
+using ImageMemoryPtr = std::shared_ptr<const Allocation>;
+
 struct Image {
     VkImage image = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;         // all aspects a shader may read (depth only for D/S)
     VkImageView stencilView = VK_NULL_HANDLE;  // stencil aspect of depth/stencil formats
     // Storage images with mips: one view per level (a storage descriptor names a single level).
     std::vector<VkImageView> levelViews;
-    Allocation allocation;
+    Allocation allocation;       // its own memory, unless placed in `placedIn`
+    ImageMemoryPtr placedIn;
     ImageDesc desc;
     uint64_t id = 0;  // as Buffer::id
+    // Between frames: the layout the last submitted work leaves it in (the frame graph starts from
+    // it and keeps it; uploads leave textures SHADER_READ_ONLY_OPTIMAL).
+    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
 };
 
 using BufferPtr = std::shared_ptr<Buffer>;
@@ -75,6 +83,11 @@ public:
     // bounded while sizes change.
     BufferPtr createFrameBuffer(VkDeviceSize size, VkBufferUsageFlags usage, const char* debugName);
     ImagePtr createImage(const ImageDesc& desc, const char* debugName);
+    // What an image of `desc` asks of memory, without making one.
+    VkMemoryRequirements imageMemoryRequirements(const ImageDesc& desc) const;
+    ImageMemoryPtr allocateImageMemory(const VkMemoryRequirements& requirements);
+    // An image at `offset` of `memory`, which other images may share at other times.
+    ImagePtr createImage(const ImageDesc& desc, const char* debugName, ImageMemoryPtr memory, VkDeviceSize offset);
     // A device-local buffer whose contents arrive with the next flushUploads(): sync creates
     // many, and all their copies go to the GPU in one submission.
     BufferPtr createBufferWithData(const void* data, VkDeviceSize size, VkBufferUsageFlags usage,

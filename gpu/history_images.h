@@ -1,41 +1,36 @@
-// Persistent ping-pong images for temporal passes (STYLE.md "Explicit history"): two images that
-// outlive the frame; each frame reads the one the previous frame wrote and writes the other. The
-// owner (the delegate) keeps the pair; each frame imports both into the frame graph and, once the
-// graph is compiled, keeps the layouts the graph leaves them in for the next frame's import.
+// Images kept from frame to frame (STYLE.md "Explicit history"). Their owner keeps these objects;
+// the frame graph that imports one makes its image when there is none or its description changed
+// (a resize), and the image keeps the layout the last frame left it in (Image::layout), so no
+// owner carries a layout or a flag for it.
 #pragma once
 
-#include "gpu/frame_graph.h"
+#include "gpu/device.h"
 
 #include <array>
-#include <string>
 
 namespace obscura::gpu {
 
-class HistoryImages {
+// One image kept from frame to frame: the shadow atlas, the reference's running sum, the
+// environment maps.
+class PersistentImage {
 public:
-    // This frame's imports: last frame's image (to read) and this frame's (to write).
-    struct Imported {
-        ImageHandle previous;
-        ImageHandle current;
-        // Whether `previous` holds something: it was written since it was created. An image never
-        // written is still imported (a binding needs a resource) but its contents are garbage.
-        bool previousWritten;
-    };
-
-    // (Re)creates both images when `desc` differs from theirs (first use, resize); returns true
-    // when it did: there is no history to read.
-    bool ensure(Device& device, const ImageDesc& desc, const char* debugName);
-    // Swaps the roles and imports both into `graph` as `name.previous` and `name`; the written
-    // image is marked as a graph output, since the next frame reads it.
-    Imported import(FrameGraph& graph, const std::string& name);
-    // After graph.compile(): the layouts this frame leaves both images in.
-    void keep(const FrameGraph& graph);
+    const ImagePtr& image() const { return image_; }
+    // A frame has written it since it was made: it holds what that frame left.
+    bool holdsContents() const { return written_; }
 
 private:
-    std::array<ImagePtr, 2> images_;
-    std::array<VkImageLayout, 2> layouts_{VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_UNDEFINED};
-    std::array<ImageHandle, 2> imported_;
-    uint32_t current_ = 0;  // the image the last import writes
+    friend class FrameGraph;
+    ImagePtr image_;
+    bool written_ = false;
+};
+
+// A history (Granite's history input): two images that swap roles each frame; the frame reads the
+// one the last frame wrote and writes the other (FrameGraph::addHistory).
+class HistoryImages {
+private:
+    friend class FrameGraph;
+    std::array<PersistentImage, 2> images_;
+    uint32_t current_ = 0;  // the image the last frame wrote
 };
 
 }  // namespace obscura::gpu

@@ -100,6 +100,7 @@ ImagePtr createMipmappedTexture(Device& device, const ImageDesc& descIn, const s
             toRead.push_back(levelBarrier(image->image, i, layouts[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
         barrier(cmd, toRead);
     });
+    image->layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     return image;
 }
 

@@ -113,12 +113,12 @@ std::array<float, 3> decodeNormal(const std::array<uint8_t, 3>& s) {
     return n;
 }
 
-gpu::ImagePtr createBestFitNormalsTexture(gpu::Device& device) {
+gpu::ImagePtr createBestFitNormalsTexture(gpu::FrameBackend& backend) {
     const auto& table = bestFitScaleTable();
     gpu::ImageDesc desc;
     desc.format = VK_FORMAT_R16_UNORM;
     desc.width = desc.height = kBestFitTableSize;
-    return device.createTextureWithData(desc, table.data(), table.size() * sizeof(uint16_t), "best-fit normals");
+    return backend.createTexture(desc, table.data(), table.size() * sizeof(uint16_t), "best-fit normals");
 }
 
 }  // namespace obscura::passes

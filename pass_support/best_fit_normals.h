@@ -3,7 +3,7 @@
 // the CPU encoder mirrors shaders/common/best_fit_normals.glsl for tests.
 #pragma once
 
-#include "gpu/device.h"
+#include "gpu/frame_backend.h"
 
 #include <array>
 #include <cstdint>
@@ -27,6 +27,6 @@ std::array<uint8_t, 3> encodeBestFitNormal(const std::array<float, 3>& normal);
 std::array<uint8_t, 3> encodeNormalizedNormal(const std::array<float, 3>& normal);
 std::array<float, 3> decodeNormal(const std::array<uint8_t, 3>& stored);
 
-gpu::ImagePtr createBestFitNormalsTexture(gpu::Device& device);
+gpu::ImagePtr createBestFitNormalsTexture(gpu::FrameBackend& backend);
 
 }  // namespace obscura::passes

@@ -28,7 +28,8 @@ uint16_t floatToHalf(float value) {
     return uint16_t(half);
 }
 
-std::string ColorGradingLut::update(gpu::Device& device, const ColorLutRequest& request, const DisplayGrade& grade) {
+std::string ColorGradingLut::update(gpu::FrameBackend& backend, const ColorLutRequest& request,
+                                    const DisplayGrade& grade) {
     std::string key = request.configPath + '\n' + request.display + '\n' + request.view + '\n' + request.look;
     if (grade.lattice) key += '\n' + grade.key + '\n' + std::to_string(int(grade.interpolation));
     if (key_ && *key_ == key && texture_) return {};
@@ -47,7 +48,7 @@ std::string ColorGradingLut::update(gpu::Device& device, const ColorLutRequest& 
     gpu::ImageDesc desc;
     desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
     desc.width = desc.height = desc.depth = lut_.size;
-    texture_ = device.createTextureWithData(desc, texels.data(), texels.size() * sizeof(uint16_t), "color grading LUT");
+    texture_ = backend.createTexture(desc, texels.data(), texels.size() * sizeof(uint16_t), "color grading LUT");
     key_ = key;
     return {};
 }

@@ -5,7 +5,7 @@
 // it is composed into the same lattice and the frame still pays one lookup.
 #pragma once
 
-#include "gpu/device.h"
+#include "gpu/frame_backend.h"
 #include "pass_support/color_lut.h"
 #include "pass_support/grading_lattice.h"
 
@@ -25,7 +25,7 @@ class ColorGradingLut {
 public:
     // Bakes and uploads the LUT for `request` (then `grade`) unless it is the one already held;
     // returns the reason on failure (the previous LUT stays in use).
-    std::string update(gpu::Device& device, const ColorLutRequest& request, const DisplayGrade& grade = {});
+    std::string update(gpu::FrameBackend& backend, const ColorLutRequest& request, const DisplayGrade& grade = {});
     const gpu::ImagePtr& texture() const { return texture_; }
     const ColorLut& lut() const { return lut_; }
 

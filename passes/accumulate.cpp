@@ -13,17 +13,13 @@ struct AccumulatePush {
 
 }  // namespace
 
-gpu::ImageHandle addAccumulatePass(gpu::FrameGraph& graph, gpu::ImageHandle hdrColor, gpu::ImageHandle accumulation,
-                                   float weight, bool first) {
+void addAccumulatePass(gpu::FrameGraph& graph, gpu::ImageHandle hdrColor, gpu::ImageHandle accumulation, float weight,
+                       bool first) {
     AccumulatePush push{weight, first ? 1u : 0u};
     // The first sub-frame overwrites what the sum held.
-    accumulation = addComputePass(graph, {"accumulate",
-                                          {sampled(hdrColor), first ? storageWrite(accumulation)
-                                                                    : storageReadWrite(accumulation)},
-                                          pushConstantBytes(push)})
-                       .images[0];
-    graph.markOutput(accumulation);
-    return accumulation;
+    addComputePass(graph, {"accumulate",
+                           {sampled(hdrColor), first ? storageWrite(accumulation) : storageReadWrite(accumulation)},
+                           bytesOf(push)});
 }
 
 gpu::ImageHandle addAccumulationResolvePass(gpu::FrameGraph& graph, gpu::ImageHandle accumulation, VkFormat format) {

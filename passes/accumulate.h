@@ -12,10 +12,10 @@ namespace obscura::passes {
 constexpr VkFormat kAccumulationFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 // accumulation = (first ? 0 : accumulation) + weight * (hdrColor, 1). `accumulation` is a persistent
-// (imported) image of kAccumulationFormat, the size of the frame; alpha sums the weights.
-// Returns the sum as the pass leaves it.
-gpu::ImageHandle addAccumulatePass(gpu::FrameGraph& graph, gpu::ImageHandle hdrColor, gpu::ImageHandle accumulation,
-                                   float weight, bool first);
+// image of kAccumulationFormat, the size of the frame (FrameGraph::importPersistent), which the
+// next sub-frame's graph reads; alpha sums the weights.
+void addAccumulatePass(gpu::FrameGraph& graph, gpu::ImageHandle hdrColor, gpu::ImageHandle accumulation, float weight,
+                       bool first);
 
 // The weighted mean, accumulation.rgb / accumulation.a, into a new image of `format` (the light
 // accumulation's).

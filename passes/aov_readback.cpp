@@ -27,14 +27,16 @@ void addAovReadbackPass(gpu::FrameGraph& graph, const FrameScene& scene, const G
     for (const auto& r : requests) {
         destinations.push_back(graph.importBuffer("aov", r.destination));
         staged.push_back(r.deviceStaging != nullptr);
-        gpu::BufferHandle target = r.deviceStaging ? graph.importBuffer("aov.staging", r.deviceStaging) : destinations.back();
-        PackPush push{static_cast<uint32_t>(r.aov), scene.width, scene.height, hdrAlpha == HdrAlpha::Coverage ? 1u : 0u};
+        gpu::BufferHandle target =
+            r.deviceStaging ? graph.importBuffer("aov.staging", r.deviceStaging) : destinations.back();
+        PackPush push{static_cast<uint32_t>(r.aov), scene.width, scene.height,
+                      hdrAlpha == HdrAlpha::Coverage ? 1u : 0u};
         ComputePass pack{"aov_pack",
-                         {sceneBuffer(scene.camera->buffer), sceneBuffer(scene.instances->buffer), sampled(gb.depth),
+                         {bufferRead(scene.buffers.camera), bufferRead(scene.buffers.instances), sampled(gb.depth),
                           sampled(gb.normalRoughness), sampled(gb.albedoMetallic), sampled(gb.instance),
                           sampled(hdrColor), storageRead(display), bufferWrite(target), bufferWrite(target),
                           sampled(transparentCoverage), sampled(velocity)},
-                         pushConstantBytes(push)};
+                         bytesOf(push)};
         pack.texels = std::array<uint32_t, 2>{scene.width, scene.height};
         packs.push_back(std::move(pack));
     }

@@ -1,6 +1,7 @@
 #include "passes/clip_volumes.h"
 
 #include "passes/depth_only_draw.h"
+#include "passes/shader_pass.h"
 
 namespace obscura::passes {
 namespace {
@@ -10,8 +11,9 @@ namespace {
 // face fragment behind the G-buffer's depth (depth test GREATER, no depth write, no culling)
 // inverts the volume's bit, so the bit ends set for surfaces inside. (The classic stencil light
 // volume needs a convex volume; parity takes concave rooms too.)
-gpu::GraphicsPipelineDesc describeClipVolumePipeline() {
+gpu::GraphicsPipelineDesc describeClipVolumePipeline(const std::vector<ShaderBinding>& bindings) {
     gpu::GraphicsPipelineDesc d = describeDepthOnlyDraw();
+    d.bindings = bindingLayout(bindings);
     d.depthFormat = kDepthFormat;
     d.depthWrite = false;
     d.depthCompare = VK_COMPARE_OP_GREATER;
@@ -23,13 +25,17 @@ gpu::GraphicsPipelineDesc describeClipVolumePipeline() {
 
 gpu::ImageHandle addClipVolumePass(gpu::FrameGraph& graph, const FrameScene& scene, gpu::ImageHandle depthStencil) {
     if (scene.clipVolumes.empty()) return depthStencil;
+    const std::vector<ShaderBinding> bindings{bufferRead(scene.buffers.instances)};
     graph.addPass(
         "clip_volumes", gpu::PassKind::Raster,
-        [&](gpu::FrameGraph::PassBuilder& pass) { depthStencil = pass.depthStencilAttachment(depthStencil); },
-        [&scene](VkCommandBuffer cmd, const gpu::PassResources& res) {
-            const gpu::Pipeline& pipeline =
-                res.pipelines().get<gpu::GraphicsPipelineDesc>("clip_volumes", describeClipVolumePipeline);
-            gpu::DescriptorWriter(res.device(), pipeline).buffer(0, scene.instances->buffer).bind(cmd);
+        [&](gpu::FrameGraph::PassBuilder& pass) {
+            declareBindings(pass, bindings, ShaderStage::Graphics);
+            depthStencil = pass.depthStencilAttachment(depthStencil);
+        },
+        [&scene, bindings](VkCommandBuffer cmd, const gpu::PassResources& res) {
+            const gpu::Pipeline& pipeline = res.pipelines().get<gpu::GraphicsPipelineDesc>(
+                "clip_volumes", [&] { return describeClipVolumePipeline(bindings); });
+            bindBindings(cmd, pipeline, bindings, res);
             for (const ClipVolume& volume : scene.clipVolumes) {
                 vkCmdSetStencilWriteMask(cmd, VK_STENCIL_FACE_FRONT_AND_BACK, volume.stencilBit);
                 recordDepthOnlyDraw(cmd, pipeline, volume.draw, {scene.cameraData.viewProjection, 0});

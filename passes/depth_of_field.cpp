@@ -33,7 +33,7 @@ constexpr VkFormat kFieldFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 // One pass of the chain, one invocation per texel of its first output; returns what it wrote.
 std::vector<gpu::ImageHandle> addDofPass(gpu::FrameGraph& graph, const std::string& name,
                                          std::vector<ShaderBinding> bindings, const DofConstants& constants) {
-    return addComputePass(graph, {name, std::move(bindings), pushConstantBytes(constants)}).images;
+    return addComputePass(graph, {name, std::move(bindings), bytesOf(constants)}).images;
 }
 
 }  // namespace
@@ -59,7 +59,9 @@ gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, const FrameScene&
     auto half = [&](const char* name, VkFormat format) {
         return graph.createImage(name, imageDesc2D(format, halfWidth, halfHeight));
     };
-    auto tiles = [&](const char* name) { return graph.createImage(name, imageDesc2D(kCocFormat, tilesWide, tilesHigh)); };
+    auto tiles = [&](const char* name) {
+        return graph.createImage(name, imageDesc2D(kCocFormat, tilesWide, tilesHigh));
+    };
     const SampledRead linear = SampledRead::Linear;
 
     std::vector<gpu::ImageHandle> layers = addDofPass(

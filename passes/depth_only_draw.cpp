@@ -7,7 +7,6 @@ namespace obscura::passes {
 gpu::GraphicsPipelineDesc describeDepthOnlyDraw() {
     gpu::GraphicsPipelineDesc d;
     d.vertexShader = "depth_only.vert";
-    d.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
     d.pushConstantSize = sizeof(DepthOnlyPush);
     d.vertexStrides = {sizeof(Vertex)};
     d.vertexAttributes = {{0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},

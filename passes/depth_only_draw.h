@@ -15,8 +15,8 @@ struct DepthOnlyPush {
     uint32_t instanceIndex;  // the draw's first instance record
 };
 
-// Vertex stage, vertex layout, instance buffer at set 0 binding 0 and the push constants;
-// callers add the depth format and tests, and a fragment stage if they need one.
+// Vertex stage, vertex layout and the push constants; callers add set 0 (the instance records at
+// binding 0), the depth format and tests, and a fragment stage if they need one.
 gpu::GraphicsPipelineDesc describeDepthOnlyDraw();
 
 // Binds the draw's buffers, pushes `push` with the draw's first instance, and draws every instance.

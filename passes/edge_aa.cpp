@@ -18,7 +18,7 @@ gpu::ImageHandle addEdgeAaPasses(gpu::FrameGraph& graph, const FrameScene& scene
     edges = addComputePass(graph, {"edge_aa_edges",
                                    {sampled(hdrColor), sampled(gbuffer.instance), sampled(gbuffer.depth),
                                     sampled(gbuffer.normalRoughness), storageWrite(edges),
-                                    sceneBuffer(scene.camera->buffer), sceneBuffer(scene.instances->buffer)}})
+                                    bufferRead(scene.buffers.camera), bufferRead(scene.buffers.instances)}})
                 .images[0];
 
     gpu::ImageHandle weights =

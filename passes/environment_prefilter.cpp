@@ -45,7 +45,7 @@ EnvironmentLighting addEnvironmentPrefilterPasses(gpu::FrameGraph& graph, gpu::I
         push.roughness = float(level) / float(kPrefilteredLevels - 1);
         ComputePass pass{"environment_prefilter",
                          {sampled(source, target.sampler), storageWriteLevel(target.prefiltered, level)},
-                         pushConstantBytes(push)};
+                         bytesOf(push)};
         pass.texels = std::array<uint32_t, 2>{std::max(prefiltered.width >> level, 1u),
                                               std::max(prefiltered.height >> level, 1u)};
         levels.push_back(std::move(pass));
@@ -59,7 +59,7 @@ EnvironmentLighting addEnvironmentPrefilterPasses(gpu::FrameGraph& graph, gpu::I
         ++irradiancePush.level;
     ComputePass irradiance{"environment_irradiance",
                            {sampled(source, target.sampler), bufferWrite(target.irradiance)},
-                           pushConstantBytes(irradiancePush)};
+                           bytesOf(irradiancePush)};
     irradiance.texels = std::array<uint32_t, 2>{1, 1};  // one workgroup projects the whole source
     irradiance.texelsPerGroup = 1;
     written.irradiance = addComputePass(graph, std::move(irradiance)).buffers[0];

@@ -2,6 +2,17 @@
 
 namespace obscura::passes {
 
+void importSceneBuffers(gpu::FrameGraph& graph, FrameScene& scene) {
+    scene.buffers = {graph.importBuffer("camera", scene.camera),
+                     graph.importBuffer("instances", scene.instances),
+                     graph.importBuffer("instanceMotions", scene.instanceMotions),
+                     graph.importBuffer("instanceReprojections", scene.instanceReprojections),
+                     graph.importBuffer("materials", scene.materials),
+                     graph.importBuffer("lights", scene.lights),
+                     graph.importBuffer("environment", scene.environment),
+                     graph.importBuffer("shadowRecords", scene.shadows.records)};
+}
+
 GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkSampleCountFlagBits samples,
                             const std::string& prefix) {
     auto image = [&](const char* name, VkFormat format) {

@@ -38,6 +38,9 @@ constexpr VkFormat kVelocityFormat = VK_FORMAT_R16G16_SFLOAT;
 // shaders/common/motion_velocity.glsl).
 constexpr float kStaticVelocity = -65504.0f;
 
+// Imports the scene's records into `graph` (FrameScene::buffers).
+void importSceneBuffers(gpu::FrameGraph& graph, FrameScene& scene);
+
 // The G-buffer's images at the scene's size, named "<prefix>.depth" etc. (a velocity target with
 // motion blur).
 GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkSampleCountFlagBits samples,

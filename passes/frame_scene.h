@@ -3,6 +3,7 @@
 #pragma once
 
 #include "gpu/device.h"
+#include "gpu/frame_graph.h"
 #include "passes/frame_data.h"
 
 #include <array>
@@ -56,6 +57,19 @@ struct ClipVolume {
     uint32_t stencilBit;  // 0x01..0x40; the light's LightData names the same bit
 };
 
+// The scene's records (FrameScene's buffers) as resources of the frame graph they are wired into
+// (importSceneBuffers): passes bind and declare these like any other resource.
+struct SceneBuffers {
+    gpu::BufferHandle camera;
+    gpu::BufferHandle instances;
+    gpu::BufferHandle instanceMotions;
+    gpu::BufferHandle instanceReprojections;
+    gpu::BufferHandle materials;
+    gpu::BufferHandle lights;
+    gpu::BufferHandle environment;
+    gpu::BufferHandle shadowRecords;
+};
+
 struct FrameScene {
     CameraData cameraData{};   // what `camera` holds, for passes that build push constants
     gpu::BufferPtr camera;     // CameraData (uniform)
@@ -87,6 +101,8 @@ struct FrameScene {
     bool edgeAa = false;
     uint32_t width = 0;
     uint32_t height = 0;
+    // The buffers above in the frame graph being wired: set by importSceneBuffers.
+    SceneBuffers buffers;
 };
 
 }  // namespace obscura::passes

@@ -2,7 +2,9 @@
 
 #include "passes/frame_data.h"
 #include "passes/material_draw.h"
+#include "passes/shader_pass.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <string>
 
@@ -38,14 +40,22 @@ struct GBufferPush {
 bool writesVelocity(Variant variant) { return variant == Variant::Moving || variant == Variant::Deforming; }
 bool deforms(Variant variant) { return variant == Variant::Deforming || variant == Variant::DeformingWithoutVelocity; }
 
-gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, VkSampleCountFlagBits samples) {
+bool readsMotion(Variant variant) { return writesVelocity(variant) || deforms(variant); }
+
+// Set 0: the camera, the records and the best-fit normal table, and for variants that move the
+// instances' motion.
+std::vector<ShaderBinding> gbufferBindings(bool motion, const SceneBuffers& buffers, gpu::ImageHandle bestFitNormals) {
+    std::vector<ShaderBinding> bindings{bufferRead(buffers.camera), bufferRead(buffers.instances),
+                                        bufferRead(buffers.materials), sampled(bestFitNormals)};
+    if (motion) bindings.push_back(bufferRead(buffers.instanceMotions));
+    return bindings;
+}
+
+gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, VkSampleCountFlagBits samples,
+                                                  const std::vector<ShaderBinding>& bindings) {
     gpu::GraphicsPipelineDesc d;
     d.fragmentShader = writesVelocity(variant) ? "gbuffer_moving.frag" : "gbuffer.frag";
-    d.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
-    if (writesVelocity(variant) || deforms(variant)) d.bindings.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+    d.bindings = bindingLayout(bindings);
     d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
     d.pushConstantSize = sizeof(GBufferPush);
     setSceneVertexInput(d);
@@ -57,7 +67,8 @@ gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, VkSampleCount
         d.vertexAttributes.push_back({7, VK_FORMAT_R32G32B32_SFLOAT, offsetof(ShutterPositions, close), 1});
     }
     d.colorFormats = {kNormalRoughnessFormat, kAlbedoMetallicFormat, kInstanceFormat};
-    if (variant != Variant::Static && variant != Variant::DeformingWithoutVelocity) d.colorFormats.push_back(kVelocityFormat);
+    if (variant != Variant::Static && variant != Variant::DeformingWithoutVelocity)
+        d.colorFormats.push_back(kVelocityFormat);
     // Seed 000 "An improved reconstruction filter (3)": static geometry does not export velocity.
     if (variant == Variant::StaticWithVelocityTarget) d.untouchedColorAttachments = 1u << 3;
     d.depthFormat = kDepthFormat;
@@ -73,7 +84,7 @@ Variant variantOf(const Draw& draw, bool velocityTarget) {
 
 }  // namespace
 
-GBuffer addGBufferPass(gpu::FrameGraph& graph, const FrameScene& scene, const gpu::ImagePtr& bestFitNormals,
+GBuffer addGBufferPass(gpu::FrameGraph& graph, const FrameScene& scene, gpu::ImageHandle bestFitNormals,
                        VkSampleCountFlagBits samples, bool alphaToCoverage) {
     GBuffer gb = createGBufferImages(graph, scene, samples, "gbuffer");
     // Moving geometry is drawn last (seed 000 "An improved reconstruction filter (3)"), so static
@@ -88,10 +99,13 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, const FrameScene& scene, const gp
         for (const Draw& draw : scene.draws)
             // Transparent surfaces are drawn after lighting (passes/transparent.h).
             if (!draw.transparent && variantOf(draw, scene.motionBlur) == variant) ordered.push_back({variant, &draw});
+    const bool anyMotion =
+        std::any_of(ordered.begin(), ordered.end(), [](const Ordered& o) { return readsMotion(o.variant); });
 
     graph.addPass(
         "gbuffer", gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {
+            declareBindings(pass, gbufferBindings(anyMotion, scene.buffers, bestFitNormals), ShaderStage::Graphics);
             gb.depth = pass.depthStencilAttachment(gb.depth, VkClearDepthStencilValue{1.0f, 0});
             gb.normalRoughness = pass.colorAttachment(gb.normalRoughness, VkClearColorValue{{0.5f, 0.5f, 1.0f, 1.0f}});
             gb.albedoMetallic = pass.colorAttachment(gb.albedoMetallic, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
@@ -100,33 +114,26 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, const FrameScene& scene, const gp
                 gb.velocity =
                     pass.colorAttachment(gb.velocity, VkClearColorValue{{kStaticVelocity, 0.0f, 0.0f, 0.0f}});
         },
-        [ordered, &scene, bestFitNormals, samples, alphaToCoverage](VkCommandBuffer cmd, const gpu::PassResources& res) {
+        [ordered, &scene, bestFitNormals, samples, alphaToCoverage](VkCommandBuffer cmd,
+                                                                     const gpu::PassResources& res) {
             gpu::Device& device = res.device();
             const gpu::Pipeline* bound = nullptr;
             Variant boundVariant = Variant::Static;
             const MaterialTextures* pushed = nullptr;
-            for (auto [variant, draw] : ordered) {
+            for (const Ordered& o : ordered) {
                 // Draws come grouped by variant: the pipeline changes only between groups.
-                const gpu::Pipeline* pipeline = bound;
-                if (!bound || variant != boundVariant) {
-                    pipeline = &res.pipelines().get<gpu::GraphicsPipelineDesc>(
-                        std::string(pipelineName(variant)) + "." + std::to_string(samples),
-                        [variant, samples] { return describeGBufferPipeline(variant, samples); });
-                    boundVariant = variant;
-                }
-                if (pipeline != bound) {
-                    gpu::DescriptorWriter writer(device, *pipeline);
-                    writer.buffer(0, scene.camera->buffer)
-                        .buffer(1, scene.instances->buffer)
-                        .buffer(2, scene.materials->buffer)
-                        .sampled(3, bestFitNormals->view, device.nearestClampSampler());
-                    if (writesVelocity(variant) || deforms(variant)) writer.buffer(4, scene.instanceMotions->buffer);
-                    writer.bind(cmd);
-                    bound = pipeline;
+                if (!bound || o.variant != boundVariant) {
+                    const std::vector<ShaderBinding> bindings =
+                        gbufferBindings(readsMotion(o.variant), scene.buffers, bestFitNormals);
+                    bound = &res.pipelines().get<gpu::GraphicsPipelineDesc>(
+                        std::string(pipelineName(o.variant)) + "." + std::to_string(samples),
+                        [&] { return describeGBufferPipeline(o.variant, samples, bindings); });
+                    boundVariant = o.variant;
+                    bindBindings(cmd, *bound, bindings, res);
                     pushed = nullptr;  // a new layout: the pushed set starts over
                 }
-                GBufferPush push{draw->instanceIndex, uint32_t(samples), alphaToCoverage ? 1u : 0u};
-                recordMaterialDraw(device, cmd, *pipeline, scene, *draw, pushed, &push, sizeof(push));
+                GBufferPush push{o.draw->instanceIndex, uint32_t(samples), alphaToCoverage ? 1u : 0u};
+                recordMaterialDraw(device, cmd, *bound, scene, *o.draw, pushed, &push, sizeof(push));
             }
         });
     return gb;

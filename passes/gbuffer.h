@@ -14,7 +14,7 @@ namespace obscura::passes {
 // position (alpha-test supersampling), or with `alphaToCoverage` the fraction of the samples their
 // opacity gives (seed 000 "Deferred MSAA \ alpha test SSAA", "performance shortcuts (3)").
 GBuffer addGBufferPass(gpu::FrameGraph& graph, const FrameScene& scene,
-                       const gpu::ImagePtr& bestFitNormals, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT,
+                       gpu::ImageHandle bestFitNormals, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT,
                        bool alphaToCoverage = false);
 
 }  // namespace obscura::passes

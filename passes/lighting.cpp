@@ -20,12 +20,12 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, const FrameScene& scene
     desc.height = scene.height;
     gpu::ImageHandle accumulation = graph.createImage("lightAccumulation", desc);
     ComputePass pass{"lighting",
-                     {sceneBuffer(scene.camera->buffer), sceneBuffer(scene.instances->buffer),
-                      sceneBuffer(scene.materials->buffer), sceneBuffer(scene.lights->buffer), sampled(gb.depth),
+                     {bufferRead(scene.buffers.camera), bufferRead(scene.buffers.instances),
+                      bufferRead(scene.buffers.materials), bufferRead(scene.buffers.lights), sampled(gb.depth),
                       sampled(gb.normalRoughness), sampled(gb.albedoMetallic), sampled(gb.instance),
                       storageWrite(accumulation), sampled(ambient.accessibility), sampled(ambient.halfDepth),
-                      sceneBuffer(scene.shadows.records->buffer), sampled(shadowAtlas), sampledStencil(gb.depth),
-                      sceneBuffer(scene.environment->buffer), bufferRead(environment.irradiance),
+                      bufferRead(scene.buffers.shadowRecords), sampled(shadowAtlas), sampledStencil(gb.depth),
+                      bufferRead(scene.buffers.environment), bufferRead(environment.irradiance),
                       sampled(environment.prefiltered, environment.sampler)}};
     // The PER_SAMPLE_LIGHTING build of lighting.comp: the multisampled G-buffer and the tagged count.
     if (perSample) {

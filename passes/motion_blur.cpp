@@ -36,16 +36,18 @@ gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, const FrameScene& s
     if (samples < kMinMotionBlurSamples || samples > kMaxMotionBlurSamples)
         throw std::invalid_argument("motion blur: samples out of range");
     if (!gbuffer.velocity.valid()) throw std::invalid_argument("motion blur: the G-buffer has no velocity target");
-    uint32_t tilesWide = (scene.width + kTileSize - 1) / kTileSize, tilesHigh = (scene.height + kTileSize - 1) / kTileSize;
+    uint32_t tilesWide = (scene.width + kTileSize - 1) / kTileSize,
+             tilesHigh = (scene.height + kTileSize - 1) / kTileSize;
     MotionBlurConstants constants{motionBlurMaxRadius(scene.width, scene.height), 1.0f, samples, kSoftDepthFraction};
 
-    gpu::ImageHandle tileMax = graph.createImage("motionBlurTileMax", imageDesc2D(kTileVelocityFormat, tilesWide, tilesHigh));
+    gpu::ImageHandle tileMax =
+        graph.createImage("motionBlurTileMax", imageDesc2D(kTileVelocityFormat, tilesWide, tilesHigh));
     gpu::ImageHandle speedDepth =
         graph.createImage("motionBlurSpeedDepth", imageDesc2D(kSpeedDepthFormat, scene.width, scene.height));
     ComputePass tiles{"motion_blur_tile_max",
                       {sampled(gbuffer.velocity), sampled(gbuffer.depth), storageWrite(tileMax),
-                       storageWrite(speedDepth), sceneBuffer(scene.camera->buffer)},
-                      pushConstantBytes(constants)};
+                       storageWrite(speedDepth), bufferRead(scene.buffers.camera)},
+                      bytesOf(constants)};
     tiles.texelsPerGroup = 1;
     std::vector<gpu::ImageHandle> tiled = addComputePass(graph, tiles).images;
     tileMax = tiled[0];
@@ -54,22 +56,20 @@ gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, const FrameScene& s
     gpu::ImageHandle neighbourMax =
         graph.createImage("motionBlurNeighbourMax", imageDesc2D(kTileVelocityFormat, tilesWide, tilesHigh));
     neighbourMax = addComputePass(graph, {"motion_blur_neighbour_max", {sampled(tileMax), storageWrite(neighbourMax)},
-                                          pushConstantBytes(constants)})
+                                          bytesOf(constants)})
                        .images[0];
 
     // Separable [Sousa08]: the first pass covers one tap spacing of the second.
     VkFormat format = graph.imageDesc(hdrColor).format;
     auto gather = [&](gpu::ImageHandle input, const char* name, float spanScale, const char* label) {
         gpu::ImageHandle result = graph.createImage(name, imageDesc2D(format, scene.width, scene.height));
-        MotionBlurConstants pass = constants;
-        pass.spanScale = spanScale;
-        return addComputePass(graph, {"motion_blur_gather",
-                                      {sampled(input), sampled(speedDepth), sampled(neighbourMax), storageWrite(result)},
-                                      pushConstantBytes(pass),
-                                      {},
-                                      8,
-                                      label})
-            .images[0];
+        MotionBlurConstants scaled = constants;
+        scaled.spanScale = spanScale;
+        ComputePass pass{"motion_blur_gather",
+                         {sampled(input), sampled(speedDepth), sampled(neighbourMax), storageWrite(result)},
+                         bytesOf(scaled)};
+        pass.label = label;
+        return addComputePass(graph, std::move(pass)).images[0];
     };
     gpu::ImageHandle prefiltered =
         gather(hdrColor, "motionBlurPrefiltered", 1.0f / float(samples), "motion_blur_gather_fine");

@@ -10,7 +10,7 @@ namespace {
 std::vector<ShaderBinding> resolveBindings(const FrameScene& scene, const GBuffer& multisampled) {
     std::vector<ShaderBinding> bindings{sampled(multisampled.depth), sampled(multisampled.normalRoughness),
                                         sampled(multisampled.albedoMetallic), sampled(multisampled.instance),
-                                        sceneBuffer(scene.camera->buffer)};
+                                        bufferRead(scene.buffers.camera)};
     if (multisampled.velocity.valid()) bindings.push_back(sampled(multisampled.velocity));
     return bindings;
 }
@@ -60,15 +60,17 @@ MsaaResolve addMsaaResolvePass(gpu::FrameGraph& graph, const FrameScene& scene, 
     graph.addPass(
         "msaa_resolve", gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {
-            declareBindings(pass, bindings, ShaderStage::Fragment);
+            declareBindings(pass, bindings, ShaderStage::Graphics);
             // The stencil clear happens here, so the edge bit is set again right after it (seed 000:
             // "restore whenever a stencil clear occurs"); clip volumes add their bits later.
             resolved.depth = pass.depthStencilAttachment(resolved.depth, VkClearDepthStencilValue{1.0f, 0});
-            resolved.normalRoughness = pass.colorAttachment(resolved.normalRoughness);
-            resolved.albedoMetallic = pass.colorAttachment(resolved.albedoMetallic);
-            resolved.instance = pass.colorAttachment(resolved.instance);
-            if (velocity) resolved.velocity = pass.colorAttachment(resolved.velocity);
-            out.maxDepth = pass.colorAttachment(out.maxDepth);
+            // The sample-0 copy writes every texel of every colour target.
+            const auto overwritten = gpu::FrameGraph::PassBuilder::Load::Discard;
+            resolved.normalRoughness = pass.colorAttachment(resolved.normalRoughness, overwritten);
+            resolved.albedoMetallic = pass.colorAttachment(resolved.albedoMetallic, overwritten);
+            resolved.instance = pass.colorAttachment(resolved.instance, overwritten);
+            if (velocity) resolved.velocity = pass.colorAttachment(resolved.velocity, overwritten);
+            out.maxDepth = pass.colorAttachment(out.maxDepth, overwritten);
         },
         [bindings, velocity](VkCommandBuffer cmd, const gpu::PassResources& res) {
             gpu::PipelineCache& pipelines = res.pipelines();

@@ -17,8 +17,7 @@ VkDescriptorType descriptorType(Kind kind) {
         case Kind::StorageWrite:
         case Kind::StorageReadWrite: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
         case Kind::BufferRead:
-        case Kind::BufferWrite:
-        case Kind::SceneBuffer: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        case Kind::BufferWrite: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         case Kind::Unbound: break;
     }
     throw std::logic_error("shader pass: an unbound binding has no descriptor type");
@@ -32,9 +31,8 @@ std::vector<gpu::Usage> usagesOf(Kind kind, ShaderStage stage) {
         case Kind::SampledStencil:
             return {compute ? gpu::Usage::SampledCompute : gpu::Usage::SampledFragment};
         case Kind::BufferRead:
-            return {compute ? gpu::Usage::StorageBufferRead : gpu::Usage::StorageBufferReadFragment};
-        case Kind::Unbound:
-        case Kind::SceneBuffer: return {};
+            return {compute ? gpu::Usage::StorageBufferRead : gpu::Usage::StorageBufferReadGraphics};
+        case Kind::Unbound: return {};
         default: break;
     }
     if (!compute) throw std::logic_error("shader pass: storage resources are written by compute shaders only");
@@ -97,7 +95,6 @@ ShaderBinding storageWriteLevel(gpu::ImageHandle image, uint32_t level) {
 ShaderBinding storageReadWrite(gpu::ImageHandle image) { return {.kind = Kind::StorageReadWrite, .image = image}; }
 ShaderBinding bufferRead(gpu::BufferHandle buffer) { return {.kind = Kind::BufferRead, .buffer = buffer}; }
 ShaderBinding bufferWrite(gpu::BufferHandle buffer) { return {.kind = Kind::BufferWrite, .buffer = buffer}; }
-ShaderBinding sceneBuffer(VkBuffer buffer) { return {.kind = Kind::SceneBuffer, .sceneBuffer = buffer}; }
 ShaderBinding unbound() { return {}; }
 
 std::vector<gpu::BindingDesc> bindingLayout(const std::vector<ShaderBinding>& bindings) {
@@ -141,7 +138,6 @@ void bindBindings(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, const std:
                 break;
             case Kind::BufferRead:
             case Kind::BufferWrite: writer.buffer(i, res.buffer(b.buffer)); break;
-            case Kind::SceneBuffer: writer.buffer(i, b.sceneBuffer); break;
         }
     }
     writer.bind(cmd);

@@ -28,12 +28,10 @@ struct ShaderBinding {
         StorageReadWrite,  // storage image read and written in place
         BufferRead,        // storage buffer
         BufferWrite,
-        SceneBuffer,       // storage buffer the host filled before the frame
     };
     Kind kind = Kind::Unbound;
     gpu::ImageHandle image;
     gpu::BufferHandle buffer;
-    VkBuffer sceneBuffer = VK_NULL_HANDLE;
     SampledRead read = SampledRead::Nearest;
     VkSampler sampler = VK_NULL_HANDLE;  // set: this sampler rather than a clamped one of `read`
     std::optional<uint32_t> level;
@@ -48,11 +46,11 @@ ShaderBinding storageWriteLevel(gpu::ImageHandle image, uint32_t level);
 ShaderBinding storageReadWrite(gpu::ImageHandle image);
 ShaderBinding bufferRead(gpu::BufferHandle buffer);
 ShaderBinding bufferWrite(gpu::BufferHandle buffer);
-ShaderBinding sceneBuffer(VkBuffer buffer);
 ShaderBinding unbound();
 
-// Where a pass's shaders run: the stage its reads are declared for.
-enum class ShaderStage { Compute, Fragment };
+// Where a pass's shaders run: the stages its reads are declared for (Graphics: vertex and
+// fragment shaders).
+enum class ShaderStage { Compute, Graphics };
 
 // The descriptor layout the bindings make.
 std::vector<gpu::BindingDesc> bindingLayout(const std::vector<ShaderBinding>& bindings);
@@ -75,25 +73,26 @@ struct ComputePass {
     std::string label;  // the pass's name in timings; the shader's name when empty
 };
 
+// The bytes of a struct mirrored in a shader (push constants, a constant buffer's contents).
 template <typename T>
-std::vector<uint8_t> pushConstantBytes(const T& constants) {
-    const auto* bytes = reinterpret_cast<const uint8_t*>(&constants);
+std::vector<uint8_t> bytesOf(const T& value) {
+    const auto* bytes = reinterpret_cast<const uint8_t*>(&value);
     return {bytes, bytes + sizeof(T)};
 }
 
 // A 2D single-sample image (storage and sampled use come from the graph).
 gpu::ImageDesc imageDesc2D(VkFormat format, uint32_t width, uint32_t height);
 
-// What a pass wrote, in the order of its write bindings.
+// What a pass wrote (the versions its writes made), in the order of its write bindings.
 struct ComputeOutputs {
     std::vector<gpu::ImageHandle> images;
     std::vector<gpu::BufferHandle> buffers;
 };
 
-[[nodiscard]] ComputeOutputs addComputePass(gpu::FrameGraph& graph, ComputePass pass);
+ComputeOutputs addComputePass(gpu::FrameGraph& graph, ComputePass pass);
 // One pass of several dispatches of one shader, each with its own bindings and constants (one per
 // AOV, one per mip level): one entry in the timings, every dispatch's resources declared once.
-[[nodiscard]] ComputeOutputs addComputeDispatches(gpu::FrameGraph& graph, const std::string& label,
-                                                  std::vector<ComputePass> dispatches);
+ComputeOutputs addComputeDispatches(gpu::FrameGraph& graph, const std::string& label,
+                                    std::vector<ComputePass> dispatches);
 
 }  // namespace obscura::passes

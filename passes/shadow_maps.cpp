@@ -1,11 +1,11 @@
 #include "passes/shadow_maps.h"
 
 #include "passes/depth_only_draw.h"
+#include "passes/shader_pass.h"
 
 #include "gpu/content_hash.h"
 
 #include <array>
-#include <optional>
 #include <vector>
 
 namespace obscura::passes {
@@ -18,13 +18,20 @@ namespace {
 constexpr float kDepthBiasConstant = 1.0f;
 constexpr float kDepthBiasSlope = 2.0f;
 
+// Set 0: the instance records, and for cut-out draws the materials.
+std::vector<ShaderBinding> shadowBindings(const SceneBuffers& buffers, bool cutout) {
+    std::vector<ShaderBinding> bindings{bufferRead(buffers.instances)};
+    if (cutout) bindings.push_back(bufferRead(buffers.materials));
+    return bindings;
+}
+
 // Opaque draws write depth with no fragment stage; draws with an opacity cut-out add one that
 // discards the texels the G-buffer discards.
-gpu::GraphicsPipelineDesc describeShadowDepthPipeline(bool cutout) {
+gpu::GraphicsPipelineDesc describeShadowDepthPipeline(const std::vector<ShaderBinding>& bindings, bool cutout) {
     gpu::GraphicsPipelineDesc d = describeDepthOnlyDraw();
+    d.bindings = bindingLayout(bindings);
     if (cutout) {
         d.fragmentShader = "shadow_cutout.frag";
-        d.bindings.push_back({1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
         d.pushedSamplers = 1;  // set 1: the draw's opacity texture
     }
     d.depthFormat = kShadowAtlasFormat;
@@ -58,8 +65,11 @@ uint64_t viewKey(const FrameScene& scene, const ShadowMapView& view) {
 }
 
 // Records the draws of every view in `views` that `cutout` selects, each view into its tile.
-void recordViews(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& pipeline, const FrameScene& scene,
+void recordViews(VkCommandBuffer cmd, const gpu::PassResources& res, const FrameScene& scene,
                  const std::vector<uint32_t>& views, bool cutout) {
+    const std::vector<ShaderBinding> bindings = shadowBindings(scene.buffers, cutout);
+    const gpu::Pipeline& pipeline = res.pipelines().get<gpu::GraphicsPipelineDesc>(
+        cutout ? "shadow_depth_cutout" : "shadow_depth", [&] { return describeShadowDepthPipeline(bindings, cutout); });
     bool bound = false;
     for (uint32_t v : views) {
         const ShadowMapView& view = scene.shadows.views[v];
@@ -71,15 +81,12 @@ void recordViews(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& 
             const Draw& draw = scene.draws[index];
             if (draw.opacityCutout != cutout || !casts(draw)) continue;
             if (!bound) {
-                gpu::DescriptorWriter writer(device, pipeline);
-                writer.buffer(0, scene.instances->buffer);
-                if (cutout) writer.buffer(1, scene.materials->buffer);
-                writer.bind(cmd);
+                bindBindings(cmd, pipeline, bindings, res);
                 bound = true;
             }
             if (cutout) {
                 const MaterialTextures& textures = scene.materialTextures[draw.textures];
-                gpu::pushSampledImages(device, cmd, pipeline,
+                gpu::pushSampledImages(res.device(), cmd, pipeline,
                                        {{textures.samplers[kTextureOpacity], textures.images[kTextureOpacity]->view,
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}});
             }
@@ -107,8 +114,7 @@ void clearTiles(VkCommandBuffer cmd, const FrameScene& scene, const std::vector<
 
 }  // namespace
 
-gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, gpu::Device& device, const FrameScene& scene,
-                                  ShadowAtlasHistory* history) {
+gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, const FrameScene& scene, ShadowAtlasHistory* history) {
     gpu::ImageDesc desc;
     desc.format = kShadowAtlasFormat;
     desc.width = scene.shadows.width;
@@ -122,12 +128,10 @@ gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, gpu::Device& device, c
         for (uint32_t v = 0; v < viewCount; ++v) views.push_back(v);
     } else {
         desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-        if (!history->atlas || !(history->atlas->desc == desc)) {
-            history->atlas = device.createImage(desc, "shadow atlas");
-            history->layout = VK_IMAGE_LAYOUT_UNDEFINED;
-        }
-        // A new atlas holds nothing yet: every view is rendered, over a cleared image.
-        wholeAtlas = history->layout == VK_IMAGE_LAYOUT_UNDEFINED;
+        atlas = graph.importPersistent("shadowAtlas", history->atlas, desc);
+        // A new atlas (the first, or another size) holds nothing yet: every view is rendered, over
+        // a cleared image.
+        wholeAtlas = !history->atlas.holdsContents();
         if (wholeAtlas) history->viewKeys.clear();
         history->viewKeys.resize(viewCount, 0);
         for (uint32_t v = 0; v < viewCount; ++v) {
@@ -136,33 +140,23 @@ gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, gpu::Device& device, c
             history->viewKeys[v] = key;
             views.push_back(v);
         }
-        atlas = history->imported = graph.importImage("shadowAtlas", history->atlas, history->layout);
-        history->importedInto = &graph;
         // Nothing changed: the kept atlas is read as it is, and no pass runs.
         if (!wholeAtlas && views.empty()) return atlas;
     }
-    // An empty view list leaves the atlas cleared to the far depth: nothing casts.
-    std::optional<VkClearDepthStencilValue> clear;
-    if (wholeAtlas) clear = VkClearDepthStencilValue{1.0f, 0};
     graph.addPass(
         "shadow_maps", gpu::PassKind::Raster,
-        [&](gpu::FrameGraph::PassBuilder& pass) { atlas = pass.depthStencilAttachment(atlas, clear); },
+        [&](gpu::FrameGraph::PassBuilder& pass) {
+            declareBindings(pass, shadowBindings(scene.buffers, true), ShaderStage::Graphics);
+            // An empty view list leaves the atlas cleared to the far depth: nothing casts.
+            atlas = wholeAtlas ? pass.depthStencilAttachment(atlas, VkClearDepthStencilValue{1.0f, 0})
+                               : pass.depthStencilAttachment(atlas);
+        },
         [&scene, views, wholeAtlas](VkCommandBuffer cmd, const gpu::PassResources& res) {
             if (!wholeAtlas) clearTiles(cmd, scene, views);
-            const gpu::Pipeline& opaque = res.pipelines().get<gpu::GraphicsPipelineDesc>(
-                "shadow_depth", [] { return describeShadowDepthPipeline(false); });
-            const gpu::Pipeline& cutout = res.pipelines().get<gpu::GraphicsPipelineDesc>(
-                "shadow_depth_cutout", [] { return describeShadowDepthPipeline(true); });
-            recordViews(res.device(), cmd, opaque, scene, views, false);
-            recordViews(res.device(), cmd, cutout, scene, views, true);
+            recordViews(cmd, res, scene, views, false);
+            recordViews(cmd, res, scene, views, true);
         });
     return atlas;
-}
-
-void keepShadowAtlasHistory(const gpu::FrameGraph& graph, ShadowAtlasHistory& history) {
-    if (history.importedInto != &graph) return;
-    history.layout = graph.finalLayout(history.imported);
-    history.importedInto = nullptr;
 }
 
 }  // namespace obscura::passes

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "gpu/frame_graph.h"
+#include "gpu/history_images.h"
 #include "passes/frame_scene.h"
 
 #include <cstdint>
@@ -19,19 +20,14 @@ constexpr VkFormat kShadowAtlasFormat = VK_FORMAT_D32_SFLOAT;
 // (its light, its tile, or a caster in it: geometry, transform, cut-out material). A static scene
 // renders no shadow map at all after its first frame.
 struct ShadowAtlasHistory {
-    gpu::ImagePtr atlas;
-    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
-    gpu::ImageHandle imported;                     // this frame's import...
-    const gpu::FrameGraph* importedInto = nullptr;  // ...into this graph
+    gpu::PersistentImage atlas;
     std::vector<uint64_t> viewKeys;  // of each view as the atlas holds it
 };
 
 // Returns the atlas, written as a depth attachment; read it with Usage::SampledCompute. With a
 // history, only views whose key changed are rendered (into the kept atlas); without one (reference
 // sub-frames, whose lights move every sub-frame) every view is.
-gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, gpu::Device& device, const FrameScene& scene,
+gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, const FrameScene& scene,
                                   ShadowAtlasHistory* history = nullptr);
-// After graph.compile(): the layout this frame leaves the kept atlas in.
-void keepShadowAtlasHistory(const gpu::FrameGraph& graph, ShadowAtlasHistory& history);
 
 }  // namespace obscura::passes

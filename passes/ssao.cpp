@@ -48,11 +48,11 @@ struct HalfResolutionGeometry {
 // Full-resolution depth and normals to one texel per 2x2 pixels (shaders/ssao_downsample.comp).
 HalfResolutionGeometry addDownsamplePass(gpu::FrameGraph& graph, const FrameScene& scene, const GBuffer& gb) {
     std::vector<gpu::ImageHandle> half =
-        addComputePass(graph, {"ssao_downsample",
-                               {sceneBuffer(scene.camera->buffer), sampled(gb.depth), sampled(gb.normalRoughness),
-                                storageWrite(graph.createImage("ssaoHalfDepth", halfResolution(scene, kSsaoDepthFormat))),
-                                storageWrite(graph.createImage("ssaoHalfNormal",
-                                                               halfResolution(scene, kSsaoNormalFormat)))}})
+        addComputePass(graph,
+                       {"ssao_downsample",
+                        {bufferRead(scene.buffers.camera), sampled(gb.depth), sampled(gb.normalRoughness),
+                         storageWrite(graph.createImage("ssaoHalfDepth", halfResolution(scene, kSsaoDepthFormat))),
+                         storageWrite(graph.createImage("ssaoHalfNormal", halfResolution(scene, kSsaoNormalFormat)))}})
             .images;
     return {half[0], half[1]};
 }
@@ -67,9 +67,9 @@ gpu::ImageHandle addObscurancePass(gpu::FrameGraph& graph, const FrameScene& sce
                         {float(std::cos(turn)), float(std::sin(turn))}};
     gpu::ImageHandle accessibility = graph.createImage("ssaoNoisy", halfResolution(scene, kSsaoAccessibilityFormat));
     return addComputePass(graph, {"ssao_obscurance",
-                                  {sceneBuffer(scene.camera->buffer), sampled(half.depth), sampled(half.normal),
+                                  {bufferRead(scene.buffers.camera), sampled(half.depth), sampled(half.normal),
                                    storageWrite(accessibility)},
-                                  pushConstantBytes(push)})
+                                  bytesOf(push)})
         .images[0];
 }
 
@@ -77,56 +77,45 @@ gpu::ImageHandle addObscurancePass(gpu::FrameGraph& graph, const FrameScene& sce
 gpu::ImageHandle addBlurPass(gpu::FrameGraph& graph, const FrameScene& scene, const std::string& name,
                              gpu::ImageHandle input, gpu::ImageHandle halfDepth, BlurPush push) {
     gpu::ImageHandle output = graph.createImage(name, halfResolution(scene, kSsaoAccessibilityFormat));
-    return addComputePass(graph, {"ssao_blur",
-                                  {sampled(input), sampled(halfDepth), storageWrite(output)},
-                                  pushConstantBytes(push),
-                                  {},
-                                  8,
-                                  name})
-        .images[0];
+    ComputePass pass{"ssao_blur", {sampled(input), sampled(halfDepth), storageWrite(output)}, bytesOf(push)};
+    pass.label = name;
+    return addComputePass(graph, std::move(pass)).images[0];
 }
 
 // Temporal accumulation with reprojection (shaders/ssao_temporal.comp): writes this frame's history
 // images from the noisy obscurance and last frame's; returns the accumulated accessibility.
-gpu::ImageHandle addTemporalPass(gpu::FrameGraph& graph, gpu::Device& device, const FrameScene& scene,
-                                 const HalfResolutionGeometry& half, gpu::ImageHandle noisy, SsaoHistory& history) {
+gpu::ImageHandle addTemporalPass(gpu::FrameGraph& graph, const FrameScene& scene, const HalfResolutionGeometry& half,
+                                 gpu::ImageHandle noisy, SsaoHistory& history) {
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     gpu::ImageDesc accessibilityDesc = halfResolution(scene, kSsaoHistoryFormat);
     gpu::ImageDesc depthDesc = halfResolution(scene, kSsaoDepthFormat);
     accessibilityDesc.usage = depthDesc.usage = usage;
-    bool created = history.accessibility.ensure(device, accessibilityDesc, "ssaoHistory");
-    created = history.depth.ensure(device, depthDesc, "ssaoHistoryDepth") || created;
-    if (created) history.valid = false;
-    gpu::HistoryImages::Imported accessibility = history.accessibility.import(graph, "ssaoHistory");
-    gpu::HistoryImages::Imported depth = history.depth.import(graph, "ssaoHistoryDepth");
-    TemporalPush push{history.viewToPreviousView, float(kSsaoHistoryFrames),
-                      history.valid && accessibility.previousWritten ? 1u : 0u};
+    gpu::FrameGraph::History accessibility = graph.addHistory("ssaoHistory", history.accessibility, accessibilityDesc);
+    gpu::FrameGraph::History depth = graph.addHistory("ssaoHistoryDepth", history.depth, depthDesc);
+    // New images (the first frame, another size) hold nothing to reproject.
+    const bool valid = history.valid && !accessibility.previousEmpty && !depth.previousEmpty;
+    TemporalPush push{history.viewToPreviousView, float(kSsaoHistoryFrames), valid ? 1u : 0u};
     ++history.frame;
     return addComputePass(graph, {"ssao_temporal",
-                                  {sceneBuffer(scene.camera->buffer), sampled(noisy), sampled(half.depth),
+                                  {bufferRead(scene.buffers.camera), sampled(noisy), sampled(half.depth),
                                    sampled(half.normal), sampled(accessibility.previous), sampled(depth.previous),
                                    storageWrite(accessibility.current), storageWrite(depth.current)},
-                                  pushConstantBytes(push)})
+                                  bytesOf(push)})
         .images[0];
 }
 
 }  // namespace
 
-SsaoResult addSsaoPasses(gpu::FrameGraph& graph, gpu::Device& device, const FrameScene& scene, const GBuffer& gbuffer,
+SsaoResult addSsaoPasses(gpu::FrameGraph& graph, const FrameScene& scene, const GBuffer& gbuffer,
                          const SsaoSettings& settings, SsaoHistory& history) {
     HalfResolutionGeometry half = addDownsamplePass(graph, scene, gbuffer);
     gpu::ImageHandle noisy = addObscurancePass(graph, scene, half, settings, history.frame);
     SsaoResult result;
-    gpu::ImageHandle accumulated = addTemporalPass(graph, device, scene, half, noisy, history);
+    gpu::ImageHandle accumulated = addTemporalPass(graph, scene, half, noisy, history);
     gpu::ImageHandle horizontal = addBlurPass(graph, scene, "ssao_blur_horizontal", accumulated, half.depth, {{1, 0}});
     result.accessibility = addBlurPass(graph, scene, "ssao_blur_vertical", horizontal, half.depth, {{0, 1}});
     result.halfDepth = half.depth;
     return result;
-}
-
-void keepSsaoHistory(const gpu::FrameGraph& graph, SsaoHistory& history) {
-    history.accessibility.keep(graph);
-    history.depth.keep(graph);
 }
 
 }  // namespace obscura::passes

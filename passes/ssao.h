@@ -30,10 +30,7 @@ struct SsaoHistory {
     uint64_t frame = 0;      // turns the sample pattern
 };
 
-SsaoResult addSsaoPasses(gpu::FrameGraph& graph, gpu::Device& device, const FrameScene& scene,
+SsaoResult addSsaoPasses(gpu::FrameGraph& graph, const FrameScene& scene,
                          const GBuffer& gbuffer, const SsaoSettings& settings, SsaoHistory& history);
-
-// After the graph is compiled: records the layouts this frame leaves the history images in.
-void keepSsaoHistory(const gpu::FrameGraph& graph, SsaoHistory& history);
 
 }  // namespace obscura::passes

@@ -3,7 +3,6 @@
 #include "passes/shader_pass.h"
 
 #include <cmath>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -51,7 +50,7 @@ std::array<double, 2> temporalAaJitter(TemporalAaMode mode, uint32_t index, uint
     return {centredRotation(radicalInverse(i, 2)), centredRotation(radicalInverse(i, 3))};
 }
 
-gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, gpu::Device& device, const FrameScene& scene,
+gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, const FrameScene& scene,
                                    const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
                                    gpu::ImageHandle transparentCoverage, const TemporalAaSettings& settings,
                                    const TemporalAaFrame& frame, TemporalAaHistory& history) {
@@ -62,24 +61,19 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, gpu::Device& device, 
     colorDesc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     gpu::ImageDesc depthDesc = colorDesc;
     depthDesc.format = temporalAaDepthFormat(settings.mode);
-    // New images (first use, resize) hold nothing: previousWritten says so.
-    history.color.ensure(device, colorDesc, "temporalAaHistory");
-    history.depth.ensure(device, depthDesc, "temporalAaHistoryDepth");
-    gpu::HistoryImages::Imported color = history.color.import(graph, "temporalAaHistory");
-    gpu::HistoryImages::Imported depth = history.depth.import(graph, "temporalAaHistoryDepth");
+    // New images (the first frame, another size) hold nothing: previousEmpty says so.
+    gpu::FrameGraph::History color = graph.addHistory("temporalAaHistory", history.color, colorDesc);
+    gpu::FrameGraph::History depth = graph.addHistory("temporalAaHistoryDepth", history.depth, depthDesc);
 
     TemporalAaConstants constants{frame.currentClipToPreviousClip,
                                   frame.currentClipToPreviousView,
                                   frame.worldToPreviousClip,
                                   frame.worldToPreviousView,
                                   {settings.kLowFreq, settings.kHighFreq, kSmaa2txVelocityWeight, 0.0f},
-                                  {frame.historyValid && color.previousWritten ? 1u : 0u,
+                                  {frame.historyValid && !color.previousEmpty ? 1u : 0u,
                                    frame.heldFrames, frame.framesToConverge,
                                    (frame.edgeAa ? kTemporalAaEdgeAa : 0u) |
                                        (frame.colorHasCoverage ? kTemporalAaColorHasCoverage : 0u)}};
-    gpu::BufferPtr constantBuffer = device.createFrameBuffer(sizeof(constants), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                                             "temporalAaConstants");
-    std::memcpy(constantBuffer->mapped(), &constants, sizeof(constants));
 
     // 1TX's result is its accumulation; 2TX keeps the raw frame as history and resolves apart. An
     // unchanged scene runs the still's plain running mean, its own shader: lavapipe pays for both
@@ -95,11 +89,11 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, gpu::Device& device, 
     }
     ComputeOutputs written = addComputePass(
         graph, {variant,
-                {sceneBuffer(scene.camera->buffer), bufferRead(graph.importBuffer("temporalAaConstants", constantBuffer)),
-                 sampled(hdrColor), sampled(gbuffer.depth), sampled(color.previous), sampled(depth.previous),
-                 storageWrite(color.current), storageWrite(depth.current), resolved, sampled(transparentCoverage),
-                 sampled(gbuffer.instance), sceneBuffer(scene.instances->buffer),
-                 sceneBuffer(scene.instanceReprojections->buffer)}});
+                {bufferRead(scene.buffers.camera),
+                 bufferRead(graph.createBuffer("temporalAaConstants", bytesOf(constants))), sampled(hdrColor),
+                 sampled(gbuffer.depth), sampled(color.previous), sampled(depth.previous), storageWrite(color.current),
+                 storageWrite(depth.current), resolved, sampled(transparentCoverage), sampled(gbuffer.instance),
+                 bufferRead(scene.buffers.instances), bufferRead(scene.buffers.instanceReprojections)}});
     return written.images[twoFrame ? 2 : 0];
 }
 
@@ -109,13 +103,8 @@ gpu::ImageHandle addTemporalAaSamplePass(gpu::FrameGraph& graph, const FrameScen
         graph.createImage("temporalAaSample", imageDesc2D(kTemporalAaColorFormat, scene.width, scene.height));
     return addComputePass(graph, {"temporal_aa_sample",
                                   {sampled(hdrColor), sampled(gbuffer.depth), sampled(transparentCoverage),
-                                   storageWrite(sample), sceneBuffer(scene.camera->buffer)}})
+                                   storageWrite(sample), bufferRead(scene.buffers.camera)}})
         .images[0];
-}
-
-void keepTemporalAaHistory(const gpu::FrameGraph& graph, TemporalAaHistory& history) {
-    history.color.keep(graph);
-    history.depth.keep(graph);
 }
 
 }  // namespace obscura::passes

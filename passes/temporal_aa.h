@@ -73,7 +73,8 @@ struct TemporalAaFrame {
     Mat4 worldToPreviousView{};
 };
 
-// The history (an explicit history input, STYLE.md): persistent images the delegate keeps.
+// The history (an explicit history input, STYLE.md, declared with FrameGraph::addHistory):
+// persistent images the renderer keeps.
 struct TemporalAaHistory {
     gpu::HistoryImages color;  // kTemporalAaColorFormat
     gpu::HistoryImages depth;  // temporalAaDepthFormat(mode)
@@ -82,7 +83,7 @@ struct TemporalAaHistory {
 // Returns the anti-aliased HDR colour (kTemporalAaColorFormat, coverage in alpha; in 1TX the
 // history written this frame itself). `hdrColor` is the light accumulation, rendered with the
 // jittered projection.
-gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, gpu::Device& device, const FrameScene& scene,
+gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, const FrameScene& scene,
                                    const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
                                    gpu::ImageHandle transparentCoverage, const TemporalAaSettings& settings,
                                    const TemporalAaFrame& frame, TemporalAaHistory& history);
@@ -93,8 +94,5 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, gpu::Device& device, 
 gpu::ImageHandle addTemporalAaSamplePass(gpu::FrameGraph& graph, const FrameScene& scene,
                                          const GBuffer& gbuffer, gpu::ImageHandle hdrColor,
                                          gpu::ImageHandle transparentCoverage);
-
-// After the graph is compiled: records the layouts this frame leaves the history images in.
-void keepTemporalAaHistory(const gpu::FrameGraph& graph, TemporalAaHistory& history);
 
 }  // namespace obscura::passes

@@ -20,15 +20,14 @@ gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, const FrameScene& scene,
                                 HdrAlpha hdrAlpha, gpu::ImageHandle coverage, gpu::ImageHandle transparentCoverage,
                                 const ColorGradingLut& grading) {
     gpu::ImageHandle display = graph.createImage("display", imageDesc2D(kDisplayFormat, scene.width, scene.height));
-    gpu::ImageHandle lut =
-        graph.importImage("displayLut", grading.texture(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    gpu::ImageHandle lut = graph.importTexture("displayLut", grading.texture());
     const ColorLut& shaper = grading.lut();
     TonemapPush push{shaper.shaperMinStops, shaper.shaperMaxStops - shaper.shaperMinStops, kShaperMiddleGrey,
                      float(shaper.size), hdrAlpha == HdrAlpha::Coverage ? 1u : 0u, scene.cameraData.backdropCoverage};
     return addComputePass(graph, {"tonemap",
                                   {sampled(hdrColor), storageWrite(display), sampled(coverage),
                                    sampled(lut, SampledRead::Linear), sampled(transparentCoverage)},
-                                  pushConstantBytes(push)})
+                                  bytesOf(push)})
         .images[0];
 }
 

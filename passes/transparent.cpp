@@ -2,6 +2,7 @@
 
 #include "passes/frame_data.h"
 #include "passes/material_draw.h"
+#include "passes/shader_pass.h"
 
 namespace obscura::passes {
 namespace {
@@ -11,15 +12,12 @@ struct TransparentPush {
     float fadeDistance;
 };
 
-gpu::GraphicsPipelineDesc describeTransparentPipeline(VkFormat hdrFormat) {
+gpu::GraphicsPipelineDesc describeTransparentPipeline(VkFormat hdrFormat,
+                                                      const std::vector<ShaderBinding>& bindings) {
     gpu::GraphicsPipelineDesc d;
     setSceneVertexInput(d);
     d.fragmentShader = "transparent.frag";
-    d.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},         {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},         {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}, {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}, {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                  {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},         {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
+    d.bindings = bindingLayout(bindings);
     d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
     d.pushConstantSize = sizeof(TransparentPush);
     d.colorFormats = {hdrFormat, kTransparentCoverageFormat};
@@ -43,6 +41,17 @@ TransparentResult addTransparentPass(gpu::FrameGraph& graph, const FrameScene& s
     TransparentResult result{hdr, graph.createImage("transparentCoverage", desc)};
     const bool anyDraws = !draws.empty();
     const VkFormat hdrFormat = graph.imageDesc(hdr).format;
+    const SceneBuffers& buffers = scene.buffers;
+    std::vector<ShaderBinding> bindings{bufferRead(buffers.camera),
+                                        bufferRead(buffers.instances),
+                                        bufferRead(buffers.materials),
+                                        bufferRead(buffers.lights),
+                                        sampled(opaqueDepth),
+                                        bufferRead(buffers.shadowRecords),
+                                        sampled(shadowAtlas),
+                                        bufferRead(buffers.environment),
+                                        bufferRead(environment.irradiance),
+                                        sampled(environment.prefiltered, environment.sampler)};
 
     graph.addPass(
         "transparent", gpu::PassKind::Raster,
@@ -50,34 +59,15 @@ TransparentResult addTransparentPass(gpu::FrameGraph& graph, const FrameScene& s
             // Attachments in the pipeline's order; without draws only the coverage is cleared.
             if (anyDraws) result.hdr = pass.colorAttachment(hdr);
             result.coverage = pass.colorAttachment(result.coverage, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
-            if (!anyDraws) return;
-            pass.read(opaqueDepth, gpu::Usage::SampledFragment);
-            pass.read(shadowAtlas, gpu::Usage::SampledFragment);
-            pass.read(environment.prefiltered, gpu::Usage::SampledFragment);
-            pass.read(environment.irradiance, gpu::Usage::StorageBufferReadFragment);
+            if (anyDraws) declareBindings(pass, bindings, ShaderStage::Graphics);
         },
-        [&scene, draws, opaqueDepth, shadowAtlas, environment, settings, anyDraws, hdrFormat](
-            VkCommandBuffer cmd, const gpu::PassResources& res) {
+        [&scene, draws, bindings, settings, anyDraws, hdrFormat](VkCommandBuffer cmd, const gpu::PassResources& res) {
             if (!anyDraws) return;
             gpu::Device& device = res.device();
             const gpu::Pipeline& pipeline = res.pipelines().get<gpu::GraphicsPipelineDesc>(
                 hdrFormat == VK_FORMAT_R16G16B16A16_SFLOAT ? "transparent.halfFloat" : "transparent",
-                [hdrFormat] { return describeTransparentPipeline(hdrFormat); });
-            VkSampler nearest = device.nearestClampSampler();
-            gpu::DescriptorWriter(device, pipeline)
-                .buffer(0, scene.camera->buffer)
-                .buffer(1, scene.instances->buffer)
-                .buffer(2, scene.materials->buffer)
-                .buffer(3, scene.lights->buffer)
-                .sampled(4, res.view(opaqueDepth), nearest,
-                         gpu::isDepthFormat(res.desc(opaqueDepth).format) ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
-                                                                           : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
-                .buffer(5, scene.shadows.records->buffer)
-                .sampled(6, res.view(shadowAtlas), nearest, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
-                .buffer(7, scene.environment->buffer)
-                .buffer(8, res.buffer(environment.irradiance))
-                .sampled(9, res.view(environment.prefiltered), environment.sampler)
-                .bind(cmd);
+                [&] { return describeTransparentPipeline(hdrFormat, bindings); });
+            bindBindings(cmd, pipeline, bindings, res);
             const MaterialTextures* pushed = nullptr;
             for (uint32_t index : draws) {
                 const Draw& draw = scene.draws[index];

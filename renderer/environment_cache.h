@@ -4,6 +4,8 @@
 // pass rotates its lookups).
 #pragma once
 
+#include "gpu/frame_backend.h"
+#include "gpu/history_images.h"
 #include "passes/environment_prefilter.h"
 
 namespace obscura::renderer {
@@ -12,24 +14,19 @@ class EnvironmentCache {
 public:
     // `sampler` reads the source and the prefiltered chain: trilinear, repeating in longitude
     // and clamped in latitude.
-    EnvironmentCache(gpu::Device& device, VkSampler sampler);
+    EnvironmentCache(gpu::FrameBackend& backend, VkSampler sampler);
 
-    // Imports the frame's environment resources into `graph` and adds the prefilter passes when
-    // `source` (the dome's latlong texture) is not the image the maps were made from. Without a source: placeholders (a
-    // 1x1 black image, zero coefficients), and the maps are released.
+    // Imports the frame's environment resources into `graph`, with the prefilter passes when the
+    // maps do not hold `source` (the dome's latlong texture) yet. Without a source: placeholders
+    // (a 1x1 black image, zero coefficients), and the maps are released.
     passes::EnvironmentLighting addToFrame(gpu::FrameGraph& graph, const gpu::ImagePtr& source);
-    // After graph.compile(): remembers the layout the frame leaves the maps in, and which texture
-    // they now hold (unless the graph culled the prefilter).
-    void frameCompiled(const gpu::FrameGraph& graph);
 
 private:
-    gpu::Device& device_;
+    gpu::FrameBackend& backend_;
     VkSampler sampler_;
-    gpu::ImagePtr source_;   // what the maps hold
-    gpu::ImagePtr pending_;  // what this frame's prefilter writes into them
-    gpu::ImagePtr prefiltered_;
-    VkImageLayout prefilteredLayout_ = VK_IMAGE_LAYOUT_UNDEFINED;
-    gpu::ImageHandle prefilteredHandle_;
+    // The texture the maps are made from; they hold it once a frame that prefiltered it ran.
+    gpu::ImagePtr source_;
+    gpu::PersistentImage prefiltered_;
     gpu::BufferPtr irradiance_;
     gpu::ImagePtr placeholder_;
     gpu::BufferPtr placeholderIrradiance_;

@@ -15,39 +15,54 @@
 #include <cstdio>
 
 namespace obscura::renderer {
+namespace {
+
+// Reference mode's running sum, the size of the frame.
+gpu::ImageDesc accumulationDesc(uint32_t width, uint32_t height) {
+    gpu::ImageDesc desc;
+    desc.format = passes::kAccumulationFormat;
+    desc.width = width;
+    desc.height = height;
+    desc.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+    return desc;
+}
+
+}  // namespace
 
 FrameRenderer::FrameRenderer(gpu::Device& device, VkSampler environmentSampler, LogSink log)
-    : device_(device), log_(std::move(log)) {
-    pipelines_ = std::make_unique<gpu::PipelineCache>(device_);
-    transients_ = std::make_unique<gpu::TransientImagePool>(device_);
-    timestamps_ = std::make_unique<gpu::Timestamps>(device_);
-    bestFitNormals_ = passes::createBestFitNormalsTexture(device_);
+    : FrameRenderer(std::make_unique<gpu::DeviceFrameBackend>(device), nullptr, environmentSampler, std::move(log)) {}
+
+FrameRenderer::FrameRenderer(gpu::FrameBackend& backend, VkSampler environmentSampler, LogSink log)
+    : FrameRenderer(nullptr, &backend, environmentSampler, std::move(log)) {}
+
+FrameRenderer::FrameRenderer(std::unique_ptr<gpu::FrameBackend> owned, gpu::FrameBackend* backend,
+                             VkSampler environmentSampler, LogSink log)
+    : ownedBackend_(std::move(owned)), backend_(backend ? *backend : *ownedBackend_), log_(std::move(log)) {
+    bestFitNormals_ = passes::createBestFitNormalsTexture(backend_);
     // With SSAO off the lighting pass reads one unoccluded texel.
     const uint8_t open = 255;
     const float farDepth = 0.0f;
     gpu::ImageDesc one;
     one.width = one.height = 1;
     one.format = passes::kSsaoAccessibilityFormat;
-    unoccluded_.accessibility = device_.createTextureWithData(one, &open, sizeof(open), "ssao off");
+    unoccluded_.accessibility = backend_.createTexture(one, &open, sizeof(open), "ssao off");
     one.format = passes::kSsaoDepthFormat;
-    unoccluded_.halfDepth = device_.createTextureWithData(one, &farDepth, sizeof(farDepth), "ssao off depth");
+    unoccluded_.halfDepth = backend_.createTexture(one, &farDepth, sizeof(farDepth), "ssao off depth");
     const uint16_t still[2] = {0xFBFF, 0};  // half floats: kStaticVelocity (-65504), 0
     static_assert(passes::kStaticVelocity == -65504.0f);
     one.format = passes::kVelocityFormat;
-    stillVelocity_ = device_.createTextureWithData(one, still, sizeof(still), "still velocity");
-    environment_ = std::make_unique<EnvironmentCache>(device_, environmentSampler);
+    stillVelocity_ = backend_.createTexture(one, still, sizeof(still), "still velocity");
+    environment_ = std::make_unique<EnvironmentCache>(backend_, environmentSampler);
 }
 
-FrameRenderer::~FrameRenderer() {
-    vkDeviceWaitIdle(device_.vk());
-}
+FrameRenderer::~FrameRenderer() { backend_.waitIdle(); }
 
 std::string FrameRenderer::updateDisplay(const FrameSettings& settings) {
     passes::ColorLutRequest colour{settings.ocioConfig, settings.ocioDisplay, settings.ocioView, settings.ocioLook};
     if (std::string problem = gradingChart_.load(settings.gradingChart); !problem.empty())
         return "colour grading: " + problem;
     passes::DisplayGrade grade{gradingChart_.lattice(), settings.gradingInterpolation, gradingChart_.key()};
-    if (std::string problem = grading_.update(device_, colour, grade); !problem.empty())
+    if (std::string problem = grading_.update(backend_, colour, grade); !problem.empty())
         return "colour management: " + problem;
     return {};
 }
@@ -113,17 +128,17 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
     // one to everything after it; the lighting pass alone reads the samples (seed 000 "Deferred
     // MSAA"). Reference mode's sub-frames carry their own pixel jitter, so it renders one sample.
     gpu::FrameGraph graph;
+    passes::importSceneBuffers(graph, scene);
     gpu::ImageHandle shadowAtlas;
-    shadowHistory_.importedInto = nullptr;  // a failed frame's import is not this graph's
-    if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, device_, scene, &shadowHistory_);
+    if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, scene, &shadowHistory_);
     auto samples = VkSampleCountFlagBits(referenceSubFrames == 0 ? settings.msaaSamples : 1u);
-    passes::GBuffer gbuffer =
-        passes::addGBufferPass(graph, scene, bestFitNormals_, samples, settings.msaaAlphaToCoverage);
+    passes::GBuffer gbuffer = passes::addGBufferPass(
+        graph, scene, graph.importTexture("bestFitNormals", bestFitNormals_), samples, settings.msaaAlphaToCoverage);
     std::optional<MsaaFrame> msaa;
     if (samples != VK_SAMPLE_COUNT_1_BIT) {
         if (!msaaTaggedPixels_)
-            msaaTaggedPixels_ = device_.createBuffer(sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                                     gpu::MemoryUsage::Readback, "msaa tagged pixels");
+            msaaTaggedPixels_ = backend_.createBuffer(sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                      gpu::MemoryUsage::Readback, "msaa tagged pixels");
         *static_cast<uint32_t*>(msaaTaggedPixels_->mapped()) = 0;
         passes::PerSampleLighting perSample{gbuffer, graph.importBuffer("msaaTaggedPixels", msaaTaggedPixels_)};
         graph.markOutput(perSample.taggedPixelCount);
@@ -135,7 +150,8 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
     gpu::ImageHandle transparentCoverage;
     bool dofAfterTemporalAa = false;
     if (referenceSubFrames > 0) {
-        gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
+        gpu::ImageHandle sum =
+            graph.importPersistent("referenceAccumulation", accumulation_, accumulationDesc(width, height));
         hdr = passes::addAccumulationResolvePass(graph, sum,
                                                  settings.lightAccumulation == passes::LightAccumulation::HalfFloat
                                                      ? VK_FORMAT_R16G16B16A16_SFLOAT
@@ -174,9 +190,8 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
         }
         if (temporalAa) {
             temporalAa->pass.edgeAa = scene.edgeAa;
-            hdr = passes::addTemporalAaPass(graph, device_, scene, gbuffer, hdr, transparentCoverage,
-                                            temporalAaSettings, temporalAa->pass, temporalAaHistory_);
-            temporalAaInFrame_ = true;
+            hdr = passes::addTemporalAaPass(graph, scene, gbuffer, hdr, transparentCoverage, temporalAaSettings,
+                                            temporalAa->pass, temporalAaHistory_);
             if (scene.edgeAa) hdr = passes::addEdgeAaPasses(graph, scene, gbuffer, hdr);
         }
         // Over the whole aperture, unless the still's mean holds it, sample by sample.
@@ -198,7 +213,7 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
     gpu::ImageHandle velocity =
         gbuffer.velocity.valid()
             ? gbuffer.velocity
-            : graph.importImage("velocity.still", stillVelocity_, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            : graph.importTexture("velocity.still", stillVelocity_);
     passes::addAovReadbackPass(graph, scene, gbuffer, hdr, hdrAlpha, transparentCoverage, display,
                                velocity, request.aovs);
     executeFrame(graph);
@@ -232,15 +247,13 @@ gpu::ImageHandle FrameRenderer::addLighting(gpu::FrameGraph& graph, const passes
         Matrix4d inverseView = kIdentity;
         invert(seen.view, inverseView);
         ssaoHistory_.viewToPreviousView = toFloats<passes::Mat4>(multiply(inverseView, last.view));
-        ambient = passes::addSsaoPasses(graph, device_, scene, gbuffer, ssao, ssaoHistory_);
-        ssaoInFrame_ = true;
+        ambient = passes::addSsaoPasses(graph, scene, gbuffer, ssao, ssaoHistory_);
     } else {
-        ambient = {graph.importImage("ssao.off", unoccluded_.accessibility, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
-                   graph.importImage("ssao.off.depth", unoccluded_.halfDepth, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)};
+        ambient = {graph.importTexture("ssao.off", unoccluded_.accessibility),
+                   graph.importTexture("ssao.off.depth", unoccluded_.halfDepth)};
     }
     ssaoHistoryFrame_ = {settings.ssao, seen.view, seen.projection, scene.width, scene.height, request.settingsVersion};
     passes::EnvironmentLighting environment = environment_->addToFrame(graph, request.environment);
-    environmentInFrame_ = true;
     gpu::ImageHandle hdr = passes::addLightingPass(graph, scene, gbuffer, ambient, shadowAtlas, environment,
                                                    settings.lightAccumulation, msaa ? &msaa->perSample : nullptr);
     // Transparent surfaces over the lit opaque ones, before temporal AA (DESIGN.md "The frame").
@@ -254,36 +267,24 @@ gpu::ImageHandle FrameRenderer::addLighting(gpu::FrameGraph& graph, const passes
 }
 
 void FrameRenderer::executeFrame(gpu::FrameGraph& graph) {
-    graph.compile();
-    if (environmentInFrame_) environment_->frameCompiled(graph);
-    environmentInFrame_ = false;
-    if (ssaoInFrame_) passes::keepSsaoHistory(graph, ssaoHistory_);
-    if (temporalAaInFrame_) passes::keepTemporalAaHistory(graph, temporalAaHistory_);
-    passes::keepShadowAtlasHistory(graph, shadowHistory_);
-    ssaoInFrame_ = temporalAaInFrame_ = false;
-    device_.context().submitAndWait([&](VkCommandBuffer cmd) {
-        timestamps_->reset(cmd);
-        graph.execute(*transients_, *pipelines_, cmd, timestamps_.get());
-        recorded_ = std::chrono::steady_clock::now();
-    });
-    timings_ = timestamps_->resolve();
-    device_.endFrame();
-    transients_->endFrame();
+    backend_.run(graph);
+    timings_ = backend_.timings();
+    // The transient images' memory, when another frame places them otherwise.
+    const gpu::TransientMemory& memory = graph.transientMemory();
+    if (memory.bytes() != transientBytes_) {
+        transientBytes_ = memory.bytes();
+        char line[160];
+        std::snprintf(line, sizeof(line), "transient images: %zu in %.1f MiB (%.1f MiB without aliasing)",
+                      memory.placements.size(), double(memory.bytes()) / (1 << 20),
+                      double(memory.unaliasedBytes()) / (1 << 20));
+        log_(LogLevel::Info, line);
+    }
 }
 
 void FrameRenderer::accumulateReference(FrameSceneSource& source, const FrameRequest& request,
                                         const FrameSettings& settings, const passes::ThinLens& lens,
                                         const std::array<double, 2>& shutter) {
-    const uint32_t width = request.camera.width, height = request.camera.height;
-    const gpu::ImageDesc* current = accumulation_.image ? &accumulation_.image->desc : nullptr;
-    if (!current || current->width != width || current->height != height) {
-        gpu::ImageDesc desc;
-        desc.format = passes::kAccumulationFormat;
-        desc.width = width;
-        desc.height = height;
-        desc.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-        accumulation_ = {device_.createImage(desc, "reference accumulation"), VK_IMAGE_LAYOUT_UNDEFINED};
-    }
+    const gpu::ImageDesc sumDesc = accumulationDesc(request.camera.width, request.camera.height);
     // Without depth of field the lens is a pinhole: every sub-frame looks from its centre.
     bool lensBlur = passes::hasDepthOfField(lens);
     double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
@@ -299,16 +300,17 @@ void FrameRenderer::accumulateReference(FrameSceneSource& source, const FrameReq
                                        sub.pixelJitter, sub.emitter};
         passes::FrameScene scene = source.scene(viewpoint);
         gpu::FrameGraph graph;
-        gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, device_, scene);
-        passes::GBuffer gbuffer = passes::addGBufferPass(graph, scene, bestFitNormals_);
+        passes::importSceneBuffers(graph, scene);
+        gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, scene);
+        passes::GBuffer gbuffer =
+            passes::addGBufferPass(graph, scene, graph.importTexture("bestFitNormals", bestFitNormals_));
         // Each sub-frame blends its transparent surfaces into its lighting; their coverage is not kept.
         gpu::ImageHandle transparentCoverage;
         gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, source.view(viewpoint), request,
                                            settings, transparentCoverage);
-        gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
-        sum = passes::addAccumulatePass(graph, hdr, sum, float(sub.weight), k == 0);
+        gpu::ImageHandle sum = graph.importPersistent("referenceAccumulation", accumulation_, sumDesc);
+        passes::addAccumulatePass(graph, hdr, sum, float(sub.weight), k == 0);
         executeFrame(graph);
-        accumulation_.layout = graph.finalLayout(sum);
     }
 }
 

@@ -1,15 +1,14 @@
 // The frame (DESIGN.md "The frame"), apart from Hydra: the frame graph of passes wired for the
-// settings, and every resource that lives from frame to frame (pipelines, transient images,
-// timestamps, the SSAO, temporal AA and shadow histories, the reference's accumulation, the
-// environment maps, the display LUT). The delegate owns the prims and hands the renderer a source
-// of the frame's scene, which the renderer asks for each viewpoint the frame needs: the frame's
-// own, and each reference sub-frame's.
+// settings, and every resource that lives from frame to frame (the SSAO, temporal AA and shadow
+// histories, the reference's accumulation, the environment maps, the display LUT); the frame
+// backend it runs on keeps the pipelines, the transient images and the timestamps. The delegate
+// owns the prims and hands the renderer a source of the frame's scene, which the renderer asks for
+// each viewpoint the frame needs: the frame's own, and each reference sub-frame's.
 #pragma once
 
-#include "gpu/frame_graph.h"
-#include "gpu/pipeline_cache.h"
+#include "gpu/frame_backend.h"
+#include "gpu/history_images.h"
 #include "gpu/log.h"
-#include "gpu/timestamps.h"
 #include "passes/aov_readback.h"
 #include "pass_support/color_grading_lut.h"
 #include "passes/frame_scene.h"
@@ -137,6 +136,8 @@ class FrameRenderer {
 public:
     // `environmentSampler`: trilinear, repeating in longitude and clamped in latitude.
     FrameRenderer(gpu::Device& device, VkSampler environmentSampler, LogSink log);
+    // Frames on another backend (tests run them against a mock, without a GPU).
+    FrameRenderer(gpu::FrameBackend& backend, VkSampler environmentSampler, LogSink log);
     ~FrameRenderer();
     FrameRenderer(const FrameRenderer&) = delete;
     FrameRenderer& operator=(const FrameRenderer&) = delete;
@@ -151,9 +152,12 @@ public:
     // The last render left a still that another render would not change (ObscuraRenderStats).
     bool converged() const { return converged_; }
     // When the last frame's commands were recorded.
-    std::chrono::steady_clock::time_point recorded() const { return recorded_; }
+    std::chrono::steady_clock::time_point recorded() const { return backend_.recorded(); }
 
 private:
+    FrameRenderer(std::unique_ptr<gpu::FrameBackend> owned, gpu::FrameBackend* backend, VkSampler environmentSampler,
+                  LogSink log);
+
     // Deferred MSAA's part of the frame after the resolve (render setting msaa > 1): the
     // multisampled G-buffer behind the resolved one, for the per-sample lighting, and the max of
     // each pixel's sample depths, which the transparents test and fade against.
@@ -167,7 +171,7 @@ private:
                                  gpu::ImageHandle shadowAtlas, const FrameView& seen, const FrameRequest& request,
                                  const FrameSettings& settings, gpu::ImageHandle& transparentCoverage,
                                  const MsaaFrame* msaa = nullptr);
-    // Compiles, records and submits one frame graph, and waits for it.
+    // Runs one frame graph and waits for it.
     void executeFrame(gpu::FrameGraph& graph);
     // Reference mode: `count` sub-frames sampling `lens`'s aperture, the `shutter` interval (absolute
     // time codes; empty: the frame's time) and the pixel through the pixel filter, summed into
@@ -175,11 +179,9 @@ private:
     void accumulateReference(FrameSceneSource& source, const FrameRequest& request, const FrameSettings& settings,
                              const passes::ThinLens& lens, const std::array<double, 2>& shutter);
 
-    gpu::Device& device_;
+    std::unique_ptr<gpu::FrameBackend> ownedBackend_;
+    gpu::FrameBackend& backend_;
     LogSink log_;
-    std::unique_ptr<gpu::PipelineCache> pipelines_;
-    std::unique_ptr<gpu::TransientImagePool> transients_;
-    std::unique_ptr<gpu::Timestamps> timestamps_;
     gpu::ImagePtr bestFitNormals_;
     struct {
         gpu::ImagePtr accessibility, halfDepth;
@@ -187,10 +189,7 @@ private:
     // A frame without a velocity target reads this one texel of kStaticVelocity (the motion AOV).
     gpu::ImagePtr stillVelocity_;
     InstanceModels lastModels_;  // the last frame's instance models, for temporal AA's object motion
-    struct {
-        gpu::ImagePtr image;
-        VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
-    } accumulation_;  // reference mode's running sum (passes/accumulate.h)
+    gpu::PersistentImage accumulation_;  // reference mode's running sum (passes/accumulate.h)
     // SSAO's temporal accumulation: the history and what it was rendered with, to reproject it or
     // reset it (size, projection, settings).
     passes::SsaoHistory ssaoHistory_;
@@ -200,16 +199,10 @@ private:
         uint32_t width = 0, height = 0;
         uint64_t settingsVersion = 0;
     } ssaoHistoryFrame_;
-    // SSAO of the frame being built, whose history layouts executeFrame keeps once compiled, and
-    // whether it imported the environment maps (whose layouts it keeps too).
-    bool ssaoInFrame_ = false;
-    bool environmentInFrame_ = false;
-    // Temporal AA: its history images, the bookkeeping that decides how each frame uses them, and
-    // whether the frame being built runs it (executeFrame keeps its history layouts).
+    // Temporal AA: its history images and the bookkeeping that decides how each frame uses them.
     passes::TemporalAaHistory temporalAaHistory_;
     passes::ShadowAtlasHistory shadowHistory_;
     TemporalAccumulation temporalAccumulation_;
-    bool temporalAaInFrame_ = false;
     bool converged_ = true;
     // Deferred MSAA: the lighting pass counts the pixels it lit per sample into this host-visible
     // uint (logged after each frame).
@@ -218,7 +211,7 @@ private:
     passes::ColorGradingLut grading_;
     GradingChartFile gradingChart_;
     std::vector<gpu::PassTime> timings_;
-    std::chrono::steady_clock::time_point recorded_;
+    VkDeviceSize transientBytes_ = 0;  // the last frame's transient images (logged when it changes)
 };
 
 }  // namespace obscura::renderer
