@@ -1,0 +1,326 @@
+// Whole frames wired by the renderer (renderer/frame_renderer.cpp) for several settings, run
+// against a mock backend without a GPU: which passes run, in which order, which are culled, and
+// which barriers the frame graph derives between them.
+#include "renderer/frame_renderer.h"
+#include "tests/unit/mock_frame_backend.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace obscura::renderer {
+namespace {
+
+using Frame = test::MockFrameBackend::Frame;
+
+constexpr uint32_t kWidth = 64, kHeight = 36;
+
+// One opaque and one transparent draw; with motion blur the opaque one moves. Records are empty
+// host buffers: nothing is drawn, but every pass that reads them declares them.
+class SceneOfTwoDraws final : public FrameSceneSource {
+public:
+    explicit SceneOfTwoDraws(gpu::FrameBackend& backend) : backend_(backend) {}
+
+    FrameView view(const FrameViewpoint&) const override { return {kIdentity, kIdentity}; }
+
+    passes::FrameScene scene(const FrameViewpoint& viewpoint) override {
+        passes::FrameScene s;
+        s.width = kWidth;
+        s.height = kHeight;
+        auto records = [&](const char* name) { return backend_.createBuffer(256, 0, gpu::MemoryUsage::Upload, name); };
+        s.camera = records("camera");
+        s.instances = records("instances");
+        s.instanceMotions = records("instance motions");
+        s.instanceReprojections = records("instance reprojections");
+        s.materials = records("materials");
+        s.lights = records("lights");
+        s.environment = records("environment");
+        s.shadows.records = records("shadow views");
+        s.materialTextures.resize(1);
+        // A real-time frame with an open shutter samples it; a reference sub-frame is an instant.
+        s.motionBlur = viewpoint.shutter.has_value() && !viewpoint.sample;
+        passes::Draw opaque;
+        opaque.vertices = records("vertices");
+        opaque.indices = records("indices");
+        opaque.indexCount = 3;
+        opaque.moving = s.motionBlur;
+        passes::Draw glass = opaque;
+        glass.moving = false;
+        glass.transparent = true;
+        glass.instanceIndex = 1;
+        s.draws = {opaque, glass};
+        s.transparentDraws = {1};
+        s.instanceCount = 2;
+        s.edgeAa = viewpoint.edgeAaDistance > 0.0;
+        return s;
+    }
+
+private:
+    gpu::FrameBackend& backend_;
+};
+
+// A renderer on the mock, its scene and one frame's request; render() runs one frame.
+struct Wiring {
+    test::MockFrameBackend backend;
+    FrameRenderer renderer{backend, VK_NULL_HANDLE, [](LogLevel, const std::string&) {}};
+    SceneOfTwoDraws source{backend};
+    FrameSettings settings;
+    FrameRequest request;
+
+    Wiring() {
+        request.camera.key = "/Camera";
+        request.camera.width = kWidth;
+        request.camera.height = kHeight;
+        request.camera.clippingRange = {0.1, 100.0};
+        request.aovs.push_back({passes::Aov::Color,
+                                backend.createBuffer(kWidth * kHeight * 16, 0, gpu::MemoryUsage::Readback, "color"),
+                                nullptr});
+    }
+    // A lens that blurs: 50 mm at f/2 focused at 2 m, on a 36 mm film.
+    void openLens() { request.camera.lens = {0.05, 2.0, 2.0, 0.036}; }
+    void openShutter() { request.camera.shutter = {-0.25, 0.25}; }
+    const Frame& render() {
+        EXPECT_EQ(renderer.updateDisplay(settings), "");
+        size_t before = backend.frames.size();
+        renderer.render(source, request, settings);
+        EXPECT_GT(backend.frames.size(), before);
+        return backend.frames.back();
+    }
+};
+
+std::vector<std::string> passesThat(const Frame& frame, bool culled) {
+    std::vector<std::string> names;
+    for (const auto& pass : frame.passes)
+        if (pass.culled == culled) names.push_back(pass.name);
+    return names;
+}
+std::vector<std::string> running(const Frame& frame) { return passesThat(frame, false); }
+
+// The barrier a pass waits at before it touches `image`.
+const gpu::PlannedBarrier* barrier(const Frame& frame, const std::string& pass, const std::string& image) {
+    for (const auto& p : frame.passes)
+        if (p.name == pass && !p.culled)
+            for (const auto& b : p.barriers)
+                if (b.isImage && frame.imageNames[b.resource] == image) return &b;
+    return nullptr;
+}
+
+bool runs(const Frame& frame, const std::string& pass) {
+    std::vector<std::string> names = running(frame);
+    return std::find(names.begin(), names.end(), pass) != names.end();
+}
+
+const std::vector<std::string> kSsao{"ssao_downsample", "ssao_obscurance", "ssao_temporal", "ssao_blur_horizontal",
+                                     "ssao_blur_vertical"};
+const std::vector<std::string> kDepthOfField{"dof_downsample", "dof_tile_min_max", "dof_tile_neighbourhood",
+                                             "dof_gather",     "dof_flood_fill",   "dof_composite"};
+const std::vector<std::string> kMotionBlur{"motion_blur_tile_max", "motion_blur_neighbour_max",
+                                           "motion_blur_gather_fine", "motion_blur_gather_coarse"};
+
+std::vector<std::string> concat(std::initializer_list<std::vector<std::string>> parts) {
+    std::vector<std::string> all;
+    for (const auto& part : parts) all.insert(all.end(), part.begin(), part.end());
+    return all;
+}
+
+// The defaults: SSAO and temporal AA on, one sample, a pinhole camera, a closed shutter.
+TEST(FrameWiring, TheDefaultFrameRunsEveryStepOnce) {
+    Wiring w;
+    const Frame& frame = w.render();
+    EXPECT_EQ(running(frame), concat({{"shadow_maps", "gbuffer"},
+                                      kSsao,
+                                      {"lighting", "transparent", "temporal_aa", "tonemap", "aov_readback"}}));
+    EXPECT_TRUE(passesThat(frame, true).empty());
+}
+
+// What the frame graph derives from the declarations, for the G-buffer's depth: written as an
+// attachment, then sampled by compute passes in the read-only depth layout, after the writes.
+TEST(FrameWiring, TheGBufferIsReadAfterItsWritesInReadOnlyLayouts) {
+    Wiring w;
+    const Frame& frame = w.render();
+    const gpu::PlannedBarrier* write = barrier(frame, "gbuffer", "gbuffer.depth");
+    ASSERT_NE(write, nullptr);
+    EXPECT_EQ(write->oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+    EXPECT_EQ(write->newLayout, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
+    const gpu::PlannedBarrier* read = barrier(frame, "ssao_downsample", "gbuffer.depth");
+    ASSERT_NE(read, nullptr);
+    EXPECT_EQ(read->oldLayout, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
+    EXPECT_EQ(read->newLayout, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+    EXPECT_TRUE(read->srcAccess & VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+    EXPECT_TRUE(read->dstStage & VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    // Read again in the same layout, with nothing written in between: no second barrier.
+    EXPECT_EQ(barrier(frame, "lighting", "gbuffer.depth"), nullptr);
+    // The transparent pass blends over the light accumulation: colour writes after compute writes.
+    const gpu::PlannedBarrier* blend = barrier(frame, "transparent", "lightAccumulation");
+    ASSERT_NE(blend, nullptr);
+    EXPECT_EQ(blend->oldLayout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_EQ(blend->newLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    EXPECT_TRUE(blend->srcAccess & VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    // Textures are read where their upload left them: no barrier.
+    EXPECT_EQ(barrier(frame, "gbuffer", "bestFitNormals"), nullptr);
+    EXPECT_EQ(barrier(frame, "tonemap", "displayLut"), nullptr);
+}
+
+// Temporal AA's second frame reads the history the first wrote and writes the image the first
+// read, each from the layout the first frame left it in: no layout is carried by hand.
+TEST(FrameWiring, TemporalAaReadsLastFramesHistory) {
+    Wiring w;
+    const Frame& first = w.render();
+    const gpu::PlannedBarrier* empty = barrier(first, "temporal_aa", "temporalAaHistory.previous");
+    ASSERT_NE(empty, nullptr);
+    EXPECT_EQ(empty->oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+    const Frame& second = w.render();
+    // An unchanged scene: the still's running mean.
+    EXPECT_TRUE(runs(second, "temporal_aa_still"));
+    // 1TX's result is the history it writes: tone mapping sampled it last, and the last frame's
+    // writes are waited for (the graph knows no more of another submission than that it wrote).
+    const gpu::PlannedBarrier* previous = barrier(second, "temporal_aa_still", "temporalAaHistory.previous");
+    ASSERT_NE(previous, nullptr);
+    EXPECT_EQ(previous->oldLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(previous->newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_TRUE(previous->srcAccess & VK_ACCESS_2_MEMORY_WRITE_BIT);
+    const gpu::PlannedBarrier* current = barrier(second, "temporal_aa_still", "temporalAaHistory");
+    ASSERT_NE(current, nullptr);
+    EXPECT_EQ(current->oldLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(current->newLayout, VK_IMAGE_LAYOUT_GENERAL);
+    // SSAO's history depth is read by nothing but the next frame: it stays as its pass wrote it.
+    const gpu::PlannedBarrier* ssao = barrier(second, "ssao_temporal", "ssaoHistoryDepth.previous");
+    ASSERT_NE(ssao, nullptr);
+    EXPECT_EQ(ssao->oldLayout, VK_IMAGE_LAYOUT_GENERAL);
+    // The shadow atlas is kept: an unchanged scene renders no shadow map.
+    EXPECT_FALSE(runs(second, "shadow_maps"));
+    const gpu::PlannedBarrier* atlas = barrier(second, "lighting", "shadowAtlas");
+    ASSERT_NE(atlas, nullptr);
+    EXPECT_EQ(atlas->oldLayout, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+}
+
+TEST(FrameWiring, MsaaResolvesBeforeThePerPixelPassesAndLightsPerSample) {
+    Wiring w;
+    w.settings.msaaSamples = 4;
+    const Frame& frame = w.render();
+    EXPECT_EQ(running(frame), concat({{"shadow_maps", "gbuffer", "msaa_resolve"},
+                                      kSsao,
+                                      {"lighting", "transparent", "temporal_aa", "tonemap", "aov_readback"}}));
+    // The resolve samples the multisampled targets in fragment shaders, after their writes.
+    for (const char* target : {"gbuffer.normalRoughness", "gbuffer.albedoMetallic", "gbuffer.instance"}) {
+        const gpu::PlannedBarrier* b = barrier(frame, "msaa_resolve", target);
+        ASSERT_NE(b, nullptr) << target;
+        EXPECT_EQ(b->oldLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL) << target;
+        EXPECT_EQ(b->newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) << target;
+        EXPECT_TRUE(b->dstStage & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT) << target;
+    }
+    // Its colour targets are overwritten whole: nothing is loaded.
+    for (const auto& pass : frame.passes)
+        if (pass.name == "msaa_resolve")
+            for (const auto& attachment : pass.attachments)
+                EXPECT_NE(attachment.load, VK_ATTACHMENT_LOAD_OP_LOAD);
+    // SSAO works on the resolved G-buffer, after the resolve wrote it.
+    const gpu::PlannedBarrier* resolved = barrier(frame, "ssao_downsample", "resolved.depth");
+    ASSERT_NE(resolved, nullptr);
+    EXPECT_EQ(resolved->oldLayout, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
+    EXPECT_EQ(barrier(frame, "ssao_downsample", "gbuffer.depth"), nullptr);
+}
+
+TEST(FrameWiring, WithoutSsaoTheLightingReadsOneUnoccludedTexel) {
+    Wiring w;
+    w.settings.ssao = false;
+    const Frame& frame = w.render();
+    for (const std::string& pass : kSsao) EXPECT_FALSE(runs(frame, pass)) << pass;
+    EXPECT_EQ(barrier(frame, "lighting", "ssao.off"), nullptr);
+    EXPECT_TRUE(runs(frame, "lighting"));
+}
+
+TEST(FrameWiring, WithoutTemporalAaToneMappingReadsTheLightAccumulation) {
+    Wiring w;
+    w.settings.temporalAa = false;
+    const Frame& frame = w.render();
+    EXPECT_FALSE(runs(frame, "temporal_aa"));
+    const gpu::PlannedBarrier* read = barrier(frame, "tonemap", "lightAccumulation");
+    ASSERT_NE(read, nullptr);
+    EXPECT_EQ(read->oldLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);  // the transparents blended into it
+    EXPECT_EQ(read->newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
+// Seed 000 "MB or DOF first?": depth of field, then motion blur, both after temporal AA in a
+// real-time frame; a still's samples blur their own stratum of the aperture before the mean.
+TEST(FrameWiring, DepthOfFieldAndMotionBlurFollowTemporalAa) {
+    Wiring w;
+    w.openLens();
+    w.openShutter();
+    const Frame& realTime = w.render();
+    EXPECT_EQ(running(realTime), concat({{"shadow_maps", "gbuffer"},
+                                         kSsao,
+                                         {"lighting", "transparent", "temporal_aa"},
+                                         kDepthOfField,
+                                         kMotionBlur,
+                                         {"tonemap", "aov_readback"}}));
+    // The moving draw writes velocities into a target of their own.
+    EXPECT_NE(barrier(realTime, "gbuffer", "gbuffer.velocity"), nullptr);
+    const Frame& sample = w.render();
+    EXPECT_EQ(running(sample), concat({{"gbuffer"},
+                                       kSsao,
+                                       {"lighting", "transparent", "temporal_aa_sample"},
+                                       kDepthOfField,
+                                       kMotionBlur,
+                                       {"temporal_aa_still", "tonemap", "aov_readback"}}));
+}
+
+// The passes of the depth-of-field chain live a pass or two each: their images share memory.
+TEST(FrameWiring, ShortLivedImagesShareMemory) {
+    Wiring w;
+    w.openLens();
+    const Frame& frame = w.render();
+    EXPECT_LT(frame.memory.bytes(), frame.memory.unaliasedBytes());
+}
+
+// Reference mode: each sub-frame lights its own viewpoint and adds it to the sum (the first
+// writes it afresh, the next add to what the last left, in GENERAL); the frame itself resolves the
+// mean and tone-maps it, with no lighting, temporal AA or shadow map of its own.
+TEST(FrameWiring, ReferenceSubFramesAccumulateAndTheFrameResolvesTheMean) {
+    Wiring w;
+    w.settings.referenceSubFrames = 4;
+    w.render();
+    ASSERT_EQ(w.backend.frames.size(), 5u);
+    for (size_t k = 0; k < 4; ++k) {
+        const Frame& sub = w.backend.frames[k];
+        EXPECT_EQ(running(sub), concat({{"shadow_maps", "gbuffer"}, kSsao, {"lighting", "transparent", "accumulate"}}))
+            << "sub-frame " << k;
+        const gpu::PlannedBarrier* sum = barrier(sub, "accumulate", "referenceAccumulation");
+        ASSERT_NE(sum, nullptr);
+        EXPECT_EQ(sum->oldLayout, k == 0 ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_GENERAL) << "sub-frame " << k;
+    }
+    const Frame& resolve = w.backend.frames[4];
+    EXPECT_EQ(running(resolve),
+              (std::vector<std::string>{"gbuffer", "accumulate_resolve", "transparent", "tonemap", "aov_readback"}));
+}
+
+// Culling: with no AOV bound, nothing reads the display image and tone mapping is culled; what
+// writes a history still runs, since the next frame reads it.
+TEST(FrameWiring, APassWhoseResultsNobodyReadsIsCulled) {
+    Wiring w;
+    w.request.aovs.clear();
+    const Frame& frame = w.render();
+    EXPECT_EQ(passesThat(frame, true), std::vector<std::string>{"tonemap"});
+    EXPECT_TRUE(runs(frame, "temporal_aa"));
+    EXPECT_TRUE(runs(frame, "ssao_temporal"));
+    EXPECT_TRUE(runs(frame, "shadow_maps"));
+}
+
+// Hybrid AA (seed 004): while the scene changes, near instances are edge-anti-aliased after
+// temporal AA; a still accumulates them with the rest.
+TEST(FrameWiring, HybridAaAddsEdgeAaWhileTheSceneChanges) {
+    Wiring w;
+    w.settings.hybridAaDistanceMetres = 1.0;
+    const Frame& changing = w.render();
+    EXPECT_EQ(running(changing), concat({{"shadow_maps", "gbuffer"},
+                                         kSsao,
+                                         {"lighting", "transparent", "temporal_aa", "edge_aa_edges",
+                                          "edge_aa_weights", "edge_aa_blend", "tonemap", "aov_readback"}}));
+    const Frame& still = w.render();
+    EXPECT_FALSE(runs(still, "edge_aa_edges"));
+}
+
+}  // namespace
+}  // namespace obscura::renderer
