@@ -27,11 +27,6 @@ struct TemporalPush {
     uint32_t historyValid;
 };
 
-// Mirrors the push constants of shaders/ssao_blur.comp: the texel step between taps.
-struct BlurPush {
-    int32_t axis[2];
-};
-
 gpu::ImageDesc halfResolution(const FrameScene& scene, VkFormat format) {
     gpu::ImageDesc desc;
     desc.format = format;
@@ -73,15 +68,6 @@ gpu::ImageHandle addObscurancePass(gpu::FrameGraph& graph, const FrameScene& sce
         .images[0];
 }
 
-// One axis of the separable bilateral blur (shaders/ssao_blur.comp).
-gpu::ImageHandle addBlurPass(gpu::FrameGraph& graph, const FrameScene& scene, const std::string& name,
-                             gpu::ImageHandle input, gpu::ImageHandle halfDepth, BlurPush push) {
-    gpu::ImageHandle output = graph.createImage(name, halfResolution(scene, kSsaoAccessibilityFormat));
-    ComputePass pass{"ssao_blur", {sampled(input), sampled(halfDepth), storageWrite(output)}, bytesOf(push)};
-    pass.label = name;
-    return addComputePass(graph, std::move(pass)).images[0];
-}
-
 // Temporal accumulation with reprojection (shaders/ssao_temporal.comp): writes this frame's history
 // images from the noisy obscurance and last frame's; returns the accumulated accessibility.
 gpu::ImageHandle addTemporalPass(gpu::FrameGraph& graph, const FrameScene& scene, const HalfResolutionGeometry& half,
@@ -110,12 +96,7 @@ SsaoResult addSsaoPasses(gpu::FrameGraph& graph, const FrameScene& scene, const 
                          const SsaoSettings& settings, SsaoHistory& history) {
     HalfResolutionGeometry half = addDownsamplePass(graph, scene, gbuffer);
     gpu::ImageHandle noisy = addObscurancePass(graph, scene, half, settings, history.frame);
-    SsaoResult result;
-    gpu::ImageHandle accumulated = addTemporalPass(graph, scene, half, noisy, history);
-    gpu::ImageHandle horizontal = addBlurPass(graph, scene, "ssao_blur_horizontal", accumulated, half.depth, {{1, 0}});
-    result.accessibility = addBlurPass(graph, scene, "ssao_blur_vertical", horizontal, half.depth, {{0, 1}});
-    result.halfDepth = half.depth;
-    return result;
+    return {addTemporalPass(graph, scene, half, noisy, history), half.depth};
 }
 
 }  // namespace obscura::passes

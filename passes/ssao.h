@@ -1,7 +1,7 @@
 // Screen-space ambient occlusion (seed 004 "SSAO improvements"): volumetric obscurance (Loos &
 // Sloan 2010) with 4 samples per pixel at half resolution, accumulated over frames with
-// reprojection, then a bilateral blur that keeps depth edges. The lighting pass upsamples the result with sampleAmbientAccess()
-// (shaders/common/ssao_upsample.glsl).
+// reprojection; the bilateral blur (bilateral_blur.h) then smooths it keeping depth edges, and the
+// lighting pass upsamples that with sampleAmbientAccess() (shaders/common/ssao_upsample.glsl).
 #pragma once
 
 #include "gpu/history_images.h"

@@ -1,6 +1,7 @@
 #include "renderer/frame_renderer.h"
 
 #include "passes/accumulate.h"
+#include "passes/bilateral_blur.h"
 #include "pass_support/best_fit_normals.h"
 #include "passes/clip_volumes.h"
 #include "passes/depth_of_field.h"
@@ -248,6 +249,7 @@ gpu::ImageHandle FrameRenderer::addLighting(gpu::FrameGraph& graph, const passes
         invert(seen.view, inverseView);
         ssaoHistory_.viewToPreviousView = toFloats<passes::Mat4>(multiply(inverseView, last.view));
         ambient = passes::addSsaoPasses(graph, scene, gbuffer, ssao, ssaoHistory_);
+        ambient.accessibility = passes::addBilateralBlurPass(graph, ambient);
     } else {
         ambient = {graph.importTexture("ssao.off", unoccluded_.accessibility),
                    graph.importTexture("ssao.off.depth", unoccluded_.halfDepth)};

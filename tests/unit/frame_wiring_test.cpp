@@ -112,8 +112,7 @@ bool runs(const Frame& frame, const std::string& pass) {
     return std::find(names.begin(), names.end(), pass) != names.end();
 }
 
-const std::vector<std::string> kSsao{"ssao_downsample", "ssao_obscurance", "ssao_temporal", "ssao_blur_horizontal",
-                                     "ssao_blur_vertical"};
+const std::vector<std::string> kSsao{"ssao_downsample", "ssao_obscurance", "ssao_temporal", "bilateral_blur"};
 const std::vector<std::string> kDepthOfField{"dof_downsample", "dof_tile_min_max", "dof_tile_neighbourhood",
                                              "dof_gather",     "dof_flood_fill",   "dof_composite"};
 const std::vector<std::string> kMotionBlur{"motion_blur_tile_max", "motion_blur_neighbour_max",
@@ -126,7 +125,7 @@ std::vector<std::string> concat(std::initializer_list<std::vector<std::string>> 
 }
 
 // The defaults: SSAO and temporal AA on, one sample, a pinhole camera, a closed shutter.
-TEST(FrameWiring, TheDefaultFrameRunsEveryStepOnce) {
+void TheDefaultFrameRunsEveryStepOnce() {
     Wiring w;
     const Frame& frame = w.render();
     EXPECT_EQ(running(frame), concat({{"shadow_maps", "gbuffer"},
@@ -137,7 +136,7 @@ TEST(FrameWiring, TheDefaultFrameRunsEveryStepOnce) {
 
 // What the frame graph derives from the declarations, for the G-buffer's depth: written as an
 // attachment, then sampled by compute passes in the read-only depth layout, after the writes.
-TEST(FrameWiring, TheGBufferIsReadAfterItsWritesInReadOnlyLayouts) {
+void TheGBufferIsReadAfterItsWritesInReadOnlyLayouts() {
     Wiring w;
     const Frame& frame = w.render();
     const gpu::PlannedBarrier* write = barrier(frame, "gbuffer", "gbuffer.depth");
@@ -165,7 +164,7 @@ TEST(FrameWiring, TheGBufferIsReadAfterItsWritesInReadOnlyLayouts) {
 
 // Temporal AA's second frame reads the history the first wrote and writes the image the first
 // read, each from the layout the first frame left it in: no layout is carried by hand.
-TEST(FrameWiring, TemporalAaReadsLastFramesHistory) {
+void TemporalAaReadsLastFramesHistory() {
     Wiring w;
     const Frame& first = w.render();
     const gpu::PlannedBarrier* empty = barrier(first, "temporal_aa", "temporalAaHistory.previous");
@@ -196,7 +195,7 @@ TEST(FrameWiring, TemporalAaReadsLastFramesHistory) {
     EXPECT_EQ(atlas->oldLayout, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
 }
 
-TEST(FrameWiring, MsaaResolvesBeforeThePerPixelPassesAndLightsPerSample) {
+void MsaaResolvesBeforeThePerPixelPassesAndLightsPerSample() {
     Wiring w;
     w.settings.msaaSamples = 4;
     const Frame& frame = w.render();
@@ -223,7 +222,7 @@ TEST(FrameWiring, MsaaResolvesBeforeThePerPixelPassesAndLightsPerSample) {
     EXPECT_EQ(barrier(frame, "ssao_downsample", "gbuffer.depth"), nullptr);
 }
 
-TEST(FrameWiring, WithoutSsaoTheLightingReadsOneUnoccludedTexel) {
+void WithoutSsaoTheLightingReadsOneUnoccludedTexel() {
     Wiring w;
     w.settings.ssao = false;
     const Frame& frame = w.render();
@@ -232,7 +231,7 @@ TEST(FrameWiring, WithoutSsaoTheLightingReadsOneUnoccludedTexel) {
     EXPECT_TRUE(runs(frame, "lighting"));
 }
 
-TEST(FrameWiring, WithoutTemporalAaToneMappingReadsTheLightAccumulation) {
+void WithoutTemporalAaToneMappingReadsTheLightAccumulation() {
     Wiring w;
     w.settings.temporalAa = false;
     const Frame& frame = w.render();
@@ -245,7 +244,7 @@ TEST(FrameWiring, WithoutTemporalAaToneMappingReadsTheLightAccumulation) {
 
 // Seed 000 "MB or DOF first?": depth of field, then motion blur, both after temporal AA in a
 // real-time frame; a still's samples blur their own stratum of the aperture before the mean.
-TEST(FrameWiring, DepthOfFieldAndMotionBlurFollowTemporalAa) {
+void DepthOfFieldAndMotionBlurFollowTemporalAa() {
     Wiring w;
     w.openLens();
     w.openShutter();
@@ -268,7 +267,7 @@ TEST(FrameWiring, DepthOfFieldAndMotionBlurFollowTemporalAa) {
 }
 
 // The passes of the depth-of-field chain live a pass or two each: their images share memory.
-TEST(FrameWiring, ShortLivedImagesShareMemory) {
+void ShortLivedImagesShareMemory() {
     Wiring w;
     w.openLens();
     const Frame& frame = w.render();
@@ -278,7 +277,7 @@ TEST(FrameWiring, ShortLivedImagesShareMemory) {
 // Reference mode: each sub-frame lights its own viewpoint and adds it to the sum (the first
 // writes it afresh, the next add to what the last left, in GENERAL); the frame itself resolves the
 // mean and tone-maps it, with no lighting, temporal AA or shadow map of its own.
-TEST(FrameWiring, ReferenceSubFramesAccumulateAndTheFrameResolvesTheMean) {
+void ReferenceSubFramesAccumulateAndTheFrameResolvesTheMean() {
     Wiring w;
     w.settings.referenceSubFrames = 4;
     w.render();
@@ -298,7 +297,7 @@ TEST(FrameWiring, ReferenceSubFramesAccumulateAndTheFrameResolvesTheMean) {
 
 // Culling: with no AOV bound, nothing reads the display image and tone mapping is culled; what
 // writes a history still runs, since the next frame reads it.
-TEST(FrameWiring, APassWhoseResultsNobodyReadsIsCulled) {
+void APassWhoseResultsNobodyReadsIsCulled() {
     Wiring w;
     w.request.aovs.clear();
     const Frame& frame = w.render();
@@ -310,7 +309,7 @@ TEST(FrameWiring, APassWhoseResultsNobodyReadsIsCulled) {
 
 // Hybrid AA (seed 004): while the scene changes, near instances are edge-anti-aliased after
 // temporal AA; a still accumulates them with the rest.
-TEST(FrameWiring, HybridAaAddsEdgeAaWhileTheSceneChanges) {
+void HybridAaAddsEdgeAaWhileTheSceneChanges() {
     Wiring w;
     w.settings.hybridAaDistanceMetres = 1.0;
     const Frame& changing = w.render();
@@ -320,6 +319,65 @@ TEST(FrameWiring, HybridAaAddsEdgeAaWhileTheSceneChanges) {
                                           "edge_aa_weights", "edge_aa_blend", "tonemap", "aov_readback"}}));
     const Frame& still = w.render();
     EXPECT_FALSE(runs(still, "edge_aa_edges"));
+}
+
+
+// Each group runs in one process: the renderer's construction (its best-fit normal table) costs
+// seconds, the frames milliseconds.
+TEST(FrameWiring, TheDefaultFrame) {
+    {
+        SCOPED_TRACE("TheDefaultFrameRunsEveryStepOnce");
+        TheDefaultFrameRunsEveryStepOnce();
+    }
+    {
+        SCOPED_TRACE("TheGBufferIsReadAfterItsWritesInReadOnlyLayouts");
+        TheGBufferIsReadAfterItsWritesInReadOnlyLayouts();
+    }
+    {
+        SCOPED_TRACE("TemporalAaReadsLastFramesHistory");
+        TemporalAaReadsLastFramesHistory();
+    }
+    {
+        SCOPED_TRACE("APassWhoseResultsNobodyReadsIsCulled");
+        APassWhoseResultsNobodyReadsIsCulled();
+    }
+}
+
+TEST(FrameWiring, SettingsChooseThePasses) {
+    {
+        SCOPED_TRACE("MsaaResolvesBeforeThePerPixelPassesAndLightsPerSample");
+        MsaaResolvesBeforeThePerPixelPassesAndLightsPerSample();
+    }
+    {
+        SCOPED_TRACE("WithoutSsaoTheLightingReadsOneUnoccludedTexel");
+        WithoutSsaoTheLightingReadsOneUnoccludedTexel();
+    }
+    {
+        SCOPED_TRACE("WithoutTemporalAaToneMappingReadsTheLightAccumulation");
+        WithoutTemporalAaToneMappingReadsTheLightAccumulation();
+    }
+    {
+        SCOPED_TRACE("HybridAaAddsEdgeAaWhileTheSceneChanges");
+        HybridAaAddsEdgeAaWhileTheSceneChanges();
+    }
+}
+
+TEST(FrameWiring, TheLensAndTheShutter) {
+    {
+        SCOPED_TRACE("DepthOfFieldAndMotionBlurFollowTemporalAa");
+        DepthOfFieldAndMotionBlurFollowTemporalAa();
+    }
+    {
+        SCOPED_TRACE("ShortLivedImagesShareMemory");
+        ShortLivedImagesShareMemory();
+    }
+}
+
+TEST(FrameWiring, ReferenceMode) {
+    {
+        SCOPED_TRACE("ReferenceSubFramesAccumulateAndTheFrameResolvesTheMean");
+        ReferenceSubFramesAccumulateAndTheFrameResolvesTheMean();
+    }
 }
 
 }  // namespace
