@@ -8,9 +8,9 @@ gpu::ImageHandle addBilateralBlurPass(gpu::FrameGraph& graph, const SsaoResult& 
     const gpu::ImageDesc input = graph.imageDesc(ssao.accessibility);
     gpu::ImageHandle blurred =
         graph.createImage("ssaoBlurred", imageDesc2D(kSsaoAccessibilityFormat, input.width, input.height));
-    return addComputePass(graph, {"bilateral_blur",
-                                  {sampled(ssao.accessibility), sampled(ssao.halfDepth), storageWrite(blurred)}})
-        .images[0];
+    ComputePass blur{"bilateral_blur", {sampled(ssao.accessibility), sampled(ssao.halfDepth), storageWrite(blurred)}};
+    blur.texelsPerGroup = {16, 32};  // bilateral_blur.comp's tile
+    return addComputePass(graph, std::move(blur)).images[0];
 }
 
 }  // namespace obscura::passes

@@ -61,7 +61,7 @@ EnvironmentLighting addEnvironmentPrefilterPasses(gpu::FrameGraph& graph, gpu::I
                            {sampled(source, target.sampler), bufferWrite(target.irradiance)},
                            bytesOf(irradiancePush)};
     irradiance.texels = std::array<uint32_t, 2>{1, 1};  // one workgroup projects the whole source
-    irradiance.texelsPerGroup = 1;
+    irradiance.texelsPerGroup = {1, 1};
     written.irradiance = addComputePass(graph, std::move(irradiance)).buffers[0];
     return written;
 }

@@ -36,7 +36,7 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, const FrameScene& scene
                               sampled(samples.albedoMetallic), sampled(samples.instance),
                               bufferWrite(perSample->taggedPixelCount)});
     }
-    pass.texelsPerGroup = kLightingTileSize;
+    pass.texelsPerGroup = {kLightingTileSize, kLightingTileSize};
     pass.label = "lighting";
     return addComputePass(graph, std::move(pass)).images[0];
 }

@@ -48,7 +48,7 @@ gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, const FrameScene& s
                       {sampled(gbuffer.velocity), sampled(gbuffer.depth), storageWrite(tileMax),
                        storageWrite(speedDepth), bufferRead(scene.buffers.camera)},
                       bytesOf(constants)};
-    tiles.texelsPerGroup = 1;
+    tiles.texelsPerGroup = {1, 1};
     std::vector<gpu::ImageHandle> tiled = addComputePass(graph, tiles).images;
     tileMax = tiled[0];
     speedDepth = tiled[1];

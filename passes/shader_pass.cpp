@@ -192,7 +192,9 @@ ComputeOutputs addComputeDispatches(gpu::FrameGraph& graph, const std::string& l
                     const gpu::ImageDesc& size = res.desc(written->image);
                     texels = {size.width, size.height};
                 }
-                gpu::dispatch2D(cmd, texels[0], texels[1], d.texelsPerGroup);
+                const auto [groupWidth, groupHeight] = d.texelsPerGroup;
+                vkCmdDispatch(cmd, (texels[0] + groupWidth - 1) / groupWidth, (texels[1] + groupHeight - 1) / groupHeight,
+                              1);
             }
         });
     return outputs;

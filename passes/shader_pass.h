@@ -67,9 +67,9 @@ struct ComputePass {
     std::vector<uint8_t> constants;  // push constants, in the shader's layout
     // The texels the dispatch covers: the first written image's size unless set.
     std::optional<std::array<uint32_t, 2>> texels;
-    // Texels one workgroup covers per side: 8 for 8x8 groups of one invocation per texel, 1 for a
-    // workgroup per texel (a tile reduced in shared memory).
-    uint32_t texelsPerGroup = 8;
+    // Texels one workgroup covers (x, y): 8x8 for 8x8 groups of one invocation per texel, 1x1 for
+    // a workgroup per texel (a tile reduced in shared memory).
+    std::array<uint32_t, 2> texelsPerGroup{8, 8};
     std::string label;  // the pass's name in timings; the shader's name when empty
 };
 

@@ -11,9 +11,10 @@
 // format, as a separate pass would store it.
 #include "common/ssao_common.glsl"
 
-const int TILE = 8;
+// A tall tile: the rows above and below it, blurred horizontally by two workgroups, are 4 of 36.
+const int TILE_WIDTH = 16, TILE_HEIGHT = 32;
 const int RADIUS = 2;
-layout(local_size_x = TILE, local_size_y = TILE) in;
+layout(local_size_x = TILE_WIDTH, local_size_y = TILE_HEIGHT) in;
 
 layout(set = 0, binding = 0) uniform sampler2D signalTexture;
 layout(set = 0, binding = 1) uniform sampler2D halfDepthTexture;
@@ -22,7 +23,7 @@ layout(set = 0, binding = 2, r8) uniform writeonly image2D blurred;
 const float kTapWeights[5] = float[](0.5, 1.0, 1.0, 1.0, 0.5);
 
 // The tile's rows and RADIUS rows above and below it, blurred horizontally.
-shared float horizontal[TILE + 2 * RADIUS][TILE];
+shared float horizontal[TILE_HEIGHT + 2 * RADIUS][TILE_WIDTH];
 
 // One axis of the blur at `texel`, reading `signal` (the input, or the horizontal result).
 float blurAxis(ivec2 texel, ivec2 axis, ivec2 size, bool fromShared, ivec2 tileOrigin) {
@@ -54,10 +55,11 @@ float blurAxis(ivec2 texel, ivec2 axis, ivec2 size, bool fromShared, ivec2 tileO
 
 void main() {
     ivec2 size = imageSize(blurred);
-    ivec2 tileOrigin = ivec2(gl_WorkGroupID.xy) * TILE;
+    ivec2 tileOrigin = ivec2(gl_WorkGroupID.xy) * ivec2(TILE_WIDTH, TILE_HEIGHT);
     uint invocation = gl_LocalInvocationIndex;
-    for (uint index = invocation; index < uint((TILE + 2 * RADIUS) * TILE); index += uint(TILE * TILE)) {
-        ivec2 local = ivec2(int(index) % TILE, int(index) / TILE);
+    for (uint index = invocation; index < uint((TILE_HEIGHT + 2 * RADIUS) * TILE_WIDTH);
+         index += uint(TILE_WIDTH * TILE_HEIGHT)) {
+        ivec2 local = ivec2(int(index) % TILE_WIDTH, int(index) / TILE_WIDTH);
         ivec2 texel = tileOrigin + ivec2(local.x, local.y - RADIUS);
         float value = 0.0;
         if (all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, size))) {
