@@ -57,18 +57,27 @@ std::vector<ImagePtr> DeviceFrameBackend::transientImages(const TransientMemory&
                                                           const std::vector<ImageDesc>& descs,
                                                           const std::vector<std::string>& names) {
     if (descs == transients_.descs && samePlacements(memory.placements, transients_.placements) &&
-        sameHeaps(memory.heaps, transients_.heaps))
+        sameHeaps(memory.heaps, transients_.plannedHeaps))
         return transients_.images;
-    // Another frame: the last one's images are retired with their memory once the GPU is done.
+    // Another plan: the last one's images are retired once the GPU is done (it is: each frame is
+    // waited for); their memory is kept for the new ones where it is large enough.
     std::vector<ImageMemoryPtr> heaps;
-    for (const TransientMemory::Heap& heap : memory.heaps)
-        heaps.push_back(device_.allocateImageMemory({heap.size, heap.alignment, heap.memoryTypeBits}));
+    std::vector<TransientMemory::Heap> kept;
+    for (size_t h = 0; h < memory.heaps.size(); ++h) {
+        const TransientMemory::Heap& need = memory.heaps[h];
+        const bool fits = h < transients_.memory.size() &&
+                          transients_.heaps[h].memoryTypeBits == need.memoryTypeBits &&
+                          transients_.heaps[h].size >= need.size && transients_.heaps[h].alignment >= need.alignment;
+        kept.push_back(fits ? transients_.heaps[h] : need);
+        heaps.push_back(fits ? transients_.memory[h]
+                             : device_.allocateImageMemory({need.size, need.alignment, need.memoryTypeBits}));
+    }
     std::vector<ImagePtr> images;
     for (size_t i = 0; i < memory.placements.size(); ++i) {
         const TransientMemory::Placement& p = memory.placements[i];
         images.push_back(device_.createImage(descs[i], names[i].c_str(), heaps[p.heap], p.offset));
     }
-    transients_ = {descs, memory.placements, memory.heaps, images};
+    transients_ = {descs, memory.placements, memory.heaps, kept, heaps, images};
     return images;
 }
 

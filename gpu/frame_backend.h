@@ -69,11 +69,14 @@ private:
     std::unique_ptr<PipelineCache> pipelines_;
     std::unique_ptr<Timestamps> timestamps_;
     // The transient images of the last frames, kept while frames place the same images alike (a
-    // steady frame allocates nothing); another plan makes them again.
+    // steady frame allocates nothing); another plan makes them again, in the same memory where it
+    // fits (the frames of a still, whose passes differ from its first frame's, share one heap).
     struct Transients {
         std::vector<ImageDesc> descs;
         std::vector<TransientMemory::Placement> placements;
-        std::vector<TransientMemory::Heap> heaps;
+        std::vector<TransientMemory::Heap> plannedHeaps;  // as the plan asked for them
+        std::vector<TransientMemory::Heap> heaps;         // as allocated: at least as large
+        std::vector<ImageMemoryPtr> memory;               // one per heap
         std::vector<ImagePtr> images;
     } transients_;
     std::vector<PassTime> timings_;

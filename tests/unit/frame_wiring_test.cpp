@@ -107,6 +107,17 @@ const gpu::PlannedBarrier* barrier(const Frame& frame, const std::string& pass, 
     return nullptr;
 }
 
+// The barrier before `pass` touches `image`, expected to take it from layout `from` to `to`.
+const gpu::PlannedBarrier* transition(const Frame& frame, const std::string& pass, const std::string& image,
+                                      VkImageLayout from, VkImageLayout to) {
+    const gpu::PlannedBarrier* b = barrier(frame, pass, image);
+    EXPECT_NE(b, nullptr) << pass << " does not wait for " << image;
+    if (!b) return nullptr;
+    EXPECT_EQ(b->oldLayout, from) << pass << ", " << image;
+    EXPECT_EQ(b->newLayout, to) << pass << ", " << image;
+    return b;
+}
+
 bool runs(const Frame& frame, const std::string& pass) {
     std::vector<std::string> names = running(frame);
     return std::find(names.begin(), names.end(), pass) != names.end();
@@ -139,23 +150,21 @@ void TheDefaultFrameRunsEveryStepOnce() {
 void TheGBufferIsReadAfterItsWritesInReadOnlyLayouts() {
     Wiring w;
     const Frame& frame = w.render();
-    const gpu::PlannedBarrier* write = barrier(frame, "gbuffer", "gbuffer.depth");
+    const gpu::PlannedBarrier* write = transition(frame, "gbuffer", "gbuffer.depth", VK_IMAGE_LAYOUT_UNDEFINED,
+                                                  VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
     ASSERT_NE(write, nullptr);
-    EXPECT_EQ(write->oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
-    EXPECT_EQ(write->newLayout, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
-    const gpu::PlannedBarrier* read = barrier(frame, "ssao_downsample", "gbuffer.depth");
+    const gpu::PlannedBarrier* read =
+        transition(frame, "ssao_downsample", "gbuffer.depth", VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                   VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
     ASSERT_NE(read, nullptr);
-    EXPECT_EQ(read->oldLayout, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
-    EXPECT_EQ(read->newLayout, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
     EXPECT_TRUE(read->srcAccess & VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
     EXPECT_TRUE(read->dstStage & VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     // Read again in the same layout, with nothing written in between: no second barrier.
     EXPECT_EQ(barrier(frame, "lighting", "gbuffer.depth"), nullptr);
     // The transparent pass blends over the light accumulation: colour writes after compute writes.
-    const gpu::PlannedBarrier* blend = barrier(frame, "transparent", "lightAccumulation");
+    const gpu::PlannedBarrier* blend = transition(frame, "transparent", "lightAccumulation", VK_IMAGE_LAYOUT_GENERAL,
+                                                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
     ASSERT_NE(blend, nullptr);
-    EXPECT_EQ(blend->oldLayout, VK_IMAGE_LAYOUT_GENERAL);
-    EXPECT_EQ(blend->newLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
     EXPECT_TRUE(blend->srcAccess & VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     // Textures are read where their upload left them: no barrier.
     EXPECT_EQ(barrier(frame, "gbuffer", "bestFitNormals"), nullptr);
@@ -175,15 +184,14 @@ void TemporalAaReadsLastFramesHistory() {
     EXPECT_TRUE(runs(second, "temporal_aa_still"));
     // 1TX's result is the history it writes: tone mapping sampled it last, and the last frame's
     // writes are waited for (the graph knows no more of another submission than that it wrote).
-    const gpu::PlannedBarrier* previous = barrier(second, "temporal_aa_still", "temporalAaHistory.previous");
+    const gpu::PlannedBarrier* previous =
+        transition(second, "temporal_aa_still", "temporalAaHistory.previous", VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     ASSERT_NE(previous, nullptr);
-    EXPECT_EQ(previous->oldLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    EXPECT_EQ(previous->newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     EXPECT_TRUE(previous->srcAccess & VK_ACCESS_2_MEMORY_WRITE_BIT);
-    const gpu::PlannedBarrier* current = barrier(second, "temporal_aa_still", "temporalAaHistory");
+    const gpu::PlannedBarrier* current = transition(second, "temporal_aa_still", "temporalAaHistory",
+                                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
     ASSERT_NE(current, nullptr);
-    EXPECT_EQ(current->oldLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    EXPECT_EQ(current->newLayout, VK_IMAGE_LAYOUT_GENERAL);
     // SSAO's history depth is read by nothing but the next frame: it stays as its pass wrote it.
     const gpu::PlannedBarrier* ssao = barrier(second, "ssao_temporal", "ssaoHistoryDepth.previous");
     ASSERT_NE(ssao, nullptr);
@@ -204,10 +212,10 @@ void MsaaResolvesBeforeThePerPixelPassesAndLightsPerSample() {
                                       {"lighting", "transparent", "temporal_aa", "tonemap", "aov_readback"}}));
     // The resolve samples the multisampled targets in fragment shaders, after their writes.
     for (const char* target : {"gbuffer.normalRoughness", "gbuffer.albedoMetallic", "gbuffer.instance"}) {
-        const gpu::PlannedBarrier* b = barrier(frame, "msaa_resolve", target);
-        ASSERT_NE(b, nullptr) << target;
-        EXPECT_EQ(b->oldLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL) << target;
-        EXPECT_EQ(b->newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) << target;
+        const gpu::PlannedBarrier* b =
+            transition(frame, "msaa_resolve", target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        ASSERT_NE(b, nullptr);
         EXPECT_TRUE(b->dstStage & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT) << target;
     }
     // Its colour targets are overwritten whole: nothing is loaded.
