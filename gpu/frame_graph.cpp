@@ -192,21 +192,15 @@ ImageHandle FrameGraph::createImage(const std::string& name, const ImageDesc& de
     return addImage(std::move(r));
 }
 
-ImageHandle FrameGraph::importImage(const std::string& name, ImagePtr image) {
-    if (!image) throw std::logic_error("frame graph: '" + name + "' imports no image");
+ImageHandle FrameGraph::importTexture(const std::string& name, ImagePtr texture) {
+    if (!texture) throw std::logic_error("frame graph: '" + name + "' imports no texture");
     ImageResource r;
     r.name = name;
-    r.desc = image->desc;
-    r.residency = Residency::Imported;
-    r.initialLayout = image->layout;
-    r.image = std::move(image);
+    r.desc = texture->desc;
+    r.residency = Residency::Texture;
+    r.initialLayout = texture->layout;
+    r.image = std::move(texture);
     return addImage(std::move(r));
-}
-
-ImageHandle FrameGraph::importTexture(const std::string& name, ImagePtr texture) {
-    ImageHandle h = importImage(name, std::move(texture));
-    images_[h.index].residency = Residency::Texture;
-    return h;
 }
 
 ImageHandle FrameGraph::importPersistent(const std::string& name, PersistentImage& persistent, const ImageDesc& desc) {
@@ -419,8 +413,8 @@ void FrameGraph::compile(const ImageMemoryFn& imageMemory) {
     std::vector<Track> imageTrack(images_.size()), bufferTrack(buffers_.size());
     for (size_t i = 0; i < images_.size(); ++i) {
         imageTrack[i].layout = images_[i].initialLayout;
-        if (images_[i].residency == Residency::Imported || images_[i].residency == Residency::Persistent) {
-            // Imported images were last touched by an earlier submission that the host waited for.
+        if (images_[i].residency == Residency::Persistent) {
+            // Persistent images were last written by an earlier submission that the host waited for.
             imageTrack[i].writeStage = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
             imageTrack[i].writeAccess = VK_ACCESS_2_MEMORY_WRITE_BIT;
         }

@@ -156,9 +156,6 @@ public:
 
     // A transient image owned by the graph for this frame; usage flags come from the declarations.
     ImageHandle createImage(const std::string& name, const ImageDesc& desc);
-    // An image from outside the frame that frames write (a history kept by hand, a target the
-    // host reads); it starts in the layout the last frame left it in.
-    ImageHandle importImage(const std::string& name, ImagePtr image);
     // A texture: read-only, left by its upload visible to shaders in SHADER_READ_ONLY_OPTIMAL, so
     // its reads need no barrier; a pass that writes it is an error.
     ImageHandle importTexture(const std::string& name, ImagePtr texture);
@@ -195,7 +192,7 @@ public:
     void realize(FrameBackend& backend);
     // Records every pass that was not culled.
     void execute(Device& device, PipelineCache& pipelines, VkCommandBuffer cmd, Timestamps* timestamps);
-    // The recorded frame was submitted: imported images keep the layouts it leaves them in, and
+    // The recorded frame was submitted: persistent images keep the layouts it leaves them in, and
     // persistent images it wrote hold something.
     void submitted();
 
@@ -214,8 +211,6 @@ public:
     uint32_t bufferCount() const { return uint32_t(buffers_.size()); }
     const std::string& imageName(uint32_t index) const { return images_.at(index).name; }
     const std::string& bufferName(uint32_t index) const { return buffers_.at(index).name; }
-    // The layout the frame leaves an image in.
-    VkImageLayout finalLayout(ImageHandle h) const { return images_.at(h.index).finalLayout; }
 
 private:
     friend class PassResources;
@@ -236,7 +231,7 @@ private:
         std::vector<Attachment> attachments;
         RecordFn record;
     };
-    enum class Residency { Transient, Texture, Imported, Persistent };
+    enum class Residency { Transient, Texture, Persistent };
     struct ImageResource {
         std::string name;
         ImageDesc desc;
