@@ -1,10 +1,13 @@
 #include "harness/commands.h"
 #include "harness/exit_codes.h"
 #include "harness/session.h"
+#include "harness/view/display_device.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <map>
+#include <memory>
 
 namespace obscura::harness {
 namespace {
@@ -15,6 +18,73 @@ double median(std::vector<double> v) {
     size_t n = v.size();
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
+
+// Each frame shown on a Vulkan device of the harness's own, as `obscura view` shows it: through host
+// memory (map, copy into a buffer of that device) or through the plugin's exported memory.
+class DisplayTiming {
+public:
+    // After the first render; returns the problem, or "".
+    std::string start(Session& session, const std::string& buffer, const std::string& mode) {
+        shared_ = mode == "shared";
+        view::DisplayDeviceOptions options;
+        options.deviceName = session.deviceName();
+        ObscuraExternalBuffer exported{};
+        exported.sType = OBSCURA_STRUCTURE_TYPE_EXTERNAL_BUFFER;
+        exported.structSize = sizeof(exported);
+        if (shared_) {
+            const ObscuraApiV1_2* interop = session.interopApi();
+            if (!interop) return "the plugin has no ABI 1.2 (display interop)";
+            if (interop->exportRenderBuffer(session.delegate(), buffer.c_str(), &exported) != OBSCURA_OK)
+                return session.lastError();
+            options.deviceUUID = exported.deviceUUID;
+        }
+        auto created = view::DisplayDevice::create(options);
+        if (auto* problem = std::get_if<std::string>(&created)) return *problem;
+        device_ = std::move(std::get<std::unique_ptr<view::DisplayDevice>>(created));
+        image_ = std::make_unique<view::AovImage>(*device_);
+        if (shared_) {
+            auto imported = view::DisplaySource::import(*device_, exported);
+            if (auto* problem = std::get_if<std::string>(&imported)) return *problem;
+            source_ = std::move(std::get<std::unique_ptr<view::DisplaySource>>(imported));
+        }
+        return {};
+    }
+    // After a render: the frame into the display image; returns the wall time it took, ms.
+    double show(Session& session, const std::string& buffer) {
+        auto start = std::chrono::steady_clock::now();
+        uint64_t value = 0;
+        if (shared_) {
+            ObscuraInteropStats interop{OBSCURA_STRUCTURE_TYPE_INTEROP_STATS, nullptr, sizeof(interop), 0};
+            ObscuraRenderStats stats{};
+            stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
+            stats.structSize = sizeof(stats);
+            stats.pNext = &interop;
+            session.api().getRenderStats(session.delegate(), &stats);
+            value = interop.semaphoreValue;
+        } else {
+            ObscuraMappedBuffer mapped{OBSCURA_STRUCTURE_TYPE_MAPPED_BUFFER, nullptr, sizeof(mapped)};
+            session.api().mapRenderBuffer(session.delegate(), buffer.c_str(), &mapped);
+            if (!source_)
+                source_ = view::DisplaySource::upload(*device_, mapped.width, mapped.height, mapped.format,
+                                                      mapped.rowStride * mapped.height);
+            source_->copyFrom(mapped);
+            session.api().unmapRenderBuffer(session.delegate(), buffer.c_str());
+        }
+        device_->submitAndWait([&](VkCommandBuffer cmd) { image_->record(cmd, *source_, view::AovView::Display); },
+                               source_->semaphore(), value);
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+    ~DisplayTiming() {
+        source_.reset();
+        image_.reset();
+    }
+
+private:
+    bool shared_ = false;
+    std::unique_ptr<view::DisplayDevice> device_;
+    std::unique_ptr<view::DisplaySource> source_;
+    std::unique_ptr<view::AovImage> image_;
+};
 
 }  // namespace
 
@@ -39,8 +109,12 @@ int runBench(const BenchOptions& o) {
         std::fprintf(stderr, "obscura: %s has no camera\n", o.scene.c_str());
         return kExitBadInput;
     }
-    std::string buffer = session.host().addRenderBuffer(session.api(), session.delegate(), "color", o.width, o.height);
-    ObscuraAovBinding binding{"color", buffer.c_str()};
+    // The viewer shows the display AOV; without --display the bench reads colour, as before.
+    const char* aov = o.display.empty() ? "color" : "display";
+    std::string buffer = session.host().addRenderBuffer(session.api(), session.delegate(), aov, o.width, o.height);
+    ObscuraAovBinding binding{aov, buffer.c_str()};
+    DisplayTiming display;
+    std::vector<double> renderCalls, shows;
     double time = session.stage().metadata().startTimeCode.value_or(0.0);
     ObscuraRenderPassDesc desc{OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC, nullptr, sizeof(ObscuraRenderPassDesc),
                                camera.c_str(), {0, 0, o.width, o.height}, time, 1, &binding};
@@ -55,10 +129,22 @@ int runBench(const BenchOptions& o) {
     std::vector<std::string> warmupOrder;
     for (int i = 0; i < kWarmup + o.frames; ++i) {
         if (o.changingCamera) session.api().markDirty(session.delegate(), camera.c_str(), OBSCURA_DIRTY_TRANSFORM);
+        auto renderStart = std::chrono::steady_clock::now();
         ObscuraStatus s = session.api().render(session.delegate(), &desc);
+        const double renderCall =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - renderStart).count();
         if (s != OBSCURA_OK && s != OBSCURA_ERROR_BAD_PRIM_DATA) {
             std::fprintf(stderr, "obscura: render failed: %s\n", session.lastError().c_str());
             return kExitPluginOrDevice;
+        }
+        if (!o.display.empty()) {
+            if (i == 0)
+                if (std::string problem = display.start(session, buffer, o.display); !problem.empty()) {
+                    std::fprintf(stderr, "obscura: --display %s: %s\n", o.display.c_str(), problem.c_str());
+                    return kExitPluginOrDevice;
+                }
+            const double shown = display.show(session, buffer);
+            if (i >= kWarmup) renderCalls.push_back(renderCall), shows.push_back(shown);
         }
         uint32_t count = 0;
         session.api().getPassTimings(session.delegate(), nullptr, &count);
@@ -97,13 +183,20 @@ int runBench(const BenchOptions& o) {
         for (size_t i = 0; i < warmupOrder.size(); ++i)
             std::printf("%s\"%s\": {\"last_ms\": %.4f}", i ? ", " : "", warmupOrder[i].c_str(),
                         warmupOnly[warmupOrder[i]]);
-        std::printf("}}\n");
+        std::printf("}");
+        if (!o.display.empty())
+            std::printf(", \"display\": {\"mode\": \"%s\", \"render_call_ms\": %.4f, \"show_ms\": %.4f}", o.display.c_str(),
+                        median(renderCalls), median(shows));
+        std::printf("}\n");
     } else {
         std::printf("%s on %s, %dx%d, %d frames, %llu triangles (GPU timestamp medians)\n", o.scene.c_str(),
                     stats.deviceName, o.width, o.height, o.frames, static_cast<unsigned long long>(stats.trianglesDrawn));
         for (const auto& name : order) std::printf("  %-16s %10.4f ms\n", name.c_str(), median(samples[name]));
         if (!warmupOrder.empty()) std::printf("once (in warm-up, when their inputs changed; last run):\n");
         for (const auto& name : warmupOrder) std::printf("  %-16s %10.4f ms\n", name.c_str(), warmupOnly[name]);
+        if (!o.display.empty())
+            std::printf("display (%s, wall-clock medians): render call %.4f ms, showing the frame %.4f ms\n",
+                        o.display.c_str(), median(renderCalls), median(shows));
     }
     return kExitOk;
 }

@@ -48,7 +48,9 @@ ObscuraDirtyBits dirtyBitFor(const std::string& attribute) {
     if (attribute.rfind("primvars:", 0) == 0) return OBSCURA_DIRTY_PRIMVAR;
     if (attribute == "faceVertexCounts" || attribute == "faceVertexIndices" || attribute == "curveVertexCounts")
         return OBSCURA_DIRTY_TOPOLOGY;
-    if (attribute == "visibility") return OBSCURA_DIRTY_VISIBILITY;
+    // Purpose is pulled with visibility (what decides whether a prim draws).
+    if (attribute == "visibility" || attribute == "purpose") return OBSCURA_DIRTY_VISIBILITY;
+    if (attribute == "doubleSided") return OBSCURA_DIRTY_DOUBLE_SIDED;
     if (attribute.rfind("xformOp", 0) == 0) return OBSCURA_DIRTY_TRANSFORM;
     return OBSCURA_DIRTY_PARAMS;
 }
@@ -169,7 +171,8 @@ std::string UsdSceneHost::primvarCountProblem(const usda::Prim& prim, const usda
            std::to_string(expected * elementSize) + "; ignored";
 }
 
-ObscuraStatus UsdSceneHost::populate(const ObscuraApiV1& api, ObscuraDelegate delegate) {
+std::map<std::string, std::string> UsdSceneHost::scan() {
+    std::map<std::string, std::string> found;
     std::map<std::string, int> unsupported;
     for (const usda::Prim* prim : stage_.prims()) {
         auto it = kPrimTypes.find(prim->typeName);
@@ -195,13 +198,124 @@ ObscuraStatus UsdSceneHost::populate(const ObscuraApiV1& api, ObscuraDelegate de
                 for (const auto& root : protos->targets)
                     if (const usda::Prim* r = stage_.find(root)) prototypeRoots_[root] = r->parent;
         }
-        ObscuraStatus s = api.insertPrim(delegate, it->second.c_str(), prim->path.c_str());
-        if (s != OBSCURA_OK) return s;
-        primTypes_[prim->path] = it->second;
+        found[prim->path] = it->second;
     }
     for (const auto& [type, count] : unsupported)
         warnOnce("type:" + type, "prim type '" + type + "' is not supported yet; " + std::to_string(count) +
                                      " prim(s) skipped");
+    return found;
+}
+
+ObscuraStatus UsdSceneHost::populate(const ObscuraApiV1& api, ObscuraDelegate delegate) {
+    for (const auto& [path, type] : scan()) {
+        ObscuraStatus s = api.insertPrim(delegate, type.c_str(), path.c_str());
+        if (s != OBSCURA_OK) return s;
+        primTypes_[path] = type;
+    }
+    return OBSCURA_OK;
+}
+
+namespace {
+
+bool sameValue(const usda::Value& a, const usda::Value& b) {
+    return a.typeName == b.typeName && a.isArray == b.isArray && a.tupleSize == b.tupleSize && a.numbers == b.numbers &&
+           a.strings == b.strings && a.blocked == b.blocked;
+}
+
+template <typename Map>
+bool sameValues(const Map& a, const Map& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const auto& x, const auto& y) {
+               return x.first == y.first && sameValue(x.second, y.second);
+           });
+}
+
+bool sameAttribute(const usda::Attribute& a, const usda::Attribute& b) {
+    const bool defaults = a.defaultValue.has_value() == b.defaultValue.has_value() &&
+                          (!a.defaultValue || sameValue(*a.defaultValue, *b.defaultValue));
+    return defaults && a.typeName == b.typeName && a.connection == b.connection && sameValues(a.timeSamples, b.timeSamples) &&
+           sameValues(a.metadata, b.metadata);
+}
+
+// Whether the attributes of `a`, `b` and of their descendants (a material's shaders) are the same.
+bool sameSubtree(const usda::Prim& a, const usda::Prim& b) {
+    if (a.attributes.size() != b.attributes.size() || a.children.size() != b.children.size() || a.typeName != b.typeName)
+        return false;
+    for (const auto& [name, attribute] : a.attributes) {
+        const usda::Attribute* other = b.attribute(name);
+        if (!other || !sameAttribute(attribute, *other)) return false;
+    }
+    for (size_t i = 0; i < a.children.size(); ++i)
+        if (a.children[i]->name != b.children[i]->name || !sameSubtree(*a.children[i], *b.children[i])) return false;
+    return true;
+}
+
+}  // namespace
+
+ObscuraDirtyBits UsdSceneHost::changes(const usda::Prim& prim, const UsdSceneHost& previous, const usda::Prim& before,
+                                       double time) const {
+    ObscuraDirtyBits bits = 0;
+    std::set<std::string> names;
+    for (const auto& [name, a] : prim.attributes) names.insert(name);
+    for (const auto& [name, a] : before.attributes) names.insert(name);
+    for (const std::string& name : names) {
+        const usda::Attribute* a = prim.attribute(name);
+        const usda::Attribute* b = before.attribute(name);
+        if (!a || !b || !sameAttribute(*a, *b)) bits |= dirtyBitFor(name);
+    }
+    std::set<std::string> relationships;
+    for (const auto& [name, r] : prim.relationships) relationships.insert(name);
+    for (const auto& [name, r] : before.relationships) relationships.insert(name);
+    for (const std::string& name : relationships) {
+        const usda::Relationship* a = prim.relationship(name);
+        const usda::Relationship* b = before.relationship(name);
+        if (a && b && a->targets == b->targets) continue;
+        bits |= name == "prototypes" ? OBSCURA_DIRTY_ALL : name == "material:binding" ? OBSCURA_DIRTY_MATERIAL_ID
+                                                                                      : OBSCURA_DIRTY_PARAMS;
+    }
+    // What the prim inherits from its ancestors: transform, visibility, purpose, material binding.
+    const usda::Stage& old = previous.stage_;
+    if (stage_.transformSampleTimes(prim) != old.transformSampleTimes(before) ||
+        stage_.worldTransform(prim, time) != old.worldTransform(before, time))
+        bits |= OBSCURA_DIRTY_TRANSFORM;
+    if (stage_.isVisible(prim, time) != old.isVisible(before, time)) bits |= OBSCURA_DIRTY_VISIBILITY;
+    const usda::Attribute* purpose = stage_.purposeOpinion(prim);
+    const usda::Attribute* purposeBefore = old.purposeOpinion(before);
+    if ((purpose == nullptr) != (purposeBefore == nullptr) || (purpose && !sameAttribute(*purpose, *purposeBefore)))
+        bits |= dirtyBitFor("purpose");
+    if (boundMaterial(prim) != previous.boundMaterial(before)) bits |= OBSCURA_DIRTY_MATERIAL_ID;
+    // A material's values are its surface shader's and its textures': any change in its network.
+    auto surface = surfaces_.find(prim.path);
+    auto surfaceBefore = previous.surfaces_.find(before.path);
+    if (surface != surfaces_.end() && surfaceBefore != previous.surfaces_.end() &&
+        (!sameSubtree(prim, before) || !sameSubtree(*surface->second, *surfaceBefore->second)))
+        bits |= OBSCURA_DIRTY_PARAMS;
+    return bits;
+}
+
+ObscuraStatus UsdSceneHost::adoptChanges(const UsdSceneHost& previous, const ObscuraApiV1& api,
+                                         ObscuraDelegate delegate, double time, size_t& touched) {
+    touched = 0;
+    const std::map<std::string, std::string> now = scan();
+    for (const auto& [path, type] : previous.primTypes_) {
+        auto it = now.find(path);
+        if (it != now.end() && it->second == type) continue;
+        ObscuraStatus s = api.removePrim(delegate, path.c_str());
+        if (s != OBSCURA_OK) return s;
+        ++touched;
+    }
+    for (const auto& [path, type] : now) {
+        auto it = previous.primTypes_.find(path);
+        ObscuraStatus s = OBSCURA_OK;
+        if (it == previous.primTypes_.end() || it->second != type) {
+            s = api.insertPrim(delegate, type.c_str(), path.c_str());
+            ++touched;
+        } else if (ObscuraDirtyBits bits = changes(*stage_.find(path), previous, *previous.stage_.find(path), time)) {
+            s = api.markDirty(delegate, path.c_str(), bits);
+            ++touched;
+        }
+        if (s != OBSCURA_OK) return s;
+        primTypes_[path] = type;
+    }
     return OBSCURA_OK;
 }
 
@@ -230,14 +344,18 @@ ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDele
     return OBSCURA_OK;
 }
 
+std::string aovBufferFormat(const std::string& aov) {
+    return aov == "color"                            ? "float32Vec4"
+           : aov == "depth"                          ? "float32"
+           : aov == "primId" || aov == "instanceId" ? "int32"
+           : aov == "display"                        ? "unorm8Vec4"
+                                                     : "float32Vec3";
+}
+
 std::string UsdSceneHost::addRenderBuffer(const ObscuraApiV1& api, ObscuraDelegate delegate, const std::string& aov,
                                           int width, int height) {
     std::string path = "/Render/Buffers/" + aov;
-    std::string format = aov == "color"     ? "float32Vec4"
-                         : aov == "depth"   ? "float32"
-                         : aov == "primId" || aov == "instanceId" ? "int32"
-                         : aov == "display" ? "unorm8Vec4"
-                                            : "float32Vec3";
+    std::string format = aovBufferFormat(aov);
     bool exists = renderBuffers_.count(path) > 0;
     renderBuffers_[path] = {width, height, format};
     if (!exists) api.insertPrim(delegate, "renderBuffer", path.c_str());
@@ -251,7 +369,7 @@ std::string UsdSceneHost::defaultCamera() const {
     return {};
 }
 
-std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDelegate delegate, double time) {
+SceneBounds UsdSceneHost::bounds(double time) const {
     // XXX: only point-based prims (Mesh, BasisCurves, Points) are framed, by their points; implicit
     // gprims (Cube, Sphere...) are left out of the bounds.
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
@@ -272,13 +390,33 @@ std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDeleg
             }
         }
     }
-    double centre[3], radius = 0;
+    SceneBounds b;
+    double radius = 0;
     for (int c = 0; c < 3; ++c) {
         if (lo[c] > hi[c]) lo[c] = hi[c] = 0;  // nothing to frame: look at the origin
-        centre[c] = 0.5 * (lo[c] + hi[c]);
+        b.centre[size_t(c)] = 0.5 * (lo[c] + hi[c]);
         radius += 0.25 * (hi[c] - lo[c]) * (hi[c] - lo[c]);
     }
-    radius = std::max(std::sqrt(radius), 1e-3);
+    b.radius = std::max(std::sqrt(radius), 1e-3);
+    return b;
+}
+
+std::string UsdSceneHost::instancerOf(const std::string& path) const {
+    for (const auto& [instancer, type] : primTypes_) {
+        if (type != "instancer") continue;
+        const usda::Prim* prim = stage_.find(instancer);
+        const usda::Relationship* protos = prim ? prim->relationship("prototypes") : nullptr;
+        if (!protos) continue;
+        for (const auto& root : protos->targets)
+            if (path == root || path.rfind(root + "/", 0) == 0) return instancer;
+    }
+    return {};
+}
+
+std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDelegate delegate, double time) {
+    const SceneBounds b = bounds(time);
+    const double* centre = b.centre.data();
+    const double radius = b.radius;
     // The schema's default lens: 50 mm, 15.2908 mm vertical aperture; the bounding sphere fits
     // the narrower (vertical) field of view.
     double halfFov = std::atan(15.2908 / 2.0 / 50.0);
