@@ -1,13 +1,14 @@
 #include "harness/commands.h"
 #include "harness/exit_codes.h"
 #include "harness/session.h"
-#include "harness/view/display_device.h"
+#include "harness/view/render_buffer_display.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 
 namespace obscura::harness {
 namespace {
@@ -25,25 +26,21 @@ class DisplayTiming {
 public:
     // After the first render; returns the problem, or "".
     std::string start(Session& session, const std::string& buffer, const std::string& mode) {
-        shared_ = mode == "shared";
         view::DisplayDeviceOptions options;
         options.deviceName = session.deviceName();
-        ObscuraExternalBuffer exported{};
-        exported.sType = OBSCURA_STRUCTURE_TYPE_EXTERNAL_BUFFER;
-        exported.structSize = sizeof(exported);
-        if (shared_) {
-            const ObscuraApiV1_2* interop = session.interopApi();
-            if (!interop) return "the plugin has no ABI 1.2 (display interop)";
-            if (interop->exportRenderBuffer(session.delegate(), buffer.c_str(), &exported) != OBSCURA_OK)
-                return session.lastError();
-            options.deviceUUID = exported.deviceUUID;
+        std::optional<ObscuraExternalBuffer> exported;
+        if (mode == "shared") {
+            auto made = view::exportRenderBuffer(session, buffer);
+            if (auto* problem = std::get_if<std::string>(&made)) return *problem;
+            exported = std::get<ObscuraExternalBuffer>(made);
+            options.deviceUUID = exported->deviceUUID;
         }
         auto created = view::DisplayDevice::create(options);
         if (auto* problem = std::get_if<std::string>(&created)) return *problem;
         device_ = std::move(std::get<std::unique_ptr<view::DisplayDevice>>(created));
         image_ = std::make_unique<view::AovImage>(*device_);
-        if (shared_) {
-            auto imported = view::DisplaySource::import(*device_, exported);
+        if (exported) {
+            auto imported = view::DisplaySource::import(*device_, *exported);
             if (auto* problem = std::get_if<std::string>(&imported)) return *problem;
             source_ = std::move(std::get<std::unique_ptr<view::DisplaySource>>(imported));
         }
@@ -52,26 +49,8 @@ public:
     // After a render: the frame into the display image; returns the wall time it took, ms.
     double show(Session& session, const std::string& buffer) {
         auto start = std::chrono::steady_clock::now();
-        uint64_t value = 0;
-        if (shared_) {
-            ObscuraInteropStats interop{OBSCURA_STRUCTURE_TYPE_INTEROP_STATS, nullptr, sizeof(interop), 0};
-            ObscuraRenderStats stats{};
-            stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
-            stats.structSize = sizeof(stats);
-            stats.pNext = &interop;
-            session.api().getRenderStats(session.delegate(), &stats);
-            value = interop.semaphoreValue;
-        } else {
-            ObscuraMappedBuffer mapped{OBSCURA_STRUCTURE_TYPE_MAPPED_BUFFER, nullptr, sizeof(mapped)};
-            session.api().mapRenderBuffer(session.delegate(), buffer.c_str(), &mapped);
-            if (!source_)
-                source_ = view::DisplaySource::upload(*device_, mapped.width, mapped.height, mapped.format,
-                                                      mapped.rowStride * mapped.height);
-            source_->copyFrom(mapped);
-            session.api().unmapRenderBuffer(session.delegate(), buffer.c_str());
-        }
-        device_->submitAndWait([&](VkCommandBuffer cmd) { image_->record(cmd, *source_, view::AovView::Display); },
-                               source_->semaphore(), value);
+        if (!source_ || !source_->shared()) view::copyRenderBuffer(session, *device_, buffer, source_);
+        view::showSource(session, *device_, *source_, *image_, view::AovView::Display);
         return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
     ~DisplayTiming() {
@@ -80,7 +59,6 @@ public:
     }
 
 private:
-    bool shared_ = false;
     std::unique_ptr<view::DisplayDevice> device_;
     std::unique_ptr<view::DisplaySource> source_;
     std::unique_ptr<view::AovImage> image_;
@@ -146,20 +124,17 @@ int runBench(const BenchOptions& o) {
             const double shown = display.show(session, buffer);
             if (i >= kWarmup) renderCalls.push_back(renderCall), shows.push_back(shown);
         }
-        uint32_t count = 0;
-        session.api().getPassTimings(session.delegate(), nullptr, &count);
-        std::vector<ObscuraPassTiming> timings(count);
-        for (auto& t : timings) t.structSize = sizeof(ObscuraPassTiming);
-        session.api().getPassTimings(session.delegate(), timings.data(), &count);
+        const std::vector<ObscuraPassTiming> timings = session.passTimings();
+        const size_t count = timings.size();
         if (i < kWarmup) {
-            for (uint32_t k = 0; k < count; ++k) {
+            for (size_t k = 0; k < count; ++k) {
                 if (!warmupOnly.count(timings[k].pass)) warmupOrder.push_back(timings[k].pass);
                 warmupOnly[timings[k].pass] = timings[k].milliseconds;
             }
             continue;
         }
         double total = 0;
-        for (uint32_t k = 0; k < count; ++k) {
+        for (size_t k = 0; k < count; ++k) {
             if (!samples.count(timings[k].pass)) order.push_back(timings[k].pass);
             samples[timings[k].pass].push_back(timings[k].milliseconds);
             total += timings[k].milliseconds;
@@ -168,9 +143,7 @@ int runBench(const BenchOptions& o) {
     }
     order.push_back("total");
     std::erase_if(warmupOrder, [&](const std::string& pass) { return samples.count(pass) > 0; });
-    ObscuraRenderStats stats{};
-    stats.structSize = sizeof(stats);
-    session.api().getRenderStats(session.delegate(), &stats);
+    const ObscuraRenderStats stats = session.renderStats();
 
     if (o.json) {
         std::printf("{\"scene\": \"%s\", \"device\": \"%s\", \"width\": %d, \"height\": %d, \"frames\": %d, "

@@ -54,12 +54,29 @@ void Session::logToStderr(void* user, ObscuraLogLevel level, const char* message
                  level == OBSCURA_LOG_ERROR ? "error" : level == OBSCURA_LOG_WARNING ? "warning" : "info", message);
 }
 
-std::string Session::deviceName() const {
+ObscuraRenderStats Session::renderStats(ObscuraInteropStats* interop) const {
     ObscuraRenderStats stats{};
     stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
     stats.structSize = sizeof(stats);
-    return api().getRenderStats(delegate_, &stats) == OBSCURA_OK ? std::string(stats.deviceName) : std::string();
+    if (interop) {
+        *interop = {OBSCURA_STRUCTURE_TYPE_INTEROP_STATS, nullptr, sizeof(ObscuraInteropStats), 0};
+        stats.pNext = interop;
+    }
+    api().getRenderStats(delegate_, &stats);
+    return stats;
 }
+
+std::vector<ObscuraPassTiming> Session::passTimings() const {
+    uint32_t count = 0;
+    api().getPassTimings(delegate_, nullptr, &count);
+    std::vector<ObscuraPassTiming> timings(count);
+    for (auto& t : timings) t.structSize = sizeof(ObscuraPassTiming);
+    api().getPassTimings(delegate_, timings.data(), &count);
+    timings.resize(count);
+    return timings;
+}
+
+std::string Session::deviceName() const { return renderStats().deviceName; }
 
 std::vector<std::string> withMsaaSetting(std::vector<std::string> settings, const std::optional<int>& msaa) {
     if (msaa) settings.push_back("msaa=" + std::to_string(*msaa));

@@ -34,6 +34,10 @@ public:
     const usda::Stage& stage() const { return *stage_; }
     std::string lastError() const { return api().lastError(delegate_); }
     uint32_t loggedErrors() const { return loggedErrors_; }
+    // The delegate's render stats, with the display interop stats chained when `interop` is given.
+    ObscuraRenderStats renderStats(ObscuraInteropStats* interop = nullptr) const;
+    // The GPU time of each pass of the last render.
+    std::vector<ObscuraPassTiming> passTimings() const;
     // The Vulkan device the delegate renders with (from its render stats; empty before the first render).
     std::string deviceName() const;
     // Also print the plugin's info messages (device, loaded textures, the MSAA tagged share).

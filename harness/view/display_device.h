@@ -16,6 +16,13 @@
 
 namespace obscura::harness::view {
 
+// Throws std::runtime_error naming `what` unless `result` is VK_SUCCESS.
+void check(VkResult result, const char* what);
+
+// A pipeline barrier on a colour image's single mip and layer.
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags srcAccess,
+                  VkAccessFlags dstAccess, VkPipelineStageFlags srcStage, VkPipelineStageFlags dstStage);
+
 // How an AOV is shown (aov_display.comp).
 enum class AovView : uint32_t { Display = 0, Depth = 1, Normal = 2, Motion = 3, PrimId = 4 };
 

@@ -12,10 +12,12 @@
 //   lens NAME VALUE                   focalLength, fStop, focusDistance or apertureBlades of the free camera
 //   frames N                          render N frames
 //   wait-converged                    render until temporal AA has converged
+//   wait-reload                       wait until a file of the scene changes on disk and it is read again
 //   screenshot PATH                   write the window as it is shown to PATH (PNG)
 //   close                             close the window, as its close button does
 #pragma once
 
+#include <istream>
 #include <string>
 #include <variant>
 #include <vector>
@@ -30,7 +32,9 @@ struct ScriptEvent {
     bool has(const std::string& word) const;
 };
 
-// The events of a script, or the first line that is not one ("FILE:LINE: why").
+// The events of a script, or the first line that is not one ("NAME:LINE: why").
+std::variant<std::vector<ScriptEvent>, std::string> parseInputScript(std::istream& in, const std::string& name);
+// The events of the script file at `path` (parseInputScript, named by its path).
 std::variant<std::vector<ScriptEvent>, std::string> readInputScript(const std::string& path);
 
 }  // namespace obscura::harness::view

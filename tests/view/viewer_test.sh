@@ -8,7 +8,12 @@
 #    construction: tests/view/data/two_quads.usda);
 #  - orbiting, the HUD, the AOV views and a lens change run; closing the window leaves no Vulkan
 #    object alive (validation on: any error fails) and exits 0;
-#  - both display paths: the exported memory (shared) and readback.
+#  - both display paths: the exported memory (shared) and readback;
+#  - reading the scene again when its file changes on disk: a script waits for the reload while the
+#    test recolours one quad of a copy of the scene; one prim changed, the render after the reload
+#    syncs that prim alone (the delegate's count), and the window shows the scene before the edit,
+#    then the edited one, each equal to `obscura render` of that file (the same 48 dB) and the two
+#    different (below that bound).
 #   viewer_test.sh OBSCURA SOURCE_DIR WORK_DIR
 set -uo pipefail
 obscura=$1 root=$2 work=$3
@@ -52,4 +57,47 @@ SCRIPT
     "$obscura" compare "$work/$display.png" "$work/render.png" --psnr-min 48 >"$work/$display.compare" 2>&1
     check "view ($display): the window equals obscura render of the same camera" 0 $? "$work/$display.compare" '.*'
 done
+
+# Reloading: the viewer watches a copy of the scene; the edit recolours the left quad.
+watched=$work/watched.usda
+cp "$scene" "$watched"
+recolour() { sed 's/displayColor = \[(0.8, 0.2, 0.1)\]/displayColor = [(0.1, 0.8, 0.2)]/' "$scene"; }
+recolour >"$work/edited.usda"
+check "the edit changes one line of the scene" 1 "$(diff "$scene" "$work/edited.usda" | grep -c '^>')"
+"$obscura" render "$work/edited.usda" --camera /World/Camera --width 64 --height 48 -o "$work/edited.png" \
+    2>"$work/edited.log"
+check "obscura render of the edited scene" 0 $?
+cat >"$work/reload.script" <<SCRIPT
+key H
+wait-converged
+screenshot $work/before.png
+wait-reload
+wait-converged
+screenshot $work/after.png
+close
+SCRIPT
+# Bounded: a viewer that never noticed the edit would wait for ever.
+timeout 300 xvfb-run -a -s "-screen 0 320x240x24" "$obscura" view "$watched" --width 64 --height 48 \
+    --script "$work/reload.script" >"$work/reload.out" 2>"$work/reload.err" &
+viewer=$!
+# The edit once the first screenshot is written, saved as editors save: a whole file renamed into place.
+for _ in $(seq 1200); do
+    [ -s "$work/before.png" ] || ! kill -0 $viewer 2>/dev/null && break
+    sleep 0.1
+done
+recolour >"$watched.saving" && mv "$watched.saving" "$watched"
+wait $viewer
+code=$?
+check "view (reload) runs the script and closes cleanly" 0 $code
+[ $code -eq 0 ] || sed 's/^/    /' "$work/reload.err"
+check "view (reload): no Vulkan validation error, nothing left alive" 0 "$(grep -c 'error:' "$work/reload.err")"
+check "view (reload): one prim changed" 0 0 "$work/reload.out" "^reloaded $watched: 1 prim changed$"
+check "view (reload): the render after it synced that prim alone" 0 0 "$work/reload.out" \
+    '^synced 1 prim after the reload$'
+"$obscura" compare "$work/before.png" "$work/render.png" --psnr-min 48 >"$work/before.compare" 2>&1
+check "view (reload): before the edit the window equals obscura render of the scene" 0 $? "$work/before.compare" '.*'
+"$obscura" compare "$work/after.png" "$work/edited.png" --psnr-min 48 >"$work/after.compare" 2>&1
+check "view (reload): after it the window equals obscura render of the edited scene" 0 $? "$work/after.compare" '.*'
+"$obscura" compare "$work/after.png" "$work/before.png" --psnr-min 48 >"$work/changed.compare" 2>&1
+check "view (reload): the window changed with the edit" 1 $? "$work/changed.compare" '.*'
 finish
