@@ -16,12 +16,14 @@ void Viewer::insertBuffers(int width, int height) {
     width_ = width;
     height_ = height;
     scene_.aspect = double(width) / double(height);
-    for (const char* aov : {aov_.c_str(), "primId", "instanceId", "depth"}) {
-        std::string path = scene_.renderBuffer(aov, width, height);
-        if (buffers_.count(aov)) session_.api().markDirty(session_.delegate(), path.c_str(), OBSCURA_DIRTY_PARAMS);
+    auto bind = [&](const std::string& name, const std::string& aov) {
+        std::string path = scene_.renderBuffer(name, aov, width, height);
+        if (buffers_.count(name)) session_.api().markDirty(session_.delegate(), path.c_str(), OBSCURA_DIRTY_PARAMS);
         else session_.api().insertPrim(session_.delegate(), "renderBuffer", path.c_str());
-        buffers_[aov] = path;
-    }
+        buffers_[name] = path;
+    };
+    bind("shown", aov_);
+    for (const char* aov : kPickAovs) bind(aov, aov);
     source_.reset();
     exportPending_ = o_.display != "readback";
     cameraChanged();
@@ -87,7 +89,7 @@ bool Viewer::updateSource(bool& exportedNow) {
         exportPending_ = false;
         // Whether the display device can import is asked first: an exported buffer cannot be mapped.
         auto exported = display_->canImport()
-                             ? exportRenderBuffer(session_, buffers_[aov_])
+                             ? exportRenderBuffer(session_, buffers_["shown"])
                              : std::variant<ObscuraExternalBuffer, std::string>(display_->name() + " cannot import memory");
         if (auto* external = std::get_if<ObscuraExternalBuffer>(&exported)) {
             auto imported = DisplaySource::import(*display_, *external);
@@ -106,7 +108,7 @@ bool Viewer::updateSource(bool& exportedNow) {
         }
     }
     if (source_ && source_->shared()) return true;
-    if (std::string problem = copyRenderBuffer(session_, *display_, buffers_[aov_], source_); !problem.empty()) {
+    if (std::string problem = copyRenderBuffer(session_, *display_, buffers_["shown"], source_); !problem.empty()) {
         std::fprintf(stderr, "obscura: %s\n", problem.c_str());
         return false;
     }
@@ -114,10 +116,9 @@ bool Viewer::updateSource(bool& exportedNow) {
 }
 
 bool Viewer::render(bool withPick) {
-    std::vector<ObscuraAovBinding> bindings = {{aov_.c_str(), buffers_[aov_].c_str()}};
+    std::vector<ObscuraAovBinding> bindings = {{aov_.c_str(), buffers_["shown"].c_str()}};
     if (withPick)
-        for (const char* aov : {"primId", "instanceId", "depth"})
-            if (aov_ != aov) bindings.push_back({aov, buffers_[aov].c_str()});
+        for (const char* aov : kPickAovs) bindings.push_back({aov, buffers_[aov].c_str()});
     ObscuraRenderPassDesc desc{OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC, nullptr, sizeof(desc), activeCamera(),
                                {0, 0, width_, height_}, time_, uint32_t(bindings.size()), bindings.data()};
     ObscuraStatus status = session_.api().render(session_.delegate(), &desc);

@@ -22,6 +22,8 @@
 
 namespace obscura::harness::view {
 
+// The AOVs picking reads.
+inline constexpr const char* kPickAovs[] = {"primId", "instanceId", "depth"};
 // Effects the HUD and the keys toggle (render settings, named as in `obscura info`).
 inline constexpr const char* kEffects[] = {"taa", "ssao", "shadows", "dof", "motionBlur"};
 // The AOVs the window shows.
@@ -90,7 +92,9 @@ private:
     std::vector<std::string> sceneCameras_;
     int cameraIndex_ = 0;  // 0: the free camera; i: sceneCameras_[i - 1]
     std::string aov_ = "display";
-    std::map<std::string, std::string> buffers_;  // aov -> render buffer path
+    // Render buffer paths: the shown AOV's ("shown", which may be the plugin's exported memory) and
+    // picking's (by AOV name), apart so that picking can map its buffers whatever is shown.
+    std::map<std::string, std::string> buffers_;
     int width_ = 0, height_ = 0;
     bool exportPending_ = false;  // export again after the next render (new buffer or size)
     bool changed_ = true;

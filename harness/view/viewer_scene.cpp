@@ -19,8 +19,8 @@ double ViewerScene::verticalFov() const {
     return 2.0 * std::atan(0.5 * lens.horizontalAperture / aspect / lens.focalLength);
 }
 
-std::string ViewerScene::renderBuffer(const std::string& aov, int width, int height) {
-    std::string path = "/ObscuraViewer/Buffers/" + aov;
+std::string ViewerScene::renderBuffer(const std::string& name, const std::string& aov, int width, int height) {
+    std::string path = "/ObscuraViewer/Buffers/" + name;
     buffers_[path] = {width, height, aovBufferFormat(aov)};
     return path;
 }

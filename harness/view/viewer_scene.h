@@ -39,8 +39,8 @@ public:
     // The vertical field of view of the free camera.
     double verticalFov() const;
 
-    // A render buffer for `aov` at the viewer's size; returns its path.
-    std::string renderBuffer(const std::string& aov, int width, int height);
+    // The render buffer named `name`, in the format of `aov`, at the viewer's size; returns its path.
+    std::string renderBuffer(const std::string& name, const std::string& aov, int width, int height);
 
 private:
     static ObscuraStatus getValue(void* user, const char* path, const char* attribute, double time, ObscuraValue* out);

@@ -5,7 +5,7 @@
 #    only by rounding, at most one code value (PSNR >= 20 log10(255/1) = 48.1 dB); a swapped
 #    channel, a flipped row order or another camera falls far below;
 #  - a click on the left and on the right half picks the quad drawn there (by the scene's
-#    construction: tests/view/data/two_quads.usda);
+#    construction: tests/view/data/two_quads.usda), also while the primId AOV itself is shown;
 #  - orbiting, the HUD, the AOV views and a lens change run; closing the window leaves no Vulkan
 #    object alive (validation on: any error fails) and exits 0;
 #  - both display paths: the exported memory (shared) and readback;
@@ -36,6 +36,8 @@ click 48 24                    # the right quad
 key H
 aov normal
 frames 2
+aov primId
+click 40 24                    # the right quad again, while the primId AOV itself is shown
 aov display
 press left 32 24               # orbit, then back to the scene camera
 move 40 24
@@ -54,6 +56,8 @@ SCRIPT
     [ $code -eq 0 ] || sed 's/^/    /' "$work/$display.err"
     check "view ($display): a click on the left picks /World/Left" 0 0 "$work/$display.out" '^pick 16 24: /World/Left$'
     check "view ($display): a click on the right picks /World/Right" 0 0 "$work/$display.out" '^pick 48 24: /World/Right$'
+    check "view ($display): a click in the primId view picks /World/Right" 0 0 "$work/$display.out" \
+        '^pick 40 24: /World/Right$'
     "$obscura" compare "$work/$display.png" "$work/render.png" --psnr-min 48 >"$work/$display.compare" 2>&1
     check "view ($display): the window equals obscura render of the same camera" 0 $? "$work/$display.compare" '.*'
 done
