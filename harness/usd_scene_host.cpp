@@ -2,6 +2,7 @@
 
 #include "harness/shading_network.h"
 #include "harness/usda/matrix4.h"
+#include "harness/usda/skinning.h"
 
 #include <algorithm>
 #include <cmath>
@@ -36,15 +37,20 @@ const std::map<std::string, std::string> kPrimTypes = {
 };
 
 // Types that organise a scene and are not drawn themselves.
-const std::set<std::string> kStructuralTypes = {"", "Xform", "Scope", "Shader", "NodeGraph", "GeomSubset",
-                                                "RenderSettings", "RenderProduct", "RenderVar"};
+// UsdSkel's prims pose the prims they skin (usda/skinning.h).
+// XXX: Storm draws a Skeleton's bones as a guide mesh; they are not drawn here.
+const std::set<std::string> kStructuralTypes = {"",           "Xform",         "Scope",        "Shader",
+                                                "NodeGraph",  "GeomSubset",    "RenderSettings", "RenderProduct",
+                                                "RenderVar",  "SkelRoot",      "Skeleton",     "SkelAnimation"};
+
+bool isPointBased(const std::string& type) { return type == "Mesh" || type == "BasisCurves" || type == "Points"; }
 
 ObscuraDirtyBits dirtyBitFor(const std::string& attribute) {
     if (attribute == "points" || attribute == "positions" || attribute == "orientations" || attribute == "scales")
         return OBSCURA_DIRTY_POINTS;
     if (attribute == "protoIndices") return OBSCURA_DIRTY_TOPOLOGY;
     if (attribute == "invisibleIds") return OBSCURA_DIRTY_VISIBILITY;
-    if (attribute == "normals") return OBSCURA_DIRTY_NORMALS;
+    if (attribute == "normals" || attribute == "primvars:normals") return OBSCURA_DIRTY_NORMALS;
     if (attribute.rfind("primvars:", 0) == 0) return OBSCURA_DIRTY_PRIMVAR;
     if (attribute == "faceVertexCounts" || attribute == "faceVertexIndices" || attribute == "curveVertexCounts")
         return OBSCURA_DIRTY_TOPOLOGY;
@@ -190,6 +196,7 @@ ObscuraStatus UsdSceneHost::populate(const ObscuraApiV1& api, ObscuraDelegate de
             }
             surfaces_[prim->path] = shader;
         }
+        if (isPointBased(prim->typeName)) bindSkeleton(*prim);
         if (it->second == "instancer") {
             if (const usda::Relationship* protos = prim->relationship("prototypes"))
                 for (const auto& root : protos->targets)
@@ -212,6 +219,8 @@ ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDele
         if (!stage_.transformSampleTimes(*prim).empty()) bits |= OBSCURA_DIRTY_TRANSFORM;
         // Visibility is inherited: an ancestor's samples change the prim's computed visibility.
         if (stage_.hasAnimatedVisibility(*prim)) bits |= OBSCURA_DIRTY_VISIBILITY;
+        if (auto skin = skinnings_.find(path); skin != skinnings_.end() && usda::isSkinningAnimated(stage_, skin->second))
+            bits |= OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_NORMALS;
         const usda::Prim* valuesFrom = type == "material" ? surfaces_.at(path) : prim;
         for (const auto& [name, attr] : valuesFrom->attributes) {
             // A surface input takes its value from the interface input it connects to.
@@ -256,11 +265,11 @@ std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDeleg
     // gprims (Cube, Sphere...) are left out of the bounds.
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (const usda::Prim* prim : stage_.prims()) {
-        const bool pointBased = prim->typeName == "Mesh" || prim->typeName == "BasisCurves" || prim->typeName == "Points";
-        if (!pointBased || prototypeSpace(*prim)) continue;
+        if (!isPointBased(prim->typeName) || prototypeSpace(*prim)) continue;
         const usda::Attribute* points = prim->attribute("points");
         auto value = points ? points->evaluate(time) : std::nullopt;
         if (!value || value->tupleSize != 3) continue;
+        if (auto skin = skinnings_.find(prim->path); skin != skinnings_.end()) applySkinning(*prim, skin->second, *points, *value, time);
         auto m = stage_.worldTransform(*prim, time);
         for (size_t i = 0; i + 2 < value->numbers.size(); i += 3) {
             const double* p = &value->numbers[i];
@@ -305,6 +314,9 @@ const usda::Attribute* UsdSceneHost::resolveAttribute(const std::string& path, c
         std::string primvar = bound != surfaces_.end() ? texturePrimvar(stage_, *bound->second) : "st";
         return prim->attribute("primvars:" + primvar);
     }
+    // UsdGeomPointBased: primvars:normals, when authored, takes precedence over normals.
+    if (attribute == "normals")
+        if (const usda::Attribute* primvar = prim->attribute("primvars:normals")) return primvar;
     if (const usda::Attribute* a = prim->attribute(attribute)) return a;
     // UsdLux before 21.02 named light inputs without the "inputs:" prefix.
     if (startsWith(attribute, "inputs:")) return prim->attribute(attribute.substr(7));
@@ -464,7 +476,49 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
             return OBSCURA_ERROR_NOT_FOUND;
         }
     }
+    if (auto skin = skinnings_.find(path); skin != skinnings_.end() && (attribute == "points" || attribute == "normals"))
+        applySkinning(*prim, skin->second, *a, *value, time);
     return fill(*value, out);
+}
+
+void UsdSceneHost::bindSkeleton(const usda::Prim& prim) {
+    auto skinning = usda::resolveSkinning(stage_, prim);
+    if (!skinning) return;
+    if (auto* problem = std::get_if<usda::SkinningProblem>(&*skinning)) {
+        warnOnce("skel:" + prim.path, prim.path + ": " + problem->message + "; drawn unskinned", problem->where, true);
+        return;
+    }
+    // XXX: UsdSkel's blend shapes (skel:blendShapes) are not applied; joints alone pose the prim.
+    if (prim.attribute("skel:blendShapes"))
+        warnOnce("blendShapes:" + prim.path, prim.path + ": skel:blendShapes are not applied yet",
+                 prim.attribute("skel:blendShapes")->where);
+    skinnings_.emplace(prim.path, std::get<usda::Skinning>(std::move(*skinning)));
+}
+
+void UsdSceneHost::applySkinning(const usda::Prim& prim, const usda::Skinning& skinning, const usda::Attribute& attribute,
+                         usda::Value& value, double time) {
+    if (value.tupleSize != 3) return;
+    std::string problem;
+    std::vector<double> skinned;
+    if (attribute.name == "points") {  // else normals or primvars:normals
+        skinned = usda::skinPoints(stage_, skinning, value.numbers, time, &problem);
+    } else {
+        // Normals follow their points: one per point, or one per face-vertex through its index.
+        const usda::Attribute* points = prim.attribute("points");
+        auto rest = points ? points->evaluate(time) : std::nullopt;
+        const auto interpolation = attribute.metadata.find("interpolation");
+        const bool faceVarying = interpolation != attribute.metadata.end() && !interpolation->second.strings.empty() &&
+                                 interpolation->second.strings.front() == "faceVarying";
+        const usda::Attribute* indices = faceVarying ? prim.attribute("faceVertexIndices") : nullptr;
+        auto indexValues = indices ? indices->evaluate(time) : std::nullopt;
+        if (!rest || (faceVarying && !indexValues)) return;
+        skinned = usda::skinNormals(stage_, skinning, value.numbers, indexValues ? &indexValues->numbers : nullptr,
+                                    rest->size(), time, &problem);
+    }
+    if (!problem.empty())
+        warnOnce("skinning:" + prim.path, prim.path + ": " + problem + (skinned.empty() ? "; drawn unskinned" : ""),
+                 attribute.where, true);
+    if (!skinned.empty()) value.numbers = std::move(skinned);
 }
 
 ObscuraStatus UsdSceneHost::computedPurpose(const usda::Prim& prim, ObscuraValue* out) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "harness/delegate_message.h"
+#include "harness/usda/skinning.h"
 #include "harness/usda/stage.h"
 
 #include <obscura/obscura.h>
@@ -63,6 +64,12 @@ private:
     // The UsdPreviewSurface a Material's outputs:surface leads to (through NodeGraph outputs), or
     // null with the reason.
     const usda::Prim* surfaceShader(const usda::Prim& material, std::string& problem) const;
+    // UsdSkel: the prim's binding to a skeleton, kept when it is usable, reported when it is not.
+    void bindSkeleton(const usda::Prim& prim);
+    // A skinned prim's `points` or `normals` (`value`, evaluated at `time`) skinned in place; left as
+    // they are, with the problem reported, when the influences do not fit them.
+    void applySkinning(const usda::Prim& prim, const usda::Skinning& skinning, const usda::Attribute& attribute,
+               usda::Value& value, double time);
     // UsdGeomImageable's computed purpose, inherited from the nearest ancestor that authors one.
     ObscuraStatus computedPurpose(const usda::Prim& prim, ObscuraValue* out);
     // The attribute a delegate name maps to on the USD prim (materials read their surface shader).
@@ -78,6 +85,7 @@ private:
     ObscuraSceneDelegate sceneDelegate_{};
     std::map<std::string, std::string> primTypes_;        // delegate path -> delegate type
     std::map<std::string, const usda::Prim*> surfaces_;   // material path -> UsdPreviewSurface shader
+    std::map<std::string, usda::Skinning> skinnings_;     // skinned prim path -> its binding
     // PointInstancer prototype roots -> the prim whose space instances live in (the root's
     // parent: USD includes the root's own transform in each instance, not its ancestors').
     std::map<std::string, const usda::Prim*> prototypeRoots_;

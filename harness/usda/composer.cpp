@@ -63,7 +63,7 @@ Relationship composeRelationship(const std::string& name,
                                  const std::vector<std::pair<const RelationshipSpec*, const IndexNode*>>& specs) {
     std::vector<std::pair<const ListOp<std::string>*, const IndexNode*>> targets;
     for (const auto& [spec, node] : specs) targets.emplace_back(&spec->targets, node);
-    return Relationship{name, composeMappedPaths(targets)};
+    return Relationship{name, composeMappedPaths(targets), specs.front().first->where};
 }
 
 void readStageMetadata(const Layer& layer, StageMetadata& out) {
