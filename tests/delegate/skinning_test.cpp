@@ -20,10 +20,11 @@ std::pair<int, int> pixelOf(double x, double y) {
     return {int((x / kHalfView + 1.0) * kWidth / 2), int((1.0 - y / kHalfView) * kHeight / 2)};
 }
 
-// The arm: a strip along X from -0.9 to 0.9, 0.2 high. Its left half follows joint "root" (at
-// x = -1), its right half joint "root/elbow" (at the origin). The elbow turns about +Z by 90
-// degrees per time code from time 0; the shutter spans [-0.25, 0.25] around the frame.
-std::string armStage(const std::string& jointIndices) {
+// The arm: two quads along X, 0.2 high: the upper arm from -0.9 to 0 follows joint "root" (at
+// x = -1), the forearm from 0 to 0.9 joint "root/elbow" (at the origin). The elbow turns about +Z
+// by 90 degrees per time code from time 0. The shutter spans [-halfShutter, halfShutter] around
+// the frame.
+std::string armStage(const std::string& jointIndices, double halfShutter = 0.0) {
     return R"(#usda 1.0
 def Camera "Camera"
 {
@@ -31,8 +32,8 @@ def Camera "Camera"
     float horizontalAperture = 20.955
     float verticalAperture = 20.955
     float2 clippingRange = (0.1, 100)
-    double shutter:open = -0.25
-    double shutter:close = 0.25
+    double shutter:open = )" + std::to_string(-halfShutter) + R"(
+    double shutter:close = )" + std::to_string(halfShutter) + R"(
     double3 xformOp:translate = (0, 0, 5)
     uniform token[] xformOpOrder = ["xformOp:translate"]
 }
@@ -60,15 +61,16 @@ def SkelRoot "Rig"
 
     def Mesh "Arm"
     {
-        point3f[] points = [(-0.9, -0.1, 0), (0, -0.1, 0), (0, 0.1, 0), (-0.9, 0.1, 0), (0.9, -0.1, 0), (0.9, 0.1, 0)]
+        point3f[] points = [(-0.9, -0.1, 0), (0, -0.1, 0), (0, 0.1, 0), (-0.9, 0.1, 0),
+                            (0, -0.1, 0), (0.9, -0.1, 0), (0.9, 0.1, 0), (0, 0.1, 0)]
         int[] faceVertexCounts = [4, 4]
-        int[] faceVertexIndices = [0, 1, 2, 3, 1, 4, 5, 2]
+        int[] faceVertexIndices = [0, 1, 2, 3, 4, 5, 6, 7]
         uniform token subdivisionScheme = "none"
         int[] primvars:skel:jointIndices = )" +
            jointIndices + R"( (
             interpolation = "vertex"
         )
-        float[] primvars:skel:jointWeights = [1, 1, 1, 1, 1, 1] (
+        float[] primvars:skel:jointWeights = [1, 1, 1, 1, 1, 1, 1, 1] (
             interpolation = "vertex"
         )
     }
@@ -76,7 +78,7 @@ def SkelRoot "Rig"
 )";
 }
 
-const char* kGoodIndices = "[0, 1, 1, 0, 1, 1]";
+const char* kGoodIndices = "[0, 0, 0, 0, 1, 1, 1, 1]";
 
 bool drawnAt(const std::vector<float>& ids, double x, double y) {
     auto [px, py] = pixelOf(x, y);
@@ -90,6 +92,7 @@ TEST(Skinning, TheArmIsDrawnWhereItsJointsPutIt) {
     EXPECT_TRUE(drawnAt(straight, 0.5, 0.0));
     EXPECT_FALSE(drawnAt(straight, 0.0, 0.5));
     // At time 1 the forearm points up: it left (0.5, 0) for (0, 0.5); the upper arm stays.
+    ASSERT_EQ(scene.host->markTimeVarying(scene.api(), scene.delegate), OBSCURA_OK);
     auto bent = scene.renderAov("primId", 1, 1.0);
     EXPECT_FALSE(drawnAt(bent, 0.5, 0.0));
     EXPECT_TRUE(drawnAt(bent, 0.0, 0.5));
@@ -99,15 +102,16 @@ TEST(Skinning, TheArmIsDrawnWhereItsJointsPutIt) {
 }
 
 TEST(Skinning, TheSwingWithinTheShutterIsItsMotion) {
-    HostedStage scene(usda::Stage::openFromString(armStage(kGoodIndices), "arm.usda"));
+    // A shutter of 0.1 time codes: the forearm turns 9 degrees, and covers the pixel looked at
+    // whatever instant of the shutter a frame draws.
+    HostedStage scene(usda::Stage::openFromString(armStage(kGoodIndices, 0.05), "arm.usda"));
     auto motion = scene.renderAov("motion", 3, 1.0);
     ASSERT_EQ(motion.size(), size_t(kWidth) * kHeight * 3);
-    // A point 0.5 up the forearm turns 45 degrees about the elbow over the shutter (90 per time
-    // code): the chord from open to close is 2 * 0.5 * sin(22.5 deg) long, towards -X at the
-    // middle of the swing.
+    // A point 0.5 up the upright forearm moves from 4.5 degrees before upright to 4.5 after:
+    // the chord from open to close is 2 * 0.5 * sin(4.5 deg) long, towards -X.
     auto [px, py] = pixelOf(0.0, 0.5);
     const size_t at = (size_t(py) * kWidth + size_t(px)) * 3;
-    const double chord = 2.0 * 0.5 * std::sin(M_PI / 8) * kWidth / (2.0 * kHalfView);
+    const double chord = 2.0 * 0.5 * std::sin(4.5 * M_PI / 180.0) * kWidth / (2.0 * kHalfView);
     EXPECT_NEAR(motion[at], -chord, 0.1 * chord);
     EXPECT_NEAR(motion[at + 1], 0.0, 0.1 * chord);
     // The upper arm does not move.
@@ -118,7 +122,7 @@ TEST(Skinning, TheSwingWithinTheShutterIsItsMotion) {
 }
 
 TEST(Skinning, BadJointIndicesAreReportedAndTheArmIsDrawnUnskinned) {
-    HostedStage scene(usda::Stage::openFromString(armStage("[0, 1, 1, 0, 7, 1]"), "bad_arm.usda"));
+    HostedStage scene(usda::Stage::openFromString(armStage("[0, 0, 0, 0, 7, 1, 1, 1]"), "bad_arm.usda"));
     auto ids = scene.renderAov("primId", 1, 1.0);
     ASSERT_EQ(ids.size(), size_t(kWidth) * kHeight);
     // Unskinned: the strip lies straight along X as its points are authored.
@@ -130,7 +134,7 @@ TEST(Skinning, BadJointIndicesAreReportedAndTheArmIsDrawnUnskinned) {
     EXPECT_NE(message.text.find("/Rig/Arm: primvars:skel:jointIndices[4] = 7 is outside the 2 joints; drawn unskinned"),
               std::string::npos)
         << message.text;
-    const std::string text = armStage("[0, 1, 1, 0, 7, 1]");
+    const std::string text = armStage("[0, 0, 0, 0, 7, 1, 1, 1]");
     const int line = int(std::count(text.begin(), text.begin() + long(text.find("int[] primvars:skel:jointIndices")), '\n')) + 1;
     EXPECT_EQ(message.where.file, "bad_arm.usda");
     EXPECT_EQ(message.where.line, line);
