@@ -1,5 +1,6 @@
 #include "harness/usd_scene_host.h"
 
+#include "harness/materialx_surface.h"
 #include "harness/shading_network.h"
 #include "harness/usda/matrix4.h"
 #include "harness/usda/skinning.h"
@@ -105,19 +106,23 @@ std::string int32RangeProblem(const usda::Value& value) {
 }  // namespace
 
 const usda::Prim* UsdSceneHost::surfaceShader(const usda::Prim& material, std::string& problem) const {
+    // UsdShadeMaterial::ComputeSurfaceSource: the universal render context's outputs:surface, else
+    // MaterialX's outputs:mtlx:surface (what usdMtlx and MaterialX-authoring tools write).
     const usda::Attribute* surface = material.attribute("outputs:surface");
+    if (!surface || !surface->connection) surface = material.attribute("outputs:mtlx:surface");
     if (!surface || !surface->connection) {
         problem = "outputs:surface is not connected";
         return nullptr;
     }
     auto source = connectionSource(stage_, *surface);
     if (auto* reason = std::get_if<std::string>(&source)) {
-        problem = "outputs:surface: " + *reason;
+        problem = surface->name + ": " + *reason;
         return nullptr;
     }
     const ConnectionSource& found = std::get<ConnectionSource>(source);
-    if (found.attribute || shaderId(*found.prim) != "UsdPreviewSurface") {
-        problem = "no UsdPreviewSurface on outputs:surface (it leads to " + found.prim->path + "." + found.property + ")";
+    if (found.attribute) {
+        problem = "no shader on " + surface->name + " (it leads to the value of " + found.prim->path + "." +
+                  found.property + ")";
         return nullptr;
     }
     return found.prim;
@@ -194,7 +199,14 @@ ObscuraStatus UsdSceneHost::populate(const ObscuraApiV1& api, ObscuraDelegate de
                          surface ? surface->where : prim->where);
                 continue;
             }
-            surfaces_[prim->path] = shader;
+            // UsdPreviewSurface is served as it is; any other surface (MaterialX node
+            // definitions, or a base colour to fall back on) through its mapping.
+            if (shaderId(*shader) == "UsdPreviewSurface") {
+                surfaces_[prim->path] = shader;
+            } else {
+                mappedSurfaces_[prim->path] = MappedSurface{shader, std::nullopt, {}};
+                mappedSurface(prim->path, stage_.metadata().startTimeCode.value_or(0.0));  // reports its problems
+            }
         }
         if (isPointBased(prim->typeName)) bindSkeleton(*prim);
         if (it->second == "instancer") {
@@ -221,6 +233,9 @@ ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDele
         if (stage_.hasAnimatedVisibility(*prim)) bits |= OBSCURA_DIRTY_VISIBILITY;
         if (auto skin = skinnings_.find(path); skin != skinnings_.end() && usda::isSkinningAnimated(stage_, skin->second))
             bits |= OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_NORMALS;
+        // XXX: a mapped (MaterialX) surface is read at each frame's time but not marked dirty when its
+        // network is animated.
+        if (mappedSurfaces_.count(path)) continue;
         const usda::Prim* valuesFrom = type == "material" ? surfaces_.at(path) : prim;
         for (const auto& [name, attr] : valuesFrom->attributes) {
             // A surface input takes its value from the interface input it connects to.
@@ -312,6 +327,8 @@ const usda::Attribute* UsdSceneHost::resolveAttribute(const std::string& path, c
         auto material = boundMaterial(*prim);
         auto bound = material ? surfaces_.find(*material) : surfaces_.end();
         std::string primvar = bound != surfaces_.end() ? texturePrimvar(stage_, *bound->second) : "st";
+        if (auto mapped = material ? mappedSurfaces_.find(*material) : mappedSurfaces_.end(); mapped != mappedSurfaces_.end())
+            primvar = mapped->second.mapping.stPrimvar;
         return prim->attribute("primvars:" + primvar);
     }
     // UsdGeomPointBased: primvars:normals, when authored, takes precedence over normals.
@@ -426,6 +443,10 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         *out = {OBSCURA_VALUE_PATH, 0, 1, stringPointers_.data()};
         return OBSCURA_OK;
     }
+    if (const MaterialXMapping* mapped = mappedSurface(path, time)) {
+        const auto value = mapped->values.find(attribute);
+        return value == mapped->values.end() ? OBSCURA_ERROR_NOT_FOUND : fill(value->second, out);
+    }
     auto surface = surfaces_.find(path);
     if (surface != surfaces_.end() && startsWith(attribute, "obscura:")) {
         auto texture = flattenedTextureAttribute(stage_, *surface->second, attribute, time);
@@ -479,6 +500,22 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     if (auto skin = skinnings_.find(path); skin != skinnings_.end() && (attribute == "points" || attribute == "normals"))
         applySkinning(*prim, skin->second, *a, *value, time);
     return fill(*value, out);
+}
+
+const MaterialXMapping* UsdSceneHost::mappedSurface(const std::string& material, double time) {
+    const auto it = mappedSurfaces_.find(material);
+    if (it == mappedSurfaces_.end()) return nullptr;
+    MappedSurface& mapped = it->second;
+    if (mapped.time != time) {
+        mapped.mapping = mapMaterialXSurface(stage_, *mapped.shader, time);
+        mapped.time = time;
+        for (const MaterialProblem& problem : mapped.mapping.problems)
+            // Once per node as authored: materials that share a document share its nodes.
+            warnOnce("mapped:" + problem.where.file + ":" + std::to_string(problem.where.line) + ":" +
+                         std::to_string(problem.where.column),
+                     material + ": " + problem.message, problem.where);
+    }
+    return &mapped.mapping;
 }
 
 void UsdSceneHost::bindSkeleton(const usda::Prim& prim) {

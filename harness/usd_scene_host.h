@@ -4,6 +4,7 @@
 #pragma once
 
 #include "harness/delegate_message.h"
+#include "harness/materialx_surface.h"
 #include "harness/usda/skinning.h"
 #include "harness/usda/stage.h"
 
@@ -61,8 +62,8 @@ private:
                                               double* times, double* matrices, uint32_t* count);
     ObscuraStatus getValue(const std::string& path, const std::string& attribute, double time, ObscuraValue* out);
     ObscuraStatus fill(const usda::Value& value, ObscuraValue* out);
-    // The UsdPreviewSurface a Material's outputs:surface leads to (through NodeGraph outputs), or
-    // null with the reason.
+    // The surface shader a Material's outputs:surface (else outputs:mtlx:surface) leads to, through
+    // NodeGraph outputs, or null with the reason.
     const usda::Prim* surfaceShader(const usda::Prim& material, std::string& problem) const;
     // UsdSkel: the prim's binding to a skeleton, kept when it is usable, reported when it is not.
     void bindSkeleton(const usda::Prim& prim);
@@ -86,6 +87,17 @@ private:
     std::map<std::string, std::string> primTypes_;        // delegate path -> delegate type
     std::map<std::string, const usda::Prim*> surfaces_;   // material path -> UsdPreviewSurface shader
     std::map<std::string, usda::Skinning> skinnings_;     // skinned prim path -> its binding
+    // Materials whose surface is not UsdPreviewSurface (MaterialX node definitions, or surfaces
+    // drawn with their base colour): their mapping onto UsdPreviewSurface's inputs at one time.
+    struct MappedSurface {
+        const usda::Prim* shader;
+        std::optional<double> time;
+        MaterialXMapping mapping;
+    };
+    std::map<std::string, MappedSurface> mappedSurfaces_;
+    // The mapping of a material's surface at `time` (its problems reported once), or null when the
+    // material is not mapped.
+    const MaterialXMapping* mappedSurface(const std::string& material, double time);
     // PointInstancer prototype roots -> the prim whose space instances live in (the root's
     // parent: USD includes the root's own transform in each instance, not its ancestors').
     std::map<std::string, const usda::Prim*> prototypeRoots_;
