@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Renders real scenes written by others (shared/corpus): a production assembly whose geometry is in
-# binary crate files, and USDZ packages. Each must render with nothing said against reading it.
+# binary crate files and whose materials are MaterialX documents, and USDZ packages. Each must render
+# with nothing said against reading it.
 # usage: corpus_render_test.sh OBSCURA_EXE CORPUS_DIR   (exit 77, skipped, without the corpus)
 set -u
 obscura=$1; corpus=$2
@@ -33,6 +34,16 @@ if [ $code -eq 0 ] && [ $compared -eq 1 ]; then
     echo "ok   RiggedSimple.usdz differs between frames 1 and 25"; pass=$((pass + 1))
 else
     echo "FAIL RiggedSimple.usdz at frames 1 and 25: exit $code"; sed 's/^/    /' "$tmp/log"; fail=$((fail + 1))
+fi
+# The same scene as text and packaged (its textures inside the archive) renders the same pixels.
+normals="$corpus/test_assets/NormalsTextureBiasAndScale/NormalsTextureBiasAndScale"
+"$obscura" render "$normals.usda" -o "$tmp/text.png" --width 48 --height 48 >"$tmp/log" 2>&1 &&
+    "$obscura" render "$normals.usdz" -o "$tmp/packaged.png" --width 48 --height 48 >>"$tmp/log" 2>&1
+code=$?
+if [ $code -eq 0 ] && cmp -s "$tmp/text.png" "$tmp/packaged.png"; then
+    echo "ok   NormalsTextureBiasAndScale .usda and .usdz render identically"; pass=$((pass + 1))
+else
+    echo "FAIL NormalsTextureBiasAndScale .usda and .usdz differ: exit $code"; sed 's/^/    /' "$tmp/log"; fail=$((fail + 1))
 fi
 # A truncated crate file: exit 3 (bad input) with the byte and what is wrong.
 head -c 5000 "$corpus/full_assets/OpenChessSet/assets/Rook/Rook_geom.usd" >"$tmp/truncated.usd"
