@@ -113,7 +113,8 @@ std::string skinnedStrip(int points, int joints) {
     for (int j = 0; j < joints; ++j) text << (j ? ", " : "") << "(" << (j ? 1 : 0) << ", 0, 0)";
     text << "]\n            quatf[] rotations = [";
     for (int j = 0; j < joints; ++j) text << (j ? ", " : "") << "(0.9961947, 0, 0, 0.0871557)";  // 10 degrees about Z
-    text << "]\n        }\n    }\n    def Mesh \"Strip\"\n    {\n        rel skel:skeleton = </Rig/Skel>\n        point3f[] points = [";
+    text << "]\n        }\n    }\n    def Mesh \"Strip\"\n    {\n"
+         << "        rel skel:skeleton = </Rig/Skel>\n        point3f[] points = [";
     for (int i = 0; i < points; ++i) text << (i ? ", " : "") << "(" << double(i) * joints / points << ", 0, 0)";
     text << "]\n        int[] primvars:skel:jointIndices = [";
     for (int i = 0; i < points; ++i) {

@@ -355,7 +355,8 @@ void store(MaterialXMapping& out, Folder& folder, const usda::Prim& surface, con
 
 // A surface of a kind this mapping does not know: its base colour, under the names surfaces use.
 void mapFallback(MaterialXMapping& out, Folder& folder, const usda::Prim& surface, const std::string& id) {
-    folder.problem(surface.where, surface.path + " (" + id + ") is not a surface Obscura's material model maps; drawn with its base colour");
+    folder.problem(surface.where, surface.path + " (" + id +
+                                      ") is not a surface Obscura's material model maps; drawn with its base colour");
     for (const char* name : {"base_color", "diffuseColor", "diffuse_color", "color", "albedo", "base_colour"}) {
         if (!surface.attribute(std::string("inputs:") + name)) continue;
         if (auto signal = folder.input(surface, name, {0.18, 0.18, 0.18}))
@@ -380,7 +381,8 @@ MaterialXMapping mapMaterialXSurface(const usda::Stage& stage, const usda::Prim&
     }
     for (const Entry& entry : model->entries) {
         const usda::Attribute* authored = surface.attribute(std::string("inputs:") + entry.input);
-        const usda::Attribute* weightAuthored = entry.weight ? surface.attribute(std::string("inputs:") + entry.weight) : nullptr;
+        const usda::Attribute* weightAuthored =
+            entry.weight ? surface.attribute(std::string("inputs:") + entry.weight) : nullptr;
         if (entry.fallback.empty() && !authored) continue;  // a normal is only ever connected
         auto signal = folder.input(surface, entry.input, entry.fallback);
         if (!signal) signal = constant(entry.fallback);  // reported; the model's default

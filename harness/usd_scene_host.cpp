@@ -284,7 +284,8 @@ std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDeleg
         const usda::Attribute* points = prim->attribute("points");
         auto value = points ? points->evaluate(time) : std::nullopt;
         if (!value || value->tupleSize != 3) continue;
-        if (auto skin = skinnings_.find(prim->path); skin != skinnings_.end()) applySkinning(*prim, skin->second, *points, *value, time);
+        if (auto skin = skinnings_.find(prim->path); skin != skinnings_.end())
+            applySkinning(*prim, skin->second, *points, *value, time);
         auto m = stage_.worldTransform(*prim, time);
         for (size_t i = 0; i + 2 < value->numbers.size(); i += 3) {
             const double* p = &value->numbers[i];

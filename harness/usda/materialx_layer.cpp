@@ -166,7 +166,8 @@ private:
         // MaterialX's standard library names mixed-type variants by the second argument's type:
         // multiply(color3, float) is ND_multiply_color3FA.
         for (const Element& input : inputs)
-            if (input.name == "in2" && input.type == "float" && node.type != "float") return "ND_" + node.category + "_" + node.type + "FA";
+            if (input.name == "in2" && input.type == "float" && node.type != "float")
+                return "ND_" + node.category + "_" + node.type + "FA";
         return "ND_" + node.category + "_" + node.type;
     }
 
@@ -240,7 +241,8 @@ private:
                              PrimSpec& material, const std::string& materialPath) {
         const auto graph = byName_.find(graphName);
         if (graph == byName_.end() || graph->second.category != "nodegraph") {
-            warn(input.line, "input '" + input.name + "' connects to node graph '" + graphName + "', which the document does not have");
+            warn(input.line, "input '" + input.name + "' connects to node graph '" + graphName +
+                                 "', which the document does not have");
             return {};
         }
         translateGraph(graph->second, material, materialPath);

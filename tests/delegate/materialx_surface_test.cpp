@@ -166,8 +166,12 @@ def Mesh "Quad"
 }
 )";
 
+// A stage through the scene host, with readers of the values it serves.
 struct Networks {
-    HostedStage scene{usda::Stage::openFromString(kNetworks, OBSCURA_TEST_DATA_DIR "/networks.usda")};
+    HostedStage scene;
+    explicit Networks(std::variant<std::unique_ptr<usda::Stage>, usda::Error> opened =
+                          usda::Stage::openFromString(kNetworks, OBSCURA_TEST_DATA_DIR "/networks.usda"))
+        : scene(std::move(opened)) {}
 
     std::vector<float> floats(const std::string& path, const std::string& attribute) {
         const ObscuraSceneDelegate& sd = scene.host->sceneDelegate();
@@ -261,6 +265,29 @@ TEST(MaterialXSurface, WhatCannotMapIsReportedOnceAndFallsBack) {
     // Pulled again: no new message.
     n.floats("/Unfoldable", "inputs:diffuseColor");
     EXPECT_EQ(n.messagesWith("cannot be folded"), 1u);
+}
+
+// The Open Chess Set's pieces (shared/corpus): their looks reference MaterialX documents whose
+// Standard Surfaces read base colour, metalness, roughness and normal maps from image node graphs.
+TEST(MaterialXSurface, TheChessSetsPiecesAreTextured) {
+    const std::filesystem::path bishop =
+        std::filesystem::path(OBSCURA_CORPUS_DIR) / "full_assets/OpenChessSet/assets/Bishop/Bishop.usd";
+    if (!std::filesystem::exists(bishop)) GTEST_SKIP() << "no corpus at " << bishop;
+    Networks n(usda::Stage::open(bishop));
+    const std::string material = "/Bishop/Materials/M_Bishop_B";
+    const std::filesystem::path tex = bishop.parent_path() / "tex";
+    auto file = [&](const char* name) { return (tex / name).lexically_normal().string(); };
+    EXPECT_EQ(n.token(material, "obscura:diffuseColor:file"), file("bishop_black_base_color.jpg"));
+    EXPECT_EQ(n.token(material, "obscura:diffuseColor:sourceColorSpace"), "sRGB");  // colorspace="srgb_texture"
+    EXPECT_EQ(n.token(material, "obscura:metallic:file"), file("bishop_shared_metallic.jpg"));
+    EXPECT_EQ(n.token(material, "obscura:metallic:channel"), "r");
+    EXPECT_EQ(n.token(material, "obscura:roughness:file"), file("bishop_black_roughness.jpg"));
+    EXPECT_EQ(n.token(material, "obscura:normal:file"), file("bishop_black_normal.jpg"));
+    expectFloats(n.floats(material, "obscura:normal:scale"), {2, 2, 2, 1}, "normal map decoding");
+    expectFloats(n.floats(material, "obscura:normal:bias"), {-1, -1, -1, 0}, "normal map decoding");
+    // Standard Surface's base of 0.8 scales the base colour texture.
+    expectFloats(n.floats(material, "obscura:diffuseColor:scale"), {0.8f, 0.8f, 0.8f, 1}, "base");
+    EXPECT_TRUE(n.scene.errors.empty()) << n.scene.errors.front();
 }
 
 }  // namespace
