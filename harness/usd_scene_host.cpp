@@ -541,12 +541,17 @@ void UsdSceneHost::applySkinning(const usda::Prim& prim, const usda::Skinning& s
     if (attribute.name == "points") {  // else normals or primvars:normals
         skinned = usda::skinPoints(stage_, skinning, value.numbers, time, &problem);
     } else {
-        // Normals follow their points: one per point, or one per face-vertex through its index.
+        // Normals follow their points: one per point (vertex, varying: the schema's fallback), or one
+        // per face-vertex of a mesh through its index, as UsdSkelImaging skins them.
+        // XXX: constant and uniform normals are left unskinned.
         const usda::Attribute* points = prim.attribute("points");
         auto rest = points ? points->evaluate(time) : std::nullopt;
         const auto interpolation = attribute.metadata.find("interpolation");
-        const bool faceVarying = interpolation != attribute.metadata.end() && !interpolation->second.strings.empty() &&
-                                 interpolation->second.strings.front() == "faceVarying";
+        const std::string mode = interpolation != attribute.metadata.end() && !interpolation->second.strings.empty()
+                                     ? interpolation->second.strings.front()
+                                     : "vertex";
+        const bool faceVarying = mode == "faceVarying" && prim.typeName == "Mesh";
+        if (mode != "vertex" && mode != "varying" && !faceVarying) return;
         const usda::Attribute* indices = faceVarying ? prim.attribute("faceVertexIndices") : nullptr;
         auto indexValues = indices ? indices->evaluate(time) : std::nullopt;
         if (!rest || (faceVarying && !indexValues)) return;

@@ -147,6 +147,29 @@ TEST(Skinning, GeomBindTransformTakesPointsToBindSpaceFirst) {
     expectPoint(points, 1, 0, 11, 0);
 }
 
+TEST(Skinning, NormalsTurnWithTheirJoints) {
+    auto stage = open(rig(kVertexInfluences));
+    ASSERT_TRUE(stage);
+    const Prim* arm = stage->find("/Rig/Arm");
+    auto skinning = resolveSkinning(*stage, *arm);
+    ASSERT_TRUE(skinning && std::holds_alternative<Skinning>(*skinning));
+    const std::vector<double> up = {0, 1, 0, 0, 1, 0, 0, 1, 0};
+    std::string problem;
+    // One normal per point: the elbow's turns 90 degrees about Z, the shared one is the blend of
+    // both (as UsdSkelImaging's skinNormalsLBS, unnormalized).
+    auto normals = skinNormals(*stage, std::get<Skinning>(*skinning), up, nullptr, 3, 1.0, &problem);
+    EXPECT_EQ(problem, "");
+    expectPoint(normals, 0, 0, 1, 0);
+    expectPoint(normals, 1, -1, 0, 0);
+    expectPoint(normals, 2, -0.5, 0.5, 0);
+    // Face-varying: each face-vertex's normal follows the point it belongs to.
+    const std::vector<double> faceVertices = {1, 0, 2};
+    normals = skinNormals(*stage, std::get<Skinning>(*skinning), up, &faceVertices, 3, 1.0, &problem);
+    expectPoint(normals, 0, -1, 0, 0);
+    expectPoint(normals, 1, 0, 1, 0);
+    expectPoint(normals, 2, -0.5, 0.5, 0);
+}
+
 // A problem with skinning data, with where it is authored.
 SkinningProblem problemOf(const std::string& influences, const std::string& file = "bad_skin.usda") {
     auto result = Stage::openFromString(rig(influences), file);
