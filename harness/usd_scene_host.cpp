@@ -42,7 +42,8 @@ const std::map<std::string, std::string> kPrimTypes = {
 // XXX: Storm draws a Skeleton's bones as a guide mesh; they are not drawn here.
 const std::set<std::string> kStructuralTypes = {"",           "Xform",         "Scope",        "Shader",
                                                 "NodeGraph",  "GeomSubset",    "RenderSettings", "RenderProduct",
-                                                "RenderVar",  "SkelRoot",      "Skeleton",     "SkelAnimation"};
+                                                "RenderVar",  "SkelRoot",      "Skeleton",     "SkelAnimation",
+                                                "BlendShape"};
 
 bool isPointBased(const std::string& type) { return type == "Mesh" || type == "BasisCurves" || type == "Points"; }
 
@@ -526,10 +527,6 @@ void UsdSceneHost::bindSkeleton(const usda::Prim& prim) {
         warnOnce("skel:" + prim.path, prim.path + ": " + problem->message + "; drawn unskinned", problem->where, true);
         return;
     }
-    // XXX: UsdSkel's blend shapes (skel:blendShapes) are not applied; joints alone pose the prim.
-    if (prim.attribute("skel:blendShapes"))
-        warnOnce("blendShapes:" + prim.path, prim.path + ": skel:blendShapes are not applied yet",
-                 prim.attribute("skel:blendShapes")->where);
     skinnings_.emplace(prim.path, std::get<usda::Skinning>(std::move(*skinning)));
 }
 

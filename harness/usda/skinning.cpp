@@ -140,14 +140,78 @@ std::optional<SkinningProblem> readInfluences(const Prim& prim, const Attribute&
     return std::nullopt;
 }
 
+// skel:blendShapes and skel:blendShapeTargets: the BlendShape prims in the order of their names,
+// each with the index of its weight among the animation's blendShapes.
+std::optional<SkinningProblem> readBlendShapes(const Stage& stage, const Prim& prim, const Prim* animation,
+                                               Skinning& out) {
+    auto names = valueAt(prim, "skel:blendShapes", 0.0);
+    if (!names || names->strings.empty()) return std::nullopt;
+    const Relationship* targets = prim.relationship("skel:blendShapeTargets");
+    const size_t count = targets ? targets->targets.size() : 0;
+    if (count != names->strings.size())
+        return SkinningProblem{"skel:blendShapes names " + std::to_string(names->strings.size()) +
+                                   " shapes but skel:blendShapeTargets has " + std::to_string(count),
+                               prim.attribute("skel:blendShapes")->where};
+    std::map<std::string, int> weightIndex;
+    if (auto animated = animation ? valueAt(*animation, "blendShapes", 0.0) : std::nullopt)
+        for (size_t i = 0; i < animated->strings.size(); ++i) weightIndex.emplace(animated->strings[i], int(i));
+    for (size_t i = 0; i < count; ++i) {
+        const Prim* shape = stage.find(targets->targets[i]);
+        if (!shape || shape->typeName != "BlendShape")
+            return SkinningProblem{"skel:blendShapeTargets names <" + targets->targets[i] + ">, which is no BlendShape",
+                                   targets->where};
+        BlendShape b;
+        b.name = names->strings[i];
+        b.where = shape->where;
+        if (auto offsets = valueAt(*shape, "offsets", 0.0)) b.offsets = offsets->numbers;
+        if (auto indices = valueAt(*shape, "pointIndices", 0.0))
+            for (double index : indices->numbers) b.pointIndices.push_back(int(index));
+        if (!b.pointIndices.empty() && b.pointIndices.size() * 3 != b.offsets.size())
+            return SkinningProblem{"<" + shape->path + "> has " + std::to_string(b.offsets.size() / 3) + " offsets for " +
+                                       std::to_string(b.pointIndices.size()) + " pointIndices",
+                                   shape->where};
+        if (const auto it = weightIndex.find(b.name); it != weightIndex.end()) b.animationIndex = it->second;
+        out.blendShapes.push_back(std::move(b));
+    }
+    return std::nullopt;
+}
+
+// The points moved by the blend shapes' offsets at their weights at `time`, or empty with `problem`.
+std::vector<double> shaped(const Skinning& skinning, std::vector<double> points, double time, std::string* problem) {
+    if (skinning.blendShapes.empty()) return points;
+    auto weights = skinning.animation ? valueAt(*skinning.animation, "blendShapeWeights", time) : std::nullopt;
+    for (const BlendShape& shape : skinning.blendShapes) {
+        const double weight = weights && shape.animationIndex >= 0 && size_t(shape.animationIndex) < weights->numbers.size()
+                                  ? weights->numbers[size_t(shape.animationIndex)]
+                                  : 0.0;
+        if (weight == 0.0) continue;
+        if (shape.pointIndices.empty() && shape.offsets.size() != points.size()) {
+            if (problem) *problem = "blend shape \"" + shape.name + "\" has " + std::to_string(shape.offsets.size() / 3) +
+                                    " offsets for " + std::to_string(points.size() / 3) + " points";
+            return {};
+        }
+        for (size_t o = 0; o < shape.offsets.size() / 3; ++o) {
+            const size_t point = shape.pointIndices.empty() ? o : size_t(shape.pointIndices[o]);
+            if (point >= points.size() / 3) {
+                if (problem) *problem = "blend shape \"" + shape.name + "\" moves point " + std::to_string(point) +
+                                        ", outside the " + std::to_string(points.size() / 3) + " points";
+                return {};
+            }
+            for (size_t c = 0; c < 3; ++c) points[3 * point + c] += weight * shape.offsets[3 * o + c];
+        }
+    }
+    return points;
+}
+
 }  // namespace
 
 std::optional<std::variant<Skinning, SkinningProblem>> resolveSkinning(const Stage& stage, const Prim& prim) {
     const Relationship* binding = inheritedRelationship(prim, "skel:skeleton");
     const Attribute* indices = prim.attribute("primvars:skel:jointIndices");
     const Attribute* weights = prim.attribute("primvars:skel:jointWeights");
-    if (!binding || (!indices && !weights)) return std::nullopt;
-    if (!indices || !weights)
+    const bool shapes = prim.attribute("skel:blendShapes") != nullptr;
+    if (!binding || (!indices && !weights && !shapes)) return std::nullopt;
+    if (!indices != !weights)
         return SkinningProblem{std::string("has primvars:skel:") + (indices ? "jointIndices without jointWeights"
                                                                             : "jointWeights without jointIndices"),
                                (indices ? indices : weights)->where};
@@ -209,7 +273,9 @@ std::optional<std::variant<Skinning, SkinningProblem>> resolveSkinning(const Sta
             if (const auto it = jointIndex.find(animated->strings[a]); it != jointIndex.end())
                 out.animatedJoint[size_t(it->second)] = int(a);
     }
-    if (auto problem = readInfluences(prim, *indices, *weights, jointIndex, out)) return *problem;
+    if (indices)
+        if (auto problem = readInfluences(prim, *indices, *weights, jointIndex, out)) return *problem;
+    if (auto problem = readBlendShapes(stage, prim, out.animation, out)) return *problem;
     if (auto bindTransform = valueAt(prim, "primvars:skel:geomBindTransform", 0.0);
         bindTransform && bindTransform->numbers.size() == 16)
         std::copy_n(bindTransform->numbers.begin(), 16, out.geomBindTransform.begin());
@@ -249,13 +315,16 @@ std::vector<Matrix4> skinningTransforms(const Skinning& skinning, double time, s
     return out;
 }
 
-std::vector<double> skinPoints(const Stage& stage, const Skinning& skinning, const std::vector<double>& rest,
+std::vector<double> skinPoints(const Stage& stage, const Skinning& skinning, const std::vector<double>& authored,
                                double time, std::string* problem) {
-    const size_t count = rest.size() / 3;
+    const size_t count = authored.size() / 3;
     if (std::string mismatch = influenceCountProblem(skinning, count); !mismatch.empty()) {
         if (problem) *problem = mismatch;
         return {};
     }
+    const std::vector<double> rest = shaped(skinning, authored, time, problem);
+    // UsdSkelImaging: without joint influences the shaped points are the result.
+    if (rest.empty() || skinning.influencesPerPoint == 0) return rest;
     const std::vector<Matrix4> joints = skinningTransforms(skinning, time, problem);
     const Matrix4 toPrim = skelToPrim(stage, skinning, time);
     const size_t k = size_t(skinning.influencesPerPoint);
@@ -279,6 +348,8 @@ std::vector<double> skinNormals(const Stage& stage, const Skinning& skinning, co
         if (problem) *problem = mismatch;
         return {};
     }
+    // XXX: blend shapes' normalOffsets are not applied.
+    if (skinning.influencesPerPoint == 0) return rest;
     std::vector<Matrix4> joints = skinningTransforms(skinning, time, problem);
     for (Matrix4& m : joints) m = m4::inverse(m);
     const Matrix4 bindInverse = m4::inverse(skinning.geomBindTransform);
@@ -304,7 +375,7 @@ std::vector<double> skinNormals(const Stage& stage, const Skinning& skinning, co
 
 bool isSkinningAnimated(const Stage& stage, const Skinning& skinning) {
     if (skinning.animation)
-        for (const char* name : {"translations", "rotations", "scales"})
+        for (const char* name : {"translations", "rotations", "scales", "blendShapeWeights"})
             if (const Attribute* a = skinning.animation->attribute(name); a && a->isAnimated()) return true;
     return !stage.transformSampleTimes(*skinning.skeleton).empty() || !stage.transformSampleTimes(*skinning.prim).empty();
 }

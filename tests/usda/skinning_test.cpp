@@ -170,6 +170,62 @@ TEST(Skinning, NormalsTurnWithTheirJoints) {
     expectPoint(normals, 2, -0.5, 0.5, 0);
 }
 
+TEST(Skinning, BlendShapesMovePointsByTheirWeightBeforeTheJoints) {
+    // "reach" moves point 1 (sparse: pointIndices) 1 further along X; "lift" moves every point up
+    // by 0.5 (dense). The animation names them in its own order and weighs them 0 at time 0,
+    // lift 1 and reach 0.5 at time 1, when the elbow is bent.
+    std::string text = rig(kVertexInfluences, R"(
+        uniform token[] skel:blendShapes = ["reach", "lift"]
+        rel skel:blendShapeTargets = [</Rig/Arm/Reach>, </Rig/Arm/Lift>]
+        def BlendShape "Reach"
+        {
+            uniform vector3f[] offsets = [(1, 0, 0)]
+            uniform int[] pointIndices = [1]
+        }
+        def BlendShape "Lift"
+        {
+            uniform vector3f[] offsets = [(0, 0.5, 0), (0, 0.5, 0), (0, 0.5, 0)]
+        }
+)");
+    const std::string scales = "half3[] scales = [(1, 1, 1), (1, 1, 1)]";
+    text.replace(text.find(scales), scales.size(),
+                 scales + "\n            uniform token[] blendShapes = [\"lift\", \"reach\"]\n"
+                          "            float[] blendShapeWeights.timeSamples = {\n"
+                          "                0: [0, 0],\n                1: [1, 0.5],\n            }");
+    auto stage = open(text);
+    ASSERT_TRUE(stage);
+    auto rest = skinnedWorld(*stage, 0.0);
+    expectPoint(rest, 1, 2, 10, 0);
+    auto points = skinnedWorld(*stage, 1.0);
+    // Point 0: lifted, on the root. Point 1: (2.5, 0.5) shaped, 1.5 beyond and 0.5 above the
+    // elbow, turned 90 degrees about Z to 0.5 before and 1.5 above it. Point 2: (1.5, 0.5) shaped,
+    // halfway between the root's (1.5, 0.5) and the elbow's (0.5, 0.5).
+    expectPoint(points, 0, 0.5, 10.5, 0);
+    expectPoint(points, 1, 0.5, 11.5, 0);
+    expectPoint(points, 2, 1.0, 10.5, 0);
+}
+
+TEST(Skinning, BlendShapeIndicesOutsideThePointsAreReported) {
+    std::string text = rig(kVertexInfluences, R"(
+        uniform token[] skel:blendShapes = ["reach"]
+        rel skel:blendShapeTargets = </Rig/Arm/Reach>
+        def BlendShape "Reach"
+        {
+            uniform vector3f[] offsets = [(1, 0, 0)]
+            uniform int[] pointIndices = [9]
+        }
+)");
+    const std::string scales = "half3[] scales = [(1, 1, 1), (1, 1, 1)]";
+    text.replace(text.find(scales), scales.size(),
+                 scales + "\n            uniform token[] blendShapes = [\"reach\"]\n"
+                          "            float[] blendShapeWeights = [1]");
+    auto stage = open(text);
+    ASSERT_TRUE(stage);
+    std::string problem;
+    EXPECT_TRUE(skinnedWorld(*stage, 1.0, &problem).empty());
+    EXPECT_EQ(problem, "blend shape \"reach\" moves point 9, outside the 3 points");
+}
+
 // A problem with skinning data, with where it is authored.
 SkinningProblem problemOf(const std::string& influences, const std::string& file = "bad_skin.usda") {
     auto result = Stage::openFromString(rig(influences), file);
