@@ -47,6 +47,11 @@ std::optional<IndexNode> mirror(const IndexNode& node, const std::string& name, 
     return out;
 }
 
+void appendRelocation(IndexNode& node, const PathMapping& relocation) {
+    node.toRoot.push_back(relocation);
+    for (IndexNode& child : node.children) appendRelocation(child, relocation);
+}
+
 void appendMappings(IndexNode& node, const PathMapping& arcMapping, const std::vector<PathMapping>& outer) {
     node.toRoot.push_back(arcMapping);
     node.toRoot.insert(node.toRoot.end(), outer.begin(), outer.end());
@@ -126,6 +131,18 @@ const IndexNode& PrimIndexer::index(const LayerStack& stack, const std::string& 
     std::vector<const IndexNode*> chain;
     expandArcs(root, chain);
     selectVariants(root);
+    if (const auto relocated = sourcesByTarget_.find(primPath); &stack == relocationStack_ && relocated != sourcesByTarget_.end()) {
+        // The source's own opinions in this stack are not moved (Pcp ignores opinions authored at a
+        // relocation source); what its arcs bring is, mapped from the source's path to the target's.
+        const IndexNode& source = index(stack, relocated->second, requestedAt);
+        for (const IndexNode& arc : source.children) {
+            budget_.addIndexNodes(nodeCount(arc), requestedAt);
+            IndexNode moved = arc;
+            appendRelocation(moved, PathMapping{relocated->second, primPath});
+            root.children.push_back(std::move(moved));
+        }
+        sortChildren(root);
+    }
     addImpliedClassArcs(root);
     moveSpecializesLast(root);
     budget_.endIndex();

@@ -57,6 +57,12 @@ public:
 
     // The index of `primPath` in `stack` (memoized); `requestedAt` is blamed for cycles.
     const IndexNode& index(const LayerStack& stack, const std::string& primPath, const SourceLocation& requestedAt);
+    // Relocates of `stack` (the stage's root layer stack), target path -> source path: a target's
+    // index holds what its source's arcs bring, mapped to the target (Pcp's relocation arcs).
+    void setRelocations(const LayerStack& stack, std::map<std::string, std::string> sourcesByTarget) {
+        relocationStack_ = &stack;
+        sourcesByTarget_ = std::move(sourcesByTarget);
+    }
 
 private:
     struct Arc {
@@ -82,6 +88,8 @@ private:
     DiagnosticSink& diagnostics_;
     CompositionBudget& budget_;
     std::map<Key, IndexNode> memo_;
+    const LayerStack* relocationStack_ = nullptr;
+    std::map<std::string, std::string> sourcesByTarget_;
     std::set<Key> inProgress_;
 };
 

@@ -1,5 +1,5 @@
 // USD's strength order, LIVRPS (local, inherits, variants, relocates, references, payloads,
-// specializes), arc by arc: each fixture authors one attribute under several arcs and expects the
+// specializes), arc by arc, and relocates of the root layer stack: each fixture authors one attribute under several arcs and expects the
 // value the composition rules of the USD glossary ("LIVRPS Strength Ordering", "Inherits",
 // "Specializes", "VariantSet") give, including the arcs whose opinions travel across references:
 // inherits and specializes of a referenced asset are implied in the referencing layer stack, where
@@ -342,6 +342,80 @@ def "Prim" (
     ASSERT_TRUE(stage);
     EXPECT_EQ(valueOf(*stage, "/Prim", "x"), 3);
     EXPECT_EQ(valueOf(*stage, "/Prim", "y"), 4);
+}
+
+// Relocates move a prim an asset brings to another place in the referencing namespace: the source
+// is gone, the target holds what the source's arcs bring and its own local opinions.
+void expectArmRelocated(const Stage& stage) {
+    EXPECT_FALSE(stage.find("/Char/Rig/Arm"));
+    ASSERT_TRUE(stage.find("/Char/Rig"));
+    ASSERT_TRUE(stage.find("/Char/Arm"));
+    EXPECT_EQ(valueOf(stage, "/Char/Arm", "x"), 1);  // from the asset's /Char/Rig/Arm
+    EXPECT_EQ(valueOf(stage, "/Char/Arm", "z"), 3);  // local, at the target
+    EXPECT_EQ(valueOf(stage, "/Char/Arm/Hand", "y"), 2);
+    EXPECT_TRUE(stage.warnings().empty()) << stage.warnings().front().message;
+}
+
+const char* kRiggedAsset = R"(#usda 1.0
+(
+    defaultPrim = "Char"
+)
+def "Char"
+{
+    def "Rig"
+    {
+        def "Arm"
+        {
+            double x = 1
+            def "Hand"
+            {
+                double y = 2
+            }
+        }
+    }
+}
+)";
+
+TEST(Livrps, RelocatesOnAPrimMoveWhatItsReferenceBrings) {
+    Layers layers({{"asset.usda", kRiggedAsset}, {"root.usda", R"(#usda 1.0
+def "Char" (
+    references = @asset.usda@
+    relocates = {
+        <Rig/Arm>: <Arm>
+    }
+)
+{
+    over "Arm"
+    {
+        double z = 3
+    }
+}
+)"}});
+    auto stage = layers.open();
+    ASSERT_TRUE(stage);
+    expectArmRelocated(*stage);
+}
+
+TEST(Livrps, RelocatesInTheLayersMetadata) {
+    Layers layers({{"asset.usda", kRiggedAsset}, {"root.usda", R"(#usda 1.0
+(
+    relocates = {
+        </Char/Rig/Arm>: </Char/Arm>
+    }
+)
+def "Char" (
+    references = @asset.usda@
+)
+{
+    over "Arm"
+    {
+        double z = 3
+    }
+}
+)"}});
+    auto stage = layers.open();
+    ASSERT_TRUE(stage);
+    expectArmRelocated(*stage);
 }
 
 TEST(Livrps, AMissingInheritsTargetWarnsWhereItIsAuthored) {
