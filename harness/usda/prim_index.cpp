@@ -131,7 +131,8 @@ const IndexNode& PrimIndexer::index(const LayerStack& stack, const std::string& 
     std::vector<const IndexNode*> chain;
     expandArcs(root, chain);
     selectVariants(root);
-    if (const auto relocated = sourcesByTarget_.find(primPath); &stack == relocationStack_ && relocated != sourcesByTarget_.end()) {
+    const auto relocated = sourcesByTarget_.find(primPath);
+    if (&stack == relocationStack_ && relocated != sourcesByTarget_.end()) {
         // The source's own opinions in this stack are not moved (Pcp ignores opinions authored at a
         // relocation source); what its arcs bring is, mapped from the source's path to the target's.
         const IndexNode& source = index(stack, relocated->second, requestedAt);

@@ -256,10 +256,12 @@ std::optional<std::variant<Skinning, SkinningProblem>> resolveSkinning(const Sta
         out.restTransforms = matrices(*rest);
     } else {
         // Without rest transforms the skeleton rests in its bind pose.
-        for (size_t j = 0; j < out.joints.size(); ++j)
-            out.restTransforms.push_back(out.parents[j] < 0 ? out.bindTransforms[j]
-                                                            : m4::multiply(out.bindTransforms[j],
-                                                                           m4::inverse(out.bindTransforms[size_t(out.parents[j])])));
+        for (size_t j = 0; j < out.joints.size(); ++j) {
+            const Matrix4& jointBind = out.bindTransforms[j];
+            const int parent = out.parents[j];
+            out.restTransforms.push_back(
+                parent < 0 ? jointBind : m4::multiply(jointBind, m4::inverse(out.bindTransforms[size_t(parent)])));
+        }
     }
     out.animatedJoint.assign(out.joints.size(), -1);
     if (const Relationship* source = inheritedRelationship(skeleton, "skel:animationSource")) {
