@@ -1,7 +1,9 @@
 #include "harness/usd_scene_host.h"
 
+#include "harness/materialx_surface.h"
 #include "harness/shading_network.h"
 #include "harness/usda/matrix4.h"
+#include "harness/usda/skinning.h"
 
 #include <algorithm>
 #include <cmath>
@@ -36,15 +38,21 @@ const std::map<std::string, std::string> kPrimTypes = {
 };
 
 // Types that organise a scene and are not drawn themselves.
-const std::set<std::string> kStructuralTypes = {"", "Xform", "Scope", "Shader", "NodeGraph", "GeomSubset",
-                                                "RenderSettings", "RenderProduct", "RenderVar"};
+// UsdSkel's prims pose the prims they skin (usda/skinning.h).
+// XXX: Storm draws a Skeleton's bones as a guide mesh; they are not drawn here.
+const std::set<std::string> kStructuralTypes = {"",           "Xform",         "Scope",        "Shader",
+                                                "NodeGraph",  "GeomSubset",    "RenderSettings", "RenderProduct",
+                                                "RenderVar",  "SkelRoot",      "Skeleton",     "SkelAnimation",
+                                                "BlendShape"};
+
+bool isPointBased(const std::string& type) { return type == "Mesh" || type == "BasisCurves" || type == "Points"; }
 
 ObscuraDirtyBits dirtyBitFor(const std::string& attribute) {
     if (attribute == "points" || attribute == "positions" || attribute == "orientations" || attribute == "scales")
         return OBSCURA_DIRTY_POINTS;
     if (attribute == "protoIndices") return OBSCURA_DIRTY_TOPOLOGY;
     if (attribute == "invisibleIds") return OBSCURA_DIRTY_VISIBILITY;
-    if (attribute == "normals") return OBSCURA_DIRTY_NORMALS;
+    if (attribute == "normals" || attribute == "primvars:normals") return OBSCURA_DIRTY_NORMALS;
     if (attribute.rfind("primvars:", 0) == 0) return OBSCURA_DIRTY_PRIMVAR;
     if (attribute == "faceVertexCounts" || attribute == "faceVertexIndices" || attribute == "curveVertexCounts")
         return OBSCURA_DIRTY_TOPOLOGY;
@@ -101,19 +109,23 @@ std::string int32RangeProblem(const usda::Value& value) {
 }  // namespace
 
 const usda::Prim* UsdSceneHost::surfaceShader(const usda::Prim& material, std::string& problem) const {
+    // UsdShadeMaterial::ComputeSurfaceSource: the universal render context's outputs:surface, else
+    // MaterialX's outputs:mtlx:surface (what usdMtlx and MaterialX-authoring tools write).
     const usda::Attribute* surface = material.attribute("outputs:surface");
+    if (!surface || !surface->connection) surface = material.attribute("outputs:mtlx:surface");
     if (!surface || !surface->connection) {
         problem = "outputs:surface is not connected";
         return nullptr;
     }
     auto source = connectionSource(stage_, *surface);
     if (auto* reason = std::get_if<std::string>(&source)) {
-        problem = "outputs:surface: " + *reason;
+        problem = surface->name + ": " + *reason;
         return nullptr;
     }
     const ConnectionSource& found = std::get<ConnectionSource>(source);
-    if (found.attribute || shaderId(*found.prim) != "UsdPreviewSurface") {
-        problem = "no UsdPreviewSurface on outputs:surface (it leads to " + found.prim->path + "." + found.property + ")";
+    if (found.attribute) {
+        problem = "no shader on " + surface->name + " (it leads to the value of " + found.prim->path + "." +
+                  found.property + ")";
         return nullptr;
     }
     return found.prim;
@@ -191,8 +203,16 @@ std::map<std::string, std::string> UsdSceneHost::scan() {
                          surface ? surface->where : prim->where);
                 continue;
             }
-            surfaces_[prim->path] = shader;
+            // UsdPreviewSurface is served as it is; any other surface (MaterialX node
+            // definitions, or a base colour to fall back on) through its mapping.
+            if (shaderId(*shader) == "UsdPreviewSurface") {
+                surfaces_[prim->path] = shader;
+            } else {
+                mappedSurfaces_[prim->path] = MappedSurface{shader, std::nullopt, {}};
+                mappedSurface(prim->path, stage_.metadata().startTimeCode.value_or(0.0));  // reports its problems
+            }
         }
+        if (isPointBased(prim->typeName)) bindSkeleton(*prim);
         if (it->second == "instancer") {
             if (const usda::Relationship* protos = prim->relationship("prototypes"))
                 for (const auto& root : protos->targets)
@@ -326,6 +346,11 @@ ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDele
         if (!stage_.transformSampleTimes(*prim).empty()) bits |= OBSCURA_DIRTY_TRANSFORM;
         // Visibility is inherited: an ancestor's samples change the prim's computed visibility.
         if (stage_.hasAnimatedVisibility(*prim)) bits |= OBSCURA_DIRTY_VISIBILITY;
+        if (auto skin = skinnings_.find(path); skin != skinnings_.end() && usda::isSkinningAnimated(stage_, skin->second))
+            bits |= OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_NORMALS;
+        // XXX: a mapped (MaterialX) surface is read at each frame's time but not marked dirty when its
+        // network is animated.
+        if (mappedSurfaces_.count(path)) continue;
         const usda::Prim* valuesFrom = type == "material" ? surfaces_.at(path) : prim;
         for (const auto& [name, attr] : valuesFrom->attributes) {
             // A surface input takes its value from the interface input it connects to.
@@ -374,11 +399,12 @@ SceneBounds UsdSceneHost::bounds(double time) const {
     // gprims (Cube, Sphere...) are left out of the bounds.
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (const usda::Prim* prim : stage_.prims()) {
-        const bool pointBased = prim->typeName == "Mesh" || prim->typeName == "BasisCurves" || prim->typeName == "Points";
-        if (!pointBased || prototypeSpace(*prim)) continue;
+        if (!isPointBased(prim->typeName) || prototypeSpace(*prim)) continue;
         const usda::Attribute* points = prim->attribute("points");
         auto value = points ? points->evaluate(time) : std::nullopt;
         if (!value || value->tupleSize != 3) continue;
+        if (auto skin = skinnings_.find(prim->path); skin != skinnings_.end())
+            applySkinning(*prim, skin->second, *points, *value, time);
         auto m = stage_.worldTransform(*prim, time);
         for (size_t i = 0; i + 2 < value->numbers.size(); i += 3) {
             const double* p = &value->numbers[i];
@@ -441,8 +467,13 @@ const usda::Attribute* UsdSceneHost::resolveAttribute(const std::string& path, c
         auto material = boundMaterial(*prim);
         auto bound = material ? surfaces_.find(*material) : surfaces_.end();
         std::string primvar = bound != surfaces_.end() ? texturePrimvar(stage_, *bound->second) : "st";
+        if (auto mapped = material ? mappedSurfaces_.find(*material) : mappedSurfaces_.end(); mapped != mappedSurfaces_.end())
+            primvar = mapped->second.mapping.stPrimvar;
         return prim->attribute("primvars:" + primvar);
     }
+    // UsdGeomPointBased: primvars:normals, when authored, takes precedence over normals.
+    if (attribute == "normals")
+        if (const usda::Attribute* primvar = prim->attribute("primvars:normals")) return primvar;
     if (const usda::Attribute* a = prim->attribute(attribute)) return a;
     // UsdLux before 21.02 named light inputs without the "inputs:" prefix.
     if (startsWith(attribute, "inputs:")) return prim->attribute(attribute.substr(7));
@@ -552,6 +583,10 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         *out = {OBSCURA_VALUE_PATH, 0, 1, stringPointers_.data()};
         return OBSCURA_OK;
     }
+    if (const MaterialXMapping* mapped = mappedSurface(path, time)) {
+        const auto value = mapped->values.find(attribute);
+        return value == mapped->values.end() ? OBSCURA_ERROR_NOT_FOUND : fill(value->second, out);
+    }
     auto surface = surfaces_.find(path);
     if (surface != surfaces_.end() && startsWith(attribute, "obscura:")) {
         auto texture = flattenedTextureAttribute(stage_, *surface->second, attribute, time);
@@ -602,7 +637,66 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
             return OBSCURA_ERROR_NOT_FOUND;
         }
     }
+    if (auto skin = skinnings_.find(path); skin != skinnings_.end() && (attribute == "points" || attribute == "normals"))
+        applySkinning(*prim, skin->second, *a, *value, time);
     return fill(*value, out);
+}
+
+const MaterialXMapping* UsdSceneHost::mappedSurface(const std::string& material, double time) {
+    const auto it = mappedSurfaces_.find(material);
+    if (it == mappedSurfaces_.end()) return nullptr;
+    MappedSurface& mapped = it->second;
+    if (mapped.time != time) {
+        mapped.mapping = mapMaterialXSurface(stage_, *mapped.shader, time);
+        mapped.time = time;
+        for (const MaterialProblem& problem : mapped.mapping.problems)
+            // Once per node as authored: materials that share a document share its nodes.
+            warnOnce("mapped:" + problem.where.file + ":" + std::to_string(problem.where.line) + ":" +
+                         std::to_string(problem.where.column),
+                     material + ": " + problem.message, problem.where);
+    }
+    return &mapped.mapping;
+}
+
+void UsdSceneHost::bindSkeleton(const usda::Prim& prim) {
+    auto skinning = usda::resolveSkinning(stage_, prim);
+    if (!skinning) return;
+    if (auto* problem = std::get_if<usda::SkinningProblem>(&*skinning)) {
+        warnOnce("skel:" + prim.path, prim.path + ": " + problem->message + "; drawn unskinned", problem->where, true);
+        return;
+    }
+    skinnings_.emplace(prim.path, std::get<usda::Skinning>(std::move(*skinning)));
+}
+
+void UsdSceneHost::applySkinning(const usda::Prim& prim, const usda::Skinning& skinning, const usda::Attribute& attribute,
+                         usda::Value& value, double time) {
+    if (value.tupleSize != 3) return;
+    std::string problem;
+    std::vector<double> skinned;
+    if (attribute.name == "points") {  // else normals or primvars:normals
+        skinned = usda::skinPoints(stage_, skinning, value.numbers, time, &problem);
+    } else {
+        // Normals follow their points: one per point (vertex, varying: the schema's fallback), or one
+        // per face-vertex of a mesh through its index, as UsdSkelImaging skins them.
+        // XXX: constant and uniform normals are left unskinned.
+        const usda::Attribute* points = prim.attribute("points");
+        auto rest = points ? points->evaluate(time) : std::nullopt;
+        const auto interpolation = attribute.metadata.find("interpolation");
+        const std::string mode = interpolation != attribute.metadata.end() && !interpolation->second.strings.empty()
+                                     ? interpolation->second.strings.front()
+                                     : "vertex";
+        const bool faceVarying = mode == "faceVarying" && prim.typeName == "Mesh";
+        if (mode != "vertex" && mode != "varying" && !faceVarying) return;
+        const usda::Attribute* indices = faceVarying ? prim.attribute("faceVertexIndices") : nullptr;
+        auto indexValues = indices ? indices->evaluate(time) : std::nullopt;
+        if (!rest || (faceVarying && !indexValues)) return;
+        skinned = usda::skinNormals(stage_, skinning, value.numbers, indexValues ? &indexValues->numbers : nullptr,
+                                    rest->size(), time, &problem);
+    }
+    if (!problem.empty())
+        warnOnce("skinning:" + prim.path, prim.path + ": " + problem + (skinned.empty() ? "; drawn unskinned" : ""),
+                 attribute.where, true);
+    if (!skinned.empty()) value.numbers = std::move(skinned);
 }
 
 ObscuraStatus UsdSceneHost::computedPurpose(const usda::Prim& prim, ObscuraValue* out) {

@@ -4,6 +4,8 @@
 #pragma once
 
 #include "harness/delegate_message.h"
+#include "harness/materialx_surface.h"
+#include "harness/usda/skinning.h"
 #include "harness/usda/stage.h"
 
 #include <obscura/obscura.h>
@@ -88,9 +90,15 @@ private:
     ObscuraDirtyBits changes(const usda::Prim& prim, const UsdSceneHost& previous, const usda::Prim& before,
                              double time) const;
     ObscuraStatus fill(const usda::Value& value, ObscuraValue* out);
-    // The UsdPreviewSurface a Material's outputs:surface leads to (through NodeGraph outputs), or
-    // null with the reason.
+    // The surface shader a Material's outputs:surface (else outputs:mtlx:surface) leads to, through
+    // NodeGraph outputs, or null with the reason.
     const usda::Prim* surfaceShader(const usda::Prim& material, std::string& problem) const;
+    // UsdSkel: the prim's binding to a skeleton, kept when it is usable, reported when it is not.
+    void bindSkeleton(const usda::Prim& prim);
+    // A skinned prim's `points` or `normals` (`value`, evaluated at `time`) skinned in place; left as
+    // they are, with the problem reported, when the influences do not fit them.
+    void applySkinning(const usda::Prim& prim, const usda::Skinning& skinning, const usda::Attribute& attribute,
+               usda::Value& value, double time);
     // UsdGeomImageable's computed purpose, inherited from the nearest ancestor that authors one.
     ObscuraStatus computedPurpose(const usda::Prim& prim, ObscuraValue* out);
     // The attribute a delegate name maps to on the USD prim (materials read their surface shader).
@@ -106,6 +114,18 @@ private:
     ObscuraSceneDelegate sceneDelegate_{};
     std::map<std::string, std::string> primTypes_;        // delegate path -> delegate type
     std::map<std::string, const usda::Prim*> surfaces_;   // material path -> UsdPreviewSurface shader
+    std::map<std::string, usda::Skinning> skinnings_;     // skinned prim path -> its binding
+    // Materials whose surface is not UsdPreviewSurface (MaterialX node definitions, or surfaces
+    // drawn with their base colour): their mapping onto UsdPreviewSurface's inputs at one time.
+    struct MappedSurface {
+        const usda::Prim* shader;
+        std::optional<double> time;
+        MaterialXMapping mapping;
+    };
+    std::map<std::string, MappedSurface> mappedSurfaces_;
+    // The mapping of a material's surface at `time` (its problems reported once), or null when the
+    // material is not mapped.
+    const MaterialXMapping* mappedSurface(const std::string& material, double time);
     // PointInstancer prototype roots -> the prim whose space instances live in (the root's
     // parent: USD includes the root's own transform in each instance, not its ancestors').
     std::map<std::string, const usda::Prim*> prototypeRoots_;
