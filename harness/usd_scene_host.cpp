@@ -394,7 +394,7 @@ std::string UsdSceneHost::defaultCamera() const {
     return {};
 }
 
-SceneBounds UsdSceneHost::bounds(double time) const {
+SceneBounds UsdSceneHost::bounds(double time) {
     // XXX: only point-based prims (Mesh, BasisCurves, Points) are framed, by their points; implicit
     // gprims (Cube, Sphere...) are left out of the bounds.
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};

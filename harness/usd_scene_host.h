@@ -58,8 +58,9 @@ public:
 
     // The first camera of the stage, or "" if there is none.
     std::string defaultCamera() const;
-    // The bounding sphere of every point-based prim at `time` (the origin, radius 1e-3, for none).
-    SceneBounds bounds(double time) const;
+    // The bounding sphere of every point-based prim at `time`, skinned prims posed (the origin, radius
+    // 1e-3, for none).
+    SceneBounds bounds(double time);
     // Every prim inserted into the delegate, by path, with its delegate type.
     const std::map<std::string, std::string>& insertedPrims() const { return primTypes_; }
     // The PointInstancer whose prototypes hold `path`, or "" (picking names the instancer).
