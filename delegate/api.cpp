@@ -195,6 +195,15 @@ ObscuraStatus mapRenderBuffer(ObscuraDelegate d, const char* path, ObscuraMapped
     });
 }
 
+ObscuraStatus exportRenderBuffer(ObscuraDelegate d, const char* path, ObscuraExternalBuffer* out) {
+    return withDelegate(d, "exportRenderBuffer", [&](RenderDelegate& r) {
+        if (!out || out->structSize < sizeof(ObscuraExternalBuffer))
+            throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "ObscuraExternalBuffer is NULL or too small"};
+        r.exportBuffer(requireString(path, "path"), *out);
+        return OBSCURA_OK;
+    });
+}
+
 ObscuraStatus unmapRenderBuffer(ObscuraDelegate d, const char* path) {
     return withDelegate(d, "unmapRenderBuffer", [&](RenderDelegate& r) {
         r.unmap(requireString(path, "path"));
@@ -279,14 +288,18 @@ ObscuraStatus describeRenderSetting(uint32_t index, const char** name, const cha
     return OBSCURA_OK;
 }
 
-const ObscuraApiV1 kApiV1 = {
-    sizeof(ObscuraApiV1), OBSCURA_ABI_VERSION_MAJOR, OBSCURA_ABI_VERSION_MINOR,
-    createDelegate,       destroyDelegate,           lastError,
-    setSceneDelegate,     insertPrim,                removePrim,
-    markDirty,            setRenderSetting,          render,
-    mapRenderBuffer,      unmapRenderBuffer,         getPassTimings,
-    getRenderStats,       enumerateDevices,          getPrimId,
-    describeRenderSetting,
+// One table for every 1.x request: 1.0's functions first, then 1.2's (the header's ObscuraApiV1_2).
+const ObscuraApiV1_2 kApiV1 = {
+    {
+        sizeof(ObscuraApiV1_2), OBSCURA_ABI_VERSION_MAJOR, OBSCURA_ABI_VERSION_MINOR,
+        createDelegate,         destroyDelegate,           lastError,
+        setSceneDelegate,       insertPrim,                removePrim,
+        markDirty,              setRenderSetting,          render,
+        mapRenderBuffer,        unmapRenderBuffer,         getPassTimings,
+        getRenderStats,         enumerateDevices,          getPrimId,
+        describeRenderSetting,
+    },
+    exportRenderBuffer,
 };
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include <unistd.h>
+
 namespace obscura::delegate {
 namespace {
 
@@ -85,6 +87,7 @@ RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
 RenderDelegate::~RenderDelegate() {
     vkDeviceWaitIdle(device_->vk());
     prims_.clear();
+    exportTimeline_.reset();
     frame_.reset();
     textures_.reset();
     geometry_.reset();
@@ -374,6 +377,11 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     frame_->render(source, request, settings);
     frameSetupMilliseconds_ = std::chrono::duration<double, std::milli>(frame_->recorded() - syncEnd).count();
     for (RenderBuffer* rb : targets) rb->setRendered(true);
+    // Exported buffers go to the host's device: released to it, and the semaphore signalled.
+    std::vector<gpu::BufferPtr> exported;
+    for (RenderBuffer* rb : targets)
+        if (rb->exported()) exported.push_back(rb->storage(*device_));
+    if (!exported.empty()) exportTimeline_->release(exported);
 
     if (failOnValidation_ && device_->context().validationErrorCount() > 0)
         throw ApiError{OBSCURA_ERROR_VALIDATION, std::to_string(device_->context().validationErrorCount()) +
@@ -390,12 +398,50 @@ void RenderDelegate::map(const std::string& path, ObscuraMappedBuffer& out) {
     RenderBuffer* rb = find<RenderBuffer>(path);
     if (!rb) throw ApiError{OBSCURA_ERROR_NOT_FOUND, "no render buffer at " + path};
     if (!rb->rendered()) throw ApiError{OBSCURA_ERROR_INVALID_STATE, path + " has not been rendered"};
+    if (rb->exported())
+        throw ApiError{OBSCURA_ERROR_INVALID_STATE, path + " is exported: its pixels are in device memory the host imported"};
     out.width = rb->width();
     out.height = rb->height();
     out.format = rb->format();
     out.rowStride = rb->width() * rb->bytesPerPixel();
     out.data = rb->storage(*device_)->mapped();
     rb->mapped = true;
+}
+
+void RenderDelegate::exportBuffer(const std::string& path, ObscuraExternalBuffer& out) {
+    RenderBuffer* rb = find<RenderBuffer>(path);
+    if (!rb) throw ApiError{OBSCURA_ERROR_NOT_FOUND, "no render buffer at " + path};
+    if (!rb->rendered()) throw ApiError{OBSCURA_ERROR_INVALID_STATE, path + " has not been rendered"};
+    if (rb->mapped) throw ApiError{OBSCURA_ERROR_INVALID_STATE, path + " is mapped: unmap it before exporting it"};
+    const gpu::ExternalHandleSupport& support = device_->context().externalHandles();
+    out.memoryFd = -1;
+    out.semaphoreFd = -1;
+    if (!support.memoryFd)
+        throw ApiError{OBSCURA_ERROR_DEVICE, device_->context().summary().name +
+                                                 " cannot export memory (no VK_KHR_external_memory_fd): map the buffer"};
+    if (!exportTimeline_) exportTimeline_ = std::make_unique<gpu::ExportTimeline>(*device_);
+    rb->setExported();
+    const gpu::BufferPtr& storage = rb->storage(*device_);
+    gpu::ExportedMemory memory = gpu::exportMemory(*device_, *storage);
+    int semaphore = -1;
+    try {
+        semaphore = exportTimeline_->exportSemaphore();
+    } catch (...) {
+        close(memory.fd);
+        throw;
+    }
+    out.width = rb->width();
+    out.height = rb->height();
+    out.format = rb->format();
+    out.rowStride = rb->width() * rb->bytesPerPixel();
+    out.size = storage->size;
+    out.memoryFd = memory.fd;
+    out.allocationSize = memory.allocationSize;
+    out.memoryTypeIndex = memory.memoryTypeIndex;
+    out.dedicated = memory.dedicated ? 1 : 0;
+    out.semaphoreFd = semaphore;
+    std::memcpy(out.deviceUUID, support.deviceUUID, sizeof(out.deviceUUID));
+    std::memcpy(out.driverUUID, support.driverUUID, sizeof(out.driverUUID));
 }
 
 void RenderDelegate::unmap(const std::string& path) {
@@ -428,6 +474,10 @@ void RenderDelegate::stats(ObscuraRenderStats& out) const {
             memory->deviceMemoryReserved = allocator.bytesReserved();
             memory->deviceMemoryInUse = allocator.bytesInUse();
             memory->deviceMemoryBlocks = uint32_t(allocator.blockCount());
+        }
+        if (next->sType == OBSCURA_STRUCTURE_TYPE_INTEROP_STATS && next->structSize >= sizeof(ObscuraInteropStats)) {
+            auto* interop = const_cast<ObscuraInteropStats*>(reinterpret_cast<const ObscuraInteropStats*>(next));
+            interop->semaphoreValue = exportTimeline_ ? exportTimeline_->value() : 0;
         }
     }
 }

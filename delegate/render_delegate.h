@@ -15,6 +15,7 @@
 #include "delegate/prims/mesh.h"
 #include "delegate/prims/render_buffer.h"
 #include "delegate/texture_cache.h"
+#include "gpu/external_memory.h"
 #include "renderer/frame_renderer.h"
 #include "renderer/render_settings.h"
 
@@ -45,6 +46,9 @@ public:
     ObscuraStatus render(const ObscuraRenderPassDesc& desc);
     void map(const std::string& path, ObscuraMappedBuffer& out);
     void unmap(const std::string& path);
+    // The ABI's display interop: the render buffer's memory (and the frames' semaphore) as file
+    // descriptors the host imports.
+    void exportBuffer(const std::string& path, ObscuraExternalBuffer& out);
     const std::vector<gpu::PassTime>& passTimings() const { return frame_->timings(); }
     // Fills the counters of `out` and of the structs chained to its pNext that this delegate knows
     // (ObscuraMemoryStats), leaving every sType, pNext and structSize as the host set them.
@@ -72,6 +76,8 @@ private:
     std::unique_ptr<TextureCache> textures_;
     std::unique_ptr<GeometryCache> geometry_;
     std::unique_ptr<renderer::FrameRenderer> frame_;
+    // Made by the first export: the semaphore of exported buffers and their release after each frame.
+    std::unique_ptr<gpu::ExportTimeline> exportTimeline_;
     // Textured domes beyond the first, last frame: warned about when the list changes.
     std::vector<std::string> ignoredDomes_;
 

@@ -121,6 +121,28 @@ Result<VkPhysicalDevice> pickDevice(const std::vector<VkPhysicalDevice>& devices
     return usable.front();
 }
 
+// Opaque fds of memory and of timeline semaphores, where the driver offers them (lavapipe 22.3 offers
+// memory only; NVIDIA both).
+ExternalHandleSupport externalHandleSupport(VkPhysicalDevice pd) {
+    ExternalHandleSupport s;
+    s.memoryFd = hasExtension(pd, VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
+    if (hasExtension(pd, VK_KHR_EXTERNAL_SEMAPHORE_FD_EXTENSION_NAME)) {
+        VkSemaphoreTypeCreateInfo timeline{VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO};
+        timeline.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
+        VkPhysicalDeviceExternalSemaphoreInfo info{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_SEMAPHORE_INFO, &timeline};
+        info.handleType = VK_EXTERNAL_SEMAPHORE_HANDLE_TYPE_OPAQUE_FD_BIT;
+        VkExternalSemaphoreProperties properties{VK_STRUCTURE_TYPE_EXTERNAL_SEMAPHORE_PROPERTIES};
+        vkGetPhysicalDeviceExternalSemaphoreProperties(pd, &info, &properties);
+        s.semaphoreFd = (properties.externalSemaphoreFeatures & VK_EXTERNAL_SEMAPHORE_FEATURE_EXPORTABLE_BIT) != 0;
+    }
+    VkPhysicalDeviceIDProperties ids{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &ids};
+    vkGetPhysicalDeviceProperties2(pd, &props);
+    std::memcpy(s.deviceUUID, ids.deviceUUID, VK_UUID_SIZE);
+    std::memcpy(s.driverUUID, ids.driverUUID, VK_UUID_SIZE);
+    return s;
+}
+
 uint32_t pickQueueFamily(VkPhysicalDevice pd) {
     uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, nullptr);
@@ -228,6 +250,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
     f12.hostQueryReset = VK_TRUE;
     f12.scalarBlockLayout = VK_TRUE;
+    ctx->externalHandles_ = externalHandleSupport(ctx->physical_);
+    f12.timelineSemaphore = ctx->externalHandles_.semaphoreFd ? VK_TRUE : VK_FALSE;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
     VkPhysicalDeviceFeatures supported{};
     vkGetPhysicalDeviceFeatures(ctx->physical_, &supported);
@@ -243,9 +267,11 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;
-    const char* deviceExtensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
-    dci.enabledExtensionCount = 1;
-    dci.ppEnabledExtensionNames = deviceExtensions;
+    std::vector<const char*> deviceExtensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    if (ctx->externalHandles_.memoryFd) deviceExtensions.push_back(VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
+    if (ctx->externalHandles_.semaphoreFd) deviceExtensions.push_back(VK_KHR_EXTERNAL_SEMAPHORE_FD_EXTENSION_NAME);
+    dci.enabledExtensionCount = static_cast<uint32_t>(deviceExtensions.size());
+    dci.ppEnabledExtensionNames = deviceExtensions.data();
     r = vkCreateDevice(ctx->physical_, &dci, nullptr, &ctx->device_);
     if (r != VK_SUCCESS) return Failure{std::string("vkCreateDevice failed: ") + vkResultName(r)};
     vkGetDeviceQueue(ctx->device_, ctx->queueFamily_, 0, &ctx->queue_);

@@ -23,6 +23,15 @@ struct ContextOptions {
     FaultInjection faults;
 };
 
+// What the device can share with another VkDevice (or a GL context) of the same GPU: memory and
+// timeline semaphores as opaque file descriptors (the ABI's display interop).
+struct ExternalHandleSupport {
+    bool memoryFd = false;     // VK_KHR_external_memory_fd, enabled
+    bool semaphoreFd = false;  // VK_KHR_external_semaphore_fd with exportable timeline semaphores, enabled
+    uint8_t deviceUUID[VK_UUID_SIZE] = {};
+    uint8_t driverUUID[VK_UUID_SIZE] = {};
+};
+
 struct PhysicalDeviceSummary {
     std::string name;
     std::string driver;
@@ -45,6 +54,8 @@ public:
     VkPhysicalDevice physicalDevice() const { return physical_; }
     VkDevice device() const { return device_; }
     VkQueue queue() const { return queue_; }
+    uint32_t queueFamily() const { return queueFamily_; }
+    const ExternalHandleSupport& externalHandles() const { return externalHandles_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     // The core features the device was created with (each one the passes use, where supported).
     const VkPhysicalDeviceFeatures& enabledFeatures() const { return enabledFeatures_; }
@@ -90,6 +101,7 @@ private:
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet_ = nullptr;
     VkPhysicalDeviceMemoryProperties memoryProperties_{};
     PhysicalDeviceSummary summary_;
+    ExternalHandleSupport externalHandles_;
     VkCommandPool commandPool_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;
     VkCommandBuffer oneShot_ = VK_NULL_HANDLE;  // reused by every submitAndWait

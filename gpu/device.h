@@ -72,6 +72,8 @@ public:
     Context& context() { return *context_; }
     VkDevice vk() const { return context_->device(); }
     MemoryAllocator& memory() { return *memory_; }
+    // A Buffer::id / Image::id for a resource made outside this class (gpu/external_memory.h).
+    uint64_t newResourceId() { return nextResourceId_++; }
 
     // Resources are shared_ptrs whose deleter queues destruction to the end of the frame.
     BufferPtr createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memoryUsage,

@@ -1,10 +1,14 @@
 #include "harness/commands.h"
 #include "harness/exit_codes.h"
 #include "harness/session.h"
+#include "harness/view/render_buffer_display.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <map>
+#include <memory>
+#include <optional>
 
 namespace obscura::harness {
 namespace {
@@ -15,6 +19,50 @@ double median(std::vector<double> v) {
     size_t n = v.size();
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
+
+// Each frame shown on a Vulkan device of the harness's own, as `obscura view` shows it: through host
+// memory (map, copy into a buffer of that device) or through the plugin's exported memory.
+class DisplayTiming {
+public:
+    // After the first render; returns the problem, or "".
+    std::string start(Session& session, const std::string& buffer, const std::string& mode) {
+        view::DisplayDeviceOptions options;
+        options.deviceName = session.deviceName();
+        std::optional<ObscuraExternalBuffer> exported;
+        if (mode == "shared") {
+            auto made = view::exportRenderBuffer(session, buffer);
+            if (auto* problem = std::get_if<std::string>(&made)) return *problem;
+            exported = std::get<ObscuraExternalBuffer>(made);
+            options.deviceUUID = exported->deviceUUID;
+        }
+        auto created = view::DisplayDevice::create(options);
+        if (auto* problem = std::get_if<std::string>(&created)) return *problem;
+        device_ = std::move(std::get<std::unique_ptr<view::DisplayDevice>>(created));
+        image_ = std::make_unique<view::AovImage>(*device_);
+        if (exported) {
+            auto imported = view::DisplaySource::import(*device_, *exported);
+            if (auto* problem = std::get_if<std::string>(&imported)) return *problem;
+            source_ = std::move(std::get<std::unique_ptr<view::DisplaySource>>(imported));
+        }
+        return {};
+    }
+    // After a render: the frame into the display image; returns the wall time it took, ms.
+    double show(Session& session, const std::string& buffer) {
+        auto start = std::chrono::steady_clock::now();
+        if (!source_ || !source_->shared()) view::copyRenderBuffer(session, *device_, buffer, source_);
+        view::showSource(session, *device_, *source_, *image_, view::AovView::Display);
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+    ~DisplayTiming() {
+        source_.reset();
+        image_.reset();
+    }
+
+private:
+    std::unique_ptr<view::DisplayDevice> device_;
+    std::unique_ptr<view::DisplaySource> source_;
+    std::unique_ptr<view::AovImage> image_;
+};
 
 }  // namespace
 
@@ -39,8 +87,12 @@ int runBench(const BenchOptions& o) {
         std::fprintf(stderr, "obscura: %s has no camera\n", o.scene.c_str());
         return kExitBadInput;
     }
-    std::string buffer = session.host().addRenderBuffer(session.api(), session.delegate(), "color", o.width, o.height);
-    ObscuraAovBinding binding{"color", buffer.c_str()};
+    // The viewer shows the display AOV; without --display the bench reads colour, as before.
+    const char* aov = o.display.empty() ? "color" : "display";
+    std::string buffer = session.host().addRenderBuffer(session.api(), session.delegate(), aov, o.width, o.height);
+    ObscuraAovBinding binding{aov, buffer.c_str()};
+    DisplayTiming display;
+    std::vector<double> renderCalls, shows;
     double time = session.stage().metadata().startTimeCode.value_or(0.0);
     ObscuraRenderPassDesc desc{OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC, nullptr, sizeof(ObscuraRenderPassDesc),
                                camera.c_str(), {0, 0, o.width, o.height}, time, 1, &binding};
@@ -55,25 +107,34 @@ int runBench(const BenchOptions& o) {
     std::vector<std::string> warmupOrder;
     for (int i = 0; i < kWarmup + o.frames; ++i) {
         if (o.changingCamera) session.api().markDirty(session.delegate(), camera.c_str(), OBSCURA_DIRTY_TRANSFORM);
+        auto renderStart = std::chrono::steady_clock::now();
         ObscuraStatus s = session.api().render(session.delegate(), &desc);
+        const double renderCall =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - renderStart).count();
         if (s != OBSCURA_OK && s != OBSCURA_ERROR_BAD_PRIM_DATA) {
             std::fprintf(stderr, "obscura: render failed: %s\n", session.lastError().c_str());
             return kExitPluginOrDevice;
         }
-        uint32_t count = 0;
-        session.api().getPassTimings(session.delegate(), nullptr, &count);
-        std::vector<ObscuraPassTiming> timings(count);
-        for (auto& t : timings) t.structSize = sizeof(ObscuraPassTiming);
-        session.api().getPassTimings(session.delegate(), timings.data(), &count);
+        if (!o.display.empty()) {
+            if (i == 0)
+                if (std::string problem = display.start(session, buffer, o.display); !problem.empty()) {
+                    std::fprintf(stderr, "obscura: --display %s: %s\n", o.display.c_str(), problem.c_str());
+                    return kExitPluginOrDevice;
+                }
+            const double shown = display.show(session, buffer);
+            if (i >= kWarmup) renderCalls.push_back(renderCall), shows.push_back(shown);
+        }
+        const std::vector<ObscuraPassTiming> timings = session.passTimings();
+        const size_t count = timings.size();
         if (i < kWarmup) {
-            for (uint32_t k = 0; k < count; ++k) {
+            for (size_t k = 0; k < count; ++k) {
                 if (!warmupOnly.count(timings[k].pass)) warmupOrder.push_back(timings[k].pass);
                 warmupOnly[timings[k].pass] = timings[k].milliseconds;
             }
             continue;
         }
         double total = 0;
-        for (uint32_t k = 0; k < count; ++k) {
+        for (size_t k = 0; k < count; ++k) {
             if (!samples.count(timings[k].pass)) order.push_back(timings[k].pass);
             samples[timings[k].pass].push_back(timings[k].milliseconds);
             total += timings[k].milliseconds;
@@ -102,7 +163,11 @@ int runBench(const BenchOptions& o) {
         for (size_t i = 0; i < warmupOrder.size(); ++i)
             std::printf("%s\"%s\": {\"last_ms\": %.4f}", i ? ", " : "", warmupOrder[i].c_str(),
                         warmupOnly[warmupOrder[i]]);
-        std::printf("}, \"device_memory_mib\": {\"in_use\": %.1f, \"reserved\": %.1f}}\n",
+        std::printf("}");
+        if (!o.display.empty())
+            std::printf(", \"display\": {\"mode\": \"%s\", \"render_call_ms\": %.4f, \"show_ms\": %.4f}", o.display.c_str(),
+                        median(renderCalls), median(shows));
+        std::printf(", \"device_memory_mib\": {\"in_use\": %.1f, \"reserved\": %.1f}}\n",
                     double(memory.deviceMemoryInUse) / kMiB, double(memory.deviceMemoryReserved) / kMiB);
     } else {
         std::printf("%s on %s, %dx%d, %d frames, %llu triangles (GPU timestamp medians)\n", o.scene.c_str(),
@@ -112,6 +177,9 @@ int runBench(const BenchOptions& o) {
         for (const auto& name : warmupOrder) std::printf("  %-16s %10.4f ms\n", name.c_str(), warmupOnly[name]);
         std::printf("device memory: %.1f MiB in use, %.1f MiB reserved\n", double(memory.deviceMemoryInUse) / kMiB,
                     double(memory.deviceMemoryReserved) / kMiB);
+        if (!o.display.empty())
+            std::printf("display (%s, wall-clock medians): render call %.4f ms, showing the frame %.4f ms\n",
+                        o.display.c_str(), median(renderCalls), median(shows));
     }
     return kExitOk;
 }

@@ -5,6 +5,7 @@
 #include "harness/session.h"
 #include "harness/usd_render_settings.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -67,56 +68,55 @@ ObscuraStatus renderUntilConverged(Session& session, const ObscuraRenderPassDesc
     return status;
 }
 
-// The stage's render settings (UsdRender) under the flags: what a flag leaves unset comes from the
-// RenderSettings prim --render-settings names, else the one the stage's renderSettingsPrimPath names.
-std::variant<RenderOptions, SessionError> withStageRenderSettings(RenderOptions o, const usda::Stage& stage) {
+// The stage's render settings (UsdRender) under the flags, one set of options per render product:
+// what a flag leaves unset comes from the RenderSettings prim --render-settings names, else the one
+// the stage's renderSettingsPrimPath names, and from each of its products.
+std::variant<std::vector<RenderOptions>, SessionError> withStageRenderSettings(const RenderOptions& o,
+                                                                               const usda::Stage& stage) {
     const bool chosen = !o.renderSettings.empty();
     const std::string path = chosen ? o.renderSettings : stage.metadata().renderSettingsPrimPath;
-    if (path.empty()) return o;
+    if (path.empty()) return std::vector<RenderOptions>{o};
     std::vector<HostMessage> messages;
     auto read = readStageRenderSettings(stage, path, messages);
     for (const HostMessage& m : messages) printHostMessage(m);
     if (auto* problem = std::get_if<std::string>(&read)) {
         if (chosen) return SessionError{kExitBadInput, "--render-settings: " + *problem};
         printHostMessage({false, "renderSettingsPrimPath: " + *problem + "; rendering without them", stage.metadata().where});
-        return o;
+        return std::vector<RenderOptions>{o};
     }
-    const StageRenderSettings& s = std::get<StageRenderSettings>(read);
-    if (o.camera.empty()) o.camera = s.camera;
-    if (!o.width && s.resolution) o.width = (*s.resolution)[0];
-    if (!o.height && s.resolution) o.height = (*s.resolution)[1];
-    if (o.aovs.empty()) o.aovs = s.aovs;
-    if (o.output.empty()) o.output = s.productName;
-    // Ahead of the --set ones, which override them.
-    std::vector<std::string> settings;
-    if (s.pixelAspectRatio) {
-        char text[64];
-        std::snprintf(text, sizeof(text), "pixelAspectRatio=%.17g", *s.pixelAspectRatio);
-        settings.emplace_back(text);
+    std::vector<StageRenderSettings> products = std::get<std::vector<StageRenderSettings>>(read);
+    if (!o.output.empty() && products.size() > 1) {
+        std::fprintf(stderr, "obscura: warning: -o names one file: %s's first product is written, %zu more are not\n",
+                     path.c_str(), products.size() - 1);
+        products.resize(1);
     }
-    if (s.includedPurposes) settings.push_back("includedPurposes=" + *s.includedPurposes);
-    if (s.disableMotionBlur) settings.push_back(*s.disableMotionBlur ? "motionBlur=off" : "motionBlur=on");
-    if (s.disableDepthOfField) settings.push_back(*s.disableDepthOfField ? "dof=off" : "dof=on");
-    settings.insert(settings.end(), o.settings.begin(), o.settings.end());
-    o.settings = std::move(settings);
-    return o;
+    std::vector<RenderOptions> each;
+    for (const StageRenderSettings& s : products) {
+        RenderOptions p = o;
+        if (p.camera.empty()) p.camera = s.camera;
+        if (!p.width && s.resolution) p.width = (*s.resolution)[0];
+        if (!p.height && s.resolution) p.height = (*s.resolution)[1];
+        if (p.aovs.empty()) p.aovs = s.aovs;
+        if (p.output.empty()) p.output = s.productName;
+        // Ahead of the --set ones, which override them.
+        std::vector<std::string> settings;
+        if (s.pixelAspectRatio) {
+            char text[64];
+            std::snprintf(text, sizeof(text), "pixelAspectRatio=%.17g", *s.pixelAspectRatio);
+            settings.emplace_back(text);
+        }
+        if (s.includedPurposes) settings.push_back("includedPurposes=" + *s.includedPurposes);
+        if (s.disableMotionBlur) settings.push_back(*s.disableMotionBlur ? "motionBlur=off" : "motionBlur=on");
+        if (s.disableDepthOfField) settings.push_back(*s.disableDepthOfField ? "dof=off" : "dof=on");
+        settings.insert(settings.end(), o.settings.begin(), o.settings.end());
+        p.settings = std::move(settings);
+        each.push_back(std::move(p));
+    }
+    return each;
 }
 
-}  // namespace
-
-int runRender(const RenderOptions& options) {
-    auto opened = Session::open(options.scene, options.limits);
-    if (auto* error = std::get_if<SessionError>(&opened)) {
-        std::fprintf(stderr, "obscura: %s\n", error->message.c_str());
-        return error->exitCode;
-    }
-    Session& session = *std::get<std::unique_ptr<Session>>(opened);
-    auto resolved = withStageRenderSettings(options, session.stage());
-    if (auto* error = std::get_if<SessionError>(&resolved)) {
-        std::fprintf(stderr, "obscura: %s\n", error->message.c_str());
-        return error->exitCode;
-    }
-    const RenderOptions& o = std::get<RenderOptions>(resolved);
+// One product: its frames rendered with `session` and written to its output.
+int renderProduct(Session& session, const RenderOptions& o) {
     const int width = o.width.value_or(960), height = o.height.value_or(540);
     if (o.output.empty()) {
         std::fprintf(stderr, "obscura: no output: give -o, or render settings whose product has a productName\n");
@@ -210,6 +210,40 @@ int runRender(const RenderOptions& options) {
             std::fprintf(stderr, "obscura: frame %g (%zu/%zu) -> %s: %.0f ms on %s\n", frame, fi + 1, frameTimes.size(),
                          path.c_str(), ms, session.deviceName().c_str());
         }
+    }
+    return exitCode;
+}
+
+}  // namespace
+
+int runRender(const RenderOptions& options) {
+    auto opened = Session::open(options.scene, options.limits);
+    if (auto* error = std::get_if<SessionError>(&opened)) {
+        std::fprintf(stderr, "obscura: %s\n", error->message.c_str());
+        return error->exitCode;
+    }
+    std::unique_ptr<Session> session = std::move(std::get<std::unique_ptr<Session>>(opened));
+    auto resolved = withStageRenderSettings(options, session->stage());
+    if (auto* error = std::get_if<SessionError>(&resolved)) {
+        std::fprintf(stderr, "obscura: %s\n", error->message.c_str());
+        return error->exitCode;
+    }
+    const std::vector<RenderOptions>& products = std::get<std::vector<RenderOptions>>(resolved);
+    int exitCode = kExitOk;
+    for (size_t i = 0; i < products.size(); ++i) {
+        // Each product starts from the delegate's defaults: the settings one product authors
+        // (pixel aspect, purposes, motion blur) do not carry over to the next.
+        if (i > 0) {
+            auto again = Session::open(options.scene, options.limits);
+            if (auto* error = std::get_if<SessionError>(&again)) {
+                std::fprintf(stderr, "obscura: %s\n", error->message.c_str());
+                return error->exitCode;
+            }
+            session = std::move(std::get<std::unique_ptr<Session>>(again));
+        }
+        const int code = renderProduct(*session, products[i]);
+        if (code != kExitOk && code != kExitBadInput) return code;
+        exitCode = std::max(exitCode, code);
     }
     return exitCode;
 }

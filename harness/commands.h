@@ -48,6 +48,22 @@ struct BenchOptions {
     std::vector<std::string> settings;
     std::optional<int> msaa;  // --msaa N: the render setting msaa
     bool verbose = false;     // print the plugin's info messages (e.g. the MSAA tagged share per frame)
+    // Also show each frame on a device of the harness's own, as the viewer does, and time it:
+    // "readback" (map, copy to host memory) or "shared" (the exported memory, ABI 1.2); "" not.
+    std::string display;
+    usda::CompositionLimits limits;
+};
+
+// obscura view SCENE: the interactive viewer (README "The viewer").
+struct ViewOptions {
+    std::string scene;
+    std::string camera;                  // a scene camera to start with (default: the first, else the free camera)
+    int width = 960;
+    int height = 540;
+    std::string script;                  // input events to play (harness/view/input_script.h)
+    std::string display = "auto";        // shared (exported memory), readback (mapped) or auto (shared where possible)
+    std::vector<std::string> settings;
+    bool validation = false;             // OBSCURA_VALIDATION: the viewer's Vulkan validated too
     usda::CompositionLimits limits;
 };
 
@@ -80,6 +96,7 @@ int runGradeChart(const GradeChartOptions& options);
 int runRender(const RenderOptions& options);
 int runCompare(const CompareOptions& options);
 int runBench(const BenchOptions& options);
+int runView(const ViewOptions& options);
 int runFarmSubmit(const FarmSubmitOptions& options);
 int runFarmStatus(const FarmJobOptions& options);
 int runFarmResubmit(const FarmJobOptions& options);

@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdlib>
+
 namespace {
 
 // What composing the scene may build (usda::CompositionLimits); render and bench share them.
@@ -85,7 +87,26 @@ int main(int argc, char** argv) {
     b->add_option("--set", bench.settings, "render setting key=value (repeatable)");
     b->add_option("--msaa", bench.msaa, "G-buffer samples per pixel (render setting `msaa`)");
     b->add_flag("-v,--verbose", bench.verbose, "print the plugin's info messages");
+    b->add_option("--display", bench.display,
+                  "also show each frame on a Vulkan device of the harness and time it: readback (through host memory) "
+                  "or shared (exported device memory, ABI 1.2)")
+        ->check(CLI::IsMember({"readback", "shared"}));
     addCompositionLimits(*b, bench.limits);
+
+    ViewOptions viewOptions;
+    auto* v = app.add_subcommand("view", "an interactive window: orbit, pick, HUD, progressive refinement");
+    v->add_option("scene", viewOptions.scene, "scene file (.usda, .usdc, .usd, .usdz, .gltf, .glb, .fbx, .obj)")->required();
+    v->add_option("--camera", viewOptions.camera, "scene camera to start with (default: the first one)");
+    v->add_option("--width", viewOptions.width, "window width")->check(CLI::PositiveNumber);
+    v->add_option("--height", viewOptions.height, "window height")->check(CLI::PositiveNumber);
+    v->add_option("--script", viewOptions.script, "play input events from a file (also OBSCURA_VIEW_SCRIPT)")
+        ->envname("OBSCURA_VIEW_SCRIPT");
+    v->add_option("--display", viewOptions.display,
+                  "how frames reach the window: shared (exported device memory), readback (through host memory), "
+                  "auto (shared where the devices can)")
+        ->check(CLI::IsMember({"auto", "shared", "readback"}));
+    v->add_option("--set", viewOptions.settings, "render setting key=value (repeatable)");
+    addCompositionLimits(*v, viewOptions.limits);
 
     FarmSubmitOptions farmSubmit;
     FarmJobOptions farmJob;
@@ -121,5 +142,10 @@ int main(int argc, char** argv) {
     if (fs->parsed()) return runFarmSubmit(farmSubmit);
     if (fst->parsed()) return runFarmStatus(farmJob);
     if (fr->parsed()) return runFarmResubmit(farmJob);
+    if (v->parsed()) {
+        const char* validation = std::getenv("OBSCURA_VALIDATION");
+        viewOptions.validation = validation && *validation && std::string(validation) != "0";
+        return runView(viewOptions);
+    }
     return runBench(bench);
 }

@@ -38,6 +38,12 @@ public:
     LoadedPlugin& operator=(LoadedPlugin&&) = delete;
     ~LoadedPlugin();
     const ObscuraApiV1& api() const { return *api_; }
+    // The ABI 1.2 table (display interop), or null when the plugin's table is older.
+    const ObscuraApiV1_2* interopApi() const {
+        return api_->versionMinor >= 2 && api_->structSize >= sizeof(ObscuraApiV1_2)
+                   ? reinterpret_cast<const ObscuraApiV1_2*>(api_)
+                   : nullptr;
+    }
     const PluginInfo& info() const { return info_; }
 
 private:

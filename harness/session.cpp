@@ -54,21 +54,37 @@ void Session::logToStderr(void* user, ObscuraLogLevel level, const char* message
                  level == OBSCURA_LOG_ERROR ? "error" : level == OBSCURA_LOG_WARNING ? "warning" : "info", message);
 }
 
-std::string Session::deviceName() const {
+ObscuraRenderStats Session::renderStats(ObscuraInteropStats* interop) const {
     ObscuraRenderStats stats{};
     stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
     stats.structSize = sizeof(stats);
-    return api().getRenderStats(delegate_, &stats) == OBSCURA_OK ? std::string(stats.deviceName) : std::string();
+    if (interop) {
+        *interop = {OBSCURA_STRUCTURE_TYPE_INTEROP_STATS, nullptr, sizeof(ObscuraInteropStats), 0};
+        stats.pNext = interop;
+    }
+    api().getRenderStats(delegate_, &stats);
+    return stats;
 }
+
+std::vector<ObscuraPassTiming> Session::passTimings() const {
+    uint32_t count = 0;
+    api().getPassTimings(delegate_, nullptr, &count);
+    std::vector<ObscuraPassTiming> timings(count);
+    for (auto& t : timings) t.structSize = sizeof(ObscuraPassTiming);
+    api().getPassTimings(delegate_, timings.data(), &count);
+    timings.resize(count);
+    return timings;
+}
+
+std::string Session::deviceName() const { return renderStats().deviceName; }
 
 std::vector<std::string> withMsaaSetting(std::vector<std::string> settings, const std::optional<int>& msaa) {
     if (msaa) settings.push_back("msaa=" + std::to_string(*msaa));
     return settings;
 }
 
-std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::string& scenePath,
-                                                                  const usda::CompositionLimits& limits) {
-    std::unique_ptr<Session> s(new Session());
+std::variant<std::unique_ptr<usda::Stage>, SessionError> Session::openStage(const std::string& scenePath,
+                                                                            const usda::CompositionLimits& limits) {
     // glTF, FBX and OBJ arrive through Assimp as a USD layer: one scene model for every format.
     std::variant<std::unique_ptr<usda::Stage>, usda::Error> opened = usda::Error{};
     if (isAssimpFormat(scenePath)) {
@@ -81,10 +97,24 @@ std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::st
         opened = usda::Stage::open(scenePath, limits);
     }
     if (auto* error = std::get_if<usda::Error>(&opened)) return SessionError{kExitBadInput, error->str()};
-    s->stage_ = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));
-    for (const auto& w : s->stage_->warnings())
+    auto stage = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));
+    for (const auto& w : stage->warnings())
         std::fprintf(stderr, "obscura: warning: %s:%d:%d: %s\n", w.where.file.c_str(), w.where.line, w.where.column,
                      w.message.c_str());
+    return stage;
+}
+
+void Session::replaceScene(std::unique_ptr<usda::Stage> stage, std::unique_ptr<UsdSceneHost> host) {
+    host_ = std::move(host);
+    stage_ = std::move(stage);
+}
+
+std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::string& scenePath,
+                                                                  const usda::CompositionLimits& limits) {
+    std::unique_ptr<Session> s(new Session());
+    auto opened = openStage(scenePath, limits);
+    if (auto* error = std::get_if<SessionError>(&opened)) return *error;
+    s->stage_ = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));
 
     auto plugin = loadBestPlugin();
     if (auto* error = std::get_if<SessionError>(&plugin)) return *error;

@@ -28,15 +28,27 @@ public:
     ~Session();
 
     const ObscuraApiV1& api() const { return plugin_->api(); }
+    const ObscuraApiV1_2* interopApi() const { return plugin_->interopApi(); }
     ObscuraDelegate delegate() const { return delegate_; }
     UsdSceneHost& host() { return *host_; }
     const usda::Stage& stage() const { return *stage_; }
     std::string lastError() const { return api().lastError(delegate_); }
     uint32_t loggedErrors() const { return loggedErrors_; }
+    // The delegate's render stats, with the display interop stats chained when `interop` is given.
+    ObscuraRenderStats renderStats(ObscuraInteropStats* interop = nullptr) const;
+    // The GPU time of each pass of the last render.
+    std::vector<ObscuraPassTiming> passTimings() const;
     // The Vulkan device the delegate renders with (from its render stats; empty before the first render).
     std::string deviceName() const;
     // Also print the plugin's info messages (device, loaded textures, the MSAA tagged share).
     void setVerbose(bool verbose) { verbose_ = verbose; }
+
+    // Reads a scene file as `open` does (USD layers, or glTF/FBX/OBJ through Assimp).
+    static std::variant<std::unique_ptr<usda::Stage>, SessionError> openStage(const std::string& scenePath,
+                                                                              const usda::CompositionLimits& limits);
+    // The scene read again (the viewer's reload): the delegate pulls from `host` from now on; the
+    // previous stage and host are destroyed.
+    void replaceScene(std::unique_ptr<usda::Stage> stage, std::unique_ptr<UsdSceneHost> host);
 
     // Applies "key=value" settings; returns the first problem.
     std::optional<SessionError> applySettings(const std::vector<std::string>& settings);

@@ -109,7 +109,7 @@ public:
         }
     }
 
-    std::variant<StageRenderSettings, std::string> read(const std::string& path) {
+    std::variant<std::vector<StageRenderSettings>, std::string> read(const std::string& path) {
         const usda::Prim* prim = stage_.find(path);
         if (!prim) return "render settings <" + path + "> do not exist";
         if (prim->typeName != "RenderSettings")
@@ -124,11 +124,22 @@ public:
             out.includedPurposes = list;
         }
         auto products = targets(*prim, "products", "RenderProduct");
-        if (products.size() > 1)
-            warn(*prim, "renders its first product only; " + std::to_string(products.size() - 1) + " more ignored",
-                 prim->where);
-        if (!products.empty()) readProduct(*products.front(), out);
-        return out;
+        if (products.empty()) return std::vector<StageRenderSettings>{out};
+        std::vector<StageRenderSettings> each;
+        for (const usda::Prim* product : products) {
+            StageRenderSettings settings = out;
+            readProduct(*product, settings);
+            const bool repeated = std::any_of(each.begin(), each.end(), [&](const StageRenderSettings& other) {
+                return !settings.productName.empty() && other.productName == settings.productName;
+            });
+            if (repeated) {
+                warn(*product, "productName \"" + settings.productName + "\" is an earlier product's; not written twice",
+                     product->where);
+                continue;
+            }
+            each.push_back(std::move(settings));
+        }
+        return each;
     }
 
 private:
@@ -138,8 +149,9 @@ private:
 
 }  // namespace
 
-std::variant<StageRenderSettings, std::string> readStageRenderSettings(const usda::Stage& stage, const std::string& path,
-                                                                       std::vector<HostMessage>& messages) {
+std::variant<std::vector<StageRenderSettings>, std::string> readStageRenderSettings(const usda::Stage& stage,
+                                                                                    const std::string& path,
+                                                                                    std::vector<HostMessage>& messages) {
     return Reader(stage, messages).read(path);
 }
 

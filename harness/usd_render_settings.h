@@ -15,7 +15,7 @@
 
 namespace obscura::harness {
 
-// What a RenderSettings prim and its first RenderProduct ask for (aspectRatioConformPolicy other
+// What a RenderSettings prim and one of its RenderProducts ask for (aspectRatioConformPolicy other
 // than expandAperture, Obscura's only one, and dataWindowNDC other than the whole image are
 // reported and not honoured); unset fields are not authored
 // (the product's own opinions win over the settings', as UsdRenderProduct inherits
@@ -32,11 +32,13 @@ struct StageRenderSettings {
     std::vector<std::string> aovs;                  // Obscura's AOV names, from the product's orderedVars
 };
 
-// The RenderSettings prim `path` (from --render-settings or the stage's renderSettingsPrimPath),
-// or why it cannot be used (no such prim, not a RenderSettings prim). Bad values on it, its
-// product or its vars (wrong types, missing relationship targets, RenderVars no AOV answers) are
-// reported in `messages` with the prim and where it is authored, and left out.
-std::variant<StageRenderSettings, std::string> readStageRenderSettings(const usda::Stage& stage, const std::string& path,
-                                                                       std::vector<HostMessage>& messages);
+// The RenderSettings prim `path` (from --render-settings or the stage's renderSettingsPrimPath) as
+// one StageRenderSettings per product, in the order of its `products` (one without a product name
+// when it has none), or why it cannot be used (no such prim, not a RenderSettings prim). Bad
+// values on it, its products or their vars (wrong types, missing relationship targets, RenderVars
+// no AOV answers) are reported in `messages` with the prim and where it is authored, and left out.
+std::variant<std::vector<StageRenderSettings>, std::string> readStageRenderSettings(const usda::Stage& stage,
+                                                                                    const std::string& path,
+                                                                                    std::vector<HostMessage>& messages);
 
 }  // namespace obscura::harness

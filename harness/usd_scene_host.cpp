@@ -1,7 +1,9 @@
 #include "harness/usd_scene_host.h"
 
+#include "harness/materialx_surface.h"
 #include "harness/shading_network.h"
 #include "harness/usda/matrix4.h"
+#include "harness/usda/skinning.h"
 
 #include <algorithm>
 #include <cmath>
@@ -36,19 +38,27 @@ const std::map<std::string, std::string> kPrimTypes = {
 };
 
 // Types that organise a scene and are not drawn themselves.
-const std::set<std::string> kStructuralTypes = {"", "Xform", "Scope", "Shader", "NodeGraph", "GeomSubset",
-                                                "RenderSettings", "RenderProduct", "RenderVar"};
+// UsdSkel's prims pose the prims they skin (usda/skinning.h).
+// XXX: Storm draws a Skeleton's bones as a guide mesh; they are not drawn here.
+const std::set<std::string> kStructuralTypes = {"",           "Xform",         "Scope",        "Shader",
+                                                "NodeGraph",  "GeomSubset",    "RenderSettings", "RenderProduct",
+                                                "RenderVar",  "SkelRoot",      "Skeleton",     "SkelAnimation",
+                                                "BlendShape"};
+
+bool isPointBased(const std::string& type) { return type == "Mesh" || type == "BasisCurves" || type == "Points"; }
 
 ObscuraDirtyBits dirtyBitFor(const std::string& attribute) {
     if (attribute == "points" || attribute == "positions" || attribute == "orientations" || attribute == "scales")
         return OBSCURA_DIRTY_POINTS;
     if (attribute == "protoIndices") return OBSCURA_DIRTY_TOPOLOGY;
     if (attribute == "invisibleIds") return OBSCURA_DIRTY_VISIBILITY;
-    if (attribute == "normals") return OBSCURA_DIRTY_NORMALS;
+    if (attribute == "normals" || attribute == "primvars:normals") return OBSCURA_DIRTY_NORMALS;
     if (attribute.rfind("primvars:", 0) == 0) return OBSCURA_DIRTY_PRIMVAR;
     if (attribute == "faceVertexCounts" || attribute == "faceVertexIndices" || attribute == "curveVertexCounts")
         return OBSCURA_DIRTY_TOPOLOGY;
-    if (attribute == "visibility") return OBSCURA_DIRTY_VISIBILITY;
+    // Purpose is pulled with visibility (what decides whether a prim draws).
+    if (attribute == "visibility" || attribute == "purpose") return OBSCURA_DIRTY_VISIBILITY;
+    if (attribute == "doubleSided") return OBSCURA_DIRTY_DOUBLE_SIDED;
     if (attribute.rfind("xformOp", 0) == 0) return OBSCURA_DIRTY_TRANSFORM;
     return OBSCURA_DIRTY_PARAMS;
 }
@@ -99,19 +109,23 @@ std::string int32RangeProblem(const usda::Value& value) {
 }  // namespace
 
 const usda::Prim* UsdSceneHost::surfaceShader(const usda::Prim& material, std::string& problem) const {
+    // UsdShadeMaterial::ComputeSurfaceSource: the universal render context's outputs:surface, else
+    // MaterialX's outputs:mtlx:surface (what usdMtlx and MaterialX-authoring tools write).
     const usda::Attribute* surface = material.attribute("outputs:surface");
+    if (!surface || !surface->connection) surface = material.attribute("outputs:mtlx:surface");
     if (!surface || !surface->connection) {
         problem = "outputs:surface is not connected";
         return nullptr;
     }
     auto source = connectionSource(stage_, *surface);
     if (auto* reason = std::get_if<std::string>(&source)) {
-        problem = "outputs:surface: " + *reason;
+        problem = surface->name + ": " + *reason;
         return nullptr;
     }
     const ConnectionSource& found = std::get<ConnectionSource>(source);
-    if (found.attribute || shaderId(*found.prim) != "UsdPreviewSurface") {
-        problem = "no UsdPreviewSurface on outputs:surface (it leads to " + found.prim->path + "." + found.property + ")";
+    if (found.attribute) {
+        problem = "no shader on " + surface->name + " (it leads to the value of " + found.prim->path + "." +
+                  found.property + ")";
         return nullptr;
     }
     return found.prim;
@@ -169,7 +183,8 @@ std::string UsdSceneHost::primvarCountProblem(const usda::Prim& prim, const usda
            std::to_string(expected * elementSize) + "; ignored";
 }
 
-ObscuraStatus UsdSceneHost::populate(const ObscuraApiV1& api, ObscuraDelegate delegate) {
+std::map<std::string, std::string> UsdSceneHost::scan() {
+    std::map<std::string, std::string> found;
     std::map<std::string, int> unsupported;
     for (const usda::Prim* prim : stage_.prims()) {
         auto it = kPrimTypes.find(prim->typeName);
@@ -188,20 +203,139 @@ ObscuraStatus UsdSceneHost::populate(const ObscuraApiV1& api, ObscuraDelegate de
                          surface ? surface->where : prim->where);
                 continue;
             }
-            surfaces_[prim->path] = shader;
+            // UsdPreviewSurface is served as it is; any other surface (MaterialX node
+            // definitions, or a base colour to fall back on) through its mapping.
+            if (shaderId(*shader) == "UsdPreviewSurface") {
+                surfaces_[prim->path] = shader;
+            } else {
+                mappedSurfaces_[prim->path] = MappedSurface{shader, std::nullopt, {}};
+                mappedSurface(prim->path, stage_.metadata().startTimeCode.value_or(0.0));  // reports its problems
+            }
         }
+        if (isPointBased(prim->typeName)) bindSkeleton(*prim);
         if (it->second == "instancer") {
             if (const usda::Relationship* protos = prim->relationship("prototypes"))
                 for (const auto& root : protos->targets)
                     if (const usda::Prim* r = stage_.find(root)) prototypeRoots_[root] = r->parent;
         }
-        ObscuraStatus s = api.insertPrim(delegate, it->second.c_str(), prim->path.c_str());
-        if (s != OBSCURA_OK) return s;
-        primTypes_[prim->path] = it->second;
+        found[prim->path] = it->second;
     }
     for (const auto& [type, count] : unsupported)
         warnOnce("type:" + type, "prim type '" + type + "' is not supported yet; " + std::to_string(count) +
                                      " prim(s) skipped");
+    return found;
+}
+
+ObscuraStatus UsdSceneHost::populate(const ObscuraApiV1& api, ObscuraDelegate delegate) {
+    for (const auto& [path, type] : scan()) {
+        ObscuraStatus s = api.insertPrim(delegate, type.c_str(), path.c_str());
+        if (s != OBSCURA_OK) return s;
+        primTypes_[path] = type;
+    }
+    return OBSCURA_OK;
+}
+
+namespace {
+
+bool sameValue(const usda::Value& a, const usda::Value& b) {
+    return a.typeName == b.typeName && a.isArray == b.isArray && a.tupleSize == b.tupleSize && a.numbers == b.numbers &&
+           a.strings == b.strings && a.blocked == b.blocked;
+}
+
+template <typename Map>
+bool sameValues(const Map& a, const Map& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const auto& x, const auto& y) {
+               return x.first == y.first && sameValue(x.second, y.second);
+           });
+}
+
+bool sameAttribute(const usda::Attribute& a, const usda::Attribute& b) {
+    const bool defaults = a.defaultValue.has_value() == b.defaultValue.has_value() &&
+                          (!a.defaultValue || sameValue(*a.defaultValue, *b.defaultValue));
+    return defaults && a.typeName == b.typeName && a.connection == b.connection && sameValues(a.timeSamples, b.timeSamples) &&
+           sameValues(a.metadata, b.metadata);
+}
+
+// Whether the attributes of `a`, `b` and of their descendants (a material's shaders) are the same.
+bool sameSubtree(const usda::Prim& a, const usda::Prim& b) {
+    if (a.attributes.size() != b.attributes.size() || a.children.size() != b.children.size() || a.typeName != b.typeName)
+        return false;
+    for (const auto& [name, attribute] : a.attributes) {
+        const usda::Attribute* other = b.attribute(name);
+        if (!other || !sameAttribute(attribute, *other)) return false;
+    }
+    for (size_t i = 0; i < a.children.size(); ++i)
+        if (a.children[i]->name != b.children[i]->name || !sameSubtree(*a.children[i], *b.children[i])) return false;
+    return true;
+}
+
+}  // namespace
+
+ObscuraDirtyBits UsdSceneHost::changes(const usda::Prim& prim, const UsdSceneHost& previous, const usda::Prim& before,
+                                       double time) const {
+    ObscuraDirtyBits bits = 0;
+    std::set<std::string> names;
+    for (const auto& [name, a] : prim.attributes) names.insert(name);
+    for (const auto& [name, a] : before.attributes) names.insert(name);
+    for (const std::string& name : names) {
+        const usda::Attribute* a = prim.attribute(name);
+        const usda::Attribute* b = before.attribute(name);
+        if (!a || !b || !sameAttribute(*a, *b)) bits |= dirtyBitFor(name);
+    }
+    std::set<std::string> relationships;
+    for (const auto& [name, r] : prim.relationships) relationships.insert(name);
+    for (const auto& [name, r] : before.relationships) relationships.insert(name);
+    for (const std::string& name : relationships) {
+        const usda::Relationship* a = prim.relationship(name);
+        const usda::Relationship* b = before.relationship(name);
+        if (a && b && a->targets == b->targets) continue;
+        bits |= name == "prototypes" ? OBSCURA_DIRTY_ALL : name == "material:binding" ? OBSCURA_DIRTY_MATERIAL_ID
+                                                                                      : OBSCURA_DIRTY_PARAMS;
+    }
+    // What the prim inherits from its ancestors: transform, visibility, purpose, material binding.
+    const usda::Stage& old = previous.stage_;
+    if (stage_.transformSampleTimes(prim) != old.transformSampleTimes(before) ||
+        stage_.worldTransform(prim, time) != old.worldTransform(before, time))
+        bits |= OBSCURA_DIRTY_TRANSFORM;
+    if (stage_.isVisible(prim, time) != old.isVisible(before, time)) bits |= OBSCURA_DIRTY_VISIBILITY;
+    const usda::Attribute* purpose = stage_.purposeOpinion(prim);
+    const usda::Attribute* purposeBefore = old.purposeOpinion(before);
+    if ((purpose == nullptr) != (purposeBefore == nullptr) || (purpose && !sameAttribute(*purpose, *purposeBefore)))
+        bits |= dirtyBitFor("purpose");
+    if (boundMaterial(prim) != previous.boundMaterial(before)) bits |= OBSCURA_DIRTY_MATERIAL_ID;
+    // A material's values are its surface shader's and its textures': any change in its network.
+    auto surface = surfaces_.find(prim.path);
+    auto surfaceBefore = previous.surfaces_.find(before.path);
+    if (surface != surfaces_.end() && surfaceBefore != previous.surfaces_.end() &&
+        (!sameSubtree(prim, before) || !sameSubtree(*surface->second, *surfaceBefore->second)))
+        bits |= OBSCURA_DIRTY_PARAMS;
+    return bits;
+}
+
+ObscuraStatus UsdSceneHost::adoptChanges(const UsdSceneHost& previous, const ObscuraApiV1& api,
+                                         ObscuraDelegate delegate, double time, size_t& touched) {
+    touched = 0;
+    const std::map<std::string, std::string> now = scan();
+    for (const auto& [path, type] : previous.primTypes_) {
+        auto it = now.find(path);
+        if (it != now.end() && it->second == type) continue;
+        ObscuraStatus s = api.removePrim(delegate, path.c_str());
+        if (s != OBSCURA_OK) return s;
+        ++touched;
+    }
+    for (const auto& [path, type] : now) {
+        auto it = previous.primTypes_.find(path);
+        ObscuraStatus s = OBSCURA_OK;
+        if (it == previous.primTypes_.end() || it->second != type) {
+            s = api.insertPrim(delegate, type.c_str(), path.c_str());
+            ++touched;
+        } else if (ObscuraDirtyBits bits = changes(*stage_.find(path), previous, *previous.stage_.find(path), time)) {
+            s = api.markDirty(delegate, path.c_str(), bits);
+            ++touched;
+        }
+        if (s != OBSCURA_OK) return s;
+        primTypes_[path] = type;
+    }
     return OBSCURA_OK;
 }
 
@@ -212,6 +346,11 @@ ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDele
         if (!stage_.transformSampleTimes(*prim).empty()) bits |= OBSCURA_DIRTY_TRANSFORM;
         // Visibility is inherited: an ancestor's samples change the prim's computed visibility.
         if (stage_.hasAnimatedVisibility(*prim)) bits |= OBSCURA_DIRTY_VISIBILITY;
+        if (auto skin = skinnings_.find(path); skin != skinnings_.end() && usda::isSkinningAnimated(stage_, skin->second))
+            bits |= OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_NORMALS;
+        // XXX: a mapped (MaterialX) surface is read at each frame's time but not marked dirty when its
+        // network is animated.
+        if (mappedSurfaces_.count(path)) continue;
         const usda::Prim* valuesFrom = type == "material" ? surfaces_.at(path) : prim;
         for (const auto& [name, attr] : valuesFrom->attributes) {
             // A surface input takes its value from the interface input it connects to.
@@ -230,14 +369,18 @@ ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDele
     return OBSCURA_OK;
 }
 
+std::string aovBufferFormat(const std::string& aov) {
+    return aov == "color"                            ? "float32Vec4"
+           : aov == "depth"                          ? "float32"
+           : aov == "primId" || aov == "instanceId" ? "int32"
+           : aov == "display"                        ? "unorm8Vec4"
+                                                     : "float32Vec3";
+}
+
 std::string UsdSceneHost::addRenderBuffer(const ObscuraApiV1& api, ObscuraDelegate delegate, const std::string& aov,
                                           int width, int height) {
     std::string path = "/Render/Buffers/" + aov;
-    std::string format = aov == "color"     ? "float32Vec4"
-                         : aov == "depth"   ? "float32"
-                         : aov == "primId" || aov == "instanceId" ? "int32"
-                         : aov == "display" ? "unorm8Vec4"
-                                            : "float32Vec3";
+    std::string format = aovBufferFormat(aov);
     bool exists = renderBuffers_.count(path) > 0;
     renderBuffers_[path] = {width, height, format};
     if (!exists) api.insertPrim(delegate, "renderBuffer", path.c_str());
@@ -251,16 +394,17 @@ std::string UsdSceneHost::defaultCamera() const {
     return {};
 }
 
-std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDelegate delegate, double time) {
+SceneBounds UsdSceneHost::bounds(double time) {
     // XXX: only point-based prims (Mesh, BasisCurves, Points) are framed, by their points; implicit
     // gprims (Cube, Sphere...) are left out of the bounds.
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (const usda::Prim* prim : stage_.prims()) {
-        const bool pointBased = prim->typeName == "Mesh" || prim->typeName == "BasisCurves" || prim->typeName == "Points";
-        if (!pointBased || prototypeSpace(*prim)) continue;
+        if (!isPointBased(prim->typeName) || prototypeSpace(*prim)) continue;
         const usda::Attribute* points = prim->attribute("points");
         auto value = points ? points->evaluate(time) : std::nullopt;
         if (!value || value->tupleSize != 3) continue;
+        if (auto skin = skinnings_.find(prim->path); skin != skinnings_.end())
+            applySkinning(*prim, skin->second, *points, *value, time);
         auto m = stage_.worldTransform(*prim, time);
         for (size_t i = 0; i + 2 < value->numbers.size(); i += 3) {
             const double* p = &value->numbers[i];
@@ -272,13 +416,33 @@ std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDeleg
             }
         }
     }
-    double centre[3], radius = 0;
+    SceneBounds b;
+    double radius = 0;
     for (int c = 0; c < 3; ++c) {
         if (lo[c] > hi[c]) lo[c] = hi[c] = 0;  // nothing to frame: look at the origin
-        centre[c] = 0.5 * (lo[c] + hi[c]);
+        b.centre[size_t(c)] = 0.5 * (lo[c] + hi[c]);
         radius += 0.25 * (hi[c] - lo[c]) * (hi[c] - lo[c]);
     }
-    radius = std::max(std::sqrt(radius), 1e-3);
+    b.radius = std::max(std::sqrt(radius), 1e-3);
+    return b;
+}
+
+std::string UsdSceneHost::instancerOf(const std::string& path) const {
+    for (const auto& [instancer, type] : primTypes_) {
+        if (type != "instancer") continue;
+        const usda::Prim* prim = stage_.find(instancer);
+        const usda::Relationship* protos = prim ? prim->relationship("prototypes") : nullptr;
+        if (!protos) continue;
+        for (const auto& root : protos->targets)
+            if (path == root || path.rfind(root + "/", 0) == 0) return instancer;
+    }
+    return {};
+}
+
+std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDelegate delegate, double time) {
+    const SceneBounds b = bounds(time);
+    const double* centre = b.centre.data();
+    const double radius = b.radius;
     // The schema's default lens: 50 mm, 15.2908 mm vertical aperture; the bounding sphere fits
     // the narrower (vertical) field of view.
     double halfFov = std::atan(15.2908 / 2.0 / 50.0);
@@ -303,8 +467,13 @@ const usda::Attribute* UsdSceneHost::resolveAttribute(const std::string& path, c
         auto material = boundMaterial(*prim);
         auto bound = material ? surfaces_.find(*material) : surfaces_.end();
         std::string primvar = bound != surfaces_.end() ? texturePrimvar(stage_, *bound->second) : "st";
+        if (auto mapped = material ? mappedSurfaces_.find(*material) : mappedSurfaces_.end(); mapped != mappedSurfaces_.end())
+            primvar = mapped->second.mapping.stPrimvar;
         return prim->attribute("primvars:" + primvar);
     }
+    // UsdGeomPointBased: primvars:normals, when authored, takes precedence over normals.
+    if (attribute == "normals")
+        if (const usda::Attribute* primvar = prim->attribute("primvars:normals")) return primvar;
     if (const usda::Attribute* a = prim->attribute(attribute)) return a;
     // UsdLux before 21.02 named light inputs without the "inputs:" prefix.
     if (startsWith(attribute, "inputs:")) return prim->attribute(attribute.substr(7));
@@ -414,6 +583,10 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         *out = {OBSCURA_VALUE_PATH, 0, 1, stringPointers_.data()};
         return OBSCURA_OK;
     }
+    if (const MaterialXMapping* mapped = mappedSurface(path, time)) {
+        const auto value = mapped->values.find(attribute);
+        return value == mapped->values.end() ? OBSCURA_ERROR_NOT_FOUND : fill(value->second, out);
+    }
     auto surface = surfaces_.find(path);
     if (surface != surfaces_.end() && startsWith(attribute, "obscura:")) {
         auto texture = flattenedTextureAttribute(stage_, *surface->second, attribute, time);
@@ -464,7 +637,66 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
             return OBSCURA_ERROR_NOT_FOUND;
         }
     }
+    if (auto skin = skinnings_.find(path); skin != skinnings_.end() && (attribute == "points" || attribute == "normals"))
+        applySkinning(*prim, skin->second, *a, *value, time);
     return fill(*value, out);
+}
+
+const MaterialXMapping* UsdSceneHost::mappedSurface(const std::string& material, double time) {
+    const auto it = mappedSurfaces_.find(material);
+    if (it == mappedSurfaces_.end()) return nullptr;
+    MappedSurface& mapped = it->second;
+    if (mapped.time != time) {
+        mapped.mapping = mapMaterialXSurface(stage_, *mapped.shader, time);
+        mapped.time = time;
+        for (const MaterialProblem& problem : mapped.mapping.problems)
+            // Once per node as authored: materials that share a document share its nodes.
+            warnOnce("mapped:" + problem.where.file + ":" + std::to_string(problem.where.line) + ":" +
+                         std::to_string(problem.where.column),
+                     material + ": " + problem.message, problem.where);
+    }
+    return &mapped.mapping;
+}
+
+void UsdSceneHost::bindSkeleton(const usda::Prim& prim) {
+    auto skinning = usda::resolveSkinning(stage_, prim);
+    if (!skinning) return;
+    if (auto* problem = std::get_if<usda::SkinningProblem>(&*skinning)) {
+        warnOnce("skel:" + prim.path, prim.path + ": " + problem->message + "; drawn unskinned", problem->where, true);
+        return;
+    }
+    skinnings_.emplace(prim.path, std::get<usda::Skinning>(std::move(*skinning)));
+}
+
+void UsdSceneHost::applySkinning(const usda::Prim& prim, const usda::Skinning& skinning, const usda::Attribute& attribute,
+                         usda::Value& value, double time) {
+    if (value.tupleSize != 3) return;
+    std::string problem;
+    std::vector<double> skinned;
+    if (attribute.name == "points") {  // else normals or primvars:normals
+        skinned = usda::skinPoints(stage_, skinning, value.numbers, time, &problem);
+    } else {
+        // Normals follow their points: one per point (vertex, varying: the schema's fallback), or one
+        // per face-vertex of a mesh through its index, as UsdSkelImaging skins them.
+        // XXX: constant and uniform normals are left unskinned.
+        const usda::Attribute* points = prim.attribute("points");
+        auto rest = points ? points->evaluate(time) : std::nullopt;
+        const auto interpolation = attribute.metadata.find("interpolation");
+        const std::string mode = interpolation != attribute.metadata.end() && !interpolation->second.strings.empty()
+                                     ? interpolation->second.strings.front()
+                                     : "vertex";
+        const bool faceVarying = mode == "faceVarying" && prim.typeName == "Mesh";
+        if (mode != "vertex" && mode != "varying" && !faceVarying) return;
+        const usda::Attribute* indices = faceVarying ? prim.attribute("faceVertexIndices") : nullptr;
+        auto indexValues = indices ? indices->evaluate(time) : std::nullopt;
+        if (!rest || (faceVarying && !indexValues)) return;
+        skinned = usda::skinNormals(stage_, skinning, value.numbers, indexValues ? &indexValues->numbers : nullptr,
+                                    rest->size(), time, &problem);
+    }
+    if (!problem.empty())
+        warnOnce("skinning:" + prim.path, prim.path + ": " + problem + (skinned.empty() ? "; drawn unskinned" : ""),
+                 attribute.where, true);
+    if (!skinned.empty()) value.numbers = std::move(skinned);
 }
 
 ObscuraStatus UsdSceneHost::computedPurpose(const usda::Prim& prim, ObscuraValue* out) {

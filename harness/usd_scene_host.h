@@ -4,6 +4,8 @@
 #pragma once
 
 #include "harness/delegate_message.h"
+#include "harness/materialx_surface.h"
+#include "harness/usda/skinning.h"
 #include "harness/usda/stage.h"
 
 #include <obscura/obscura.h>
@@ -18,6 +20,15 @@
 
 namespace obscura::harness {
 
+// A sphere around what a scene draws (centre and radius in world space).
+struct SceneBounds {
+    std::array<double, 3> centre{};
+    double radius = 0.0;
+};
+
+// The render buffer format an AOV needs (the ABI's AOV table).
+std::string aovBufferFormat(const std::string& aov);
+
 struct HostMessage {
     bool error;
     std::string text;
@@ -30,6 +41,13 @@ public:
 
     // Inserts every supported prim into the delegate; unknown prim types are reported once each.
     ObscuraStatus populate(const ObscuraApiV1& api, ObscuraDelegate delegate);
+    // After the scene's files changed on disk: this host holds the stage read again and `previous`
+    // the one the delegate was populated from (and still pulls from until the host's callbacks
+    // move to this one). Inserts the prims that are new, removes those that went and marks dirty
+    // only what changed in the others (USD's change processing, by comparing the two stages);
+    // returns how many prims it touched, through `touched`.
+    ObscuraStatus adoptChanges(const UsdSceneHost& previous, const ObscuraApiV1& api, ObscuraDelegate delegate,
+                               double time, size_t& touched);
     // Marks dirty the prims whose values change between two time codes (for --frames).
     ObscuraStatus markTimeVarying(const ObscuraApiV1& api, ObscuraDelegate delegate);
     const ObscuraSceneDelegate& sceneDelegate() const { return sceneDelegate_; }
@@ -40,6 +58,13 @@ public:
 
     // The first camera of the stage, or "" if there is none.
     std::string defaultCamera() const;
+    // The bounding sphere of every point-based prim at `time`, skinned prims posed (the origin, radius
+    // 1e-3, for none).
+    SceneBounds bounds(double time);
+    // Every prim inserted into the delegate, by path, with its delegate type.
+    const std::map<std::string, std::string>& insertedPrims() const { return primTypes_; }
+    // The PointInstancer whose prototypes hold `path`, or "" (picking names the instancer).
+    std::string instancerOf(const std::string& path) const;
     // For scenes without a camera (typical of OBJ files): inserts a camera that frames the
     // bounds of every mesh at `time` from the front (+Z), as usdview's free camera does.
     std::string addFramingCamera(const ObscuraApiV1& api, ObscuraDelegate delegate, double time);
@@ -59,10 +84,22 @@ private:
     static ObscuraStatus sampleTransformThunk(void* user, const char* path, double t0, double t1, uint32_t maxSamples,
                                               double* times, double* matrices, uint32_t* count);
     ObscuraStatus getValue(const std::string& path, const std::string& attribute, double time, ObscuraValue* out);
+    // The stage's prims the delegate draws, by path, with their delegate types; fills surfaces_ and
+    // prototypeRoots_ and reports what it leaves out.
+    std::map<std::string, std::string> scan();
+    // The dirty bits that cover how `prim` (of this stage) differs from `before` (of `previous`'s).
+    ObscuraDirtyBits changes(const usda::Prim& prim, const UsdSceneHost& previous, const usda::Prim& before,
+                             double time) const;
     ObscuraStatus fill(const usda::Value& value, ObscuraValue* out);
-    // The UsdPreviewSurface a Material's outputs:surface leads to (through NodeGraph outputs), or
-    // null with the reason.
+    // The surface shader a Material's outputs:surface (else outputs:mtlx:surface) leads to, through
+    // NodeGraph outputs, or null with the reason.
     const usda::Prim* surfaceShader(const usda::Prim& material, std::string& problem) const;
+    // UsdSkel: the prim's binding to a skeleton, kept when it is usable, reported when it is not.
+    void bindSkeleton(const usda::Prim& prim);
+    // A skinned prim's `points` or `normals` (`value`, evaluated at `time`) skinned in place; left as
+    // they are, with the problem reported, when the influences do not fit them.
+    void applySkinning(const usda::Prim& prim, const usda::Skinning& skinning, const usda::Attribute& attribute,
+               usda::Value& value, double time);
     // UsdGeomImageable's computed purpose, inherited from the nearest ancestor that authors one.
     ObscuraStatus computedPurpose(const usda::Prim& prim, ObscuraValue* out);
     // The attribute a delegate name maps to on the USD prim (materials read their surface shader).
@@ -78,6 +115,18 @@ private:
     ObscuraSceneDelegate sceneDelegate_{};
     std::map<std::string, std::string> primTypes_;        // delegate path -> delegate type
     std::map<std::string, const usda::Prim*> surfaces_;   // material path -> UsdPreviewSurface shader
+    std::map<std::string, usda::Skinning> skinnings_;     // skinned prim path -> its binding
+    // Materials whose surface is not UsdPreviewSurface (MaterialX node definitions, or surfaces
+    // drawn with their base colour): their mapping onto UsdPreviewSurface's inputs at one time.
+    struct MappedSurface {
+        const usda::Prim* shader;
+        std::optional<double> time;
+        MaterialXMapping mapping;
+    };
+    std::map<std::string, MappedSurface> mappedSurfaces_;
+    // The mapping of a material's surface at `time` (its problems reported once), or null when the
+    // material is not mapped.
+    const MaterialXMapping* mappedSurface(const std::string& material, double time);
     // PointInstancer prototype roots -> the prim whose space instances live in (the root's
     // parent: USD includes the root's own transform in each instance, not its ancestors').
     std::map<std::string, const usda::Prim*> prototypeRoots_;

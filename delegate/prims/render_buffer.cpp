@@ -1,6 +1,7 @@
 #include "delegate/prims/render_buffer.h"
 
 #include "gpu/device.h"
+#include "gpu/external_memory.h"
 
 namespace obscura::delegate {
 
@@ -43,15 +44,23 @@ void RenderBuffer::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx)
 
 const gpu::BufferPtr& RenderBuffer::storage(gpu::Device& device) {
     VkDeviceSize size = VkDeviceSize(width_) * height_ * bytesPerPixel();
-    if (!storage_ || storage_->size != size)
-        storage_ = device.createBuffer(size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                       gpu::MemoryUsage::Readback, path().c_str());
+    if (!storage_ || storage_->size != size || storageExported_ != exported_) {
+        // An importer reads an exported buffer as a storage buffer or copies from it.
+        storage_ = exported_ ? gpu::createExportableBuffer(device, size,
+                                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                                              VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                                              VK_BUFFER_USAGE_TRANSFER_DST_BIT)
+                             : device.createBuffer(size,
+                                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                   gpu::MemoryUsage::Readback, path().c_str());
+        storageExported_ = exported_;
+    }
     return storage_;
 }
 
 const gpu::BufferPtr& RenderBuffer::deviceStaging(gpu::Device& device) {
     const gpu::BufferPtr& host = storage(device);
-    if (host->allocation.flags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) {
+    if (exported_ || (host->allocation.flags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
         staging_.reset();
     } else if (!staging_ || staging_->size != host->size) {
         staging_ = device.createBuffer(host->size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,

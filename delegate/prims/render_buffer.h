@@ -13,12 +13,18 @@ public:
     uint32_t height() const { return height_; }
     ObscuraFormat format() const { return format_; }
     size_t bytesPerPixel() const;
-    // (Re)allocates the storage when the size or format changed.
+    // (Re)allocates the storage when the size or format changed: host-visible memory the host
+    // maps, or, once exported, exportable device memory the frame writes directly.
     const gpu::BufferPtr& storage(gpu::Device& device);
     // Where the GPU writes the AOV when the host-visible storage is not device-local (discrete
     // GPUs): shader writes go to video memory and one copy moves them to the host, instead of
-    // every shader write crossing the bus. Null when the storage itself is device-local.
+    // every shader write crossing the bus. Null when the storage itself is device-local, and for an
+    // exported buffer.
     const gpu::BufferPtr& deviceStaging(gpu::Device& device);
+    // The ABI's display interop (exportRenderBuffer): from now on the storage is exportable device
+    // memory, made again when the size or format changes.
+    void setExported() { exported_ = true; }
+    bool exported() const { return exported_; }
     bool rendered() const { return rendered_; }
     void setRendered(bool r) { rendered_ = r; }
     bool mapped = false;
@@ -30,6 +36,8 @@ private:
     gpu::BufferPtr storage_;
     gpu::BufferPtr staging_;
     bool rendered_ = false;
+    bool exported_ = false;
+    bool storageExported_ = false;  // what storage_ was made as
 };
 
 ObscuraFormat parseFormat(const std::string& token);

@@ -122,14 +122,23 @@ std::string convert(const importer::Source& source, importer::Warnings& warnings
     const std::optional<aiMatrix4x4> correction =
         source.format == SourceFormat::Fbx ? fbxAxisCorrection(source.scene, warnings) : std::nullopt;
     importer::UsdaWriter out(layerMetadata(source, timeline));
-    out.beginPrim("Xform", "Root");
+    // UsdSkel skins only beneath a SkelRoot.
+    const bool skinned = importer::hasSkinnedMeshes(source.scene);
+    out.beginPrim(skinned ? "SkelRoot" : "Xform", "Root");
     importer::NameScope rootNames;
     const std::string looks = rootNames.claim("Looks", "Looks");
     out.beginPrim("Scope", looks);
     const std::vector<importer::MaterialBinding> materials =
         importer::writeMaterials(source, "/Root/" + looks, out, warnings);
     out.endPrim();
-    importer::writeRootContents(source, timeline, materials, correction, rootNames, out, warnings);
+    std::map<const aiMesh*, std::string> skeletons;
+    if (skinned) {
+        const std::string scope = rootNames.claim("Skeletons", "Skeletons");
+        out.beginPrim("Scope", scope);
+        skeletons = importer::writeSkeletons(source, timeline, "/Root/" + scope, out, warnings);
+        out.endPrim();
+    }
+    importer::writeRootContents(source, timeline, materials, skeletons, correction, rootNames, out, warnings);
     out.endPrim();
     return out.text();
 }

@@ -60,6 +60,8 @@ inline bool isFinite(const aiMatrix4x4& m) {
             if (!std::isfinite(m[row][column])) return false;
     return true;
 }
+// Assimp's matrices act on column vectors, USD's on row vectors: the USD matrix is the transpose.
+std::array<float, 16> toUsdMatrix(const aiMatrix4x4& m);
 // `xformOp:transform` set to `m` and the xformOpOrder naming it.
 void writeMatrixTransform(const aiMatrix4x4& m, UsdaWriter& out);
 
@@ -70,8 +72,21 @@ Timeline readTimeline(const aiScene& scene, Warnings& warnings);
 std::vector<MaterialBinding> writeMaterials(const Source& source, const std::string& looksPath, UsdaWriter& out,
                                             Warnings& warnings);
 
-void writeMesh(const aiMesh& mesh, const std::vector<MaterialBinding>& materials, NameScope& siblings,
-               UsdaWriter& out, Warnings& warnings);
+// `skeletons`: the Skeleton of each skinned mesh (writeSkeletons).
+void writeMesh(const aiMesh& mesh, const std::vector<MaterialBinding>& materials,
+               const std::map<const aiMesh*, std::string>& skeletons, NameScope& siblings, UsdaWriter& out,
+               Warnings& warnings);
+
+// UsdSkel (convert_skins.cpp). Whether any mesh has bones: Root is then a SkelRoot.
+bool hasSkinnedMeshes(const aiScene& scene);
+// Into the open scope at `scopePath`: a Skeleton (and its SkelAnimation) for each skinned mesh whose
+// bones are usable; their paths by mesh.
+std::map<const aiMesh*, std::string> writeSkeletons(const Source& source, const Timeline& timeline,
+                                                    const std::string& scopePath, UsdaWriter& out, Warnings& warnings);
+// Into the open Mesh: its skel:skeleton binding and joint influences, for the written vertices
+// (`writtenVertices`: the Assimp vertex of each point).
+void writeSkinBinding(const aiMesh& mesh, const std::vector<unsigned>& writtenVertices, const std::string& skeleton,
+                      UsdaWriter& out);
 
 void writeCamera(const Source& source, const aiCamera& camera, NameScope& siblings, UsdaWriter& out,
                  Warnings& warnings);
@@ -82,6 +97,7 @@ void writeLight(const Source& source, const aiLight& light, NameScope& siblings,
 // `rootCorrection`, the file's axes turned Y-up), its meshes, cameras and lights, and its child nodes
 // as Xforms. `names` holds the names already used under Root.
 void writeRootContents(const Source& source, const Timeline& timeline, const std::vector<MaterialBinding>& materials,
+                       const std::map<const aiMesh*, std::string>& skeletons,
                        const std::optional<aiMatrix4x4>& rootCorrection, NameScope& names, UsdaWriter& out,
                        Warnings& warnings);
 

@@ -58,7 +58,6 @@ std::string perVertex(const T* data, const Polygons& polygons, Format element) {
 }
 
 void warnAboutUnsupported(const aiMesh& mesh, const std::string& label, Warnings& warnings) {
-    if (mesh.HasBones()) warnings.add(label + ": skinning is not supported; the mesh is imported in its bind pose");
     if (mesh.mNumAnimMeshes > 0) warnings.add(label + ": morph targets are not supported; ignored");
     if (mesh.GetNumUVChannels() > 1) warnings.add(label + ": only the first texture coordinate set is imported");
     if (mesh.GetNumColorChannels() > 1) warnings.add(label + ": only the first vertex colour set is imported");
@@ -98,8 +97,9 @@ void writePrimvars(const aiMesh& mesh, const Polygons& polygons, const std::stri
 
 }  // namespace
 
-void writeMesh(const aiMesh& mesh, const std::vector<MaterialBinding>& materials, NameScope& siblings,
-               UsdaWriter& out, Warnings& warnings) {
+void writeMesh(const aiMesh& mesh, const std::vector<MaterialBinding>& materials,
+               const std::map<const aiMesh*, std::string>& skeletons, NameScope& siblings, UsdaWriter& out,
+               Warnings& warnings) {
     const std::string label = "mesh '" + std::string(mesh.mName.C_Str()) + "'";
     const Polygons polygons = polygonsOf(mesh);
     if (polygons.dropped > 0)
@@ -120,6 +120,8 @@ void writeMesh(const aiMesh& mesh, const std::vector<MaterialBinding>& materials
     out.property("int[] faceVertexIndices", integers(polygons.indices));
     out.property("point3f[] points", perVertex(mesh.mVertices, polygons, vector3));
     writePrimvars(mesh, polygons, label, out, warnings);
+    if (const auto skeleton = skeletons.find(&mesh); skeleton != skeletons.end())
+        writeSkinBinding(mesh, polygons.vertices, skeleton->second, out);
     // Imported meshes are final polygons, not subdivision cages.
     out.property("uniform token subdivisionScheme", stringLiteral("none"));
     if (material.doubleSided) out.property("uniform bool doubleSided", "1");

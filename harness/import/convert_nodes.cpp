@@ -11,11 +11,6 @@ namespace {
 
 constexpr std::string_view kTransformOp = "xformOp:transform";
 
-// Assimp's matrices act on column vectors, USD's on row vectors: the USD matrix is the transpose.
-std::array<float, 16> toUsdMatrix(const aiMatrix4x4& m) {
-    return {m.a1, m.b1, m.c1, m.d1, m.a2, m.b2, m.c2, m.d2, m.a3, m.b3, m.c3, m.d3, m.a4, m.b4, m.c4, m.d4};
-}
-
 std::string opOrder(const std::vector<std::string>& ops) {
     return array(ops.size(), [&](size_t i) { return stringLiteral(ops[i]); });
 }
@@ -82,8 +77,9 @@ void writeNodeTransform(const aiNode& node, const aiNodeAnim* channel, const std
 class NodeWriter {
 public:
     NodeWriter(const Source& source, const Timeline& timeline, const std::vector<MaterialBinding>& materials,
-               UsdaWriter& out, Warnings& warnings)
-        : source_(source), timeline_(timeline), materials_(materials), out_(out), warnings_(warnings) {
+               const std::map<const aiMesh*, std::string>& skeletons, UsdaWriter& out, Warnings& warnings)
+        : source_(source), timeline_(timeline), materials_(materials), skeletons_(skeletons), out_(out),
+          warnings_(warnings) {
         const aiScene& scene = source.scene;
         for (unsigned i = 0; i < scene.mNumCameras; ++i) attach(*scene.mCameras[i], cameras_, "camera");
         for (unsigned i = 0; i < scene.mNumLights; ++i) attach(*scene.mLights[i], lights_, "light");
@@ -94,7 +90,7 @@ public:
         writeNodeTransform(node, channel == timeline_.channels.end() ? nullptr : channel->second, correction, out_,
                            warnings_);
         for (unsigned i = 0; i < node.mNumMeshes; ++i)
-            writeMesh(*source_.scene.mMeshes[node.mMeshes[i]], materials_, names, out_, warnings_);
+            writeMesh(*source_.scene.mMeshes[node.mMeshes[i]], materials_, skeletons_, names, out_, warnings_);
         for (auto [it, end] = cameras_.equal_range(&node); it != end; ++it)
             writeCamera(source_, *it->second, names, out_, warnings_);
         for (auto [it, end] = lights_.equal_range(&node); it != end; ++it)
@@ -122,6 +118,7 @@ private:
     const Source& source_;
     const Timeline& timeline_;
     const std::vector<MaterialBinding>& materials_;
+    const std::map<const aiMesh*, std::string>& skeletons_;
     UsdaWriter& out_;
     Warnings& warnings_;
     std::multimap<const aiNode*, const aiCamera*> cameras_;
@@ -143,6 +140,10 @@ void extendRange(std::optional<std::pair<double, double>>& range, const Key* key
 }
 
 }  // namespace
+
+std::array<float, 16> toUsdMatrix(const aiMatrix4x4& m) {
+    return {m.a1, m.b1, m.c1, m.d1, m.a2, m.b2, m.c2, m.d2, m.a3, m.b3, m.c3, m.d3, m.a4, m.b4, m.c4, m.d4};
+}
 
 void Warnings::add(const std::string& message) {
     if (seen_.insert(message).second) messages_.push_back(message);
@@ -183,9 +184,10 @@ Timeline readTimeline(const aiScene& scene, Warnings& warnings) {
 }
 
 void writeRootContents(const Source& source, const Timeline& timeline, const std::vector<MaterialBinding>& materials,
+                       const std::map<const aiMesh*, std::string>& skeletons,
                        const std::optional<aiMatrix4x4>& rootCorrection, NameScope& names, UsdaWriter& out,
                        Warnings& warnings) {
-    NodeWriter writer(source, timeline, materials, out, warnings);
+    NodeWriter writer(source, timeline, materials, skeletons, out, warnings);
     writer.writeContents(*source.scene.mRootNode, rootCorrection, names);
 }
 

@@ -74,9 +74,10 @@ void UsdaWriter::property(std::string_view declaration, std::string_view value) 
     line(std::string(declaration) + " = " + std::string(value));
 }
 
-void UsdaWriter::vertexProperty(std::string_view declaration, std::string_view value) {
+void UsdaWriter::vertexProperty(std::string_view declaration, std::string_view value, size_t elementSize) {
     line(std::string(declaration) + " = " + std::string(value) + " (");
     ++depth_;
+    if (elementSize != 1) line("elementSize = " + std::to_string(elementSize));
     line("interpolation = \"vertex\"");
     --depth_;
     line(")");

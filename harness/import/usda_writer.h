@@ -23,8 +23,9 @@ public:
     void endPrim();
     // `<declaration> = <value>`, e.g. property("point3f[] points", "[(0, 0, 0)]").
     void property(std::string_view declaration, std::string_view value);
-    // A per-vertex primvar or normals: the value followed by `( interpolation = "vertex" )`.
-    void vertexProperty(std::string_view declaration, std::string_view value);
+    // A per-vertex primvar or normals: the value followed by `( interpolation = "vertex" )`, with
+    // `elementSize` values per vertex.
+    void vertexProperty(std::string_view declaration, std::string_view value, size_t elementSize = 1);
     // A declaration without a value ("token outputs:surface").
     void declare(std::string_view declaration);
     // `<declaration>.timeSamples = { time: value, ... }`.

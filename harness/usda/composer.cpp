@@ -1,5 +1,6 @@
 #include "harness/usda/composer.h"
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -63,7 +64,7 @@ Relationship composeRelationship(const std::string& name,
                                  const std::vector<std::pair<const RelationshipSpec*, const IndexNode*>>& specs) {
     std::vector<std::pair<const ListOp<std::string>*, const IndexNode*>> targets;
     for (const auto& [spec, node] : specs) targets.emplace_back(&spec->targets, node);
-    return Relationship{name, composeMappedPaths(targets)};
+    return Relationship{name, composeMappedPaths(targets), specs.front().first->where};
 }
 
 void readStageMetadata(const Layer& layer, StageMetadata& out) {
@@ -123,13 +124,55 @@ std::unique_ptr<Stage> Composer::composeStage(const Layer& rootLayer) {
     stage->root_->path = std::string(1, '/');
     stage->primsByPath_["/"] = stage->root_.get();
     std::vector<const PrimSpec*> roots;
-    for (const Layer* layer : rootStack_->layers) roots.push_back(&layer->pseudoRoot);
+    for (const Layer* layer : rootStack_->layers) {
+        roots.push_back(&layer->pseudoRoot);
+        collectRelocates(layer->metadata, SourceLocation{layer->identifier, 0, 0});
+        collectRelocates(layer->pseudoRoot);
+    }
+    indexer_.setRelocations(*rootStack_, sourcesByTarget_);
     composeChildren(*stage, *stage->root_, childNames(roots));
     stage->warnings_ = diagnostics_.take();
     return stage;
 }
 
-void Composer::composeChildren(Stage& stage, Prim& parent, const std::vector<ChildName>& children) {
+// Relocates (the layer's, or a prim's, then anchored to it by the parser): stronger layers first,
+// so the first opinion on a target wins. A source or target nested in the other would repeat
+// namespace; it is reported and left out.
+void Composer::collectRelocates(const std::map<std::string, Value>& metadata, const SourceLocation& where) {
+    const auto pairs = metadata.find("relocates");
+    if (pairs == metadata.end()) return;
+    for (size_t i = 0; i + 1 < pairs->second.strings.size(); i += 2) {
+        const std::string& source = pairs->second.strings[i];
+        const std::string& target = pairs->second.strings[i + 1];
+        if (sdfpath::hasPrefix(source, target) || sdfpath::hasPrefix(target, source)) {
+            diagnostics_.warn("relocates", where, "relocates <" + source + "> to <" + target +
+                                                      ">, inside itself; ignored");
+            continue;
+        }
+        if (sourcesByTarget_.emplace(target, source).second) relocatedAt_.emplace(target, where);
+    }
+}
+
+void Composer::collectRelocates(const PrimSpec& spec) {
+    collectRelocates(spec.metadata, spec.where);
+    for (const auto& child : spec.children) collectRelocates(*child);
+}
+
+void Composer::composeChildren(Stage& stage, Prim& parent, const std::vector<ChildName>& authored) {
+    // A relocated prim leaves its source's place for its target's.
+    std::vector<ChildName> children;
+    for (const ChildName& child : authored) {
+        const std::string path = sdfpath::appendChild(parent.path, child.name);
+        const bool movedAway = std::any_of(sourcesByTarget_.begin(), sourcesByTarget_.end(),
+                                           [&](const auto& relocation) { return relocation.second == path; });
+        if (!movedAway) children.push_back(child);
+    }
+    for (const auto& [target, source] : sourcesByTarget_) {
+        if (sdfpath::parentOf(target) != parent.path) continue;
+        const std::string name = sdfpath::nameOf(target);
+        if (std::none_of(children.begin(), children.end(), [&](const ChildName& c) { return c.name == name; }))
+            children.push_back({name, relocatedAt_.at(target)});
+    }
     for (const ChildName& child : children) {
         const std::string path = sdfpath::appendChild(parent.path, child.name);
         const std::vector<Opinion> opinions = opinionsOf(indexer_.index(*rootStack_, path, child.where));

@@ -2,6 +2,7 @@
 // opinions (strongest wins; list-edited fields compose from weakest to strongest).
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -31,7 +32,7 @@ private:
         : budget_(limits), layers_(diagnostics_), indexer_(layers_, diagnostics_, budget_) {}
 
     std::unique_ptr<Stage> composeStage(const Layer& rootLayer);
-    void composeChildren(Stage& stage, Prim& parent, const std::vector<ChildName>& children);
+    void composeChildren(Stage& stage, Prim& parent, const std::vector<ChildName>& authored);
     std::unique_ptr<Prim> composePrim(const std::string& path, const std::vector<Opinion>& opinions, Prim& parent);
 
     DiagnosticSink diagnostics_;
@@ -39,6 +40,11 @@ private:
     LayerRegistry layers_;
     PrimIndexer indexer_;
     const LayerStack* rootStack_ = nullptr;
+    // The root layer stack's relocates: target -> source, and where each is authored.
+    std::map<std::string, std::string> sourcesByTarget_;
+    std::map<std::string, SourceLocation> relocatedAt_;
+    void collectRelocates(const std::map<std::string, Value>& metadata, const SourceLocation& where);
+    void collectRelocates(const PrimSpec& spec);
 };
 
 }  // namespace obscura::usda

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "harness/usda/layer_reader.h"
+#include "harness/usda/materialx_layer.h"
 
 namespace obscura::usda {
 
@@ -18,11 +19,6 @@ std::string cacheKey(const std::string& identifier) {
     std::error_code ec;
     const fs::path absolute = fs::absolute(fs::path(identifier), ec);
     return (ec ? fs::path(identifier) : absolute).lexically_normal().string();
-}
-
-bool endsWithNoCase(std::string text, std::string_view suffix) {
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return text.ends_with(suffix);
 }
 
 std::optional<std::string> readFile(const std::string& path) {
@@ -65,11 +61,14 @@ const Layer& LayerRegistry::add(std::string_view bytes, const std::string& ident
     }
     auto parsed = readLayer(bytes, identifier);
     if (auto* error = std::get_if<Error>(&parsed)) throw CompositionFailure{std::move(*error)};
-    auto layer = std::move(std::get<std::unique_ptr<Layer>>(parsed));
+    return keep(std::move(std::get<std::unique_ptr<Layer>>(parsed)), cacheKey(identifier));
+}
+
+const Layer& LayerRegistry::keep(std::unique_ptr<Layer> layer, const std::string& key) {
     for (const Diagnostic& diagnostic : layer->diagnostics)
         diagnostics_.warn(diagnostic.kind, diagnostic.warning.where, diagnostic.warning.message);
     const Layer& result = *layer;
-    layers_[cacheKey(identifier)] = std::move(layer);
+    layers_[key] = std::move(layer);
     return result;
 }
 
@@ -89,20 +88,26 @@ const Layer& LayerRegistry::open(const std::string& resolvedPath, const std::str
     const std::string key = cacheKey(resolvedPath);
     if (const auto it = layers_.find(key); it != layers_.end()) return *it->second;
     if (const auto it = packageRoots_.find(key); it != packageRoots_.end()) return *it->second;
-    if (endsWithNoCase(resolvedPath, ".mtlx")) {
-        // MaterialX documents are no USD layers; the arc contributes nothing.
-        diagnostics_.warn("mtlx", at, "MaterialX document '" + assetPath + "' is not read; the arc to it adds nothing");
-        auto empty = std::make_unique<Layer>();
-        empty->identifier = resolvedPath;
-        empty->placeholder = true;
-        return *(layers_[key] = std::move(empty));
-    }
     std::optional<std::string> bytes;
     std::string problem;
     if (auto packaged = splitPackagePath(resolvedPath)) {
         bytes = package(packaged->first, at).read(packaged->second, &problem);
     } else {
         bytes = readFile(resolvedPath);
+    }
+    if (isMaterialXDocument(resolvedPath)) {
+        // As usdMtlx: a document that cannot be read is warned about and the arc to it adds nothing.
+        auto parsed = bytes ? readMaterialXLayer(*bytes, resolvedPath)
+                            : std::variant<std::unique_ptr<Layer>, Error>(Error{at, "cannot open it"});
+        if (auto* error = std::get_if<Error>(&parsed)) {
+            diagnostics_.warn("mtlx", error->where, "MaterialX document '" + assetPath + "': " + error->message +
+                                                        "; the arc to it adds nothing");
+            auto empty = std::make_unique<Layer>();
+            empty->identifier = resolvedPath;
+            empty->placeholder = true;
+            return *(layers_[key] = std::move(empty));
+        }
+        return keep(std::move(std::get<std::unique_ptr<Layer>>(parsed)), key);
     }
     if (!bytes)
         throw CompositionFailure{Error{at, "cannot open layer '" + assetPath + "' (resolved to '" + resolvedPath + "')" +

@@ -34,6 +34,8 @@ public:
 private:
     // `at` blames the arc that asked for the layer when its package is unreadable.
     const Layer& add(std::string_view bytes, const std::string& identifier, const SourceLocation& at);
+    // Registers a layer read under `key`, passing on its diagnostics.
+    const Layer& keep(std::unique_ptr<Layer> layer, const std::string& key);
     const UsdzPackage& package(const std::string& archivePath, const SourceLocation& at);
     void collect(const Layer& layer, LayerStack& stack, std::vector<const Layer*>& including);
 

@@ -47,6 +47,11 @@ std::optional<IndexNode> mirror(const IndexNode& node, const std::string& name, 
     return out;
 }
 
+void appendRelocation(IndexNode& node, const PathMapping& relocation) {
+    node.toRoot.push_back(relocation);
+    for (IndexNode& child : node.children) appendRelocation(child, relocation);
+}
+
 void appendMappings(IndexNode& node, const PathMapping& arcMapping, const std::vector<PathMapping>& outer) {
     node.toRoot.push_back(arcMapping);
     node.toRoot.insert(node.toRoot.end(), outer.begin(), outer.end());
@@ -126,6 +131,21 @@ const IndexNode& PrimIndexer::index(const LayerStack& stack, const std::string& 
     std::vector<const IndexNode*> chain;
     expandArcs(root, chain);
     selectVariants(root);
+    const auto relocated = sourcesByTarget_.find(primPath);
+    if (&stack == relocationStack_ && relocated != sourcesByTarget_.end()) {
+        // The source's own opinions in this stack are not moved (Pcp ignores opinions authored at a
+        // relocation source); what its arcs bring is, mapped from the source's path to the target's.
+        const IndexNode& source = index(stack, relocated->second, requestedAt);
+        for (const IndexNode& arc : source.children) {
+            budget_.addIndexNodes(nodeCount(arc), requestedAt);
+            IndexNode moved = arc;
+            appendRelocation(moved, PathMapping{relocated->second, primPath});
+            root.children.push_back(std::move(moved));
+        }
+        sortChildren(root);
+    }
+    addImpliedClassArcs(root);
+    moveSpecializesLast(root);
     budget_.endIndex();
 
     inProgress_.erase(key);
@@ -139,7 +159,6 @@ void PrimIndexer::expandArcs(IndexNode& node, std::vector<const IndexNode*>& cha
     const size_t carried = node.children.size();
     for (size_t i = 0; i < carried; ++i) expandArcs(node.children[i], chain);
 
-    const std::string referringPath = sdfpath::stripVariants(node.site);
     for (const Arc& arc : arcsAuthoredAt(node)) {
         checkCycle(arc, chain);
         const IndexNode& target = index(*arc.stack, arc.path, arc.where);
@@ -148,18 +167,88 @@ void PrimIndexer::expandArcs(IndexNode& node, std::vector<const IndexNode*>& cha
                               "<" + arc.path + "> not found in '" + arc.stack->root().identifier + "'; arc ignored");
             continue;
         }
-        // Counted before the copy: a list naming one large prim many times must fail at the
-        // arc that passes the limit, not after building every copy.
-        budget_.addIndexNodes(nodeCount(target), arc.where);
-        IndexNode graft = target;
-        appendMappings(graft, PathMapping{arc.path, referringPath}, node.toRoot);
-        graft.arc = arc.type;
-        graft.arcDepth = sdfpath::depthOf(referringPath);
-        budget_.hold(heldBytes(graft), arc.where);
-        node.children.push_back(std::move(graft));
+        graft(node, target, arc);
     }
     sortChildren(node);
     chain.pop_back();
+}
+
+void PrimIndexer::graft(IndexNode& node, const IndexNode& target, const Arc& arc) {
+    // Counted before the copy: a list naming one large prim many times must fail at the arc that
+    // passes the limit, not after building every copy.
+    budget_.addIndexNodes(nodeCount(target), arc.where);
+    IndexNode graft = target;
+    const std::string referringPath = sdfpath::stripVariants(node.site);
+    appendMappings(graft, PathMapping{arc.path, referringPath}, node.toRoot);
+    graft.arc = arc.type;
+    graft.arcDepth = sdfpath::depthOf(referringPath);
+    budget_.hold(heldBytes(graft), arc.where);
+    node.children.push_back(std::move(graft));
+}
+
+// Pcp's implied inherits and specializes: a class arc inside a referenced (or payloaded) layer
+// stack is implied in the stack that refers to it, its path mapped into that namespace (paths
+// outside the referenced prim map to themselves, as Pcp's reference mappings keep the root), so
+// that a class of the referencing layers is stronger than everything the asset says. Children are
+// done first, so arcs implied at an intermediate stack go on up to the root.
+void PrimIndexer::addImpliedClassArcs(IndexNode& node) {
+    for (IndexNode& child : node.children) addImpliedClassArcs(child);
+    std::vector<Arc> implied;
+    auto visit = [&](auto&& self, const IndexNode& parent, const IndexNode& child) -> void {
+        if (child.arc == ArcType::Inherit || child.arc == ArcType::Specialize) {
+            // The class's path in the namespace of `node`: through the mappings the authoring
+            // node has beyond `node`'s own.
+            std::string path = sdfpath::stripVariants(child.site);
+            const size_t own = parent.toRoot.size() - node.toRoot.size();
+            for (size_t i = 0; i < own; ++i)
+                path = sdfpath::replacePrefix(path, parent.toRoot[i].from, parent.toRoot[i].to);
+            implied.push_back(Arc{child.arc, node.stack, path, {}});
+        }
+        for (const IndexNode& grandchild : child.children) self(self, child, grandchild);
+    };
+    for (const IndexNode& child : node.children)
+        if (child.stack != node.stack)
+            for (const IndexNode& grandchild : child.children) visit(visit, child, grandchild);
+    bool added = false;
+    for (Arc& arc : implied) {
+        const bool present = std::any_of(node.children.begin(), node.children.end(), [&](const IndexNode& c) {
+            return c.stack == arc.stack && c.arc == arc.type && sdfpath::stripVariants(c.site) == arc.path;
+        });
+        if (present || sdfpath::hasPrefix(sdfpath::stripVariants(node.site), arc.path)) continue;
+        arc.where = SourceLocation{arc.stack->root().identifier, 0, 0};
+        const IndexNode& target = index(*arc.stack, arc.path, arc.where);
+        if (!subtreeHasSpec(target)) continue;  // the referencing layers say nothing about the class
+        graft(node, target, arc);
+        added = true;
+    }
+    if (added) sortChildren(node);
+}
+
+// Specializes are the weakest arcs of the whole index (Pcp moves them under the root, after every
+// other arc): a specialized prim's opinions only fill what nothing else in the index says. Nearer
+// ones (implied into stronger layer stacks) stay stronger.
+void PrimIndexer::moveSpecializesLast(IndexNode& root) {
+    std::vector<IndexNode> moved;
+    std::vector<IndexNode*> level = {&root};
+    while (!level.empty()) {
+        std::vector<IndexNode*> next;
+        for (IndexNode* node : level) {
+            for (auto it = node->children.begin(); it != node->children.end();) {
+                if (it->arc == ArcType::Specialize && node != &root) {
+                    moved.push_back(std::move(*it));
+                    it = node->children.erase(it);
+                } else {
+                    ++it;
+                }
+            }
+            for (IndexNode& child : node->children) next.push_back(&child);
+        }
+        level = std::move(next);
+    }
+    // Root's own specializes first (they are nearest), then those moved, in breadth-first order.
+    std::stable_partition(root.children.begin(), root.children.end(),
+                          [](const IndexNode& c) { return c.arc != ArcType::Specialize; });
+    for (IndexNode& node : moved) root.children.push_back(std::move(node));
 }
 
 std::vector<PrimIndexer::Arc> PrimIndexer::arcsAuthoredAt(const IndexNode& node) {

@@ -2,8 +2,10 @@
 // version of USD's prim index (Pcp). Each node is a site (a prim path in a layer stack) reached
 // through an arc; a node's arcs are its children, ordered inherits, variants, references,
 // payloads, specializes (LIVRPS), and among arcs of one kind those authored deeper in namespace
-// first. A prim's index starts from its parent's index (every node's site extended by the child
-// name), so arcs authored on ancestors keep contributing to descendants.
+// first. Class arcs (inherits, specializes) found inside another layer stack are also implied in
+// the stack that refers to it, and specializes are moved after every other arc of the index. A
+// prim's index starts from its parent's index (every node's site extended by the child name), so
+// arcs authored on ancestors keep contributing to descendants.
 #pragma once
 
 #include <map>
@@ -55,6 +57,12 @@ public:
 
     // The index of `primPath` in `stack` (memoized); `requestedAt` is blamed for cycles.
     const IndexNode& index(const LayerStack& stack, const std::string& primPath, const SourceLocation& requestedAt);
+    // Relocates of `stack` (the stage's root layer stack), target path -> source path: a target's
+    // index holds what its source's arcs bring, mapped to the target (Pcp's relocation arcs).
+    void setRelocations(const LayerStack& stack, std::map<std::string, std::string> sourcesByTarget) {
+        relocationStack_ = &stack;
+        sourcesByTarget_ = std::move(sourcesByTarget);
+    }
 
 private:
     struct Arc {
@@ -68,6 +76,10 @@ private:
     std::vector<Arc> arcsAuthoredAt(const IndexNode& node);
     std::string defaultPrimOf(const Layer& layer, const SourceLocation& at);
     void expandArcs(IndexNode& node, std::vector<const IndexNode*>& chain);
+    // `target`'s index as a child of `node`, reached through `arc`.
+    void graft(IndexNode& node, const IndexNode& target, const Arc& arc);
+    void addImpliedClassArcs(IndexNode& node);
+    void moveSpecializesLast(IndexNode& root);
     void checkCycle(const Arc& arc, const std::vector<const IndexNode*>& chain) const;
     void selectVariants(IndexNode& root);
     bool selectOneVariant(const IndexNode& root, IndexNode& node, std::vector<const IndexNode*>& chain);
@@ -76,6 +88,8 @@ private:
     DiagnosticSink& diagnostics_;
     CompositionBudget& budget_;
     std::map<Key, IndexNode> memo_;
+    const LayerStack* relocationStack_ = nullptr;
+    std::map<std::string, std::string> sourcesByTarget_;
     std::set<Key> inProgress_;
 };
 

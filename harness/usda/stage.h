@@ -66,6 +66,7 @@ struct Attribute {
 struct Relationship {
     std::string name;
     std::vector<std::string> targets;  // absolute prim (or property) paths
+    SourceLocation where;              // the strongest spec
 };
 
 enum class Specifier { Def, Over, Class };

@@ -78,7 +78,7 @@ private:
     void parseMetadataItem(std::map<std::string, Value>& metadata, const SpecialMetadata& special);
     void parseMetadataValue(const std::string& key, std::map<std::string, Value>& metadata);
     void parseDictionary(const std::string& prefix, std::map<std::string, Value>& out);
-    void skipColonMap(const std::string& what);
+    std::vector<std::pair<Token, Token>> parseColonMap(const std::string& what);
     void parseListOf(const std::string& what, bool allowNone, const std::function<void()>& item);
     Reference parseReferenceItem(const std::string& what);
     void parseArcParameters(const std::string& what, bool allowCustomData);

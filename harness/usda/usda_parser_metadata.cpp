@@ -82,8 +82,22 @@ void Parser::parseMetadataItem(std::map<std::string, Value>& metadata, const Spe
     const std::string name = key.isWord("doc") ? "documentation" : std::string(key.text);
     expect('=', "after metadata name '" + std::string(key.text) + "'");
     if (special && special(key, op)) return;
-    if (name == "relocates" || name == "prefixSubstitutions" || name == "suffixSubstitutions") {
-        skipColonMap(name);
+    if (name == "relocates") {
+        // Source and target paths, anchored to the prim they are authored on, in pairs.
+        Value pairs = stringValue("relocates", "");
+        pairs.strings.clear();
+        for (const auto& [source, target] : parseColonMap(name)) {
+            const auto from = sdfpath::makeAbsolute(source.value, primPath_);
+            const auto to = sdfpath::makeAbsolute(target.value, primPath_);
+            if (source.kind != TokenKind::PathRef || target.kind != TokenKind::PathRef || !from || !to)
+                fail(source, "expected prim paths '<...>: <...>' in relocates");
+            pairs.strings.insert(pairs.strings.end(), {*from, *to});
+        }
+        metadata[name] = std::move(pairs);
+        return;
+    }
+    if (name == "prefixSubstitutions" || name == "suffixSubstitutions") {
+        parseColonMap(name);
         warn("ignoredMetadata", key, "'" + name + "' metadata is not supported; ignored");
         return;
     }
@@ -138,16 +152,19 @@ void Parser::parseDictionary(const std::string& prefix, std::map<std::string, Va
 }
 
 // { <a>: <b>, "x": "y" } as used by relocates and prefix/suffix substitutions.
-void Parser::skipColonMap(const std::string& what) {
+std::vector<std::pair<Token, Token>> Parser::parseColonMap(const std::string& what) {
+    std::vector<std::pair<Token, Token>> entries;
     expect('{', "to open " + what);
     skipNewlines();
     while (!peek().isPunct('}')) {
+        Token sides[2];
         for (int side = 0; side < 2; ++side) {
-            const Token entry = take();
-            if (entry.kind != TokenKind::PathRef && entry.kind != TokenKind::String)
-                fail(entry, "expected a path or string in " + what + ", found " + describe(entry));
+            sides[side] = take();
+            if (sides[side].kind != TokenKind::PathRef && sides[side].kind != TokenKind::String)
+                fail(sides[side], "expected a path or string in " + what + ", found " + describe(sides[side]));
             if (side == 0) expect(':', "in " + what);
         }
+        entries.emplace_back(sides[0], sides[1]);
         skipNewlines();
         if (accept(',')) {
             skipNewlines();
@@ -156,6 +173,7 @@ void Parser::skipColonMap(const std::string& what) {
         }
     }
     take();
+    return entries;
 }
 
 void Parser::parseListOf(const std::string& what, bool allowNone, const std::function<void()>& item) {

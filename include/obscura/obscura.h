@@ -63,7 +63,7 @@ extern "C" {
 #endif
 
 #define OBSCURA_ABI_VERSION_MAJOR 1
-#define OBSCURA_ABI_VERSION_MINOR 1  /* 1.1: ObscuraMemoryStats, PFN_ typedefs */
+#define OBSCURA_ABI_VERSION_MINOR 2  /* 1.1: ObscuraMemoryStats, PFN_ typedefs; 1.2: display interop */
 
 /* ---------------------------------------------------------------------------------------------
  * Status codes
@@ -156,7 +156,9 @@ typedef enum ObscuraStructureType {
     OBSCURA_STRUCTURE_TYPE_DEVICE_INFO = 5,
     OBSCURA_STRUCTURE_TYPE_PASS_TIMING = 6,
     OBSCURA_STRUCTURE_TYPE_RENDER_STATS = 7,
-    OBSCURA_STRUCTURE_TYPE_MEMORY_STATS = 8     /* ABI 1.1 */
+    OBSCURA_STRUCTURE_TYPE_MEMORY_STATS = 8,    /* ABI 1.1 */
+    OBSCURA_STRUCTURE_TYPE_EXTERNAL_BUFFER = 9, /* ABI 1.2 */
+    OBSCURA_STRUCTURE_TYPE_INTEROP_STATS = 10   /* ABI 1.2 */
 } ObscuraStructureType;
 
 /* The head every extensible struct starts with, for walking pNext chains. */
@@ -419,6 +421,82 @@ typedef struct ObscuraApiV1 {
     PFN_obscuraGetPrimId getPrimId;
     PFN_obscuraDescribeRenderSetting describeRenderSetting;
 } ObscuraApiV1;
+
+/* =============================================================================================
+ * ABI 1.2: display interop. A host that draws on the same GPU takes a render buffer's pixels
+ * without a copy to host memory: the plugin exports the buffer's device memory as a Vulkan
+ * external memory handle (VK_KHR_external_memory_fd, opaque fd) and, where the device can, a
+ * timeline semaphore (VK_KHR_external_semaphore_fd) its frames signal. The host imports both on
+ * its own VkDevice of the same physical device (matching deviceUUID and driverUUID) and reads the
+ * pixels there (a Vulkan host as a storage or transfer-source buffer; a GL host through
+ * GL_EXT_memory_object_fd and GL_EXT_semaphore_fd, see docs/INTEGRATION.md). An exported buffer
+ * is written by the frame directly in device-local memory: no copy to host-visible memory
+ * ("aov_copy") is made for it.
+ * ============================================================================================= */
+
+/* An exported render buffer (exportRenderBuffer's output). The pixels are laid out as a mapped
+ * buffer's: `height` rows, top to bottom, `rowStride` bytes apart, from offset 0 of the memory. */
+typedef struct ObscuraExternalBuffer {
+    ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_EXTERNAL_BUFFER */
+    const void* pNext;
+    uint32_t structSize;
+    uint32_t width;
+    uint32_t height;
+    ObscuraFormat format;
+    size_t rowStride;
+    uint64_t size;                  /* bytes of pixels: height * rowStride */
+    /* The VkDeviceMemory as an opaque fd (VK_EXTERNAL_MEMORY_HANDLE_TYPE_OPAQUE_FD_BIT), a new
+     * descriptor per call that the host owns: vkAllocateMemory with VkImportMemoryFdInfoKHR takes
+     * it over; a host that does not import it closes it. */
+    int32_t memoryFd;
+    uint64_t allocationSize;        /* VkMemoryAllocateInfo::allocationSize to import with */
+    uint32_t memoryTypeIndex;       /* VkMemoryAllocateInfo::memoryTypeIndex to import with */
+    /* 1: the memory is a dedicated allocation; import it with VkMemoryDedicatedAllocateInfo naming
+     * the host's buffer (created with VkExternalMemoryBufferCreateInfo, OPAQUE_FD, `size` bytes). */
+    int32_t dedicated;
+    /* A timeline semaphore as an opaque fd (VK_EXTERNAL_SEMAPHORE_HANDLE_TYPE_OPAQUE_FD_BIT), owned
+     * by the host as memoryFd is; every render that writes the buffer signals it with that render's
+     * ObscuraInteropStats::semaphoreValue once the frame is done and the buffer released to
+     * VK_QUEUE_FAMILY_EXTERNAL. -1 where the device cannot export semaphores (lavapipe): render
+     * returns only when its frame is done, so the host reads after render returns. */
+    int32_t semaphoreFd;
+    uint8_t deviceUUID[16];         /* VkPhysicalDeviceIDProperties of the plugin's device */
+    uint8_t driverUUID[16];
+} ObscuraExternalBuffer;
+
+/* ABI 1.2, chained to ObscuraRenderStats::pNext: the value the exported semaphores reach when
+ * the last render's frame is done (0 before the first render that wrote an exported buffer). A
+ * host's queue waits for it (VkTimelineSemaphoreSubmitInfo) before reading the buffer. */
+typedef struct ObscuraInteropStats {
+    ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_INTEROP_STATS */
+    const void* pNext;
+    uint32_t structSize;
+    uint64_t semaphoreValue;
+} ObscuraInteropStats;
+
+/* Export the render buffer at [in] path into [out] out (structSize >= sizeof checked; sType,
+ * pNext left as set). From then on the buffer lives in exportable device memory that every render
+ * writes directly (it holds the frame of the next render on); it cannot be mapped (mapRenderBuffer:
+ * OBSCURA_ERROR_INVALID_STATE). The buffer
+ * stays exported until removed; when its dimensions or format change the next render makes new
+ * memory, which the host exports again (the old memory keeps the last frame until the host frees
+ * its import). Calling it again returns new descriptors of the same memory and semaphore.
+ * The host reads the memory only between a render's return (or its semaphore value) and the next
+ * render. OBSCURA_ERROR_NOT_FOUND: no render buffer there. OBSCURA_ERROR_INVALID_STATE: never
+ * rendered since it was inserted or resized, or it is mapped. OBSCURA_ERROR_DEVICE: the device
+ * cannot export memory as an opaque fd (out->memoryFd is -1; read through mapRenderBuffer). */
+typedef ObscuraStatus (*PFN_obscuraExportRenderBuffer)(ObscuraDelegate delegate, const char* path,
+                                                       ObscuraExternalBuffer* out);
+
+/* The function table of ABI 1.2: 1.0's table followed by the interop functions. obscuraGetApi(1, 2)
+ * returns it; its `base.structSize` is sizeof(ObscuraApiV1_2) and base.versionMinor >= 2. A host
+ * asking for 1.0 or 1.1 gets the same table and reads its first part. */
+typedef struct ObscuraApiV1_2 {
+    ObscuraApiV1 base;
+    PFN_obscuraExportRenderBuffer exportRenderBuffer;
+} ObscuraApiV1_2;
+
+/* ============================================================================================= */
 
 /*
  * The one exported entry point. Returns in *outTable a pointer to a static function table whose

@@ -26,7 +26,7 @@ from ctypes import (
 )
 
 ABI_VERSION_MAJOR = 1
-ABI_VERSION_MINOR = 1
+ABI_VERSION_MINOR = 2
 GET_API_SYMBOL = "obscuraGetApi"
 
 
@@ -99,6 +99,8 @@ class StructureType(enum.IntEnum):
     PASS_TIMING = 6
     RENDER_STATS = 7
     MEMORY_STATS = 8  # ABI 1.1
+    EXTERNAL_BUFFER = 9  # ABI 1.2
+    INTEROP_STATS = 10  # ABI 1.2
 
 
 class LogLevel(enum.IntEnum):

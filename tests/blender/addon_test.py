@@ -23,47 +23,18 @@ import bpy
 import numpy as np
 
 ZIP, TESTS_PYTHON = sys.argv[sys.argv.index("--") + 1:][:2]
-sys.path.insert(0, TESTS_PYTHON)
+sys.path[:0] = [TESTS_PYTHON, str(Path(__file__).resolve().parent)]
+import blender_scene  # noqa: E402
+from blender_scene import LOG, add_light, add_plane, expect, expect_no_plugin_errors, link, principled  # noqa: E402
 SIZE = 64
 CAMERA_DISTANCE = 5.0
 LENS, SENSOR = 50.0, 36.0
 
 
-class Captured(logging.Handler):
-    """The add-on's log (its own messages and the plugin's)."""
-
-    def __init__(self):
-        super().__init__(logging.DEBUG)
-        self.records: list[logging.LogRecord] = []
-
-    def emit(self, record):
-        self.records.append(record)
-
-    def messages(self, level: int) -> list[str]:
-        return [r.getMessage() for r in self.records if r.levelno == level]
-
-
-LOG = Captured()
-logging.getLogger("obscura_render").addHandler(LOG)
-logging.getLogger("obscura_render").setLevel(logging.DEBUG)
-
-
 # --- scenes -------------------------------------------------------------------------------------
 
 def empty_scene():
-    bpy.ops.wm.read_homefile(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "OBSCURA"
-    scene.render.resolution_x = scene.render.resolution_y = SIZE
-    scene.render.resolution_percentage = 100
-    scene.obscura.taa_frames = 2
-    scene.world = None
-    return scene
-
-
-def link(obj):
-    bpy.context.scene.collection.objects.link(obj)
-    return obj
+    return blender_scene.empty_scene(SIZE)
 
 
 def add_camera(scene, lens=LENS, shift_x=0.0):
@@ -75,35 +46,6 @@ def add_camera(scene, lens=LENS, shift_x=0.0):
     camera.location = (0.0, 0.0, CAMERA_DISTANCE)  # unrotated: looking down -Z
     scene.camera = camera
     return camera
-
-
-def principled(name, albedo):
-    material = bpy.data.materials.new(name)
-    material.use_nodes = True
-    bsdf = material.node_tree.nodes["Principled BSDF"]
-    bsdf.inputs["Base Color"].default_value = (albedo, albedo, albedo, 1.0)
-    bsdf.inputs["Roughness"].default_value = 1.0
-    bsdf.inputs["Metallic"].default_value = 0.0
-    bsdf.inputs["Specular"].default_value = 0.0  # F0 = 0: the Lambert term alone, in Cycles too
-    return material
-
-
-def add_plane(name, half, material, pass_index=0):
-    mesh = bpy.data.meshes.new(name)
-    mesh.from_pydata([(-half, -half, 0), (half, -half, 0), (half, half, 0), (-half, half, 0)], [], [(0, 1, 2, 3)])
-    mesh.materials.append(material)
-    obj = link(bpy.data.objects.new(name, mesh))
-    obj.pass_index = pass_index
-    return obj
-
-
-def add_light(kind, energy, **settings):
-    data = bpy.data.lights.new(kind, kind)
-    data.energy = energy
-    data.specular_factor = 0.0  # diffuse only: the Lambert term alone
-    for key, value in settings.items():
-        setattr(data, key, value)
-    return link(bpy.data.objects.new(kind, data))
 
 
 # --- rendering ----------------------------------------------------------------------------------
@@ -145,16 +87,6 @@ def render_passes(scene, passes=("Image",)) -> dict[str, np.ndarray]:
         images[name] = pixels.reshape(SIZE, SIZE, 4)
         bpy.data.images.remove(image)
     return images
-
-
-def expect(condition, message):
-    if not condition:
-        raise AssertionError(message)
-
-
-def expect_no_plugin_errors():
-    errors = LOG.messages(logging.ERROR)
-    expect(not errors, f"errors logged: {errors}")
 
 
 # --- tests --------------------------------------------------------------------------------------
@@ -648,11 +580,7 @@ def test_vector_pass_from_motion_over_the_shutter():
 
 def main() -> int:
     expect(os.environ.get("OBSCURA_VALIDATION") == "1", "OBSCURA_VALIDATION=1 keeps the validation layer on")
-    bpy.ops.preferences.addon_install(filepath=ZIP, overwrite=True)
-    bpy.ops.preferences.addon_enable(module="obscura_render")
-    from obscura_render import locate
-
-    locate.import_package()  # the add-on's way to the Python package, which lit_plane.py imports too
+    blender_scene.install_addon(ZIP)
     failed = []
     tests = [(name, fn) for name, fn in globals().items() if name.startswith("test_")]
     for name, fn in tests:

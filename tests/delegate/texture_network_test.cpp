@@ -207,8 +207,10 @@ def Material "MissingInterface"
     EXPECT_FLOAT_EQ(static_cast<const float*>(value.data)[0], 0.25f);
     EXPECT_TRUE(located("/MissingInterface: inputs:roughness: its connection target </MissingInterface.inputs:rough> "
                         "does not exist", 46));
-    EXPECT_TRUE(located("/OtherShader: no UsdPreviewSurface on outputs:surface (it leads to "
-                        "/OtherShader/Graph/Standard.outputs:surface); material skipped", 28));
+    // A MaterialX Standard Surface is mapped, with its defaults: base 0.8 of a white base_color.
+    ASSERT_EQ(sd.getValue(sd.userData, "/OtherShader", "inputs:diffuseColor", 0.0, &value), OBSCURA_OK);
+    EXPECT_FLOAT_EQ(static_cast<const float*>(value.data)[0], 0.8f);
+    for (const auto& m : scene.host->messages()) EXPECT_EQ(m.text.find("/OtherShader"), std::string::npos) << m.text;
 }
 
 TEST(NodeGraphUsda, AnAnimatedInterfaceInputAnimatesTheMaterial) {

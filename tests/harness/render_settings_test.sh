@@ -53,6 +53,48 @@ check "disableMotionBlur is motionBlur off" 0 $? "$tmp/out" 'psnr inf'
 "$obscura" compare "$tmp/still.exr" "$tmp/blurred.exr" --psnr-min 60 >"$tmp/out" 2>&1
 check "which differs from the blurred scene" 1 $?
 
+# Every product is written, each to its own file with its own resolution and vars; -o names one file,
+# so only the first product is then written.
+cat >"$tmp/products.usda" <<EOF
+#usda 1.0
+(
+    renderSettingsPrimPath = "/Two"
+    subLayers = [@$data/render_settings.usda@]
+)
+def RenderSettings "Two"
+{
+    rel camera = </Near>
+    uniform int2 resolution = (40, 30)
+    rel products = [</Wide>, </Small>]
+}
+def RenderProduct "Wide"
+{
+    uniform token productName = "wide.exr"
+    rel orderedVars = </Render/Vars/Color>
+}
+def RenderProduct "Small"
+{
+    uniform token productName = "small.exr"
+    uniform int2 resolution = (20, 10)
+    rel orderedVars = [</Render/Vars/Color>, </Render/Vars/Ids>]
+}
+EOF
+(cd "$tmp" && "$obscura" render "$tmp/products.usda" $fast >"$tmp/out" 2>&1)
+check "a stage with two products renders" 0 $?
+[ -s "$tmp/wide.exr" ] && [ -s "$tmp/small.exr" ]; check "each product's file is written" 0 $?
+if command -v exrheader >/dev/null; then
+    exrheader "$tmp/wide.exr" >"$tmp/header" 2>&1
+    check "the first product: the settings' resolution" 0 $? "$tmp/header" 'dataWindow.*\(0 0\) - \(39 29\)'
+    ! grep -q 'primId' "$tmp/header"; check "the first product: its own vars" 0 $?
+    exrheader "$tmp/small.exr" >"$tmp/header" 2>&1
+    check "the second product: its own resolution" 0 $? "$tmp/header" 'dataWindow.*\(0 0\) - \(19 9\)'
+    grep -q 'primId' "$tmp/header"; check "the second product: its own vars" 0 $?
+fi
+rm -f "$tmp/wide.exr" "$tmp/small.exr"
+(cd "$tmp" && "$obscura" render "$tmp/products.usda" -o "$tmp/one.exr" $fast >"$tmp/out" 2>&1)
+check "-o writes the first product only" 0 $? "$tmp/out" "names one file: /Two's first product is written, 1 more are not"
+[ -s "$tmp/one.exr" ] && [ ! -e "$tmp/small.exr" ]; check "to the file -o names" 0 $?
+
 # Flags override the prims.
 "$obscura" render "$data/render_settings.usda" -o "$tmp/small.exr" --width 20 --aov color $fast >"$tmp/out" 2>&1
 check "--width overrides the resolution" 0 $?

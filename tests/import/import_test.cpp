@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "harness/import/assimp_to_usda.h"
+#include "harness/usda/skinning.h"
 #include "harness/usda/stage.h"
 
 namespace obscura::harness {
@@ -224,6 +225,44 @@ TEST(GltfImport, AnimationInterpolatesTranslations) {
     expectNear(gltf.worldPoint(kQuad, {0, 0, 0}, 1000), {2, 0, -4});
     const std::vector<double> times = gltf.stage->transformSampleTimes(*gltf.stage->find(kQuad));
     EXPECT_EQ(times, (std::vector<double>{0, 1000}));
+}
+
+// skinned.gltf: a two-joint arm whose elbow bends 90 degrees about +Z over the first second (t in ms).
+TEST(GltfImport, SkinsArePosedThroughUsdSkel) {
+    const Imported gltf("skinned.gltf");
+    ASSERT_TRUE(gltf.stage);
+    gltf.prim("/Root", "SkelRoot");
+    const Prim& arm = gltf.prim("/Root/Arm/Arm", "Mesh");
+    auto skinning = usda::resolveSkinning(*gltf.stage, arm);
+    ASSERT_TRUE(skinning && std::holds_alternative<usda::Skinning>(*skinning));
+    auto world = [&](double time) {
+        std::string problem;
+        auto points = usda::skinPoints(*gltf.stage, std::get<usda::Skinning>(*skinning),
+                                       arm.attribute("points")->evaluate(time)->numbers, time, &problem);
+        EXPECT_EQ(problem, "");
+        std::vector<Vec3> out;
+        auto m = gltf.stage->worldTransform(arm, time);
+        for (size_t i = 0; i + 2 < points.size(); i += 3)
+            out.push_back({points[i] * m[0] + points[i + 1] * m[4] + points[i + 2] * m[8] + m[12],
+                           points[i] * m[1] + points[i + 1] * m[5] + points[i + 2] * m[9] + m[13],
+                           points[i] * m[2] + points[i + 1] * m[6] + points[i + 2] * m[10] + m[14]});
+        return out;
+    };
+    // The mesh's own node (100 along X) is ignored, as glTF and UsdSkel both say: the points
+    // stay where the skin was bound until the elbow bends.
+    const std::vector<Vec3> bound = world(0);
+    ASSERT_EQ(bound.size(), 3u);
+    expectNear(bound[0], {0.5, 10, 0});
+    expectNear(bound[1], {2, 10, 0});
+    expectNear(bound[2], {1.5, 10, 0});
+    // Bent: the elbow's point swings from 1 beyond the elbow along X to 1 above it; the shared
+    // point goes half way between where each joint takes it.
+    const std::vector<Vec3> bent = world(1000);
+    ASSERT_EQ(bent.size(), 3u);
+    expectNear(bent[0], {0.5, 10, 0});
+    expectNear(bent[1], {1, 11, 0});
+    expectNear(bent[2], {1.25, 10.25, 0});
+    EXPECT_FALSE(gltf.warned("skinning"));
 }
 
 TEST(GltfImport, PbrMaterialInputs) {

@@ -200,9 +200,17 @@ TEST(CrateCorpus, ChessSetComposesAcrossTextAndBinaryLayers) {
         ++references;
     EXPECT_EQ(references, 19u);
     EXPECT_EQ(meshes, (references - 2) + 2 * 2);
-    bool mtlxWarned = false;
-    for (const Warning& warning : stage->warnings()) mtlxWarned |= warning.message.find("MaterialX") != std::string::npos;
-    EXPECT_TRUE(mtlxWarned);
+    // The looks bind materials that the pieces' MaterialX documents define.
+    size_t bound = 0;
+    for (const Prim* prim : stage->prims())
+        if (const Relationship* binding = prim->relationship("material:binding")) {
+            const Prim* material = binding->targets.empty() ? nullptr : stage->find(binding->targets.front());
+            EXPECT_TRUE(material && material->typeName == "Material") << prim->path;
+            ++bound;
+        }
+    EXPECT_EQ(bound, meshes);
+    for (const Warning& warning : stage->warnings())
+        EXPECT_EQ(warning.message.find("MaterialX"), std::string::npos) << warning.message;
 }
 
 // ---- Errors ---------------------------------------------------------------------------------------
@@ -360,12 +368,15 @@ TEST(Package, PackagedFilesAreExtractedForFileReaders) {
     EXPECT_EQ(problem, "no file 'missing.png' in the package");
 }
 
-TEST(Package, MaterialXReferencesWarnAndAddNothing) {
+TEST(Package, AMissingMaterialXDocumentWarnsAndAddsNothing) {
     auto stage = open("#usda 1.0\ndef \"M\" (references = @looks.mtlx@)\n{\n    def \"Child\" {\n    }\n}\n");
     ASSERT_TRUE(stage);
     EXPECT_TRUE(stage->find("/M/Child"));
     ASSERT_FALSE(stage->warnings().empty());
-    EXPECT_NE(stage->warnings().front().message.find("MaterialX document 'looks.mtlx' is not read"), std::string::npos);
+    EXPECT_NE(stage->warnings().front().message.find("MaterialX document 'looks.mtlx': cannot open it; the arc to it adds nothing"),
+              std::string::npos)
+        << stage->warnings().front().message;
+    EXPECT_EQ(stage->warnings().front().where.line, 2);
 }
 
 }  // namespace

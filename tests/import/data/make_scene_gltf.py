@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Writes the glTF 2.0 test scenes of tests/import, their buffers embedded as base64:
-scene.gltf, a small scene using every feature the importer maps, and nonfinite.gltf, whose binary
-data holds NaN and infinity where the importer must drop them.
+scene.gltf, a small scene using every feature the importer maps, nonfinite.gltf, whose binary
+data holds NaN and infinity where the importer must drop them, and skinned.gltf, a two-joint arm
+whose elbow bends.
 
 Run from this folder: python3 make_scene_gltf.py. The values here are the ones import_test.cpp expects.
 """
@@ -159,3 +160,33 @@ nonfinite = {
 }
 embed(nonfinite, bad)
 write("nonfinite.gltf", nonfinite)
+
+# A two-joint arm: joint Shoulder at (0, 10, 0), its child Elbow 1 along X. The elbow turns about +Z
+# from 0 to 90 degrees over the first second. Point 0 follows the shoulder, point 1 the elbow,
+# point 2 both halves each. The mesh's node is moved 100 along X, which a skinned mesh ignores.
+arm = Buffer()
+arm_points = arm.add("f", [0.5, 10, 0, 2, 10, 0, 1.5, 10, 0], FLOAT, "VEC3", 3, 34962, bounds=True)
+arm_joints = arm.add("H", [0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0], USHORT, "VEC4", 3, 34962)
+arm_weights = arm.add("f", [1, 0, 0, 0, 1, 0, 0, 0, 0.5, 0.5, 0, 0], FLOAT, "VEC4", 3, 34962)
+# Inverse bind matrices (column-major): the joints' world transforms at bind, inverted.
+inverse_binds = arm.add("f", [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -10, 0, 1,
+                              1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -1, -10, 0, 1], FLOAT, "MAT4", 2)
+bend_times = arm.add("f", [0, 1], FLOAT, "SCALAR", 2, bounds=True)
+bend = arm.add("f", quat([0, 0, 1], 0) + quat([0, 0, 1], 90), FLOAT, "VEC4", 2)
+skinned = {
+    "asset": {"version": "2.0", "generator": "Obscura tests/import/data/make_scene_gltf.py"},
+    "scene": 0,
+    "scenes": [{"nodes": [0, 1]}],
+    "nodes": [
+        {"name": "Arm", "mesh": 0, "skin": 0, "translation": [100, 0, 0]},
+        {"name": "Shoulder", "translation": [0, 10, 0], "children": [2]},
+        {"name": "Elbow", "translation": [1, 0, 0]},
+    ],
+    "meshes": [{"name": "Arm", "primitives": [{"attributes": {"POSITION": arm_points, "JOINTS_0": arm_joints,
+                                                              "WEIGHTS_0": arm_weights}}]}],
+    "skins": [{"joints": [1, 2], "inverseBindMatrices": inverse_binds}],
+    "animations": [{"name": "Bend", "samplers": [{"input": bend_times, "output": bend}],
+                    "channels": [{"sampler": 0, "target": {"node": 2, "path": "rotation"}}]}],
+}
+embed(skinned, arm)
+write("skinned.gltf", skinned)

@@ -1,0 +1,158 @@
+// Scene reading, measured (Google Benchmark): a stage of 10,000 mesh prims (each a quad under its
+// own translate, as USD text) composed, then opened and synced whole by the harness as `obscura
+// render` does (the delegate's sync CPU time, ObscuraRenderStats::syncMilliseconds, as a counter);
+// the Open Chess Set (crate geometry, MaterialX looks) composed; and UsdSkel's linear blend
+// skinning of 100,000 points, 4 influences each among 64 joints, at one time (what the host does
+// for each skinned prim at each time the delegate samples).
+#include "harness/session.h"
+#include "harness/usda/skinning.h"
+#include "harness/usda/stage.h"
+
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace obscura::bench {
+namespace {
+
+constexpr int kPrims = 10000;
+
+std::string tenThousandPrims() {
+    std::ostringstream text;
+    text << "#usda 1.0\n(\n    metersPerUnit = 1\n    upAxis = \"Y\"\n)\n"
+         << "def Camera \"Camera\"\n{\n    double3 xformOp:translate = (50, 50, 150)\n"
+         << "    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}\n"
+         << "def DistantLight \"Sun\"\n{\n}\ndef Xform \"World\"\n{\n";
+    for (int i = 0; i < kPrims; ++i)
+        text << "    def Mesh \"M" << i << "\"\n    {\n"
+             << "        point3f[] points = [(0, 0, 0), (0.8, 0, 0), (0.8, 0.8, 0), (0, 0.8, 0)]\n"
+             << "        int[] faceVertexCounts = [4]\n        int[] faceVertexIndices = [0, 1, 2, 3]\n"
+             << "        uniform token subdivisionScheme = \"none\"\n"
+             << "        double3 xformOp:translate = (" << i % 100 << ", " << i / 100 << ", 0)\n"
+             << "        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n    }\n";
+    text << "}\n";
+    return text.str();
+}
+
+void BM_ComposeTenThousandPrimsText(benchmark::State& state) {
+    const std::string text = tenThousandPrims();
+    for (auto _ : state) {
+        auto stage = usda::Stage::openFromString(text, "ten_thousand.usda");
+        benchmark::DoNotOptimize(stage);
+    }
+    state.counters["prims"] = kPrims;
+}
+BENCHMARK(BM_ComposeTenThousandPrimsText)->Unit(benchmark::kMillisecond);
+
+// Open (compose and populate) and the first render's sync, as `obscura render` starts.
+void BM_OpenAndSyncTenThousandPrims(benchmark::State& state) {
+    const auto file = std::filesystem::temp_directory_path() / "obscura_stage_benchmark.usda";
+    std::ofstream(file) << tenThousandPrims();
+    double syncMs = 0;
+    for (auto _ : state) {
+        auto opened = harness::Session::open(file.string());
+        if (!std::holds_alternative<std::unique_ptr<harness::Session>>(opened)) {
+            state.SkipWithError(std::get<harness::SessionError>(opened).message.c_str());
+            break;
+        }
+        harness::Session& session = *std::get<std::unique_ptr<harness::Session>>(opened);
+        std::string buffer = session.host().addRenderBuffer(session.api(), session.delegate(), "color", 16, 16);
+        ObscuraAovBinding binding{"color", buffer.c_str()};
+        ObscuraRenderPassDesc desc{OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC, nullptr, sizeof(desc), "/Camera",
+                                   {0, 0, 16, 16}, 0.0, 1, &binding};
+        session.api().render(session.delegate(), &desc);
+        ObscuraRenderStats stats{};
+        stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
+        stats.structSize = sizeof(stats);
+        session.api().getRenderStats(session.delegate(), &stats);
+        syncMs = stats.syncMilliseconds;
+    }
+    state.counters["sync_ms"] = syncMs;
+    std::filesystem::remove(file);
+}
+BENCHMARK(BM_OpenAndSyncTenThousandPrims)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+void BM_ComposeOpenChessSet(benchmark::State& state) {
+    const std::filesystem::path chess =
+        std::filesystem::path(OBSCURA_CORPUS_DIR) / "full_assets/OpenChessSet/chess_set.usda";
+    if (!std::filesystem::exists(chess)) {
+        state.SkipWithError("no corpus");
+        return;
+    }
+    for (auto _ : state) {
+        auto stage = usda::Stage::open(chess);
+        benchmark::DoNotOptimize(stage);
+    }
+}
+BENCHMARK(BM_ComposeOpenChessSet)->Unit(benchmark::kMillisecond);
+
+// A strip of 100,000 points along X bound to 64 joints in a chain, each point to the 4 nearest.
+std::string skinnedStrip(int points, int joints) {
+    std::ostringstream text;
+    text << "#usda 1.0\ndef SkelRoot \"Rig\"\n{\n    def Skeleton \"Skel\"\n    {\n        uniform token[] joints = [";
+    std::string path;
+    for (int j = 0; j < joints; ++j) {
+        path += (j ? "/j" : "j") + std::to_string(j);
+        text << (j ? ", " : "") << '"' << path << '"';
+    }
+    text << "]\n        uniform matrix4d[] bindTransforms = [";
+    for (int j = 0; j < joints; ++j)
+        text << (j ? ", " : "") << "((1,0,0,0),(0,1,0,0),(0,0,1,0)," << "(" << j << ",0,0,1))";
+    text << "]\n        uniform matrix4d[] restTransforms = [";
+    for (int j = 0; j < joints; ++j) text << (j ? ", " : "") << "((1,0,0,0),(0,1,0,0),(0,0,1,0),(" << (j ? 1 : 0) << ",0,0,1))";
+    text << "]\n        rel skel:animationSource = </Rig/Skel/Anim>\n"
+         << "        def SkelAnimation \"Anim\"\n        {\n            uniform token[] joints = [";
+    path.clear();
+    for (int j = 0; j < joints; ++j) {
+        path += (j ? "/j" : "j") + std::to_string(j);
+        text << (j ? ", " : "") << '"' << path << '"';
+    }
+    text << "]\n            float3[] translations = [";
+    for (int j = 0; j < joints; ++j) text << (j ? ", " : "") << "(" << (j ? 1 : 0) << ", 0, 0)";
+    text << "]\n            quatf[] rotations = [";
+    for (int j = 0; j < joints; ++j) text << (j ? ", " : "") << "(0.9961947, 0, 0, 0.0871557)";  // 10 degrees about Z
+    text << "]\n        }\n    }\n    def Mesh \"Strip\"\n    {\n"
+         << "        rel skel:skeleton = </Rig/Skel>\n        point3f[] points = [";
+    for (int i = 0; i < points; ++i) text << (i ? ", " : "") << "(" << double(i) * joints / points << ", 0, 0)";
+    text << "]\n        int[] primvars:skel:jointIndices = [";
+    for (int i = 0; i < points; ++i) {
+        const int first = std::min(joints - 4, std::max(0, i * joints / points - 1));
+        for (int k = 0; k < 4; ++k) text << (i || k ? ", " : "") << first + k;
+    }
+    text << "] (\n            interpolation = \"vertex\"\n            elementSize = 4\n        )\n"
+         << "        float[] primvars:skel:jointWeights = [";
+    for (int i = 0; i < points; ++i) text << (i ? ", " : "") << "0.4, 0.3, 0.2, 0.1";
+    text << "] (\n            interpolation = \"vertex\"\n            elementSize = 4\n        )\n    }\n}\n";
+    return text.str();
+}
+
+void BM_SkinPoints(benchmark::State& state) {
+    const int points = int(state.range(0));
+    auto opened = usda::Stage::openFromString(skinnedStrip(points, 64), "skinned.usda");
+    if (!std::holds_alternative<std::unique_ptr<usda::Stage>>(opened)) {
+        state.SkipWithError(std::get<usda::Error>(opened).str().c_str());
+        return;
+    }
+    const usda::Stage& stage = *std::get<std::unique_ptr<usda::Stage>>(opened);
+    const usda::Prim& strip = *stage.find("/Rig/Strip");
+    auto skinning = usda::resolveSkinning(stage, strip);
+    if (!skinning || !std::holds_alternative<usda::Skinning>(*skinning)) {
+        state.SkipWithError("the strip is not skinned");
+        return;
+    }
+    const std::vector<double> rest = strip.attribute("points")->evaluate(0)->numbers;
+    for (auto _ : state) {
+        std::string problem;
+        auto skinned = usda::skinPoints(stage, std::get<usda::Skinning>(*skinning), rest, 0.0, &problem);
+        benchmark::DoNotOptimize(skinned);
+    }
+    state.SetItemsProcessed(state.iterations() * points);
+}
+BENCHMARK(BM_SkinPoints)->Arg(100000)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace obscura::bench
+
+BENCHMARK_MAIN();

@@ -1,0 +1,42 @@
+// MaterialX surface shaders in UsdShade (Shader prims whose info:id is a MaterialX node
+// definition, "ND_...", as usdMtlx and DCCs author them) mapped onto Obscura's material model, the
+// inputs of UsdPreviewSurface (schemas/material.json): Standard Surface, UsdPreviewSurface's own
+// node definition, glTF PBR and OpenPBR surfaces, each input with its model's default. Networks
+// feeding an input are folded where the model can hold them: ND_image_* (and ND_tiledimage_*)
+// become the input's texture (file, colour space, address modes, ND_texcoord/ND_geompropvalue
+// primvar), ND_normalmap a normal map (scale 2, bias -1, as UsdPreviewSurface's normal maps),
+// ND_multiply/ND_add/ND_subtract/ND_mix with constants a texture's scale and bias or a constant
+// folded, ND_extract a channel, ND_constant/ND_dot/ND_convert pass through. What cannot map is
+// reported (one problem per node) and its input keeps the model's default; a surface of another
+// kind is drawn with its base colour.
+// MaterialX node definitions: https://materialx.org/assets/MaterialX.v1.38.Spec.pdf
+#pragma once
+
+#include "harness/usda/stage.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace obscura::harness {
+
+struct MaterialProblem {
+    std::string message;
+    usda::SourceLocation where;
+};
+
+struct MaterialXMapping {
+    // Values by the delegate's attribute names: "inputs:diffuseColor", "obscura:normal:file", ...;
+    // an attribute left out takes the schema default.
+    std::map<std::string, usda::Value> values;
+    std::string stPrimvar = "st";  // the primvar the textures read
+    std::vector<MaterialProblem> problems;
+};
+
+// Whether a shader id names a MaterialX node definition this mapping reads as a surface.
+bool isMaterialXShader(const std::string& shaderId);
+
+// `surface`'s inputs at `time`, mapped.
+MaterialXMapping mapMaterialXSurface(const usda::Stage& stage, const usda::Prim& surface, double time);
+
+}  // namespace obscura::harness
