@@ -2,7 +2,7 @@
 // triangles; the initial sync, then re-syncs after changing one transform, one material, and
 // after adding and removing one prim. Reported times are the delegate's own CPU time for sync
 // (ObscuraRenderStats::syncMilliseconds) and, separately, for packing the frame's records.
-#include "tests/support/test_host.h"
+#include "tests/support/in_memory_host.h"
 
 #include <benchmark/benchmark.h>
 
@@ -36,7 +36,7 @@ std::map<std::string, HostValue> gridMesh(const std::string& material) {
 }
 
 struct BigScene {
-    std::unique_ptr<TestHost> host = std::make_unique<TestHost>(false);
+    std::unique_ptr<InMemoryHost> host = std::make_unique<InMemoryHost>(false);
     BigScene() {
         host->addCamera("/Camera", translation(0, 0, 200));
         for (int m = 0; m < 10; ++m) host->addPrim("material", "/Looks/M" + std::to_string(m), {});

@@ -1,5 +1,6 @@
 /* A host written in C99: finds the plugin through its plugInfo.json, dlopens it, negotiates the
- * ABI, supplies a scene delegate in C and reads an AOV back. Exits 0 when every check passes. */
+ * ABI, supplies a scene delegate in C and reads an AOV back; the log must hold no error but the one
+ * the bad mesh provokes. Exits 0 when every check passes. */
 #include <obscura/grading_chart.h> /* compiles as C too */
 #include <obscura/obscura.h>
 
@@ -50,6 +51,18 @@ static const int32_t kDimensions[2] = {32, 32};
 static const char* kFormat = "int32";
 static const float kFocal = 50.0f;
 static int getValueCalls = 0;
+
+/* The plugin's log: errors are counted, and those naming /BadMesh (the one this host provokes)
+ * apart from the rest. */
+static int loggedErrors = 0;
+static int badMeshErrors = 0;
+static void logMessage(void* user, ObscuraLogLevel level, const char* message) {
+    (void)user;
+    if (level != OBSCURA_LOG_ERROR) return;
+    ++loggedErrors;
+    if (strstr(message, "/BadMesh") != NULL) ++badMeshErrors;
+    else fprintf(stderr, "logged error: %s\n", message);
+}
 
 static ObscuraStatus getValue(void* user, const char* path, const char* attribute, double time, ObscuraValue* out) {
     (void)user;
@@ -142,6 +155,7 @@ int main(void) {
     info.sType = OBSCURA_STRUCTURE_TYPE_DELEGATE_CREATE_INFO;
     info.structSize = sizeof info;
     info.validation = 1;
+    info.log = logMessage;
     CHECK(api->createDelegate(&info, &delegate) == OBSCURA_OK, "createDelegate: %s", api->lastError(NULL));
     if (!delegate) return 1;
 
@@ -186,6 +200,8 @@ int main(void) {
     CHECK(getValueCalls == 0, "%d getValue calls with nothing dirty", getValueCalls);
 
     CHECK(api->destroyDelegate(delegate) == OBSCURA_OK, "destroyDelegate");
+    CHECK(badMeshErrors == 1, "%d errors name /BadMesh, expected 1", badMeshErrors);
+    CHECK(loggedErrors == badMeshErrors, "%d logged errors the host did not provoke", loggedErrors - badMeshErrors);
     dlclose(handle);
     if (failures == 0) printf("c_host: all checks passed\n");
     return failures == 0 ? 0 : 1;

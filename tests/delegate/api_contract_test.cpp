@@ -1,6 +1,6 @@
-// The ABI's promises (issue 13, items 2-5): re-entrant calls from callbacks are refused and change
-// nothing, output structs keep the host's chain, a bad render buffer skips only itself, a size
-// the device cannot make is refused, a mapping lasts until unmap.
+// The ABI's promises (include/obscura/obscura.h): re-entrant calls from callbacks are refused and
+// change nothing, output structs keep the host's chain, a bad render buffer skips only itself, a
+// size the device cannot make is refused, a mapping lasts until unmap.
 #include "tests/delegate/render_fixture.h"
 
 #include <gtest/gtest.h>
@@ -97,6 +97,7 @@ TEST(OutputStructs, RenderStatsKeepTheHostsChainAndFillMemoryStats) {
 
 TEST(BadRenderBuffer, OnlyTheBadBufferIsSkipped) {
     TwoPlanes s;
+    s.host.expectError("skipped prim /Buffers/badDepth: dimensions");
     s.host.addPrim("renderBuffer", "/Buffers/badDepth",
                    {{"dimensions", HostValue::float2(64.0f, 64.0f)}, {"format", HostValue::token("float32")}});
     ASSERT_EQ(s.host.render("/Camera", {{"primId", "/Buffers/id"}, {"depth", "/Buffers/badDepth"}}),
@@ -114,6 +115,7 @@ TEST(BadRenderBuffer, SizesTheDeviceCannotMakeAreRefusedClearly) {
     EXPECT_EQ(s.host.api().render(s.host.delegate(), &desc), OBSCURA_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(s.host.lastError().find("100000x1"), std::string::npos) << s.host.lastError();
     EXPECT_NE(s.host.lastError().find("largest image"), std::string::npos) << s.host.lastError();
+    s.host.expectError("skipped prim /Buffers/wide: dimensions (100000, 1)");
     s.host.addRenderBuffer("/Buffers/wide", "int32", 100000, 1);
     EXPECT_EQ(s.host.render("/Camera", {{"primId", "/Buffers/wide"}}), OBSCURA_ERROR_BAD_PRIM_DATA);
     EXPECT_NE(s.host.lastError().find("/Buffers/wide"), std::string::npos) << s.host.lastError();
