@@ -1,6 +1,7 @@
 /* A host written in C99: finds the plugin through its plugInfo.json, dlopens it, negotiates the
- * ABI, supplies a scene delegate in C and reads an AOV back; the log must hold no error but the one
- * the bad mesh provokes. Exits 0 when every check passes. */
+ * ABI, supplies a scene delegate in C and reads an AOV back; every entry point is held through its
+ * PFN_ typedef, and the log must hold no error but the one the bad mesh provokes. Exits 0 when
+ * every check passes. */
 #include <obscura/grading_chart.h> /* compiles as C too */
 #include <obscura/obscura.h>
 
@@ -150,6 +151,30 @@ int main(void) {
     api = (const ObscuraApiV1*)table;
     CHECK(api && api->structSize >= sizeof(ObscuraApiV1), "table too small");
     if (!api) return 1;
+    CHECK(getApi(OBSCURA_ABI_VERSION_MAJOR, 0, NULL) == OBSCURA_ERROR_INVALID_ARGUMENT, "NULL outTable accepted");
+    {
+        /* Every entry point has its PFN_ typedef (a C host loading them one by one needs it). */
+        PFN_obscuraCreateDelegate createDelegate = api->createDelegate;
+        PFN_obscuraDestroyDelegate destroyDelegate = api->destroyDelegate;
+        PFN_obscuraLastError lastError = api->lastError;
+        PFN_obscuraSetSceneDelegate setSceneDelegate = api->setSceneDelegate;
+        PFN_obscuraInsertPrim insertPrim = api->insertPrim;
+        PFN_obscuraRemovePrim removePrim = api->removePrim;
+        PFN_obscuraMarkDirty markDirty = api->markDirty;
+        PFN_obscuraSetRenderSetting setRenderSetting = api->setRenderSetting;
+        PFN_obscuraRender render = api->render;
+        PFN_obscuraMapRenderBuffer mapRenderBuffer = api->mapRenderBuffer;
+        PFN_obscuraUnmapRenderBuffer unmapRenderBuffer = api->unmapRenderBuffer;
+        PFN_obscuraGetPassTimings getPassTimings = api->getPassTimings;
+        PFN_obscuraGetRenderStats getRenderStats = api->getRenderStats;
+        PFN_obscuraEnumerateDevices enumerateDevices = api->enumerateDevices;
+        PFN_obscuraGetPrimId getPrimId = api->getPrimId;
+        PFN_obscuraDescribeRenderSetting describeRenderSetting = api->describeRenderSetting;
+        CHECK(createDelegate && destroyDelegate && lastError && setSceneDelegate && insertPrim && removePrim &&
+                  markDirty && setRenderSetting && render && mapRenderBuffer && unmapRenderBuffer && getPassTimings &&
+                  getRenderStats && enumerateDevices && getPrimId && describeRenderSetting,
+              "a NULL entry in the table");
+    }
 
     memset(&info, 0, sizeof info);
     info.sType = OBSCURA_STRUCTURE_TYPE_DELEGATE_CREATE_INFO;
