@@ -93,8 +93,8 @@ void Curves::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         if (!s.getFloatArray("widths")) input_.widths = pullWidths(s);
     }
     if (std::string problem = curvesProblem(input_); !problem.empty()) throw PrimDataError(s.path() + ": " + problem);
-    if (input_.points.empty()) return reset();  // nothing to draw, nothing kept from before
-    if (sidesLevel_ < 0) return;                 // tessellated once the view is known (chooseViewDependentDetail)
+    if (input_.points.empty()) return dropGeometry(ctx);  // nothing to draw, nothing kept from before
+    if (sidesLevel_ < 0) return;                        // tessellated once the view is known (chooseViewDependentDetail)
     // The cap coarsens sides and steps together, one level at a time.
     const int finest = std::max(sidesLevel_, stepsLevel_);
     auto detailAt = [&](int level) {
@@ -133,8 +133,8 @@ void Points::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         shutterPoints_ = pullShutterPoints(s, input_.points, ctx);
     }
     if (std::string problem = pointsProblem(input_); !problem.empty()) throw PrimDataError(s.path() + ": " + problem);
-    if (input_.points.empty()) return reset();  // nothing to draw, nothing kept from before
-    if (level_ < 0) return;                      // tessellated once the view is known
+    if (input_.points.empty()) return dropGeometry(ctx);  // nothing to draw, nothing kept from before
+    if (level_ < 0) return;                             // tessellated once the view is known
     CappedLevel capped = capTessellation(
         level_, kImplicitMinLevel, [&](int level) { return pointTriangleCount(input_, implicitSegments(level)); }, s.path());
     const int segments = implicitSegments(capped.level);

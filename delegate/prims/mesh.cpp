@@ -45,9 +45,12 @@ void Mesh::setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std
     indexCount_ = static_cast<uint32_t>(geometry.indices.size());
     localBounds_ = Aabb{};
     for (const passes::Vertex& v : geometry.vertices) localBounds_.extend({v.position[0], v.position[1], v.position[2]});
-    SharedGeometry shared = ctx.geometry.get(geometry.vertices, geometry.indices, path.c_str());
-    vertices_ = std::move(shared.vertices);
-    indices_ = std::move(shared.indices);
+    ctx.onDevice([this, &cache = ctx.geometry, content = geometryContent(geometry.vertices, geometry.indices),
+                  path]() mutable {
+        SharedGeometry shared = cache.get(std::move(content), path.c_str());
+        vertices_ = std::move(shared.vertices);
+        indices_ = std::move(shared.indices);
+    });
 }
 
 std::optional<std::array<std::vector<float>, 2>> Mesh::pullShutterPoints(SceneAccess& s, const std::vector<float>& points,
@@ -66,8 +69,7 @@ std::optional<std::array<std::vector<float>, 2>> Mesh::pullShutterPoints(SceneAc
 
 void Mesh::setShutterPositions(const std::optional<std::array<std::vector<float>, 2>>& ends, size_t vertexCount,
                                SyncContext& ctx, const std::string& path) {
-    shutterPositions_.reset();
-    if (!ends) return;
+    if (!ends) return ctx.onDevice([this] { shutterPositions_.reset(); });
     if ((*ends)[0].size() != vertexCount * 3 || (*ends)[1].size() != (*ends)[0].size())
         throw PrimDataError(path + ": points at the shutter's ends do not match the prim's topology");
     std::vector<passes::ShutterPositions> positions(vertexCount);
@@ -76,8 +78,10 @@ void Mesh::setShutterPositions(const std::optional<std::array<std::vector<float>
             positions[v].open[k] = (*ends)[0][v * 3 + k];
             positions[v].close[k] = (*ends)[1][v * 3 + k];
         }
-    shutterPositions_ = ctx.device.createBufferWithData(positions.data(), positions.size() * sizeof(positions[0]),
+    ctx.onDevice([this, &device = ctx.device, positions = std::move(positions), path] {
+        shutterPositions_ = device.createBufferWithData(positions.data(), positions.size() * sizeof(positions[0]),
                                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, path.c_str());
+    });
 }
 
 void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {

@@ -50,8 +50,12 @@
  *    nothing; its message is in lastError(delegate) when it came from a callback, in
  *    lastError(NULL) when it came from another thread. lastError itself may always be called.
  *  - Scene-delegate callbacks are invoked only on the thread that called `render`, unless the
- *    host sets OBSCURA_SCENE_DELEGATE_THREAD_SAFE in ObscuraSceneDelegate::flags.
- *  - Log callbacks may be invoked from the calling thread only.
+ *    host sets OBSCURA_SCENE_DELEGATE_THREAD_SAFE in ObscuraSceneDelegate::flags: then sync pulls
+ *    the dirty rprims (meshes, curves, points, implicit surfaces, instancers) on several threads
+ *    of the plugin's own at once, each prim's callbacks on one thread and in order; cameras,
+ *    lights, materials and render buffers are still pulled on the calling thread. An API call from
+ *    a callback on one of those threads is refused as a call from another thread.
+ *  - Log callbacks are invoked on the thread that made the call only.
  */
 #ifndef OBSCURA_OBSCURA_H
 #define OBSCURA_OBSCURA_H
@@ -113,8 +117,8 @@ typedef enum ObscuraValueType {
  * (points, faceVertexIndices...) has count = number of elements and isArray = 1.
  * For TOKEN and PATH, data points to an array of `count` const char* pointers.
  * Lifetime: memory the host returns from a callback must stay valid until the next callback
- * on the same delegate or until the render call returns, whichever comes first; the delegate
- * copies what it keeps.
+ * on the same delegate (with OBSCURA_SCENE_DELEGATE_THREAD_SAFE: on the same thread) or until the
+ * render call returns, whichever comes first; the delegate copies what it keeps.
  */
 typedef struct ObscuraValue {
     ObscuraValueType type;
@@ -195,7 +199,9 @@ typedef struct ObscuraDelegateCreateInfo {
     void* logUserData;
 } ObscuraDelegateCreateInfo;
 
-/* Scene delegate: the callbacks through which sync pulls dirty prim data from the host. */
+/* Scene delegate: the callbacks through which sync pulls dirty prim data from the host.
+ * OBSCURA_SCENE_DELEGATE_THREAD_SAFE in `flags`: the callbacks may run on several threads at once
+ * (for different prims), and sync pulls rprims in parallel (see Thread-safety above). */
 #define OBSCURA_SCENE_DELEGATE_THREAD_SAFE 0x1u
 
 /* Return OBSCURA_OK and fill *out, or OBSCURA_ERROR_NOT_FOUND when the attribute is not

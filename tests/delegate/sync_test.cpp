@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <condition_variable>
+#include <limits>
+#include <mutex>
 #include <set>
 #include <thread>
 
@@ -161,6 +165,81 @@ TEST(SharedGeometry, InstancedCopiesKeepTheirOwnMaterialAndId) {
     ASSERT_EQ(host.api().getPrimId(host.delegate(), "/Right", &rightId), OBSCURA_OK);
     EXPECT_EQ(ids[32 * kWidth + 16], leftId);
     EXPECT_EQ(ids[32 * kWidth + 47], rightId);
+}
+
+}  // namespace
+}  // namespace obscura::test
+
+namespace obscura::test {
+namespace {
+
+// 48 small quads, a sphere and a quad with NaN points, seen from the front; the host declares its
+// callbacks thread-safe or not.
+struct ManyPrims {
+    TestHost host;
+    explicit ManyPrims(bool threadSafeCallbacks) : host(true, threadSafeCallbacks) {
+        host.expectError("skipped prim /Bad: points: element 0 is NaN");
+        host.addCamera("/Camera", translation(0, 0, 20));
+        addMaterial(host, "/Looks/Grey", {0.5f, 0.5f, 0.5f});
+        host.addPrim("distantLight", "/Sun", {{"inputs:normalize", HostValue::boolean(true)}},
+                     lightPointingAlong({0, 0, -1}));
+        for (int i = 0; i < 48; ++i)
+            addPlane(host, "/Planes/P" + std::to_string(i), "/Looks/Grey", 0.3, translation(i % 8 - 3.5, i / 8 - 2.5, 0));
+        host.addPrim("sphere", "/Ball", {{"radius", HostValue::doubleValue(0.5)}}, translation(0, 0, 2));
+        addPlane(host, "/Bad", "", 0.3, translation(0, -3.5, 0));
+        const float nan = std::numeric_limits<float>::quiet_NaN();
+        host.set("/Bad", "points", HostValue::points({{nan, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}));
+        host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+        host.addRenderBuffer("/Buffers/id", "int32", kWidth, kHeight);
+    }
+    ObscuraStatus render() {
+        return host.render("/Camera", {{"color", "/Buffers/color"}, {"primId", "/Buffers/id"}});
+    }
+};
+
+TEST(ParallelSync, AThreadSafeHostIsCalledOnSeveralThreadsAndTheFrameIsTheSame) {
+    ManyPrims serial(false), parallel(true);
+    // The first callback for a quad waits (10 s at most) until another thread calls for one: two
+    // rprims pull at once (the camera, light and material pull first, on the calling thread).
+    std::mutex mutex;
+    std::condition_variable arrived;
+    std::set<std::thread::id> seen;
+    parallel.host.onGetValue = [&](const std::string& path, const std::string&) {
+        if (path.rfind("/Planes/", 0) != 0) return;
+        std::unique_lock lock(mutex);
+        const bool first = seen.empty();
+        seen.insert(std::this_thread::get_id());
+        arrived.notify_all();
+        if (first) arrived.wait_for(lock, std::chrono::seconds(10), [&] { return seen.size() > 1; });
+    };
+    ASSERT_EQ(serial.render(), OBSCURA_ERROR_BAD_PRIM_DATA) << serial.host.lastError();
+    ASSERT_EQ(parallel.render(), OBSCURA_ERROR_BAD_PRIM_DATA) << parallel.host.lastError();
+    EXPECT_GT(parallel.host.callbackThreads.size(), 1u);
+    // Messages still come on the thread that called render.
+    EXPECT_EQ(parallel.host.logThreads, std::set<std::thread::id>{std::this_thread::get_id()});
+    EXPECT_EQ(parallel.host.getValueCalls, serial.host.getValueCalls);
+    EXPECT_EQ(renderStats(parallel.host).primsSynced, renderStats(serial.host).primsSynced);
+    EXPECT_EQ(parallel.host.readFloats("/Buffers/color"), serial.host.readFloats("/Buffers/color"));
+    EXPECT_EQ(parallel.host.readInts("/Buffers/id"), serial.host.readInts("/Buffers/id"));
+    // An edit re-syncs the same prims either way.
+    for (ManyPrims* scene : {&serial, &parallel}) {
+        scene->host.onGetValue = nullptr;
+        scene->host.setTransform("/Planes/P9", translation(0, 0, 1));
+        scene->host.set("/Planes/P10", "points",
+                        HostValue::points({{-0.2f, -0.2f, 0}, {0.2f, -0.2f, 0}, {0.2f, 0.2f, 0}, {-0.2f, 0.2f, 0}}));
+        scene->host.api().markDirty(scene->host.delegate(), "/Planes/P9", OBSCURA_DIRTY_TRANSFORM);
+        scene->host.api().markDirty(scene->host.delegate(), "/Planes/P10", OBSCURA_DIRTY_POINTS);
+        ASSERT_EQ(scene->render(), OBSCURA_ERROR_BAD_PRIM_DATA) << scene->host.lastError();
+    }
+    EXPECT_EQ(renderStats(parallel.host).primsSynced, 2u);
+    EXPECT_EQ(parallel.host.readFloats("/Buffers/color"), serial.host.readFloats("/Buffers/color"));
+}
+
+TEST(ParallelSync, AHostWithoutTheFlagIsCalledOnItsOwnThreadOnly) {
+    ManyPrims scene(false);
+    ASSERT_EQ(scene.render(), OBSCURA_ERROR_BAD_PRIM_DATA) << scene.host.lastError();
+    EXPECT_EQ(scene.host.callbackThreads, std::set<std::thread::id>{std::this_thread::get_id()});
+    EXPECT_EQ(scene.host.logThreads, std::set<std::thread::id>{std::this_thread::get_id()});
 }
 
 }  // namespace
