@@ -204,12 +204,12 @@ void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue
     // A new refinement level re-refines every mesh (Hydra's display-style change).
     if (values.refineLevel != previousRefineLevel)
         for (auto& [path, prim] : prims_)
-            if (dynamic_cast<Mesh*>(prim.get())) markDirty(path, OBSCURA_DIRTY_TOPOLOGY);
+            if (dynamic_cast<Mesh*>(prim.get())) markDirty(path, kDirtyTessellation);
     // Velocities are per second: another rate moves points and instances elsewhere in the shutter.
     if (values.timeCodesPerSecond != previousTimeCodesPerSecond)
         for (auto& [path, prim] : prims_)
-            if (dynamic_cast<Mesh*>(prim.get()) || dynamic_cast<Instancer*>(prim.get()))
-                markDirty(path, OBSCURA_DIRTY_POINTS);
+            if (const schema::AttributeSchema* velocities = schema::findAttribute(prim->schema(), "velocities"))
+                markDirty(path, velocities->dirtyBit);
 }
 
 void RenderDelegate::reportSync(const Prim& prim) {

@@ -2,6 +2,7 @@
 
 #include "harness/shading_network.h"
 #include "harness/usda/matrix4.h"
+#include "schemas/schema.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,21 +40,20 @@ const std::map<std::string, std::string> kPrimTypes = {
 const std::set<std::string> kStructuralTypes = {"", "Xform", "Scope", "Shader", "NodeGraph", "GeomSubset",
                                                 "RenderSettings", "RenderProduct", "RenderVar"};
 
-ObscuraDirtyBits dirtyBitFor(const std::string& attribute) {
-    if (attribute == "points" || attribute == "positions" || attribute == "orientations" || attribute == "scales")
-        return OBSCURA_DIRTY_POINTS;
-    if (attribute == "protoIndices") return OBSCURA_DIRTY_TOPOLOGY;
-    if (attribute == "invisibleIds") return OBSCURA_DIRTY_VISIBILITY;
-    if (attribute == "normals") return OBSCURA_DIRTY_NORMALS;
-    if (attribute.rfind("primvars:", 0) == 0) return OBSCURA_DIRTY_PRIMVAR;
-    if (attribute == "faceVertexCounts" || attribute == "faceVertexIndices" || attribute == "curveVertexCounts")
-        return OBSCURA_DIRTY_TOPOLOGY;
-    if (attribute == "visibility") return OBSCURA_DIRTY_VISIBILITY;
-    if (attribute.rfind("xformOp", 0) == 0) return OBSCURA_DIRTY_TRANSFORM;
-    return OBSCURA_DIRTY_PARAMS;
-}
-
 bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+// The dirty bit that makes the plugin read attribute `name` of a prim of plugin type `type` again:
+// the schema's (schemas/*.json), under the names this host serves it by: a light input also by
+// its name before UsdLux 21.02 (no "inputs:"), and a primvar the schema does not name may be the
+// one the material's textures read, served as primvars:st. 0: the plugin does not read it.
+ObscuraDirtyBits dirtyBitFor(const std::string& type, const std::string& name) {
+    const schema::PrimSchema* prim = schema::findPrimSchema(type);
+    if (!prim) return 0;
+    const schema::AttributeSchema* attribute = schema::findAttribute(*prim, name);
+    if (!attribute) attribute = schema::findAttribute(*prim, "inputs:" + name);
+    if (!attribute && startsWith(name, "primvars:")) attribute = schema::findAttribute(*prim, "primvars:st");
+    return attribute ? attribute->dirtyBit : 0;
+}
 
 // UsdGeomPrimvar::ComputeFlattened: element i of the result is values[indices[i]]. Returns the
 // problem when an index is out of range.
@@ -209,18 +209,19 @@ ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDele
     for (const auto& [path, type] : primTypes_) {
         const usda::Prim* prim = stage_.find(path);
         ObscuraDirtyBits bits = 0;
-        if (!stage_.transformSampleTimes(*prim).empty()) bits |= OBSCURA_DIRTY_TRANSFORM;
+        if (!stage_.transformSampleTimes(*prim).empty()) bits |= dirtyBitFor(type, "transform");
         // Visibility is inherited: an ancestor's samples change the prim's computed visibility.
-        if (stage_.hasAnimatedVisibility(*prim)) bits |= OBSCURA_DIRTY_VISIBILITY;
+        if (stage_.hasAnimatedVisibility(*prim)) bits |= dirtyBitFor(type, "visibility");
         const usda::Prim* valuesFrom = type == "material" ? surfaces_.at(path) : prim;
         for (const auto& [name, attr] : valuesFrom->attributes) {
             // A surface input takes its value from the interface input it connects to.
             const usda::Attribute* source = type == "material" && attr.connection ? valueProducingAttribute(stage_, attr) : &attr;
-            if (source && source->isAnimated()) bits |= dirtyBitFor(name);
-            // A texture's inputs are parameters of the material it feeds.
+            if (source && source->isAnimated()) bits |= dirtyBitFor(type, name);
+            // A texture's inputs are served as the material's obscura:<input>:<field>.
             if (auto texture = type == "material" ? textureConnection(stage_, attr) : std::nullopt)
                 for (const auto& [textureInput, textureAttr] : texture->texture->attributes)
-                    if (textureAttr.isAnimated()) bits |= OBSCURA_DIRTY_PARAMS;
+                    if (textureAttr.isAnimated() && startsWith(name, "inputs:") && startsWith(textureInput, "inputs:"))
+                        bits |= dirtyBitFor(type, "obscura:" + name.substr(7) + ":" + textureInput.substr(7));
         }
         if (bits) {
             ObscuraStatus s = api.markDirty(delegate, path.c_str(), bits);
@@ -279,9 +280,9 @@ std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDeleg
         radius += 0.25 * (hi[c] - lo[c]) * (hi[c] - lo[c]);
     }
     radius = std::max(std::sqrt(radius), 1e-3);
-    // The schema's default lens: 50 mm, 15.2908 mm vertical aperture; the bounding sphere fits
-    // the narrower (vertical) field of view.
-    double halfFov = std::atan(15.2908 / 2.0 / 50.0);
+    // The camera schema's default lens; the bounding sphere fits the narrower (vertical) field of view.
+    double halfFov = std::atan(schema::defaultNumber("camera", "verticalAperture") / 2.0 /
+                               schema::defaultNumber("camera", "focalLength"));
     double distance = radius / std::sin(halfFov);
     FramingCamera cam{"/ObscuraFramingCamera", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, centre[0], centre[1], centre[2] + distance, 1},
                       {float(std::max(distance - 2.0 * radius, distance * 1e-3)), float(distance + 2.0 * radius)}};

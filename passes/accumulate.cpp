@@ -1,4 +1,5 @@
 #include "passes/accumulate.h"
+#include "generated/shader_layouts.h"
 
 namespace obscura::passes {
 namespace {
@@ -8,6 +9,8 @@ struct AccumulatePush {
     float weight;
     uint32_t first;
 };
+OBSCURA_SHADER_OFFSET(AccumulatePush, accumulate_comp::Push, weight);
+OBSCURA_SHADER_OFFSET(AccumulatePush, accumulate_comp::Push, first);
 
 }  // namespace
 

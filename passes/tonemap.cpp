@@ -1,4 +1,5 @@
 #include "passes/tonemap.h"
+#include "generated/shader_layouts.h"
 
 namespace obscura::passes {
 
@@ -12,6 +13,12 @@ struct TonemapPush {
     uint32_t alphaIsCoverage;
     float backdropCoverage;
 };
+OBSCURA_SHADER_OFFSET(TonemapPush, tonemap_comp::Push, shaperMinStops);
+OBSCURA_SHADER_OFFSET(TonemapPush, tonemap_comp::Push, shaperRangeStops);
+OBSCURA_SHADER_OFFSET(TonemapPush, tonemap_comp::Push, middleGrey);
+OBSCURA_SHADER_OFFSET(TonemapPush, tonemap_comp::Push, lutSize);
+OBSCURA_SHADER_OFFSET(TonemapPush, tonemap_comp::Push, alphaIsCoverage);
+OBSCURA_SHADER_OFFSET(TonemapPush, tonemap_comp::Push, backdropCoverage);
 }  // namespace
 
 gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, PipelineCache& pipelines, const FrameScene& scene,

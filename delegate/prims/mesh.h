@@ -54,7 +54,7 @@ protected:
     }
     // What every gprim pulls: transform samples, visibility and purpose, sidedness, material,
     // display opacity.
-    void pullGprim(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx);
+    void pullGprim(SceneAccess& scene, SyncContext& ctx);
     // Keeps the drawn polygons' bounds and warnings, and queues their upload (shared through the
     // geometry cache, keyed here on the pulling thread).
     void setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std::string& path);

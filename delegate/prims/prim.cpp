@@ -5,7 +5,7 @@ namespace obscura::delegate {
 void Prim::pullDirty(SyncContext& ctx) {
     // A skipped prim re-reads everything: its previous state was dropped.
     ObscuraDirtyBits bits = skipped() ? OBSCURA_DIRTY_ALL : dirty_;
-    SceneAccess scene(ctx.sceneDelegate, schema_, path_, ctx.time);
+    SceneAccess scene(ctx.sceneDelegate, schema_, path_, ctx.time, bits);
     try {
         pull(scene, bits, ctx);
         problem_.clear();

@@ -19,6 +19,10 @@ namespace obscura::delegate {
 class TextureCache;
 class GeometryCache;
 
+// A bit the delegate sets itself, never a host: the view (or the refineLevel setting) asks for
+// another tessellation of what was pulled, without reading anything again.
+constexpr ObscuraDirtyBits kDirtyTessellation = 0x80000000u;
+
 // What a prim's sync does on the device (uploads, and the release of the GPU objects they replace),
 // queued while it pulls and run on the calling thread afterwards: pulls may run on several threads
 // at once, the device and the log are the calling thread's.

@@ -1,4 +1,5 @@
 // Incremental sync: a render pulls only what the dirty bits name (callbacks counted per prim).
+#include "schemas/schema.h"
 #include "tests/delegate/render_fixture.h"
 
 #include <gtest/gtest.h>
@@ -6,8 +7,10 @@
 #include <chrono>
 #include <condition_variable>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <set>
+#include <span>
 #include <thread>
 
 namespace obscura::test {
@@ -240,6 +243,73 @@ TEST(ParallelSync, AHostWithoutTheFlagIsCalledOnItsOwnThreadOnly) {
     ASSERT_EQ(scene.render(), OBSCURA_ERROR_BAD_PRIM_DATA) << scene.host.lastError();
     EXPECT_EQ(scene.host.callbackThreads, std::set<std::thread::id>{std::this_thread::get_id()});
     EXPECT_EQ(scene.host.logThreads, std::set<std::thread::id>{std::this_thread::get_id()});
+}
+
+}  // namespace
+}  // namespace obscura::test
+
+namespace obscura::test {
+namespace {
+
+// The schemas own which dirty bit reads which attribute again (schemas/*.json): for one prim of
+// every type, marking an attribute's bit makes the next render ask the host for that attribute,
+// for every attribute a first sync asks for.
+TEST(SchemaDirtyBits, MarkingAnAttributesBitAsksForItAgain) {
+    TestHost host;
+    std::map<std::string, std::string> types;  // path -> prim type
+    auto add = [&](const std::string& type, const std::string& path, std::map<std::string, HostValue> values,
+                   Matrix transform) {
+        host.addPrim(type, path, std::move(values), transform);
+        types[path] = type;
+    };
+    add("camera", "/Camera",
+        {{"shutter:open", HostValue::doubleValue(-0.25)}, {"shutter:close", HostValue::doubleValue(0.25)}},
+        translation(0, 0, 12));
+    addPlane(host, "/Mesh", "/Looks/Grey", 0.5, translation(-3, 2, 0));
+    types["/Mesh"] = "mesh";
+    addMaterial(host, "/Looks/Grey", {0.5f, 0.5f, 0.5f});
+    types["/Looks/Grey"] = "material";
+    addPlane(host, "/Proto", "", 0.3, translation(0, 0, -50));
+    types["/Proto"] = "mesh";
+    add("instancer", "/Instancer",
+        {{"prototypes", HostValue::paths({"/Proto"})},
+         {"protoIndices", HostValue::intArray({0})},
+         {"positions", HostValue::points({{0, 0, 50}})}},
+        translation(3, 2, 0));
+    const char* implicit[] = {"sphere", "cube", "cylinder", "cylinder1", "cone", "capsule", "capsule1", "plane"};
+    for (size_t i = 0; i < std::size(implicit); ++i)
+        add(implicit[i], std::string("/Implicit/") + implicit[i], {}, translation(double(i) - 3.5, -1, 0));
+    HostValue widths = HostValue::floatValue(0.1f);
+    widths.isArray = true;  // float[] of one, constant
+    add("basisCurves", "/Curves",
+        {{"points", HostValue::points({{0, 0, 0}, {1, 0, 0}})},
+         {"curveVertexCounts", HostValue::intArray({2})},
+         {"type", HostValue::token("linear")},
+         {"widths", widths}},
+        translation(-2, -3, 0));
+    host.setInterpolation("/Curves", "widths", OBSCURA_INTERPOLATION_CONSTANT);
+    add("points", "/Points", {{"points", HostValue::points({{0, 0, 0}, {0.5f, 0, 0}})}}, translation(2, -3, 0));
+    for (const char* light : {"distantLight", "sphereLight", "rectLight", "diskLight", "domeLight"})
+        add(light, std::string("/Lights/") + light, {}, identity());
+    host.addRenderBuffer("/Buffers/color", "float32Vec4", 32, 32);
+    types["/Buffers/color"] = "renderBuffer";
+    auto render = [&] { return host.render("/Camera", {{"color", "/Buffers/color"}}); };
+    ASSERT_EQ(render(), OBSCURA_OK) << host.lastError();
+    const auto firstSync = host.valuesAskedFor;
+    ASSERT_GT(firstSync.size(), 100u);
+    std::set<ObscuraDirtyBits> bits;
+    for (const schema::PrimSchema& prim : schema::primSchemas())
+        for (const schema::AttributeSchema& a : std::span(prim.attributes, prim.attributeCount)) bits.insert(a.dirtyBit);
+    for (ObscuraDirtyBits bit : bits) {
+        host.resetCounters();
+        for (const auto& [path, type] : types) ASSERT_EQ(host.api().markDirty(host.delegate(), path.c_str(), bit), OBSCURA_OK);
+        ASSERT_EQ(render(), OBSCURA_OK) << host.lastError();
+        for (const auto& [path, attribute] : firstSync)
+            if (schema::attributeOf(types.at(path), attribute).dirtyBit == bit)
+                EXPECT_TRUE(host.valuesAskedFor.count({path, attribute}))
+                    << path << " (" << types.at(path) << ") " << attribute << ": not asked for again when bit 0x"
+                    << std::hex << bit << " is marked";
+    }
 }
 
 }  // namespace

@@ -168,6 +168,7 @@ void InMemoryHost::forgetScene() {
     warnings_.clear();
     infos_.clear();
     getValueCalls.clear();
+    valuesAskedFor.clear();
     callbackThreads.clear();
 }
 
@@ -238,9 +239,12 @@ void InMemoryHost::setTimeSamples(const std::string& path, const std::string& at
     timeSamples_[path][attribute] = std::move(samples);
 }
 
-void InMemoryHost::noteCallback(const char* getValuePath) {
+void InMemoryHost::noteCallback(const char* getValuePath, const char* attribute) {
     std::lock_guard lock(counters_);
-    if (getValuePath) getValueCalls[getValuePath]++;
+    if (getValuePath) {
+        getValueCalls[getValuePath]++;
+        valuesAskedFor.emplace(getValuePath, attribute);
+    }
     callbackThreads.insert(std::this_thread::get_id());
 }
 
@@ -251,7 +255,7 @@ ObscuraStatus InMemoryHost::getValueThunk(void* user, const char* path, const ch
     // callback's value when callbacks run on several threads).
     thread_local HostValue sampled;
     thread_local std::vector<const char*> stringPointers;
-    self->noteCallback(path);
+    self->noteCallback(path, attribute);
     if (self->onGetValue) self->onGetValue(path, attribute);
     const HostValue* found = nullptr;
     if (auto prim = self->timeSamples_.find(path); prim != self->timeSamples_.end())

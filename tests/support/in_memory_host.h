@@ -96,8 +96,9 @@ public:
     const std::vector<std::string>& loggedErrors() const { return errors_; }
     const std::vector<std::string>& loggedWarnings() const { return warnings_; }
     const std::vector<std::string>& loggedInfos() const { return infos_; }
-    // getValue callbacks per prim path since the last reset.
+    // getValue callbacks per prim path since the last reset, and the (path, attribute) pairs asked for.
     std::map<std::string, int> getValueCalls;
+    std::set<std::pair<std::string, std::string>> valuesAskedFor;
     // The threads scene-delegate callbacks ran on since the last reset.
     std::set<std::thread::id> callbackThreads;
     // The threads log callbacks ran on.
@@ -107,6 +108,7 @@ public:
     std::function<void(const std::string&, const std::string&)> onGetValue;
     void resetCounters() {
         getValueCalls.clear();
+        valuesAskedFor.clear();
         callbackThreads.clear();
     }
     // Forgets every value, transform and log this host holds (the delegate's prims stay): a fuzz
@@ -114,8 +116,8 @@ public:
     void forgetScene();
 
 private:
-    // Counts a callback on this thread (a getValue of `getValuePath` when not null).
-    void noteCallback(const char* getValuePath);
+    // Counts a callback on this thread (a getValue of `getValuePath`'s `attribute` when not null).
+    void noteCallback(const char* getValuePath, const char* attribute = nullptr);
     static void logThunk(void* user, ObscuraLogLevel level, const char* message);
     static ObscuraStatus getValueThunk(void* user, const char* path, const char* attribute, double time,
                                        ObscuraValue* out);
