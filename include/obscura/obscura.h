@@ -186,6 +186,7 @@ typedef enum ObscuraLogLevel {
     OBSCURA_LOG_ERROR = 3
 } ObscuraLogLevel;
 
+/* Implemented by the host: [in] message (valid during the call) at [in] level. */
 typedef void (*PFN_obscuraLog)(void* userData, ObscuraLogLevel level, const char* message);
 
 /* Creation of a delegate. */
@@ -204,16 +205,21 @@ typedef struct ObscuraDelegateCreateInfo {
  * (for different prims), and sync pulls rprims in parallel (see Thread-safety above). */
 #define OBSCURA_SCENE_DELEGATE_THREAD_SAFE 0x1u
 
-/* Return OBSCURA_OK and fill *out, or OBSCURA_ERROR_NOT_FOUND when the attribute is not
- * authored (the delegate then uses the schema default). `time` is in the host's time codes. */
+/* Implemented by the host: return OBSCURA_OK and fill [out] out with the value of [in] attribute of
+ * the prim at [in] primPath at [in] time (the host's time codes), or OBSCURA_ERROR_NOT_FOUND when the
+ * attribute is not authored (the delegate then uses the schema default). Any other status makes the
+ * prim's data bad (it is skipped, see render). */
 typedef ObscuraStatus (*PFN_obscuraGetValue)(void* userData, const char* primPath,
                                              const char* attribute, double time, ObscuraValue* out);
-/* Interpolation of a primvar or of normals; NOT_FOUND means the schema's default. */
+/* Implemented by the host: [out] the interpolation of primvar (or normals) [in] attribute of the
+ * prim at [in] primPath; OBSCURA_ERROR_NOT_FOUND means the schema's default. */
 typedef ObscuraStatus (*PFN_obscuraGetInterpolation)(void* userData, const char* primPath,
                                                      const char* attribute, ObscuraInterpolation* out);
-/* Sample the prim's world transform over [time0, time1] (like HdSceneDelegate::SampleTransform):
- * write at most maxSamples (time, matrix) pairs, sorted by time, and the number written to
- * *sampleCount. A prim without animation returns one sample. */
+/* Implemented by the host: sample the world transform of the prim at [in] primPath over [in]
+ * [time0, time1] (like HdSceneDelegate::SampleTransform): write at most [in] maxSamples (time,
+ * matrix) pairs, sorted by time, into [out] sampleTimes and matrices (16 doubles each), and their
+ * number to [out] sampleCount. A prim without animation returns one sample; OBSCURA_ERROR_NOT_FOUND
+ * means the identity. */
 typedef ObscuraStatus (*PFN_obscuraSampleTransform)(void* userData, const char* primPath,
                                                     double time0, double time1, uint32_t maxSamples,
                                                     double* sampleTimes, double* matrices,
