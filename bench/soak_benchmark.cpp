@@ -1,4 +1,4 @@
-// The long soak (issue 13): 10,000 frames (or argv[1]) of random edits through the ABI at 32x32
+// The long soak: 10,000 frames (or argv[1]) of random edits through the ABI at 32x32
 // (or argv[2] x argv[3]) with the in-memory test host; prints resident and Vulkan memory every
 // 500 frames (and whenever the Vulkan memory changes) and the growth from frame 500 (after the
 // warm-up) to the end. Figures go into bench/RESULTS.md.
@@ -14,7 +14,7 @@ using namespace obscura::test;
 int main(int argc, char** argv) {
     int frames = argc > 1 ? std::atoi(argv[1]) : 10000;
     int width = argc > 2 ? std::atoi(argv[2]) : 32, height = argc > 3 ? std::atoi(argv[3]) : 32;
-    TestHost host(false);
+    InMemoryHost host(false);
     RandomEditScene scene(host, 13, width, height);
     auto vulkanReserved = [&] { return vulkanMemoryReserved(host.api(), host.delegate()); };
     // Every kind of edit (each size, each settings combination) has been seen well before this.

@@ -1,8 +1,11 @@
 // Incremental sync, measured (Google Benchmark): a scene of 10,000 mesh prims and 1,000,000
 // triangles; the initial sync, then re-syncs after changing one transform, one material, and
 // after adding and removing one prim. Reported times are the delegate's own CPU time for sync
-// (ObscuraRenderStats::syncMilliseconds) and, separately, for packing the frame's records.
-#include "tests/support/test_host.h"
+// (ObscuraRenderStats::syncMilliseconds) and, separately, for packing the frame's records. Each
+// runs with a host whose callbacks run on the render thread only (argument 0) and with one that
+// declares them thread-safe (OBSCURA_SCENE_DELEGATE_THREAD_SAFE, argument 1): sync then pulls the
+// dirty rprims in parallel.
+#include "tests/support/in_memory_host.h"
 
 #include <benchmark/benchmark.h>
 
@@ -36,8 +39,9 @@ std::map<std::string, HostValue> gridMesh(const std::string& material) {
 }
 
 struct BigScene {
-    std::unique_ptr<TestHost> host = std::make_unique<TestHost>(false);
-    BigScene() {
+    std::unique_ptr<InMemoryHost> host;
+    explicit BigScene(const benchmark::State& state)
+        : host(std::make_unique<InMemoryHost>(false, state.range(0) != 0)) {
         host->addCamera("/Camera", translation(0, 0, 200));
         for (int m = 0; m < 10; ++m) host->addPrim("material", "/Looks/M" + std::to_string(m), {});
         host->addPrim("distantLight", "/Sun", {});
@@ -66,14 +70,14 @@ void report(benchmark::State& state, const ObscuraRenderStats& s) {
 void InitialSync(benchmark::State& state) {
     for (auto _ : state) {
         state.PauseTiming();
-        BigScene scene;
+        BigScene scene(state);
         state.ResumeTiming();
         report(state, scene.render());
     }
 }
 
 void ResyncOneTransform(benchmark::State& state) {
-    BigScene scene;
+    BigScene scene(state);
     scene.render();
     int i = 0;
     for (auto _ : state) {
@@ -84,7 +88,7 @@ void ResyncOneTransform(benchmark::State& state) {
 }
 
 void ResyncOneMaterial(benchmark::State& state) {
-    BigScene scene;
+    BigScene scene(state);
     scene.render();
     int i = 0;
     for (auto _ : state) {
@@ -95,7 +99,7 @@ void ResyncOneMaterial(benchmark::State& state) {
 }
 
 void AddAndRemoveOnePrim(benchmark::State& state) {
-    BigScene scene;
+    BigScene scene(state);
     scene.render();
     int i = 0;
     for (auto _ : state) {
@@ -107,10 +111,15 @@ void AddAndRemoveOnePrim(benchmark::State& state) {
     }
 }
 
-BENCHMARK(InitialSync)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK(ResyncOneTransform)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(20);
-BENCHMARK(ResyncOneMaterial)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(20);
-BENCHMARK(AddAndRemoveOnePrim)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(20);
+// Manual time (the delegate's own sync time), with either host.
+void withBothHosts(benchmark::internal::Benchmark* b) {
+    b->UseManualTime()->Unit(benchmark::kMillisecond)->ArgName("threadSafeHost")->Arg(0)->Arg(1);
+}
+
+BENCHMARK(InitialSync)->Apply(withBothHosts)->Iterations(3);
+BENCHMARK(ResyncOneTransform)->Apply(withBothHosts)->Iterations(20);
+BENCHMARK(ResyncOneMaterial)->Apply(withBothHosts)->Iterations(20);
+BENCHMARK(AddAndRemoveOnePrim)->Apply(withBothHosts)->Iterations(20);
 
 }  // namespace
 }  // namespace obscura::test

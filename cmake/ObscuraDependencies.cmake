@@ -7,6 +7,7 @@ find_package(OpenEXR REQUIRED)
 find_package(Imath REQUIRED)
 find_package(PNG REQUIRED)
 find_package(assimp REQUIRED)          # glTF, FBX and OBJ scenes, converted to USD text
+find_package(TBB REQUIRED)             # parallel sync of rprims
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET GLOBAL stb)
 # OpenSubdiv's CPU library. Not find_package(OpenSubdiv): Debian's OpenSubdivConfig lists static

@@ -28,6 +28,7 @@ function(obscura_compile_shader target name source defines)
     DEPENDS ${spv} ${CMAKE_SOURCE_DIR}/cmake/EmbedSpirv.cmake
     VERBATIM)
   target_sources(${target} PRIVATE ${cpp})
+  set_property(GLOBAL APPEND PROPERTY OBSCURA_SHADER_MODULES ${spv})
 endfunction()
 
 # obscura_add_shaders(TARGET <lib> SHADERS a.comp b.vert ...)
@@ -45,4 +46,25 @@ endfunction()
 function(obscura_add_shader_variant)
   cmake_parse_arguments(ARG "" "TARGET;NAME;SOURCE" "DEFINES" ${ARGN})
   obscura_compile_shader(${ARG_TARGET} ${ARG_NAME} ${ARG_SOURCE} "${ARG_DEFINES}")
+endfunction()
+
+# generated/shader_layouts.h: the byte offset of every member of every struct and block of the
+# shaders compiled so far, read from their SPIR-V (cmake/generate_shader_layouts.cpp), for the
+# static_asserts of the C++ structs that mirror them. `target` (which holds those structs) is built
+# after it and includes it as "generated/shader_layouts.h".
+function(obscura_add_shader_layouts target)
+  get_property(modules GLOBAL PROPERTY OBSCURA_SHADER_MODULES)
+  set(header ${CMAKE_BINARY_DIR}/generated/include/generated/shader_layouts.h)
+  file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/generated/include/generated)
+  add_executable(obscura_generate_shader_layouts ${CMAKE_SOURCE_DIR}/cmake/generate_shader_layouts.cpp)
+  obscura_target_warnings(obscura_generate_shader_layouts)
+  add_custom_command(
+    OUTPUT ${header}
+    COMMAND obscura_generate_shader_layouts ${header} ${modules}
+    DEPENDS obscura_generate_shader_layouts ${modules}
+    COMMENT "Reading the shaders' struct layouts"
+    VERBATIM)
+  add_custom_target(obscura_shader_layouts DEPENDS ${header})
+  add_dependencies(${target} obscura_shader_layouts)
+  target_include_directories(${target} PUBLIC ${CMAKE_BINARY_DIR}/generated/include)
 endfunction()

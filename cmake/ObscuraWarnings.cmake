@@ -9,7 +9,10 @@ function(obscura_target_warnings target)
 endfunction()
 
 if(OBSCURA_SANITIZE)
-  # glslang is built without RTTI: the vptr check cannot work across it.
-  add_compile_options(-fsanitize=address,undefined -fno-sanitize=vptr -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  # glslang is built without RTTI: the vptr check cannot work across it. -O1 after the build type's
+  # flags (a Debug build keeps its assertions): AddressSanitizer's own advice, and unoptimised code
+  # would make every test process spend a minute baking the best-fit normals table.
+  add_compile_options(-fsanitize=address,undefined -fno-sanitize=vptr -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+                      -O1)
   add_link_options(-fsanitize=address,undefined)
 endif()

@@ -6,25 +6,31 @@
 
 namespace obscura::delegate {
 
-SharedGeometry GeometryCache::get(const std::vector<passes::Vertex>& vertices, const std::vector<uint32_t>& indices,
-                                  const char* debugName) {
-    prune();
-    size_t vertexBytes = vertices.size() * sizeof(passes::Vertex), indexBytes = indices.size() * sizeof(uint32_t);
-    std::vector<char> content(vertexBytes + indexBytes);
-    if (vertexBytes) std::memcpy(content.data(), vertices.data(), vertexBytes);
-    if (indexBytes) std::memcpy(content.data() + vertexBytes, indices.data(), indexBytes);
+GeometryContent geometryContent(const std::vector<passes::Vertex>& vertices, const std::vector<uint32_t>& indices) {
+    GeometryContent c;
+    c.vertexBytes = vertices.size() * sizeof(passes::Vertex);
+    const size_t indexBytes = indices.size() * sizeof(uint32_t);
+    c.bytes.resize(c.vertexBytes + indexBytes);
+    if (c.vertexBytes) std::memcpy(c.bytes.data(), vertices.data(), c.vertexBytes);
+    if (indexBytes) std::memcpy(c.bytes.data() + c.vertexBytes, indices.data(), indexBytes);
+    c.hash = gpu::hashBytes(c.bytes.data(), c.bytes.size(), gpu::hashValue(c.vertexBytes, gpu::kContentHashSeed));
+    return c;
+}
+
+SharedGeometry GeometryCache::get(GeometryContent content, const char* debugName) {
     // A hit is confirmed by comparing the bytes.
-    uint64_t key = gpu::hashBytes(content.data(), content.size(), gpu::hashValue(vertexBytes, gpu::kContentHashSeed));
-    auto [first, last] = entries_.equal_range(key);
+    auto [first, last] = entries_.equal_range(content.hash);
     for (auto it = first; it != last; ++it) {
-        if (it->second.vertexBytes != vertexBytes || it->second.content != content) continue;
+        if (it->second.vertexBytes != content.vertexBytes || it->second.content != content.bytes) continue;
         SharedGeometry shared{it->second.vertices.lock(), it->second.indices.lock()};
         if (shared.vertices && shared.indices) return shared;
     }
-    SharedGeometry created{
-        device_.createBufferWithData(vertices.data(), vertexBytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, debugName),
-        device_.createBufferWithData(indices.data(), indexBytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, debugName)};
-    entries_.emplace(key, Entry{std::move(content), vertexBytes, created.vertices, created.indices});
+    const size_t indexBytes = content.bytes.size() - content.vertexBytes;
+    SharedGeometry created{device_.createBufferWithData(content.bytes.data(), content.vertexBytes,
+                                                        VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, debugName),
+                           device_.createBufferWithData(content.bytes.data() + content.vertexBytes, indexBytes,
+                                                        VK_BUFFER_USAGE_INDEX_BUFFER_BIT, debugName)};
+    entries_.emplace(content.hash, Entry{std::move(content.bytes), content.vertexBytes, created.vertices, created.indices});
     return created;
 }
 

@@ -18,14 +18,24 @@ struct SharedGeometry {
     gpu::BufferPtr indices;
 };
 
+// A mesh's drawn vertices and indices as the cache keys them: made where the geometry is built
+// (on any thread, as parallel sync's pulls are), looked up on the thread that owns the device.
+struct GeometryContent {
+    std::vector<char> bytes;  // vertices then indices
+    size_t vertexBytes = 0;
+    uint64_t hash = 0;
+};
+GeometryContent geometryContent(const std::vector<passes::Vertex>& vertices, const std::vector<uint32_t>& indices);
+
 class GeometryCache {
 public:
     explicit GeometryCache(gpu::Device& device) : device_(device) {}
-    // The buffers holding exactly these vertices and indices, uploaded on first use.
-    SharedGeometry get(const std::vector<passes::Vertex>& vertices, const std::vector<uint32_t>& indices,
-                       const char* debugName);
+    // The buffers holding exactly this content, uploaded on first use.
+    SharedGeometry get(GeometryContent content, const char* debugName);
     // Bytes of vertex and index data on the GPU, each shared copy counted once.
     uint64_t residentBytes();
+    // Forgets the entries whose last user has gone (once per sync: a lookup skips them).
+    void prune();
 
 private:
     struct Entry {
@@ -33,7 +43,6 @@ private:
         size_t vertexBytes;
         std::weak_ptr<gpu::Buffer> vertices, indices;
     };
-    void prune();
 
     gpu::Device& device_;
     std::multimap<uint64_t, Entry> entries_;

@@ -4,6 +4,8 @@
 #include "gpu/vk_check.h"
 #include "passes/aov_readback.h"
 
+#include <tbb/parallel_for.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -205,17 +207,53 @@ void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue
     // A new refinement level re-refines every mesh (Hydra's display-style change).
     if (values.refineLevel != previousRefineLevel)
         for (auto& [path, prim] : prims_)
-            if (dynamic_cast<Mesh*>(prim.get())) markDirty(path, OBSCURA_DIRTY_TOPOLOGY);
+            if (dynamic_cast<Mesh*>(prim.get())) markDirty(path, kDirtyTessellation);
     // Velocities are per second: another rate moves points and instances elsewhere in the shutter.
     if (values.timeCodesPerSecond != previousTimeCodesPerSecond)
         for (auto& [path, prim] : prims_)
-            if (dynamic_cast<Mesh*>(prim.get()) || dynamic_cast<Instancer*>(prim.get()))
-                markDirty(path, OBSCURA_DIRTY_POINTS);
+            if (const schema::AttributeSchema* velocities = schema::findAttribute(prim->schema(), "velocities"))
+                markDirty(path, velocities->dirtyBit);
+}
+
+void RenderDelegate::reportSync(const Prim& prim) {
+    ++primsSynced_;
+    if (prim.skipped()) log(OBSCURA_LOG_ERROR, "skipped prim " + prim.problem());
+    if (auto* mesh = dynamic_cast<const Mesh*>(&prim))
+        for (const auto& w : mesh->warnings()) log(OBSCURA_LOG_WARNING, mesh->path() + ": " + w);
+    if (auto* material = dynamic_cast<const Material*>(&prim))
+        for (const auto& w : material->warnings()) log(OBSCURA_LOG_WARNING, material->path() + ": " + w);
+    if (auto* light = dynamic_cast<const Light*>(&prim); light && !light->warning().empty())
+        log(OBSCURA_LOG_WARNING, light->path() + ": " + light->warning());
+    if (auto* cam = dynamic_cast<const Camera*>(&prim); cam && !cam->warning().empty())
+        log(OBSCURA_LOG_WARNING, cam->path() + ": " + cam->warning());
+}
+
+void RenderDelegate::syncPrims(std::span<Prim* const> prims, const SyncContext& ctx, bool parallel) {
+    if (!parallel || prims.size() < 2) {
+        for (Prim* prim : prims) {
+            prim->sync(ctx);
+            reportSync(*prim);
+        }
+        return;
+    }
+    // Hydra's parallel rprim sync: the pulls (the host's callbacks, triangulation, refinement) on
+    // TBB's threads, each prim's device work and messages after them on this thread, in order.
+    std::vector<DeviceWork> work(prims.size());
+    tbb::parallel_for(size_t(0), prims.size(), [&](size_t i) {
+        SyncContext own = ctx;
+        own.deviceWork = &work[i];
+        prims[i]->pullDirty(own);
+    });
+    for (size_t i = 0; i < prims.size(); ++i) {
+        prims[i]->commit(work[i]);
+        reportSync(*prims[i]);
+    }
 }
 
 void RenderDelegate::sync(double time, const Camera* camera, const ObscuraRenderPassDesc& desc) {
     primsSynced_ = 0;
-    // The camera's shutter decides the interval transforms are sampled over; sync it first.
+    // The camera first (its shutter decides the interval transforms are sampled over), then
+    // sprims and bprims, then rprims.
     std::vector<Prim*> dirty(dirty_.begin(), dirty_.end());
     dirty_.clear();
     std::sort(dirty.begin(), dirty.end(), [camera](Prim* a, Prim* b) {
@@ -231,35 +269,29 @@ void RenderDelegate::sync(double time, const Camera* camera, const ObscuraRender
         ctx.shutterClose = time + camera->params().shutterClose;
     };
     takeShutter();
-    // A device failure (out of memory) leaves the prims not yet synced dirty, so that a later render
-    // pulls them again.
-    size_t next = 0;
+    geometry_->prune();
+    // A failure half-way (the device out of memory) leaves every prim not synced to the end dirty,
+    // so that a later render pulls it again.
     struct Requeue {
-        std::vector<Prim*>& dirty;
-        size_t& next;
-        std::set<Prim*>& set;
+        std::vector<Prim*>& prims;
+        std::set<Prim*>& dirty;
         ~Requeue() {
-            for (size_t i = next; i < dirty.size(); ++i) {
-                dirty[i]->markDirty(OBSCURA_DIRTY_ALL);
-                set.insert(dirty[i]);
-            }
+            for (Prim* prim : prims)
+                if (prim->dirtyBits() != OBSCURA_DIRTY_CLEAN) {
+                    prim->markDirty(OBSCURA_DIRTY_ALL);
+                    dirty.insert(prim);
+                }
         }
-    } requeue{dirty, next, dirty_};
-    auto syncPrim = [&](Prim* prim) {
-        prim->sync(ctx);
-        if (prim == camera) takeShutter();
-        ++primsSynced_;
-        if (prim->skipped()) log(OBSCURA_LOG_ERROR, "skipped prim " + prim->problem());
-        if (auto* mesh = dynamic_cast<Mesh*>(prim))
-            for (const auto& w : mesh->warnings()) log(OBSCURA_LOG_WARNING, mesh->path() + ": " + w);
-        if (auto* material = dynamic_cast<Material*>(prim))
-            for (const auto& w : material->warnings()) log(OBSCURA_LOG_WARNING, material->path() + ": " + w);
-        if (auto* light = dynamic_cast<Light*>(prim); light && !light->warning().empty())
-            log(OBSCURA_LOG_WARNING, light->path() + ": " + light->warning());
-        if (auto* cam = dynamic_cast<Camera*>(prim); cam && !cam->warning().empty())
-            log(OBSCURA_LOG_WARNING, cam->path() + ": " + cam->warning());
-    };
-    for (; next < dirty.size(); ++next) syncPrim(dirty[next]);
+    } requeue{dirty, dirty_};
+    // Rprims pull on several threads when the host says its callbacks allow it; sprims read
+    // textures, which upload and log, on this thread.
+    const bool parallel = sceneDelegate_.flags & OBSCURA_SCENE_DELEGATE_THREAD_SAFE;
+    auto afterCamera = dirty.begin() + (!dirty.empty() && dirty.front() == camera ? 1 : 0);
+    auto rprims = std::find_if(afterCamera, dirty.end(), [](const Prim* p) { return syncOrder(*p) == 1; });
+    syncPrims({dirty.begin(), afterCamera}, ctx, false);
+    takeShutter();
+    syncPrims({afterCamera, rprims}, ctx, false);
+    syncPrims({rprims, dirty.end()}, ctx, parallel);
     // Implicit surfaces, curves and points refine with their size on screen: those whose level
     // changed are tessellated again, with the transforms and instance placements just synced.
     // The viewport's size, else the first bound render buffer's (checked when they are bound).
@@ -269,8 +301,11 @@ void RenderDelegate::sync(double time, const Camera* camera, const ObscuraRender
                                     ? find<RenderBuffer>(desc.aovBindings[0].renderBufferPath)
                                     : nullptr;
     if (width == 0 && first) width = first->width(), height = first->height();
-    if (camera && !camera->skipped())
-        for (ViewDependentMesh* mesh : chooseViewDependentDetail(prims_, *camera, width, height)) syncPrim(mesh);
+    if (camera && !camera->skipped()) {
+        const size_t refined = dirty.size();
+        for (ViewDependentMesh* mesh : chooseViewDependentDetail(prims_, *camera, width, height)) dirty.push_back(mesh);
+        syncPrims({dirty.begin() + std::ptrdiff_t(refined), dirty.end()}, ctx, parallel);
+    }
     // All uploads of this sync go to the GPU in one submission.
     device_->flushUploads();
 }

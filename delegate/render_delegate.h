@@ -23,9 +23,10 @@
 
 #include <chrono>
 #include <map>
-#include <set>
 #include <memory>
 #include <optional>
+#include <set>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,11 @@ public:
 private:
     // `desc`: the render pass, whose viewport size implicit surfaces are tessellated for.
     void sync(double time, const Camera* camera, const ObscuraRenderPassDesc& desc);
+    // Syncs `prims` in order, their pulls on several threads when `parallel`; each prim's device work
+    // and messages on this thread.
+    void syncPrims(std::span<Prim* const> prims, const SyncContext& ctx, bool parallel);
+    // Counts a synced prim and logs its problem and warnings.
+    void reportSync(const Prim& prim);
     // Sample counts the G-buffer can be rendered and read with on this device (render setting msaa).
     VkSampleCountFlags offeredMsaaSampleCounts() const;
     template <typename T>

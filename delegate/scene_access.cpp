@@ -2,20 +2,37 @@
 
 #include <cmath>
 #include <cstring>
+#include <span>
 
 namespace obscura::delegate {
 
 SceneAccess::SceneAccess(const ObscuraSceneDelegate& sd, const schema::PrimSchema& schema, const std::string& path,
-                         double time)
-    : sd_(sd), schema_(schema), path_(path), time_(time) {}
+                         double time, ObscuraDirtyBits dirty)
+    : sd_(sd), schema_(schema), path_(path), time_(time), dirty_(dirty) {}
+
+bool SceneAccess::dirty(const char* name) const { return (attribute(name).dirtyBit & dirty_) != 0; }
+
+bool SceneAccess::anyDirty(std::initializer_list<const char*> names) const {
+    for (const char* name : names)
+        if (dirty(name)) return true;
+    return false;
+}
+
+bool SceneAccess::anyDirtyBut(std::initializer_list<const char*> except) const {
+    for (const char* name : except) attribute(name);  // names the schema lacks are a programming error
+    for (const schema::AttributeSchema& a : std::span(schema_.attributes, schema_.attributeCount)) {
+        bool excepted = false;
+        for (const char* name : except) excepted = excepted || std::strcmp(name, a.name) == 0;
+        if (!excepted && (a.dirtyBit & dirty_)) return true;
+    }
+    return false;
+}
 
 void SceneAccess::fail(const std::string& message) const { throw PrimDataError(path_ + ": " + message); }
 
 const schema::AttributeSchema& SceneAccess::attribute(const char* name) const {
-    const schema::AttributeSchema* a = schema::findAttribute(schema_, name);
     // The delegate only asks for attributes its schemas declare: a miss is a programming error.
-    if (!a) throw std::logic_error(std::string("schema '") + schema_.name + "' has no attribute " + name);
-    return *a;
+    return schema::attributeOf(schema_, name);
 }
 
 std::optional<ObscuraValue> SceneAccess::fetch(const schema::AttributeSchema& a) { return fetchAt(a, time_); }

@@ -9,6 +9,7 @@
 #include <obscura/obscura.h>
 
 #include <array>
+#include <initializer_list>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -31,11 +32,20 @@ Matrix4d interpolateTransform(const std::vector<TransformSample>& samples, doubl
 
 class SceneAccess {
 public:
+    // `dirty`: the bits this sync pulls (all of them for a prim seen the first time).
     SceneAccess(const ObscuraSceneDelegate& sceneDelegate, const schema::PrimSchema& schema, const std::string& path,
-                double time);
+                double time, ObscuraDirtyBits dirty = OBSCURA_DIRTY_ALL);
 
     double time() const { return time_; }
     const std::string& path() const { return path_; }
+
+    // Whether this sync reads `name` again: its dirty bit is among those marked. The schemas
+    // (schemas/*.json) are the one owner of which bit re-reads which attribute.
+    bool dirty(const char* name) const;
+    bool anyDirty(std::initializer_list<const char*> names) const;
+    bool anyDirty() const { return anyDirtyBut({}); }  // any attribute of the prim's schema
+    // Whether any attribute of the prim's schema other than `except` is.
+    bool anyDirtyBut(std::initializer_list<const char*> except) const;
 
     bool getBool(const char* name);
     int32_t getInt(const char* name);
@@ -72,6 +82,7 @@ private:
     const schema::PrimSchema& schema_;
     std::string path_;
     double time_;
+    ObscuraDirtyBits dirty_;
 };
 
 }  // namespace obscura::delegate

@@ -3,19 +3,10 @@
 #include "harness/image/exr_writer.h"
 #include "harness/image/png_io.h"
 
-#include <limits>
-
 namespace obscura::harness {
 
-double linearDepth(float d, const DepthConversion& c) {
-    if (d >= 1.0f) return std::numeric_limits<double>::infinity();
-    if (c.orthographic) return c.nearClip + double(d) * (c.farClip - c.nearClip);
-    // Inverse of the projection's z row: depth = (A z + B) / -z, A = f/(n-f), B = n f/(n-f).
-    double a = c.farClip / (c.nearClip - c.farClip), b = c.nearClip * c.farClip / (c.nearClip - c.farClip);
-    return b / (double(d) + a);
-}
-
-std::string writeExrAovs(const std::string& path, const std::vector<MappedAov>& aovs, const DepthConversion& camera) {
+std::string writeExrAovs(const std::string& path, const std::vector<MappedAov>& aovs,
+                         const schema::CameraDepth& camera) {
     std::vector<image::ExrLayer> layers;
     std::vector<std::vector<float>> converted;  // keeps converted depth alive until written
     converted.reserve(aovs.size());
@@ -31,7 +22,7 @@ std::string writeExrAovs(const std::string& path, const std::vector<MappedAov>& 
             converted.emplace_back(size_t(b.width) * b.height);
             const auto* src = static_cast<const float*>(b.data);
             for (size_t i = 0; i < converted.back().size(); ++i)
-                converted.back()[i] = float(linearDepth(src[i], camera));
+                converted.back()[i] = float(schema::viewDistance(src[i], camera));
             layers.push_back({"depth", {"Z"}, PT::Float, converted.back().data(), size_t(b.width) * sizeof(float)});
         } else if (m.aov == "normal") {
             layers.push_back({"normal", {"X", "Y", "Z"}, PT::Float, b.data, b.rowStride});

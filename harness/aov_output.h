@@ -3,6 +3,8 @@
 // display-referred colour as PNG.
 #pragma once
 
+#include "schemas/camera_depth.h"
+
 #include <obscura/obscura.h>
 
 #include <string>
@@ -15,17 +17,10 @@ struct MappedAov {
     ObscuraMappedBuffer buffer;
 };
 
-// Camera facts needed to turn Hydra's clip-space depth into the EXR's linear Z.
-struct DepthConversion {
-    bool orthographic = false;
-    double nearClip = 1.0;
-    double farClip = 1000000.0;
-};
-
-// Linear distance along the view axis for a clip-space depth in [0,1]; +inf where nothing drew.
-double linearDepth(float clipDepth, const DepthConversion& camera);
-
-std::string writeExrAovs(const std::string& path, const std::vector<MappedAov>& aovs, const DepthConversion& camera);
+// `camera`: the rendering camera's projection and clipping range, which turn the depth AOV into the
+// EXR's linear Z (schemas/camera_depth.h).
+std::string writeExrAovs(const std::string& path, const std::vector<MappedAov>& aovs,
+                         const schema::CameraDepth& camera);
 std::string writePngDisplay(const std::string& path, const ObscuraMappedBuffer& display);
 
 }  // namespace obscura::harness

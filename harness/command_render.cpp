@@ -33,8 +33,8 @@ std::variant<std::vector<double>, std::string> frameList(const RenderOptions& o,
     return std::vector<double>{meta.startTimeCode.value_or(0.0)};
 }
 
-DepthConversion depthConversion(const UsdSceneHost& host, const std::string& cameraPath, double time) {
-    DepthConversion c;
+schema::CameraDepth cameraDepth(const UsdSceneHost& host, const std::string& cameraPath, double time) {
+    schema::CameraDepth c = schema::defaultCameraDepth();
     ObscuraValue value{};
     const ObscuraSceneDelegate& sd = host.sceneDelegate();
     if (sd.getValue(sd.userData, cameraPath.c_str(), "clippingRange", time, &value) == OBSCURA_OK &&
@@ -197,7 +197,7 @@ int renderProduct(Session& session, const RenderOptions& o) {
         }
         std::string problem = writeAtomically(path, [&](const std::string& file) {
             return png ? writePngDisplay(file, mapped[0].buffer)
-                       : writeExrAovs(file, mapped, depthConversion(session.host(), camera, frame));
+                       : writeExrAovs(file, mapped, cameraDepth(session.host(), camera, frame));
         });
         for (const auto& b : buffers) session.api().unmapRenderBuffer(session.delegate(), b.c_str());
         if (!problem.empty()) {

@@ -4,6 +4,7 @@
 #include "harness/shading_network.h"
 #include "harness/usda/matrix4.h"
 #include "harness/usda/skinning.h"
+#include "schemas/schema.h"
 
 #include <algorithm>
 #include <cmath>
@@ -47,23 +48,20 @@ const std::set<std::string> kStructuralTypes = {"",           "Xform",         "
 
 bool isPointBased(const std::string& type) { return type == "Mesh" || type == "BasisCurves" || type == "Points"; }
 
-ObscuraDirtyBits dirtyBitFor(const std::string& attribute) {
-    if (attribute == "points" || attribute == "positions" || attribute == "orientations" || attribute == "scales")
-        return OBSCURA_DIRTY_POINTS;
-    if (attribute == "protoIndices") return OBSCURA_DIRTY_TOPOLOGY;
-    if (attribute == "invisibleIds") return OBSCURA_DIRTY_VISIBILITY;
-    if (attribute == "normals" || attribute == "primvars:normals") return OBSCURA_DIRTY_NORMALS;
-    if (attribute.rfind("primvars:", 0) == 0) return OBSCURA_DIRTY_PRIMVAR;
-    if (attribute == "faceVertexCounts" || attribute == "faceVertexIndices" || attribute == "curveVertexCounts")
-        return OBSCURA_DIRTY_TOPOLOGY;
-    // Purpose is pulled with visibility (what decides whether a prim draws).
-    if (attribute == "visibility" || attribute == "purpose") return OBSCURA_DIRTY_VISIBILITY;
-    if (attribute == "doubleSided") return OBSCURA_DIRTY_DOUBLE_SIDED;
-    if (attribute.rfind("xformOp", 0) == 0) return OBSCURA_DIRTY_TRANSFORM;
-    return OBSCURA_DIRTY_PARAMS;
-}
-
 bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+// The dirty bit that makes the plugin read attribute `name` of a prim of plugin type `type` again:
+// the schema's (schemas/*.json), under the names this host serves it by: a light input also by
+// its name before UsdLux 21.02 (no "inputs:"), and a primvar the schema does not name may be the
+// one the material's textures read, served as primvars:st. 0: the plugin does not read it.
+ObscuraDirtyBits dirtyBitFor(const std::string& type, const std::string& name) {
+    const schema::PrimSchema* prim = schema::findPrimSchema(type);
+    if (!prim) return 0;
+    const schema::AttributeSchema* attribute = schema::findAttribute(*prim, name);
+    if (!attribute) attribute = schema::findAttribute(*prim, "inputs:" + name);
+    if (!attribute && startsWith(name, "primvars:")) attribute = schema::findAttribute(*prim, "primvars:st");
+    return attribute ? attribute->dirtyBit : 0;
+}
 
 // UsdGeomPrimvar::ComputeFlattened: element i of the result is values[indices[i]]. Returns the
 // problem when an index is out of range.
@@ -271,7 +269,7 @@ bool sameSubtree(const usda::Prim& a, const usda::Prim& b) {
 
 }  // namespace
 
-ObscuraDirtyBits UsdSceneHost::changes(const usda::Prim& prim, const UsdSceneHost& previous, const usda::Prim& before,
+ObscuraDirtyBits UsdSceneHost::changes(const std::string& type, const usda::Prim& prim, const UsdSceneHost& previous, const usda::Prim& before,
                                        double time) const {
     ObscuraDirtyBits bits = 0;
     std::set<std::string> names;
@@ -280,7 +278,7 @@ ObscuraDirtyBits UsdSceneHost::changes(const usda::Prim& prim, const UsdSceneHos
     for (const std::string& name : names) {
         const usda::Attribute* a = prim.attribute(name);
         const usda::Attribute* b = before.attribute(name);
-        if (!a || !b || !sameAttribute(*a, *b)) bits |= dirtyBitFor(name);
+        if (!a || !b || !sameAttribute(*a, *b)) bits |= dirtyBitFor(type, name);
     }
     std::set<std::string> relationships;
     for (const auto& [name, r] : prim.relationships) relationships.insert(name);
@@ -296,12 +294,12 @@ ObscuraDirtyBits UsdSceneHost::changes(const usda::Prim& prim, const UsdSceneHos
     const usda::Stage& old = previous.stage_;
     if (stage_.transformSampleTimes(prim) != old.transformSampleTimes(before) ||
         stage_.worldTransform(prim, time) != old.worldTransform(before, time))
-        bits |= OBSCURA_DIRTY_TRANSFORM;
-    if (stage_.isVisible(prim, time) != old.isVisible(before, time)) bits |= OBSCURA_DIRTY_VISIBILITY;
+        bits |= dirtyBitFor(type, "transform");
+    if (stage_.isVisible(prim, time) != old.isVisible(before, time)) bits |= dirtyBitFor(type, "visibility");
     const usda::Attribute* purpose = stage_.purposeOpinion(prim);
     const usda::Attribute* purposeBefore = old.purposeOpinion(before);
     if ((purpose == nullptr) != (purposeBefore == nullptr) || (purpose && !sameAttribute(*purpose, *purposeBefore)))
-        bits |= dirtyBitFor("purpose");
+        bits |= dirtyBitFor(type, "purpose");
     if (boundMaterial(prim) != previous.boundMaterial(before)) bits |= OBSCURA_DIRTY_MATERIAL_ID;
     // A material's values are its surface shader's and its textures': any change in its network.
     auto surface = surfaces_.find(prim.path);
@@ -329,7 +327,7 @@ ObscuraStatus UsdSceneHost::adoptChanges(const UsdSceneHost& previous, const Obs
         if (it == previous.primTypes_.end() || it->second != type) {
             s = api.insertPrim(delegate, type.c_str(), path.c_str());
             ++touched;
-        } else if (ObscuraDirtyBits bits = changes(*stage_.find(path), previous, *previous.stage_.find(path), time)) {
+        } else if (ObscuraDirtyBits bits = changes(type, *stage_.find(path), previous, *previous.stage_.find(path), time)) {
             s = api.markDirty(delegate, path.c_str(), bits);
             ++touched;
         }
@@ -343,11 +341,11 @@ ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDele
     for (const auto& [path, type] : primTypes_) {
         const usda::Prim* prim = stage_.find(path);
         ObscuraDirtyBits bits = 0;
-        if (!stage_.transformSampleTimes(*prim).empty()) bits |= OBSCURA_DIRTY_TRANSFORM;
+        if (!stage_.transformSampleTimes(*prim).empty()) bits |= dirtyBitFor(type, "transform");
         // Visibility is inherited: an ancestor's samples change the prim's computed visibility.
-        if (stage_.hasAnimatedVisibility(*prim)) bits |= OBSCURA_DIRTY_VISIBILITY;
+        if (stage_.hasAnimatedVisibility(*prim)) bits |= dirtyBitFor(type, "visibility");
         if (auto skin = skinnings_.find(path); skin != skinnings_.end() && usda::isSkinningAnimated(stage_, skin->second))
-            bits |= OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_NORMALS;
+            bits |= dirtyBitFor(type, "points") | dirtyBitFor(type, "normals");
         // XXX: a mapped (MaterialX) surface is read at each frame's time but not marked dirty when its
         // network is animated.
         if (mappedSurfaces_.count(path)) continue;
@@ -355,11 +353,12 @@ ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDele
         for (const auto& [name, attr] : valuesFrom->attributes) {
             // A surface input takes its value from the interface input it connects to.
             const usda::Attribute* source = type == "material" && attr.connection ? valueProducingAttribute(stage_, attr) : &attr;
-            if (source && source->isAnimated()) bits |= dirtyBitFor(name);
-            // A texture's inputs are parameters of the material it feeds.
+            if (source && source->isAnimated()) bits |= dirtyBitFor(type, name);
+            // A texture's inputs are served as the material's obscura:<input>:<field>.
             if (auto texture = type == "material" ? textureConnection(stage_, attr) : std::nullopt)
                 for (const auto& [textureInput, textureAttr] : texture->texture->attributes)
-                    if (textureAttr.isAnimated()) bits |= OBSCURA_DIRTY_PARAMS;
+                    if (textureAttr.isAnimated() && startsWith(name, "inputs:") && startsWith(textureInput, "inputs:"))
+                        bits |= dirtyBitFor(type, "obscura:" + name.substr(7) + ":" + textureInput.substr(7));
         }
         if (bits) {
             ObscuraStatus s = api.markDirty(delegate, path.c_str(), bits);
@@ -443,9 +442,9 @@ std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDeleg
     const SceneBounds b = bounds(time);
     const double* centre = b.centre.data();
     const double radius = b.radius;
-    // The schema's default lens: 50 mm, 15.2908 mm vertical aperture; the bounding sphere fits
-    // the narrower (vertical) field of view.
-    double halfFov = std::atan(15.2908 / 2.0 / 50.0);
+    // The camera schema's default lens; the bounding sphere fits the narrower (vertical) field of view.
+    double halfFov = std::atan(schema::defaultNumber("camera", "verticalAperture") / 2.0 /
+                               schema::defaultNumber("camera", "focalLength"));
     double distance = radius / std::sin(halfFov);
     FramingCamera cam{"/ObscuraFramingCamera", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, centre[0], centre[1], centre[2] + distance, 1},
                       {float(std::max(distance - 2.0 * radius, distance * 1e-3)), float(distance + 2.0 * radius)}};

@@ -88,7 +88,7 @@ private:
     // prototypeRoots_ and reports what it leaves out.
     std::map<std::string, std::string> scan();
     // The dirty bits that cover how `prim` (of this stage) differs from `before` (of `previous`'s).
-    ObscuraDirtyBits changes(const usda::Prim& prim, const UsdSceneHost& previous, const usda::Prim& before,
+    ObscuraDirtyBits changes(const std::string& type, const usda::Prim& prim, const UsdSceneHost& previous, const usda::Prim& before,
                              double time) const;
     ObscuraStatus fill(const usda::Value& value, ObscuraValue* out);
     // The surface shader a Material's outputs:surface (else outputs:mtlx:surface) leads to, through

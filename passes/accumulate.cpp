@@ -1,4 +1,5 @@
 #include "passes/accumulate.h"
+#include "generated/shader_layouts.h"
 
 #include "passes/shader_pass.h"
 
@@ -10,6 +11,8 @@ struct AccumulatePush {
     float weight;
     uint32_t first;
 };
+OBSCURA_SHADER_OFFSET(AccumulatePush, accumulate_comp::Push, weight);
+OBSCURA_SHADER_OFFSET(AccumulatePush, accumulate_comp::Push, first);
 
 }  // namespace
 

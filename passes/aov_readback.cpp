@@ -1,4 +1,5 @@
 #include "passes/aov_readback.h"
+#include "generated/shader_layouts.h"
 
 #include "passes/shader_pass.h"
 
@@ -12,6 +13,10 @@ struct PackPush {
     uint32_t height;
     uint32_t alphaIsCoverage;
 };
+OBSCURA_SHADER_OFFSET(PackPush, aov_pack_comp::Push, aov);
+OBSCURA_SHADER_OFFSET(PackPush, aov_pack_comp::Push, width);
+OBSCURA_SHADER_OFFSET(PackPush, aov_pack_comp::Push, height);
+OBSCURA_SHADER_OFFSET(PackPush, aov_pack_comp::Push, alphaIsCoverage);
 
 }  // namespace
 

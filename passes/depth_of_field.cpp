@@ -1,5 +1,6 @@
 #include "passes/depth_of_field.h"
 
+#include "generated/shader_layouts.h"
 #include "passes/shader_pass.h"
 
 #include <cmath>
@@ -19,6 +20,14 @@ struct DofConstants {
     int32_t tapsPerSide;
     int32_t tileNeighbourhood;
 };
+OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, cocScale);
+OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, cocBias);
+OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, maxRadius);
+OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, polygonBlend);
+OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, rotation);
+OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, blades);
+OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, tapsPerSide);
+OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, tileNeighbourhood);
 
 // Tile side in half-resolution texels (DOF_TILE_SIZE in dof_common.glsl).
 constexpr uint32_t kTileSize = 8;

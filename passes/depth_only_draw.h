@@ -3,6 +3,7 @@
 // and the clip volumes.
 #pragma once
 
+#include "generated/shader_layouts.h"
 #include "gpu/pipeline.h"
 #include "passes/frame_data.h"
 #include "passes/frame_scene.h"
@@ -14,6 +15,8 @@ struct DepthOnlyPush {
     Mat4 viewProjection;     // world -> clip
     uint32_t instanceIndex;  // the draw's first instance record
 };
+OBSCURA_SHADER_OFFSET(DepthOnlyPush, depth_only_vert::Push, viewProjection);
+OBSCURA_SHADER_OFFSET(DepthOnlyPush, depth_only_vert::Push, instanceIndex);
 
 // Vertex stage, vertex layout and the push constants; callers add set 0 (the instance records at
 // binding 0), the depth format and tests, and a fragment stage if they need one.

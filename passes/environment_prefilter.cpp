@@ -1,5 +1,6 @@
 #include "passes/environment_prefilter.h"
 
+#include "generated/shader_layouts.h"
 #include "passes/shader_pass.h"
 
 #include <algorithm>
@@ -16,11 +17,16 @@ struct PrefilterPush {
     float sourceTexelSolidAngle;
     float sourceLastLod;
 };
+OBSCURA_SHADER_OFFSET(PrefilterPush, environment_prefilter_comp::Push, roughness);
+OBSCURA_SHADER_OFFSET(PrefilterPush, environment_prefilter_comp::Push, mirrorLod);
+OBSCURA_SHADER_OFFSET(PrefilterPush, environment_prefilter_comp::Push, sourceTexelSolidAngle);
+OBSCURA_SHADER_OFFSET(PrefilterPush, environment_prefilter_comp::Push, sourceLastLod);
 
 // Mirrors the push constants of shaders/environment_irradiance.comp.
 struct IrradiancePush {
     int32_t level;
 };
+OBSCURA_SHADER_OFFSET(IrradiancePush, environment_irradiance_comp::Push, level);
 
 // The irradiance projection reads the first source mip at most this wide: bands 0..2 need far
 // fewer texels, and box-filtered mips keep the mean radiance.

@@ -2,7 +2,10 @@
 // delegate uploads and the passes read. Layouts must match the GLSL (std140 / std430).
 #pragma once
 
+#include "generated/shader_layouts.h"
+
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace obscura::passes {
@@ -42,6 +45,23 @@ struct alignas(16) CameraData {
     float pad[2] = {0.0f, 0.0f};
 };
 static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16 + 16 + 16);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, view);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, projection);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, viewProjection);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, inverseViewProjection);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, inverseProjection);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, position);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, resolution);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, exposureScale);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, shutterPosition);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, shutterOpenViewProjection);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, shutterCloseViewProjection);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, clipJitter);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, backdropCoverage);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, noiseFrame);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, shutterFraction);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, linearResolve);
+static_assert(offsetof(CameraData, pad) == shader_layout::CameraData::pad0);
 
 // kInstanceEdgeAa: hybrid AA (seed 004) chose edge AA over temporal AA for this instance: it is
 // drawn without the jitter, its pixels keep no history and the edge AA passes smooth its edges.
@@ -60,15 +80,28 @@ struct alignas(16) InstanceData {
     uint32_t pad1 = 0, pad2 = 0;
 };
 static_assert(sizeof(InstanceData) == 160);
+OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, model);
+OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, normalMatrix);
+OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, materialIndex);
+OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, primId);
+OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, flags);
+OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, motionIndex);
+OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, reprojection);
+OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, instanceId);
+OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, pad1);
+OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, pad2);
 
 struct alignas(16) InstanceReprojection {
     Mat4 currentToPreviousWorld;  // this frame's world space to last frame's, for temporal AA
 };
+OBSCURA_SHADER_OFFSET(InstanceReprojection, InstanceReprojection, currentToPreviousWorld);
 
 struct alignas(16) InstanceMotion {
     Mat4 shutterOpenModel;
     Mat4 shutterCloseModel;
 };
+OBSCURA_SHADER_OFFSET(InstanceMotion, InstanceMotion, shutterOpenModel);
+OBSCURA_SHADER_OFFSET(InstanceMotion, InstanceMotion, shutterCloseModel);
 
 // Which texture channel a material input reads: the UsdUVTexture output connected to it.
 enum class TextureChannel : uint32_t { R = 0, G = 1, B = 2, A = 3, Rgb = 4 };
@@ -84,6 +117,12 @@ struct alignas(16) MaterialTexture {
     uint32_t pad1 = 0;
 };
 static_assert(sizeof(MaterialTexture) == 48);
+OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, scale);
+OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, bias);
+OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, sampled);
+OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, channel);
+OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, pad0);
+OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, pad1);
 
 // The inputs the G-buffer pass samples, each from its own binding of descriptor set 1; textured
 // emission is constant per material (its texture's average): the lighting pass has no texture
@@ -107,6 +146,12 @@ struct alignas(16) MaterialData {
     std::array<MaterialTexture, kMaterialTextureSlots> textures;
 };
 static_assert(sizeof(MaterialData) == 80 + 6 * 48);
+OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, diffuseRoughness);
+OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, emissiveMetallic);
+OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, opacity);
+OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, specularIor);
+OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, clearcoat);
+OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, textures);
 
 enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4 };
 
@@ -123,6 +168,14 @@ struct alignas(16) LightData {
     std::array<uint32_t, 4> shadow;
 };
 static_assert(sizeof(LightData) == 8 * 16);
+OBSCURA_SHADER_OFFSET(LightData, LightData, positionType);
+OBSCURA_SHADER_OFFSET(LightData, LightData, directionAngle);
+OBSCURA_SHADER_OFFSET(LightData, LightData, radiance);
+OBSCURA_SHADER_OFFSET(LightData, LightData, factors);
+OBSCURA_SHADER_OFFSET(LightData, LightData, axisX);
+OBSCURA_SHADER_OFFSET(LightData, LightData, axisY);
+OBSCURA_SHADER_OFFSET(LightData, LightData, shaping);
+OBSCURA_SHADER_OFFSET(LightData, LightData, shadow);
 
 // How a light's shadow views cover it: the cascades of a distant light, the six cube faces
 // (+X, -X, +Y, -Y, +Z, -Z) around a local light, or one perspective map along a spot's axis.
@@ -140,6 +193,9 @@ struct alignas(16) ShadowViewData {
     std::array<float, 4> params;
 };
 static_assert(sizeof(ShadowViewData) == 96);
+OBSCURA_SHADER_OFFSET(ShadowViewData, ShadowViewData, worldToAtlas);
+OBSCURA_SHADER_OFFSET(ShadowViewData, ShadowViewData, tileRect);
+OBSCURA_SHADER_OFFSET(ShadowViewData, ShadowViewData, params);
 
 struct alignas(16) EnvironmentData {
     Mat4 worldToDome;
@@ -151,12 +207,18 @@ struct alignas(16) EnvironmentData {
     std::array<float, 4> texturedBackdrop;
 };
 static_assert(sizeof(EnvironmentData) == 112);
+OBSCURA_SHADER_OFFSET(EnvironmentData, EnvironmentData, worldToDome);
+OBSCURA_SHADER_OFFSET(EnvironmentData, EnvironmentData, params);
+OBSCURA_SHADER_OFFSET(EnvironmentData, EnvironmentData, backdrop);
+OBSCURA_SHADER_OFFSET(EnvironmentData, EnvironmentData, texturedBackdrop);
 
 // Header of the light buffer: the count, padded to the first LightData.
 struct alignas(16) LightBufferHeader {
     uint32_t count;
     uint32_t pad[3];
 };
+static_assert(offsetof(LightBufferHeader, count) == shader_layout::Lights::lightCount);
+static_assert(sizeof(LightBufferHeader) == shader_layout::Lights::lights);
 
 // Vertex layout of the G-buffer pass.
 struct Vertex {

@@ -1,5 +1,6 @@
 #include "passes/gbuffer.h"
 
+#include "generated/shader_layouts.h"
 #include "passes/frame_data.h"
 #include "passes/material_draw.h"
 #include "passes/shader_pass.h"
@@ -36,6 +37,9 @@ struct GBufferPush {
     uint32_t sampleCount;
     uint32_t alphaToCoverage;
 };
+OBSCURA_SHADER_OFFSET(GBufferPush, gbuffer_frag::Push, instanceIndex);
+OBSCURA_SHADER_OFFSET(GBufferPush, gbuffer_frag::Push, sampleCount);
+OBSCURA_SHADER_OFFSET(GBufferPush, gbuffer_frag::Push, alphaToCoverage);
 
 bool writesVelocity(Variant variant) { return variant == Variant::Moving || variant == Variant::Deforming; }
 bool deforms(Variant variant) { return variant == Variant::Deforming || variant == Variant::DeformingWithoutVelocity; }

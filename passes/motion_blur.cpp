@@ -1,5 +1,6 @@
 #include "passes/motion_blur.h"
 
+#include "generated/shader_layouts.h"
 #include "passes/shader_pass.h"
 
 #include <algorithm>
@@ -15,6 +16,10 @@ struct MotionBlurConstants {
     int32_t samples;
     float softDepth;
 };
+OBSCURA_SHADER_OFFSET(MotionBlurConstants, MotionBlurConstants, maxRadius);
+OBSCURA_SHADER_OFFSET(MotionBlurConstants, MotionBlurConstants, spanScale);
+OBSCURA_SHADER_OFFSET(MotionBlurConstants, MotionBlurConstants, samples);
+OBSCURA_SHADER_OFFSET(MotionBlurConstants, MotionBlurConstants, softDepth);
 
 constexpr uint32_t kTileSize = 32;  // MOTION_BLUR_TILE_SIZE
 static_assert(float(kTileSize) == kMotionBlurTileSize);

@@ -1,5 +1,6 @@
 #include "passes/ssao.h"
 
+#include "generated/shader_layouts.h"
 #include "pass_support/ssao_pattern.h"
 #include "passes/shader_pass.h"
 
@@ -19,6 +20,10 @@ struct ObscurancePush {
     float intensity;
     std::array<float, 2> frameRotation;
 };
+OBSCURA_SHADER_OFFSET(ObscurancePush, ssao_obscurance_comp::Push, pattern);
+OBSCURA_SHADER_OFFSET(ObscurancePush, ssao_obscurance_comp::Push, radius);
+OBSCURA_SHADER_OFFSET(ObscurancePush, ssao_obscurance_comp::Push, intensity);
+OBSCURA_SHADER_OFFSET(ObscurancePush, ssao_obscurance_comp::Push, frameRotation);
 
 // Mirrors the push constants of shaders/ssao_temporal.comp.
 struct TemporalPush {
@@ -26,6 +31,9 @@ struct TemporalPush {
     float maxFrames;
     uint32_t historyValid;
 };
+OBSCURA_SHADER_OFFSET(TemporalPush, ssao_temporal_comp::Push, viewToPreviousView);
+OBSCURA_SHADER_OFFSET(TemporalPush, ssao_temporal_comp::Push, maxFrames);
+OBSCURA_SHADER_OFFSET(TemporalPush, ssao_temporal_comp::Push, historyValid);
 
 gpu::ImageDesc halfResolution(const FrameScene& scene, VkFormat format) {
     gpu::ImageDesc desc;

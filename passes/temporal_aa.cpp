@@ -1,5 +1,6 @@
 #include "passes/temporal_aa.h"
 
+#include "generated/shader_layouts.h"
 #include "passes/shader_pass.h"
 
 #include <cmath>
@@ -23,6 +24,12 @@ struct TemporalAaConstants {
     std::array<float, 4> weights;    // x K_lowfreq, y K_hifreq, z 2TX's velocity weight
     std::array<uint32_t, 4> frames;  // x history valid, y held frames, z frames to converge, w TemporalAaFlags
 };
+OBSCURA_SHADER_OFFSET(TemporalAaConstants, TemporalAaConstants, currentClipToPreviousClip);
+OBSCURA_SHADER_OFFSET(TemporalAaConstants, TemporalAaConstants, currentClipToPreviousView);
+OBSCURA_SHADER_OFFSET(TemporalAaConstants, TemporalAaConstants, worldToPreviousClip);
+OBSCURA_SHADER_OFFSET(TemporalAaConstants, TemporalAaConstants, worldToPreviousView);
+OBSCURA_SHADER_OFFSET(TemporalAaConstants, TemporalAaConstants, weights);
+OBSCURA_SHADER_OFFSET(TemporalAaConstants, TemporalAaConstants, frames);
 // Mirrors TAA_FLAG_* in shaders/common/temporal_aa_common.glsl.
 enum TemporalAaFlags : uint32_t { kTemporalAaEdgeAa = 1u, kTemporalAaColorHasCoverage = 2u };
 static_assert(sizeof(TemporalAaConstants) == 4 * 64 + 32);

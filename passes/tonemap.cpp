@@ -1,4 +1,5 @@
 #include "passes/tonemap.h"
+#include "generated/shader_layouts.h"
 
 #include "passes/shader_pass.h"
 
@@ -14,6 +15,12 @@ struct TonemapPush {
     uint32_t alphaIsCoverage;
     float backdropCoverage;
 };
+OBSCURA_SHADER_OFFSET(TonemapPush, tonemap_comp::Push, shaperMinStops);
+OBSCURA_SHADER_OFFSET(TonemapPush, tonemap_comp::Push, shaperRangeStops);
+OBSCURA_SHADER_OFFSET(TonemapPush, tonemap_comp::Push, middleGrey);
+OBSCURA_SHADER_OFFSET(TonemapPush, tonemap_comp::Push, lutSize);
+OBSCURA_SHADER_OFFSET(TonemapPush, tonemap_comp::Push, alphaIsCoverage);
+OBSCURA_SHADER_OFFSET(TonemapPush, tonemap_comp::Push, backdropCoverage);
 }  // namespace
 
 gpu::ImageHandle addTonemapPass(gpu::FrameGraph& graph, const FrameScene& scene, gpu::ImageHandle hdrColor,

@@ -1,5 +1,6 @@
 #include "passes/transparent.h"
 
+#include "generated/shader_layouts.h"
 #include "passes/frame_data.h"
 #include "passes/material_draw.h"
 #include "passes/shader_pass.h"
@@ -11,6 +12,8 @@ struct TransparentPush {
     uint32_t instanceIndex;  // the draw's first instance record (gbuffer.vert)
     float fadeDistance;
 };
+OBSCURA_SHADER_OFFSET(TransparentPush, transparent_frag::Push, instanceIndex);
+OBSCURA_SHADER_OFFSET(TransparentPush, transparent_frag::Push, fadeDistance);
 
 gpu::GraphicsPipelineDesc describeTransparentPipeline(VkFormat hdrFormat,
                                                       const std::vector<ShaderBinding>& bindings) {

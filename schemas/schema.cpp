@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 namespace obscura::schema {
 namespace {
@@ -181,6 +182,31 @@ const AttributeSchema* findAttribute(const PrimSchema& prim, std::string_view na
     for (const AttributeSchema& attribute : std::span(prim.attributes, prim.attributeCount))
         if (name == attribute.name) return &attribute;
     return nullptr;
+}
+
+const AttributeSchema& attributeOf(const PrimSchema& prim, std::string_view name) {
+    if (const AttributeSchema* found = findAttribute(prim, name)) return *found;
+    throw std::logic_error("schema '" + std::string(prim.name) + "' has no attribute " + std::string(name));
+}
+
+const AttributeSchema& attributeOf(std::string_view prim, std::string_view name) {
+    const PrimSchema* schema = findPrimSchema(prim);
+    if (!schema) throw std::logic_error("no prim schema '" + std::string(prim) + "'");
+    return attributeOf(*schema, name);
+}
+
+double defaultNumber(std::string_view prim, std::string_view name, size_t component) {
+    const AttributeSchema& a = attributeOf(prim, name);
+    if (component >= a.defaultCount || a.defaultToken)
+        throw std::logic_error(std::string(prim) + "." + std::string(name) + " has no numeric default " +
+                               std::to_string(component));
+    return a.defaultNumbers[component];
+}
+
+std::string_view defaultToken(std::string_view prim, std::string_view name) {
+    const AttributeSchema& a = attributeOf(prim, name);
+    if (!a.defaultToken) throw std::logic_error(std::string(prim) + "." + std::string(name) + " has no token default");
+    return a.defaultToken;
 }
 
 std::string checkValue(const AttributeSchema& attribute, const ObscuraValue& value) {

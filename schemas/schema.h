@@ -68,6 +68,15 @@ std::span<const PrimSchema> primSchemas();
 // nullptr when no prim type / attribute has that name.
 const PrimSchema* findPrimSchema(std::string_view name);
 const AttributeSchema* findAttribute(const PrimSchema& prim, std::string_view name);
+// The same for names the caller knows the schemas declare: a miss is a programming error
+// (std::logic_error naming both).
+const AttributeSchema& attributeOf(const PrimSchema& prim, std::string_view name);
+const AttributeSchema& attributeOf(std::string_view prim, std::string_view name);
+
+// Component `component` of a numeric attribute's default, and a token attribute's default: what a
+// host that authors nothing gets (the harness frames a scene with the default lens).
+double defaultNumber(std::string_view prim, std::string_view attribute, size_t component = 0);
+std::string_view defaultToken(std::string_view prim, std::string_view attribute);
 
 // Checks a value the host returned for `attribute`: its type and shape fit the schema type,
 // numbers are finite, tokens are among the allowed ones and paths are absolute. Returns "" when

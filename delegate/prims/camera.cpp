@@ -1,31 +1,46 @@
 #include "delegate/prims/camera.h"
 
+#include "schemas/camera_depth.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace obscura::delegate {
 
-void Camera::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
-    if (bits & OBSCURA_DIRTY_PARAMS) {
-        CameraParams& p = params_;
-        p.orthographic = s.getToken("projection") == "orthographic";
-        p.focalLength = s.getDouble("focalLength");
-        p.horizontalAperture = s.getDouble("horizontalAperture");
-        p.verticalAperture = s.getDouble("verticalAperture");
-        p.horizontalApertureOffset = s.getDouble("horizontalApertureOffset");
-        p.verticalApertureOffset = s.getDouble("verticalApertureOffset");
-        p.clippingRange = s.getFloat2("clippingRange");
-        p.fStop = s.getDouble("fStop");
-        p.focusDistance = s.getDouble("focusDistance");
-        p.shutterOpen = s.getDouble("shutter:open");
-        p.shutterClose = s.getDouble("shutter:close");
-        p.exposure = s.getDouble("exposure");
-        p.exposureTime = s.getDouble("exposure:time");
-        p.exposureIso = s.getDouble("exposure:iso");
-        p.exposureFStop = s.getDouble("exposure:fStop");
-        p.exposureResponsivity = s.getDouble("exposure:responsivity");
-        p.apertureBlades = s.getInt("obscura:apertureBlades");
-        p.apertureRotation = s.getDouble("obscura:apertureRotation");
+Camera::Camera(std::string path, const schema::PrimSchema& schema) : Prim(std::move(path), schema) {
+    // A host that authors nothing: every value is the schema's default.
+    const ObscuraSceneDelegate none{OBSCURA_STRUCTURE_TYPE_SCENE_DELEGATE, nullptr, sizeof(none)};
+    SceneAccess defaults(none, schema, this->path(), 0.0);
+    params_ = readParams(defaults);
+}
+
+CameraParams Camera::readParams(SceneAccess& s) {
+    CameraParams p;
+    p.orthographic = s.getToken("projection") == "orthographic";
+    p.focalLength = s.getDouble("focalLength");
+    p.horizontalAperture = s.getDouble("horizontalAperture");
+    p.verticalAperture = s.getDouble("verticalAperture");
+    p.horizontalApertureOffset = s.getDouble("horizontalApertureOffset");
+    p.verticalApertureOffset = s.getDouble("verticalApertureOffset");
+    p.clippingRange = s.getFloat2("clippingRange");
+    p.fStop = s.getDouble("fStop");
+    p.focusDistance = s.getDouble("focusDistance");
+    p.shutterOpen = s.getDouble("shutter:open");
+    p.shutterClose = s.getDouble("shutter:close");
+    p.exposure = s.getDouble("exposure");
+    p.exposureTime = s.getDouble("exposure:time");
+    p.exposureIso = s.getDouble("exposure:iso");
+    p.exposureFStop = s.getDouble("exposure:fStop");
+    p.exposureResponsivity = s.getDouble("exposure:responsivity");
+    p.apertureBlades = s.getInt("obscura:apertureBlades");
+    p.apertureRotation = s.getDouble("obscura:apertureRotation");
+    return p;
+}
+
+void Camera::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext&) {
+    if (s.anyDirtyBut({"transform"})) {
+        CameraParams p = readParams(s);
+        p.cameraToWorld = params_.cameraToWorld;
         if (p.focalLength <= 0 || p.horizontalAperture <= 0 || p.verticalAperture <= 0)
             throw PrimDataError(s.path() + ": focalLength and apertures must be positive");
         if (!(p.clippingRange[0] > 0 && p.clippingRange[1] > p.clippingRange[0]))
@@ -42,9 +57,10 @@ void Camera::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext&) {
         if (p.fStop > 0 && !p.orthographic && p.focusDistance <= p.focalLength / 10.0)
             warning_ = "fStop " + std::to_string(p.fStop) + " but focusDistance " + std::to_string(p.focusDistance) +
                        " is not beyond the focal length: no depth of field";
+        params_ = p;
     }
     // The shutter (just pulled) decides the interval the transform is sampled over.
-    if (bits & (OBSCURA_DIRTY_TRANSFORM | OBSCURA_DIRTY_PARAMS)) {
+    if (s.anyDirty({"transform", "shutter:open", "shutter:close"})) {
         params_.cameraToWorld = s.sampleTransform(s.time(), s.time()).front().matrix;
         shutterTransforms_.clear();
         if (params_.shutterClose > params_.shutterOpen)
@@ -113,7 +129,8 @@ Matrix4d Camera::projectionMatrix(double imageAspect) const {
     // Conform window policy "fit": widen whichever aperture the image aspect needs.
     if (imageAspect > ha / va) ha = va * imageAspect;
     else va = ha / imageAspect;
-    double n = p.clippingRange[0], f = p.clippingRange[1];
+    // Depth 0 at the near end of the clipping range, 1 at the far end (schemas/camera_depth.h).
+    const schema::DepthRow depth = schema::depthRow({p.orthographic, p.clippingRange[0], p.clippingRange[1]});
     // Column-vector form first (rows below), transposed at the end for the row-vector convention.
     Matrix4d c{};
     if (!p.orthographic) {
@@ -121,8 +138,8 @@ Matrix4d Camera::projectionMatrix(double imageAspect) const {
         c[2] = 2.0 * p.horizontalApertureOffset / ha;
         c[5] = -2.0 * p.focalLength / va;  // Vulkan's y points down
         c[6] = -2.0 * p.verticalApertureOffset / va;
-        c[10] = f / (n - f);
-        c[11] = n * f / (n - f);
+        c[10] = depth.scale;
+        c[11] = depth.offset;
         c[14] = -1.0;
     } else {
         // Orthographic apertures are in tenths of a scene unit too.
@@ -131,8 +148,8 @@ Matrix4d Camera::projectionMatrix(double imageAspect) const {
         c[3] = -2.0 * (p.horizontalApertureOffset / 10.0) / w;
         c[5] = -2.0 / h;
         c[7] = 2.0 * (p.verticalApertureOffset / 10.0) / h;
-        c[10] = -1.0 / (f - n);
-        c[11] = -n / (f - n);
+        c[10] = depth.scale;
+        c[11] = depth.offset;
         c[15] = 1.0;
     }
     return transpose(c);

@@ -7,31 +7,32 @@
 
 namespace obscura::delegate {
 
+// Until the first sync, a camera has the schema's defaults (schemas/camera.json).
 struct CameraParams {
     Matrix4d cameraToWorld = kIdentity;
-    bool orthographic = false;
-    double focalLength = 50.0;              // tenths of a scene unit
-    double horizontalAperture = 20.955;
-    double verticalAperture = 15.2908;
-    double horizontalApertureOffset = 0.0;
-    double verticalApertureOffset = 0.0;
-    std::array<float, 2> clippingRange{1.0f, 1000000.0f};
-    double fStop = 0.0;
-    double focusDistance = 0.0;
-    double shutterOpen = 0.0;
-    double shutterClose = 0.0;
-    double exposure = 0.0;
-    double exposureTime = 1.0;       // physical exposure (UsdGeomCamera exposure:*)
-    double exposureIso = 100.0;
-    double exposureFStop = 1.0;
-    double exposureResponsivity = 1.0;
-    int32_t apertureBlades = 0;
-    double apertureRotation = 0.0;
+    bool orthographic;
+    double focalLength;  // tenths of a scene unit
+    double horizontalAperture;
+    double verticalAperture;
+    double horizontalApertureOffset;
+    double verticalApertureOffset;
+    std::array<float, 2> clippingRange;
+    double fStop;
+    double focusDistance;
+    double shutterOpen;
+    double shutterClose;
+    double exposure;
+    double exposureTime;  // physical exposure (UsdGeomCamera exposure:*)
+    double exposureIso;
+    double exposureFStop;
+    double exposureResponsivity;
+    int32_t apertureBlades;
+    double apertureRotation;
 };
 
 class Camera final : public Prim {
 public:
-    using Prim::Prim;
+    Camera(std::string path, const schema::PrimSchema& schema);
     const CameraParams& params() const { return params_; }
     // Why the camera's lens has no depth of field although its fStop asks for it; empty otherwise.
     const std::string& warning() const { return warning_; }
@@ -60,6 +61,8 @@ public:
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
+    // The lens, clipping, exposure and shutter as the host authored them (schema defaults elsewhere).
+    static CameraParams readParams(SceneAccess& s);
     CameraParams params_;
     std::vector<TransformSample> shutterTransforms_;
     std::string warning_;

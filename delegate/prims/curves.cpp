@@ -8,8 +8,12 @@
 namespace obscura::delegate {
 namespace {
 
-constexpr ObscuraDirtyBits kGeometryBits = OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_TOPOLOGY | OBSCURA_DIRTY_NORMALS |
-                                           OBSCURA_DIRTY_PRIMVAR | OBSCURA_DIRTY_PARAMS;
+// Whether the tube or sphere geometry needs building again: anything but the placement, visibility
+// and binding changed, or the view asks for another density.
+bool geometryDirty(const SceneAccess& s, ObscuraDirtyBits bits) {
+    return (bits & kDirtyTessellation) ||
+           s.anyDirtyBut({"transform", "visibility", "purpose", "doubleSided", "material:binding"});
+}
 
 std::optional<MeshPrimvar> pullPrimvar(SceneAccess& s, const char* name, size_t components) {
     auto values = s.getFloatArray(name);
@@ -72,14 +76,16 @@ bool Curves::chooseDetail(double pixelsPerUnit) {
     if (sides == sidesLevel_ && steps == stepsLevel_) return false;
     sidesLevel_ = sides;
     stepsLevel_ = steps;
-    markDirty(OBSCURA_DIRTY_TOPOLOGY);
+    markDirty(kDirtyTessellation);
     return true;
 }
 
 void Curves::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
-    pullGprim(s, bits, ctx);
-    if (!(bits & kGeometryBits)) return;
-    if (bits & (OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_TOPOLOGY | OBSCURA_DIRTY_PARAMS)) {
+    pullGprim(s, ctx);
+    if (!geometryDirty(s, bits)) return;
+    // Widths and primvars are checked against the topology: read again when it changes.
+    const bool topology = s.anyDirty({"curveVertexCounts", "type", "basis", "wrap"});
+    if (topology || s.anyDirty({"points", "velocities", "accelerations", "widths"})) {
         input_.points = s.getFloatArray("points").value_or(std::vector<float>{});
         input_.curveVertexCounts = s.getIntArray("curveVertexCounts").value_or(std::vector<int32_t>{});
         input_.basis = basisOf(s);
@@ -87,14 +93,14 @@ void Curves::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         input_.widths = pullWidths(s);
         shutterPoints_ = pullShutterPoints(s, input_.points, ctx);
     }
-    if (bits & (OBSCURA_DIRTY_NORMALS | OBSCURA_DIRTY_TOPOLOGY)) input_.normals = pullPrimvar(s, "normals", 3);
-    if (bits & (OBSCURA_DIRTY_PRIMVAR | OBSCURA_DIRTY_TOPOLOGY)) {
+    if (topology || s.dirty("normals")) input_.normals = pullPrimvar(s, "normals", 3);
+    if (topology || s.anyDirty({"primvars:displayColor", "primvars:widths"})) {
         input_.displayColor = pullPrimvar(s, "primvars:displayColor", 3);
         if (!s.getFloatArray("widths")) input_.widths = pullWidths(s);
     }
     if (std::string problem = curvesProblem(input_); !problem.empty()) throw PrimDataError(s.path() + ": " + problem);
-    if (input_.points.empty()) return reset();  // nothing to draw, nothing kept from before
-    if (sidesLevel_ < 0) return;                 // tessellated once the view is known (chooseViewDependentDetail)
+    if (input_.points.empty()) return dropGeometry(ctx);  // nothing to draw, nothing kept from before
+    if (sidesLevel_ < 0) return;                        // tessellated once the view is known (chooseViewDependentDetail)
     // The cap coarsens sides and steps together, one level at a time.
     const int finest = std::max(sidesLevel_, stepsLevel_);
     auto detailAt = [&](int level) {
@@ -119,22 +125,22 @@ bool Points::chooseDetail(double pixelsPerUnit) {
         chooseImplicitLevel(wantedImplicitLevel(pointsMaxRadius(input_) * pixelsPerUnit, kMaxChordErrorPixels), level_);
     if (level == level_) return false;
     level_ = level;
-    markDirty(OBSCURA_DIRTY_TOPOLOGY);
+    markDirty(kDirtyTessellation);
     return true;
 }
 
 void Points::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
-    pullGprim(s, bits, ctx);
-    if (!(bits & kGeometryBits)) return;
-    if (bits & (OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_TOPOLOGY | OBSCURA_DIRTY_PARAMS | OBSCURA_DIRTY_PRIMVAR)) {
+    pullGprim(s, ctx);
+    if (!geometryDirty(s, bits)) return;
+    if (s.anyDirtyBut({"transform", "visibility", "purpose", "doubleSided", "material:binding"})) {
         input_.points = s.getFloatArray("points").value_or(std::vector<float>{});
         input_.widths = pullWidths(s);
         input_.displayColor = pullPrimvar(s, "primvars:displayColor", 3);
         shutterPoints_ = pullShutterPoints(s, input_.points, ctx);
     }
     if (std::string problem = pointsProblem(input_); !problem.empty()) throw PrimDataError(s.path() + ": " + problem);
-    if (input_.points.empty()) return reset();  // nothing to draw, nothing kept from before
-    if (level_ < 0) return;                      // tessellated once the view is known
+    if (input_.points.empty()) return dropGeometry(ctx);  // nothing to draw, nothing kept from before
+    if (level_ < 0) return;                             // tessellated once the view is known
     CappedLevel capped = capTessellation(
         level_, kImplicitMinLevel, [&](int level) { return pointTriangleCount(input_, implicitSegments(level)); }, s.path());
     const int segments = implicitSegments(capped.level);

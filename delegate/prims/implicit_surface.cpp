@@ -16,13 +16,15 @@ std::optional<ImplicitKind> ImplicitSurface::kindOf(const std::string& type) {
 bool ImplicitSurface::setLevel(int level) {
     if (level == level_) return false;
     level_ = level;
-    markDirty(OBSCURA_DIRTY_TOPOLOGY);
+    markDirty(kDirtyTessellation);
     return true;
 }
 
-void ImplicitSurface::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
-    pullGprim(s, bits, ctx);
-    if (bits & (OBSCURA_DIRTY_PARAMS | OBSCURA_DIRTY_TOPOLOGY)) {
+void ImplicitSurface::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
+    pullGprim(s, ctx);
+    // The shape: the type's own attributes (size, radius, height, axis...) and the orientation.
+    if (s.anyDirtyBut({"transform", "visibility", "purpose", "doubleSided", "material:binding",
+                       "primvars:displayColor", "primvars:displayOpacity"})) {
         const std::string type = schema().name;
         ImplicitShape shape;
         shape.kind = shape_.kind;
@@ -46,7 +48,7 @@ void ImplicitSurface::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& c
         shape_ = shape;
         leftHanded_ = s.getToken("orientation") == "leftHanded";
     }
-    if (bits & OBSCURA_DIRTY_PRIMVAR) {
+    if (s.anyDirty({"primvars:displayColor", "primvars:displayOpacity"})) {
         // The polygons follow the view, so only a constant colour has elements to fit them.
         displayColor_.reset();
         colorWarning_.clear();

@@ -62,21 +62,17 @@ void Instancer::reset() {
     shutterPlacements_.reset();
 }
 
-void Instancer::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
+void Instancer::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
     const bool shutterOpen = ctx.shutterClose > ctx.shutterOpen;
-    if (bits & OBSCURA_DIRTY_TRANSFORM) {
+    if (s.dirty("transform")) {
         transform_ = s.sampleTransform(s.time(), s.time()).front().matrix;
         shutterTransforms_ = s.sampleTransform(ctx.shutterOpen, ctx.shutterClose);
     }
-    if (bits & OBSCURA_DIRTY_VISIBILITY) {
-        visible_ = s.getToken("visibility") != "invisible";
-        invisible_ = s.getIntArray("invisibleIds").value_or(std::vector<int32_t>{});
-    }
-    if (bits & OBSCURA_DIRTY_TOPOLOGY) {
-        prototypes_ = s.getPathArray("prototypes");
-        protoIndices_ = s.getIntArray("protoIndices").value_or(std::vector<int32_t>{});
-    }
-    if (bits & OBSCURA_DIRTY_POINTS) {
+    if (s.dirty("visibility")) visible_ = s.getToken("visibility") != "invisible";
+    if (s.dirty("invisibleIds")) invisible_ = s.getIntArray("invisibleIds").value_or(std::vector<int32_t>{});
+    if (s.dirty("prototypes")) prototypes_ = s.getPathArray("prototypes");
+    if (s.dirty("protoIndices")) protoIndices_ = s.getIntArray("protoIndices").value_or(std::vector<int32_t>{});
+    if (s.anyDirty({"positions", "orientations", "scales", "velocities", "accelerations", "angularVelocities"})) {
         points_ = PointArrays{s.getFloatArray("positions").value_or(std::vector<float>{}),
                               s.getFloatArray("orientations").value_or(std::vector<float>{}),
                               s.getFloatArray("scales").value_or(std::vector<float>{})};

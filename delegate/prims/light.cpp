@@ -36,13 +36,14 @@ TexturePtr readDomeTexture(SceneAccess& s, TextureCache& textures, std::string& 
 
 }  // namespace
 
-void Light::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
-    if (bits & OBSCURA_DIRTY_TRANSFORM) {
+void Light::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
+    if (s.dirty("transform")) {
         transform_ = s.sampleTransform(s.time(), s.time()).front().matrix;
         shutterTransforms_ = s.sampleTransform(ctx.shutterOpen, ctx.shutterClose);
     }
-    if (bits & OBSCURA_DIRTY_VISIBILITY) visible_ = s.getToken("visibility") != "invisible";
-    if (!(bits & (OBSCURA_DIRTY_PARAMS | OBSCURA_DIRTY_TRANSFORM))) return;
+    if (s.dirty("visibility")) visible_ = s.getToken("visibility") != "invisible";
+    // The emission and shape are placed by the transform: either changing places them again.
+    if (!s.anyDirtyBut({"visibility"})) return;
 
     const double pi = std::numbers::pi;
     double intensity = s.getDouble("inputs:intensity") * std::exp2(s.getDouble("inputs:exposure"));

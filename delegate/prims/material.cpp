@@ -4,8 +4,8 @@
 
 namespace obscura::delegate {
 
-void Material::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
-    if (!(bits & OBSCURA_DIRTY_PARAMS)) return;
+void Material::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
+    if (!s.anyDirty()) return;
     auto diffuse = s.getFloat3("inputs:diffuseColor");
     auto emissive = s.getFloat3("inputs:emissiveColor");
     float roughness = std::clamp(s.getFloat("inputs:roughness"), 0.0f, 1.0f);

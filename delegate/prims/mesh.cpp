@@ -16,18 +16,16 @@ void Mesh::reset() {
     localBounds_ = Aabb{};
 }
 
-void Mesh::pullGprim(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
-    if (bits & OBSCURA_DIRTY_TRANSFORM) {
+void Mesh::pullGprim(SceneAccess& s, SyncContext& ctx) {
+    if (s.dirty("transform")) {
         transform_ = s.sampleTransform(s.time(), s.time()).front().matrix;
         shutterTransforms_ = s.sampleTransform(ctx.shutterOpen, ctx.shutterClose);
     }
-    if (bits & OBSCURA_DIRTY_VISIBILITY) {
-        visible_ = s.getToken("visibility") != "invisible";
-        purpose_ = purposeBit(s.getToken("purpose"));
-    }
-    if (bits & OBSCURA_DIRTY_DOUBLE_SIDED) doubleSided_ = s.getBool("doubleSided");
-    if (bits & OBSCURA_DIRTY_MATERIAL_ID) material_ = s.getPath("material:binding");
-    if (bits & OBSCURA_DIRTY_PRIMVAR) {
+    if (s.dirty("visibility")) visible_ = s.getToken("visibility") != "invisible";
+    if (s.dirty("purpose")) purpose_ = purposeBit(s.getToken("purpose"));
+    if (s.dirty("doubleSided")) doubleSided_ = s.getBool("doubleSided");
+    if (s.dirty("material:binding")) material_ = s.getPath("material:binding");
+    if (s.dirty("primvars:displayOpacity")) {
         displayOpacity_ = 1.0f;
         varyingOpacity_.reset();
         if (auto opacity = s.getFloatArray("primvars:displayOpacity"); opacity && !opacity->empty()) {
@@ -45,9 +43,12 @@ void Mesh::setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std
     indexCount_ = static_cast<uint32_t>(geometry.indices.size());
     localBounds_ = Aabb{};
     for (const passes::Vertex& v : geometry.vertices) localBounds_.extend({v.position[0], v.position[1], v.position[2]});
-    SharedGeometry shared = ctx.geometry.get(geometry.vertices, geometry.indices, path.c_str());
-    vertices_ = std::move(shared.vertices);
-    indices_ = std::move(shared.indices);
+    ctx.onDevice([this, &cache = ctx.geometry, content = geometryContent(geometry.vertices, geometry.indices),
+                  path]() mutable {
+        SharedGeometry shared = cache.get(std::move(content), path.c_str());
+        vertices_ = std::move(shared.vertices);
+        indices_ = std::move(shared.indices);
+    });
 }
 
 std::optional<std::array<std::vector<float>, 2>> Mesh::pullShutterPoints(SceneAccess& s, const std::vector<float>& points,
@@ -66,8 +67,7 @@ std::optional<std::array<std::vector<float>, 2>> Mesh::pullShutterPoints(SceneAc
 
 void Mesh::setShutterPositions(const std::optional<std::array<std::vector<float>, 2>>& ends, size_t vertexCount,
                                SyncContext& ctx, const std::string& path) {
-    shutterPositions_.reset();
-    if (!ends) return;
+    if (!ends) return ctx.onDevice([this] { shutterPositions_.reset(); });
     if ((*ends)[0].size() != vertexCount * 3 || (*ends)[1].size() != (*ends)[0].size())
         throw PrimDataError(path + ": points at the shutter's ends do not match the prim's topology");
     std::vector<passes::ShutterPositions> positions(vertexCount);
@@ -76,21 +76,26 @@ void Mesh::setShutterPositions(const std::optional<std::array<std::vector<float>
             positions[v].open[k] = (*ends)[0][v * 3 + k];
             positions[v].close[k] = (*ends)[1][v * 3 + k];
         }
-    shutterPositions_ = ctx.device.createBufferWithData(positions.data(), positions.size() * sizeof(positions[0]),
+    ctx.onDevice([this, &device = ctx.device, positions = std::move(positions), path] {
+        shutterPositions_ = device.createBufferWithData(positions.data(), positions.size() * sizeof(positions[0]),
                                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, path.c_str());
+    });
 }
 
 void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
-    pullGprim(s, bits, ctx);
+    pullGprim(s, ctx);
 
-    constexpr ObscuraDirtyBits kGeometry =
-        OBSCURA_DIRTY_POINTS | OBSCURA_DIRTY_TOPOLOGY | OBSCURA_DIRTY_NORMALS | OBSCURA_DIRTY_PRIMVAR;
-    if (!(bits & kGeometry)) return;
-    if (bits & OBSCURA_DIRTY_POINTS) {
+    // The drawn polygons are made of everything but the placement, visibility and binding.
+    if (!s.anyDirtyBut({"transform", "visibility", "purpose", "doubleSided", "material:binding"}) &&
+        !(bits & kDirtyTessellation))
+        return;
+    if (s.anyDirty({"points", "velocities", "accelerations"})) {
         input_.points = s.getFloatArray("points").value_or(std::vector<float>{});
         shutterPoints_ = pullShutterPoints(s, input_.points, ctx);
     }
-    if (bits & OBSCURA_DIRTY_TOPOLOGY) {
+    if (s.anyDirty({"faceVertexCounts", "faceVertexIndices", "orientation", "subdivisionScheme", "interpolateBoundary",
+                    "faceVaryingLinearInterpolation", "creaseIndices", "creaseLengths", "creaseSharpnesses",
+                    "cornerIndices", "cornerSharpnesses", "holeIndices", "obscura:refineLevel"})) {
         input_.faceVertexCounts = s.getIntArray("faceVertexCounts").value_or(std::vector<int32_t>{});
         input_.faceVertexIndices = s.getIntArray("faceVertexIndices").value_or(std::vector<int32_t>{});
         input_.leftHanded = s.getToken("orientation") == "leftHanded";
@@ -105,15 +110,17 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         tags_.holeIndices = s.getIntArray("holeIndices").value_or(std::vector<int32_t>{});
         refineLevelOverride_ = s.getInt("obscura:refineLevel");
     }
-    if (bits & OBSCURA_DIRTY_NORMALS) {
+    if (s.dirty("normals")) {
         input_.normals.reset();
         if (auto n = s.getFloatArray("normals")) input_.normals = MeshPrimvar{std::move(*n), s.interpolation("normals")};
     }
-    if (bits & OBSCURA_DIRTY_PRIMVAR) {
+    if (s.dirty("primvars:displayColor")) {
         input_.displayColor.reset();
         if (auto c = s.getFloatArray("primvars:displayColor"))
             input_.displayColor = MeshPrimvar{std::move(*c), s.interpolation("primvars:displayColor")};
-        input_.displayOpacity = varyingOpacity_;
+    }
+    if (s.dirty("primvars:displayOpacity")) input_.displayOpacity = varyingOpacity_;
+    if (s.dirty("primvars:st")) {
         input_.st.reset();
         if (auto st = s.getFloatArray("primvars:st"))
             input_.st = MeshPrimvar{std::move(*st), s.interpolation("primvars:st"), 2};

@@ -48,10 +48,15 @@ public:
 
 protected:
     void reset() override;
+    // Queues reset(): a prim left with nothing to draw keeps nothing from before.
+    void dropGeometry(SyncContext& ctx) {
+        ctx.onDevice([this] { reset(); });
+    }
     // What every gprim pulls: transform samples, visibility and purpose, sidedness, material,
     // display opacity.
-    void pullGprim(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx);
-    // Uploads the drawn polygons (shared through the geometry cache) and keeps their bounds and warnings.
+    void pullGprim(SceneAccess& scene, SyncContext& ctx);
+    // Keeps the drawn polygons' bounds and warnings, and queues their upload (shared through the
+    // geometry cache, keyed here on the pulling thread).
     void setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std::string& path);
     // `points` at the shutter's open and close when they differ from the frame's (the prim
     // deforms within the shutter: motion blur's velocities), moved by their velocities where those
@@ -60,7 +65,7 @@ protected:
                                                                               const std::vector<float>& points,
                                                                               const SyncContext& ctx);
     // The drawn vertices' positions (xyz each) at the shutter's ends, or nullopt for a prim that
-    // does not deform; `vertexCount` is the drawn geometry's.
+    // does not deform; `vertexCount` is the drawn geometry's. Queues their upload.
     void setShutterPositions(const std::optional<std::array<std::vector<float>, 2>>& ends, size_t vertexCount,
                              SyncContext& ctx, const std::string& path);
     // Non-constant primvars:displayOpacity as pulled; null when constant or not authored.

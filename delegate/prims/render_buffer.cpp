@@ -25,8 +25,8 @@ size_t RenderBuffer::bytesPerPixel() const {
     }
 }
 
-void RenderBuffer::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
-    if (!(bits & OBSCURA_DIRTY_PARAMS)) return;
+void RenderBuffer::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
+    if (!s.anyDirty()) return;
     auto dims = s.getInt2("dimensions");
     // The frame's images are the buffer's size: the device's largest 2D image bounds it.
     const int64_t maxDimension = ctx.device.context().properties().limits.maxImageDimension2D;

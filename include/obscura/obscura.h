@@ -17,15 +17,22 @@
  *    have no delegate yet).
  *  - Extensible structs start with `sType`, `pNext`, `structSize` (Vulkan style). Published
  *    structs never change; new fields arrive as new chained structs, new functions as a new
- *    table version. A host sets structSize = sizeof(struct) as it was compiled. Output structs
- *    (ObscuraRenderStats, ObscuraMappedBuffer) are filled without touching the host's sType, pNext
- *    and structSize; known structs chained to an output struct's pNext are filled too.
- *  - Parameters are marked [in] (read by the call) or [out] (written by it). Every entry point
- *    returns OBSCURA_ERROR_INVALID_ARGUMENT for a NULL delegate or a NULL required pointer,
- *    OBSCURA_ERROR_INVALID_STATE for a call made while another call on the same delegate runs,
- *    OBSCURA_ERROR_OUT_OF_MEMORY when host or device memory ran out and OBSCURA_ERROR_INTERNAL
- *    for a bug; the codes each entry point adds are listed with it. A failed call changes
- *    nothing unless its description says otherwise.
+ *    table version. A host sets structSize = sizeof(struct) as it was compiled; an input struct
+ *    with another sType or a smaller structSize is refused with OBSCURA_ERROR_INVALID_ARGUMENT,
+ *    and so is an output struct whose structSize is smaller. Output structs the host passes one
+ *    at a time (ObscuraRenderStats, ObscuraMappedBuffer) are filled without touching the host's
+ *    sType, pNext and structSize; known structs chained to an output struct's pNext are filled
+ *    too. Output arrays (ObscuraPassTiming, ObscuraDeviceInfo) are written whole, each element's
+ *    sType and structSize set and its pNext NULL.
+ *  - Parameters are marked [in] (read by the call) or [out] (written by it); the delegate handle
+ *    is [in] everywhere. Every entry point that takes a delegate returns
+ *    OBSCURA_ERROR_INVALID_ARGUMENT for a NULL delegate, every entry point
+ *    OBSCURA_ERROR_INVALID_ARGUMENT for a NULL required pointer (pointers that may be NULL say
+ *    so), OBSCURA_ERROR_INVALID_STATE for a call made while another call on the same delegate
+ *    runs, OBSCURA_ERROR_OUT_OF_MEMORY when host or device memory ran out and
+ *    OBSCURA_ERROR_INTERNAL for a bug; the codes each entry point adds are listed with it. A
+ *    failed call changes nothing unless its description says otherwise.
+ *  - Mapped render buffers: see mapRenderBuffer, the one place that says how long a mapping lasts.
  *  - Device failures: once a render returns OBSCURA_ERROR_DEVICE for a lost device, every later
  *    render is refused with it; destroy the delegate (which always succeeds) and create a new
  *    one. For tests, OBSCURA_FAULT_INJECTION=device-lost:N or out-of-memory:N, read when a
@@ -43,8 +50,12 @@
  *    nothing; its message is in lastError(delegate) when it came from a callback, in
  *    lastError(NULL) when it came from another thread. lastError itself may always be called.
  *  - Scene-delegate callbacks are invoked only on the thread that called `render`, unless the
- *    host sets OBSCURA_SCENE_DELEGATE_THREAD_SAFE in ObscuraSceneDelegate::flags.
- *  - Log callbacks may be invoked from the calling thread only.
+ *    host sets OBSCURA_SCENE_DELEGATE_THREAD_SAFE in ObscuraSceneDelegate::flags: then sync pulls
+ *    the dirty rprims (meshes, curves, points, implicit surfaces, instancers) on several threads
+ *    of the plugin's own at once, each prim's callbacks on one thread and in order; cameras,
+ *    lights, materials and render buffers are still pulled on the calling thread. An API call from
+ *    a callback on one of those threads is refused as a call from another thread.
+ *  - Log callbacks are invoked on the thread that made the call only.
  */
 #ifndef OBSCURA_OBSCURA_H
 #define OBSCURA_OBSCURA_H
@@ -106,8 +117,8 @@ typedef enum ObscuraValueType {
  * (points, faceVertexIndices...) has count = number of elements and isArray = 1.
  * For TOKEN and PATH, data points to an array of `count` const char* pointers.
  * Lifetime: memory the host returns from a callback must stay valid until the next callback
- * on the same delegate or until the render call returns, whichever comes first; the delegate
- * copies what it keeps.
+ * on the same delegate (with OBSCURA_SCENE_DELEGATE_THREAD_SAFE: on the same thread) or until the
+ * render call returns, whichever comes first; the delegate copies what it keeps.
  */
 typedef struct ObscuraValue {
     ObscuraValueType type;
@@ -177,6 +188,7 @@ typedef enum ObscuraLogLevel {
     OBSCURA_LOG_ERROR = 3
 } ObscuraLogLevel;
 
+/* Implemented by the host: [in] message (valid during the call) at [in] level. */
 typedef void (*PFN_obscuraLog)(void* userData, ObscuraLogLevel level, const char* message);
 
 /* Creation of a delegate. */
@@ -190,19 +202,26 @@ typedef struct ObscuraDelegateCreateInfo {
     void* logUserData;
 } ObscuraDelegateCreateInfo;
 
-/* Scene delegate: the callbacks through which sync pulls dirty prim data from the host. */
+/* Scene delegate: the callbacks through which sync pulls dirty prim data from the host.
+ * OBSCURA_SCENE_DELEGATE_THREAD_SAFE in `flags`: the callbacks may run on several threads at once
+ * (for different prims), and sync pulls rprims in parallel (see Thread-safety above). */
 #define OBSCURA_SCENE_DELEGATE_THREAD_SAFE 0x1u
 
-/* Return OBSCURA_OK and fill *out, or OBSCURA_ERROR_NOT_FOUND when the attribute is not
- * authored (the delegate then uses the schema default). `time` is in the host's time codes. */
+/* Implemented by the host: return OBSCURA_OK and fill [out] out with the value of [in] attribute of
+ * the prim at [in] primPath at [in] time (the host's time codes), or OBSCURA_ERROR_NOT_FOUND when the
+ * attribute is not authored (the delegate then uses the schema default). Any other status makes the
+ * prim's data bad (it is skipped, see render). */
 typedef ObscuraStatus (*PFN_obscuraGetValue)(void* userData, const char* primPath,
                                              const char* attribute, double time, ObscuraValue* out);
-/* Interpolation of a primvar or of normals; NOT_FOUND means the schema's default. */
+/* Implemented by the host: [out] the interpolation of primvar (or normals) [in] attribute of the
+ * prim at [in] primPath; OBSCURA_ERROR_NOT_FOUND means the schema's default. */
 typedef ObscuraStatus (*PFN_obscuraGetInterpolation)(void* userData, const char* primPath,
                                                      const char* attribute, ObscuraInterpolation* out);
-/* Sample the prim's world transform over [time0, time1] (like HdSceneDelegate::SampleTransform):
- * write at most maxSamples (time, matrix) pairs, sorted by time, and the number written to
- * *sampleCount. A prim without animation returns one sample. */
+/* Implemented by the host: sample the world transform of the prim at [in] primPath over [in]
+ * [time0, time1] (like HdSceneDelegate::SampleTransform): write at most [in] maxSamples (time,
+ * matrix) pairs, sorted by time, into [out] sampleTimes and matrices (16 doubles each), and their
+ * number to [out] sampleCount. A prim without animation returns one sample; OBSCURA_ERROR_NOT_FOUND
+ * means the identity. */
 typedef ObscuraStatus (*PFN_obscuraSampleTransform)(void* userData, const char* primPath,
                                                     double time0, double time1, uint32_t maxSamples,
                                                     double* sampleTimes, double* matrices,
@@ -262,9 +281,8 @@ typedef enum ObscuraFormat {
     OBSCURA_FORMAT_UNORM8_VEC4 = 5     /* RGBA 8-bit, display-referred */
 } ObscuraFormat;
 
-/* A mapped render buffer: rows top to bottom, `rowStride` bytes apart. `data` stays valid and
- * unchanged until unmapRenderBuffer, removePrim of the buffer or destroyDelegate; render refuses to
- * write a buffer that is mapped (see render). */
+/* A mapped render buffer: rows top to bottom, `rowStride` bytes apart; how long `data` stays valid:
+ * see mapRenderBuffer. */
 typedef struct ObscuraMappedBuffer {
     ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_MAPPED_BUFFER */
     const void* pNext;
@@ -330,28 +348,32 @@ typedef struct ObscuraMemoryStats {
 
 /* Create a delegate (owns a Vulkan device); several may live in one process. [in] info: NULL for
  * defaults, else sType/structSize checked. [out] outDelegate (NULL on failure).
- * OBSCURA_ERROR_INVALID_ARGUMENT: wrong sType or structSize. OBSCURA_ERROR_DEVICE: no usable
- * Vulkan device (or validation asked for and not installed). Message: lastError(NULL). */
+ * OBSCURA_ERROR_INVALID_ARGUMENT: outDelegate NULL, wrong sType or structSize.
+ * OBSCURA_ERROR_DEVICE: no usable Vulkan device (or validation asked for and not installed).
+ * Message: lastError(NULL). */
 typedef ObscuraStatus (*PFN_obscuraCreateDelegate)(const ObscuraDelegateCreateInfo* info, ObscuraDelegate* outDelegate);
-/* Destroy a delegate and every prim and buffer it holds (mappings end). NULL is ignored (OK).
- * Succeeds after any failure, a lost device included; refused (INVALID_STATE) only from inside a
- * call on the same delegate (a callback). */
+/* Destroy [in] delegate and every prim and buffer it holds (its mappings end). NULL is ignored
+ * (OBSCURA_OK). Succeeds after any failure, a lost device included; OBSCURA_ERROR_INVALID_STATE
+ * only while a call on the same delegate runs (from one of its callbacks, or on another thread). */
 typedef ObscuraStatus (*PFN_obscuraDestroyDelegate)(ObscuraDelegate delegate);
-/* Message of the last failed call on `delegate` (NULL: the last failed call on this thread that
- * had no delegate, or was refused as concurrent). Valid until the next call on that delegate.
- * Never NULL; a successful call leaves the last message in place. */
+/* Message of the last failed call on [in] delegate (NULL: the last failed call on this thread that
+ * had no delegate, had a NULL delegate, or was refused as concurrent from another thread). Valid
+ * until the next call on that delegate (on this thread, for NULL). Never NULL: "" before any
+ * failure; a successful call leaves the last message in place. Returns no status. */
 typedef const char* (*PFN_obscuraLastError)(ObscuraDelegate delegate);
-/* Install the scene delegate [in] (copied); every prim becomes fully dirty. Must be called before
- * the first render. OBSCURA_ERROR_INVALID_ARGUMENT: NULL, wrong sType/structSize, getValue NULL. */
+/* Install the scene delegate [in] sceneDelegate (copied); every prim becomes fully dirty. Must be
+ * called before the first render (render: OBSCURA_ERROR_INVALID_STATE).
+ * OBSCURA_ERROR_INVALID_ARGUMENT: NULL, wrong sType/structSize, getValue NULL. */
 typedef ObscuraStatus (*PFN_obscuraSetSceneDelegate)(ObscuraDelegate delegate, const ObscuraSceneDelegate* sceneDelegate);
 /* Insert a prim of [in] type at [in] path; it starts fully dirty. OBSCURA_ERROR_INVALID_ARGUMENT:
  * path not absolute. OBSCURA_ERROR_UNKNOWN_TYPE: type not supported. OBSCURA_ERROR_ALREADY_EXISTS:
- * a prim lives at path. */
+ * a prim lives at path (it stays as it was). */
 typedef ObscuraStatus (*PFN_obscuraInsertPrim)(ObscuraDelegate delegate, const char* type, const char* path);
-/* Remove the prim at [in] path (a mapped render buffer's mapping ends); its GPU resources are
+/* Remove the prim at [in] path (a render buffer's mapping ends with it); its GPU resources are
  * released at the end of the next frame. OBSCURA_ERROR_NOT_FOUND: no prim there. */
 typedef ObscuraStatus (*PFN_obscuraRemovePrim)(ObscuraDelegate delegate, const char* path);
-/* OR [in] bits into the prim at [in] path; the next render syncs it. OBSCURA_ERROR_NOT_FOUND. */
+/* OR [in] bits into the prim at [in] path; the next render syncs it (OBSCURA_DIRTY_CLEAN marks
+ * nothing). OBSCURA_ERROR_NOT_FOUND: no prim there. */
 typedef ObscuraStatus (*PFN_obscuraMarkDirty)(ObscuraDelegate delegate, const char* path, ObscuraDirtyBits bits);
 /* Set the render setting [in] key (see describeRenderSetting / `obscura info`) to [in] value; NULL
  * resets it to its default. OBSCURA_ERROR_NOT_FOUND: unknown key. OBSCURA_ERROR_INVALID_ARGUMENT:
@@ -367,37 +389,47 @@ typedef ObscuraStatus (*PFN_obscuraSetRenderSetting)(ObscuraDelegate delegate, c
  *   unknown AOV format pairing, buffers of differing sizes, an empty viewport without buffers, a
  *   size beyond the device's largest image, colour management failing);
  *   OBSCURA_ERROR_NOT_FOUND (no camera, render buffer or AOV of that name);
- *   OBSCURA_ERROR_INVALID_STATE (no scene delegate; a bound buffer is mapped: unmap it first);
+ *   OBSCURA_ERROR_INVALID_STATE (no scene delegate; a bound buffer is mapped: unmap it first; a
+ *   mapped buffer that is not bound keeps its mapping, see mapRenderBuffer);
  *   OBSCURA_ERROR_BAD_PRIM_DATA with the camera named when the camera itself is bad.
  * OBSCURA_ERROR_DEVICE: the device failed or was lost (then every later render is refused: make a
  *   new delegate). OBSCURA_ERROR_OUT_OF_MEMORY: the frame did not fit; the scene stays as it was
  *   and a later render may succeed. OBSCURA_ERROR_VALIDATION: validation on and it reported an
  *   error (the frame was rendered). */
 typedef ObscuraStatus (*PFN_obscuraRender)(ObscuraDelegate delegate, const ObscuraRenderPassDesc* desc);
-/* Map the render buffer at [in] path for reading into [out] out (structSize >= sizeof checked,
- * sType/pNext left as set). The pointer stays valid and its contents unchanged until
- * unmapRenderBuffer (or removePrim / destroyDelegate); mapping a mapped buffer again returns the
- * same pointer. OBSCURA_ERROR_NOT_FOUND: no render buffer there. OBSCURA_ERROR_INVALID_STATE:
- * never rendered since it was inserted or resized. */
+/* Map the render buffer at [in] path for reading into [out] out (sType/pNext/structSize left as
+ * set). How long a mapping lasts, said once for the whole ABI: `data` stays valid and its contents
+ * unchanged until unmapRenderBuffer of the buffer, removePrim of it or destroyDelegate, whatever
+ * else happens meanwhile: render refuses to write a mapped buffer bound to it, renders into other
+ * buffers leave it alone, and a new size or format it is given takes effect at its first render
+ * after unmap. Mapping a mapped buffer again returns the same pointer.
+ * OBSCURA_ERROR_INVALID_ARGUMENT: out->structSize too small. OBSCURA_ERROR_NOT_FOUND: no render
+ * buffer there. OBSCURA_ERROR_INVALID_STATE: never rendered since it was inserted or resized. */
 typedef ObscuraStatus (*PFN_obscuraMapRenderBuffer)(ObscuraDelegate delegate, const char* path, ObscuraMappedBuffer* out);
 /* End the mapping of [in] path (one unmap ends any number of maps; unmapping an unmapped buffer
- * is OK). OBSCURA_ERROR_NOT_FOUND: no render buffer there. */
+ * is OK); the pointer mapRenderBuffer gave must not be used after. OBSCURA_ERROR_NOT_FOUND: no
+ * render buffer there. */
 typedef ObscuraStatus (*PFN_obscuraUnmapRenderBuffer)(ObscuraDelegate delegate, const char* path);
-/* Per-pass GPU timings of the last render: with [out] timings == NULL writes the count to
- * [in,out] count, else fills min(*count, available) entries and writes that number. */
+/* Per-pass GPU timings of the last render (none before the first): with [out] timings == NULL
+ * writes the count to [in,out] count, else fills min(*count, available) entries and writes that
+ * number. No status of its own. */
 typedef ObscuraStatus (*PFN_obscuraGetPassTimings)(ObscuraDelegate delegate, ObscuraPassTiming* timings, uint32_t* count);
-/* Counters of the last render into [out] out (structSize >= sizeof checked) and into the known
- * structs chained to out->pNext (ObscuraMemoryStats); sType, pNext and structSize of each are
- * left as the host set them. */
+/* Counters of the last render (zero before the first) into [out] out and into the known structs
+ * chained to out->pNext (ObscuraMemoryStats; unknown ones are skipped); sType, pNext and
+ * structSize of each are left as the host set them. OBSCURA_ERROR_INVALID_ARGUMENT:
+ * out->structSize too small. */
 typedef ObscuraStatus (*PFN_obscuraGetRenderStats)(ObscuraDelegate delegate, ObscuraRenderStats* out);
 /* Vulkan devices visible to the plugin: with [out] devices == NULL writes the count to [in,out]
- * count, else fills min(*count, available). OBSCURA_ERROR_DEVICE: no Vulkan instance. */
+ * count, else fills min(*count, available) and writes that number. OBSCURA_ERROR_DEVICE: no
+ * Vulkan instance. Message: lastError(NULL). Thread-safe. */
 typedef ObscuraStatus (*PFN_obscuraEnumerateDevices)(ObscuraDeviceInfo* devices, uint32_t* count);
-/* The integer a prim writes into the primId AOV [out] outId (stable for the prim's lifetime; -1 is
- * "nothing"). OBSCURA_ERROR_NOT_FOUND for unknown paths and for prims that draw nothing. */
+/* The integer the prim at [in] path writes into the primId AOV, into [out] outId (stable for the
+ * prim's lifetime; -1 is "nothing"). OBSCURA_ERROR_NOT_FOUND: no prim there, or a prim that draws
+ * nothing (cameras, lights, materials, render buffers, instancers). */
 typedef ObscuraStatus (*PFN_obscuraGetPrimId)(ObscuraDelegate delegate, const char* path, int32_t* outId);
 /* Render settings: [out] name and description (either may be NULL) of setting [in] index
- * (0-based); OBSCURA_ERROR_NOT_FOUND past the end. Strings are static. Thread-safe. */
+ * (0-based); OBSCURA_ERROR_NOT_FOUND past the end. Strings are static. Takes no delegate.
+ * Thread-safe. */
 typedef ObscuraStatus (*PFN_obscuraDescribeRenderSetting)(uint32_t index, const char** name, const char** description);
 
 typedef struct ObscuraApiV1 {
@@ -499,10 +531,11 @@ typedef struct ObscuraApiV1_2 {
 /* ============================================================================================= */
 
 /*
- * The one exported entry point. Returns in *outTable a pointer to a static function table whose
- * major version equals `versionMajor` and whose minor version is >= `versionMinor`; the table's
- * first member is its size. OBSCURA_ERROR_UNSUPPORTED_VERSION (and *outTable = NULL) for any
- * other request. Thread-safe.
+ * The one exported entry point. Returns in [out] outTable a pointer to a static function table
+ * whose major version equals [in] versionMajor and whose minor version is >= [in] versionMinor;
+ * the table's first member is its size. OBSCURA_ERROR_UNSUPPORTED_VERSION (and *outTable = NULL,
+ * message in lastError(NULL)) for any other request; OBSCURA_ERROR_INVALID_ARGUMENT: outTable
+ * NULL. Thread-safe.
  */
 OBSCURA_EXPORT ObscuraStatus obscuraGetApi(uint32_t versionMajor, uint32_t versionMinor, const void** outTable);
 typedef ObscuraStatus (*PFN_obscuraGetApi)(uint32_t versionMajor, uint32_t versionMinor, const void** outTable);

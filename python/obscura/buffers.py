@@ -1,8 +1,9 @@
 """Render buffers mapped as numpy arrays.
 
 A mapped buffer is read in place: :attr:`MappedBuffer.array` is a read-only numpy view of the
-plugin's memory, no copy. The ABI keeps that memory valid until the buffer is unmapped or the
-delegate renders again, so the package ties the mapping to the views' lifetime: every view holds
+plugin's memory, no copy. The ABI keeps that memory valid and unchanged until the buffer is
+unmapped (render refuses to write a mapped buffer), so the package ties the mapping to the views'
+lifetime: every view holds
 the mapping (and the native delegate) alive, the buffer is unmapped once the last view is gone, and
 :meth:`Delegate.render` refuses to run while a view of a mapped buffer is still alive. A view can
 therefore never outlive its memory; :meth:`MappedBuffer.copy` gives an array to keep.

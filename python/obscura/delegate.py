@@ -7,6 +7,7 @@ import ctypes
 import dataclasses
 import logging
 import threading
+import traceback
 import weakref
 from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
@@ -81,9 +82,14 @@ class _Callbacks:
 
     def _failed(self, path: bytes, what: str, error: BaseException) -> int:
         prim = path.decode("utf-8", "replace")
-        self.errors.append((prim, what, error))
         self.logger.error("%s: the scene delegate's %s raised %s: %s", prim, what, type(error).__name__, error,
                           exc_info=(type(error), error, error.__traceback__))
+        # Kept without its frames: they lead back to the render call's, and through these callbacks
+        # (which live as long as the plugin's delegate) would keep the delegate from ever being
+        # destroyed. The traceback stays readable as a note.
+        error.add_note("".join(traceback.format_tb(error.__traceback__)).rstrip())
+        error.__traceback__ = None
+        self.errors.append((prim, what, error))
         return Status.BAD_PRIM_DATA
 
     def get_value(self, _user: int, path: bytes, attribute: bytes, time: float, out: Any) -> int:
@@ -323,6 +329,8 @@ class Delegate:
         """
         with self._lock:
             native = self._open()
+            api, handle = native.api, native.handle
+            del native  # a callback's frame leads back to this one: it must not hold the delegate alive
             self._refuse_if_mapped(list(self._mappings))
             bindings = (_abi.ObscuraAovBinding * max(len(aovs), 1))(
                 *[_abi.ObscuraAovBinding(a.encode("utf-8"), b.encode("utf-8")) for a, b in aovs.items()])
@@ -333,20 +341,20 @@ class Delegate:
             self._callbacks.errors = []
             self._rendering = True
             try:
-                status = native.api.render(native.handle, ctypes.byref(desc))
+                status = api.render(handle, ctypes.byref(desc))
             finally:
                 self._rendering = False
                 self._callbacks.held = None
-            return self._render_result(native, status, check)
+            return self._render_result(api, handle, status, check)
 
-    def _render_result(self, native: _Native, status: int, check: bool) -> Status:
+    def _render_result(self, api: _abi.ObscuraApiV1, handle: int, status: int, check: bool) -> Status:
         raised = self._callbacks.errors
         for _, _, error in raised:
             if not isinstance(error, Exception):  # KeyboardInterrupt, SystemExit: the user's, re-raised
                 raise error
         if status == Status.OK:
             return Status.OK
-        message = native.api.lastError(native.handle).decode("utf-8", "replace")
+        message = api.lastError(handle).decode("utf-8", "replace")
         if raised:
             message += "; the scene delegate raised: " + "; ".join(
                 f"{prim}: {what}: {type(e).__name__}: {e}" for prim, what, e in raised)
@@ -370,7 +378,8 @@ class Delegate:
 
     @property
     def callback_errors(self) -> list[tuple[str, str, BaseException]]:
-        """Exceptions the scene delegate raised during the last render: (prim path, what, exception)."""
+        """Exceptions the scene delegate raised during the last render: (prim path, what, exception);
+        each holds its traceback as a note rather than its frames."""
         return list(self._callbacks.errors)
 
     @property

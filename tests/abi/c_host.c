@@ -1,5 +1,7 @@
 /* A host written in C99: finds the plugin through its plugInfo.json, dlopens it, negotiates the
- * ABI, supplies a scene delegate in C and reads an AOV back. Exits 0 when every check passes. */
+ * ABI, supplies a scene delegate in C and reads an AOV back; every entry point is held through its
+ * PFN_ typedef, and the log must hold no error but the one the bad mesh provokes. Exits 0 when
+ * every check passes. */
 #include <obscura/grading_chart.h> /* compiles as C too */
 #include <obscura/obscura.h>
 
@@ -50,6 +52,18 @@ static const int32_t kDimensions[2] = {32, 32};
 static const char* kFormat = "int32";
 static const float kFocal = 50.0f;
 static int getValueCalls = 0;
+
+/* The plugin's log: errors are counted, and those naming /BadMesh (the one this host provokes)
+ * apart from the rest. */
+static int loggedErrors = 0;
+static int badMeshErrors = 0;
+static void logMessage(void* user, ObscuraLogLevel level, const char* message) {
+    (void)user;
+    if (level != OBSCURA_LOG_ERROR) return;
+    ++loggedErrors;
+    if (strstr(message, "/BadMesh") != NULL) ++badMeshErrors;
+    else fprintf(stderr, "logged error: %s\n", message);
+}
 
 static ObscuraStatus getValue(void* user, const char* path, const char* attribute, double time, ObscuraValue* out) {
     (void)user;
@@ -137,11 +151,36 @@ int main(void) {
     api = (const ObscuraApiV1*)table;
     CHECK(api && api->structSize >= sizeof(ObscuraApiV1), "table too small");
     if (!api) return 1;
+    CHECK(getApi(OBSCURA_ABI_VERSION_MAJOR, 0, NULL) == OBSCURA_ERROR_INVALID_ARGUMENT, "NULL outTable accepted");
+    {
+        /* Every entry point has its PFN_ typedef (a C host loading them one by one needs it). */
+        PFN_obscuraCreateDelegate createDelegate = api->createDelegate;
+        PFN_obscuraDestroyDelegate destroyDelegate = api->destroyDelegate;
+        PFN_obscuraLastError lastError = api->lastError;
+        PFN_obscuraSetSceneDelegate setSceneDelegate = api->setSceneDelegate;
+        PFN_obscuraInsertPrim insertPrim = api->insertPrim;
+        PFN_obscuraRemovePrim removePrim = api->removePrim;
+        PFN_obscuraMarkDirty markDirty = api->markDirty;
+        PFN_obscuraSetRenderSetting setRenderSetting = api->setRenderSetting;
+        PFN_obscuraRender render = api->render;
+        PFN_obscuraMapRenderBuffer mapRenderBuffer = api->mapRenderBuffer;
+        PFN_obscuraUnmapRenderBuffer unmapRenderBuffer = api->unmapRenderBuffer;
+        PFN_obscuraGetPassTimings getPassTimings = api->getPassTimings;
+        PFN_obscuraGetRenderStats getRenderStats = api->getRenderStats;
+        PFN_obscuraEnumerateDevices enumerateDevices = api->enumerateDevices;
+        PFN_obscuraGetPrimId getPrimId = api->getPrimId;
+        PFN_obscuraDescribeRenderSetting describeRenderSetting = api->describeRenderSetting;
+        CHECK(createDelegate && destroyDelegate && lastError && setSceneDelegate && insertPrim && removePrim &&
+                  markDirty && setRenderSetting && render && mapRenderBuffer && unmapRenderBuffer && getPassTimings &&
+                  getRenderStats && enumerateDevices && getPrimId && describeRenderSetting,
+              "a NULL entry in the table");
+    }
 
     memset(&info, 0, sizeof info);
     info.sType = OBSCURA_STRUCTURE_TYPE_DELEGATE_CREATE_INFO;
     info.structSize = sizeof info;
     info.validation = 1;
+    info.log = logMessage;
     CHECK(api->createDelegate(&info, &delegate) == OBSCURA_OK, "createDelegate: %s", api->lastError(NULL));
     if (!delegate) return 1;
 
@@ -186,6 +225,8 @@ int main(void) {
     CHECK(getValueCalls == 0, "%d getValue calls with nothing dirty", getValueCalls);
 
     CHECK(api->destroyDelegate(delegate) == OBSCURA_OK, "destroyDelegate");
+    CHECK(badMeshErrors == 1, "%d errors name /BadMesh, expected 1", badMeshErrors);
+    CHECK(loggedErrors == badMeshErrors, "%d logged errors the host did not provoke", loggedErrors - badMeshErrors);
     dlclose(handle);
     if (failures == 0) printf("c_host: all checks passed\n");
     return failures == 0 ? 0 : 1;

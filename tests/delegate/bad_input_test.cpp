@@ -20,6 +20,7 @@ struct Scene {
     }
     // Renders, expects BAD_PRIM_DATA with the bad prim named, and the good prim still drawn.
     void expectBadPrimSkipped(const std::string& why) {
+        host.expectError("skipped prim /Bad: ");
         ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}}), OBSCURA_ERROR_BAD_PRIM_DATA) << why;
         EXPECT_NE(host.lastError().find("/Bad"), std::string::npos) << host.lastError();
         ASSERT_FALSE(host.loggedErrors().empty());
@@ -105,6 +106,8 @@ TEST(BadInput, ApiMisuseIsRefusedWithAMessage) {
 
 TEST(BadInput, BadRenderBufferAndCameraAreReported) {
     TestHost host;
+    host.expectError("skipped prim /Camera: focalLength");
+    host.expectError("skipped prim /Buffers/c: dimensions (0, 8)");
     host.addPrim("camera", "/Camera", {{"focalLength", HostValue::floatValue(-5.0f)}}, translation(0, 0, 5));
     host.addRenderBuffer("/Buffers/c", "float32Vec4", 0, 8);
     EXPECT_EQ(host.render("/Camera", {{"color", "/Buffers/c"}}), OBSCURA_ERROR_BAD_PRIM_DATA);

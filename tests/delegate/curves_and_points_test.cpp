@@ -244,6 +244,7 @@ TEST(CurvesAndPoints, BadDataSkipsOnlyThatPrimAndNamesIt) {
         {"/CountsSum", "curveVertexCounts sum to 4 but there are 3 points"},
         {"/NegativeWidth", "widths[1] is -0.2"},
         {"/PointWidths", "widths has 3 elements but its interpolation needs 2"}};
+    for (const auto& [path, message] : expected) host.expectError("skipped prim " + path + ": " + message);
     for (const auto& [path, message] : expected) {
         bool found = false;
         for (const std::string& error : host.loggedErrors())

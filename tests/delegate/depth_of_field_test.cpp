@@ -312,6 +312,7 @@ TEST(DepthOfField, BadSettingsAndLensDataAreRefused) {
     double negative = -1;
     ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &negative};
     EXPECT_EQ(s.host.api().setRenderSetting(s.host.delegate(), "reference", &v), OBSCURA_ERROR_INVALID_ARGUMENT);
+    s.host.expectError("skipped prim /Camera: obscura:apertureBlades");
     s.host.set("/Camera", "obscura:apertureBlades", HostValue::intValue(2));
     s.host.api().markDirty(s.host.delegate(), "/Camera", OBSCURA_DIRTY_PARAMS);
     EXPECT_EQ(s.host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_ERROR_BAD_PRIM_DATA);

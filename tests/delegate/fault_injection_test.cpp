@@ -1,4 +1,4 @@
-// Device loss and out-of-memory (issue 13), simulated through OBSCURA_FAULT_INJECTION: render
+// Device loss and out-of-memory, simulated through OBSCURA_FAULT_INJECTION: render
 // returns the status with a message, the delegate is destroyed cleanly afterwards (the validation
 // layer reports every Vulkan object left alive at device destruction as an error) and a new one
 // renders.

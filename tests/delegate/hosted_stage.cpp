@@ -24,7 +24,8 @@ HostedStage::HostedStage(std::variant<std::unique_ptr<usda::Stage>, usda::Error>
 }
 
 HostedStage::~HostedStage() {
-    if (delegate) api().destroyDelegate(delegate);
+    if (delegate) EXPECT_EQ(api().destroyDelegate(delegate), OBSCURA_OK) << api().lastError(delegate);
+    expected_.check(errors, "the plugin");
 }
 
 void HostedStage::log(void* user, ObscuraLogLevel level, const char* message) {

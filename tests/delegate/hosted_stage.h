@@ -5,6 +5,7 @@
 
 #include "harness/plugin_loader.h"
 #include "harness/usd_scene_host.h"
+#include "tests/support/expected_errors.h"
 
 #include <obscura/obscura.h>
 
@@ -21,7 +22,7 @@ struct HostedStage {
     std::optional<harness::LoadedPlugin> plugin;
     ObscuraDelegate delegate = nullptr;
     std::optional<harness::UsdSceneHost> host;
-    std::vector<std::string> errors;  // logged by the plugin
+    std::vector<std::string> errors;  // logged by the plugin: checked against expectError when the stage goes away
     ObscuraStatus lastStatus = OBSCURA_OK;  // of the last render
 
     explicit HostedStage(std::variant<std::unique_ptr<usda::Stage>, usda::Error> opened);
@@ -38,8 +39,11 @@ struct HostedStage {
     void setToken(const std::string& name, const std::string& token);
     // Whether the host reported a message containing `fragment`.
     bool warned(const std::string& fragment) const;
+    // A logged error containing `fragment` is one this test provokes; any other fails it.
+    void expectError(std::string fragment) { expected_.add(std::move(fragment)); }
 
 private:
+    ExpectedErrors expected_;
     static void log(void* user, ObscuraLogLevel level, const char* message);
 };
 

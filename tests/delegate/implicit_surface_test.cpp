@@ -97,6 +97,7 @@ TEST(ImplicitSurface, TessellationFollowsTheSizeOnScreenAndRepeats) {
 
 TEST(ImplicitSurface, BadParametersSkipOnlyThatPrim) {
     TestHost host;
+    host.expectError("skipped prim /Bad: radius");
     addViewer(host, 10.0);
     host.addPrim("sphere", "/Bad", {{"radius", HostValue::doubleValue(-1.0)}});
     host.addPrim("cube", "/Good", {{"size", HostValue::doubleValue(2.0)}});

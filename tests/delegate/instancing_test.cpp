@@ -115,6 +115,8 @@ TEST(Instancing, ManyInstancesShareOneMesh) {
 
 TEST(Instancing, BadInstanceDataSkipsTheInstancer) {
     InstancedScene s;
+    s.host.expectError("skipped prim /Instancer: protoIndices[2] = 5");
+    s.host.expectError("skipped prim /Instancer: positions has 1 entries for 4 instances");
     s.host.set("/Instancer", "protoIndices", HostValue::intArray({0, 0, 5, 0}));
     auto ids = s.render(OBSCURA_ERROR_BAD_PRIM_DATA);
     EXPECT_NE(s.host.lastError().find("protoIndices[2]"), std::string::npos) << s.host.lastError();

@@ -72,6 +72,7 @@ TEST(MaterialOcclusion, QuarterOcclusionQuartersTheAmbientLight) {
 TEST(MaterialOcclusion, BadValuesAreReported) {
     for (HostValue bad : {HostValue::floatValue(-0.5f), HostValue::floatValue(1.5f), HostValue::token("dark")}) {
         LitPlaneScene s;
+        s.host.expectError("skipped prim /Looks/Grey: inputs:occlusion");
         s.host.set("/Looks/Grey", "inputs:occlusion", bad);
         EXPECT_EQ(s.host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_ERROR_BAD_PRIM_DATA);
         EXPECT_NE(s.host.lastError().find("/Looks/Grey"), std::string::npos) << s.host.lastError();

@@ -1,4 +1,4 @@
-// Memory over many frames (issue 13, item 1): a viewport renders 60 times a second, so a steady
+// Memory over many frames: a viewport renders 60 times a second, so a steady
 // frame must keep nothing. 500 renders of an unchanged 64x64 scene once raised the host's resident
 // memory by ~785 MB; after a warm-up (pipelines compiled, histories and transients made) the
 // resident memory and the delegate's Vulkan memory stay where they are.
@@ -40,7 +40,7 @@ TEST(Memory, RendersOfAnUnchangedSceneKeepResidentMemoryFlat) {
     EXPECT_TRUE(host.loggedErrors().empty()) << host.loggedErrors().front();
 }
 
-// The soak (issue 13, "What to build"): random edits of transforms, points, materials, lights,
+// The soak: random edits of transforms, points, materials, lights,
 // prims added and removed, render sizes and settings, one render each. Once every kind of edit has
 // been seen (warm-up) the steady state grows by less than 1%, resident and Vulkan memory alike.
 // The 10,000-frame version is bench/soak_benchmark.

@@ -92,6 +92,7 @@ TEST(Purpose, BadPurposeDataIsReportedAndTheRestDraws) {
     std::string text = std::string("#usda 1.0\n") + kCamera + quad("WrongType", -1, 1, "uniform float purpose = 1") +
                        quad("Unknown", 1, 1, "uniform token purpose = \"preview\"") + quad("Fine", -1, -1);
     HostedStage scene(usda::Stage::openFromString(text, "bad_purpose.usda"));
+    scene.expectError("skipped prim /Unknown: purpose");
     EXPECT_EQ(drawnQuadrants(scene), (std::array<bool, 4>{true, false, true, false}));
     bool located = false;
     for (const auto& m : scene.host->messages())

@@ -1,9 +1,16 @@
 // Incremental sync: a render pulls only what the dirty bits name (callbacks counted per prim).
+#include "schemas/schema.h"
 #include "tests/delegate/render_fixture.h"
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <condition_variable>
+#include <limits>
+#include <map>
+#include <mutex>
 #include <set>
+#include <span>
 #include <thread>
 
 namespace obscura::test {
@@ -161,6 +168,148 @@ TEST(SharedGeometry, InstancedCopiesKeepTheirOwnMaterialAndId) {
     ASSERT_EQ(host.api().getPrimId(host.delegate(), "/Right", &rightId), OBSCURA_OK);
     EXPECT_EQ(ids[32 * kWidth + 16], leftId);
     EXPECT_EQ(ids[32 * kWidth + 47], rightId);
+}
+
+}  // namespace
+}  // namespace obscura::test
+
+namespace obscura::test {
+namespace {
+
+// 48 small quads, a sphere and a quad with NaN points, seen from the front; the host declares its
+// callbacks thread-safe or not.
+struct ManyPrims {
+    TestHost host;
+    explicit ManyPrims(bool threadSafeCallbacks) : host(true, threadSafeCallbacks) {
+        host.expectError("skipped prim /Bad: points: element 0 is NaN");
+        host.addCamera("/Camera", translation(0, 0, 20));
+        addMaterial(host, "/Looks/Grey", {0.5f, 0.5f, 0.5f});
+        host.addPrim("distantLight", "/Sun", {{"inputs:normalize", HostValue::boolean(true)}},
+                     lightPointingAlong({0, 0, -1}));
+        for (int i = 0; i < 48; ++i)
+            addPlane(host, "/Planes/P" + std::to_string(i), "/Looks/Grey", 0.3, translation(i % 8 - 3.5, i / 8 - 2.5, 0));
+        host.addPrim("sphere", "/Ball", {{"radius", HostValue::doubleValue(0.5)}}, translation(0, 0, 2));
+        addPlane(host, "/Bad", "", 0.3, translation(0, -3.5, 0));
+        const float nan = std::numeric_limits<float>::quiet_NaN();
+        host.set("/Bad", "points", HostValue::points({{nan, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}));
+        host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+        host.addRenderBuffer("/Buffers/id", "int32", kWidth, kHeight);
+    }
+    ObscuraStatus render() {
+        return host.render("/Camera", {{"color", "/Buffers/color"}, {"primId", "/Buffers/id"}});
+    }
+};
+
+TEST(ParallelSync, AThreadSafeHostIsCalledOnSeveralThreadsAndTheFrameIsTheSame) {
+    ManyPrims serial(false), parallel(true);
+    // The first callback for a quad waits (10 s at most) until another thread calls for one: two
+    // rprims pull at once (the camera, light and material pull first, on the calling thread).
+    std::mutex mutex;
+    std::condition_variable arrived;
+    std::set<std::thread::id> seen;
+    parallel.host.onGetValue = [&](const std::string& path, const std::string&) {
+        if (path.rfind("/Planes/", 0) != 0) return;
+        std::unique_lock lock(mutex);
+        const bool first = seen.empty();
+        seen.insert(std::this_thread::get_id());
+        arrived.notify_all();
+        if (first) arrived.wait_for(lock, std::chrono::seconds(10), [&] { return seen.size() > 1; });
+    };
+    ASSERT_EQ(serial.render(), OBSCURA_ERROR_BAD_PRIM_DATA) << serial.host.lastError();
+    ASSERT_EQ(parallel.render(), OBSCURA_ERROR_BAD_PRIM_DATA) << parallel.host.lastError();
+    EXPECT_GT(parallel.host.callbackThreads.size(), 1u);
+    // Messages still come on the thread that called render.
+    EXPECT_EQ(parallel.host.logThreads, std::set<std::thread::id>{std::this_thread::get_id()});
+    EXPECT_EQ(parallel.host.getValueCalls, serial.host.getValueCalls);
+    EXPECT_EQ(renderStats(parallel.host).primsSynced, renderStats(serial.host).primsSynced);
+    EXPECT_EQ(parallel.host.readFloats("/Buffers/color"), serial.host.readFloats("/Buffers/color"));
+    EXPECT_EQ(parallel.host.readInts("/Buffers/id"), serial.host.readInts("/Buffers/id"));
+    // An edit re-syncs the same prims either way.
+    for (ManyPrims* scene : {&serial, &parallel}) {
+        scene->host.onGetValue = nullptr;
+        scene->host.setTransform("/Planes/P9", translation(0, 0, 1));
+        scene->host.set("/Planes/P10", "points",
+                        HostValue::points({{-0.2f, -0.2f, 0}, {0.2f, -0.2f, 0}, {0.2f, 0.2f, 0}, {-0.2f, 0.2f, 0}}));
+        scene->host.api().markDirty(scene->host.delegate(), "/Planes/P9", OBSCURA_DIRTY_TRANSFORM);
+        scene->host.api().markDirty(scene->host.delegate(), "/Planes/P10", OBSCURA_DIRTY_POINTS);
+        ASSERT_EQ(scene->render(), OBSCURA_ERROR_BAD_PRIM_DATA) << scene->host.lastError();
+    }
+    EXPECT_EQ(renderStats(parallel.host).primsSynced, 2u);
+    EXPECT_EQ(parallel.host.readFloats("/Buffers/color"), serial.host.readFloats("/Buffers/color"));
+}
+
+TEST(ParallelSync, AHostWithoutTheFlagIsCalledOnItsOwnThreadOnly) {
+    ManyPrims scene(false);
+    ASSERT_EQ(scene.render(), OBSCURA_ERROR_BAD_PRIM_DATA) << scene.host.lastError();
+    EXPECT_EQ(scene.host.callbackThreads, std::set<std::thread::id>{std::this_thread::get_id()});
+    EXPECT_EQ(scene.host.logThreads, std::set<std::thread::id>{std::this_thread::get_id()});
+}
+
+}  // namespace
+}  // namespace obscura::test
+
+namespace obscura::test {
+namespace {
+
+// The schemas own which dirty bit reads which attribute again (schemas/*.json): for one prim of
+// every type, marking an attribute's bit makes the next render ask the host for that attribute,
+// for every attribute a first sync asks for.
+TEST(SchemaDirtyBits, MarkingAnAttributesBitAsksForItAgain) {
+    TestHost host;
+    std::map<std::string, std::string> types;  // path -> prim type
+    auto add = [&](const std::string& type, const std::string& path, std::map<std::string, HostValue> values,
+                   Matrix transform) {
+        host.addPrim(type, path, std::move(values), transform);
+        types[path] = type;
+    };
+    add("camera", "/Camera",
+        {{"shutter:open", HostValue::doubleValue(-0.25)}, {"shutter:close", HostValue::doubleValue(0.25)}},
+        translation(0, 0, 12));
+    addPlane(host, "/Mesh", "/Looks/Grey", 0.5, translation(-3, 2, 0));
+    types["/Mesh"] = "mesh";
+    addMaterial(host, "/Looks/Grey", {0.5f, 0.5f, 0.5f});
+    types["/Looks/Grey"] = "material";
+    addPlane(host, "/Proto", "", 0.3, translation(0, 0, -50));
+    types["/Proto"] = "mesh";
+    add("instancer", "/Instancer",
+        {{"prototypes", HostValue::paths({"/Proto"})},
+         {"protoIndices", HostValue::intArray({0})},
+         {"positions", HostValue::points({{0, 0, 50}})}},
+        translation(3, 2, 0));
+    const char* implicit[] = {"sphere", "cube", "cylinder", "cylinder1", "cone", "capsule", "capsule1", "plane"};
+    for (size_t i = 0; i < std::size(implicit); ++i)
+        add(implicit[i], std::string("/Implicit/") + implicit[i], {}, translation(double(i) - 3.5, -1, 0));
+    HostValue widths = HostValue::floatValue(0.1f);
+    widths.isArray = true;  // float[] of one, constant
+    add("basisCurves", "/Curves",
+        {{"points", HostValue::points({{0, 0, 0}, {1, 0, 0}})},
+         {"curveVertexCounts", HostValue::intArray({2})},
+         {"type", HostValue::token("linear")},
+         {"widths", widths}},
+        translation(-2, -3, 0));
+    host.setInterpolation("/Curves", "widths", OBSCURA_INTERPOLATION_CONSTANT);
+    add("points", "/Points", {{"points", HostValue::points({{0, 0, 0}, {0.5f, 0, 0}})}}, translation(2, -3, 0));
+    for (const char* light : {"distantLight", "sphereLight", "rectLight", "diskLight", "domeLight"})
+        add(light, std::string("/Lights/") + light, {}, identity());
+    host.addRenderBuffer("/Buffers/color", "float32Vec4", 32, 32);
+    types["/Buffers/color"] = "renderBuffer";
+    auto render = [&] { return host.render("/Camera", {{"color", "/Buffers/color"}}); };
+    ASSERT_EQ(render(), OBSCURA_OK) << host.lastError();
+    const auto firstSync = host.valuesAskedFor;
+    ASSERT_GT(firstSync.size(), 100u);
+    std::set<ObscuraDirtyBits> bits;
+    for (const schema::PrimSchema& prim : schema::primSchemas())
+        for (const schema::AttributeSchema& a : std::span(prim.attributes, prim.attributeCount)) bits.insert(a.dirtyBit);
+    for (ObscuraDirtyBits bit : bits) {
+        host.resetCounters();
+        for (const auto& [path, type] : types) ASSERT_EQ(host.api().markDirty(host.delegate(), path.c_str(), bit), OBSCURA_OK);
+        ASSERT_EQ(render(), OBSCURA_OK) << host.lastError();
+        for (const auto& [path, attribute] : firstSync)
+            if (schema::attributeOf(types.at(path), attribute).dirtyBit == bit)
+                EXPECT_TRUE(host.valuesAskedFor.count({path, attribute}))
+                    << path << " (" << types.at(path) << ") " << attribute << ": not asked for again when bit 0x"
+                    << std::hex << bit << " is marked";
+    }
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // libFuzzer target: the C ABI driven by random call sequences and random prim data, against the
-// plugin on lavapipe with validation on (issue 13). Each input is a program: the first bytes pick
+// plugin on lavapipe with validation on. Each input is a program: the first bytes pick
 // calls (insert, set a value, mark dirty, remove, settings, render, map, stats...), the rest are
 // their arguments, decoded with FuzzedDataProvider. Prim types and attribute names come from the
 // schema tables, so most values are well-typed and reach the delegate's checks and the frame; a
@@ -22,13 +22,13 @@
 #include <vector>
 
 #include "schemas/schema.h"
-#include "tests/support/test_host.h"
+#include "tests/support/in_memory_host.h"
 
 namespace {
 
 using obscura::schema::AttrType;
 using obscura::test::HostValue;
-using obscura::test::TestHost;
+using obscura::test::InMemoryHost;
 
 // Paths inputs draw from: a small pool, so calls meet each other's prims; two malformed.
 const char* const kPaths[] = {"/Camera", "/Buffers/color", "/Buffers/depth", "/Buffers/id", "/A", "/A/B",
@@ -152,7 +152,7 @@ obscura::test::Matrix anyMatrix(FuzzedDataProvider& in) {
 
 class AbiProgram {
 public:
-    AbiProgram(TestHost& host, FuzzedDataProvider& in) : host_(host), api_(host.api()), d_(host.delegate()), in_(in) {}
+    AbiProgram(InMemoryHost& host, FuzzedDataProvider& in) : host_(host), api_(host.api()), d_(host.delegate()), in_(in) {}
 
     void run() {
         // Most programs start from a scene that renders: a camera and a colour buffer.
@@ -306,7 +306,7 @@ private:
         check(stats.validationErrors == 0, "a validation error");
     }
 
-    TestHost& host_;
+    InMemoryHost& host_;
     const ObscuraApiV1& api_;
     ObscuraDelegate d_;
     FuzzedDataProvider& in_;
@@ -318,20 +318,20 @@ private:
 }  // namespace
 
 namespace {
-TestHost* host = nullptr;
+InMemoryHost* host = nullptr;
 }  // namespace
 
 // The delegate is made before the first input, outside libFuzzer's per-input timeout (creating it
 // computes the best-fit normals table, slow under the sanitizers).
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-    host = new TestHost(true);  // validation on; lives as long as the process
+    host = new InMemoryHost(true);  // validation on; lives as long as the process
     std::atexit([] { std::fprintf(stderr, "fuzz_abi: %llu ABI calls checked\n", (unsigned long long)abiCalls); });
     return 0;
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static std::set<std::string> lastInserted;
-    TestHost& host = *::host;
+    InMemoryHost& host = *::host;
     const ObscuraApiV1& api = host.api();
     for (const std::string& path : lastInserted) api.removePrim(host.delegate(), path.c_str());
     for (uint32_t i = 0;; ++i) {

@@ -45,6 +45,7 @@ CALLS = {
 def closed(renderer: obscura.Renderer) -> obscura.Delegate:
     with lit(renderer) as d:
         pass
+    assert not d.logged_errors, d.logged_errors
     return d
 
 
@@ -63,6 +64,7 @@ def test_closing_the_renderer_closes_its_delegates(renderer: obscura.Renderer) -
     with r:
         pass
     assert d.closed
+    assert not d.logged_errors, d.logged_errors
     with pytest.raises(obscura.InvalidStateError):
         r.delegate()
 
@@ -93,6 +95,7 @@ def test_a_view_is_zero_copy_and_keeps_its_memory_alive(renderer: obscura.Render
     del view
     gc.collect()
     assert native() is None  # destroyed with the last view
+    assert not d.logged_errors, d.logged_errors
 
 
 def test_a_buffer_is_unmapped_once_its_last_view_is_gone(delegate: obscura.Delegate) -> None:

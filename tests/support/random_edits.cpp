@@ -16,7 +16,7 @@ std::vector<std::array<float, 3>> cardPoints(float bend) {
 
 }  // namespace
 
-RandomEditScene::RandomEditScene(TestHost& host, uint32_t seed, int width, int height)
+RandomEditScene::RandomEditScene(InMemoryHost& host, uint32_t seed, int width, int height)
     : host_(host), random_(seed), baseWidth_(width), baseHeight_(height), width_(width), height_(height) {
     host_.addCamera("/Camera", translation(0, 0, 6));
     host_.addPrim("distantLight", "/Sun", {{"inputs:intensity", HostValue::floatValue(2.0f)}});

@@ -1,9 +1,9 @@
-// A scene under random edits through the ABI, for the soak test and the soak benchmark (issue 13):
+// A scene under random edits through the ABI, for the soak test and the soak benchmark:
 // each frame changes a few of transforms, points, materials, lights, prims added and removed, the
 // render size and render settings, then renders. Deterministic for a seed.
 #pragma once
 
-#include "tests/support/test_host.h"
+#include "tests/support/in_memory_host.h"
 
 #include <random>
 #include <set>
@@ -14,7 +14,7 @@ namespace obscura::test {
 class RandomEditScene {
 public:
     // Render sizes are drawn around width x height (small: the soak runs on lavapipe).
-    RandomEditScene(TestHost& host, uint32_t seed, int width, int height);
+    RandomEditScene(InMemoryHost& host, uint32_t seed, int width, int height);
     // A few random edits, then one render; returns its status.
     ObscuraStatus editAndRender();
     int width() const { return width_; }
@@ -24,7 +24,7 @@ private:
     void addCard(int index);
     void editOnce();
 
-    TestHost& host_;
+    InMemoryHost& host_;
     std::mt19937 random_;
     int baseWidth_, baseHeight_, width_, height_;
     std::set<int> cards_;  // indices of the cards in the scene
