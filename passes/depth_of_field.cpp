@@ -2,6 +2,7 @@
 
 #include "passes/image_compute_pass.h"
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -13,11 +14,14 @@ struct DofConstants {
     float cocScale;
     float cocBias;
     float maxRadius;
-    float polygonBlend;
+    float cellShare;
     float rotation;
     int32_t blades;
     int32_t tapsPerSide;
     int32_t tileNeighbourhood;
+    std::array<float, 2> cellCentre;
+    std::array<float, 2> cellHalfSize;
+    std::array<float, 2> jitter;
 };
 
 // Tile side in half-resolution texels (DOF_TILE_SIZE in dof_common.glsl).
@@ -27,6 +31,9 @@ constexpr uint32_t kTileSize = 8;
 // efficient DOF reconstruction filter": R11G11B10F downscaled HDR scene, R8G8 CoC).
 constexpr VkFormat kFieldInputFormat = VK_FORMAT_B10G11R11_UFLOAT_PACK32;
 constexpr VkFormat kCocFormat = VK_FORMAT_R8G8_UNORM;
+// The half-resolution CoC pair, and the share of each texel's four pixels that belong to each field
+// (a small bright point is a quarter of its texel, not all of it).
+constexpr VkFormat kHalfCocFormat = VK_FORMAT_R8G8B8A8_UNORM;
 // The gathered fields carry their coverage in alpha, which R11G11B10F has no room for.
 constexpr VkFormat kFieldFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
@@ -45,21 +52,27 @@ gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, PipelineCache& pi
                                        const DepthOfFieldSettings& settings) {
     if (settings.tapsPerSide < kMinDofTapsPerSide || settings.tapsPerSide > kMaxDofTapsPerSide)
         throw std::invalid_argument("depth of field: taps per side out of range");
-    double maxRadius = maxDofRadiusPixels(settings.tapsPerSide);
+    const ApertureCell& cell = settings.cell;
+    double maxRadius = maxDofRadiusPixels(settings.tapsPerSide) / cell.share();
+    // A near CoC reaches as far as the cell does from its centre's point, at most.
+    double reach = maxRadius * apertureCellReach(cell, settings.aperture);
     DofConstants constants{float(settings.coc.scale),
                            float(settings.coc.bias),
                            float(maxRadius),
-                           float(settings.aperture.polygonBlend),
+                           float(cell.share()),
                            float(settings.aperture.rotation),
                            settings.aperture.blades,
                            settings.tapsPerSide,
-                           int32_t(std::ceil(0.5 * maxRadius / kTileSize))};
+                           int32_t(std::ceil(0.5 * reach / kTileSize)),
+                           {float(cell.centre[0]), float(cell.centre[1])},
+                           {float(cell.halfSize[0]), float(cell.halfSize[1])},
+                           {float(settings.jitter[0]), float(settings.jitter[1])}};
 
     uint32_t halfWidth = (scene.width + 1) / 2, halfHeight = (scene.height + 1) / 2;
     uint32_t tilesWide = (halfWidth + kTileSize - 1) / kTileSize, tilesHigh = (halfHeight + kTileSize - 1) / kTileSize;
     gpu::ImageHandle nearLayer = graph.createImage("dofNearLayer", chainImage(kFieldInputFormat, halfWidth, halfHeight));
     gpu::ImageHandle farLayer = graph.createImage("dofFarLayer", chainImage(kFieldInputFormat, halfWidth, halfHeight));
-    gpu::ImageHandle halfCoc = graph.createImage("dofHalfCoc", chainImage(kCocFormat, halfWidth, halfHeight));
+    gpu::ImageHandle halfCoc = graph.createImage("dofHalfCoc", chainImage(kHalfCocFormat, halfWidth, halfHeight));
     addDofPass(graph, pipelines, "dof_downsample", {{hdrColor, SampledRead::Nearest}, {gbuffer.depth, SampledRead::Depth}},
                {nearLayer, farLayer, halfCoc}, constants);
 

@@ -82,8 +82,8 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
         if (temporalAa->lensStratum) {
             // The accumulation-buffer camera's lens, as the reference spreads its sub-frames.
             double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
-            auto onAperture =
-                stillApertureSample(*temporalAa->lensStratum, temporalAa->pass.framesToConverge, camera.aperture);
+            std::array<double, 2> onAperture =
+                stillLensSample(*temporalAa->lensStratum, temporalAa->pass.framesToConverge, camera.aperture).position;
             viewpoint.lensOffset = {onAperture[0] * apertureRadius, onAperture[1] * apertureRadius};
         }
         viewpoint.noiseFrame = temporalAa->noiseFrame;
@@ -150,22 +150,21 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
         // A still's sample of the shutter is blurred over its stratum alone, before it joins the
         // mean: the post-process fills only what lies between the samples' times.
         const bool stratumBlur = scene.motionBlur && temporalAa && temporalAa->shutterStratum;
-        // A still's sample of the lens likewise is blurred over its stratum of the aperture alone:
-        // 1/N of the aperture's area, a circle of confusion 1/sqrt(N) as wide.
+        // A still's sample of the lens likewise is blurred over its cell of the aperture alone.
         const bool lensSample = temporalAa && temporalAa->lensStratum;
-        auto depthOfField = [&](double cocShare) {
+        auto depthOfField = [&](const passes::ApertureCell& cell, std::array<double, 2> jitter) {
             passes::CocFromDepth coc =
                 passes::cocFromDepth(lens, camera.clippingRange[0], camera.clippingRange[1], double(width));
-            coc.scale *= cocShare;
-            coc.bias *= cocShare;
-            return passes::DepthOfFieldSettings{coc, camera.aperture, settings.depthOfFieldTaps};
+            return passes::DepthOfFieldSettings{coc, camera.aperture, cell, jitter, settings.depthOfFieldTaps};
         };
         if (stratumBlur || lensSample) {
             hdr = passes::addTemporalAaSamplePass(graph, *pipelines_, scene, gbuffer, hdr, transparentCoverage);
             if (lensSample)
                 hdr = passes::addDepthOfFieldPasses(
                     graph, *pipelines_, scene, gbuffer, hdr,
-                    depthOfField(1.0 / std::sqrt(double(temporalAa->pass.framesToConverge))));
+                    depthOfField(stillLensSample(*temporalAa->lensStratum, temporalAa->pass.framesToConverge,
+                                                 camera.aperture).cell,
+                                 temporalAa->jitter));
             if (stratumBlur)
                 hdr = passes::addMotionBlurPasses(graph, *pipelines_, scene, gbuffer, hdr, settings.motionBlurSamples);
             temporalAa->pass.colorHasCoverage = true;
@@ -180,7 +179,7 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
         // Over the whole aperture, unless the still's mean holds it, sample by sample.
         dofAfterTemporalAa = passes::hasDepthOfField(lens) && !lensSample && !(temporalAa && temporalAa->lensAccumulated);
         if (dofAfterTemporalAa)
-            hdr = passes::addDepthOfFieldPasses(graph, *pipelines_, scene, gbuffer, hdr, depthOfField(1.0));
+            hdr = passes::addDepthOfFieldPasses(graph, *pipelines_, scene, gbuffer, hdr, depthOfField({}, {}));
         // After depth of field (seed 000 "MB or DOF first?": motion blur gathers with the
         // geometry's depth and velocity, and is the error less seen when it comes last), over the
         // whole shutter: unless the still's mean already holds it, sample by sample.
@@ -303,7 +302,7 @@ void FrameRenderer::accumulateReference(FrameSceneSource& source, const FrameReq
         gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, source.view(viewpoint), request,
                                            settings, transparentCoverage);
         gpu::ImageHandle sum = graph.importImage("referenceAccumulation", accumulation_.image, accumulation_.layout);
-        passes::addAccumulatePass(graph, *pipelines_, hdr, sum, float(sub.weight), k == 0);
+        passes::addAccumulatePass(graph, *pipelines_, hdr, sum, 1.0f, k == 0);
         executeFrame(graph);
         accumulation_.layout = graph.finalLayout(sum);
     }

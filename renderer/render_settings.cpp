@@ -84,7 +84,7 @@ const RenderSettingInfo kSettings[] = {
      "Halton (2, 3) sequence, each weighted equally; with motion blur each also samples its own "
      "1/taa:frames of the shutter, as reference sub-frames do, blurred over that part alone; with "
      "depth of field each looks through its own 1/taa:frames of the aperture, its post-process "
-     "circle of confusion 1/sqrt(taa:frames) as wide; "
+     "spreading it over that part alone; "
      "`obscura render` renders until converged, 1-1024 (int, default 16)",
      OBSCURA_VALUE_INT, 16.0, 1.0, 1024.0},
     {"taa:mode", [](FrameSettings& s, double, const std::string& t) {

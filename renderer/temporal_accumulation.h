@@ -46,8 +46,8 @@ struct TemporalAaStep {
     std::optional<std::array<double, 2>> shutterStratum;
     bool shutterAccumulated = false;
     // Depth of field in a 1TX still (a lens that blurs): each frame the mean counts looks through
-    // its own stratum of the aperture, as the reference's sub-frames do: stratum `lensStratum` of
-    // taa:frames (stillApertureSample()), its own depth of field spanning the stratum alone and
+    // its own cell of the aperture, as the reference's sub-frames do: cell `lensStratum` of
+    // taa:frames (stillLensSample()), its own depth of field spanning the cell alone and
     // run before the mean, which so converges to the lens's integral, the diaphragm's shape
     // included. None: the frame looks through the lens's centre and the post-process blurs over
     // the whole aperture after temporal AA (a real-time frame), unless the mean already holds

@@ -1,6 +1,6 @@
 // Depth of field as a camera integrates it: a still (what `obscura render` makes, taa:frames
-// accumulated frames, each looking through its own stratum of the aperture and blurred by the
-// post-process over that stratum alone) converges to the reference's accumulation-buffer lens,
+// accumulated frames, each looking through its own cell of the aperture and blurred by the
+// post-process over that cell alone) converges to the reference's accumulation-buffer lens,
 // the diaphragm's shape included; a single real-time frame is the seed's post-process alone.
 // Fidelity is the PSNR of x / (1 + x)-mapped linear RGB (mappedPsnr), as against path-traced
 // ground truth; every number is printed.
@@ -28,8 +28,8 @@ void report(const std::string& what, double psnr) {
 }
 
 // A 50 mm lens wide open at f/2.8, focused at 20 units (the default film, 160 pixels wide): CoC
-// diameters of 30 pixels on a wall at 60 and 45 on a card at 10 (Potmesil's formula,
-// DepthOfField tests).
+// diameters of 23 pixels on a wall at 60 and 34 on a card at 10 (the thin lens through the field
+// of view, DepthOfField tests).
 Lens wideOpenLens(int blades) {
     Lens lens;
     lens.fStop = 2.8f;
