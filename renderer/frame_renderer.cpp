@@ -72,11 +72,15 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
                                                   settings.temporalAaKHighFreq};
     if (settings.temporalAa && referenceSubFrames == 0) {
         FrameView seen = source.view(viewpoint);
+        // A still's sample resolves linearly; with MSAA under the box filter of width 1, over the
+        // pixel's box.
+        const bool pixelBox = settings.msaaSamples > 1 && settings.pixelFilter.kind == PixelFilterKind::Box &&
+                              settings.pixelFilter.width == 1.0;
         temporalAa = temporalAccumulation_.next({camera.key, width, height, request.settingsVersion},
                                                 request.sceneVersion, temporalAaSettings.mode,
                                                 settings.temporalAaFrames, seen.view, seen.projection,
                                                 {viewpoint.shutter.has_value(), passes::hasDepthOfField(lens),
-                                                 1.0 / std::sqrt(double(settings.msaaSamples)), settings.pixelFilter});
+                                                 settings.pixelFilter, pixelBox ? settings.msaaSamples : 0u});
         viewpoint.clipJitter = temporalAa->clipJitter;
         if (temporalAa->shutterStratum) viewpoint.shutterSpan = *temporalAa->shutterStratum;
         if (temporalAa->lensStratum) {
@@ -87,7 +91,8 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
             viewpoint.lensOffset = {onAperture[0] * apertureRadius, onAperture[1] * apertureRadius};
         }
         viewpoint.noiseFrame = temporalAa->noiseFrame;
-        viewpoint.linearResolve = temporalAa->pass.unchanged;
+        if (temporalAa->stillSample)
+            viewpoint.sampleResolve = pixelBox ? passes::SampleResolve::PixelBox : passes::SampleResolve::Linear;
         // Hybrid AA (seed 004) while anything changes; a still accumulates jittered frames of every
         // object, converging to the supersampled image, which edge AA never reaches.
         if (temporalAaSettings.mode == passes::TemporalAaMode::Smaa1tx && !temporalAa->pass.unchanged)

@@ -79,8 +79,8 @@ struct FrameViewpoint {
     // (TemporalAaStep::lensStratum): camera space x right, y up, scene units, the focus plane kept
     // in place (Camera::projectionMatrix with a lens offset). Zero: the lens's centre.
     std::array<double, 2> lensOffset{0.0, 0.0};
-    // A sample of a still's mean: MSAA samples resolve linearly (CameraData::linearResolve).
-    bool linearResolve = false;
+    // How MSAA samples resolve (CameraData::sampleResolve): linearly in a sample of a still's mean.
+    passes::SampleResolve sampleResolve = passes::SampleResolve::ToneMapped;
     // Temporal AA: the last frame's models (instances whose model differs get an
     // InstanceReprojection record), and where this frame's go; null without temporal AA.
     const InstanceModels* lastModels = nullptr;

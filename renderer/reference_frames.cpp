@@ -37,6 +37,14 @@ std::array<double, 2> hammersleyPoint(uint32_t k, uint32_t count) {
 
 }  // namespace
 
+std::array<double, 2> pixelBoxJitter(uint32_t index, uint32_t count, uint32_t samples) {
+    if (count == 0 || samples == 0) return {0.0, 0.0};
+    index %= count;
+    // Both coordinates centred in their strata: the points' mean is the strip's centre, and no
+    // sample lands on a box's edge, where rounding would give it to either pixel.
+    return {(radicalInverse(index, 2) + 0.5 / count - 0.5) / samples, (index + 0.5) / count - 0.5};
+}
+
 uint32_t shutterStratum(uint32_t index, uint32_t count) {
     return count > 0 ? uint32_t(uint64_t(index) * latticeMultiplier(count, kGoldenRatio) % count) : 0;
 }

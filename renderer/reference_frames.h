@@ -33,6 +33,18 @@ std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::
 // (TemporalAaStep::shutterStratum), so that both sample the shutter alike.
 uint32_t shutterStratum(uint32_t index, uint32_t count);
 
+// The sub-pixel jitter (pixels, x right, y down) of a still's frame `index` of `count` under the box
+// filter of width 1, `samples` MSAA samples a pixel resolved over its box
+// (passes::SampleResolve::PixelBox). Vulkan's standard
+// sample locations are N-rooks: their x lie 1/samples apart. A jitter within a strip 1/samples wide
+// and the pixel tall so moves each sample across its own column of the pixel (wrapping around its
+// box), all of them together across the whole pixel. The frames' jitters are a Hammersley set over
+// the strip (x the base-2 radical inverse, y k / count, both centred in their strata): for count =
+// 2^m a (0, m, 2)-net,
+// whose count x samples points fall one in each of as many equal cells of the pixel (an 8 x 8 grid
+// for 16 frames of 4 samples), where the plain jitter left the pattern's own gaps and clumps.
+std::array<double, 2> pixelBoxJitter(uint32_t index, uint32_t count, uint32_t samples);
+
 // The part of the aperture a still's accumulated frame `index` of `count` looks through
 // (TemporalAaStep::lensStratum): cell j of a rows x columns grid over the square before the
 // aperture mapping (rows the largest divisor of `count` up to its square root), so that `count`

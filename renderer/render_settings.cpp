@@ -65,7 +65,8 @@ const RenderSettingInfo kSettings[] = {
      "count is refused with the ones offered). Above 1: deferred MSAA (seed 000): a custom resolve copies "
      "sample 0 for the per-pixel passes and tags pixels whose samples differ (id, depth, normal) in stencil "
      "bit 0x80; lighting runs per sample there, resolved with tone-mapped weights 1/(1 + luma) so bright "
-     "edges keep their coverage. Reference mode renders 1 (int, default 1)",
+     "edges keep their coverage; a still's frames resolve linearly, under the box pixel filter each "
+     "sample into the pixel whose box holds it. Reference mode renders 1 (int, default 1)",
      OBSCURA_VALUE_INT, 1.0, 1.0, 8.0},
     {"msaa:alphaToCoverage", number<&FrameSettings::msaaAlphaToCoverage>,
      "with msaa above 1, cut-out materials (opacityThreshold) cover the fraction of a "

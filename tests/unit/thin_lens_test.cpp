@@ -244,6 +244,27 @@ TEST(StillLensSamples, CellsPartitionTheAperture) {
         }
 }
 
+// A still's MSAA frames under the box filter: Vulkan's standard 4-sample locations shifted by the
+// 16 frames' jitters and wrapped around the pixel's box fall one in each cell of an 8 x 8 grid.
+TEST(PixelBoxJitter, SixteenFramesOfFourSamplesFillAnEightByEightGrid) {
+    const double locations[4][2] = {{0.375, 0.125}, {0.875, 0.375}, {0.125, 0.625}, {0.625, 0.875}};
+    constexpr uint32_t kFrames = 16;
+    std::vector<int> cells(64, 0);
+    for (uint32_t k = 0; k < kFrames; ++k) {
+        auto [jx, jy] = pixelBoxJitter(k, kFrames, 4);
+        EXPECT_LT(std::fabs(jx), 0.125 + 1e-12) << "within a strip a quarter of the pixel wide";
+        EXPECT_LT(std::fabs(jy), 0.5);
+        for (const auto& l : locations) {
+            // The image moves by the jitter: the sample sees what lies at its location minus it.
+            double x = l[0] - jx, y = l[1] - jy;
+            x -= std::floor(x);
+            y -= std::floor(y);
+            ++cells[size_t(int(y * 8.0) * 8 + int(x * 8.0))];
+        }
+    }
+    for (int n : cells) EXPECT_EQ(n, 1);
+}
+
 // A kernel over a cell reaches as far as the cell's farthest point from its centre's: the unit
 // circle's radius for the whole aperture; for a quarter of the square, its mapped quarter disc.
 TEST(StillLensSamples, CellReach) {
