@@ -162,11 +162,12 @@ private:
         gpu::ImageHandle maxDepth;
     };
     // Clip volumes, SSAO, the environment, deferred lighting and the transparent surfaces of
-    // `scene`, seen through `seen`, into the light accumulation.
+    // `scene`, seen through `seen`, into the light accumulation of format `accumulation`.
     gpu::ImageHandle addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
                                  const passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas, const FrameView& seen,
                                  const FrameRequest& request, const FrameSettings& settings,
-                                 gpu::ImageHandle& transparentCoverage, const MsaaFrame* msaa = nullptr);
+                                 passes::LightAccumulation accumulation, gpu::ImageHandle& transparentCoverage,
+                                 const MsaaFrame* msaa = nullptr);
     // Compiles, records and submits one frame graph, and waits for it.
     void executeFrame(gpu::FrameGraph& graph);
     // Reference mode: `count` sub-frames sampling `lens`'s aperture, the `shutter` interval (absolute

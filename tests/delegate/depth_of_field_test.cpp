@@ -356,7 +356,8 @@ TEST(DepthOfField, ReferenceConvergesAndIsSharpThroughAPinhole) {
 }
 
 // Both light accumulation formats (lighting:halfFloat) go through depth of field and the
-// reference mode: the images agree to the small float's precision.
+// reference mode (which accumulates in half floats whichever the setting): the images agree to the
+// small float's precision.
 TEST(DepthOfField, FollowsTheLightAccumulationFormat) {
     Lens lens = planesLens();
     CameraScene s(lens, kPlanesSize / 2, kPlanesSize / 2);
