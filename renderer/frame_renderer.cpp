@@ -17,7 +17,7 @@
 namespace obscura::renderer {
 namespace {
 
-// The light accumulation of the frames an integral is made of (a still's samples, the reference's
+// The light accumulation of the frames an integral is made of (a still's, the reference's
 // sub-frames): half floats. The small float format keeps 6 bits of mantissa (5 in blue) and
 // lavapipe rounds towards zero, so every frame of a mean fell up to 1.6% short (a lit plane 0.3750
 // and 0.3711 for the still and the reference where Lambert gives 0.3785).
@@ -156,8 +156,10 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
         // transparent coverage): transparents over the background are not in it.
         transparentCoverage = passes::addTransparentPass(graph, *pipelines_, scene, {}, gbuffer.depth, hdr, {}, {}, {});
     } else {
+        // The frames a still's mean counts.
+        const bool stillFrame = temporalAa && temporalAa->stillSample;
         hdr = addLighting(graph, scene, gbuffer, shadowAtlas, source.view(viewpoint), request, settings,
-                          temporalAa && temporalAa->stillSample ? kIntegralAccumulation : settings.lightAccumulation,
+                          stillFrame ? kIntegralAccumulation : settings.lightAccumulation,
                           transparentCoverage, msaa ? &*msaa : nullptr);
         // A still's sample of the shutter is blurred over its stratum alone, before it joins the
         // mean: the post-process fills only what lies between the samples' times.

@@ -46,7 +46,7 @@ vec3 hiddenBehindNearPixel(ivec2 pixel, float nearRadius) {
                                       vec2(0, -1), vec2(d, -d));
     for (int i = 0; i < 8; ++i) {
         ivec2 neighbour = clamp(pixel + ivec2(round(nearRadius * directions[i])), ivec2(0), lastPixel);
-        if (fieldBlend(signedCocRadius(texelFetch(depthTexture, neighbour, 0).r)) > 0.0) continue;
+        if (nearFieldShare(signedCocRadius(texelFetch(depthTexture, neighbour, 0).r)) > 0.0) continue;
         sum += texelFetch(lightAccumulation, neighbour, 0).rgb;
         count += 1.0;
     }
@@ -89,7 +89,7 @@ void main() {
     if (blursAtHalfResolution(tile.x)) {
         vec4 near = vec4(0.0);
         for (int i = 0; i < 4; ++i) near += taps.weight[i] * textureLod(nearField, taps.uv[i], 0.0);
-        float nearSelf = fieldBlend(coc);
+        float nearSelf = nearFieldShare(coc);
         if (nearSelf > 0.0) colour = mix(colour, hiddenBehindNearPixel(pixel, coc * dof.cellShare), nearSelf);
         colour = colour * (1.0 - near.a) + near.rgb;
     }

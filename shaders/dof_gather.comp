@@ -87,7 +87,7 @@ void main() {
                 ivec2 under = clamp(base + t, ivec2(0), size - 1);
                 vec4 cocAndShares = texelFetch(halfCoc, under, 0);
                 float radius = cocAndShares.x * maxRadius;
-                float isNear = fieldBlend(2.0 * radius);
+                float isNear = nearFieldShare(2.0 * radius);
                 if (isNear * bilinear == 0.0) continue;
                 float reach = tapReach(radius, taps[i].z, length(offset));
                 float spread = tile.x / radius;

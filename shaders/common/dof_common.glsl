@@ -42,6 +42,12 @@ const float DOF_FIELD_RADIUS = 2.0;
 float fieldBlend(float radiusPixels) {
     return smoothstep(DOF_SHARP_RADIUS, DOF_FIELD_RADIUS, radiusPixels * dof.cellShare);
 }
+// How much a pixel of near CoC radius `radiusPixels` belongs to the near field: by the whole CoC,
+// whatever part of the aperture the kernel spans. A near surface is seen through the near field
+// alone (what it hides shows where that field thins), so its share in the field must not depend
+// on how far one frame's cell spreads it: a still's small cells would leave it half transparent.
+float nearFieldShare(float radiusPixels) { return smoothstep(DOF_SHARP_RADIUS, DOF_FIELD_RADIUS, radiusPixels); }
+
 // Whether a CoC radius in half-resolution texels blurs at all: its kernel reaches beyond the
 // texel's sharp half-radius.
 bool blursAtHalfResolution(float radiusTexels) { return radiusTexels * dof.cellShare > 0.5 * DOF_SHARP_RADIUS; }
