@@ -17,8 +17,8 @@
 namespace obscura::renderer {
 namespace {
 
-// The light accumulation of the frames an integral is made of (a still's, the reference's
-// sub-frames): half floats. The small float format keeps 6 bits of mantissa (5 in blue) and
+// The light accumulation of the frames an integral is made of (a still's under SMAA 1TX, the
+// reference's sub-frames): half floats. The small float format keeps 6 bits of mantissa (5 in blue) and
 // lavapipe rounds towards zero, so every frame of a mean fell up to 1.6% short (a lit plane 0.3750
 // and 0.3711 for the still and the reference where Lambert gives 0.3785).
 constexpr passes::LightAccumulation kIntegralAccumulation = passes::LightAccumulation::HalfFloat;
@@ -156,8 +156,9 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
         // transparent coverage): transparents over the background are not in it.
         transparentCoverage = passes::addTransparentPass(graph, *pipelines_, scene, {}, gbuffer.depth, hdr, {}, {}, {});
     } else {
-        // The frames a still's mean counts.
-        const bool stillFrame = temporalAa && temporalAa->stillSample;
+        // Any frame of SMAA 1TX may start or join a still's mean (and a frame of change must match
+        // the still it interrupts where nothing changed).
+        const bool stillFrame = temporalAa && temporalAaSettings.mode == passes::TemporalAaMode::Smaa1tx;
         hdr = addLighting(graph, scene, gbuffer, shadowAtlas, source.view(viewpoint), request, settings,
                           stillFrame ? kIntegralAccumulation : settings.lightAccumulation,
                           transparentCoverage, msaa ? &*msaa : nullptr);

@@ -42,8 +42,8 @@ const RenderSettingInfo kSettings[] = {
          s.lightAccumulation = v != 0.0 ? passes::LightAccumulation::HalfFloat : passes::LightAccumulation::SmallFloat;
      },
      "accumulate lighting in RGBA16F instead of B10G11R11_UFLOAT: about 2^-11 relative "
-     "precision instead of 2^-7..2^-6, twice the bandwidth; the frames a still's mean counts and "
-     "the reference's sub-frames always do (bool, default off)",
+     "precision instead of 2^-7..2^-6, twice the bandwidth; frames of temporal AA 1TX (a still's) "
+     "and the reference's sub-frames always do (bool, default off)",
      OBSCURA_VALUE_BOOL, 0.0},
     {"transparents:fadeDistance", number<&FrameSettings::transparentFadeMetres>,
      "soft intersections of transparent surfaces (opacity below 1): a surface fades "

@@ -252,9 +252,6 @@ TEST(DepthOfField, InFocusRegionIsUnblurred) {
     Lens lens = planesLens();
     CameraScene s(lens, kPlanesSize, kPlanesSize);
     addPlanesScene(s);
-    // Both frames in one light accumulation format: without depth of field the first frame already
-    // counts towards a still, which accumulates in half floats.
-    s.setNumber("lighting:halfFloat", 1);
     image::Image post = s.render();
     s.setNumber("dof", 0);
     image::Image sharp = s.render();
