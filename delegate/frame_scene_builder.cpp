@@ -165,7 +165,7 @@ private:
         cd.shutterFraction = float(in_.shutterSpan[1] - in_.shutterSpan[0]);
         cd.clipJitter = {float(in_.clipJitter[12]), float(in_.clipJitter[13])};
         cd.noiseFrame = in_.noiseFrame;
-        cd.linearResolve = in_.linearResolve ? 1u : 0u;
+        cd.sampleResolve = uint32_t(in_.sampleResolve);
         if (in_.shutter && in_.sample && (*in_.shutter)[1] > (*in_.shutter)[0])
             cd.shutterPosition =
                 float((in_.sample->time - (*in_.shutter)[0]) / ((*in_.shutter)[1] - (*in_.shutter)[0]));

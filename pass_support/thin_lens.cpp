@@ -26,11 +26,16 @@ Polar concentricDisc(double a, double b) {
     return b > 0.0 ? Polar{b, angle} : Polar{-b, angle + kPi};
 }
 
-// Radius of the regular polygon inscribed in the unit circle along `angle` (seed 000 "Sampling").
-double polygonRadius(double angle, int blades) {
-    double n = blades;
-    double sector = angle - (2.0 * kPi / n) * std::floor((n * angle + kPi) / (2.0 * kPi));
-    return std::cos(kPi / n) / std::cos(sector);
+// The diaphragm's polygon over a disc point (radius, angle) of the concentric mapping: within the
+// sector of the blade whose edge's middle lies nearest, the angle from that middle, phi0 in
+// [-pi/n, pi/n), uniform in area over the disc, becomes phi = atan(tan(pi/n) phi0 / (pi/n)), whose
+// density 1 / cos^2 phi is the polygon's, and the radius reaches the edge at cos(pi/n) / cos(phi).
+Polar polygonFromDisc(Polar disc, const ApertureShape& shape) {
+    double n = shape.blades, half = kPi / n;
+    double local = disc.angle - shape.rotation;
+    double middle = 2.0 * half * std::floor((local + half) / (2.0 * half));
+    double phi = std::atan(std::tan(half) * (local - middle) / half);
+    return {disc.radius * std::cos(half) / std::cos(phi), shape.rotation + middle + phi};
 }
 
 }  // namespace
@@ -42,40 +47,49 @@ bool hasDepthOfField(const ThinLens& lens) {
 double apertureDiameter(const ThinLens& lens) { return lens.fStop > 0.0 ? lens.focalLength / lens.fStop : 0.0; }
 
 double circleOfConfusionDiameter(const ThinLens& lens, double distance) {
-    double F = lens.focalLength, P = lens.focusDistance, D = distance;
-    return std::fabs(F * D / (D - F) - F * P / (P - F)) * (D - F) / (lens.fStop * D);
+    return apertureDiameter(lens) * lens.focalLength * std::fabs(1.0 / distance - 1.0 / lens.focusDistance);
 }
 
-double accumulationApertureDiameter(const ThinLens& lens) {
-    if (!hasDepthOfField(lens)) return 0.0;
-    return apertureDiameter(lens) * lens.focusDistance / (lens.focusDistance - lens.focalLength);
-}
+double accumulationApertureDiameter(const ThinLens& lens) { return hasDepthOfField(lens) ? apertureDiameter(lens) : 0.0; }
 
 CocFromDepth cocFromDepth(const ThinLens& lens, double nearClip, double farClip, double imageWidthPixels) {
     if (!hasDepthOfField(lens)) return {};
     double F = lens.focalLength, P = lens.focusDistance, A = apertureDiameter(lens);
-    // Signed radius on the film A F (P - D) / (2 D (P - F)) = k (P / D - 1), in pixels.
-    double k = 0.5 * A * F / (P - F) * (imageWidthPixels / lens.filmWidth);
+    // Signed radius on the film A F (1 / D - 1 / P) / 2 = k (P / D - 1), in pixels.
+    double k = 0.5 * A * F / P * (imageWidthPixels / lens.filmWidth);
     double inverseNear = 1.0 / nearClip, inverseFar = 1.0 / farClip;
     return {k * P * (inverseFar - inverseNear), k * (P * inverseNear - 1.0)};
 }
 
-ApertureShape apertureShape(int blades, double rotationDegrees, double fStop) {
+ApertureShape apertureShape(int blades, double rotationDegrees) {
     ApertureShape shape;
     shape.blades = blades >= 3 ? blades : 0;
     shape.rotation = rotationDegrees * kPi / 180.0;
-    double f = (fStop - kRoundApertureFStop) / (kPolygonalApertureFStop - kRoundApertureFStop);
-    shape.polygonBlend = shape.blades ? std::clamp(f, 0.0, 1.0) : 0.0;
     return shape;
 }
 
-ApertureSample sampleAperture(std::array<double, 2> square, const ApertureShape& shape) {
+std::array<double, 2> sampleAperture(std::array<double, 2> square, const ApertureShape& shape) {
     Polar p = concentricDisc(square[0], square[1]);
-    double scale = 1.0;
-    if (shape.blades >= 3 && shape.polygonBlend > 0.0)
-        scale = std::pow(polygonRadius(p.angle, shape.blades), shape.polygonBlend);
-    double radius = p.radius * scale, angle = p.angle + shape.polygonBlend * shape.rotation;
-    return {{radius * std::cos(angle), radius * std::sin(angle)}, scale * scale};
+    if (shape.blades >= 3) p = polygonFromDisc(p, shape);
+    return {p.radius * std::cos(p.angle), p.radius * std::sin(p.angle)};
+}
+
+double ApertureCell::share() const { return std::sqrt(halfSize[0] * halfSize[1]); }
+
+double apertureCellReach(const ApertureCell& cell, const ApertureShape& shape) {
+    // The farthest point lies on the cell's boundary: walk it finely.
+    constexpr int kStepsPerSide = 64;
+    std::array<double, 2> centre = sampleAperture(cell.centre, shape);
+    double reach = 0.0;
+    for (int side = 0; side < 4; ++side)
+        for (int i = 0; i <= kStepsPerSide; ++i) {
+            double t = 2.0 * i / kStepsPerSide - 1.0, u = side < 2 ? t : (side == 2 ? -1.0 : 1.0),
+                   v = side < 2 ? (side == 0 ? -1.0 : 1.0) : t;
+            std::array<double, 2> p = sampleAperture(
+                {cell.centre[0] + cell.halfSize[0] * u, cell.centre[1] + cell.halfSize[1] * v}, shape);
+            reach = std::max(reach, std::hypot(p[0] - centre[0], p[1] - centre[1]));
+        }
+    return reach;
 }
 
 std::array<double, 2> squareGridCell(int index, int side) {

@@ -3,6 +3,7 @@
 #include "generated/shader_layouts.h"
 #include "passes/shader_pass.h"
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -14,20 +15,26 @@ struct DofConstants {
     float cocScale;
     float cocBias;
     float maxRadius;
-    float polygonBlend;
+    float cellShare;
     float rotation;
     int32_t blades;
     int32_t tapsPerSide;
     int32_t tileNeighbourhood;
+    std::array<float, 2> cellCentre;
+    std::array<float, 2> cellHalfSize;
+    std::array<float, 2> jitter;
 };
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, cocScale);
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, cocBias);
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, maxRadius);
-OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, polygonBlend);
+OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, cellShare);
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, rotation);
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, blades);
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, tapsPerSide);
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, tileNeighbourhood);
+OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, cellCentre);
+OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, cellHalfSize);
+OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, jitter);
 
 // Tile side in half-resolution texels (DOF_TILE_SIZE in dof_common.glsl).
 constexpr uint32_t kTileSize = 8;
@@ -36,6 +43,9 @@ constexpr uint32_t kTileSize = 8;
 // efficient DOF reconstruction filter": R11G11B10F downscaled HDR scene, R8G8 CoC).
 constexpr VkFormat kFieldInputFormat = VK_FORMAT_B10G11R11_UFLOAT_PACK32;
 constexpr VkFormat kCocFormat = VK_FORMAT_R8G8_UNORM;
+// The half-resolution CoC pair, and the share of each texel's four pixels that belong to each field
+// (a small bright point is a quarter of its texel, not all of it).
+constexpr VkFormat kHalfCocFormat = VK_FORMAT_R8G8B8A8_UNORM;
 // The gathered fields carry their coverage in alpha, which R11G11B10F has no room for.
 constexpr VkFormat kFieldFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
@@ -53,15 +63,21 @@ gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, const FrameScene&
                                        gpu::ImageHandle hdrColor, const DepthOfFieldSettings& settings) {
     if (settings.tapsPerSide < kMinDofTapsPerSide || settings.tapsPerSide > kMaxDofTapsPerSide)
         throw std::invalid_argument("depth of field: taps per side out of range");
-    double maxRadius = maxDofRadiusPixels(settings.tapsPerSide);
+    const ApertureCell& cell = settings.cell;
+    double maxRadius = maxDofRadiusPixels(settings.tapsPerSide) / cell.share();
+    // A near CoC reaches as far as the cell does from its centre's point, at most.
+    double reach = maxRadius * apertureCellReach(cell, settings.aperture);
     DofConstants constants{float(settings.coc.scale),
                            float(settings.coc.bias),
                            float(maxRadius),
-                           float(settings.aperture.polygonBlend),
+                           float(cell.share()),
                            float(settings.aperture.rotation),
                            settings.aperture.blades,
                            settings.tapsPerSide,
-                           int32_t(std::ceil(0.5 * maxRadius / kTileSize))};
+                           int32_t(std::ceil(0.5 * reach / kTileSize)),
+                           {float(cell.centre[0]), float(cell.centre[1])},
+                           {float(cell.halfSize[0]), float(cell.halfSize[1])},
+                           {float(settings.jitter[0]), float(settings.jitter[1])}};
 
     uint32_t halfWidth = (scene.width + 1) / 2, halfHeight = (scene.height + 1) / 2;
     uint32_t tilesWide = (halfWidth + kTileSize - 1) / kTileSize, tilesHigh = (halfHeight + kTileSize - 1) / kTileSize;
@@ -76,7 +92,7 @@ gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, const FrameScene&
     std::vector<gpu::ImageHandle> layers = addDofPass(
         graph, "dof_downsample",
         {sampled(hdrColor), sampled(gbuffer.depth), storageWrite(half("dofNearLayer", kFieldInputFormat)),
-         storageWrite(half("dofFarLayer", kFieldInputFormat)), storageWrite(half("dofHalfCoc", kCocFormat))},
+         storageWrite(half("dofFarLayer", kFieldInputFormat)), storageWrite(half("dofHalfCoc", kHalfCocFormat))},
         constants);
     const gpu::ImageHandle nearLayer = layers[0], farLayer = layers[1], halfCoc = layers[2];
 

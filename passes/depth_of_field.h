@@ -7,8 +7,8 @@
 //                         of the signed CoC, whose far field is negative);
 //   dof_tile_neighbourhood the near max over the tiles a near CoC can reach from (scatter as gather);
 //   dof_gather            first pass, N^2 taps (7x7) for both fields, branching on the tiles;
-//   dof_flood_fill        second pass, 3x3 taps combined by boolean union (max) that fill the
-//                         shape between the first pass's taps (McIntosh et al. 2012);
+//   dof_flood_fill        second pass, 3x3 taps a third of the first pass's spacing apart,
+//                         averaged: together the two passes sample the kernel on a 3N x 3N grid;
 //   dof_composite         far field upscaled bilaterally, near field freely, both with bicubic
 //                         weights (Sigg & Hadwiger 2005), blended non-linearly over the sharp image.
 #pragma once
@@ -26,12 +26,21 @@ constexpr int kMaxDofTapsPerSide = 15;
 struct DepthOfFieldSettings {
     CocFromDepth coc;        // signed CoC radius in pixels from device depth
     ApertureShape aperture;
+    // The part of the aperture the blur spans: all of it in a real-time frame; a still's sample
+    // spreads over its own cell (renderer/reference_frames.h stillLensSample).
+    ApertureCell cell;
+    // Where the frame's image lies shifted (temporal AA's jitter, pixels, x right, y down): the
+    // blurred fields are read where the unshifted image lies, so that the cells of a still's
+    // samples, each taken with its own jitter, meet where they join; the sharp pixels keep it.
+    std::array<double, 2> jitter{0.0, 0.0};
     int tapsPerSide = kDefaultDofTapsPerSide;
 };
 
-// The largest CoC radius the filter reaches, in full-resolution pixels ("limit offset range to
+// The largest radius the filter's kernel reaches, in full-resolution pixels ("limit offset range to
 // minimize undersampling"): the two passes place N^2 x 9 points over the aperture; at a radius of
-// 2N half-resolution texels they lie about one texel apart, which bilinear fetches still join.
+// 2N half-resolution texels they lie about one texel apart, which bilinear fetches still join. A
+// cell's kernel spans its share of the CoC, so a still's samples clamp the CoC at this over the
+// share.
 double maxDofRadiusPixels(int tapsPerSide);
 
 // Reads the light accumulation (pre-exposed, either format of lighting.h) and the G-buffer depth;

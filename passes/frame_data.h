@@ -12,6 +12,22 @@ namespace obscura::passes {
 
 using Mat4 = std::array<float, 16>;  // column-major, as GLSL's mat4
 
+// How per-sample lighting resolves the MSAA samples of a pixel lit per sample
+// (CameraData::sampleResolve; shaders/lighting.comp).
+enum class SampleResolve : uint32_t {
+    // Tone-mapped weights 1 / (1 + luma) (shaders/common/hdr_resolve.glsl): the seed's resolve for
+    // a few samples, which keeps bright edges' coverage in a real-time frame.
+    ToneMapped = 0,
+    // The plain mean of the pixel's own samples: a sample of a still's mean, which converges to
+    // the filtered pixel integral only if every step of it is linear.
+    Linear = 1,
+    // The plain mean of the samples that fall within the pixel's box this frame, whichever pixel
+    // rasterised them: a still's sample under the box filter of width 1. The frame's jitter spans
+    // the whole pixel, so each sample's position wraps around the box and the still's samples
+    // cover it evenly (the standard pattern's own samples, shifted together, cannot).
+    PixelBox = 2,
+};
+
 struct alignas(16) CameraData {
     Mat4 view;
     Mat4 projection;
@@ -38,10 +54,8 @@ struct alignas(16) CameraData {
     // real-time frame, 1 / taa:frames in a sample of a still's accumulation (the motion AOV
     // divides by it to report the whole shutter's displacement).
     float shutterFraction;
-    // 1: per-sample lighting resolves a pixel's MSAA samples by their plain mean, not by
-    // tone-mapped weights (shaders/common/hdr_resolve.glsl): a sample of a still's accumulation,
-    // whose mean converges to the box-filtered pixel integral only if every step of it is linear.
-    uint32_t linearResolve = 0;
+    // SampleResolve: how per-sample lighting resolves a pixel's MSAA samples.
+    uint32_t sampleResolve = 0;
     float pad[2] = {0.0f, 0.0f};
 };
 static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16 + 16 + 16);

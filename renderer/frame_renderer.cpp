@@ -27,6 +27,11 @@ gpu::ImageDesc accumulationDesc(uint32_t width, uint32_t height) {
     desc.usage = VK_IMAGE_USAGE_STORAGE_BIT;
     return desc;
 }
+// The light accumulation of the frames an integral is made of (a still's under SMAA 1TX, the
+// reference's sub-frames): half floats. The small float format keeps 6 bits of mantissa (5 in blue) and
+// lavapipe rounds towards zero, so every frame of a mean fell up to 1.6% short (a lit plane 0.3750
+// and 0.3711 for the still and the reference where Lambert gives 0.3785).
+constexpr passes::LightAccumulation kIntegralAccumulation = passes::LightAccumulation::HalfFloat;
 
 }  // namespace
 
@@ -88,22 +93,27 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
                                                   settings.temporalAaKHighFreq};
     if (settings.temporalAa && referenceSubFrames == 0) {
         FrameView seen = source.view(viewpoint);
+        // A still's sample resolves linearly; with MSAA under the box filter of width 1, over the
+        // pixel's box.
+        const bool pixelBox = settings.msaaSamples > 1 && settings.pixelFilter.kind == PixelFilterKind::Box &&
+                              settings.pixelFilter.width == 1.0;
         temporalAa = temporalAccumulation_.next({camera.key, width, height, request.settingsVersion},
                                                 request.sceneVersion, temporalAaSettings.mode,
                                                 settings.temporalAaFrames, seen.view, seen.projection,
                                                 {viewpoint.shutter.has_value(), passes::hasDepthOfField(lens),
-                                                 1.0 / std::sqrt(double(settings.msaaSamples)), settings.pixelFilter});
+                                                 settings.pixelFilter, pixelBox ? settings.msaaSamples : 0u});
         viewpoint.clipJitter = temporalAa->clipJitter;
         if (temporalAa->shutterStratum) viewpoint.shutterSpan = *temporalAa->shutterStratum;
         if (temporalAa->lensStratum) {
             // The accumulation-buffer camera's lens, as the reference spreads its sub-frames.
             double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
-            auto onAperture =
-                stillApertureSample(*temporalAa->lensStratum, temporalAa->pass.framesToConverge, camera.aperture);
+            std::array<double, 2> onAperture =
+                stillLensSample(*temporalAa->lensStratum, temporalAa->pass.framesToConverge, camera.aperture).position;
             viewpoint.lensOffset = {onAperture[0] * apertureRadius, onAperture[1] * apertureRadius};
         }
         viewpoint.noiseFrame = temporalAa->noiseFrame;
-        viewpoint.linearResolve = temporalAa->pass.unchanged;
+        if (temporalAa->stillSample)
+            viewpoint.sampleResolve = pixelBox ? passes::SampleResolve::PixelBox : passes::SampleResolve::Linear;
         // Hybrid AA (seed 004) while anything changes; a still accumulates jittered frames of every
         // object, converging to the supersampled image, which edge AA never reaches.
         if (temporalAaSettings.mode == passes::TemporalAaMode::Smaa1tx && !temporalAa->pass.unchanged)
@@ -153,10 +163,7 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
     if (referenceSubFrames > 0) {
         gpu::ImageHandle sum =
             graph.importPersistent("referenceAccumulation", accumulation_, accumulationDesc(width, height));
-        hdr = passes::addAccumulationResolvePass(graph, sum,
-                                                 settings.lightAccumulation == passes::LightAccumulation::HalfFloat
-                                                     ? VK_FORMAT_R16G16B16A16_SFLOAT
-                                                     : VK_FORMAT_B10G11R11_UFLOAT_PACK32);
+        hdr = passes::addAccumulationResolvePass(graph, sum, VK_FORMAT_R16G16B16A16_SFLOAT);
         // The sub-frames blended the transparent surfaces into the accumulation. XXX: the alpha of
         // the reference's colour is the pinhole G-buffer's coverage alone (this clears the
         // transparent coverage): transparents over the background are not in it.
@@ -164,27 +171,30 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
         hdr = transparent.hdr;
         transparentCoverage = transparent.coverage;
     } else {
+        // Any frame of SMAA 1TX may start or join a still's mean (and a frame of change must match
+        // the still it interrupts where nothing changed).
+        const bool stillFrame = temporalAa && temporalAaSettings.mode == passes::TemporalAaMode::Smaa1tx;
         hdr = addLighting(graph, scene, gbuffer, shadowAtlas, source.view(viewpoint), request, settings,
+                          stillFrame ? kIntegralAccumulation : settings.lightAccumulation,
                           transparentCoverage, msaa ? &*msaa : nullptr);
         // A still's sample of the shutter is blurred over its stratum alone, before it joins the
         // mean: the post-process fills only what lies between the samples' times.
         const bool stratumBlur = scene.motionBlur && temporalAa && temporalAa->shutterStratum;
-        // A still's sample of the lens likewise is blurred over its stratum of the aperture alone:
-        // 1/N of the aperture's area, a circle of confusion 1/sqrt(N) as wide.
+        // A still's sample of the lens likewise is blurred over its cell of the aperture alone.
         const bool lensSample = temporalAa && temporalAa->lensStratum;
-        auto depthOfField = [&](double cocShare) {
+        auto depthOfField = [&](const passes::ApertureCell& cell, std::array<double, 2> jitter) {
             passes::CocFromDepth coc =
                 passes::cocFromDepth(lens, camera.clippingRange[0], camera.clippingRange[1], double(width));
-            coc.scale *= cocShare;
-            coc.bias *= cocShare;
-            return passes::DepthOfFieldSettings{coc, camera.aperture, settings.depthOfFieldTaps};
+            return passes::DepthOfFieldSettings{coc, camera.aperture, cell, jitter, settings.depthOfFieldTaps};
         };
         if (stratumBlur || lensSample) {
             hdr = passes::addTemporalAaSamplePass(graph, scene, gbuffer, hdr, transparentCoverage);
             if (lensSample)
                 hdr = passes::addDepthOfFieldPasses(
                     graph, scene, gbuffer, hdr,
-                    depthOfField(1.0 / std::sqrt(double(temporalAa->pass.framesToConverge))));
+                    depthOfField(stillLensSample(*temporalAa->lensStratum, temporalAa->pass.framesToConverge,
+                                                 camera.aperture).cell,
+                                 temporalAa->jitter));
             if (stratumBlur)
                 hdr = passes::addMotionBlurPasses(graph, scene, gbuffer, hdr, settings.motionBlurSamples);
             temporalAa->pass.colorHasCoverage = true;
@@ -198,7 +208,7 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
         // Over the whole aperture, unless the still's mean holds it, sample by sample.
         dofAfterTemporalAa = passes::hasDepthOfField(lens) && !lensSample && !(temporalAa && temporalAa->lensAccumulated);
         if (dofAfterTemporalAa)
-            hdr = passes::addDepthOfFieldPasses(graph, scene, gbuffer, hdr, depthOfField(1.0));
+            hdr = passes::addDepthOfFieldPasses(graph, scene, gbuffer, hdr, depthOfField({}, {}));
         // After depth of field (seed 000 "MB or DOF first?": motion blur gathers with the
         // geometry's depth and velocity, and is the error less seen when it comes last), over the
         // whole shutter: unless the still's mean already holds it, sample by sample.
@@ -232,8 +242,8 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
 gpu::ImageHandle FrameRenderer::addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
                                             passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
                                             const FrameView& seen, const FrameRequest& request,
-                                            const FrameSettings& settings, gpu::ImageHandle& transparentCoverage,
-                                            const MsaaFrame* msaa) {
+                                            const FrameSettings& settings, passes::LightAccumulation accumulation,
+                                            gpu::ImageHandle& transparentCoverage, const MsaaFrame* msaa) {
     gbuffer.depth = passes::addClipVolumePass(graph, scene, gbuffer.depth);
     passes::SsaoResult ambient;
     if (settings.ssao) {
@@ -257,7 +267,7 @@ gpu::ImageHandle FrameRenderer::addLighting(gpu::FrameGraph& graph, const passes
     ssaoHistoryFrame_ = {settings.ssao, seen.view, seen.projection, scene.width, scene.height, request.settingsVersion};
     passes::EnvironmentLighting environment = environment_->addToFrame(graph, request.environment);
     gpu::ImageHandle hdr = passes::addLightingPass(graph, scene, gbuffer, ambient, shadowAtlas, environment,
-                                                   settings.lightAccumulation, msaa ? &msaa->perSample : nullptr);
+                                                   accumulation, msaa ? &msaa->perSample : nullptr);
     // Transparent surfaces over the lit opaque ones, before temporal AA (DESIGN.md "The frame").
     // The fade distance is authored in metres, like the SSAO radius.
     passes::TransparentSettings transparents{float(settings.transparentFadeMetres / settings.metersPerUnit)};
@@ -309,9 +319,9 @@ void FrameRenderer::accumulateReference(FrameSceneSource& source, const FrameReq
         // Each sub-frame blends its transparent surfaces into its lighting; their coverage is not kept.
         gpu::ImageHandle transparentCoverage;
         gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, source.view(viewpoint), request,
-                                           settings, transparentCoverage);
+                                           settings, kIntegralAccumulation, transparentCoverage);
         gpu::ImageHandle sum = graph.importPersistent("referenceAccumulation", accumulation_, sumDesc);
-        passes::addAccumulatePass(graph, hdr, sum, float(sub.weight), k == 0);
+        passes::addAccumulatePass(graph, hdr, sum, 1.0f, k == 0);
         executeFrame(graph);
     }
 }

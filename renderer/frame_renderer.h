@@ -78,8 +78,8 @@ struct FrameViewpoint {
     // (TemporalAaStep::lensStratum): camera space x right, y up, scene units, the focus plane kept
     // in place (Camera::projectionMatrix with a lens offset). Zero: the lens's centre.
     std::array<double, 2> lensOffset{0.0, 0.0};
-    // A sample of a still's mean: MSAA samples resolve linearly (CameraData::linearResolve).
-    bool linearResolve = false;
+    // How MSAA samples resolve (CameraData::sampleResolve): linearly in a sample of a still's mean.
+    passes::SampleResolve sampleResolve = passes::SampleResolve::ToneMapped;
     // Temporal AA: the last frame's models (instances whose model differs get an
     // InstanceReprojection record), and where this frame's go; null without temporal AA.
     const InstanceModels* lastModels = nullptr;
@@ -166,11 +166,12 @@ private:
         gpu::ImageHandle maxDepth;
     };
     // Clip volumes (into `gbuffer`'s stencil), SSAO, the environment, deferred lighting and the
-    // transparent surfaces of `scene`, seen through `seen`, into the light accumulation.
+    // transparent surfaces of `scene`, seen through `seen`, into the light accumulation of format
+    // `accumulation`.
     gpu::ImageHandle addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene, passes::GBuffer& gbuffer,
                                  gpu::ImageHandle shadowAtlas, const FrameView& seen, const FrameRequest& request,
-                                 const FrameSettings& settings, gpu::ImageHandle& transparentCoverage,
-                                 const MsaaFrame* msaa = nullptr);
+                                 const FrameSettings& settings, passes::LightAccumulation accumulation,
+                                 gpu::ImageHandle& transparentCoverage, const MsaaFrame* msaa = nullptr);
     // Runs one frame graph and waits for it.
     void executeFrame(gpu::FrameGraph& graph);
     // Reference mode: `count` sub-frames sampling `lens`'s aperture, the `shutter` interval (absolute

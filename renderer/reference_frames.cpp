@@ -37,6 +37,14 @@ std::array<double, 2> hammersleyPoint(uint32_t k, uint32_t count) {
 
 }  // namespace
 
+std::array<double, 2> pixelBoxJitter(uint32_t index, uint32_t count, uint32_t samples) {
+    if (count == 0 || samples == 0) return {0.0, 0.0};
+    index %= count;
+    // Both coordinates centred in their strata: the points' mean is the strip's centre, and no
+    // sample lands on a box's edge, where rounding would give it to either pixel.
+    return {(radicalInverse(index, 2) + 0.5 / count - 0.5) / samples, (index + 0.5) / count - 0.5};
+}
+
 uint32_t shutterStratum(uint32_t index, uint32_t count) {
     return count > 0 ? uint32_t(uint64_t(index) * latticeMultiplier(count, kGoldenRatio) % count) : 0;
 }
@@ -47,20 +55,27 @@ std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::
     std::vector<ReferenceSubFrame> frames;
     frames.reserve(count);
     for (uint32_t k = 0; k < count; ++k) {
-        passes::ApertureSample lens = passes::sampleAperture(hammersleyPoint(k, count), aperture);
+        std::array<double, 2> lens = passes::sampleAperture(hammersleyPoint(k, count), aperture);
         double shutter = (double(shutterStratum(k, count)) + 0.5) / count;
         std::array<double, 2> emitter{radicalInverse(k, 7), radicalInverse(k, 11)};
         frames.push_back(
-            {lens.position, lens.area, shutter,
+            {lens, shutter,
              {warp.offset(radicalInverse(k, 3) - 0.5), warp.offset(radicalInverse(k, 5) - 0.5)}, emitter});
     }
     return frames;
 }
 
-std::array<double, 2> stillApertureSample(uint32_t index, uint32_t count, const passes::ApertureShape& aperture) {
-    if (count == 0) return {0.0, 0.0};
-    uint32_t stratum = uint32_t(uint64_t(index % count) * latticeMultiplier(count, kPlasticRatio) % count);
-    return passes::sampleAperture(hammersleyPoint(stratum, count), aperture).position;
+StillLensSample stillLensSample(uint32_t index, uint32_t count, const passes::ApertureShape& aperture) {
+    if (count == 0) return {{0.0, 0.0}, {}};
+    uint32_t rows = 1;
+    for (uint32_t r = 1; r * r <= count; ++r)
+        if (count % r == 0) rows = r;
+    const uint32_t columns = count / rows;
+    uint32_t cell = uint32_t(uint64_t(index % count) * latticeMultiplier(count, kPlasticRatio) % count);
+    passes::ApertureCell c;
+    c.halfSize = {1.0 / columns, 1.0 / rows};
+    c.centre = {(2.0 * (cell % columns) + 1.0) / columns - 1.0, (2.0 * (cell / columns) + 1.0) / rows - 1.0};
+    return {passes::sampleAperture(c.centre, aperture), c};
 }
 
 }  // namespace obscura::renderer

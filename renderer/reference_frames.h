@@ -14,7 +14,6 @@ namespace obscura::renderer {
 
 struct ReferenceSubFrame {
     std::array<double, 2> aperture;     // on the unit aperture (x right, y up), passes::sampleAperture
-    double weight;                      // the aperture area the sample stands for: a flat bokeh
     double shutter;                     // fraction of the shutter interval, [0, 1)
     std::array<double, 2> pixelJitter;  // pixels: [-0.5, 0.5)^2 for the box of width 1, else distributed as the filter
     std::array<double, 2> emitter;      // [0, 1)^2: the point of each light's emitter (emitterSample)
@@ -34,14 +33,32 @@ std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::
 // (TemporalAaStep::shutterStratum), so that both sample the shutter alike.
 uint32_t shutterStratum(uint32_t index, uint32_t count);
 
-// The point of the unit aperture (as ReferenceSubFrame::aperture) a still's accumulated frame
-// `index` of `count` looks through (TemporalAaStep::lensStratum): the centre of a Hammersley
-// stratum, mapped like the reference's, so that `count` frames cover the aperture once. The
-// strata are visited in the order of a rank-1 lattice whose multiplier (near 0.7549 N, the plastic
-// ratio, and sharing no factor with N) differs from the shutter's, so that a frame's lens position
-// does not follow its time in the shutter. XXX: an odd multiplier keeps the index's parity, which
-// is the top bit of both the Hammersley y and the jitter's base-2 x: for 16 frames they correlate
-// (-0.57); a scrambled set would part them.
-std::array<double, 2> stillApertureSample(uint32_t index, uint32_t count, const passes::ApertureShape& aperture);
+// The sub-pixel jitter (pixels, x right, y down) of a still's frame `index` of `count` under the box
+// filter of width 1, `samples` MSAA samples a pixel resolved over its box
+// (passes::SampleResolve::PixelBox). Vulkan's standard
+// sample locations are N-rooks: their x lie 1/samples apart. A jitter within a strip 1/samples wide
+// and the pixel tall so moves each sample across its own column of the pixel (wrapping around its
+// box), all of them together across the whole pixel. The frames' jitters are a Hammersley set over
+// the strip (x the base-2 radical inverse, y k / count, both centred in their strata): for count =
+// 2^m a (0, m, 2)-net,
+// whose count x samples points fall one in each of as many equal cells of the pixel (an 8 x 8 grid
+// for 16 frames of 4 samples), where the plain jitter left the pattern's own gaps and clumps.
+std::array<double, 2> pixelBoxJitter(uint32_t index, uint32_t count, uint32_t samples);
+
+// The part of the aperture a still's accumulated frame `index` of `count` looks through
+// (TemporalAaStep::lensStratum): cell j of a rows x columns grid over the square before the
+// aperture mapping (rows the largest divisor of `count` up to its square root), so that `count`
+// frames partition the aperture, each cell 1/count of its area (the mapping preserves area). The
+// frame looks from the cell centre's point of the aperture (`position`, as
+// ReferenceSubFrame::aperture) and its depth of field spreads it over the rest of the cell: the
+// cells' kernels add up to the whole aperture's. The cells are visited in the order of a rank-1
+// lattice whose multiplier (near 0.7549 N, the plastic ratio, and sharing no factor with N)
+// differs from the shutter's, so that a frame's lens position does not follow its time in the
+// shutter.
+struct StillLensSample {
+    std::array<double, 2> position;
+    passes::ApertureCell cell;
+};
+StillLensSample stillLensSample(uint32_t index, uint32_t count, const passes::ApertureShape& aperture);
 
 }  // namespace obscura::renderer

@@ -42,7 +42,8 @@ const RenderSettingInfo kSettings[] = {
          s.lightAccumulation = v != 0.0 ? passes::LightAccumulation::HalfFloat : passes::LightAccumulation::SmallFloat;
      },
      "accumulate lighting in RGBA16F instead of B10G11R11_UFLOAT: about 2^-11 relative "
-     "precision instead of 2^-7..2^-6, twice the bandwidth (bool, default off)",
+     "precision instead of 2^-7..2^-6, twice the bandwidth; frames of temporal AA 1TX (a still's) "
+     "and the reference's sub-frames always do (bool, default off)",
      OBSCURA_VALUE_BOOL, 0.0},
     {"transparents:fadeDistance", number<&FrameSettings::transparentFadeMetres>,
      "soft intersections of transparent surfaces (opacity below 1): a surface fades "
@@ -65,7 +66,8 @@ const RenderSettingInfo kSettings[] = {
      "count is refused with the ones offered). Above 1: deferred MSAA (seed 000): a custom resolve copies "
      "sample 0 for the per-pixel passes and tags pixels whose samples differ (id, depth, normal) in stencil "
      "bit 0x80; lighting runs per sample there, resolved with tone-mapped weights 1/(1 + luma) so bright "
-     "edges keep their coverage. Reference mode renders 1 (int, default 1)",
+     "edges keep their coverage; a still's frames resolve linearly, under the box pixel filter each "
+     "sample into the pixel whose box holds it. Reference mode renders 1 (int, default 1)",
      OBSCURA_VALUE_INT, 1.0, 1.0, 8.0},
     {"msaa:alphaToCoverage", number<&FrameSettings::msaaAlphaToCoverage>,
      "with msaa above 1, cut-out materials (opacityThreshold) cover the fraction of a "
@@ -84,7 +86,7 @@ const RenderSettingInfo kSettings[] = {
      "Halton (2, 3) sequence, each weighted equally; with motion blur each also samples its own "
      "1/taa:frames of the shutter, as reference sub-frames do, blurred over that part alone; with "
      "depth of field each looks through its own 1/taa:frames of the aperture, its post-process "
-     "circle of confusion 1/sqrt(taa:frames) as wide; "
+     "spreading it over that part alone; "
      "`obscura render` renders until converged, 1-1024 (int, default 16)",
      OBSCURA_VALUE_INT, 16.0, 1.0, 1024.0},
     {"taa:mode", [](FrameSettings& s, double, const std::string& t) {

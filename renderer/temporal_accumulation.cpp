@@ -32,15 +32,17 @@ TemporalAaStep TemporalAccumulation::next(const TemporalAaKey& key, uint64_t sce
     // unmoving pixel accumulates the same values in the same order, bit for bit.
     step.noiseFrame = uint32_t(frame_ % framesToConverge);
     if (strata && sample) step.noiseFrame = held_;
+    // The frames the mean counts: the samples, and the first after a reset where no stratum
+    // makes it the real-time one.
+    step.stillSample = !twoFrame && (sample || (!valid && !strata));
     if (!settled) {
         step.jitter = passes::temporalAaJitter(mode, step.noiseFrame, framesToConverge);
-        // The frames the mean counts: the samples, and the first after a reset where no stratum
-        // makes it the real-time one.
-        if (!twoFrame && (sample || (!valid && !strata))) {
+        if (step.stillSample) {
             PixelFilterWarp warp(sampling.filter);
             step.jitter = {warp.offset(step.jitter[0]), warp.offset(step.jitter[1])};
+            if (sampling.pixelBoxSamples > 0)
+                step.jitter = pixelBoxJitter(step.noiseFrame, framesToConverge, sampling.pixelBoxSamples);
         }
-        if (!twoFrame) step.jitter = {step.jitter[0] * sampling.jitterScale, step.jitter[1] * sampling.jitterScale};
     }
     if (shutterStrata && sample) {
         double start = double(shutterStratum(held_, framesToConverge));

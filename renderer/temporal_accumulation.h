@@ -31,6 +31,9 @@ struct TemporalAaStep {
     // The jitter's index in its cycle of framesToConverge: noise that turns with it (the shadow
     // filter's taps) is integrated by a still's mean like the jitter.
     uint32_t noiseFrame = 0;
+    // The still's mean counts this frame (1TX): its MSAA samples resolve linearly
+    // (passes::SampleResolve), its jitter follows the pixel filter.
+    bool stillSample = false;
     // Another render of the unchanged scene would add nothing: the accumulation holds taa:frames
     // frames (1TX) or both frames (2TX), and (1TX) this frame looked through the pixel centres, so
     // the depth, normal and id AOVs are the unjittered ones.
@@ -46,8 +49,8 @@ struct TemporalAaStep {
     std::optional<std::array<double, 2>> shutterStratum;
     bool shutterAccumulated = false;
     // Depth of field in a 1TX still (a lens that blurs): each frame the mean counts looks through
-    // its own stratum of the aperture, as the reference's sub-frames do: stratum `lensStratum` of
-    // taa:frames (stillApertureSample()), its own depth of field spanning the stratum alone and
+    // its own cell of the aperture, as the reference's sub-frames do: cell `lensStratum` of
+    // taa:frames (stillLensSample()), its own depth of field spanning the cell alone and
     // run before the mean, which so converges to the lens's integral, the diaphragm's shape
     // included. None: the frame looks through the lens's centre and the post-process blurs over
     // the whole aperture after temporal AA (a real-time frame), unless the mean already holds
@@ -56,17 +59,16 @@ struct TemporalAaStep {
     bool lensAccumulated = false;
 };
 
-// What a still samples besides the pixel, and how the jitter spans the pixel.
+// What a still samples besides the pixel.
 struct StillSampling {
     bool shutter = false;  // the shutter is open and motionBlur on: strata of the shutter
     bool lens = false;     // the lens blurs (dof on, an aperture): strata of the aperture
-    // The 1TX jitter's extent in pixels: 1 spans the pixel; with MSAA the samples' own pattern
-    // already spans it, and each frame shifts it by 1/sqrt(samples) of a pixel at most, so that the
-    // still's samples stay within the pixel's box rather than reaching up to 7/8 of a pixel beyond it.
-    double jitterScale = 1.0;
-    // The frames the still's mean counts take their offsets distributed as this filter (times
-    // jitterScale); frames of a changing scene keep the plain jitter within the pixel.
+    // The frames the still's mean counts take their offsets distributed as this filter; frames of
+    // a changing scene keep the plain jitter within the pixel.
     PixelFilter filter;
+    // MSAA samples a frame resolves over the pixel's box (passes::SampleResolve::PixelBox): the
+    // frames the still's mean counts take pixelBoxJitter() instead; 0: none.
+    uint32_t pixelBoxSamples = 0;
 };
 
 class TemporalAccumulation {

@@ -46,7 +46,7 @@ vec3 hiddenBehindNearPixel(ivec2 pixel, float nearRadius) {
                                       vec2(0, -1), vec2(d, -d));
     for (int i = 0; i < 8; ++i) {
         ivec2 neighbour = clamp(pixel + ivec2(round(nearRadius * directions[i])), ivec2(0), lastPixel);
-        if (fieldBlend(signedCocRadius(texelFetch(depthTexture, neighbour, 0).r)) > 0.0) continue;
+        if (nearFieldShare(signedCocRadius(texelFetch(depthTexture, neighbour, 0).r)) > 0.0) continue;
         sum += texelFetch(lightAccumulation, neighbour, 0).rgb;
         count += 1.0;
     }
@@ -61,14 +61,14 @@ void main() {
     vec4 sharpTexel = texelFetch(lightAccumulation, pixel, 0);
     vec3 sharp = sharpTexel.rgb;
     float maxRadius = halfResolutionMaxRadius();
-    float sharpRadius = 0.5 * DOF_SHARP_RADIUS;
     vec2 tile = texelFetch(neighbourhoodCoc, (pixel / 2) / DOF_TILE_SIZE, 0).xy * maxRadius;
-    if (tile.x <= sharpRadius && tile.y <= sharpRadius) {
+    if (!blursAtHalfResolution(tile.x) && !blursAtHalfResolution(tile.y)) {
         imageStore(outputColor, pixel, sharpTexel);
         return;
     }
     vec2 halfSize = vec2(textureSize(nearField, 0));
-    BicubicTaps taps = bicubicBSplineTaps((vec2(pixel) + 0.5) * 0.5, halfSize);
+    // The fields read where this pixel's content lies unshifted by the frame's jitter.
+    BicubicTaps taps = bicubicBSplineTaps((vec2(pixel) + 0.5 + dof.jitter) * 0.5, halfSize);
 
     vec3 colour = sharp;
     float coc = signedCocRadius(texelFetch(depthTexture, pixel, 0).r);
@@ -86,11 +86,11 @@ void main() {
         vec4 far = bilateral.a > 1e-4 ? bilateral : plain;
         if (far.a > 1e-4) colour = mix(sharp, far.rgb / far.a, farBlend);
     }
-    if (tile.x > sharpRadius) {
+    if (blursAtHalfResolution(tile.x)) {
         vec4 near = vec4(0.0);
         for (int i = 0; i < 4; ++i) near += taps.weight[i] * textureLod(nearField, taps.uv[i], 0.0);
-        float nearSelf = fieldBlend(coc);
-        if (nearSelf > 0.0) colour = mix(colour, hiddenBehindNearPixel(pixel, coc), nearSelf);
+        float nearSelf = nearFieldShare(coc);
+        if (nearSelf > 0.0) colour = mix(colour, hiddenBehindNearPixel(pixel, coc * dof.cellShare), nearSelf);
         colour = colour * (1.0 - near.a) + near.rgb;
     }
     imageStore(outputColor, pixel, vec4(colour, sharpTexel.a));

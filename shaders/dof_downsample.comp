@@ -16,7 +16,8 @@ layout(set = 0, binding = 0) uniform sampler2D lightAccumulation;
 layout(set = 0, binding = 1) uniform sampler2D depthTexture;
 layout(set = 0, binding = 2, r11f_g11f_b10f) uniform writeonly image2D nearLayer;
 layout(set = 0, binding = 3, r11f_g11f_b10f) uniform writeonly image2D farLayer;
-layout(set = 0, binding = 4, rg8) uniform writeonly image2D halfCoc;
+// Near and far CoC (fractions of the largest), and each field's share of the texel's pixels.
+layout(set = 0, binding = 4, rgba8) uniform writeonly image2D halfCoc;
 
 // The R8G8 value a CoC radius (full-resolution pixels) is stored as, so that the premultiplied
 // colour uses exactly the CoC the gather will read back.
@@ -48,5 +49,10 @@ void main() {
     vec3 farColour = farWeight > 0.0 ? farSum / farWeight : mean;
     imageStore(nearLayer, texel, vec4(nearColour * nearFraction, 0.0));
     imageStore(farLayer, texel, vec4(farColour * farFraction, 0.0));
-    imageStore(halfCoc, texel, vec4(nearFraction, farFraction, 0.0, 0.0));
+    // Each field's share of the texel: its pixels weighted by their CoC against the field's, so that
+    // a point smaller than the texel spreads only its own light.
+    float nearShare = nearMax > 0.0 ? nearWeight / (4.0 * nearMax) : 0.0;
+    float farCoc = farWeight > 0.0 ? farCocSum / farWeight : 0.0;
+    float farShare = farCoc > 0.0 ? farWeight / (4.0 * farCoc) : 0.0;
+    imageStore(halfCoc, texel, vec4(nearFraction, farFraction, nearShare, farShare));
 }

@@ -6,9 +6,13 @@
 // min/max CoC"), each branching out where it has nothing to blur: the near field on its tile
 // neighbourhood's CoC, the far field on the texel's own. The taps are built once per workgroup.
 //
+// The taps span the frame's cell of the aperture (the whole of it in a real-time frame; a still's
+// sample its own cell, dof_common.glsl cellTap), spread evenly (the mapping preserves area).
+//
 // Far field ("scale kernel size and weight samples with far CoC" [Scheuermann05]): the kernel is
-// the texel's own far CoC; a sample counts where its own blur reaches this texel, weighted by its
-// CoC (the layer is premultiplied by it [Gotanda09]). The result stays premultiplied: rgb / a is
+// the texel's own far CoC; a sample counts where its own blur reaches this texel (its CoC times
+// the cell's reach along the tap), weighted by its CoC (the layer is premultiplied by it
+// [Gotanda09]). The result stays premultiplied: rgb / a is
 // the colour, a the mean weight.
 //
 // Near field (scatter as gather): the kernel is the tile neighbourhood's largest near CoC R; a
@@ -35,7 +39,7 @@ shared vec3 taps[MAX_TAPS];
 
 void main() {
     int tapCount = dof.tapsPerSide * dof.tapsPerSide;
-    for (int i = int(gl_LocalInvocationIndex); i < tapCount; i += 64) taps[i] = apertureTap(squareGridCell(i, dof.tapsPerSide));
+    for (int i = int(gl_LocalInvocationIndex); i < tapCount; i += 64) taps[i] = cellTap(squareGridCell(i, dof.tapsPerSide));
     barrier();
 
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
@@ -44,53 +48,54 @@ void main() {
     vec2 inverseSize = 1.0 / vec2(size);
     vec2 centre = vec2(texel) + 0.5;
     float maxRadius = halfResolutionMaxRadius();
-    float sharpRadius = 0.5 * DOF_SHARP_RADIUS;
     vec2 tile = texelFetch(neighbourhoodCoc, texel / DOF_TILE_SIZE, 0).xy * maxRadius;
     vec2 coc = texelFetch(halfCoc, texel, 0).xy * maxRadius;
 
     vec4 far = vec4(texelFetch(farLayer, texel, 0).rgb, coc.y / maxRadius);
-    if (coc.y > sharpRadius) {
+    if (blursAtHalfResolution(coc.y)) {
         vec4 sum = vec4(0.0);
-        float area = 0.0;
         float kernel = kernelRadius(coc.y);
         for (int i = 0; i < tapCount; ++i) {
             vec2 offset = taps[i].xy * kernel;
             vec2 uv = (centre - apertureToTexels(offset)) * inverseSize;
-            float fraction = textureLod(halfCoc, uv, 0.0).y;
-            float reach = clamp(fraction * maxRadius - length(offset) + 0.5, 0.0, 1.0);
-            sum += taps[i].z * reach * vec4(textureLod(farLayer, uv, 0.0).rgb, fraction);
-            area += taps[i].z;
+            vec4 cocAndShares = textureLod(halfCoc, uv, 0.0);
+            float fraction = cocAndShares.y;
+            if (fraction <= 0.0) continue;
+            float radius = fraction * maxRadius;
+            float reach = tapReach(radius, taps[i].z, length(offset));
+            float spread = min(coc.y / radius, DOF_MAX_SPREAD);
+            sum += reach * spread * spread * cocAndShares.w * vec4(textureLod(farLayer, uv, 0.0).rgb / fraction, 1.0);
         }
-        far = sum / area;
+        far = sum / float(tapCount);
     }
 
     vec4 near = vec4(0.0);
-    if (tile.x > sharpRadius) {
-        // Each tap stands for a ring of the kernel as wide as the rings are apart (2R/N): a sample
-        // reaching partway into that ring counts partly, so a coverage of whole rings does not
-        // round the disc of a smaller CoC down.
+    if (blursAtHalfResolution(tile.x)) {
         float kernel = kernelRadius(tile.x);
-        float ringWidth = max(2.0 * kernel / float(dof.tapsPerSide), 1.0);
-        float area = 0.0;
         for (int i = 0; i < tapCount; ++i) {
             vec2 offset = taps[i].xy * kernel;
             vec2 position = centre + apertureToTexels(offset);
-            area += taps[i].z;
-            // The spread depends on the CoC non-linearly, so it comes from the texel under the tap;
-            // the bilinear fetches give the colour and how much of the footprint is near field.
-            float nearest = texelFetch(halfCoc, clamp(ivec2(floor(position)), ivec2(0), size - 1), 0).x;
-            float radius = nearest * maxRadius;
-            float isNear = fieldBlend(2.0 * radius);
-            if (isNear == 0.0) continue;
-            vec2 uv = position * inverseSize;
-            float fraction = textureLod(halfCoc, uv, 0.0).x;
-            float coverage = min(fraction / nearest, 1.0);
-            float reach = clamp((radius - length(offset)) / ringWidth + 0.5, 0.0, 1.0);
-            float spread = tile.x / radius;
-            float weight = taps[i].z * isNear * reach * spread * spread * coverage;
-            near += weight * vec4(textureLod(nearLayer, uv, 0.0).rgb / fraction, 1.0);
+            // The four texels around the tap, each whole with its bilinear weight (a tent that holds
+            // exactly the light of its texel): its CoC (the spread depends on it non-linearly), its
+            // colour and the share of its pixels in the near field.
+            vec2 corner = position - 0.5;
+            ivec2 base = ivec2(floor(corner));
+            vec2 f = corner - vec2(base);
+            for (int k = 0; k < 4; ++k) {
+                ivec2 t = ivec2(k & 1, k >> 1);
+                float bilinear = (t.x == 1 ? f.x : 1.0 - f.x) * (t.y == 1 ? f.y : 1.0 - f.y);
+                ivec2 under = clamp(base + t, ivec2(0), size - 1);
+                vec4 cocAndShares = texelFetch(halfCoc, under, 0);
+                float radius = cocAndShares.x * maxRadius;
+                float isNear = nearFieldShare(2.0 * radius);
+                if (isNear * bilinear == 0.0) continue;
+                float reach = tapReach(radius, taps[i].z, length(offset));
+                float spread = tile.x / radius;
+                float weight = bilinear * isNear * reach * spread * spread * cocAndShares.z;
+                near += weight * vec4(texelFetch(nearLayer, under, 0).rgb / cocAndShares.x, 1.0);
+            }
         }
-        near /= area;
+        near /= float(tapCount);
         // Where spreads overlap the field is opaque: coverage saturates, the colour keeps its mix.
         if (near.a > 1.0) near /= near.a;
     }

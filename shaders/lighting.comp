@@ -150,13 +150,43 @@ struct ShadingJob {
 // divide TILE_SIZE^2. Each sample is shaded at its own position (the standard sample locations).
 const uint SAMPLE_ROUND = TILE_SIZE * TILE_SIZE;
 
+// The pixel whose sample `s` this pixel resolves: its own, or under SAMPLE_RESOLVE_PIXEL_BOX the
+// one whose sample `s` falls within this pixel's box this frame. The frame's jitter moved the
+// image by `jitter` pixels, so the sample at window position w sees what lies at w - jitter.
+ivec2 sampleSource(ivec2 pixel, int s, int sampleCount) {
+    if (camera.sampleResolve != SAMPLE_RESOLVE_PIXEL_BOX) return pixel;
+    vec2 jitter = camera.clipJitter * camera.resolution * 0.5;
+    vec2 seen = standardSampleLocation(sampleCount, s) - jitter;
+    return clamp(pixel - ivec2(floor(seen)), ivec2(0), ivec2(camera.resolution) - 1);
+}
+
+// Whether a pixel the resolve did not tag must still be lit per sample: under
+// SAMPLE_RESOLVE_PIXEL_BOX a sample it takes from a neighbour differs from its own sample 0, which
+// its pixel-frequency lighting shades.
+bool borrowsDifferentSamples(ivec2 pixel) {
+    if (camera.sampleResolve != SAMPLE_RESOLVE_PIXEL_BOX) return false;
+    int sampleCount = textureSamples(instanceSamples);
+    GBufferSample own =
+        fetchGBufferSample(depthSamples, normalRoughnessSamples, instanceSamples, camera.projection, pixel, 0);
+    for (int s = 0; s < sampleCount; ++s) {
+        ivec2 source = sampleSource(pixel, s, sampleCount);
+        if (source != pixel &&
+            samplesDiffer(own, fetchGBufferSample(depthSamples, normalRoughnessSamples, instanceSamples,
+                                                  camera.projection, source, s)))
+            return true;
+    }
+    return false;
+}
+
 ShadingJob sampleJob(uint pair, uint pairs, uint sampleCount) {
     ShadingJob job;
     job.instanceTarget = 0u;
     if (pair >= pairs) return job;
     uint local = tileTaggedList[pair / sampleCount];
     int k = int(pair % sampleCount);
-    job.pixel = ivec2(gl_WorkGroupID.xy * TILE_SIZE) + ivec2(local % TILE_SIZE, local / TILE_SIZE);
+    // The sample is shaded where it was rasterised; resolveSampleRound stores it with its pixel.
+    job.pixel = sampleSource(ivec2(gl_WorkGroupID.xy * TILE_SIZE) + ivec2(local % TILE_SIZE, local / TILE_SIZE), k,
+                             int(sampleCount));
     job.instanceTarget = texelFetch(instanceSamples, job.pixel, k).r;
     job.depth = texelFetch(depthSamples, job.pixel, k).r;
     job.normalRoughness = texelFetch(normalRoughnessSamples, job.pixel, k);
@@ -166,12 +196,12 @@ ShadingJob sampleJob(uint pair, uint pairs, uint sampleCount) {
 }
 
 // Gathers one round's sample radiance and resolves the pixels of the round with tone-mapped
-// weights (hdr_resolve.glsl), or by the plain mean in a still's sample (CameraData::linearResolve:
+// weights (hdr_resolve.glsl), or by the plain mean in a still's sample (CameraData::sampleResolve:
 // the seed's weights are for few samples; the still's mean of many must stay linear to converge
 // to the pixel integral); alpha is the share of samples that hit a surface. Called by every
 // invocation (it holds barriers).
 void resolveSampleRound(uint first, vec3 radiance, bool hit, uint sampleCount) {
-    float w = camera.linearResolve != 0u ? 1.0 : hdrResolveWeight(radiance);
+    float w = camera.sampleResolve != SAMPLE_RESOLVE_TONE_MAPPED ? 1.0 : hdrResolveWeight(radiance);
     tileSampleRadiance[gl_LocalInvocationIndex] = vec4(radiance * w, hit ? w : -w);
     barrier();
     uint slot = first / sampleCount + gl_LocalInvocationIndex;
@@ -217,12 +247,14 @@ void main() {
     }
 #ifdef PER_SAMPLE_LIGHTING
     // A tagged pixel's other samples may lie on another surface: the tile's box holds them too.
-    bool perSample = inside && (texelFetch(clipStencil, pixel, 0).r & MSAA_EDGE_STENCIL_BIT) != 0u;
+    bool perSample = inside && ((texelFetch(clipStencil, pixel, 0).r & MSAA_EDGE_STENCIL_BIT) != 0u ||
+                                borrowsDifferentSamples(pixel));
     if (perSample) {
         tileTaggedList[atomicAdd(tileTaggedPixels, 1u)] = gl_LocalInvocationIndex;
-        for (int k = 1; k < textureSamples(instanceSamples); ++k) {
-            if (instanceIdFromTarget(texelFetch(instanceSamples, pixel, k).r) == 0u) continue;
-            uint sampleDepthBits = floatBitsToUint(texelFetch(depthSamples, pixel, k).r);
+        for (int k = 0; k < textureSamples(instanceSamples); ++k) {
+            ivec2 source = sampleSource(pixel, k, textureSamples(instanceSamples));
+            if (instanceIdFromTarget(texelFetch(instanceSamples, source, k).r) == 0u) continue;
+            uint sampleDepthBits = floatBitsToUint(texelFetch(depthSamples, source, k).r);
             atomicMin(tileMinDepthBits, sampleDepthBits);
             atomicMax(tileMaxDepthBits, sampleDepthBits);
         }
@@ -231,8 +263,10 @@ void main() {
     barrier();
     bool tileHasSurface = tileMinDepthBits <= tileMaxDepthBits;
     if (gl_LocalInvocationIndex == 0u && tileHasSurface) {
-        vec2 tileMin = vec2(gl_WorkGroupID.xy * TILE_SIZE) / camera.resolution * 2.0 - 1.0;
-        vec2 tileMax = vec2((gl_WorkGroupID.xy + 1u) * TILE_SIZE) / camera.resolution * 2.0 - 1.0;
+        // Under SAMPLE_RESOLVE_PIXEL_BOX the tile's pixels take samples up to a pixel beyond it.
+        float margin = camera.sampleResolve == SAMPLE_RESOLVE_PIXEL_BOX ? 1.0 : 0.0;
+        vec2 tileMin = (vec2(gl_WorkGroupID.xy * TILE_SIZE) - margin) / camera.resolution * 2.0 - 1.0;
+        vec2 tileMax = (vec2((gl_WorkGroupID.xy + 1u) * TILE_SIZE) + margin) / camera.resolution * 2.0 - 1.0;
         float depths[2] = float[2](uintBitsToFloat(tileMinDepthBits), uintBitsToFloat(tileMaxDepthBits));
         vec3 lo = vec3(1e30), hi = vec3(-1e30);
         for (int i = 0; i < 8; ++i) {

@@ -120,7 +120,7 @@ passes::ThinLens Camera::thinLens(double imageAspect) const {
 }
 
 passes::ApertureShape Camera::apertureShape() const {
-    return passes::apertureShape(params_.apertureBlades, params_.apertureRotation, params_.fStop);
+    return passes::apertureShape(params_.apertureBlades, params_.apertureRotation);
 }
 
 Matrix4d Camera::projectionMatrix(double imageAspect) const {

@@ -172,7 +172,7 @@ passes::LightData emitterSample(const passes::LightData& light, std::array<doubl
         Vec3d bitangent = cross(axis, tangent);
         // Area-preserving square -> disc (Shirley & Chiu 1997, shared with the lens); a share rho^2
         // of the disc's area maps to the same share of the cone's solid angle.
-        auto [x, y] = passes::sampleAperture({2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0}, {}).position;
+        auto [x, y] = passes::sampleAperture({2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0}, {});
         double rho2 = x * x + y * y, cosTheta = 1.0 - rho2 * (1.0 - std::cos(halfAngle));
         double sinOverRho = rho2 > 0.0 ? std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta) / rho2) : 0.0;
         Vec3d d = add(scale(axis, cosTheta), scale(add(scale(tangent, x), scale(bitangent, y)), sinOverRho));

@@ -10,11 +10,14 @@ layout(push_constant) uniform DofConstants {
     float cocScale;       // signed CoC radius in full-resolution pixels = depth * cocScale + cocBias
     float cocBias;        // (thin lens, one multiply-add: pass_support/thin_lens.h cocFromDepth)
     float maxRadius;      // largest CoC radius in full-resolution pixels ("limit offset range")
-    float polygonBlend;   // the slide's f: 0 a round aperture, 1 the full polygon
+    float cellShare;      // the cell's linear share of the aperture (ApertureCell::share): 1 the whole
     float rotation;       // radians, the slide's theta_shutter_max
     int blades;           // 0: round
     int tapsPerSide;      // first gather pass: tapsPerSide^2 taps
     int tileNeighbourhood;  // tiles on each side whose near CoC can reach a pixel
+    vec2 cellCentre;      // the part of the aperture the kernel spans: a cell of the square before
+    vec2 cellHalfSize;    // the mapping (pass_support/thin_lens.h ApertureCell); (0, 0), (1, 1): all
+    vec2 jitter;          // pixels the image lies shifted by (x right, y down), taken off the fields
 } dof;
 
 const float DOF_PI = 3.14159265358979;
@@ -31,11 +34,23 @@ const int DOF_TILE_SIZE = 8;
 const float DOF_SHARP_RADIUS = 0.5;
 
 // How much of a pixel of CoC radius `radiusPixels` (full resolution) the half-resolution field
-// replaces: none below DOF_SHARP_RADIUS, all from one half-resolution texel on. Not linear: a
-// linear ramp over the whole CoC range mixes sharp and blurred copies of one surface ("signal
-// frequency soup", seed 000 "Final composite"); smoothstep keeps the mix short and soft-edged.
+// replaces: none where the kernel (the cell's share of the CoC) spans less than DOF_SHARP_RADIUS,
+// all from one half-resolution texel on. Not linear: a linear ramp over the whole CoC range mixes
+// sharp and blurred copies of one surface ("signal frequency soup", seed 000 "Final composite");
+// smoothstep keeps the mix short and soft-edged.
 const float DOF_FIELD_RADIUS = 2.0;
-float fieldBlend(float radiusPixels) { return smoothstep(DOF_SHARP_RADIUS, DOF_FIELD_RADIUS, radiusPixels); }
+float fieldBlend(float radiusPixels) {
+    return smoothstep(DOF_SHARP_RADIUS, DOF_FIELD_RADIUS, radiusPixels * dof.cellShare);
+}
+// How much a pixel of near CoC radius `radiusPixels` belongs to the near field: by the whole CoC,
+// whatever part of the aperture the kernel spans. A near surface is seen through the near field
+// alone (what it hides shows where that field thins), so its share in the field must not depend
+// on how far one frame's cell spreads it: a still's small cells would leave it half transparent.
+float nearFieldShare(float radiusPixels) { return smoothstep(DOF_SHARP_RADIUS, DOF_FIELD_RADIUS, radiusPixels); }
+
+// Whether a CoC radius in half-resolution texels blurs at all: its kernel reaches beyond the
+// texel's sharp half-radius.
+bool blursAtHalfResolution(float radiusTexels) { return radiusTexels * dof.cellShare > 0.5 * DOF_SHARP_RADIUS; }
 
 // Signed CoC radius in full-resolution pixels of a device depth: positive in front of the focus
 // plane (near field), negative behind it (far field), limited to dof.maxRadius.
@@ -46,9 +61,17 @@ float signedCocRadius(float depth) {
 // The radius the gather spreads its taps over for a CoC radius, both in half-resolution texels.
 // The half-resolution chain blurs by itself: the 2x2 downscale, the bilinear taps and the bicubic
 // B-spline upscale add a variance of 1/12 + 1/6 + 1/3 texel^2 per axis (7/12). A disc of radius R
-// has R^2 / 4, so the kernel shrinks to keep the CoC's second moment.
+// has R^2 / 4, so the whole aperture's kernel shrinks to keep the CoC's second moment. A cell's
+// kernel does not: the frame is seen from the cell's own point of the lens, which no kernel moves,
+// and the cells' kernels must meet where they join.
 const float DOF_CHAIN_VARIANCE = 7.0 / 12.0;
-float kernelRadius(float cocRadius) { return sqrt(max(cocRadius * cocRadius - 4.0 * DOF_CHAIN_VARIANCE, 0.0)); }
+float kernelRadius(float cocRadius) {
+    return dof.cellShare < 1.0 ? cocRadius : sqrt(max(cocRadius * cocRadius - 4.0 * DOF_CHAIN_VARIANCE, 0.0));
+}
+
+// A gathered sample of CoC r seen from a kernel of radius R stands for (R / r)^2 of its own blur
+// (scatter as gather), up to this ratio: a kernel's tap stands for no more than a sample's whole blur.
+const float DOF_MAX_SPREAD = 4.0;
 
 // Centre of cell `index` (row-major) of a side x side grid over [-1, 1]^2: the square kernel.
 vec2 squareGridCell(int index, int side) {
@@ -69,19 +92,39 @@ vec2 concentricDisc(vec2 square) {
 }
 
 // A square point on the aperture (seed 000 "Sampling": concentric mapping, then the diaphragm's
-// n-gon with the f-stop interpolation): xy the offset in the unit circle (x right, y up), z the
-// area the mapping gives it relative to a round aperture, so that taps weighted by z spread
-// evenly over the polygon.
-vec3 apertureTap(vec2 square) {
+// n-gon, area-preserving), x right, y up, in the unit circle; mirrors thin_lens.cpp sampleAperture.
+vec2 apertureTap(vec2 square) {
     vec2 polar = concentricDisc(square);
-    float scale = 1.0;
-    if (dof.blades >= 3 && dof.polygonBlend > 0.0) {
-        float n = float(dof.blades);
-        float sector = polar.y - (2.0 * DOF_PI / n) * floor((n * polar.y + DOF_PI) / (2.0 * DOF_PI));
-        scale = pow(cos(DOF_PI / n) / cos(sector), dof.polygonBlend);
+    if (dof.blades >= 3) {
+        float halfAngle = DOF_PI / float(dof.blades);
+        float local = polar.y - dof.rotation;
+        float middle = 2.0 * halfAngle * floor((local + halfAngle) / (2.0 * halfAngle));
+        float phi = atan(tan(halfAngle) * (local - middle) / halfAngle);
+        polar = vec2(polar.x * cos(halfAngle) / cos(phi), dof.rotation + middle + phi);
     }
-    float angle = polar.y + dof.polygonBlend * dof.rotation;
-    return vec3(polar.x * scale * vec2(cos(angle), sin(angle)), scale * scale);
+    return polar.x * vec2(cos(polar.y), sin(polar.y));
+}
+
+// A tap of the kernel over the cell: `grid` in [-1, 1]^2 across the cell. xy: its offset on the
+// unit aperture from the point the frame looks through (the cell centre's); z: how far the cell
+// reaches from that point along the tap's direction (the offset of the cell's edge beyond it),
+// which a sample's own CoC must cover for its blur to arrive here; 1 for the centre tap.
+vec3 cellTap(vec2 grid) {
+    vec2 centre = apertureTap(dof.cellCentre);
+    vec2 offset = apertureTap(dof.cellCentre + dof.cellHalfSize * grid) - centre;
+    float across = max(abs(grid.x), abs(grid.y));
+    float reach = across > 0.0 ? length(apertureTap(dof.cellCentre + dof.cellHalfSize * grid / across) - centre) : 1.0;
+    return vec3(offset, reach);
+}
+
+// How much of a tap at `offset` (its length, texels) a sample of CoC `cocRadius` (texels) reaches,
+// whose blur ends `reach` (cellTap's z) times its CoC along the tap: 1 inside, 0 beyond, ramping
+// over the ring of the kernel the tap stands for (the taps lie 2/N of the reach apart), so that a
+// sample's blur counts its whole ring and a cell's kernel meets its neighbour's without a seam.
+float tapReach(float cocRadius, float reach, float offsetLength) {
+    float edge = cocRadius * reach;
+    float ring = max(2.0 * edge / float(dof.tapsPerSide), 1e-3);
+    return clamp((edge - offsetLength) / ring + 0.5, 0.0, 1.0);
 }
 
 // An aperture offset (y up) in image texels (rows grow downwards).

@@ -26,10 +26,15 @@ struct CameraData {
     uint noiseFrame;
     // The share of the shutter the velocities span (the stratum's length; 1: the whole shutter).
     float shutterFraction;
-    // 1: MSAA samples resolve by their plain mean (a sample of a still's accumulation).
-    uint linearResolve;
+    // How MSAA samples resolve (passes/frame_data.h SampleResolve, the SAMPLE_RESOLVE_* below).
+    uint sampleResolve;
     float pad0, pad1;
 };
+
+// Mirrors passes/frame_data.h SampleResolve.
+const uint SAMPLE_RESOLVE_TONE_MAPPED = 0u;
+const uint SAMPLE_RESOLVE_LINEAR = 1u;
+const uint SAMPLE_RESOLVE_PIXEL_BOX = 2u;
 
 // One per drawn rprim.
 struct InstanceData {

@@ -1,6 +1,6 @@
-// The lens of depth of field (pass_support/thin_lens.h): the CoC against Potmesil's formula, the
-// field-of-view relation, the concentric mapping and the diaphragm's polygon, and the reference
-// mode's sub-frames (renderer/reference_frames.h).
+// The lens of depth of field (pass_support/thin_lens.h): the CoC against Potmesil's formula seen
+// through USD's field of view, the concentric mapping and the diaphragm's polygon, and the
+// reference mode's sub-frames and a still's cells of the aperture (renderer/reference_frames.h).
 #include "renderer/reference_frames.h"
 #include "pass_support/thin_lens.h"
 
@@ -34,13 +34,21 @@ double deviceDepth(double distance, double nearClip, double farClip) {
     return (1.0 / distance - 1.0 / nearClip) / (1.0 / farClip - 1.0 / nearClip);
 }
 
-TEST(ThinLens, CocIsPotmesilsFormula) {
+// Potmesil's CoC lies on a film at the image distance I = F P / (P - F); USD's field of view is the
+// focal length's (no focus breathing), so the image's film lies at F, where the same cone of light
+// is F / I as wide.
+double cocOnTheFilmAtF(const ThinLens& lens, double distance) {
+    double F = lens.focalLength, P = lens.focusDistance;
+    return potmesilCoc(lens, distance) * F / (F * P / (P - F));
+}
+
+TEST(ThinLens, CocIsPotmesilsFormulaOnTheFilmOfTheFieldOfView) {
     ThinLens lens = portraitLens();
     for (double D : {50.0, 150.0, 299.0, 301.0, 600.0, 5000.0}) {
         double F = lens.focalLength, P = lens.focusDistance, f = lens.fStop;
         double slide = std::fabs(F * D / (D - F) - F * P / (P - F)) * (D - F) / (f * D);
         double simplified = std::fabs((F / f) * F * (P - D) / (D * (P - F)));
-        EXPECT_NEAR(circleOfConfusionDiameter(lens, D), potmesilCoc(lens, D), 1e-12) << D;
+        EXPECT_NEAR(circleOfConfusionDiameter(lens, D), cocOnTheFilmAtF(lens, D), 1e-12) << D;
         EXPECT_NEAR(slide, potmesilCoc(lens, D), 1e-12) << D;
         EXPECT_NEAR(simplified, potmesilCoc(lens, D), 1e-12) << D;
     }
@@ -52,13 +60,12 @@ TEST(ThinLens, OneMultiplyAddOnDepthGivesTheSignedCocInPixels) {
     const double nearClip = 10.0, farClip = 10000.0, width = 1920.0;
     CocFromDepth coc = cocFromDepth(lens, nearClip, farClip, width);
     for (double D : {20.0, 100.0, 250.0, 300.0, 350.0, 900.0, 9000.0}) {
-        double expected = potmesilCoc(lens, D) / lens.filmWidth * width / 2.0 * (D < lens.focusDistance ? 1.0 : -1.0);
+        double expected = cocOnTheFilmAtF(lens, D) / lens.filmWidth * width / 2.0 * (D < lens.focusDistance ? 1.0 : -1.0);
         EXPECT_NEAR(coc.radiusPixels(deviceDepth(D, nearClip, farClip)), expected, 1e-9 * width) << D;
     }
-    // A 0.5 mm CoC at f/2 is 0.5 / 36 of the film: 13.3 pixels of 1920 across.
     double D = 900.0;
     std::printf("85 mm f/2 focused at 3 m, 36 mm film, 1920 px: CoC at 9 m %.3f mm = %.2f px diameter\n",
-                10.0 * potmesilCoc(lens, D), -2.0 * coc.radiusPixels(deviceDepth(D, nearClip, farClip)));
+                10.0 * cocOnTheFilmAtF(lens, D), -2.0 * coc.radiusPixels(deviceDepth(D, nearClip, farClip)));
 }
 
 TEST(ThinLens, NoDepthOfFieldWithoutFStopOrFocusBeyondTheFocalLength) {
@@ -77,23 +84,23 @@ TEST(ThinLens, NoDepthOfFieldWithoutFStopOrFocusBeyondTheFocalLength) {
 }
 
 // An accumulation camera's pinholes shift a point at D by a F (1/D - 1/P) on a film at F; with the
-// aperture from accumulationApertureDiameter that blur is Potmesil's CoC.
+// aperture from accumulationApertureDiameter that blur is the CoC.
 TEST(ThinLens, AccumulationCameraBlursByTheThinLensCoc) {
     ThinLens lens = portraitLens();
     double a = accumulationApertureDiameter(lens);
     for (double D : {50.0, 200.0, 900.0, 9000.0})
-        EXPECT_NEAR(a * lens.focalLength * std::fabs(1.0 / D - 1.0 / lens.focusDistance), potmesilCoc(lens, D), 1e-12)
+        EXPECT_NEAR(a * lens.focalLength * std::fabs(1.0 / D - 1.0 / lens.focusDistance), cocOnTheFilmAtF(lens, D),
+                    1e-12)
             << D;
+    lens.fStop = 0.0;
+    EXPECT_EQ(accumulationApertureDiameter(lens), 0.0) << "a pinhole";
 }
 
-TEST(Aperture, FStopInterpolationFromRoundToPolygon) {
-    EXPECT_EQ(apertureShape(6, 0, 1.0).polygonBlend, 0.0);
-    EXPECT_EQ(apertureShape(6, 0, 0.7).polygonBlend, 0.0);
-    EXPECT_NEAR(apertureShape(6, 0, 4.5).polygonBlend, 0.5, 1e-12);
-    EXPECT_EQ(apertureShape(6, 0, 8.0).polygonBlend, 1.0);
-    EXPECT_EQ(apertureShape(6, 0, 22.0).polygonBlend, 1.0);
-    EXPECT_EQ(apertureShape(0, 30, 22.0).polygonBlend, 0.0) << "no blades: always round";
-    EXPECT_NEAR(apertureShape(5, 90, 8.0).rotation, kPi / 2.0, 1e-12);
+TEST(Aperture, BladesOrACircle) {
+    EXPECT_EQ(apertureShape(6, 0).blades, 6);
+    EXPECT_EQ(apertureShape(0, 30).blades, 0) << "no blades: round";
+    EXPECT_EQ(apertureShape(2, 30).blades, 0) << "two blades make no polygon";
+    EXPECT_NEAR(apertureShape(5, 90).rotation, kPi / 2.0, 1e-12);
 }
 
 // Evenly spread square points on the aperture (the gather's taps): cell centres of a fine grid.
@@ -106,12 +113,11 @@ TEST(Aperture, ConcentricMappingIsUniformOnTheDisc) {
     // Uniform on the unit disc: E[r^2] = 1/2, each quadrant a quarter, nothing outside.
     double meanSquare = 0.0, quadrant = 0.0;
     const int side = 200;
-    forEachGridSample(side, {}, [&](const ApertureSample& s) {
-        double r2 = s.position[0] * s.position[0] + s.position[1] * s.position[1];
+    forEachGridSample(side, {}, [&](const std::array<double, 2>& p) {
+        double r2 = p[0] * p[0] + p[1] * p[1];
         EXPECT_LE(r2, 1.0 + 1e-12);
-        EXPECT_EQ(s.area, 1.0);
         meanSquare += r2 / (side * side);
-        if (s.position[0] > 0 && s.position[1] > 0) quadrant += 1.0 / (side * side);
+        if (p[0] > 0 && p[1] > 0) quadrant += 1.0 / (side * side);
     });
     EXPECT_NEAR(meanSquare, 0.5, 1e-3);
     EXPECT_NEAR(quadrant, 0.25, 1e-3);
@@ -124,14 +130,14 @@ double polygonBoundary(double angle, int blades, double rotation) {
     return std::cos(kPi / blades) / std::cos(local);
 }
 
-TEST(Aperture, StoppedDownTheSamplesFillTheRotatedPolygon) {
+TEST(Aperture, TheSamplesFillTheRotatedPolygon) {
     for (int blades : {5, 6, 9}) {
-        ApertureShape shape = apertureShape(blades, 20.0, 11.0);
+        ApertureShape shape = apertureShape(blades, 20.0);
         constexpr int kBins = 360;
         std::vector<double> reach(kBins, 0.0);
-        forEachGridSample(300, shape, [&](const ApertureSample& s) {
-            double r = std::hypot(s.position[0], s.position[1]);
-            double angle = std::atan2(s.position[1], s.position[0]);
+        forEachGridSample(300, shape, [&](const std::array<double, 2>& p) {
+            double r = std::hypot(p[0], p[1]);
+            double angle = std::atan2(p[1], p[0]);
             EXPECT_LE(r, polygonBoundary(angle, blades, shape.rotation) + 1e-9) << "inside the polygon";
             int bin = int(std::floor((angle + kPi) / (2.0 * kPi) * kBins)) % kBins;
             reach[size_t(bin)] = std::max(reach[size_t(bin)], r);
@@ -144,10 +150,10 @@ TEST(Aperture, StoppedDownTheSamplesFillTheRotatedPolygon) {
     }
 }
 
-TEST(Aperture, AreaWeightsMakeThePolygonEvenlyCovered) {
-    // The weighted share of samples in each cell of a coarse grid equals the share of the polygon's
-    // area there (counted on a fine grid of points): a flat bokeh.
-    ApertureShape shape = apertureShape(6, 10.0, 5.0);
+TEST(Aperture, EvenSquarePointsCoverThePolygonEvenly) {
+    // The share of samples in each cell of a coarse grid equals the share of the polygon's area
+    // there (counted on a fine grid of points): a flat bokeh.
+    ApertureShape shape = apertureShape(6, 10.0);
     constexpr int kCells = 6;
     auto cellOf = [](double x, double y) {
         int cx = std::clamp(int((x + 1.0) / 2.0 * kCells), 0, kCells - 1);
@@ -156,18 +162,16 @@ TEST(Aperture, AreaWeightsMakeThePolygonEvenlyCovered) {
     };
     std::vector<double> weighted(kCells * kCells, 0.0), area(kCells * kCells, 0.0);
     double totalWeight = 0.0, totalArea = 0.0;
-    forEachGridSample(400, shape, [&](const ApertureSample& s) {
-        weighted[cellOf(s.position[0], s.position[1])] += s.area;
-        totalWeight += s.area;
+    forEachGridSample(400, shape, [&](const std::array<double, 2>& p) {
+        weighted[cellOf(p[0], p[1])] += 1.0;
+        totalWeight += 1.0;
     });
-    // The blended shape's boundary: radius cos(pi/n)/cos(.)^f along each direction, turned.
     const int fine = 800;
     for (int j = 0; j < fine; ++j)
         for (int i = 0; i < fine; ++i) {
             double x = (2.0 * i + 1.0) / fine - 1.0, y = (2.0 * j + 1.0) / fine - 1.0;
-            double angle = std::atan2(y, x) - shape.polygonBlend * shape.rotation;
-            double boundary = std::pow(polygonBoundary(angle, shape.blades, 0.0), shape.polygonBlend);
-            if (std::hypot(x, y) <= boundary) area[cellOf(x, y)] += 1.0, totalArea += 1.0;
+            if (std::hypot(x, y) <= polygonBoundary(std::atan2(y, x), shape.blades, shape.rotation))
+                area[cellOf(x, y)] += 1.0, totalArea += 1.0;
         }
     double worst = 0.0;
     for (size_t c = 0; c < area.size(); ++c) worst = std::max(worst, std::fabs(weighted[c] / totalWeight - area[c] / totalArea));
@@ -182,14 +186,13 @@ namespace obscura::renderer {
 namespace {
 
 TEST(ReferenceSubFrames, StratifiedOverTheApertureShutterAndPixel) {
-    passes::ApertureShape shape = passes::apertureShape(5, 0.0, 8.0);
+    passes::ApertureShape shape = passes::apertureShape(5, 0.0);
     const uint32_t count = 256;
     std::vector<ReferenceSubFrame> frames = referenceSubFrames(count, shape);
     ASSERT_EQ(frames.size(), count);
     double weight = 0.0, cx = 0.0, cy = 0.0;
     std::vector<int> shutterStrata(16, 0), jitterStrata(16, 0);
     for (const auto& f : frames) {
-        EXPECT_GT(f.weight, 0.0);
         EXPECT_LE(std::hypot(f.aperture[0], f.aperture[1]), 1.0 + 1e-12);
         ASSERT_GE(f.shutter, 0.0);
         ASSERT_LT(f.shutter, 1.0);
@@ -197,11 +200,11 @@ TEST(ReferenceSubFrames, StratifiedOverTheApertureShutterAndPixel) {
         ASSERT_LT(f.pixelJitter[0], 0.5);
         ++shutterStrata[size_t(f.shutter * 16)];
         ++jitterStrata[size_t((f.pixelJitter[0] + 0.5) * 4) * 4 + size_t((f.pixelJitter[1] + 0.5) * 4)];
-        weight += f.weight;
-        cx += f.weight * f.aperture[0];
-        cy += f.weight * f.aperture[1];
+        weight += 1.0;
+        cx += f.aperture[0];
+        cy += f.aperture[1];
     }
-    EXPECT_NEAR(cx / weight, 0.0, 0.01) << "the weighted lens samples centre on the axis";
+    EXPECT_NEAR(cx / weight, 0.0, 0.01) << "the lens samples centre on the axis";
     EXPECT_NEAR(cy / weight, 0.0, 0.01);
     for (int n : shutterStrata) EXPECT_EQ(n, 16) << "every sixteenth of the shutter gets its share";
     std::vector<ReferenceSubFrame> odd = referenceSubFrames(100, shape);
@@ -212,32 +215,66 @@ TEST(ReferenceSubFrames, StratifiedOverTheApertureShutterAndPixel) {
     for (int n : jitterStrata) EXPECT_NEAR(n, 16, 5) << "every sixteenth of the pixel gets about its share";
 }
 
-// A still's frames look through the aperture's strata: N frames cover it evenly (the centroid on
-// the axis, every quarter of the aperture's width and height its share).
-TEST(StillApertureSamples, CoverTheApertureOnceApartFromTheJitter) {
-    for (int blades : {0, 6}) {
-        passes::ApertureShape shape = passes::apertureShape(blades, 0.0, 2.8);
-        constexpr uint32_t kCount = 16;
-        double cx = 0.0, cy = 0.0;
-        std::set<std::pair<long, long>> distinct;
-        std::vector<int> columns(4, 0), rows(4, 0);
-        for (uint32_t k = 0; k < kCount; ++k) {
-            auto [x, y] = stillApertureSample(k, kCount, shape);
-            EXPECT_LE(std::hypot(x, y), 1.0 + 1e-12);
-            distinct.insert({std::lround(x * 1e6), std::lround(y * 1e6)});
-            cx += x / kCount;
-            cy += y / kCount;
-            // The square's quarters before the mapping hold 4 points each; after it, the disc's
-            // columns still hold about their share.
-            ++columns[size_t(std::clamp(int((x + 1.0) * 2.0), 0, 3))];
-            ++rows[size_t(std::clamp(int((y + 1.0) * 2.0), 0, 3))];
+// A still's frames look through cells of the aperture that partition it: every point of the
+// square before the mapping lies in exactly one of N cells, each frame looks from its cell centre's
+// point, and the cells are all visited once, for counts that are squares, rectangles and primes.
+TEST(StillLensSamples, CellsPartitionTheAperture) {
+    for (int blades : {0, 6})
+        for (uint32_t count : {16u, 8u, 7u, 1u}) {
+            passes::ApertureShape shape = passes::apertureShape(blades, 15.0);
+            constexpr int kFine = 64;
+            std::vector<int> owners(kFine * kFine, 0);
+            std::set<std::pair<long, long>> centres;
+            for (uint32_t k = 0; k < count; ++k) {
+                StillLensSample s = stillLensSample(k, count, shape);
+                EXPECT_NEAR(s.cell.share(), 1.0 / std::sqrt(double(count)), 1e-12);
+                auto expected = passes::sampleAperture(s.cell.centre, shape);
+                EXPECT_EQ(s.position, expected) << "the frame looks from its cell's centre";
+                centres.insert({std::lround(s.cell.centre[0] * 1e6), std::lround(s.cell.centre[1] * 1e6)});
+                for (int j = 0; j < kFine; ++j)
+                    for (int i = 0; i < kFine; ++i) {
+                        double x = (2.0 * i + 1.0) / kFine - 1.0, y = (2.0 * j + 1.0) / kFine - 1.0;
+                        if (std::fabs(x - s.cell.centre[0]) < s.cell.halfSize[0] &&
+                            std::fabs(y - s.cell.centre[1]) < s.cell.halfSize[1])
+                            ++owners[size_t(j * kFine + i)];
+                    }
+            }
+            EXPECT_EQ(centres.size(), count) << "every cell once";
+            for (int n : owners) ASSERT_EQ(n, 1) << count << " cells: each point of the square in one";
         }
-        EXPECT_EQ(distinct.size(), kCount) << "every stratum once";
-        EXPECT_NEAR(cx, 0.0, 0.02);
-        EXPECT_NEAR(cy, 0.0, 0.02);
-        for (int n : columns) EXPECT_GE(n, 2);
-        for (int n : rows) EXPECT_GE(n, 2);
+}
+
+// A still's MSAA frames under the box filter: Vulkan's standard 4-sample locations shifted by the
+// 16 frames' jitters and wrapped around the pixel's box fall one in each cell of an 8 x 8 grid.
+TEST(PixelBoxJitter, SixteenFramesOfFourSamplesFillAnEightByEightGrid) {
+    const double locations[4][2] = {{0.375, 0.125}, {0.875, 0.375}, {0.125, 0.625}, {0.625, 0.875}};
+    constexpr uint32_t kFrames = 16;
+    std::vector<int> cells(64, 0);
+    for (uint32_t k = 0; k < kFrames; ++k) {
+        auto [jx, jy] = pixelBoxJitter(k, kFrames, 4);
+        EXPECT_LT(std::fabs(jx), 0.125 + 1e-12) << "within a strip a quarter of the pixel wide";
+        EXPECT_LT(std::fabs(jy), 0.5);
+        for (const auto& l : locations) {
+            // The image moves by the jitter: the sample sees what lies at its location minus it.
+            double x = l[0] - jx, y = l[1] - jy;
+            x -= std::floor(x);
+            y -= std::floor(y);
+            ++cells[size_t(int(y * 8.0) * 8 + int(x * 8.0))];
+        }
     }
+    for (int n : cells) EXPECT_EQ(n, 1);
+}
+
+// A kernel over a cell reaches as far as the cell's farthest point from its centre's: the unit
+// circle's radius for the whole aperture; for a quarter of the square, its mapped quarter disc.
+TEST(StillLensSamples, CellReach) {
+    EXPECT_NEAR(passes::apertureCellReach({}, {}), 1.0, 1e-9);
+    EXPECT_NEAR(passes::apertureCellReach({}, passes::apertureShape(6, 15.0)), 1.0, 1e-9);
+    // [0, 1]^2 maps to the quarter disc between 0 and 90 degrees; its centre (0.5, 0.5) to radius
+    // 0.5 at 45 degrees, whose farthest points are the arc's ends at radius 1 (0 and 90 degrees).
+    passes::ApertureCell quarter{{0.5, 0.5}, {0.5, 0.5}};
+    double far = std::hypot(1.0 - 0.5 * std::cos(std::numbers::pi / 4.0), 0.5 * std::sin(std::numbers::pi / 4.0));
+    EXPECT_NEAR(passes::apertureCellReach(quarter, {}), far, 1e-9);
 }
 
 }  // namespace
