@@ -74,7 +74,7 @@ OBSCURA_SHADER_OFFSET(CameraData, CameraData, clipJitter);
 OBSCURA_SHADER_OFFSET(CameraData, CameraData, backdropCoverage);
 OBSCURA_SHADER_OFFSET(CameraData, CameraData, noiseFrame);
 OBSCURA_SHADER_OFFSET(CameraData, CameraData, shutterFraction);
-OBSCURA_SHADER_OFFSET(CameraData, CameraData, linearResolve);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, sampleResolve);
 static_assert(offsetof(CameraData, pad) == shader_layout::CameraData::pad0);
 
 // kInstanceEdgeAa: hybrid AA (seed 004) chose edge AA over temporal AA for this instance: it is

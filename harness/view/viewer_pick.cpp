@@ -4,6 +4,7 @@
 #include "harness/view/viewer.h"
 
 #include "harness/aov_output.h"
+#include "schemas/camera_depth.h"
 
 #include <cstdio>
 #include <cstring>
@@ -40,8 +41,8 @@ void Viewer::pick(double x, double y, bool focus) {
     std::fflush(stdout);
     if (focus && !path.empty()) {
         useFreeCamera();
-        DepthConversion clip{false, scene_.lens.nearClip, scene_.lens.farClip};
-        scene_.lens.focusDistance = linearDepth(depth, clip);
+        const schema::CameraDepth camera{false, scene_.lens.nearClip, scene_.lens.farClip};
+        scene_.lens.focusDistance = schema::viewDistance(depth, camera);
         std::printf("focus distance: %g\n", scene_.lens.focusDistance);
         cameraChanged();
     }
