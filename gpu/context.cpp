@@ -42,7 +42,16 @@ VkResult createInstance(bool validation, const VkDebugUtilsMessengerCreateInfoEX
     ci.ppEnabledLayerNames = layers.data();
     ci.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
     ci.ppEnabledExtensionNames = extensions.data();
-    return vkCreateInstance(&ci, nullptr, out);
+    VkResult r = vkCreateInstance(&ci, nullptr, out);
+    if (r == VK_SUCCESS) vk::addInstance(*out);
+    return r;
+}
+
+// Destroys an instance and drops its table.
+void destroyInstance(VkInstance instance) {
+    const void* key = vk::dispatchKey(instance);
+    vkDestroyInstance(instance, nullptr);
+    vk::forget(key);
 }
 
 PhysicalDeviceSummary summarise(VkPhysicalDevice pd) {
@@ -193,6 +202,7 @@ static void pinDriversForLeakChecking() {
 
 Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
     pinDriversForLeakChecking();
+    if (std::string problem = vk::openLoader(); !problem.empty()) return Failure{problem};
     std::unique_ptr<Context> ctx(new Context());
     ctx->log_ = options.log;
     ctx->faults_ = options.faults;
@@ -274,6 +284,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     dci.ppEnabledExtensionNames = deviceExtensions.data();
     r = vkCreateDevice(ctx->physical_, &dci, nullptr, &ctx->device_);
     if (r != VK_SUCCESS) return Failure{std::string("vkCreateDevice failed: ") + vkResultName(r)};
+    vk::addDevice(ctx->instance_, ctx->device_);
     vkGetDeviceQueue(ctx->device_, ctx->queueFamily_, 0, &ctx->queue_);
     ctx->cmdPushDescriptorSet_ = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
         vkGetDeviceProcAddr(ctx->device_, "vkCmdPushDescriptorSetKHR"));
@@ -289,6 +300,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
 
 Result<std::vector<PhysicalDeviceSummary>> Context::enumerate() {
     pinDriversForLeakChecking();
+    if (std::string problem = vk::openLoader(); !problem.empty()) return Failure{problem};
     VkInstance instance = VK_NULL_HANDLE;
     VkResult r = createInstance(false, nullptr, &instance);
     if (r != VK_SUCCESS) return Failure{std::string("vkCreateInstance failed: ") + vkResultName(r)};
@@ -298,7 +310,7 @@ Result<std::vector<PhysicalDeviceSummary>> Context::enumerate() {
     vkEnumeratePhysicalDevices(instance, &count, devices.data());
     std::vector<PhysicalDeviceSummary> out;
     for (VkPhysicalDevice pd : devices) out.push_back(summarise(pd));
-    vkDestroyInstance(instance, nullptr);
+    destroyInstance(instance);
     return out;
 }
 
@@ -307,14 +319,16 @@ Context::~Context() {
         vkDeviceWaitIdle(device_);
         vkDestroyFence(device_, fence_, nullptr);
         vkDestroyCommandPool(device_, commandPool_, nullptr);
+        const void* key = vk::dispatchKey(device_);
         vkDestroyDevice(device_, nullptr);
+        vk::forget(key);
     }
     if (messenger_) {
         auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
         if (destroy) destroy(instance_, messenger_, nullptr);
     }
-    if (instance_) vkDestroyInstance(instance_, nullptr);
+    if (instance_) destroyInstance(instance_);
 }
 
 void Context::beginOneShot(VkCommandBuffer& cmd) {

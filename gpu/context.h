@@ -6,7 +6,7 @@
 #include "gpu/log.h"
 #include "gpu/result.h"
 
-#include <vulkan/vulkan.h>
+#include "gpu/vulkan_functions.h"
 
 #include <atomic>
 #include <memory>

@@ -1,5 +1,7 @@
 #include "gpu/frame_backend.h"
 
+#include "gpu/vulkan_functions.h"
+
 #include <algorithm>
 #include <cstring>
 

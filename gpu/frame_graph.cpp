@@ -3,6 +3,7 @@
 #include "gpu/frame_backend.h"
 #include "gpu/history_images.h"
 #include "gpu/timestamps.h"
+#include "gpu/vulkan_functions.h"
 
 #include <algorithm>
 #include <cstring>

@@ -6,7 +6,7 @@
 
 #include "gpu/fault_injection.h"
 
-#include <vulkan/vulkan.h>
+#include "gpu/vulkan_functions.h"
 
 #include <cstdint>
 #include <map>

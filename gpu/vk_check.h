@@ -3,7 +3,7 @@
 // the out-of-memory results, OBSCURA_ERROR_DEVICE for the others).
 #pragma once
 
-#include <vulkan/vulkan.h>
+#include "gpu/vulkan_functions.h"
 
 #include <stdexcept>
 #include <string>

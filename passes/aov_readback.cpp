@@ -1,6 +1,7 @@
 #include "passes/aov_readback.h"
 #include "generated/shader_layouts.h"
 
+#include "gpu/vulkan_functions.h"
 #include "passes/shader_pass.h"
 
 namespace obscura::passes {

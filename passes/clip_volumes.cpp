@@ -1,5 +1,6 @@
 #include "passes/clip_volumes.h"
 
+#include "gpu/vulkan_functions.h"
 #include "passes/depth_only_draw.h"
 #include "passes/shader_pass.h"
 

@@ -1,5 +1,7 @@
 #include "passes/depth_only_draw.h"
 
+#include "gpu/vulkan_functions.h"
+
 #include <cstddef>
 
 namespace obscura::passes {

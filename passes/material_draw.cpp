@@ -1,5 +1,6 @@
 #include "passes/material_draw.h"
 
+#include "gpu/vulkan_functions.h"
 #include "passes/frame_data.h"
 
 #include <cstddef>

@@ -1,5 +1,6 @@
 #include "passes/msaa_resolve.h"
 
+#include "gpu/vulkan_functions.h"
 #include "passes/shader_pass.h"
 
 namespace obscura::passes {

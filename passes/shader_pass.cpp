@@ -1,5 +1,7 @@
 #include "passes/shader_pass.h"
 
+#include "gpu/vulkan_functions.h"
+
 #include <algorithm>
 #include <stdexcept>
 #include <utility>

@@ -4,6 +4,7 @@
 #include "passes/shader_pass.h"
 
 #include "gpu/content_hash.h"
+#include "gpu/vulkan_functions.h"
 
 #include <array>
 #include <vector>
