@@ -7,6 +7,7 @@ set -euo pipefail
 frames=${1:-200}; width=${2:-1920}; height=${3:-1080}; shift $(( $# < 3 ? $# : 3 ))
 read -r -a extra <<< "${BENCH_ARGS:-}"
 scenes=("$@"); [ ${#scenes[@]} -gt 0 ] || scenes=(scenes/demo.usda)
+[ -d gpu-pack ] || tar -xJf gpu-pack.tar.xz
 for f in gpu-debs/*.deb; do dpkg -x "$f" /; done
 ldconfig
 export OBSCURA_PLUGINPATH=$PWD/gpu-pack/obscura
