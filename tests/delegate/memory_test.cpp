@@ -33,10 +33,11 @@ TEST(Memory, RendersOfAnUnchangedSceneKeepResidentMemoryFlat) {
                 double(before) / 1048576.0, kWarmupFrames, double(after) / 1048576.0, kWarmupFrames + kMeasuredFrames,
                 (double(after) - double(before)) / kMeasuredFrames / 1024.0);
     // The bar: the steady state grows by less than 1%.
-    EXPECT_LT(double(after), 1.01 * double(before))
-        << "resident memory grew by " << (double(after) - double(before)) / kMeasuredFrames / 1024.0
-        << " KiB per frame (" << before / 1048576 << " MiB after " << kWarmupFrames << " frames, " << after / 1048576
-        << " MiB after " << kWarmupFrames + kMeasuredFrames << ")";
+    if (kResidentSizeIsThePlugins)
+        EXPECT_LT(double(after), 1.01 * double(before))
+            << "resident memory grew by " << (double(after) - double(before)) / kMeasuredFrames / 1024.0
+            << " KiB per frame (" << before / 1048576 << " MiB after " << kWarmupFrames << " frames, "
+            << after / 1048576 << " MiB after " << kWarmupFrames + kMeasuredFrames << ")";
     EXPECT_TRUE(host.loggedErrors().empty()) << host.loggedErrors().front();
 }
 
@@ -60,7 +61,7 @@ TEST(Memory, RandomEditsKeepMemoryFlatOverASoak) {
                 double(vulkanBefore) / 1048576.0, double(vulkanAfter) / 1048576.0, kSoakWarmup,
                 kSoakWarmup + kSoakMeasured);
     ASSERT_GT(vulkanBefore, 0u);
-    EXPECT_LT(double(residentAfter), 1.01 * double(residentBefore));
+    if (kResidentSizeIsThePlugins) EXPECT_LT(double(residentAfter), 1.01 * double(residentBefore));
     EXPECT_LT(double(vulkanAfter), 1.01 * double(vulkanBefore));
     EXPECT_TRUE(host.loggedErrors().empty()) << host.loggedErrors().front();
 }
