@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <unistd.h>
 
 #include "tests/usda/usda_test_util.h"
 
@@ -21,7 +22,7 @@ class Layers {
 public:
     explicit Layers(const std::map<std::string, std::string>& files) {
         dir_ = fs::temp_directory_path() / ("obscura_livrps_" + std::to_string(counter_++) + "_" +
-                                            std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+                                            std::to_string(::getpid()));  // the suite runs tests as parallel processes
         fs::create_directories(dir_);
         for (const auto& [name, text] : files) std::ofstream(dir_ / name) << text;
     }
