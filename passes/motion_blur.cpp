@@ -60,9 +60,10 @@ gpu::ImageHandle addMotionBlurPasses(gpu::FrameGraph& graph, const FrameScene& s
 
     gpu::ImageHandle neighbourMax =
         graph.createImage("motionBlurNeighbourMax", imageDesc2D(kTileVelocityFormat, tilesWide, tilesHigh));
-    neighbourMax = addComputePass(graph, {"motion_blur_neighbour_max", {sampled(tileMax), storageWrite(neighbourMax)},
-                                          bytesOf(constants)})
-                       .images[0];
+    ComputePass neighbours{"motion_blur_neighbour_max", {sampled(tileMax), storageWrite(neighbourMax)},
+                           bytesOf(constants)};
+    neighbours.texelsPerGroup = {1, 1};  // a workgroup per tile
+    neighbourMax = addComputePass(graph, neighbours).images[0];
 
     // Separable [Sousa08]: the first pass covers one tap spacing of the second.
     VkFormat format = graph.imageDesc(hdrColor).format;
