@@ -58,6 +58,8 @@ ObscuraStatus renderUntilConverged(Session& session, const ObscuraRenderPassDesc
     ObscuraStatus status = OBSCURA_OK;
     for (int render = 0; render < kMaxRendersPerFrame; ++render) {
         status = session.api().render(session.delegate(), &desc);
+        // The first render of a frame syncs what changed and, the first time, makes the pipelines.
+        if (render == 0) session.phases().lap("first render");
         if (status != OBSCURA_OK && status != OBSCURA_ERROR_BAD_PRIM_DATA) return status;
         ObscuraRenderStats stats{};
         stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
@@ -177,6 +179,7 @@ int renderProduct(Session& session, const RenderOptions& o) {
         // Each frame of a sequence converges too: the first render of a frame syncs what changed
         // (the history is reprojected), the following ones accumulate the still.
         ObscuraStatus status = renderUntilConverged(session, desc);
+        session.phases().lap("converged");
         if (status == OBSCURA_ERROR_BAD_PRIM_DATA) {
             exitCode = kExitBadInput;  // the frame still renders without the bad prims
         } else if (status != OBSCURA_OK) {
@@ -200,6 +203,9 @@ int renderProduct(Session& session, const RenderOptions& o) {
                        : writeExrAovs(file, mapped, cameraDepth(session.host(), camera, frame));
         });
         for (const auto& b : buffers) session.api().unmapRenderBuffer(session.delegate(), b.c_str());
+        session.phases().lap("written");
+        if (session.verbose())
+            std::fprintf(stderr, "obscura: info: frame %g: %s\n", frame, session.phases().report().c_str());
         if (!problem.empty()) {
             std::fprintf(stderr, "obscura: cannot write %s: %s\n", path.c_str(), problem.c_str());
             return kExitBadInput;

@@ -5,8 +5,20 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 namespace obscura::harness {
+
+void PhaseClock::lap(const char* name) {
+    auto now = std::chrono::steady_clock::now();
+    char text[96];
+    std::snprintf(text, sizeof(text), "%s%s %.0f ms", phases_.empty() ? "" : ", ", name,
+                  std::chrono::duration<double, std::milli>(now - started_).count());
+    phases_ += text;
+    started_ = now;
+}
+
+std::string PhaseClock::report() { return std::exchange(phases_, {}); }
 
 std::variant<LoadedPlugin, SessionError> loadBestPlugin() {
     const char* env = std::getenv("OBSCURA_PLUGINPATH");
@@ -115,15 +127,18 @@ std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::st
     auto opened = openStage(scenePath, limits);
     if (auto* error = std::get_if<SessionError>(&opened)) return *error;
     s->stage_ = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));
+    s->phases_.lap("stage");
 
     auto plugin = loadBestPlugin();
     if (auto* error = std::get_if<SessionError>(&plugin)) return *error;
     s->plugin_.emplace(std::move(std::get<LoadedPlugin>(plugin)));
+    s->phases_.lap("plugin");
 
     ObscuraDelegateCreateInfo info{OBSCURA_STRUCTURE_TYPE_DELEGATE_CREATE_INFO, nullptr, sizeof(ObscuraDelegateCreateInfo),
                                    nullptr, -1, &Session::logToStderr, s.get()};
     if (s->api().createDelegate(&info, &s->delegate_) != OBSCURA_OK)
         return SessionError{kExitPluginOrDevice, std::string("cannot create a delegate: ") + s->api().lastError(nullptr)};
+    s->phases_.lap("delegate");
 
     // The scene's units, for settings given in metres (ssao:radius).
     double metersPerUnit = s->stage_->metadata().metersPerUnit;
@@ -138,6 +153,7 @@ std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::st
     if (s->api().setSceneDelegate(s->delegate_, &s->host_->sceneDelegate()) != OBSCURA_OK ||
         s->host_->populate(s->api(), s->delegate_) != OBSCURA_OK)
         return SessionError{kExitPluginOrDevice, s->lastError()};
+    s->phases_.lap("populate");
     return s;
 }
 

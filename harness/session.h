@@ -5,12 +5,27 @@
 #include "harness/plugin_loader.h"
 #include "harness/usd_scene_host.h"
 
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace obscura::harness {
+
+// Wall-clock phases of a command (opening the scene, loading the plugin, rendering, writing), for
+// -v: where a still's time goes.
+class PhaseClock {
+public:
+    // Ends the current phase under `name` and starts the next.
+    void lap(const char* name);
+    // "name 12 ms, name 3 ms" in the order the phases ran; empties the list.
+    std::string report();
+
+private:
+    std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+    std::string phases_;
+};
 
 struct SessionError {
     int exitCode;
@@ -42,6 +57,10 @@ public:
     std::string deviceName() const;
     // Also print the plugin's info messages (device, loaded textures, the MSAA tagged share).
     void setVerbose(bool verbose) { verbose_ = verbose; }
+    bool verbose() const { return verbose_; }
+    // The phases of `open` (stage, plugin, delegate and device, populate), then whatever the
+    // command laps on it.
+    PhaseClock& phases() { return phases_; }
 
     // Reads a scene file as `open` does (USD layers, or glTF/FBX/OBJ through Assimp).
     static std::variant<std::unique_ptr<usda::Stage>, SessionError> openStage(const std::string& scenePath,
@@ -63,6 +82,7 @@ private:
     ObscuraDelegate delegate_ = nullptr;
     uint32_t loggedErrors_ = 0;
     bool verbose_ = false;
+    PhaseClock phases_;
 };
 
 // Prints a host message to stderr as "obscura: file:line:column: warning: text".

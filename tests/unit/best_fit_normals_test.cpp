@@ -40,6 +40,18 @@ TEST(BestFitNormals, QuantisationErrorBelowNormalizedStorage) {
     EXPECT_LT(maxBest, maxPlain);
 }
 
+TEST(BestFitNormals, TheBuiltTableHoldsTheSearchsScales) {
+    // The library embeds the table a build step wrote; every texel it holds must be what the
+    // appendix's search gives (a sparse grid plus the table's edges, which the clamp touches).
+    std::span<const uint16_t> table = bestFitScaleTable();
+    ASSERT_EQ(table.size(), size_t(kBestFitTableSize) * kBestFitTableSize);
+    std::vector<uint32_t> coordinates{0, 1, kBestFitTableSize / 2, kBestFitTableSize - 2, kBestFitTableSize - 1};
+    for (uint32_t c = 3; c < kBestFitTableSize; c += 61) coordinates.push_back(c);
+    for (uint32_t j : coordinates)
+        for (uint32_t i : coordinates)
+            ASSERT_EQ(table[size_t(j) * kBestFitTableSize + i], bestFitTableEntry(i, j)) << "texel " << i << ", " << j;
+}
+
 TEST(BestFitNormals, ScaleKeepsTheLargestComponentInRange) {
     for (float t : {0.0f, 0.3f, 0.7f}) {
         float scale = findBestFitScale({1.0f, t, t * 0.5f});
