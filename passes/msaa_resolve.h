@@ -1,7 +1,9 @@
 // Deferred MSAA custom resolve (frame step 5; seed 000 "Deferred MSAA \ custom resolve &
-// per-sample mask" and "stencil batching"): after a multisampled G-buffer, one raster pass copies
-// sample 0 of every target into a single-sample G-buffer for the pixel-frequency passes and tags
-// the 2x2 quads whose samples differ in the reserved stencil bit of that G-buffer's stencil.
+// per-sample mask" and "stencil batching"): after a multisampled G-buffer, a compute pass copies
+// sample 0 of every target it can write into a single-sample G-buffer for the pixel-frequency
+// passes, chooses each pixel's depth and finds the 2x2 quads whose samples differ; a raster pass
+// then writes what compute cannot (the depth target and the sRGB albedo) and tags those quads in
+// the reserved stencil bit of that G-buffer's stencil.
 #pragma once
 
 #include "passes/frame_resources.h"

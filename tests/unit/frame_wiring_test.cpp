@@ -207,20 +207,26 @@ void MsaaResolvesBeforeThePerPixelPassesAndLightsPerSample() {
     Wiring w;
     w.settings.msaaSamples = 4;
     const Frame& frame = w.render();
-    EXPECT_EQ(running(frame), concat({{"shadow_maps", "gbuffer", "msaa_resolve"},
+    EXPECT_EQ(running(frame), concat({{"shadow_maps", "gbuffer", "msaa_resolve", "msaa_resolve_depth"},
                                       kSsao,
                                       {"lighting", "transparent", "temporal_aa", "tonemap", "aov_readback"}}));
-    // The resolve samples the multisampled targets in fragment shaders, after their writes.
-    for (const char* target : {"gbuffer.normalRoughness", "gbuffer.albedoMetallic", "gbuffer.instance"}) {
+    // The resolve reads the multisampled targets in a compute shader, after their writes; the
+    // sRGB albedo, which no storage image can hold, in the fragment shader of its raster half.
+    for (const char* target : {"gbuffer.normalRoughness", "gbuffer.instance"}) {
         const gpu::PlannedBarrier* b =
             transition(frame, "msaa_resolve", target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         ASSERT_NE(b, nullptr);
-        EXPECT_TRUE(b->dstStage & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT) << target;
+        EXPECT_TRUE(b->dstStage & VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT) << target;
     }
-    // Its colour targets are overwritten whole: nothing is loaded.
+    const gpu::PlannedBarrier* albedo =
+        transition(frame, "msaa_resolve_depth", "gbuffer.albedoMetallic", VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    ASSERT_NE(albedo, nullptr);
+    EXPECT_TRUE(albedo->dstStage & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    // The raster half overwrites its targets whole: nothing is loaded.
     for (const auto& pass : frame.passes)
-        if (pass.name == "msaa_resolve")
+        if (pass.name == "msaa_resolve_depth")
             for (const auto& attachment : pass.attachments)
                 EXPECT_NE(attachment.load, VK_ATTACHMENT_LOAD_OP_LOAD);
     // SSAO works on the resolved G-buffer, after the resolve wrote it.
