@@ -61,6 +61,9 @@ Status writePng(const std::string& path, int width, int height, PngFormat format
     png.width = static_cast<png_uint_32>(width);
     png.height = static_cast<png_uint_32>(height);
     png.format = format == PngFormat::Rgba ? PNG_FORMAT_RGBA : PNG_FORMAT_RGB;
+    // Speed over file size: with libpng's default compression writing a 1080p still took 200 ms,
+    // a third of the whole `obscura render` on a GPU. The pixels are the same either way.
+    png.flags = PNG_IMAGE_FLAG_FAST;
     // For 8-bit data the row stride is counted in bytes.
     if (png_image_write_to_file(&png, path.c_str(), 0, data,
                                 static_cast<png_int_32>(rowStrideBytes), nullptr) == 0) {
