@@ -55,10 +55,13 @@ std::vector<ShaderBinding> gbufferBindings(bool motion, const SceneBuffers& buff
     return bindings;
 }
 
-gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, VkSampleCountFlagBits samples,
+// `cutout`: the draw's material has an opacity threshold; the other draws take the shaders'
+// OPAQUE_SURFACE variant, whose depth test runs before shading (common/gbuffer_surface.glsl).
+gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, bool cutout, VkSampleCountFlagBits samples,
                                                   const std::vector<ShaderBinding>& bindings) {
     gpu::GraphicsPipelineDesc d;
-    d.fragmentShader = writesVelocity(variant) ? "gbuffer_moving.frag" : "gbuffer.frag";
+    d.fragmentShader = std::string(writesVelocity(variant) ? "gbuffer_moving" : "gbuffer") +
+                       (cutout ? ".frag" : "_opaque.frag");
     d.bindings = bindingLayout(bindings);
     d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
     d.pushConstantSize = sizeof(GBufferPush);
@@ -93,6 +96,7 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, const FrameScene& scene, gpu::Ima
     GBuffer gb = createGBufferImages(graph, scene, samples, "gbuffer");
     // Moving geometry is drawn last (seed 000 "An improved reconstruction filter (3)"), so static
     // surfaces never cover a velocity a moving one wrote; draws are grouped by pipeline.
+    // Within a variant, opaque draws come before cut-outs: what they hide is then never shaded.
     struct Ordered {
         Variant variant;
         const Draw* draw;
@@ -100,9 +104,11 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, const FrameScene& scene, gpu::Ima
     std::vector<Ordered> ordered;
     for (Variant variant : {Variant::Static, Variant::StaticWithVelocityTarget, Variant::DeformingWithoutVelocity,
                             Variant::Moving, Variant::Deforming})
-        for (const Draw& draw : scene.draws)
-            // Transparent surfaces are drawn after lighting (passes/transparent.h).
-            if (!draw.transparent && variantOf(draw, scene.motionBlur) == variant) ordered.push_back({variant, &draw});
+        for (bool cutout : {false, true})
+            for (const Draw& draw : scene.draws)
+                // Transparent surfaces are drawn after lighting (passes/transparent.h).
+                if (!draw.transparent && draw.opacityCutout == cutout && variantOf(draw, scene.motionBlur) == variant)
+                    ordered.push_back({variant, &draw});
     const bool anyMotion =
         std::any_of(ordered.begin(), ordered.end(), [](const Ordered& o) { return readsMotion(o.variant); });
 
@@ -123,16 +129,19 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, const FrameScene& scene, gpu::Ima
             gpu::Device& device = res.device();
             const gpu::Pipeline* bound = nullptr;
             Variant boundVariant = Variant::Static;
+            bool boundCutout = false;
             const MaterialTextures* pushed = nullptr;
             for (const Ordered& o : ordered) {
                 // Draws come grouped by variant: the pipeline changes only between groups.
-                if (!bound || o.variant != boundVariant) {
+                const bool cutout = o.draw->opacityCutout;
+                if (!bound || o.variant != boundVariant || cutout != boundCutout) {
                     const std::vector<ShaderBinding> bindings =
                         gbufferBindings(readsMotion(o.variant), scene.buffers, bestFitNormals);
                     bound = &res.pipelines().get<gpu::GraphicsPipelineDesc>(
-                        std::string(pipelineName(o.variant)) + "." + std::to_string(samples),
-                        [&] { return describeGBufferPipeline(o.variant, samples, bindings); });
+                        std::string(pipelineName(o.variant)) + (cutout ? ".cutout." : ".") + std::to_string(samples),
+                        [&] { return describeGBufferPipeline(o.variant, cutout, samples, bindings); });
                     boundVariant = o.variant;
+                    boundCutout = cutout;
                     bindBindings(cmd, *bound, bindings, res);
                     pushed = nullptr;  // a new layout: the pushed set starts over
                 }

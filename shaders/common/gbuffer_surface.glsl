@@ -14,6 +14,14 @@
 #include "instance_target.glsl"
 #include "msaa_samples.glsl"
 
+// Built twice (cmake variants): with OPAQUE_SURFACE for draws whose material cuts nothing out
+// (passes/gbuffer.cpp picks by Draw::opacityCutout). Those never discard nor narrow the sample
+// mask, so their depth test can run before the shader: a fragment behind what is already drawn
+// costs no shading, which a shader that may discard forbids.
+#ifdef OPAQUE_SURFACE
+layout(early_fragment_tests) in;
+#endif
+
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec4 inColor;
 layout(location = 2) in vec3 inWorldPosition;
@@ -86,9 +94,11 @@ void writeSurface() {
     float roughness = scalarInput(mat.diffuseRoughness.a, mat.textures[TEXTURE_ROUGHNESS], roughnessTexture, inUv);
     float metallic = scalarInput(mat.emissiveMetallic.a, mat.textures[TEXTURE_METALLIC], metallicTexture, inUv);
     float occlusion = scalarInput(mat.opacity.z, mat.textures[TEXTURE_OCCLUSION], occlusionTexture, inUv);
+#ifndef OPAQUE_SURFACE
     uint coverage = cutoutCoverage(mat, inUv);
     if (coverage == 0u) discard;
     gl_SampleMask[0] = int(coverage);
+#endif
     outNormalRoughness = vec4(encodeBestFitNormal(n, fittingScale), roughness);
     outAlbedoMetallic = vec4(albedo, metallic);
     outInstance = packInstanceTarget(inInstance, occlusion);
