@@ -9,7 +9,7 @@
 // direction, its angular radius, its irradiance), and the fit is closed-form in GGX's own slope
 // space rather than through an SG sum:
 //   anisotropic GGX (Burley 2012, "Physically-based shading at Disney"; Heitz 2014, "Understanding
-//   the masking-shadowing function", eq. 85), slopes s = (H.X, H.Y) / (H.N):
+//   the masking-shadowing function": its anisotropic GGX and Lambda), slopes s = (H.X, H.Y) / (H.N):
 //       D(H) = 1 / (pi ax ay (H.N)^4 (1 + q^2)^2),   q^2 = sx^2 / ax^2 + sy^2 / ay^2
 //   isotropic GGX about a normal N' at angle t' from H: the same with q = tan(t') / a'.
 // Per light, with the lighting pass's widening of an extended source (w = sinHalfAngle / 2, the

@@ -54,8 +54,8 @@ std::array<double, 2> alphas(double anisotropy) {
 }
 
 // The anisotropic GGX BRDF times cos(theta_L) in the plane's frame (X the stretched direction,
-// Y across it, Z the normal): D (Heitz 2014 eq. 85), height-correlated G2 = 1 / (1 + Lambda(V) +
-// Lambda(L)) with Lambda of eq. 86, Schlick's Fresnel.
+// Y across it, Z the normal): D (anisotropic GGX, Heitz 2014), height-correlated G2 =
+// 1 / (1 + Lambda(V) + Lambda(L)) with its anisotropic Lambda, Schlick's Fresnel.
 double brdfCosine(Vec3 v, Vec3 l, std::array<double, 2> a) {
     if (l[2] <= 0.0 || v[2] <= 0.0) return 0.0;
     Vec3 h = normalized({v[0] + l[0], v[1] + l[1], v[2] + l[2]});
