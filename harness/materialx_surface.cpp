@@ -254,6 +254,7 @@ struct Entry {
     Numbers fallback;                    // the model's default
     const char* weight = nullptr;        // an input it is multiplied by ("base"), or none
     double weightFallback = 1.0;
+    double unit = 1.0;                   // the model's unit in UsdPreviewSurface's (turns to degrees: 360)
 };
 
 struct SurfaceModel {
@@ -274,8 +275,11 @@ const std::vector<SurfaceModel>& surfaceModels() {
           {"normal", "normal", {}},
           {"clearcoat", "coat", {0}},
           {"clearcoatRoughness", "coat_roughness", {0.1}},
-          {"ior", "specular_IOR", {1.5}}},
-         {"transmission", "subsurface", "sheen", "specular_anisotropy", "thin_film_thickness"}},
+          {"ior", "specular_IOR", {1.5}},
+          {"obscura:anisotropy", "specular_anisotropy", {0}},
+          // Standard Surface turns the anisotropy's direction by a fraction of a full turn.
+          {"obscura:anisotropyRotation", "specular_rotation", {0}, nullptr, 1.0, 360.0}},
+         {"transmission", "subsurface", "sheen", "thin_film_thickness"}},
         {"ND_UsdPreviewSurface_",
          {{"diffuseColor", "diffuseColor", {0.18, 0.18, 0.18}},
           {"metallic", "metallic", {0}},
@@ -395,6 +399,7 @@ MaterialXMapping mapMaterialXSurface(const usda::Stage& stage, const usda::Prim&
             }
             signal = multiply(*signal, *weight);
         }
+        if (entry.unit != 1.0) signal = scaled(*signal, {entry.unit});
         store(out, folder, surface, entry.usdInput, entry.input, *signal);
     }
     // glTF's alpha mode: opaque ignores alpha, mask cuts out at alphaCutoff, blend is transparent.

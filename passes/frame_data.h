@@ -157,14 +157,16 @@ struct alignas(16) MaterialData {
     std::array<float, 4> opacity;  // x opacity, y opacityThreshold, z occlusion
     std::array<float, 4> specularIor{0.0f, 0.0f, 0.0f, 1.5f};  // rgb specularColor, a ior
     std::array<float, 4> clearcoat{};  // x clearcoat, y clearcoatRoughness, z 1 for the specular workflow
+    std::array<float, 4> anisotropy{};  // x obscura:anisotropy, y obscura:anisotropyRotation in radians
     std::array<MaterialTexture, kMaterialTextureSlots> textures;
 };
-static_assert(sizeof(MaterialData) == 80 + 6 * 48);
+static_assert(sizeof(MaterialData) == 96 + 6 * 48);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, diffuseRoughness);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, emissiveMetallic);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, opacity);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, specularIor);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, clearcoat);
+OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, anisotropy);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, textures);
 
 enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4 };

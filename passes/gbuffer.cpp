@@ -46,11 +46,12 @@ bool deforms(Variant variant) { return variant == Variant::Deforming || variant 
 
 bool readsMotion(Variant variant) { return writesVelocity(variant) || deforms(variant); }
 
-// Set 0: the camera, the records and the best-fit normal table, and for variants that move the
-// instances' motion.
+// Set 0: the camera, the records, the best-fit normal table and the lights (the principal lobe of
+// anisotropic materials), and for variants that move the instances' motion.
 std::vector<ShaderBinding> gbufferBindings(bool motion, const SceneBuffers& buffers, gpu::ImageHandle bestFitNormals) {
     std::vector<ShaderBinding> bindings{bufferRead(buffers.camera), bufferRead(buffers.instances),
-                                        bufferRead(buffers.materials), sampled(bestFitNormals)};
+                                        bufferRead(buffers.materials), sampled(bestFitNormals),
+                                        bufferRead(buffers.lights)};
     if (motion) bindings.push_back(bufferRead(buffers.instanceMotions));
     return bindings;
 }

@@ -51,6 +51,7 @@ layout(push_constant) uniform Push {
 } push;
 
 #include "common/scene_lighting.glsl"
+#include "common/anisotropic_lobe.glsl"
 
 layout(location = 0) out vec4 outRadiance;  // premultiplied, pre-exposed
 layout(location = 1) out vec4 outCoverage;  // x and w: opacity (alpha "over" alpha)
@@ -85,6 +86,11 @@ void main() {
     // material record's).
     if ((inst.flags & INSTANCE_VERTEX_COLOR) != 0u) opacity *= inColor.a;
     float occlusion = scalarInput(mat.opacity.z, mat.textures[TEXTURE_OCCLUSION], occlusionTexture, inUv);
+    // The same principal lobe as opaque surfaces (the G-buffer pass), so a material looks alike
+    // at any opacity.
+    if (mat.anisotropy.x > 0.0)
+        principalLobe(n, roughness, inTangent, mat.anisotropy.xy, inWorldPosition,
+                      normalize(camera.position.xyz - inWorldPosition));
 
     float fade = depthFade(sceneDepth, ivec2(gl_FragCoord.xy), gl_FragCoord.z, push.fadeDistance);
     if (fade <= 0.0) discard;

@@ -70,6 +70,10 @@ def principled_values(bsdf) -> dict:
     values["inputs:ior"] = float(inputs["IOR"].default_value)
     values["inputs:clearcoat"] = float(inputs["Clearcoat"].default_value)
     values["inputs:clearcoatRoughness"] = float(inputs["Clearcoat Roughness"].default_value)
+    # Obscura's anisotropic lobe; the rotation is a fraction of a turn, as in MaterialX. (Cycles
+    # stretches its lobe by its own aspect of the same value, so highlights differ in length.)
+    values["inputs:obscura:anisotropy"] = float(inputs["Anisotropic"].default_value)
+    values["inputs:obscura:anisotropyRotation"] = 360.0 * float(inputs["Anisotropic Rotation"].default_value)
     normal = linked_node(inputs["Normal"])
     if normal is not None:
         if normal.bl_idname != "ShaderNodeNormalMap" or normal.space != "TANGENT":

@@ -1,6 +1,8 @@
 #include "delegate/prims/material.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 namespace obscura::delegate {
 
@@ -26,6 +28,13 @@ void Material::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
     data_.clearcoat = {std::clamp(s.getFloat("inputs:clearcoat"), 0.0f, 1.0f),
                        std::clamp(s.getFloat("inputs:clearcoatRoughness"), 0.0f, 1.0f),
                        s.getInt("inputs:useSpecularWorkflow") != 0 ? 1.0f : 0.0f, 0.0f};
+    float anisotropy = s.getFloat("inputs:obscura:anisotropy");
+    if (!(anisotropy >= 0.0f && anisotropy <= 1.0f))
+        throw PrimDataError(s.path() + ": inputs:obscura:anisotropy must be in [0, 1]");
+    float rotationDegrees = s.getFloat("inputs:obscura:anisotropyRotation");
+    if (!std::isfinite(rotationDegrees))
+        throw PrimDataError(s.path() + ": inputs:obscura:anisotropyRotation must be a finite angle");
+    data_.anisotropy = {anisotropy, rotationDegrees * std::numbers::pi_v<float> / 180.0f, 0.0f, 0.0f};
     readTextures(s, ctx);
 }
 

@@ -88,6 +88,7 @@ struct MaterialData {
     vec4 opacity;           // x opacity, y opacityThreshold, z occlusion
     vec4 specularIor;       // rgb specularColor (specular workflow), a ior
     vec4 clearcoat;         // x clearcoat, y clearcoatRoughness, z 1 for the specular workflow
+    vec4 anisotropy;        // x obscura:anisotropy (0: isotropic), y obscura:anisotropyRotation in radians
     MaterialTexture textures[MATERIAL_TEXTURE_SLOTS];
 };
 

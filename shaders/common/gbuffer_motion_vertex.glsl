@@ -7,7 +7,7 @@
 
 #include "gbuffer_vertex.glsl"
 
-layout(set = 0, binding = 4, std430) readonly buffer Motions { InstanceMotion motions[]; };
+layout(set = 0, binding = 5, std430) readonly buffer Motions { InstanceMotion motions[]; };
 
 layout(location = 6) out vec4 outShutterOpenClip;
 layout(location = 7) out vec4 outShutterCloseClip;

@@ -33,6 +33,9 @@ CAMERA_BLOCK(0);
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Materials { MaterialData materials[]; };
 layout(set = 0, binding = 3) uniform sampler2D fittingScale;
+// The frame's lights, for the principal lobe of anisotropic materials (anisotropic_lobe.glsl).
+layout(set = 0, binding = 4, std430) readonly buffer Lights { uint lightCount; uint pad[3]; LightData lights[]; };
+#include "anisotropic_lobe.glsl"
 // The draw's material textures, pushed per draw (white where an input is constant).
 layout(set = 1, binding = 0) uniform sampler2D diffuseTexture;
 layout(set = 1, binding = 1) uniform sampler2D roughnessTexture;
@@ -94,6 +97,9 @@ void writeSurface() {
     float roughness = scalarInput(mat.diffuseRoughness.a, mat.textures[TEXTURE_ROUGHNESS], roughnessTexture, inUv);
     float metallic = scalarInput(mat.emissiveMetallic.a, mat.textures[TEXTURE_METALLIC], metallicTexture, inUv);
     float occlusion = scalarInput(mat.opacity.z, mat.textures[TEXTURE_OCCLUSION], occlusionTexture, inUv);
+    if (mat.anisotropy.x > 0.0)
+        principalLobe(n, roughness, inTangent, mat.anisotropy.xy, inWorldPosition,
+                      normalize(camera.position.xyz - inWorldPosition));
 #ifndef OPAQUE_SURFACE
     uint coverage = cutoutCoverage(mat, inUv);
     if (coverage == 0u) discard;

@@ -215,25 +215,54 @@ vec3 reflectFromAreaLight(SurfacePoint s, LightData light) {
 
 // --- All light types ------------------------------------------------------------------------
 
+bool isLocalLight(LightData light) {
+    uint type = uint(light.positionType.w);
+    return type != LIGHT_DISTANT && type != LIGHT_DOME;
+}
+
+// A local light's influence sphere (delegate/prims/light.cpp): beyond it the light is below what
+// the accumulation shows, and the lighting pass's tiles do not list it.
+bool lightReaches(LightData light, vec3 P) {
+    if (!isLocalLight(light)) return true;
+    vec3 d = P - light.positionType.xyz;
+    return dot(d, d) <= light.factors.w * light.factors.w;
+}
+
+// A distant or sphere light as the point P sees it: the unit direction to it, the irradiance it
+// gives at normal incidence and the sine of its angular radius (0: a point).
+struct DirectionalSource {
+    vec3 L;
+    vec3 irradiance;
+    float sinHalfAngle;
+};
+
+DirectionalSource directionalSource(LightData light, vec3 P) {
+    DirectionalSource source;
+    if (uint(light.positionType.w) == LIGHT_DISTANT) {
+        // UsdLux: irradiance = radiance x solid angle of the disc (precomputed on the host).
+        source.L = -light.directionAngle.xyz;
+        source.irradiance = light.radiance.rgb;
+        source.sinHalfAngle = sin(light.directionAngle.w);
+        return source;
+    }
+    vec3 toLight = light.positionType.xyz - P;
+    float d2 = max(dot(toLight, toLight), 1e-8);
+    float d = sqrt(d2);
+    source.L = toLight / d;
+    float r = light.radiance.a;
+    // A uniform sphere of radiance L_e and radius r fully above the horizon gives
+    // E = pi * L_e * (r/d)^2 * cos(theta); a point light (r folded in) follows the same law.
+    source.irradiance = PI * light.radiance.rgb * (r * r) / d2 * shapingAttenuation(light, -source.L);
+    // treatAsPoint keeps the power but not the lobe widening of an extended source.
+    source.sinHalfAngle = light.factors.z > 0.0 ? 0.0 : clamp(r / d, 0.0, 1.0);
+    return source;
+}
+
 vec3 reflectFromLight(SurfacePoint s, LightData light) {
     uint type = uint(light.positionType.w);
-    if (type == LIGHT_DISTANT) {
-        // UsdLux: irradiance = radiance x solid angle of the disc (precomputed on the host).
-        return reflectFromDirection(s, -light.directionAngle.xyz, light.radiance.rgb, sin(light.directionAngle.w),
-                                    light.factors.xy);
-    }
-    if (type == LIGHT_SPHERE) {
-        vec3 toLight = light.positionType.xyz - s.P;
-        float d2 = max(dot(toLight, toLight), 1e-8);
-        float d = sqrt(d2);
-        vec3 L = toLight / d;
-        float r = light.radiance.a;
-        // A uniform sphere of radiance L_e and radius r fully above the horizon gives
-        // E = pi * L_e * (r/d)^2 * cos(theta); a point light (r folded in) follows the same law.
-        vec3 irradiance = PI * light.radiance.rgb * (r * r) / d2 * shapingAttenuation(light, -L);
-        // treatAsPoint keeps the power but not the lobe widening of an extended source.
-        float sinHalfAngle = light.factors.z > 0.0 ? 0.0 : clamp(r / d, 0.0, 1.0);
-        return reflectFromDirection(s, L, irradiance, sinHalfAngle, light.factors.xy);
+    if (type == LIGHT_DISTANT || type == LIGHT_SPHERE) {
+        DirectionalSource source = directionalSource(light, s.P);
+        return reflectFromDirection(s, source.L, source.irradiance, source.sinHalfAngle, light.factors.xy);
     }
     if (type == LIGHT_RECT || type == LIGHT_DISK) return reflectFromAreaLight(s, light);
     // LIGHT_DOME: Lambert integrates to albedo x irradiance / pi (albedo x L for a constant

@@ -32,19 +32,6 @@ EnvironmentSample sampleEnvironment(SurfacePoint s) {
     return e;
 }
 
-bool isLocalLight(LightData light) {
-    uint type = uint(light.positionType.w);
-    return type != LIGHT_DISTANT && type != LIGHT_DOME;
-}
-
-// A local light's influence sphere (delegate/prims/light.cpp): beyond it the light is below what
-// the accumulation shows, and the lighting pass's tiles do not list it.
-bool lightReaches(LightData light, vec3 P) {
-    if (!isLocalLight(light)) return true;
-    vec3 d = P - light.positionType.xyz;
-    return dot(d, d) <= light.factors.w * light.factors.w;
-}
-
 // One light's reflection off s towards the eye, scaled by its shadow maps' visibility; the
 // shadow lookups only where the light reaches the surface at all.
 vec3 reflectShadowedLight(SurfacePoint s, LightData light, float viewDistance) {

@@ -327,6 +327,19 @@ def test_camera_shift_moves_the_image_by_the_shift_times_the_frame():
     expect(abs(centre - (SIZE / 2 - 0.25 * SIZE)) <= 1.0, f"image centred at {centre}")
 
 
+def test_principled_anisotropy_feeds_the_anisotropic_lobe():
+    from obscura_render import materials
+
+    material = principled("Brushed", 0.5)
+    bsdf = material.node_tree.nodes["Principled BSDF"]
+    bsdf.inputs["Anisotropic"].default_value = 0.6
+    bsdf.inputs["Anisotropic Rotation"].default_value = 0.25  # a quarter turn
+    values = materials.principled_values(bsdf)
+    expect(math.isclose(values["inputs:obscura:anisotropy"], 0.6, rel_tol=1e-6), values["inputs:obscura:anisotropy"])
+    expect(math.isclose(values["inputs:obscura:anisotropyRotation"], 90.0, rel_tol=1e-6),
+           values["inputs:obscura:anisotropyRotation"])
+
+
 def test_unsupported_nodes_fall_back_with_one_warning_naming_the_material():
     scene = empty_scene()
     add_camera(scene)

@@ -44,6 +44,8 @@ def Material "Standard"
         color3f inputs:base_color.connect = </Standard/Graph.outputs:color>
         float inputs:metalness.connect = </Standard/Graph.outputs:metal>
         float inputs:specular_roughness = 0.35
+        float inputs:specular_anisotropy = 0.6
+        float inputs:specular_rotation = 0.125
         float3 inputs:normal.connect = </Standard/Graph.outputs:normal>
         token outputs:surface
     }
@@ -227,6 +229,9 @@ TEST(MaterialXSurface, StandardSurfaceNetworksFoldIntoTexturesAndConstants) {
     // mix(fg 1, bg 0, mix 0.25) = 0.25.
     expectFloats(n.floats("/Standard", "inputs:metallic"), {0.25f}, "metallic");
     expectFloats(n.floats("/Standard", "inputs:roughness"), {0.35f}, "roughness");
+    // The anisotropic lobe: specular_rotation is a fraction of a turn, obscura:anisotropyRotation degrees.
+    expectFloats(n.floats("/Standard", "inputs:obscura:anisotropy"), {0.6f}, "specular_anisotropy");
+    expectFloats(n.floats("/Standard", "inputs:obscura:anisotropyRotation"), {45.0f}, "specular_rotation");
     // A normal map decodes n * 2 - 1, from data read as it is.
     expectFloats(n.floats("/Standard", "obscura:normal:scale"), {2, 2, 2, 1}, "normal scale");
     expectFloats(n.floats("/Standard", "obscura:normal:bias"), {-1, -1, -1, 0}, "normal bias");

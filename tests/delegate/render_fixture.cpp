@@ -83,9 +83,9 @@ std::array<double, 2> environmentBrdf(double roughness, double NdotV) {
     return {-1.04 * a004 + r[2], 1.04 * a004 + r[3]};
 }
 
-std::array<double, 3> planePointAtPixel(int x, int y, double distance, double tanHalfFov) {
-    double ndcX = (x + 0.5) / kWidth * 2.0 - 1.0;
-    double ndcY = 1.0 - (y + 0.5) / kHeight * 2.0;  // row 0 is the top of the image
+std::array<double, 3> planePointAtPixel(int x, int y, double distance, double tanHalfFov, int size) {
+    double ndcX = (x + 0.5) / size * 2.0 - 1.0;
+    double ndcY = 1.0 - (y + 0.5) / size * 2.0;  // row 0 is the top of the image
     return {ndcX * tanHalfFov * distance, ndcY * tanHalfFov * distance, 0.0};
 }
 

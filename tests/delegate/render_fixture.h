@@ -46,9 +46,10 @@ float srgb8Exact(int code);
 // L (F0 A + B), the fit the lighting pass uses for domes (brdf.glsl). Returns {A, B}.
 std::array<double, 2> environmentBrdf(double roughness, double NdotV);
 
-// World-space point on the z = 0 plane seen through the centre of pixel (x, y) by a camera at
-// (0, 0, distance) looking down -Z with the given tan of the half field of view.
-std::array<double, 3> planePointAtPixel(int x, int y, double distance, double tanHalfFov);
+// World-space point on the z = 0 plane seen through the centre of pixel (x, y) of a square image
+// `size` pixels wide by a camera at (0, 0, distance) looking down -Z with the given tan of the
+// half field of view.
+std::array<double, 3> planePointAtPixel(int x, int y, double distance, double tanHalfFov, int size = kWidth);
 
 // A grey Lambert plane (albedo 0.5029, a value 8-bit sRGB holds exactly, so the G-buffer adds no
 // error of its own) at z = 0 facing +Z, seen by a camera at (0, 0, 5) looking down -Z; tests add

@@ -405,11 +405,7 @@ TEST(Shadows, OpacityCutoutsCastShapedShadows) {
                     {"inputs:opacityThreshold", HostValue::floatValue(0.5f)},
                     {"obscura:opacity:file", HostValue::token(mask.string())},
                     {"obscura:opacity:sourceColorSpace", HostValue::token("raw")}});
-    HostValue st;
-    st.type = OBSCURA_VALUE_FLOAT2;
-    st.isArray = true;
-    st.count = 4;
-    st.floats = {0, 0, 1, 0, 1, 1, 0, 1};
+    HostValue st = HostValue::float2Array({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
     s.host.addPrim("mesh", "/Leaf",
                    {{"points", HostValue::points({{-1.5f, -0.5f, 1}, {-0.5f, -0.5f, 1}, {-0.5f, 0.5f, 1}, {-1.5f, 0.5f, 1}})},
                     {"faceVertexCounts", HostValue::intArray({4})},

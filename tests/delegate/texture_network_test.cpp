@@ -62,6 +62,40 @@ def Material "M"
     EXPECT_EQ(sd.getValue(sd.userData, "/M", "obscura:specularColor:file", 0.0, &value), OBSCURA_ERROR_NOT_FOUND);
 }
 
+TEST(TexturedUsda, AnisotropyInputsReachTheDelegateAndTheirTexturesWarn) {
+    // obscura:anisotropy and obscura:anisotropyRotation on a UsdPreviewSurface are served like its
+    // own inputs; the delegate reads them as constants, so a connected texture keeps the warning
+    // and the authored value is used.
+    const std::string text = R"(#usda 1.0
+def Material "M"
+{
+    token outputs:surface.connect = </M/Surface.outputs:surface>
+    def Shader "Surface"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        float inputs:obscura:anisotropy = 0.7
+        float inputs:obscura:anisotropy.connect = </M/Texture.outputs:r>
+        float inputs:obscura:anisotropyRotation = 45
+        token outputs:surface
+    }
+    def Shader "Texture"
+    {
+        uniform token info:id = "UsdUVTexture"
+        asset inputs:file = @textures/checker.png@
+        float outputs:r
+    }
+}
+)";
+    HostedStage scene(usda::Stage::openFromString(text, OBSCURA_TEST_DATA_DIR "/inline.usda"));
+    const ObscuraSceneDelegate& sd = scene.host->sceneDelegate();
+    ObscuraValue value{};
+    ASSERT_EQ(sd.getValue(sd.userData, "/M", "inputs:obscura:anisotropy", 0.0, &value), OBSCURA_OK);
+    EXPECT_FLOAT_EQ(static_cast<const float*>(value.data)[0], 0.7f);
+    EXPECT_TRUE(scene.warned("inputs:obscura:anisotropy is connected"));
+    ASSERT_EQ(sd.getValue(sd.userData, "/M", "inputs:obscura:anisotropyRotation", 0.0, &value), OBSCURA_OK);
+    EXPECT_FLOAT_EQ(static_cast<const float*>(value.data)[0], 45.0f);
+}
+
 TEST(TexturedUsda, OcclusionTextureIsFlattenedLikeTheOtherInputs) {
     // inputs:occlusion (a constant, and a UsdUVTexture's r output) reaches the delegate as the
     // constant and obscura:occlusion:*, with no "connected" warning.

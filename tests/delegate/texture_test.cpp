@@ -32,15 +32,6 @@ HostValue float4(float x, float y, float z, float w) {
     return h;
 }
 
-HostValue float2Array(const std::vector<std::array<float, 2>>& values) {
-    HostValue h;
-    h.type = OBSCURA_VALUE_FLOAT2;
-    h.isArray = true;
-    h.count = values.size();
-    for (const auto& v : values) h.floats.insert(h.floats.end(), v.begin(), v.end());
-    return h;
-}
-
 // A material whose `input` reads `file`, with further obscura:<input>:<field> values.
 std::map<std::string, HostValue> textured(const std::string& input, const std::string& file,
                                           const std::map<std::string, HostValue>& fields = {}) {
@@ -100,7 +91,7 @@ protected:
         extra["faceVertexCounts"] = HostValue::intArray({4});
         extra["faceVertexIndices"] = HostValue::intArray({0, 1, 2, 3});
         extra.emplace("subdivisionScheme", HostValue::token("none"));
-        extra["primvars:st"] = float2Array({{0, 0}, {stMax, 0}, {stMax, stMax}, {0, stMax}});
+        extra["primvars:st"] = HostValue::float2Array({{0, 0}, {stMax, 0}, {stMax, stMax}, {0, stMax}});
         extra["material:binding"] = HostValue::path(material);
         host.addPrim("mesh", path, extra, translation(centreX, 0, 0));
     }

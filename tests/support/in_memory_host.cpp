@@ -68,6 +68,14 @@ HostValue HostValue::paths(const std::vector<std::string>& p) {
     h.strings = p;
     return h;
 }
+HostValue HostValue::float2Array(const std::vector<std::array<float, 2>>& v) {
+    HostValue h;
+    h.type = OBSCURA_VALUE_FLOAT2;
+    h.isArray = true;
+    h.count = v.size();
+    for (const auto& e : v) h.floats.insert(h.floats.end(), e.begin(), e.end());
+    return h;
+}
 HostValue HostValue::float4Array(const std::vector<std::array<float, 4>>& v) {
     HostValue h;
     h.type = OBSCURA_VALUE_FLOAT4;

@@ -41,6 +41,7 @@ struct HostValue {
     static HostValue token(const std::string& t);
     static HostValue path(const std::string& p);
     static HostValue paths(const std::vector<std::string>& p);
+    static HostValue float2Array(const std::vector<std::array<float, 2>>& v);
     static HostValue float4Array(const std::vector<std::array<float, 4>>& v);
     static HostValue points(const std::vector<std::array<float, 3>>& p);
     static HostValue intArray(const std::vector<int32_t>& v);
