@@ -204,5 +204,26 @@ TEST(Skinning, SkeletonBonesAreDrawnOnlyAsGuides) {
     EXPECT_TRUE(scene.host->messages().empty()) << scene.host->messages().front().text;
 }
 
+TEST(Skinning, ASkeletonWhoseDataDoesNotFitItsJointsIsReportedAndDrawsNoBones) {
+    std::string text = kSkeletonOnly;
+    const std::string bind = "uniform matrix4d[] bindTransforms = [";
+    const size_t at = text.find(bind) + bind.size();
+    text.erase(at, text.find("), (", at) + 3 - at);  // the root's bind transform left out: 2 for 3 joints
+    HostedStage scene(usda::Stage::openFromString(text, "bad_skeleton.usda"));
+    scene.setToken("includedPurposes", "default,render,guide");
+    auto ids = scene.renderAov("primId", 1, 0.0);
+    ASSERT_EQ(ids.size(), size_t(kWidth) * kHeight);
+    EXPECT_TRUE(std::all_of(ids.begin(), ids.end(), [](float id) { return id < 0.0f; }));
+    ASSERT_EQ(scene.host->messages().size(), 1u);
+    const harness::HostMessage& message = scene.host->messages().front();
+    EXPECT_NE(message.text.find("/Rig/Skel: its Skeleton </Rig/Skel> has 2 bindTransforms for 3 joints; its bones are "
+                                "not drawn"),
+              std::string::npos)
+        << message.text;
+    EXPECT_EQ(message.where.file, "bad_skeleton.usda");
+    EXPECT_EQ(message.where.line, 16);  // the bindTransforms
+    EXPECT_TRUE(scene.errors.empty()) << scene.errors.front();
+}
+
 }  // namespace
 }  // namespace obscura::test
