@@ -140,9 +140,9 @@ void Composer::composeChildren(Stage& stage, Prim& parent, const IndexNode& pare
     std::vector<ChildName> children;
     for (const ChildName& child : authored)
         if (!relocated.movedAway.count(child.name)) children.push_back(child);
-    for (const auto& [name, where] : relocated.movedIn)
-        if (std::none_of(children.begin(), children.end(), [&](const ChildName& c) { return c.name == name; }))
-            children.push_back({name, where});
+    for (const auto& target : relocated.movedIn)
+        if (std::none_of(children.begin(), children.end(), [&](const ChildName& c) { return c.name == target.first; }))
+            children.push_back({target.first, target.second});
     for (const ChildName& child : children) {
         const std::string path = sdfpath::appendChild(parent.path, child.name);
         const IndexNode& index = indexer_.index(*rootStack_, path, child.where);
