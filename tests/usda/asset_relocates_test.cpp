@@ -130,5 +130,20 @@ TEST(AssetRelocates, ABadRelocateInsideAnAssetWarnsWhereItIsAuthored) {
     EXPECT_GT(warning.where.column, 0);
 }
 
+TEST(AssetRelocates, ARootPrimCannotBeATarget) {
+    // No arc can bring a root prim, so Pcp rejects relocating to or from one.
+    test::LayerFiles layers({{"rig.usda", kRig},
+                             {"char.usda", character("    relocates = {\n        <Rig/Arm>: </Arm>\n    }\n", false)},
+                             {"root.usda", kShot}});
+    auto stage = layers.open();
+    ASSERT_TRUE(stage);
+    EXPECT_EQ(numberOf(*stage, "/World/Hero/Rig/Arm", "x"), 1);
+    EXPECT_FALSE(stage->find("/Arm"));
+    ASSERT_EQ(stage->warnings().size(), 1u);
+    EXPECT_NE(stage->warnings().front().message.find("a root prim cannot be relocated"), std::string::npos)
+        << stage->warnings().front().message;
+    EXPECT_EQ(stage->warnings().front().where.line, 5);
+}
+
 }  // namespace
 }  // namespace obscura::usda
