@@ -1,7 +1,9 @@
 // Scene reading, measured (Google Benchmark): a stage of 10,000 mesh prims (each a quad under its
 // own translate, as USD text) composed, then opened and synced whole by the harness as `obscura
 // render` does (the delegate's sync CPU time, ObscuraRenderStats::syncMilliseconds, as a counter);
-// the Open Chess Set (crate geometry, MaterialX looks) composed; and UsdSkel's linear blend
+// the same for references to crate geometry (the Open Chess Set's pieces, written by OpenUSD)
+// under their own translates, with the peak resident memory; the Open Chess Set (crate geometry, MaterialX looks)
+// composed; and UsdSkel's linear blend
 // skinning of 100,000 points, 4 influences each among 64 joints, at one time (what the host does
 // for each skinned prim at each time the delegate samples).
 #include "harness/session.h"
@@ -9,9 +11,11 @@
 #include "harness/usda/stage.h"
 
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace obscura::bench {
@@ -46,10 +50,9 @@ void BM_ComposeTenThousandPrimsText(benchmark::State& state) {
 }
 BENCHMARK(BM_ComposeTenThousandPrimsText)->Unit(benchmark::kMillisecond);
 
-// Open (compose and populate) and the first render's sync, as `obscura render` starts.
-void BM_OpenAndSyncTenThousandPrims(benchmark::State& state) {
-    const auto file = std::filesystem::temp_directory_path() / "obscura_stage_benchmark.usda";
-    std::ofstream(file) << tenThousandPrims();
+// Open (compose and populate) and the first render's sync, as `obscura render` starts; the
+// delegate's sync time as the counter sync_ms.
+void openAndSync(benchmark::State& state, const std::filesystem::path& file) {
     double syncMs = 0;
     for (auto _ : state) {
         auto opened = harness::Session::open(file.string());
@@ -70,9 +73,83 @@ void BM_OpenAndSyncTenThousandPrims(benchmark::State& state) {
         syncMs = stats.syncMilliseconds;
     }
     state.counters["sync_ms"] = syncMs;
+}
+
+void BM_OpenAndSyncTenThousandPrims(benchmark::State& state) {
+    const auto file = std::filesystem::temp_directory_path() / "obscura_stage_benchmark.usda";
+    std::ofstream(file) << tenThousandPrims();
+    openAndSync(state, file);
     std::filesystem::remove(file);
 }
 BENCHMARK(BM_OpenAndSyncTenThousandPrims)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+const std::filesystem::path kChessAssets = std::filesystem::path(OBSCURA_CORPUS_DIR) / "full_assets/OpenChessSet/assets";
+const char* kChessPieces[] = {"Pawn", "Rook", "Knight", "Bishop", "Queen", "King"};
+
+// `count` references to the chess pieces' crate geometry (</Piece> of <Piece>_geom.usd, written by
+// OpenUSD), round robin, each under its own translate on a grid 100 wide: a text root layer over
+// crate content. Written to a temporary folder, as nothing here writes crate files.
+std::filesystem::path crateReferences(int count) {
+    const auto folder = std::filesystem::temp_directory_path() / "obscura_crate_references_benchmark";
+    std::filesystem::create_directories(folder);
+    std::ofstream text(folder / "root.usda");
+    text << "#usda 1.0\n(\n    metersPerUnit = 1\n    upAxis = \"Y\"\n)\n"
+         << "def Camera \"Camera\"\n{\n    double3 xformOp:translate = (5, 1, 15)\n"
+         << "    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}\n"
+         << "def DistantLight \"Sun\"\n{\n}\ndef Xform \"World\"\n{\n";
+    for (int i = 0; i < count; ++i) {
+        const char* piece = kChessPieces[size_t(i) % std::size(kChessPieces)];
+        text << "    def Xform \"P" << i << "\" (\n        references = @"
+             << (kChessAssets / piece / (std::string(piece) + "_geom.usd")).string() << "@</" << piece
+             << ">\n    )\n    {\n"
+             << "        double3 xformOp:translate = (" << 0.1 * (i % 100) << ", 0, " << 0.1 * (i / 100) << ")\n"
+             << "        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n    }\n";
+    }
+    text << "}\n";
+    return folder;
+}
+
+// The peak resident memory of the process so far, MiB.
+double peakResidentMiB() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_maxrss) / 1024.0;
+}
+
+void BM_ComposeCrateReferences(benchmark::State& state) {
+    if (!std::filesystem::exists(kChessAssets)) {
+        state.SkipWithError("no corpus");
+        return;
+    }
+    const auto folder = crateReferences(int(state.range(0)));
+    size_t prims = 0;
+    for (auto _ : state) {
+        auto stage = usda::Stage::open(folder / "root.usda");
+        if (auto* error = std::get_if<usda::Error>(&stage)) {
+            state.SkipWithError(error->str().c_str());
+            break;
+        }
+        prims = std::get<std::unique_ptr<usda::Stage>>(stage)->prims().size();
+    }
+    state.counters["prims"] = double(prims);
+    state.counters["peak_rss_mib"] = peakResidentMiB();
+    std::filesystem::remove_all(folder);
+}
+// XXX: 10,000 references stop at the composition memory limit: each composed prim holds its own
+// copy of the values its specs author (bench/RESULTS.md), and instanceable prims are not shared.
+BENCHMARK(BM_ComposeCrateReferences)->Arg(250)->Arg(500)->Arg(kPrims)->Unit(benchmark::kMillisecond);
+
+void BM_OpenAndSyncCrateReferences(benchmark::State& state) {
+    if (!std::filesystem::exists(kChessAssets)) {
+        state.SkipWithError("no corpus");
+        return;
+    }
+    const auto folder = crateReferences(int(state.range(0)));
+    openAndSync(state, folder / "root.usda");
+    state.counters["peak_rss_mib"] = peakResidentMiB();
+    std::filesystem::remove_all(folder);
+}
+BENCHMARK(BM_OpenAndSyncCrateReferences)->Arg(25)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 void BM_ComposeOpenChessSet(benchmark::State& state) {
     const std::filesystem::path chess =

@@ -71,7 +71,7 @@ int runBench(const BenchOptions& o) {
         std::fprintf(stderr, "obscura: --frames, --width and --height must be positive\n");
         return kExitUsage;
     }
-    auto opened = Session::open(o.scene, o.limits);
+    auto opened = Session::open(o.scene, o.stage);
     if (auto* error = std::get_if<SessionError>(&opened)) {
         std::fprintf(stderr, "obscura: %s\n", error->message.c_str());
         return error->exitCode;

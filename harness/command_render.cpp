@@ -223,7 +223,7 @@ int renderProduct(Session& session, const RenderOptions& o) {
 }  // namespace
 
 int runRender(const RenderOptions& options) {
-    auto opened = Session::open(options.scene, options.limits);
+    auto opened = Session::open(options.scene, options.stage);
     if (auto* error = std::get_if<SessionError>(&opened)) {
         std::fprintf(stderr, "obscura: %s\n", error->message.c_str());
         return error->exitCode;
@@ -240,7 +240,7 @@ int runRender(const RenderOptions& options) {
         // Each product starts from the delegate's defaults: the settings one product authors
         // (pixel aspect, purposes, motion blur) do not carry over to the next.
         if (i > 0) {
-            auto again = Session::open(options.scene, options.limits);
+            auto again = Session::open(options.scene, options.stage);
             if (auto* error = std::get_if<SessionError>(&again)) {
                 std::fprintf(stderr, "obscura: %s\n", error->message.c_str());
                 return error->exitCode;

@@ -25,7 +25,7 @@ struct RenderOptions {
     std::optional<int> msaa;  // --msaa N: the render setting msaa
     bool verbose = false;     // print the plugin's info messages
     bool skipExisting = false;  // frames whose output file exists are not rendered again (resumable ranges)
-    usda::CompositionLimits limits;  // --max-prims, --max-index-nodes, --max-stage-mib
+    usda::StageOptions stage;  // --max-prims, --max-index-nodes, --max-stage-mib, --variant-fallback
 };
 
 struct CompareOptions {
@@ -51,7 +51,7 @@ struct BenchOptions {
     // Also show each frame on a device of the harness's own, as the viewer does, and time it:
     // "readback" (map, copy to host memory) or "shared" (the exported memory, ABI 1.2); "" not.
     std::string display;
-    usda::CompositionLimits limits;
+    usda::StageOptions stage;
 };
 
 // obscura view SCENE: the interactive viewer (README "The viewer").
@@ -64,7 +64,7 @@ struct ViewOptions {
     std::string display = "auto";        // shared (exported memory), readback (mapped) or auto (shared where possible)
     std::vector<std::string> settings;
     bool validation = false;             // OBSCURA_VALIDATION: the viewer's Vulkan validated too
-    usda::CompositionLimits limits;
+    usda::StageOptions stage;
 };
 
 // obscura farm submit: a frame range as an array job of the scheduler (docs/FARM.md).

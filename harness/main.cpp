@@ -5,12 +5,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 
 namespace {
 
-// What composing the scene may build (usda::CompositionLimits); render and bench share them.
-void addCompositionLimits(CLI::App& command, obscura::usda::CompositionLimits& limits) {
+// How the scene is loaded (usda::StageOptions): what composing it may build, and variant
+// fallbacks. Render, bench and view share them.
+void addStageOptions(CLI::App& command, obscura::usda::StageOptions& options) {
+    obscura::usda::CompositionLimits& limits = options.limits;
     command.add_option("--max-prims", limits.maxPrims, "stop composing beyond this many prims")
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
@@ -22,6 +25,32 @@ void addCompositionLimits(CLI::App& command, obscura::usda::CompositionLimits& l
             "--max-stage-mib", [&limits](size_t mib) { limits.maxMemoryBytes = mib << 20; },
             "memory the composed stage may hold, MiB (default " + std::to_string(limits.maxMemoryBytes >> 20) + ")")
         ->check(CLI::Range(size_t(1), size_t(1) << 40));
+    command
+        .add_option_function<std::vector<std::string>>(
+            "--variant-fallback",
+            [&options](const std::vector<std::string>& entries) {
+                for (const std::string& entry : entries) {
+                    const size_t equals = entry.find('=');
+                    std::vector<std::string>& variants = options.variantFallbacks[entry.substr(0, equals)];
+                    variants.clear();  // given again: the later list replaces the earlier
+                    for (size_t start = equals + 1; start <= entry.size();) {
+                        const size_t comma = std::min(entry.find(',', start), entry.size());
+                        variants.push_back(entry.substr(start, comma - start));
+                        start = comma + 1;
+                    }
+                }
+            },
+            "SET=A[,B...]: a variant set without an authored selection takes the first of these variants it has "
+            "(repeatable)")
+        ->check(CLI::Validator(
+            [](const std::string& entry) -> std::string {
+                const size_t equals = entry.find('=');
+                if (equals == 0 || equals == std::string::npos || equals + 1 == entry.size() ||
+                    entry.find(",,") != std::string::npos || entry.back() == ',' || entry[equals + 1] == ',')
+                    return "'" + entry + "' is not SET=VARIANT[,VARIANT...]";
+                return {};
+            },
+            "SET=A[,B...]"));
 }
 
 }  // namespace
@@ -65,7 +94,7 @@ int main(int argc, char** argv) {
     r->add_flag("-v,--verbose", render.verbose, "print the plugin's info messages");
     r->add_flag("--skip-existing", render.skipExisting, "do not render frames whose output file exists (resume a range)");
     frameOpt->excludes(r->get_option("--frames"));
-    addCompositionLimits(*r, render.limits);
+    addStageOptions(*r, render.stage);
 
     CompareOptions compare;
     auto* c = app.add_subcommand("compare", "compare two images; exit 1 below a threshold");
@@ -91,7 +120,7 @@ int main(int argc, char** argv) {
                   "also show each frame on a Vulkan device of the harness and time it: readback (through host memory) "
                   "or shared (exported device memory, ABI 1.2)")
         ->check(CLI::IsMember({"readback", "shared"}));
-    addCompositionLimits(*b, bench.limits);
+    addStageOptions(*b, bench.stage);
 
     ViewOptions viewOptions;
     auto* v = app.add_subcommand("view", "an interactive window: orbit, pick, HUD, progressive refinement");
@@ -106,7 +135,7 @@ int main(int argc, char** argv) {
                   "auto (shared where the devices can)")
         ->check(CLI::IsMember({"auto", "shared", "readback"}));
     v->add_option("--set", viewOptions.settings, "render setting key=value (repeatable)");
-    addCompositionLimits(*v, viewOptions.limits);
+    addStageOptions(*v, viewOptions.stage);
 
     FarmSubmitOptions farmSubmit;
     FarmJobOptions farmJob;

@@ -96,7 +96,7 @@ std::vector<std::string> withMsaaSetting(std::vector<std::string> settings, cons
 }
 
 std::variant<std::unique_ptr<usda::Stage>, SessionError> Session::openStage(const std::string& scenePath,
-                                                                            const usda::CompositionLimits& limits) {
+                                                                            const usda::StageOptions& options) {
     // glTF, FBX and OBJ arrive through Assimp as a USD layer: one scene model for every format.
     std::variant<std::unique_ptr<usda::Stage>, usda::Error> opened = usda::Error{};
     if (isAssimpFormat(scenePath)) {
@@ -104,9 +104,9 @@ std::variant<std::unique_ptr<usda::Stage>, SessionError> Session::openStage(cons
         if (auto* error = std::get_if<ImportError>(&imported)) return SessionError{kExitBadInput, error->message};
         for (const auto& w : std::get<ImportResult>(imported).warnings)
             std::fprintf(stderr, "obscura: warning: %s: %s\n", scenePath.c_str(), w.c_str());
-        opened = usda::Stage::openFromString(std::get<ImportResult>(imported).usda, scenePath, limits);
+        opened = usda::Stage::openFromString(std::get<ImportResult>(imported).usda, scenePath, options);
     } else {
-        opened = usda::Stage::open(scenePath, limits);
+        opened = usda::Stage::open(scenePath, options);
     }
     if (auto* error = std::get_if<usda::Error>(&opened)) return SessionError{kExitBadInput, error->str()};
     auto stage = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));
@@ -122,9 +122,9 @@ void Session::replaceScene(std::unique_ptr<usda::Stage> stage, std::unique_ptr<U
 }
 
 std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::string& scenePath,
-                                                                  const usda::CompositionLimits& limits) {
+                                                                  const usda::StageOptions& options) {
     std::unique_ptr<Session> s(new Session());
-    auto opened = openStage(scenePath, limits);
+    auto opened = openStage(scenePath, options);
     if (auto* error = std::get_if<SessionError>(&opened)) return *error;
     s->stage_ = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));
     s->phases_.lap("stage");

@@ -39,7 +39,7 @@ class Session {
 public:
     // Loads the highest-priority plugin found (OBSCURA_PLUGINPATH, then beside the harness).
     static std::variant<std::unique_ptr<Session>, SessionError> open(const std::string& scenePath,
-                                                                     const usda::CompositionLimits& limits = {});
+                                                                     const usda::StageOptions& options = {});
     ~Session();
 
     const ObscuraApiV1& api() const { return plugin_->api(); }
@@ -64,7 +64,7 @@ public:
 
     // Reads a scene file as `open` does (USD layers, or glTF/FBX/OBJ through Assimp).
     static std::variant<std::unique_ptr<usda::Stage>, SessionError> openStage(const std::string& scenePath,
-                                                                              const usda::CompositionLimits& limits);
+                                                                              const usda::StageOptions& options);
     // The scene read again (the viewer's reload): the delegate pulls from `host` from now on; the
     // previous stage and host are destroyed.
     void replaceScene(std::unique_ptr<usda::Stage> stage, std::unique_ptr<UsdSceneHost> host);

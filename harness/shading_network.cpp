@@ -4,8 +4,10 @@
 
 #include <array>
 #include <filesystem>
+#include <set>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 namespace obscura::harness {
 namespace {
@@ -94,6 +96,29 @@ const usda::Attribute* valueProducingAttribute(const usda::Stage& stage, const u
     auto source = connectionSource(stage, input);
     auto* found = std::get_if<ConnectionSource>(&source);
     return found ? found->attribute : nullptr;
+}
+
+bool isNetworkAnimated(const usda::Stage& stage, const usda::Prim& shader) {
+    std::set<const usda::Prim*> seen;
+    std::vector<const usda::Prim*> pending = {&shader};
+    while (!pending.empty()) {
+        const usda::Prim* prim = pending.back();
+        pending.pop_back();
+        if (!seen.insert(prim).second) continue;
+        for (const auto& [name, attribute] : prim->attributes) {
+            if (name.rfind("inputs:", 0) != 0) continue;
+            if (!attribute.connection) {
+                if (attribute.isAnimated()) return true;
+                continue;
+            }
+            const auto source = connectionSource(stage, attribute);
+            const ConnectionSource* found = std::get_if<ConnectionSource>(&source);
+            if (!found) continue;  // a broken connection reads no value; it is reported where it is mapped
+            if (!found->attribute) pending.push_back(found->prim);  // a shader's output: its own inputs
+            else if (found->attribute->isAnimated()) return true;
+        }
+    }
+    return false;
 }
 
 std::string shaderId(const usda::Prim& prim) {

@@ -31,6 +31,10 @@ const usda::Prim* connectedShader(const usda::Stage& stage, const usda::Attribut
 // connection leads to; null when it leads to a shader's output or nowhere.
 const usda::Attribute* valueProducingAttribute(const usda::Stage& stage, const usda::Attribute& input);
 
+// Whether a value the shader reads can change over time: one of its inputs, an input of a shader
+// upstream of it, or an interface input they connect to is time-sampled.
+bool isNetworkAnimated(const usda::Stage& stage, const usda::Prim& shader);
+
 // A shader's info:id ("UsdPreviewSurface"), or "".
 std::string shaderId(const usda::Prim& shader);
 

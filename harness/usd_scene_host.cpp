@@ -3,6 +3,7 @@
 #include "harness/materialx_surface.h"
 #include "harness/shading_network.h"
 #include "harness/usda/matrix4.h"
+#include "harness/usda/skeleton_bones.h"
 #include "harness/usda/skinning.h"
 #include "schemas/schema.h"
 
@@ -40,11 +41,10 @@ const std::map<std::string, std::string> kPrimTypes = {
 
 // Types that organise a scene and are not drawn themselves.
 // UsdSkel's prims pose the prims they skin (usda/skinning.h).
-// XXX: Storm draws a Skeleton's bones as a guide mesh; they are not drawn here.
-const std::set<std::string> kStructuralTypes = {"",           "Xform",         "Scope",        "Shader",
-                                                "NodeGraph",  "GeomSubset",    "RenderSettings", "RenderProduct",
-                                                "RenderVar",  "SkelRoot",      "Skeleton",     "SkelAnimation",
-                                                "BlendShape"};
+// A Skeleton is served as its bones' guide mesh (addSkeletonGuide).
+const std::set<std::string> kStructuralTypes = {"",          "Xform",         "Scope",          "Shader",
+                                                "NodeGraph", "GeomSubset",    "RenderSettings", "RenderProduct",
+                                                "RenderVar", "SkelRoot",      "SkelAnimation",  "BlendShape"};
 
 bool isPointBased(const std::string& type) { return type == "Mesh" || type == "BasisCurves" || type == "Points"; }
 
@@ -185,6 +185,10 @@ std::map<std::string, std::string> UsdSceneHost::scan() {
     std::map<std::string, std::string> found;
     std::map<std::string, int> unsupported;
     for (const usda::Prim* prim : stage_.prims()) {
+        if (prim->typeName == "Skeleton") {
+            addSkeletonGuide(*prim, found);
+            continue;
+        }
         auto it = kPrimTypes.find(prim->typeName);
         if (it == kPrimTypes.end()) {
             if (!kStructuralTypes.count(prim->typeName)) ++unsupported[prim->typeName];
@@ -206,7 +210,7 @@ std::map<std::string, std::string> UsdSceneHost::scan() {
             if (shaderId(*shader) == "UsdPreviewSurface") {
                 surfaces_[prim->path] = shader;
             } else {
-                mappedSurfaces_[prim->path] = MappedSurface{shader, std::nullopt, {}};
+                mappedSurfaces_[prim->path] = MappedSurface{shader, isNetworkAnimated(stage_, *shader), std::nullopt, {}};
                 mappedSurface(prim->path, stage_.metadata().startTimeCode.value_or(0.0));  // reports its problems
             }
         }
@@ -337,6 +341,30 @@ ObscuraStatus UsdSceneHost::adoptChanges(const UsdSceneHost& previous, const Obs
     return OBSCURA_OK;
 }
 
+ObscuraDirtyBits UsdSceneHost::animatedValueBits(const std::string& path, const std::string& type,
+                                                 const usda::Prim& prim) const {
+    ObscuraDirtyBits bits = 0;
+    // A mapped (MaterialX) surface is mapped again at each frame's time; what it serves changes
+    // when its network is animated, under the schema's bits of the values it maps to.
+    if (const auto mapped = mappedSurfaces_.find(path); mapped != mappedSurfaces_.end()) {
+        if (mapped->second.animated)
+            for (const auto& [name, value] : mapped->second.mapping.values) bits |= dirtyBitFor(type, name);
+        return bits;
+    }
+    const usda::Prim* valuesFrom = type == "material" ? surfaces_.at(path) : &prim;
+    for (const auto& [name, attr] : valuesFrom->attributes) {
+        // A surface input takes its value from the interface input it connects to.
+        const usda::Attribute* source = type == "material" && attr.connection ? valueProducingAttribute(stage_, attr) : &attr;
+        if (source && source->isAnimated()) bits |= dirtyBitFor(type, name);
+        // A texture's inputs are served as the material's obscura:<input>:<field>.
+        if (auto texture = type == "material" ? textureConnection(stage_, attr) : std::nullopt)
+            for (const auto& [textureInput, textureAttr] : texture->texture->attributes)
+                if (textureAttr.isAnimated() && startsWith(name, "inputs:") && startsWith(textureInput, "inputs:"))
+                    bits |= dirtyBitFor(type, "obscura:" + name.substr(7) + ":" + textureInput.substr(7));
+    }
+    return bits;
+}
+
 ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDelegate delegate) {
     for (const auto& [path, type] : primTypes_) {
         const usda::Prim* prim = stage_.find(path);
@@ -346,20 +374,10 @@ ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDele
         if (stage_.hasAnimatedVisibility(*prim)) bits |= dirtyBitFor(type, "visibility");
         if (auto skin = skinnings_.find(path); skin != skinnings_.end() && usda::isSkinningAnimated(stage_, skin->second))
             bits |= dirtyBitFor(type, "points") | dirtyBitFor(type, "normals");
-        // XXX: a mapped (MaterialX) surface is read at each frame's time but not marked dirty when its
-        // network is animated.
-        if (mappedSurfaces_.count(path)) continue;
-        const usda::Prim* valuesFrom = type == "material" ? surfaces_.at(path) : prim;
-        for (const auto& [name, attr] : valuesFrom->attributes) {
-            // A surface input takes its value from the interface input it connects to.
-            const usda::Attribute* source = type == "material" && attr.connection ? valueProducingAttribute(stage_, attr) : &attr;
-            if (source && source->isAnimated()) bits |= dirtyBitFor(type, name);
-            // A texture's inputs are served as the material's obscura:<input>:<field>.
-            if (auto texture = type == "material" ? textureConnection(stage_, attr) : std::nullopt)
-                for (const auto& [textureInput, textureAttr] : texture->texture->attributes)
-                    if (textureAttr.isAnimated() && startsWith(name, "inputs:") && startsWith(textureInput, "inputs:"))
-                        bits |= dirtyBitFor(type, "obscura:" + name.substr(7) + ":" + textureInput.substr(7));
-        }
+        if (auto guide = skeletonGuides_.find(path); guide != skeletonGuides_.end() && guide->second.animation &&
+                                                     usda::isSkinningAnimated(stage_, guide->second))
+            bits |= dirtyBitFor(type, "points");
+        bits |= animatedValueBits(path, type, *prim);
         if (bits) {
             ObscuraStatus s = api.markDirty(delegate, path.c_str(), bits);
             if (s != OBSCURA_OK) return s;
@@ -550,6 +568,8 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     }
     const usda::Prim* prim = stage_.find(path);
     if (!prim) return OBSCURA_ERROR_NOT_FOUND;
+    if (auto guide = skeletonGuides_.find(path); guide != skeletonGuides_.end())
+        if (auto served = skeletonGuideValue(guide->second, attribute, time, out)) return *served;
     if (attribute == "purpose") return computedPurpose(*prim, out);
     if (attribute == "visibility") {
         strings_ = {stage_.isVisible(*prim, time) ? "inherited" : "invisible"};
@@ -655,6 +675,40 @@ const MaterialXMapping* UsdSceneHost::mappedSurface(const std::string& material,
                      material + ": " + problem.message, problem.where);
     }
     return &mapped.mapping;
+}
+
+void UsdSceneHost::addSkeletonGuide(const usda::Prim& skeleton, std::map<std::string, std::string>& found) {
+    auto resolved = usda::resolveSkeleton(stage_, skeleton);
+    if (auto* problem = std::get_if<usda::SkinningProblem>(&resolved)) {
+        warnOnce("skeleton:" + skeleton.path, skeleton.path + ": " + problem->message + "; its bones are not drawn",
+                 problem->where);
+        return;
+    }
+    usda::Skinning& bones = std::get<usda::Skinning>(resolved);
+    if (usda::boneCount(bones) == 0) return;  // a lone joint has nothing to join
+    skeletonGuides_.emplace(skeleton.path, std::move(bones));
+    found[skeleton.path] = "mesh";
+}
+
+std::optional<ObscuraStatus> UsdSceneHost::skeletonGuideValue(const usda::Skinning& skeleton, const std::string& attribute,
+                                                              double time, ObscuraValue* out) {
+    auto token = [&](const char* text) {
+        usda::Value value;
+        value.typeName = "token";
+        value.strings = {text};
+        return fill(value, out);
+    };
+    if (attribute == "purpose") return token("guide");
+    if (attribute == "subdivisionScheme") return token("none");  // bones are flat-faced
+    if (attribute != "points" && attribute != "faceVertexCounts" && attribute != "faceVertexIndices") return std::nullopt;
+    std::string problem;
+    const usda::BoneMesh bones = usda::boneMesh(skeleton, time, &problem);
+    if (!problem.empty())
+        warnOnce("pose:" + skeleton.animation->path, skeleton.skeleton->path + ": " + problem, skeleton.animation->where);
+    return fill(attribute == "points"             ? bones.points
+                : attribute == "faceVertexCounts" ? bones.faceVertexCounts
+                                                  : bones.faceVertexIndices,
+                out);
 }
 
 void UsdSceneHost::bindSkeleton(const usda::Prim& prim) {

@@ -116,14 +116,26 @@ private:
     std::map<std::string, std::string> primTypes_;        // delegate path -> delegate type
     std::map<std::string, const usda::Prim*> surfaces_;   // material path -> UsdPreviewSurface shader
     std::map<std::string, usda::Skinning> skinnings_;     // skinned prim path -> its binding
+    // Skeletons drawn as guides, as Storm draws them (usda/skeleton_bones.h): each is served as a
+    // mesh of purpose guide, which the plugin draws only where includedPurposes names guide.
+    std::map<std::string, usda::Skinning> skeletonGuides_;
+    void addSkeletonGuide(const usda::Prim& skeleton, std::map<std::string, std::string>& found);
+    // The guide mesh's own attributes at `time`; nullopt for what the Skeleton prim answers itself
+    // (transform, visibility, displayColor).
+    std::optional<ObscuraStatus> skeletonGuideValue(const usda::Skinning& skeleton, const std::string& attribute,
+                                                    double time, ObscuraValue* out);
     // Materials whose surface is not UsdPreviewSurface (MaterialX node definitions, or surfaces
     // drawn with their base colour): their mapping onto UsdPreviewSurface's inputs at one time.
     struct MappedSurface {
         const usda::Prim* shader;
+        bool animated;  // its network reads a time-sampled value (isNetworkAnimated)
         std::optional<double> time;
         MaterialXMapping mapping;
     };
     std::map<std::string, MappedSurface> mappedSurfaces_;
+    // The dirty bits of the values the prim at `path` serves that are time-sampled (a material's:
+    // its surface network's).
+    ObscuraDirtyBits animatedValueBits(const std::string& path, const std::string& type, const usda::Prim& prim) const;
     // The mapping of a material's surface at `time` (its problems reported once), or null when the
     // material is not mapped.
     const MaterialXMapping* mappedSurface(const std::string& material, double time);

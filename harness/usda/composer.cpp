@@ -107,9 +107,9 @@ std::vector<Composer::ChildName> childNames(const Range& strongestFirstSpecs) {
 }  // namespace
 
 std::variant<std::unique_ptr<Stage>, Error> Composer::compose(std::string_view rootText, const std::string& identifier,
-                                                              const CompositionLimits& limits) {
+                                                              const StageOptions& options) {
     try {
-        Composer composer(limits);
+        Composer composer(options);
         return composer.composeStage(composer.layers_.addRoot(rootText, identifier));
     } catch (CompositionFailure& failure) {
         return std::move(failure.error);
@@ -124,65 +124,36 @@ std::unique_ptr<Stage> Composer::composeStage(const Layer& rootLayer) {
     stage->root_->path = std::string(1, '/');
     stage->primsByPath_["/"] = stage->root_.get();
     std::vector<const PrimSpec*> roots;
-    for (const Layer* layer : rootStack_->layers) {
-        roots.push_back(&layer->pseudoRoot);
-        collectRelocates(layer->metadata, SourceLocation{layer->identifier, 0, 0});
-        collectRelocates(layer->pseudoRoot);
-    }
-    indexer_.setRelocations(*rootStack_, sourcesByTarget_);
-    composeChildren(*stage, *stage->root_, childNames(roots));
+    for (const Layer* layer : rootStack_->layers) roots.push_back(&layer->pseudoRoot);
+    IndexNode pseudoRoot;
+    pseudoRoot.stack = rootStack_;
+    pseudoRoot.site = std::string(1, '/');
+    composeChildren(*stage, *stage->root_, pseudoRoot, childNames(roots));
     stage->warnings_ = diagnostics_.take();
     return stage;
 }
 
-// Relocates (the layer's, or a prim's, then anchored to it by the parser): stronger layers first,
-// so the first opinion on a target wins. A source or target nested in the other would repeat
-// namespace; it is reported and left out.
-void Composer::collectRelocates(const std::map<std::string, Value>& metadata, const SourceLocation& where) {
-    const auto pairs = metadata.find("relocates");
-    if (pairs == metadata.end()) return;
-    for (size_t i = 0; i + 1 < pairs->second.strings.size(); i += 2) {
-        const std::string& source = pairs->second.strings[i];
-        const std::string& target = pairs->second.strings[i + 1];
-        if (sdfpath::hasPrefix(source, target) || sdfpath::hasPrefix(target, source)) {
-            diagnostics_.warn("relocates", where, "relocates <" + source + "> to <" + target +
-                                                      ">, inside itself; ignored");
-            continue;
-        }
-        if (sourcesByTarget_.emplace(target, source).second) relocatedAt_.emplace(target, where);
-    }
-}
-
-void Composer::collectRelocates(const PrimSpec& spec) {
-    collectRelocates(spec.metadata, spec.where);
-    for (const auto& child : spec.children) collectRelocates(*child);
-}
-
-void Composer::composeChildren(Stage& stage, Prim& parent, const std::vector<ChildName>& authored) {
+void Composer::composeChildren(Stage& stage, Prim& parent, const IndexNode& parentIndex,
+                               const std::vector<ChildName>& authored) {
     // A relocated prim leaves its source's place for its target's.
+    const RelocatedChildren relocated = indexer_.relocatedChildren(parentIndex);
     std::vector<ChildName> children;
-    for (const ChildName& child : authored) {
-        const std::string path = sdfpath::appendChild(parent.path, child.name);
-        const bool movedAway = std::any_of(sourcesByTarget_.begin(), sourcesByTarget_.end(),
-                                           [&](const auto& relocation) { return relocation.second == path; });
-        if (!movedAway) children.push_back(child);
-    }
-    for (const auto& [target, source] : sourcesByTarget_) {
-        if (sdfpath::parentOf(target) != parent.path) continue;
-        const std::string name = sdfpath::nameOf(target);
-        if (std::none_of(children.begin(), children.end(), [&](const ChildName& c) { return c.name == name; }))
-            children.push_back({name, relocatedAt_.at(target)});
-    }
+    for (const ChildName& child : authored)
+        if (!relocated.movedAway.count(child.name)) children.push_back(child);
+    for (const auto& target : relocated.movedIn)
+        if (std::none_of(children.begin(), children.end(), [&](const ChildName& c) { return c.name == target.first; }))
+            children.push_back({target.first, target.second});
     for (const ChildName& child : children) {
         const std::string path = sdfpath::appendChild(parent.path, child.name);
-        const std::vector<Opinion> opinions = opinionsOf(indexer_.index(*rootStack_, path, child.where));
+        const IndexNode& index = indexer_.index(*rootStack_, path, child.where);
+        const std::vector<Opinion> opinions = opinionsOf(index);
         if (opinions.empty()) continue;
         budget_.addPrim(path, child.where);
         std::unique_ptr<Prim> prim = composePrim(path, opinions, parent);
         budget_.hold(heldBytes(*prim), child.where);
         std::vector<const PrimSpec*> specs;
         for (const Opinion& opinion : opinions) specs.push_back(opinion.spec);
-        composeChildren(stage, *prim, childNames(specs));
+        composeChildren(stage, *prim, index, childNames(specs));
         stage.primsByPath_[path] = prim.get();
         parent.children.push_back(std::move(prim));
     }

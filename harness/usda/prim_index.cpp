@@ -30,28 +30,6 @@ bool subtreeHasSpec(const IndexNode& node) {
     return std::any_of(node.children.begin(), node.children.end(), subtreeHasSpec);
 }
 
-// The node's subtree as seen from child `name`: every site extended by the name. Nodes with
-// no spec there and nothing beneath are dropped (the root is always kept).
-std::optional<IndexNode> mirror(const IndexNode& node, const std::string& name, bool keepEmpty) {
-    IndexNode out;
-    out.stack = node.stack;
-    out.site = sdfpath::appendChild(node.site, name);
-    out.toRoot = node.toRoot;
-    out.arc = node.arc;
-    out.arcDepth = node.arcDepth;
-    out.variantSet = node.variantSet;
-    out.variant = node.variant;
-    for (const IndexNode& child : node.children)
-        if (auto mirrored = mirror(child, name, false)) out.children.push_back(std::move(*mirrored));
-    if (!keepEmpty && out.children.empty() && !hasSpec(out)) return std::nullopt;
-    return out;
-}
-
-void appendRelocation(IndexNode& node, const PathMapping& relocation) {
-    node.toRoot.push_back(relocation);
-    for (IndexNode& child : node.children) appendRelocation(child, relocation);
-}
-
 void appendMappings(IndexNode& node, const PathMapping& arcMapping, const std::vector<PathMapping>& outer) {
     node.toRoot.push_back(arcMapping);
     node.toRoot.insert(node.toRoot.end(), outer.begin(), outer.end());
@@ -131,19 +109,6 @@ const IndexNode& PrimIndexer::index(const LayerStack& stack, const std::string& 
     std::vector<const IndexNode*> chain;
     expandArcs(root, chain);
     selectVariants(root);
-    const auto relocated = sourcesByTarget_.find(primPath);
-    if (&stack == relocationStack_ && relocated != sourcesByTarget_.end()) {
-        // The source's own opinions in this stack are not moved (Pcp ignores opinions authored at a
-        // relocation source); what its arcs bring is, mapped from the source's path to the target's.
-        const IndexNode& source = index(stack, relocated->second, requestedAt);
-        for (const IndexNode& arc : source.children) {
-            budget_.addIndexNodes(nodeCount(arc), requestedAt);
-            IndexNode moved = arc;
-            appendRelocation(moved, PathMapping{relocated->second, primPath});
-            root.children.push_back(std::move(moved));
-        }
-        sortChildren(root);
-    }
     addImpliedClassArcs(root);
     moveSpecializesLast(root);
     budget_.endIndex();
@@ -159,6 +124,7 @@ void PrimIndexer::expandArcs(IndexNode& node, std::vector<const IndexNode*>& cha
     const size_t carried = node.children.size();
     for (size_t i = 0; i < carried; ++i) expandArcs(node.children[i], chain);
 
+    addRelocatedArcs(node);
     for (const Arc& arc : arcsAuthoredAt(node)) {
         checkCycle(arc, chain);
         const IndexNode& target = index(*arc.stack, arc.path, arc.where);
@@ -171,6 +137,59 @@ void PrimIndexer::expandArcs(IndexNode& node, std::vector<const IndexNode*>& cha
     }
     sortChildren(node);
     chain.pop_back();
+}
+
+std::optional<IndexNode> PrimIndexer::mirror(const IndexNode& node, const std::string& name, bool keepEmpty) {
+    IndexNode out;
+    out.stack = node.stack;
+    out.site = sdfpath::appendChild(node.site, name);
+    out.toRoot = node.toRoot;
+    out.arc = node.arc;
+    out.arcDepth = node.arcDepth;
+    out.variantSet = node.variantSet;
+    out.variant = node.variant;
+    for (const IndexNode& child : node.children)
+        if (auto mirrored = mirror(child, name, false)) out.children.push_back(std::move(*mirrored));
+    if (!keepEmpty && out.children.empty() && !hasSpec(out) && !relocationsOf(*out.stack).count(out.site))
+        return std::nullopt;
+    return out;
+}
+
+const Relocations& PrimIndexer::relocationsOf(const LayerStack& stack) {
+    const auto it = relocations_.find(&stack);
+    if (it != relocations_.end()) return it->second;
+    return relocations_.emplace(&stack, collectRelocates(stack, diagnostics_)).first->second;
+}
+
+void PrimIndexer::addRelocatedArcs(IndexNode& node) {
+    const Relocations& relocations = relocationsOf(*node.stack);
+    const auto relocation = relocations.find(node.site);
+    if (relocation == relocations.end()) return;
+    const std::string& source = relocation->second.source;
+    const IndexNode& moved = index(*node.stack, source, relocation->second.where);
+    budget_.addIndexNodes(nodeCount(moved) - 1, relocation->second.where);
+    // The source's arcs map into the stack's namespace at the source; the relocation takes them
+    // to the target, and the node's own mappings on to the indexed prim.
+    for (const IndexNode& arc : moved.children) {
+        IndexNode copy = arc;
+        appendMappings(copy, PathMapping{source, node.site}, node.toRoot);
+        budget_.hold(heldBytes(copy), relocation->second.where);
+        node.children.push_back(std::move(copy));
+    }
+}
+
+RelocatedChildren PrimIndexer::relocatedChildren(const IndexNode& root) {
+    RelocatedChildren out;
+    auto visit = [&](auto&& self, const IndexNode& node) -> void {
+        for (const auto& [target, relocation] : relocationsOf(*node.stack)) {
+            if (sdfpath::parentOf(relocation.source) == node.site)
+                out.movedAway.insert(sdfpath::nameOf(relocation.source));
+            if (sdfpath::parentOf(target) == node.site) out.movedIn.emplace(sdfpath::nameOf(target), relocation.where);
+        }
+        for (const IndexNode& child : node.children) self(self, child);
+    };
+    visit(visit, root);
+    return out;
 }
 
 void PrimIndexer::graft(IndexNode& node, const IndexNode& target, const Arc& arc) {
@@ -349,17 +368,26 @@ bool PrimIndexer::selectOneVariant(const IndexNode& root, IndexNode& node, std::
 
         IndexNode variant;
         variant.stack = node.stack;
-        variant.site = prefix + selection + "}";
         variant.toRoot = node.toRoot;
         variant.arc = ArcType::Variant;
         variant.arcDepth = sdfpath::depthOf(sdfpath::stripVariants(node.site));
         variant.variantSet = set;
-        variant.variant = selection;
-        const bool found = !selection.empty() && hasSpec(variant);
-        if (selection.empty()) {
+        auto choose = [&](const std::string& name) {
+            variant.site = prefix + name + "}";
+            variant.variant = name;
+            return !name.empty() && hasSpec(variant);
+        };
+        bool found = choose(selection);
+        // Without an authored selection, the first fallback the set has (Pcp's variant fallbacks).
+        const auto fallbacks = variantFallbacks_.find(set);
+        if (selection.empty() && fallbacks != variantFallbacks_.end())
+            found = std::any_of(fallbacks->second.begin(), fallbacks->second.end(), choose);
+        if (existing != node.children.end() && existing->variant == variant.variant && found) continue;
+        if (selection.empty() && !found) {
+            const std::string lacking = fallbacks == variantFallbacks_.end() ? "" : " and none of its fallbacks";
             diagnostics_.warn("noVariantSelection", where,
                               "variantSet \"" + set + "\" of <" + sdfpath::stripVariants(node.site) +
-                                  "> has no selection; its variants are ignored");
+                                  "> has no selection" + lacking + "; its variants are ignored");
         } else if (!found) {
             diagnostics_.warn("missingVariant", where,
                               "variant \"" + selection + "\" not found in variantSet \"" + set + "\" of <" +

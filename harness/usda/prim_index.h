@@ -18,6 +18,8 @@
 #include "harness/usda/composition_budget.h"
 #include "harness/usda/diagnostics.h"
 #include "harness/usda/layer_registry.h"
+#include "harness/usda/layer_stack_relocates.h"
+#include "harness/usda/stage.h"
 
 namespace obscura::usda {
 
@@ -50,19 +52,25 @@ std::vector<Opinion> opinionsOf(const IndexNode& root);
 // A path authored in the node's layer stack, in the namespace of the prim the index is for.
 std::string mapToRoot(const IndexNode& node, const std::string& path);
 
+// Children of a prim that relocates in its index's layer stacks move away (sources) and in
+// (targets, with where the relocate is authored). Names only: a node's site and the prim's path
+// differ by a prefix, so a child keeps its name through the mapping.
+struct RelocatedChildren {
+    std::set<std::string> movedAway;
+    std::map<std::string, SourceLocation> movedIn;
+};
+
 class PrimIndexer {
 public:
-    PrimIndexer(LayerRegistry& layers, DiagnosticSink& diagnostics, CompositionBudget& budget)
-        : layers_(layers), diagnostics_(diagnostics), budget_(budget) {}
+    PrimIndexer(LayerRegistry& layers, DiagnosticSink& diagnostics, CompositionBudget& budget,
+                const VariantFallbacks& variantFallbacks)
+        : layers_(layers), diagnostics_(diagnostics), budget_(budget), variantFallbacks_(variantFallbacks) {}
 
     // The index of `primPath` in `stack` (memoized); `requestedAt` is blamed for cycles.
     const IndexNode& index(const LayerStack& stack, const std::string& primPath, const SourceLocation& requestedAt);
-    // Relocates of `stack` (the stage's root layer stack), target path -> source path: a target's
-    // index holds what its source's arcs bring, mapped to the target (Pcp's relocation arcs).
-    void setRelocations(const LayerStack& stack, std::map<std::string, std::string> sourcesByTarget) {
-        relocationStack_ = &stack;
-        sourcesByTarget_ = std::move(sourcesByTarget);
-    }
+    // What relocates do to the children of the prim whose index is `root` (for the pseudo-root: a
+    // node of the root layer stack at "/").
+    RelocatedChildren relocatedChildren(const IndexNode& root);
 
 private:
     struct Arc {
@@ -73,6 +81,14 @@ private:
     };
     using Key = std::pair<const LayerStack*, std::string>;
 
+    const Relocations& relocationsOf(const LayerStack& stack);
+    // The node's subtree as seen from child `name`: every site extended by the name. Nodes with
+    // no spec there and nothing beneath are dropped (the root is always kept), unless a relocate
+    // of their stack moves a prim to the site.
+    std::optional<IndexNode> mirror(const IndexNode& node, const std::string& name, bool keepEmpty);
+    // A relocation target's node gets what the source's arcs bring, mapped to the target (Pcp's
+    // relocation arcs); the source's own opinions in the stack are not moved, as Pcp ignores them.
+    void addRelocatedArcs(IndexNode& node);
     std::vector<Arc> arcsAuthoredAt(const IndexNode& node);
     std::string defaultPrimOf(const Layer& layer, const SourceLocation& at);
     void expandArcs(IndexNode& node, std::vector<const IndexNode*>& chain);
@@ -87,9 +103,9 @@ private:
     LayerRegistry& layers_;
     DiagnosticSink& diagnostics_;
     CompositionBudget& budget_;
+    const VariantFallbacks& variantFallbacks_;
     std::map<Key, IndexNode> memo_;
-    const LayerStack* relocationStack_ = nullptr;
-    std::map<std::string, std::string> sourcesByTarget_;
+    std::map<const LayerStack*, Relocations> relocations_;
     std::set<Key> inProgress_;
 };
 

@@ -205,28 +205,9 @@ std::vector<double> shaped(const Skinning& skinning, std::vector<double> points,
 
 }  // namespace
 
-std::optional<std::variant<Skinning, SkinningProblem>> resolveSkinning(const Stage& stage, const Prim& prim) {
-    const Relationship* binding = inheritedRelationship(prim, "skel:skeleton");
-    const Attribute* indices = prim.attribute("primvars:skel:jointIndices");
-    const Attribute* weights = prim.attribute("primvars:skel:jointWeights");
-    const bool shapes = prim.attribute("skel:blendShapes") != nullptr;
-    if (!binding || (!indices && !weights && !shapes)) return std::nullopt;
-    if (!indices != !weights)
-        return SkinningProblem{std::string("has primvars:skel:") + (indices ? "jointIndices without jointWeights"
-                                                                            : "jointWeights without jointIndices"),
-                               (indices ? indices : weights)->where};
-    // Skinning applies beneath a SkelRoot only (UsdSkelRoot).
-    const Prim* root = &prim;
-    while (root && root->typeName != "SkelRoot") root = root->parent;
-    if (!root) return SkinningProblem{"is bound to a Skeleton but is not beneath a SkelRoot", binding->where};
-
+std::variant<Skinning, SkinningProblem> resolveSkeleton(const Stage& stage, const Prim& skeleton) {
     Skinning out;
-    out.prim = &prim;
-    out.skeleton = stage.find(binding->targets.front());
-    if (!out.skeleton || out.skeleton->typeName != "Skeleton")
-        return SkinningProblem{"skel:skeleton targets <" + binding->targets.front() + ">, which is no Skeleton",
-                               binding->where};
-    const Prim& skeleton = *out.skeleton;
+    out.skeleton = &skeleton;
     auto joints = valueAt(skeleton, "joints", 0.0);
     if (!joints || joints->strings.empty())
         return SkinningProblem{"its Skeleton <" + skeleton.path + "> has no joints", skeleton.where};
@@ -275,6 +256,34 @@ std::optional<std::variant<Skinning, SkinningProblem>> resolveSkinning(const Sta
             if (const auto it = jointIndex.find(animated->strings[a]); it != jointIndex.end())
                 out.animatedJoint[size_t(it->second)] = int(a);
     }
+    return out;
+}
+
+std::optional<std::variant<Skinning, SkinningProblem>> resolveSkinning(const Stage& stage, const Prim& prim) {
+    const Relationship* binding = inheritedRelationship(prim, "skel:skeleton");
+    const Attribute* indices = prim.attribute("primvars:skel:jointIndices");
+    const Attribute* weights = prim.attribute("primvars:skel:jointWeights");
+    const bool shapes = prim.attribute("skel:blendShapes") != nullptr;
+    if (!binding || (!indices && !weights && !shapes)) return std::nullopt;
+    if (!indices != !weights)
+        return SkinningProblem{std::string("has primvars:skel:") + (indices ? "jointIndices without jointWeights"
+                                                                            : "jointWeights without jointIndices"),
+                               (indices ? indices : weights)->where};
+    // Skinning applies beneath a SkelRoot only (UsdSkelRoot).
+    const Prim* root = &prim;
+    while (root && root->typeName != "SkelRoot") root = root->parent;
+    if (!root) return SkinningProblem{"is bound to a Skeleton but is not beneath a SkelRoot", binding->where};
+
+    const Prim* skeleton = stage.find(binding->targets.front());
+    if (!skeleton || skeleton->typeName != "Skeleton")
+        return SkinningProblem{"skel:skeleton targets <" + binding->targets.front() + ">, which is no Skeleton",
+                               binding->where};
+    auto resolved = resolveSkeleton(stage, *skeleton);
+    if (auto* problem = std::get_if<SkinningProblem>(&resolved)) return *problem;
+    Skinning out = std::get<Skinning>(std::move(resolved));
+    out.prim = &prim;
+    std::map<std::string, int> jointIndex;
+    for (size_t j = 0; j < out.joints.size(); ++j) jointIndex.emplace(out.joints[j], int(j));
     if (indices)
         if (auto problem = readInfluences(prim, *indices, *weights, jointIndex, out)) return *problem;
     if (auto problem = readBlendShapes(stage, prim, out.animation, out)) return *problem;
@@ -284,7 +293,7 @@ std::optional<std::variant<Skinning, SkinningProblem>> resolveSkinning(const Sta
     return out;
 }
 
-std::vector<Matrix4> skinningTransforms(const Skinning& skinning, double time, std::string* problem) {
+std::vector<Matrix4> skeletonPose(const Skinning& skinning, double time, std::string* problem) {
     std::vector<Matrix4> local = skinning.restTransforms;
     if (skinning.animation) {
         const Prim& animation = *skinning.animation;
@@ -308,12 +317,17 @@ std::vector<Matrix4> skinningTransforms(const Skinning& skinning, double time, s
                        " joints; the rest pose is used";
         }
     }
-    std::vector<Matrix4> skel(local.size()), out(local.size());
+    std::vector<Matrix4> skel(local.size());
     for (size_t j = 0; j < local.size(); ++j) {
         const int parent = skinning.parents[j];
         skel[j] = parent < 0 ? local[j] : m4::multiply(local[j], skel[size_t(parent)]);
-        out[j] = m4::multiply(m4::inverse(skinning.bindTransforms[j]), skel[j]);
     }
+    return skel;
+}
+
+std::vector<Matrix4> skinningTransforms(const Skinning& skinning, double time, std::string* problem) {
+    std::vector<Matrix4> out = skeletonPose(skinning, time, problem);
+    for (size_t j = 0; j < out.size(); ++j) out[j] = m4::multiply(m4::inverse(skinning.bindTransforms[j]), out[j]);
     return out;
 }
 
@@ -379,7 +393,8 @@ bool isSkinningAnimated(const Stage& stage, const Skinning& skinning) {
     if (skinning.animation)
         for (const char* name : {"translations", "rotations", "scales", "blendShapeWeights"})
             if (const Attribute* a = skinning.animation->attribute(name); a && a->isAnimated()) return true;
-    return !stage.transformSampleTimes(*skinning.skeleton).empty() || !stage.transformSampleTimes(*skinning.prim).empty();
+    return !stage.transformSampleTimes(*skinning.skeleton).empty() ||
+           (skinning.prim && !stage.transformSampleTimes(*skinning.prim).empty());
 }
 
 }  // namespace obscura::usda

@@ -52,14 +52,19 @@ struct Skinning {
     std::vector<BlendShape> blendShapes;
 };
 
+// A Skeleton's joints, rest pose and animation as UsdSkelSkeletonQuery reads them: the fields of
+// Skinning that do not depend on a skinned prim (`prim` null, no influences).
+std::variant<Skinning, SkinningProblem> resolveSkeleton(const Stage& stage, const Prim& skeleton);
+
 // The skinning of `prim`, nullopt when it has none (no skeleton bound, or neither joint influences
 // nor blend shapes), or what makes its data unusable.
 std::optional<std::variant<Skinning, SkinningProblem>> resolveSkinning(const Stage& stage, const Prim& prim);
 
-// Each joint's skinning transform at `time`: its bind transform inverted, then its pose in
-// skeleton space (the animation's joints composed down the hierarchy, rest transforms for the
-// joints it leaves out). An animation whose arrays do not match its joints poses nothing: the rest
-// pose is used and `problem` says why.
+// Each joint's pose in skeleton space at `time`: the animation's joints composed down the
+// hierarchy, rest transforms for the joints it leaves out. An animation whose arrays do not match
+// its joints poses nothing: the rest pose is used and `problem` says why.
+std::vector<Matrix4> skeletonPose(const Skinning& skinning, double time, std::string* problem);
+// Each joint's skinning transform at `time`: its bind transform inverted, then its pose.
 std::vector<Matrix4> skinningTransforms(const Skinning& skinning, double time, std::string* problem);
 
 // Rest points (xyz) skinned at `time`, in the prim's own space: moved by the blend shapes' offsets
@@ -77,7 +82,7 @@ std::vector<double> skinNormals(const Stage& stage, const Skinning& skinning, co
                                 std::string* problem);
 
 // Whether the skinned result can change over time: the animation (joints or blend shape weights),
-// the skeleton's or the prim's transform is time-sampled.
+// the skeleton's or the prim's (when there is one) transform is time-sampled.
 bool isSkinningAnimated(const Stage& stage, const Skinning& skinning);
 
 }  // namespace obscura::usda

@@ -29,18 +29,18 @@ const Relationship* Prim::relationship(const std::string& relName) const {
 
 Stage::Stage() : root_(std::make_unique<Prim>()) {}
 
-std::variant<std::unique_ptr<Stage>, Error> Stage::open(const std::filesystem::path& file, const CompositionLimits& limits) {
+std::variant<std::unique_ptr<Stage>, Error> Stage::open(const std::filesystem::path& file, const StageOptions& options) {
     std::ifstream in(file, std::ios::binary);
     std::error_code ec;
     if (!in || std::filesystem::is_directory(file, ec)) return Error{SourceLocation{file.string(), 0, 0}, "cannot open file"};
     std::ostringstream text;
     text << in.rdbuf();
-    return Composer::compose(text.str(), file.string(), limits);
+    return Composer::compose(text.str(), file.string(), options);
 }
 
 std::variant<std::unique_ptr<Stage>, Error> Stage::openFromString(const std::string& text, const std::string& virtualPath,
-                                                                    const CompositionLimits& limits) {
-    return Composer::compose(text, virtualPath, limits);
+                                                                    const StageOptions& options) {
+    return Composer::compose(text, virtualPath, options);
 }
 
 const Prim* Stage::find(const std::string& path) const {

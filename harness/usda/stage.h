@@ -115,6 +115,17 @@ struct CompositionLimits {
     size_t maxMemoryBytes = size_t(2) << 30;   // what the stage and its prim indexes hold (estimated)
 };
 
+// Variant fallbacks by variant set name, as UsdStage's global variant fallbacks (a plugInfo's
+// "UsdVariantFallbacks", Usd.Stage.SetGlobalVariantFallbacks): a set with no authored selection
+// takes the first listed variant it has. An authored selection always wins.
+using VariantFallbacks = std::map<std::string, std::vector<std::string>>;
+
+// How a stage is loaded.
+struct StageOptions {
+    CompositionLimits limits;
+    VariantFallbacks variantFallbacks;
+};
+
 // Diagnostics that are not errors (unknown types, unsupported features): one per kind.
 struct Warning {
     SourceLocation where;
@@ -126,11 +137,11 @@ public:
     // Parse the root layer and everything it sublayers, references and payloads (asset paths
     // relative to the layer that names them), and compose one prim tree.
     static std::variant<std::unique_ptr<Stage>, Error> open(const std::filesystem::path& file,
-                                                            const CompositionLimits& limits = {});
+                                                            const StageOptions& options = {});
     // Same from text in memory (references resolve relative to `virtualPath`'s folder).
     static std::variant<std::unique_ptr<Stage>, Error> openFromString(const std::string& text,
                                                                        const std::string& virtualPath,
-                                                                       const CompositionLimits& limits = {});
+                                                                       const StageOptions& options = {});
 
     const StageMetadata& metadata() const { return metadata_; }
     const Prim& pseudoRoot() const { return *root_; }

@@ -17,7 +17,7 @@ int runView(const ViewOptions& options) {
     }
     int exitCode = kExitOk;
     {
-        auto opened = Session::open(options.scene, options.limits);
+        auto opened = Session::open(options.scene, options.stage);
         if (auto* error = std::get_if<SessionError>(&opened)) {
             std::fprintf(stderr, "obscura: %s\n", error->message.c_str());
             return error->exitCode;

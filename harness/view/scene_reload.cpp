@@ -43,8 +43,8 @@ bool SceneReload::filesChanged() {
 }
 
 std::optional<size_t> SceneReload::reload(Session& session, ViewerScene& scene, const std::string& scenePath,
-                                          const usda::CompositionLimits& limits, double time) {
-    auto opened = Session::openStage(scenePath, limits);
+                                          const usda::StageOptions& options, double time) {
+    auto opened = Session::openStage(scenePath, options);
     if (auto* error = std::get_if<SessionError>(&opened)) {
         std::fprintf(stderr, "obscura: %s (keeping the scene as it was)\n", error->message.c_str());
         files_ = sceneFiles(session.stage());  // looked at again after the next edit

@@ -26,7 +26,7 @@ public:
     // prims changed, or nothing where the scene stays as it was (a file caught half-written, an
     // edit with a mistake: the problem is printed).
     std::optional<size_t> reload(Session& session, ViewerScene& scene, const std::string& scenePath,
-                                 const usda::CompositionLimits& limits, double time);
+                                 const usda::StageOptions& options, double time);
 
 private:
     std::map<std::string, std::filesystem::file_time_type> files_;

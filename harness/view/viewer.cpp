@@ -146,7 +146,7 @@ bool Viewer::render(bool withPick) {
 
 void Viewer::watchFiles() {
     if (!reload_->filesChanged()) return;
-    std::optional<size_t> touched = reload_->reload(session_, scene_, o_.scene, o_.limits, time_);
+    std::optional<size_t> touched = reload_->reload(session_, scene_, o_.scene, o_.stage, time_);
     if (!touched) return;
     waitReload_ = false;
     if (*touched) changed_ = reportSync_ = true;

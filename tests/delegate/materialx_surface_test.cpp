@@ -295,5 +295,66 @@ TEST(MaterialXSurface, TheChessSetsPiecesAreTextured) {
     EXPECT_TRUE(n.scene.errors.empty()) << n.scene.errors.front();
 }
 
+// An animated MaterialX network re-syncs: the colour reaches the surface's base_color directly, or
+// through a multiply node whose second input is sampled; each frame's albedo follows the samples
+// (base 1: albedo = base_color; sRGB codes 200 then 40, linear 0.577581 and 0.021219).
+TEST(MaterialXSurface, AnAnimatedNetworkRendersEachFramesColour) {
+    const std::string camera = R"(#usda 1.0
+def Camera "Camera"
+{
+    float focalLength = 50
+    float horizontalAperture = 20.955
+    float verticalAperture = 20.955
+    double3 xformOp:translate = (0, 0, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Mesh "Plane"
+{
+    point3f[] points = [(-2, -2, 0), (2, -2, 0), (2, 2, 0), (-2, 2, 0)]
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    uniform token subdivisionScheme = "none"
+    rel material:binding = </M>
+}
+def Material "M"
+{
+    token outputs:mtlx:surface.connect = </M/Surface.outputs:surface>
+    def Shader "Surface"
+    {
+        uniform token info:id = "ND_standard_surface_surfaceshader"
+        float inputs:base = 1
+        float inputs:specular = 0
+        token outputs:surface
+)";
+    const std::string samples = "{ 0: (0.577581, 0.577581, 0.577581), 1: (0.021219, 0.021219, 0.021219) }";
+    const std::string direct = "        color3f inputs:base_color.timeSamples = " + samples + "\n    }\n}\n";
+    const std::string throughNode = R"(        color3f inputs:base_color.connect = </M/Tint.outputs:out>
+    }
+    def Shader "Tint"
+    {
+        uniform token info:id = "ND_multiply_color3"
+        color3f inputs:in1 = (1, 1, 1)
+        color3f inputs:in2.timeSamples = )" + samples + R"(
+        color3f outputs:out
+    }
+}
+)";
+    for (const std::string& network : {direct, throughNode}) {
+        HostedStage scene(usda::Stage::openFromString(camera + network, OBSCURA_TEST_DATA_DIR "/animated_materialx.usda"));
+        auto first = scene.renderAov("albedo", 3, 0.0);
+        ASSERT_EQ(first.size(), size_t(kWidth) * kHeight * 3);
+        ASSERT_EQ(scene.host->markTimeVarying(scene.api(), scene.delegate), OBSCURA_OK);
+        auto second = scene.renderAov("albedo", 3, 1.0);
+        ASSERT_EQ(second.size(), size_t(kWidth) * kHeight * 3);
+        const size_t centre = (size_t(kHeight / 2) * kWidth + size_t(kWidth / 2)) * 3;
+        for (size_t c = 0; c < 3; ++c) {
+            EXPECT_NEAR(first.at(centre + c), srgb8Exact(200), 0.004f) << "time 0, channel " << c << "\n" << network;
+            EXPECT_NEAR(second.at(centre + c), srgb8Exact(40), 0.004f) << "time 1, channel " << c << "\n" << network;
+        }
+        EXPECT_TRUE(scene.errors.empty()) << scene.errors.front();
+        EXPECT_TRUE(scene.host->messages().empty()) << scene.host->messages().front().text;
+    }
+}
+
 }  // namespace
 }  // namespace obscura::test

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -139,6 +140,89 @@ TEST(Skinning, BadJointIndicesAreReportedAndTheArmIsDrawnUnskinned) {
     EXPECT_EQ(message.where.file, "bad_arm.usda");
     EXPECT_EQ(message.where.line, line);
     EXPECT_GT(message.where.column, 0);
+}
+
+// A skeleton alone, drawn as a guide when includedPurposes names guide (as Storm draws bones): the
+// bones join root (x = -1) to elbow (the origin) and elbow to hand (x = 1); the elbow turns about
+// +Z by 90 degrees at time 1. Each bone is a square pyramid from its parent joint, its base a fifth
+// of its length wide, its sides facing the camera, so a point 0.2 along a bone of length 1 lies
+// within 0.08 of its axis.
+const char* kSkeletonOnly = R"(#usda 1.0
+def Camera "Camera"
+{
+    float focalLength = 50
+    float horizontalAperture = 20.955
+    float verticalAperture = 20.955
+    float2 clippingRange = (0.1, 100)
+    double3 xformOp:translate = (0, 0, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def SkelRoot "Rig"
+{
+    def Skeleton "Skel"
+    {
+        uniform token[] joints = ["root", "root/elbow", "root/elbow/hand"]
+        uniform matrix4d[] bindTransforms = [((1,0,0,0),(0,1,0,0),(0,0,1,0),(-1,0,0,1)), ((1,0,0,0),(0,1,0,0),(0,0,1,0),(0,0,0,1)), ((1,0,0,0),(0,1,0,0),(0,0,1,0),(1,0,0,1))]
+        rel skel:animationSource = </Rig/Skel/Anim>
+
+        def SkelAnimation "Anim"
+        {
+            uniform token[] joints = ["root/elbow"]
+            float3[] translations = [(1, 0, 0)]
+            quatf[] rotations.timeSamples = {
+                0: [(1, 0, 0, 0)],
+                1: [(0.70710678, 0, 0, 0.70710678)],
+            }
+        }
+    }
+}
+)";
+
+TEST(Skinning, SkeletonBonesAreDrawnOnlyAsGuides) {
+    HostedStage scene(usda::Stage::openFromString(kSkeletonOnly, "skeleton.usda"));
+    auto plain = scene.renderAov("primId", 1, 0.0);
+    ASSERT_EQ(plain.size(), size_t(kWidth) * kHeight);
+    EXPECT_TRUE(std::all_of(plain.begin(), plain.end(), [](float id) { return id < 0.0f; }))
+        << "bones drawn without the guide purpose";
+
+    scene.setToken("includedPurposes", "default,render,guide");
+    auto guides = scene.renderAov("primId", 1, 0.0);
+    ASSERT_EQ(guides.size(), size_t(kWidth) * kHeight);
+    EXPECT_TRUE(drawnAt(guides, -0.8, 0.0)) << "root to elbow";
+    EXPECT_TRUE(drawnAt(guides, -0.8, 0.05));
+    EXPECT_FALSE(drawnAt(guides, -0.8, 0.15)) << "wider than the bone";
+    EXPECT_TRUE(drawnAt(guides, 0.2, 0.0)) << "elbow to hand";
+    EXPECT_FALSE(drawnAt(guides, 0.0, 0.5));
+    EXPECT_FALSE(drawnAt(guides, -1.0, 0.5));
+    // The elbow turns: the hand's bone now points up.
+    ASSERT_EQ(scene.host->markTimeVarying(scene.api(), scene.delegate), OBSCURA_OK);
+    auto bent = scene.renderAov("primId", 1, 1.0);
+    EXPECT_TRUE(drawnAt(bent, 0.0, 0.2));
+    EXPECT_FALSE(drawnAt(bent, 0.5, 0.0));
+    EXPECT_TRUE(drawnAt(bent, -0.8, 0.0));
+    EXPECT_TRUE(scene.errors.empty()) << scene.errors.front();
+    EXPECT_TRUE(scene.host->messages().empty()) << scene.host->messages().front().text;
+}
+
+TEST(Skinning, ASkeletonWhoseDataDoesNotFitItsJointsIsReportedAndDrawsNoBones) {
+    std::string text = kSkeletonOnly;
+    const std::string bind = "uniform matrix4d[] bindTransforms = [";
+    const size_t at = text.find(bind) + bind.size();
+    text.erase(at, text.find("), (", at) + 3 - at);  // the root's bind transform left out: 2 for 3 joints
+    HostedStage scene(usda::Stage::openFromString(text, "bad_skeleton.usda"));
+    scene.setToken("includedPurposes", "default,render,guide");
+    auto ids = scene.renderAov("primId", 1, 0.0);
+    ASSERT_EQ(ids.size(), size_t(kWidth) * kHeight);
+    EXPECT_TRUE(std::all_of(ids.begin(), ids.end(), [](float id) { return id < 0.0f; }));
+    ASSERT_EQ(scene.host->messages().size(), 1u);
+    const harness::HostMessage& message = scene.host->messages().front();
+    EXPECT_NE(message.text.find("/Rig/Skel: its Skeleton </Rig/Skel> has 2 bindTransforms for 3 joints; its bones are "
+                                "not drawn"),
+              std::string::npos)
+        << message.text;
+    EXPECT_EQ(message.where.file, "bad_skeleton.usda");
+    EXPECT_EQ(message.where.line, 16);  // the bindTransforms
+    EXPECT_TRUE(scene.errors.empty()) << scene.errors.front();
 }
 
 }  // namespace

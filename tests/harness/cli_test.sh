@@ -118,6 +118,23 @@ check "one prim named 1000 times stops at its arc" 3 $? "$tmp/out" 'repeated_ref
 "$obscura" render "$src/tests/usda/data/limits/repeated_reference.usda" -o "$tmp/x.png" --max-index-nodes 20000 >"$tmp/out" 2>&1
 check "--max-index-nodes is settable" 3 $? "$tmp/out" 'more than 20000 composition arcs'
 
+# Variant fallbacks: a set without an authored selection takes the first listed variant it has.
+scene="$src/tests/harness/data/variant_fallback.usda"
+"$obscura" render "$scene" -o "$tmp/none.png" --width 32 --height 32 >"$tmp/out" 2>&1
+check "a variant set without a selection is ignored, with a warning" 0 $? "$tmp/out" \
+    'variant_fallback\.usda:10:[0-9]+: variantSet "shape" of </Model> has no selection'
+"$obscura" render "$scene" -o "$tmp/box.png" --width 32 --height 32 --variant-fallback shape=cone,box >"$tmp/out" 2>&1
+check "--variant-fallback takes the first variant the set has" 0 $?
+! grep -q "has no selection" "$tmp/out"; check "a set with a fallback is not reported" 0 $?
+"$obscura" render "$scene" -o "$tmp/ball.png" --width 32 --height 32 --variant-fallback shape=ball >"$tmp/out" 2>&1
+check "--variant-fallback of another variant" 0 $?
+"$obscura" compare "$tmp/box.png" "$tmp/ball.png" --psnr-min 60 >"$tmp/out" 2>&1
+check "the fallback chooses what is drawn" 1 $?
+"$obscura" compare "$tmp/none.png" "$tmp/box.png" --psnr-min 60 >"$tmp/out" 2>&1
+check "without a fallback the variant is not drawn" 1 $?
+"$obscura" render "$scene" -o "$tmp/x.png" --variant-fallback shape >"$tmp/out" 2>&1
+check "a fallback without variants is a usage error" 2 $? "$tmp/out" "'shape' is not SET=VARIANT"
+
 "$obscura" render "$tmp/does-not-exist.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
 check "missing scene file" 3 $? "$tmp/out" 'does-not-exist'
 "$obscura" render "$src/scenes/demo.usda" -o "$tmp/x.tiff" >"$tmp/out" 2>&1

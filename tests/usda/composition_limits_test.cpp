@@ -11,7 +11,7 @@ const std::string kLaughs = test::kDataDir + "/limits/laughs.usda";
 const std::string kRepeated = test::kDataDir + "/limits/repeated_reference.usda";
 
 Error openFileError(const std::string& path, const CompositionLimits& limits) {
-    auto result = Stage::open(path, limits);
+    auto result = Stage::open(path, StageOptions{limits, {}});
     if (const Error* error = std::get_if<Error>(&result)) return *error;
     ADD_FAILURE() << path << " composed within the limits";
     return Error{};
@@ -72,7 +72,7 @@ TEST(CompositionLimits, RootPrimIndexErrorNamesTheFileLineAndColumn) {
     text += "]\n)\n{\n}\nclass \"Big\" (\n    references = [</A>, </B>]\n)\n{\n}\nclass \"A\"\n{\n}\nclass \"B\"\n{\n}\n";
     CompositionLimits limits;
     limits.maxIndexNodes = 8;  // Root + 3 x (Big, A, B) = 10 nodes
-    auto result = Stage::openFromString(text, "root.usda", limits);
+    auto result = Stage::openFromString(text, "root.usda", StageOptions{limits, {}});
     ASSERT_TRUE(std::holds_alternative<Error>(result));
     const Error& error = std::get<Error>(result);
     EXPECT_EQ(error.where.file, "root.usda");
@@ -85,7 +85,7 @@ TEST(CompositionLimits, ScenesWithinTheLimitsCompose) {
     CompositionLimits limits;
     limits.maxPrims = 3;
     auto stage = Stage::openFromString("#usda 1.0\ndef \"A\"\n{\n    def \"B\"\n    {\n    }\n}\ndef \"C\"\n{\n}\n",
-                                       "small.usda", limits);
+                                       "small.usda", StageOptions{limits, {}});
     EXPECT_TRUE(std::holds_alternative<std::unique_ptr<Stage>>(stage));
 }
 

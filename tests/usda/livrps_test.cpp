@@ -5,9 +5,7 @@
 // inherits and specializes of a referenced asset are implied in the referencing layer stack, where
 // a class's opinions beat the asset's (inherits) or only fill what nothing else says (specializes).
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <unistd.h>
 
 #include "tests/usda/usda_test_util.h"
 
@@ -17,22 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 using Files = std::map<std::string, std::string>;
 
-// Layers written to a folder of their own; the stage opened from "root.usda".
-class Layers {
-public:
-    explicit Layers(const std::map<std::string, std::string>& files) {
-        dir_ = fs::temp_directory_path() / ("obscura_livrps_" + std::to_string(counter_++) + "_" +
-                                            std::to_string(::getpid()));  // the suite runs tests as parallel processes
-        fs::create_directories(dir_);
-        for (const auto& [name, text] : files) std::ofstream(dir_ / name) << text;
-    }
-    ~Layers() { fs::remove_all(dir_); }
-    std::unique_ptr<Stage> open() const { return test::openFile((dir_ / "root.usda").string()); }
-
-private:
-    static inline int counter_ = 0;
-    fs::path dir_;
-};
+using Layers = test::LayerFiles;
 
 double valueOf(const Stage& stage, const std::string& prim, const std::string& attribute = "x") {
     const Prim* p = stage.find(prim);

@@ -3,6 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <memory>
 #include <string>
 #include <variant>
@@ -14,8 +19,9 @@ namespace obscura::usda::test {
 inline const std::string kDataDir = OBSCURA_USDA_TEST_DATA;
 
 // The stage composed from `text`, or nullptr after recording the error as a test failure.
-inline std::unique_ptr<Stage> open(const std::string& text, const std::string& path = "test.usda") {
-    auto result = Stage::openFromString(text, path);
+inline std::unique_ptr<Stage> open(const std::string& text, const std::string& path = "test.usda",
+                                   const StageOptions& options = {}) {
+    auto result = Stage::openFromString(text, path, options);
     if (const Error* error = std::get_if<Error>(&result)) {
         ADD_FAILURE() << "unexpected error: " << error->str();
         return nullptr;
@@ -23,14 +29,34 @@ inline std::unique_ptr<Stage> open(const std::string& text, const std::string& p
     return std::move(std::get<std::unique_ptr<Stage>>(result));
 }
 
-inline std::unique_ptr<Stage> openFile(const std::string& path) {
-    auto result = Stage::open(path);
+inline std::unique_ptr<Stage> openFile(const std::string& path, const StageOptions& options = {}) {
+    auto result = Stage::open(path, options);
     if (const Error* error = std::get_if<Error>(&result)) {
         ADD_FAILURE() << "unexpected error: " << error->str();
         return nullptr;
     }
     return std::move(std::get<std::unique_ptr<Stage>>(result));
 }
+
+// Layers written to a folder of their own, by file name; the stage opened from "root.usda".
+class LayerFiles {
+public:
+    explicit LayerFiles(const std::map<std::string, std::string>& files) {
+        namespace fs = std::filesystem;
+        dir_ = fs::temp_directory_path() / ("obscura_layers_" + std::to_string(counter_++) + "_" +
+                                            std::to_string(::getpid()));  // the suite runs tests as parallel processes
+        fs::create_directories(dir_);
+        for (const auto& [name, text] : files) std::ofstream(dir_ / name) << text;
+    }
+    ~LayerFiles() { std::filesystem::remove_all(dir_); }
+    std::unique_ptr<Stage> open(const StageOptions& options = {}) const {
+        return openFile((dir_ / "root.usda").string(), options);
+    }
+
+private:
+    static inline int counter_ = 0;
+    std::filesystem::path dir_;
+};
 
 // The error opening `text` produces; an empty Error (and a test failure) if it opens.
 inline Error openError(const std::string& text, const std::string& path = "scene.usda") {
