@@ -12,12 +12,11 @@
 //   the masking-shadowing function": its anisotropic GGX and Lambda), slopes s = (H.X, H.Y) / (H.N):
 //       D(H) = 1 / (pi ax ay (H.N)^4 (1 + q^2)^2),   q^2 = sx^2 / ax^2 + sy^2 / ay^2
 //   isotropic GGX about a normal N' at angle t' from H: the same with q = tan(t') / a'.
-// Per light, with the lighting pass's widening of an extended source (w = sinHalfAngle / 2, the
-// lobe's alpha grows by w and its energy is kept by (a / (a + w))^2: light_evaluation.glsl
-// ggxLobe, Karis 2013) applied to each axis:
+// Per light, with the lighting pass's widening of an extended source (w = sinHalfAngle / 2: the
+// lobe's alpha grows by w, light_evaluation.glsl ggxLobe, Karis 2013) applied to each axis:
 //   gloss:  a' such that the widened isotropic lobe's peak equals the widened anisotropic one's,
-//           a' / (a' + w)^2 = sqrt(ax ay) / ((ax + w)(ay + w)), the root on the side of w where
-//           sqrt(ax ay) lies (a' = sqrt(ax ay) for a point: the NDF's peak and solid angle kept);
+//           (a' + w)^2 = (ax + w)(ay + w) (a' = sqrt(ax ay) for a point: the NDF's peak and solid
+//           angle kept);
 //   normal: N' on the great circle through H and N, at tan(t') = q (a' + w) from H, so the
 //           isotropic lobe sends the light's direction exactly the anisotropic lobe's value
 //           (up to the ratio of the lobes' (H.N)^4 terms: under a point-like light the extracted
@@ -42,12 +41,9 @@ vec2 anisotropicAlpha(float roughness, float anisotropy) {
     return vec2(min(alpha / aspect, 1.0), alpha * aspect);
 }
 
-// The isotropic alpha a' with a' / (a' + w)^2 = k (peak match above): k a'^2 + (2 k w - 1) a' + k w^2 = 0.
-float peakMatchedAlpha(float meanAlpha, float k, float w) {
-    if (w <= 0.0) return meanAlpha;
-    float root = sqrt(max(1.0 - 4.0 * k * w, 0.0));
-    return ((1.0 - 2.0 * k * w) + (meanAlpha >= w ? root : -root)) / (2.0 * k);
-}
+// The isotropic alpha a' whose lobe widened by w peaks as high as the anisotropic lobe widened by
+// w on each axis (peak match above): (a' + w)^2 = (ax + w)(ay + w).
+float peakMatchedAlpha(vec2 wide, float w) { return max(sqrt(wide.x * wide.y) - w, 0.0); }
 
 struct LobeSum {
     vec3 normal;  // sum of weight x bent normal
@@ -67,12 +63,10 @@ void addLightLobe(inout LobeSum sum, vec3 N, vec3 X, vec3 Y, vec3 V, vec2 alpha,
     vec2 wide = min(alpha + w, vec2(1.0));
     vec2 slope = vec2(dot(H, X), dot(H, Y)) / NdotH;
     float q2 = dot(slope / wide, slope / wide);
-    float meanAlpha = sqrt(alpha.x * alpha.y);
-    float isoAlpha = peakMatchedAlpha(meanAlpha, meanAlpha / (wide.x * wide.y), w);
-    // The widened anisotropic lobe at H, times the energy factor of ggxLobe, per axis.
+    float isoAlpha = peakMatchedAlpha(wide, w);
+    // The widened anisotropic lobe at H.
     float NdotH2 = NdotH * NdotH;
-    float D = (alpha.x * alpha.y) / (wide.x * wide.y) /
-              (PI * wide.x * wide.y * NdotH2 * NdotH2 * (1.0 + q2) * (1.0 + q2));
+    float D = 1.0 / (PI * wide.x * wide.y * NdotH2 * NdotH2 * (1.0 + q2) * (1.0 + q2));
     float weight = irradiance * D / (4.0 * max(dot(N, V), 1e-4));
     // N' at angle t' from H towards N (past N where the anisotropic lobe is the narrower one).
     vec3 towardN = N - H * NdotH;

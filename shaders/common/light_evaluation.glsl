@@ -62,8 +62,14 @@ vec3 diffuseBrdf(SurfacePoint s) {
     return s.diffuse / PI;
 }
 
-// GGX lobe for light from L. A source of angular radius asin(sinHalfAngle) widens the lobe; the
-// (alpha / alpha')^2 factor keeps its energy (Karis 2013, "sphere light normalisation").
+// GGX lobe for light from L. A source of angular radius asin(sinHalfAngle) widens the lobe to
+// alpha' = alpha + sinHalfAngle / 2 (Karis 2013, "Real shading in Unreal Engine 4": the source's
+// disc seen in half-vector space), evaluated towards the source's centre: the widened NDF still
+// integrates to one, so it spreads the source's light rather than dimming it (a mirror shows the
+// sphere's own radiance). Karis's (alpha / alpha')^2 normalisation belongs with the other form,
+// the representative point, whose NDF keeps the surface's own alpha; applied on top of the
+// widening it counted the widening twice and darkened the highlights of smooth surfaces by that
+// factor (to a fifth at roughness 0.2 under a sphere of angular radius 0.1).
 vec3 ggxLobe(SurfacePoint s, vec3 L, float sinHalfAngle, float roughness, vec3 f0) {
     float NdotL = max(dot(s.N, L), 0.0);
     float NdotV = max(dot(s.N, s.V), 1e-4);
@@ -72,8 +78,7 @@ vec3 ggxLobe(SurfacePoint s, vec3 L, float sinHalfAngle, float roughness, vec3 f
     float VdotH = max(dot(s.V, H), 0.0);
     float alpha = alphaFromRoughness(roughness);
     float alphaWide = clamp(alpha + 0.5 * sinHalfAngle, 0.0, 1.0);
-    float energy = (alpha * alpha) / (alphaWide * alphaWide);
-    return ggxDistribution(NdotH, alphaWide) * energy * smithVisibilityHeightCorrelated(NdotV, NdotL, alpha) *
+    return ggxDistribution(NdotH, alphaWide) * smithVisibilityHeightCorrelated(NdotV, NdotL, alpha) *
            fresnelSchlick(f0, VdotH);
 }
 
