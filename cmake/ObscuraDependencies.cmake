@@ -21,6 +21,7 @@ set_target_properties(OpenSubdiv::osdCPU PROPERTIES
 # Debian's OpenColorIO CMake config is unusable; its pkg-config file works.
 pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET GLOBAL OpenColorIO>=2.1)
 pkg_check_modules(LZ4 REQUIRED IMPORTED_TARGET GLOBAL liblz4)      # USD crate files' compression
+pkg_check_modules(XXHASH REQUIRED IMPORTED_TARGET GLOBAL libxxhash)  # content hashes of the texture cache
 pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET GLOBAL libzip)   # USDZ packages
 pkg_check_modules(GLFW REQUIRED IMPORTED_TARGET GLOBAL glfw3)      # obscura view's window and input
 pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET GLOBAL imgui)     # obscura view's HUD (with its GLFW and Vulkan backends)

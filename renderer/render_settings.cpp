@@ -201,6 +201,11 @@ const RenderSettingInfo kSettings[] = {
      "filter) or tetrahedral (keeps neutral greys neutral) (token, default trilinear)",
      OBSCURA_VALUE_TOKEN, 0.0, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
      "trilinear|tetrahedral"},
+    {"textures:compression", number<&FrameSettings::textureCompression>,
+     "8-bit tangent-space normal maps read as 2 n - 1 from raw files are stored BC5-compressed "
+     "(two channels, z reconstructed) where the device samples BC5; off keeps them RGBA8 "
+     "(bool, default on)",
+     OBSCURA_VALUE_BOOL, 1.0},
 };
 
 bool isTokenChoice(std::string_view choices, std::string_view token) {

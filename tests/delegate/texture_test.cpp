@@ -375,6 +375,35 @@ TEST_F(TextureTest, MissingFileWarnsAndKeepsTheConstant) {
     EXPECT_TRUE(warned) << "no warning names " << missing;
 }
 
+TEST_F(TextureTest, UnreadableNormalMapWarnsAndKeepsTheGeometricNormal) {
+    // A file that is no image, bound as a two-channel normal map (raw, 2 n - 1): a warning names
+    // it and the surface shades with its own normal, as unmapped.
+    const std::string broken = (dir_ / "broken_normal.png").string();
+    std::FILE* f = std::fopen(broken.c_str(), "wb");
+    ASSERT_TRUE(f);
+    std::fputs("not an image", f);
+    std::fclose(f);
+    auto values = textured("normal", broken, {{"sourceColorSpace", HostValue::token("raw")},
+                                              {"channel", HostValue::token("rgb")},
+                                              {"scale", float4(2.0f, 2.0f, 2.0f, 1.0f)},
+                                              {"bias", float4(-1.0f, -1.0f, -1.0f, 0.0f)}});
+    const float grey = srgb8Exact(150);
+    values["inputs:diffuseColor"] = HostValue::float3(grey, grey, grey);
+    host.addPrim("material", "/Looks/M", values);
+    addPlane("/Plane", "/Looks/M");
+    host.addPrim("distantLight", "/Sun",
+                 {{"inputs:intensity", HostValue::floatValue(1.0f)},
+                  {"inputs:normalize", HostValue::boolean(true)},
+                  {"inputs:specular", HostValue::floatValue(0.0f)}},
+                 lightPointingAlong({0.0, 0.0, -1.0}));
+    render();
+    const double expected = grey / kPi;
+    EXPECT_NEAR(colorAt(32, 32)[0], expected, 0.01 * expected + smallFloatStep(float(expected), 6));
+    EXPECT_TRUE(std::any_of(host.loggedWarnings().begin(), host.loggedWarnings().end(),
+                            [&](const std::string& w) { return w.find(broken) != std::string::npos; }))
+        << "no warning names " << broken;
+}
+
 TEST_F(TextureTest, MaterialsSharingAFileLoadItOnce) {
     std::string file = writeBlocks("blocks.png");
     host.addPrim("material", "/Looks/A", textured("diffuseColor", file));
@@ -450,6 +479,115 @@ TEST_F(TextureTest, NormalMapsTiltTheShadingNormalInTheTangentFrame) {
             ASSERT_EQ(host.api().removePrim(host.delegate(), "/Sun"), OBSCURA_OK);
         }
         ASSERT_EQ(host.api().removePrim(host.delegate(), plane.c_str()), OBSCURA_OK);
+    }
+}
+
+TEST_F(TextureTest, RenormalisedTextureRendersAsItsFloatReference) {
+    // A low-contrast 16-bit sRGB gradient (red codes 0.40..0.46 along u, green 0.20..0.25 along v,
+    // blue constant) is stored renormalised in 8 bits; the same linear values in a float EXR are
+    // the reference. Both pass through the material's scale and bias, which the renormalisation
+    // folds into; they must agree within a step of the 8-bit sRGB albedo target (clamped, so that
+    // no lookup wraps to the far side of the gradient).
+    constexpr int kTexels = 64;
+    auto encoded = [](int x, int y) {
+        return std::array<float, 3>{0.40f + 0.06f * float(x) / (kTexels - 1), 0.20f + 0.05f * float(y) / (kTexels - 1),
+                                    0.7f};
+    };
+    std::vector<uint16_t> codes;
+    std::vector<float> linear;
+    for (int y = 0; y < kTexels; ++y)
+        for (int x = 0; x < kTexels; ++x) {
+            for (float e : encoded(x, y)) {
+                codes.push_back(uint16_t(std::lround(e * 65535.0f)));
+                linear.push_back(srgbDecode(codes.back() / 65535.0));
+            }
+            linear.push_back(1.0f);
+        }
+    std::string png = (dir_ / "low_contrast.png").string(), exr = (dir_ / "low_contrast.exr").string();
+    ASSERT_FALSE(image::isError(image::writePng16(png, kTexels, kTexels, codes.data())));
+    image::ExrLayer layer{"", {"R", "G", "B", "A"}, image::ExrLayer::PixelType::Float, linear.data(),
+                          size_t(kTexels) * 4 * sizeof(float)};
+    ASSERT_FALSE(image::isError(image::writeExr(exr, kTexels, kTexels, {layer})));
+    std::vector<float> images[2];
+    for (int i = 0; i < 2; ++i) {
+        const std::string& file = i == 0 ? exr : png;
+        host.addPrim("material", "/Looks/M",
+                     textured("diffuseColor", file, {{"scale", float4(1.5f, 1.0f, 0.8f, 1.0f)},
+                                                      {"bias", float4(0.0f, 0.05f, 0.0f, 0.0f)},
+                                                      {"wrapS", HostValue::token("clamp")},
+                                                      {"wrapT", HostValue::token("clamp")}}));
+        addPlane("/Plane", "/Looks/M");
+        render();
+        images[i] = albedo;
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Plane"), OBSCURA_OK);
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Looks/M"), OBSCURA_OK);
+    }
+    EXPECT_EQ(std::count_if(host.loggedInfos().begin(), host.loggedInfos().end(),
+                            [](const std::string& m) { return m.find("renormalised") != std::string::npos; }),
+              1);
+    // The outermost pixels are left out: each render's sub-pixel jitter may move the plane's edge
+    // past them.
+    for (int y = 1; y < kHeight - 1; ++y)
+        for (int x = 1; x < kWidth - 1; ++x)
+            for (size_t c = 0; c < 3; ++c) {
+                const size_t i = (size_t(y) * kWidth + size_t(x)) * 3 + c;
+                ASSERT_NEAR(images[1][i], images[0][i], srgbStep(images[0][i]) + 1e-4f)
+                    << "pixel (" << x << ", " << y << ") channel " << c;
+            }
+}
+
+TEST_F(TextureTest, TwoChannelNormalMapsShadeLikeTheirNormal) {
+    // A constant normal tilted 30 degrees towards +u, stored as 0.5 n + 0.5 and read raw with
+    // scale 2, bias -1: a 16-bit PNG is kept at 16 bits in two channels (RG16), an 8-bit one is
+    // BC5-compressed, or with textures:compression off stays RGBA8 as it always was. In each the
+    // shader's normal (z reconstructed where two channels are stored) faces a distant light along
+    // the tilted normal: E albedo / pi, as in NormalMapsTiltTheShadingNormalInTheTangentFrame.
+    const float kAlbedo = srgb8Exact(188);
+    const double tilt = 30.0 * kPi / 180.0;
+    const std::array<double, 3> stored{0.5 * std::sin(tilt) + 0.5, 0.5, 0.5 * std::cos(tilt) + 0.5};
+    std::vector<uint16_t> codes16;
+    for (int i = 0; i < 16; ++i)
+        for (double v : stored) codes16.push_back(uint16_t(std::lround(v * 65535.0)));
+    const std::string png16 = (dir_ / "normal16.png").string();
+    ASSERT_FALSE(image::isError(image::writePng16(png16, 4, 4, codes16.data())));
+    const std::string png8 = writePng("normal8.png", 4, [&](int, int) {
+        return Rgb8{uint8_t(std::lround(stored[0] * 255.0)), uint8_t(std::lround(stored[1] * 255.0)),
+                    uint8_t(std::lround(stored[2] * 255.0))};
+    });
+    host.addPrim("distantLight", "/Sun",
+                 {{"inputs:intensity", HostValue::floatValue(1.0f)},
+                  {"inputs:normalize", HostValue::boolean(true)},
+                  {"inputs:specular", HostValue::floatValue(0.0f)}},
+                 lightPointingAlong({-std::sin(tilt), 0.0, -std::cos(tilt)}));
+    struct Case {
+        std::string file;
+        bool compression;
+        const char* format;
+    };
+    for (const Case& c : {Case{png16, true, "RG16"}, Case{png8, true, "BC5"}, Case{png8, false, "RGBA8"}}) {
+        int32_t flag = c.compression ? 1 : 0;
+        ObscuraValue v{OBSCURA_VALUE_BOOL, 0, 1, &flag};
+        ASSERT_EQ(host.api().setRenderSetting(host.delegate(), "textures:compression", &v), OBSCURA_OK);
+        auto values = textured("normal", c.file, {{"sourceColorSpace", HostValue::token("raw")},
+                                                  {"channel", HostValue::token("rgb")},
+                                                  {"scale", float4(2.0f, 2.0f, 2.0f, 1.0f)},
+                                                  {"bias", float4(-1.0f, -1.0f, -1.0f, 0.0f)}});
+        values["inputs:diffuseColor"] = HostValue::float3(kAlbedo, kAlbedo, kAlbedo);
+        host.addPrim("material", "/Looks/Bumped", values);
+        addPlane("/Plane", "/Looks/Bumped");
+        render();
+        const double expected = kAlbedo / kPi;
+        // 1% plus a step of the light buffer: at the light's own direction the cosine is flat, so
+        // the stored normal's fraction-of-a-degree error costs nothing visible.
+        EXPECT_NEAR(colorAt(32, 32)[0], expected, 0.01 * expected + smallFloatStep(float(expected), 6)) << c.format;
+        EXPECT_EQ(std::count_if(host.loggedInfos().begin(), host.loggedInfos().end(),
+                                [&](const std::string& m) {
+                                    return m.rfind("loaded texture " + c.file + " (4x4 " + c.format + ",", 0) == 0;
+                                }),
+                  1)
+            << c.format;
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Plane"), OBSCURA_OK);
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Looks/Bumped"), OBSCURA_OK);
     }
 }
 
