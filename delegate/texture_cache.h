@@ -1,7 +1,8 @@
 // The delegate's material textures: each distinct (file, sourceColorSpace, role) is read and uploaded
 // once, with its full mip chain, and shared by every material naming it for as long as one holds
-// it. 8-bit normal maps are BC5-compressed (bc5_encoder.h) when compression is on and the device
-// samples BC5, their blocks kept in a TextureDiskCache. Also the samplers of the UsdUVTexture wrap modes and the white texture that fills the
+// it. With compression on, where the device samples the format, 8-bit normal maps are
+// BC5-compressed (bc5_encoder.h) and 8-bit colour BC1 or BC3 (colour_block_compression.h), their
+// blocks kept in a TextureDiskCache. Also the samplers of the UsdUVTexture wrap modes and the white texture that fills the
 // descriptor elements no material uses.
 #pragma once
 
@@ -11,6 +12,7 @@
 #include "gpu/log.h"
 
 #include <array>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -62,7 +64,12 @@ private:
     // nullopt: the file is stored as a Material texture instead.
     std::optional<std::variant<TexturePtr, std::string>> makeNormalMap(const std::string& file);
     TexturePtr upload(const std::string& file, Made made, Texture texture);
-    bool canSampleBc5() const;
+    bool canSampleCompressed(VkFormat format) const;
+    // Block-compressed levels of the extents' sizes, `encode(i)` making level i, read from the disk
+    // cache under (file content, encoding) when it holds them (`cached`), else encoded and stored.
+    std::vector<gpu::MipLevel> blockLevels(const std::string& file, const std::string& encoding,
+                                           const std::vector<gpu::MipLevel>& extents, VkFormat format,
+                                           const std::function<gpu::MipLevel(size_t)>& encode, bool& cached) const;
 
     gpu::Device& device_;
     LogSink log_;

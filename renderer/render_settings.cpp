@@ -202,9 +202,9 @@ const RenderSettingInfo kSettings[] = {
      OBSCURA_VALUE_TOKEN, 0.0, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
      "trilinear|tetrahedral"},
     {"textures:compression", number<&FrameSettings::textureCompression>,
-     "8-bit tangent-space normal maps read as 2 n - 1 from raw files are stored BC5-compressed "
-     "(two channels, z reconstructed) where the device samples BC5; off keeps them RGBA8 "
-     "(bool, default on)",
+     "block-compressed material textures where the device samples the format: 8-bit colour as BC1 "
+     "(opaque) or BC3 (with alpha), 8-bit tangent-space normal maps read as 2 n - 1 from raw files as "
+     "BC5 (two channels, z reconstructed); off keeps 8-bit textures RGBA8 (bool, default on)",
      OBSCURA_VALUE_BOOL, 1.0},
 };
 

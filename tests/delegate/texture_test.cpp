@@ -72,8 +72,17 @@ protected:
             host.addRenderBuffer(std::string("/Buffers/") + aov,
                                  std::string("float32Vec") + (aov[0] == 'a' ? "3" : "4"), kWidth, kHeight);
         host.addRenderBuffer("/Buffers/primId", "int32", kWidth, kHeight);
+        // These tests check texel values to a step of the 8-bit storage; block compression, which
+        // moves them further, has its own tests.
+        setCompression(false);
     }
     ~TextureTest() override { std::filesystem::remove_all(dir_); }
+
+    void setCompression(bool on) {
+        int32_t flag = on ? 1 : 0;
+        ObscuraValue v{OBSCURA_VALUE_BOOL, 0, 1, &flag};
+        ASSERT_EQ(host.api().setRenderSetting(host.delegate(), "textures:compression", &v), OBSCURA_OK);
+    }
 
     // An RGB PNG of `size` x `size` texels coloured by texel(x, y), row 0 at the top.
     std::string writePng(const std::string& name, int size, const std::function<Rgb8(int, int)>& texel) {
@@ -565,9 +574,7 @@ TEST_F(TextureTest, TwoChannelNormalMapsShadeLikeTheirNormal) {
         const char* format;
     };
     for (const Case& c : {Case{png16, true, "RG16"}, Case{png8, true, "BC5"}, Case{png8, false, "RGBA8"}}) {
-        int32_t flag = c.compression ? 1 : 0;
-        ObscuraValue v{OBSCURA_VALUE_BOOL, 0, 1, &flag};
-        ASSERT_EQ(host.api().setRenderSetting(host.delegate(), "textures:compression", &v), OBSCURA_OK);
+        setCompression(c.compression);
         auto values = textured("normal", c.file, {{"sourceColorSpace", HostValue::token("raw")},
                                                   {"channel", HostValue::token("rgb")},
                                                   {"scale", float4(2.0f, 2.0f, 2.0f, 1.0f)},
@@ -589,6 +596,52 @@ TEST_F(TextureTest, TwoChannelNormalMapsShadeLikeTheirNormal) {
         ASSERT_EQ(host.api().removePrim(host.delegate(), "/Plane"), OBSCURA_OK);
         ASSERT_EQ(host.api().removePrim(host.delegate(), "/Looks/Bumped"), OBSCURA_OK);
     }
+}
+
+TEST_F(TextureTest, BlockCompressedRampRendersWithinBc1sPrecision) {
+    // A smooth sRGB colour ramp (one texel per pixel) rendered BC1-compressed and uncompressed:
+    // BC1 follows a ramp's colours in each block but holds its endpoints to 5:6:5, at worst half
+    // a 5-bit step (4.1 codes) off, so the albedo, read as sRGB codes, keeps a PSNR of at least
+    // 20 log10(255 / 4.1) = 35.9 dB against the uncompressed render (35 dB asked, leaving room for
+    // the albedo target's own rounding). Off, the texture is the RGBA8 sRGB it always was.
+    const std::string file = writePng("ramp.png", 64, [](int x, int) {
+        const float t = float(x) / 63.0f;
+        return Rgb8{uint8_t(std::lround(20.0f + 210.0f * t)), uint8_t(std::lround(60.0f + 120.0f * t)),
+                    uint8_t(std::lround(200.0f - 160.0f * t))};
+    });
+    std::vector<float> images[2];
+    const char* formats[2] = {"RGBA8 sRGB", "BC1 sRGB"};
+    for (int on = 0; on < 2; ++on) {
+        setCompression(on == 1);
+        host.addPrim("material", "/Looks/M",
+                     textured("diffuseColor", file,
+                              {{"wrapS", HostValue::token("clamp")}, {"wrapT", HostValue::token("clamp")}}));
+        addPlane("/Plane", "/Looks/M");
+        render();
+        images[on] = albedo;
+        EXPECT_EQ(std::count_if(host.loggedInfos().begin(), host.loggedInfos().end(),
+                                [&](const std::string& m) {
+                                    return m.rfind("loaded texture " + file + " (64x64 " + formats[on] + ",", 0) == 0;
+                                }),
+                  1)
+            << formats[on];
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Plane"), OBSCURA_OK);
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Looks/M"), OBSCURA_OK);
+    }
+    // Interior pixels: each render's jitter may move the plane's edge past the outermost ones.
+    double squared = 0.0;
+    size_t count = 0;
+    for (int y = 1; y < kHeight - 1; ++y)
+        for (int x = 1; x < kWidth - 1; ++x)
+            for (size_t c = 0; c < 3; ++c) {
+                const size_t i = (size_t(y) * kWidth + size_t(x)) * 3 + c;
+                const double d = 255.0 * (srgbEncode(images[1][i]) - srgbEncode(images[0][i]));
+                squared += d * d;
+                ++count;
+            }
+    const double psnr = 10.0 * std::log10(255.0 * 255.0 / std::max(squared / double(count), 1e-12));
+    EXPECT_GE(psnr, 35.0);
+    std::printf("BC1 ramp render PSNR %.1f dB\n", psnr);
 }
 
 TEST_F(TextureTest, MinifiedTextureAveragesInLinearSpace) {
