@@ -644,6 +644,33 @@ TEST_F(TextureTest, BlockCompressedRampRendersWithinBc1sPrecision) {
     std::printf("BC1 ramp render PSNR %.1f dB\n", psnr);
 }
 
+TEST_F(TextureTest, CompressedTexturesComeBackFromTheDiskCache) {
+    // Once a texture's blocks are encoded they are read from the disk cache (the tests' folder in
+    // the build tree) by the file's content: a second load after the first was released, and a
+    // copy of the file under another name, encode nothing.
+    setCompression(true);
+    const std::string file = writePng("cached.png", 8, [](int x, int y) {
+        return Rgb8{uint8_t(30 * x), uint8_t(30 * y), uint8_t(getpid() % 251)};
+    });
+    const std::string copy = (dir_ / "copy.png").string();
+    std::filesystem::copy_file(file, copy);
+    for (const std::string& f : {file, file, copy}) {
+        host.addPrim("material", "/Looks/M", textured("diffuseColor", f));
+        addPlane("/Plane", "/Looks/M");
+        render();
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Plane"), OBSCURA_OK);
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Looks/M"), OBSCURA_OK);
+    }
+    auto loads = [&](const std::string& f, const char* how) {
+        return std::count_if(host.loggedInfos().begin(), host.loggedInfos().end(), [&](const std::string& m) {
+            return m.rfind("loaded texture " + f + " (8x8 BC1 sRGB,", 0) == 0 && m.find(how) != std::string::npos;
+        });
+    };
+    EXPECT_EQ(loads(file, "from the disk cache") + loads(file, "compressed on the CPU"), 2);
+    EXPECT_GE(loads(file, "from the disk cache"), 1);
+    EXPECT_EQ(loads(copy, "from the disk cache"), 1);
+}
+
 TEST_F(TextureTest, MinifiedTextureAveragesInLinearSpace) {
     // A one-texel black and white checker, 256 texels over 64 pixels: each pixel's footprint
     // covers 4x4 texels, whose average in linear space is 0.5 (sRGB code 188); averaging the
