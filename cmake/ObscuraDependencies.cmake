@@ -21,6 +21,15 @@ set_target_properties(OpenSubdiv::osdCPU PROPERTIES
 # Debian's OpenColorIO CMake config is unusable; its pkg-config file works.
 pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET GLOBAL OpenColorIO>=2.1)
 pkg_check_modules(LZ4 REQUIRED IMPORTED_TARGET GLOBAL liblz4)      # USD crate files' compression
+pkg_check_modules(XXHASH REQUIRED IMPORTED_TARGET GLOBAL libxxhash)  # content hashes of the texture cache
+# libsquish: BC1/BC3 colour texture compression. Not pkg-config: Debian's libsquish.pc names an
+# include folder that does not exist.
+find_library(SQUISH_LIBRARY squish REQUIRED)
+find_path(SQUISH_INCLUDE_DIR squish.h REQUIRED)
+add_library(Squish::squish UNKNOWN IMPORTED GLOBAL)
+set_target_properties(Squish::squish PROPERTIES
+  IMPORTED_LOCATION ${SQUISH_LIBRARY}
+  INTERFACE_INCLUDE_DIRECTORIES ${SQUISH_INCLUDE_DIR})
 pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET GLOBAL libzip)   # USDZ packages
 pkg_check_modules(GLFW REQUIRED IMPORTED_TARGET GLOBAL glfw3)      # obscura view's window and input
 pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET GLOBAL imgui)     # obscura view's HUD (with its GLFW and Vulkan backends)

@@ -1,5 +1,9 @@
 #include "delegate/material_texture.h"
 
+#include "delegate/normal_map_image.h"
+
+#include <cmath>
+
 namespace obscura::delegate {
 namespace {
 
@@ -11,6 +15,14 @@ passes::TextureChannel parseChannel(const std::string& token) {
     return passes::TextureChannel::R;
 }
 
+// Whether scale and bias read each texel channel c as +-(2 c - 1) and z as 2 z - 1: the texel is
+// a unit normal's 0.5 n + 0.5 (up to mirrored x or y), which two-channel storage reproduces.
+bool readsUnitNormals(const std::array<float, 4>& scale, const std::array<float, 4>& bias) {
+    for (size_t c = 0; c < 2; ++c)
+        if (std::abs(scale[c]) != 2.0f || bias[c] != -0.5f * scale[c]) return false;
+    return scale[2] == 2.0f && bias[2] == -1.0f;
+}
+
 }  // namespace
 
 std::optional<BoundTexture> readBoundTexture(SceneAccess& scene, TextureCache& cache, const std::string& input,
@@ -19,7 +31,16 @@ std::optional<BoundTexture> readBoundTexture(SceneAccess& scene, TextureCache& c
     auto attribute = [&](const char* field) { return prefix + field; };
     const std::string file = scene.getToken(attribute("file").c_str());
     if (file.empty()) return std::nullopt;
-    auto loaded = cache.get(file, parseSourceColorSpace(scene.getToken(attribute("sourceColorSpace").c_str())));
+    const SourceColorSpace colorSpace = parseSourceColorSpace(scene.getToken(attribute("sourceColorSpace").c_str()));
+    const std::array<float, 4> scale = scene.getFloat4(attribute("scale").c_str());
+    const std::array<float, 4> bias = scene.getFloat4(attribute("bias").c_str());
+    const auto channel = parseChannel(scene.getToken(attribute("channel").c_str()));
+    const TextureRole role = input == "normal" && channel == passes::TextureChannel::Rgb &&
+                                     colorSpace == SourceColorSpace::Raw && readsUnitNormals(scale, bias) &&
+                                     isIntegerImageFile(file)
+                                 ? TextureRole::Normal
+                                 : TextureRole::Material;
+    auto loaded = cache.get(file, colorSpace, role);
     if (auto* problem = std::get_if<std::string>(&loaded)) {
         warnings.push_back("inputs:" + input + ": texture " + file + ": " + *problem + "; its constant value is used");
         return std::nullopt;
@@ -28,9 +49,15 @@ std::optional<BoundTexture> readBoundTexture(SceneAccess& scene, TextureCache& c
     bound.texture = std::get<TexturePtr>(loaded);
     bound.sampler = cache.sampler(parseWrapMode(scene.getToken(attribute("wrapS").c_str())),
                                   parseWrapMode(scene.getToken(attribute("wrapT").c_str())));
-    bound.params.scale = scene.getFloat4(attribute("scale").c_str());
-    bound.params.bias = scene.getFloat4(attribute("bias").c_str());
-    bound.params.channel = uint32_t(parseChannel(scene.getToken(attribute("channel").c_str())));
+    // A renormalised texture's map back to its values goes before the UsdUVTexture's own scale and
+    // bias; both are affine per channel, so they fold into one (the talk's "two more constants per
+    // texture" cost nothing more): (t * rs + rb) * s + b = t * (rs * s) + (rb * s + b).
+    for (size_t c = 0; c < 4; ++c) {
+        bound.params.scale[c] = bound.texture->renormScale[c] * scale[c];
+        bound.params.bias[c] = bound.texture->renormBias[c] * scale[c] + bias[c];
+    }
+    bound.params.channel = uint32_t(channel);
+    bound.params.reconstructZ = bound.texture->twoChannelNormal ? 1 : 0;
     bound.params.sampled = 1;
     bound.stPrimvar = scene.getToken(attribute("st").c_str());
     return bound;

@@ -78,7 +78,8 @@ RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
     auto context = gpu::Context::create(options);
     if (!context) throw ApiError{OBSCURA_ERROR_DEVICE, context.error()};
     device_ = std::make_unique<gpu::Device>(std::move(*context));
-    textures_ = std::make_unique<TextureCache>(*device_, options.log);
+    textures_ = std::make_unique<TextureCache>(*device_, options.log,
+                                               TextureDiskCache(TextureDiskCache::folderFromEnvironment()));
     geometry_ = std::make_unique<GeometryCache>(*device_);
     frame_ = std::make_unique<renderer::FrameRenderer>(*device_, textures_->sampler(WrapMode::Repeat, WrapMode::Clamp),
                                                        options.log);
@@ -179,6 +180,7 @@ void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue
     const renderer::FrameSettings& values = settings_.values();
     const int32_t previousRefineLevel = values.refineLevel;
     const double previousTimeCodesPerSecond = values.timeCodesPerSecond;
+    const bool previousCompression = values.textureCompression;
     int32_t previousMsaa = int32_t(values.msaaSamples);
     std::string problem = settings_.set(key, value);
     if (!problem.empty())
@@ -208,6 +210,12 @@ void RenderDelegate::setRenderSetting(const std::string& key, const ObscuraValue
     if (values.refineLevel != previousRefineLevel)
         for (auto& [path, prim] : prims_)
             if (dynamic_cast<Mesh*>(prim.get())) markDirty(path, kDirtyTessellation);
+    // Materials read their textures again, stored the new way.
+    if (values.textureCompression != previousCompression) {
+        textures_->setCompression(values.textureCompression);
+        for (auto& [path, prim] : prims_)
+            if (dynamic_cast<Material*>(prim.get())) markDirty(path, OBSCURA_DIRTY_PARAMS);
+    }
     // Velocities are per second: another rate moves points and instances elsewhere in the shutter.
     if (values.timeCodesPerSecond != previousTimeCodesPerSecond)
         for (auto& [path, prim] : prims_)

@@ -1,5 +1,7 @@
 #include "delegate/texture_cache.h"
 
+#include "delegate/colour_block_compression.h"
+#include "delegate/normal_map_image.h"
 #include "gpu/texture_upload.h"
 #include "gpu/vk_check.h"
 
@@ -21,6 +23,12 @@ const char* formatName(VkFormat format) {
     switch (format) {
         case VK_FORMAT_R8G8B8A8_SRGB: return "RGBA8 sRGB";
         case VK_FORMAT_R8G8B8A8_UNORM: return "RGBA8";
+        case VK_FORMAT_R16G16_UNORM: return "RG16";
+        case VK_FORMAT_BC5_UNORM_BLOCK: return "BC5";
+        case VK_FORMAT_BC1_RGB_SRGB_BLOCK: return "BC1 sRGB";
+        case VK_FORMAT_BC1_RGB_UNORM_BLOCK: return "BC1";
+        case VK_FORMAT_BC3_SRGB_BLOCK: return "BC3 sRGB";
+        case VK_FORMAT_BC3_UNORM_BLOCK: return "BC3";
         default: return "RGBA16F";
     }
 }
@@ -34,7 +42,8 @@ WrapMode parseWrapMode(const std::string& token) {
     return WrapMode::Repeat;
 }
 
-TextureCache::TextureCache(gpu::Device& device, LogSink log) : device_(device), log_(std::move(log)) {
+TextureCache::TextureCache(gpu::Device& device, LogSink log, TextureDiskCache diskCache)
+    : device_(device), log_(std::move(log)), diskCache_(std::move(diskCache)) {
     gpu::ImageDesc desc;
     desc.format = VK_FORMAT_R8G8B8A8_UNORM;
     desc.width = desc.height = 1;
@@ -46,34 +55,147 @@ TextureCache::~TextureCache() {
     for (const auto& [modes, sampler] : samplers_) vkDestroySampler(device_.vk(), sampler, nullptr);
 }
 
-std::variant<TexturePtr, std::string> TextureCache::get(const std::string& file, SourceColorSpace colorSpace) {
-    auto key = std::make_pair(file, colorSpace);
+std::variant<TexturePtr, std::string> TextureCache::get(const std::string& file, SourceColorSpace colorSpace,
+                                                        TextureRole role) {
+    auto key = std::make_tuple(file, colorSpace, role, compression_);
     if (auto it = textures_.find(key); it != textures_.end())
         if (TexturePtr shared = it->second.lock()) return shared;
+    auto made = make(file, colorSpace, role);
+    if (auto* texture = std::get_if<TexturePtr>(&made)) textures_[key] = *texture;
+    return made;
+}
 
-    auto decoded = decodeTextureFile(file, colorSpace);
+std::variant<TexturePtr, std::string> TextureCache::make(const std::string& file, SourceColorSpace colorSpace,
+                                                         TextureRole role) {
+    if (role == TextureRole::Normal)
+        if (auto normalMap = makeNormalMap(file)) return *normalMap;
+    auto decoded = decodeTextureFile(file, colorSpace, role);
     if (auto* problem = std::get_if<std::string>(&decoded)) return *problem;
     TextureImage& image = std::get<TextureImage>(decoded);
-    gpu::ImageDesc desc;
-    desc.format = image.format;
-    desc.width = image.level0.width;
-    desc.height = image.level0.height;
-    desc.mipLevels = gpu::mipLevelCount(desc.width, desc.height);
-    // Blits filter sRGB formats in linear space, as the CPU fallback does.
-    const bool blit = gpu::canBlitMips(device_, desc.format);
-    std::vector<gpu::MipLevel> levels;
-    levels.push_back(std::move(image.level0));
-    while (!blit && levels.size() < desc.mipLevels) levels.push_back(downsample(levels.back(), desc.format));
+    Made made;
+    made.desc.format = image.format;
+    made.desc.width = image.level0.width;
+    made.desc.height = image.level0.height;
+    made.desc.mipLevels = gpu::mipLevelCount(made.desc.width, made.desc.height);
+    // 8-bit colour is block-compressed where the device samples the format; renormalised
+    // textures keep their 8 bits, whose precision was the point.
+    const bool eightBit = image.format == VK_FORMAT_R8G8B8A8_SRGB || image.format == VK_FORMAT_R8G8B8A8_UNORM;
+    const VkFormat blockFormat = role == TextureRole::Material && compression_ && eightBit && !image.renormalised()
+                                     ? colourBlockFormat(image.level0, image.format)
+                                     : VK_FORMAT_UNDEFINED;
+    const bool compress = blockFormat != VK_FORMAT_UNDEFINED && canSampleCompressed(blockFormat);
+    // Blits filter sRGB formats in linear space, as the CPU fallback does; compressed formats
+    // cannot be blitted.
+    const bool blit = !compress && gpu::canBlitMips(device_, made.desc.format);
+    made.levels.push_back(std::move(image.level0));
+    while (!blit && made.levels.size() < made.desc.mipLevels)
+        made.levels.push_back(downsample(made.levels.back(), made.desc.format));
+    made.how = std::string(blit ? "blitted" : "filtered on the CPU") + (image.renormalised() ? ", renormalised" : "");
+    if (compress) {
+        const std::vector<gpu::MipLevel> chain = std::move(made.levels);
+        bool cached = false;
+        made.levels = blockLevels(file, "squish-1-" + std::to_string(blockFormat) + "-from-" + std::to_string(image.format),
+                                  chain, blockFormat, [&](size_t i) { return compressColourLevel(chain[i], blockFormat); },
+                                  cached);
+        made.desc.format = blockFormat;
+        made.how += cached ? ", compressed (from the disk cache)" : ", compressed on the CPU";
+    }
+    Texture texture;
+    texture.average = image.average;
+    texture.renormScale = image.renormScale;
+    texture.renormBias = image.renormBias;
+    return upload(file, std::move(made), std::move(texture));
+}
 
-    auto texture = std::make_shared<Texture>();
-    texture->image = gpu::createMipmappedTexture(device_, desc, levels, file.c_str());
-    texture->average = image.average;
-    textures_[key] = texture;
-    log_(LogLevel::Info, "loaded texture " + file + " (" + std::to_string(desc.width) + "x" +
-                             std::to_string(desc.height) + " " + formatName(desc.format) + ", " +
-                             std::to_string(desc.mipLevels) + " mip levels " +
-                             (blit ? "blitted" : "filtered on the CPU") + ")");
-    return texture;
+std::optional<std::variant<TexturePtr, std::string>> TextureCache::makeNormalMap(const std::string& file) {
+    auto decoded = decodeNormalMap(file);
+    if (auto* problem = std::get_if<std::string>(&decoded)) return *problem;
+    NormalMapSource& source = std::get<NormalMapSource>(decoded);
+    // 16-bit files keep their precision (the talk's "Normal maps precision"); 8-bit ones are
+    // compressed, or left to the Material path as they always were when compression is off.
+    const bool bc5 = !source.sixteenBit;
+    if (bc5 && !(compression_ && canSampleCompressed(VK_FORMAT_BC5_UNORM_BLOCK))) return std::nullopt;
+    Made made;
+    made.desc.format = bc5 ? VK_FORMAT_BC5_UNORM_BLOCK : VK_FORMAT_R16G16_UNORM;
+    made.desc.width = source.normals.width;
+    made.desc.height = source.normals.height;
+    made.desc.mipLevels = gpu::mipLevelCount(made.desc.width, made.desc.height);
+    // Mips of unit normals, normalised after averaging, on the CPU: BC5 cannot be blitted.
+    std::vector<NormalImage> chain{std::move(source.normals)};
+    while (chain.size() < made.desc.mipLevels) chain.push_back(downsampleNormals(chain.back()));
+    bool cached = false;
+    if (!bc5) {
+        for (const NormalImage& level : chain) made.levels.push_back(packTwoChannels(level, made.desc.format));
+        made.how = "filtered on the CPU";
+    } else {
+        std::vector<gpu::MipLevel> extents;
+        for (const NormalImage& level : chain) extents.push_back({level.width, level.height, {}});
+        made.levels = blockLevels(file, "bc5-normal-aware-1", extents, made.desc.format,
+                                  [&](size_t i) {
+                                      return gpu::MipLevel{chain[i].width, chain[i].height,
+                                                           encodeBc5(chain[i], Bc5Encoder::NormalAware)};
+                                  },
+                                  cached);
+        made.how = cached ? "filtered on the CPU, encoded (from the disk cache)" : "filtered and encoded on the CPU";
+    }
+    Texture texture;
+    texture.twoChannelNormal = true;
+    // x and y read back as 0.5 n + 0.5 of the normalised average, z 0 (two-channel formats).
+    const NormalImage& last = chain.back();
+    texture.average = {0.5f * last.normals[0][0] + 0.5f, 0.5f * last.normals[0][1] + 0.5f, 0.0f, 1.0f};
+    return upload(file, std::move(made), std::move(texture));
+}
+
+bool TextureCache::canSampleCompressed(VkFormat format) const {
+    if (!device_.context().enabledFeatures().textureCompressionBC) return false;
+    VkFormatProperties properties{};
+    vkGetPhysicalDeviceFormatProperties(device_.context().physicalDevice(), format, &properties);
+    const VkFormatFeatureFlags needed =
+        VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+    return (properties.optimalTilingFeatures & needed) == needed;
+}
+
+std::vector<gpu::MipLevel> TextureCache::blockLevels(const std::string& file, const std::string& encoding,
+                                                     const std::vector<gpu::MipLevel>& extents, VkFormat format,
+                                                     const std::function<gpu::MipLevel(size_t)>& encode,
+                                                     bool& cached) const {
+    const size_t blockBytes = format == VK_FORMAT_BC1_RGB_SRGB_BLOCK || format == VK_FORMAT_BC1_RGB_UNORM_BLOCK ? 8 : 16;
+    auto sizeOf = [&](const gpu::MipLevel& level) {
+        return size_t((level.width + 3) / 4) * ((level.height + 3) / 4) * blockBytes;
+    };
+    size_t total = 0;
+    for (const gpu::MipLevel& level : extents) total += sizeOf(level);
+    const std::string key = TextureDiskCache::key(file, encoding);
+    std::optional<std::vector<std::byte>> blocks = diskCache_.read(key);
+    cached = blocks && blocks->size() == total;
+    std::vector<gpu::MipLevel> levels;
+    if (!cached) {
+        blocks.emplace();
+        for (size_t i = 0; i < extents.size(); ++i) {
+            levels.push_back(encode(i));
+            blocks->insert(blocks->end(), levels.back().bytes.begin(), levels.back().bytes.end());
+        }
+        diskCache_.write(key, *blocks);
+        return levels;
+    }
+    size_t offset = 0;
+    for (const gpu::MipLevel& level : extents) {
+        levels.push_back({level.width, level.height,
+                          std::vector<std::byte>(blocks->begin() + std::ptrdiff_t(offset),
+                                                 blocks->begin() + std::ptrdiff_t(offset + sizeOf(level)))});
+        offset += sizeOf(level);
+    }
+    return levels;
+}
+
+TexturePtr TextureCache::upload(const std::string& file, Made made, Texture texture) {
+    texture.image = gpu::createMipmappedTexture(device_, made.desc, made.levels, file.c_str());
+    log_(LogLevel::Info, "loaded texture " + file + " (" + std::to_string(made.desc.width) + "x" +
+                             std::to_string(made.desc.height) + " " + formatName(made.desc.format) + ", " +
+                             std::to_string(made.desc.mipLevels) + " mip levels " + made.how + ", " +
+                             std::to_string(device_.imageMemoryRequirements(texture.image->desc).size / 1024) +
+                             " KiB)");
+    return std::make_shared<const Texture>(std::move(texture));
 }
 
 VkSampler TextureCache::sampler(WrapMode s, WrapMode t) {

@@ -1,17 +1,23 @@
-// The delegate's material textures: each distinct (file, sourceColorSpace) is read and uploaded
+// The delegate's material textures: each distinct (file, sourceColorSpace, role) is read and uploaded
 // once, with its full mip chain, and shared by every material naming it for as long as one holds
-// it. Also the samplers of the UsdUVTexture wrap modes and the white texture that fills the
+// it. With compression on, where the device samples the format, 8-bit normal maps are
+// BC5-compressed (bc5_encoder.h) and 8-bit colour BC1 or BC3 (colour_block_compression.h), their
+// blocks kept in a TextureDiskCache. Also the samplers of the UsdUVTexture wrap modes and the white texture that fills the
 // descriptor elements no material uses.
 #pragma once
 
+#include "delegate/texture_disk_cache.h"
 #include "delegate/texture_image.h"
 #include "gpu/device.h"
 #include "gpu/log.h"
 
 #include <array>
+#include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <variant>
 
@@ -25,28 +31,51 @@ WrapMode parseWrapMode(const std::string& token);
 struct Texture {
     gpu::ImagePtr image;
     std::array<float, 4> average{};  // TextureImage::average
+    std::array<float, 4> renormScale{1.0f, 1.0f, 1.0f, 1.0f};  // TextureImage::renormScale
+    std::array<float, 4> renormBias{};                          // TextureImage::renormBias
+    bool twoChannelNormal = false;  // x and y of a normal map; the shader reconstructs z
 };
 using TexturePtr = std::shared_ptr<const Texture>;
 
 class TextureCache {
 public:
-    TextureCache(gpu::Device& device, LogSink log);
+    TextureCache(gpu::Device& device, LogSink log, TextureDiskCache diskCache);
     ~TextureCache();
     TextureCache(const TextureCache&) = delete;
     TextureCache& operator=(const TextureCache&) = delete;
 
     // The texture of an absolute file path, read on first use (logged at info level as
-    // "loaded texture <file>"), else the reason it cannot be read. Failures are not remembered:
+    // "loaded texture <file> (size format, mips, device memory)"), else the reason it cannot be read. Failures are not remembered:
     // the next sync of a material tries again.
-    std::variant<TexturePtr, std::string> get(const std::string& file, SourceColorSpace colorSpace);
+    std::variant<TexturePtr, std::string> get(const std::string& file, SourceColorSpace colorSpace, TextureRole role);
     // Trilinear, anisotropic where the device allows; black is a transparent black border.
     VkSampler sampler(WrapMode s, WrapMode t);
     const gpu::ImagePtr& white() const { return white_; }
+    // The textures:compression render setting: textures loaded from now on.
+    void setCompression(bool on) { compression_ = on; }
 
 private:
+    struct Made {
+        gpu::ImageDesc desc;
+        std::vector<gpu::MipLevel> levels;  // the levels not given are blitted
+        std::string how;                    // for the log: how the levels were made
+    };
+    std::variant<TexturePtr, std::string> make(const std::string& file, SourceColorSpace colorSpace, TextureRole role);
+    // nullopt: the file is stored as a Material texture instead.
+    std::optional<std::variant<TexturePtr, std::string>> makeNormalMap(const std::string& file);
+    TexturePtr upload(const std::string& file, Made made, Texture texture);
+    bool canSampleCompressed(VkFormat format) const;
+    // Block-compressed levels of the extents' sizes, `encode(i)` making level i, read from the disk
+    // cache under (file content, encoding) when it holds them (`cached`), else encoded and stored.
+    std::vector<gpu::MipLevel> blockLevels(const std::string& file, const std::string& encoding,
+                                           const std::vector<gpu::MipLevel>& extents, VkFormat format,
+                                           const std::function<gpu::MipLevel(size_t)>& encode, bool& cached) const;
+
     gpu::Device& device_;
     LogSink log_;
-    std::map<std::pair<std::string, SourceColorSpace>, std::weak_ptr<const Texture>> textures_;
+    TextureDiskCache diskCache_;
+    bool compression_ = true;
+    std::map<std::tuple<std::string, SourceColorSpace, TextureRole, bool>, std::weak_ptr<const Texture>> textures_;
     std::map<std::pair<WrapMode, WrapMode>, VkSampler> samplers_;
     gpu::ImagePtr white_;
 };

@@ -1,5 +1,7 @@
 #include "delegate/texture_image.h"
 
+#include "delegate/texture_renormalization.h"
+
 #include <Imath/half.h>
 #include <OpenEXR/ImfArray.h>
 #include <OpenEXR/ImfRgbaFile.h>
@@ -19,11 +21,6 @@ namespace {
 struct StbFree {
     void operator()(void* p) const { stbi_image_free(p); }
 };
-
-std::string stbReason() {
-    const char* reason = stbi_failure_reason();
-    return reason ? reason : "unknown error";
-}
 
 // IEC 61966-2-1 transfer functions.
 float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
@@ -112,7 +109,7 @@ std::variant<TextureImage, std::string> decodeExr(const std::string& path) {
 std::variant<TextureImage, std::string> decodeHdr(const std::string& path) {
     int width = 0, height = 0, channels = 0;
     std::unique_ptr<float, StbFree> data(stbi_loadf(path.c_str(), &width, &height, &channels, 4));
-    if (!data) return "cannot read image: " + stbReason();
+    if (!data) return "cannot read image: " + stbFailureReason();
     std::vector<Imath::half> rgba(size_t(width) * size_t(height) * 4);
     std::transform(data.get(), data.get() + rgba.size(), rgba.begin(), toHalf);
     TextureImage image{VK_FORMAT_R16G16B16A16_SFLOAT, halfLevel(uint32_t(width), uint32_t(height), rgba.data()), {}};
@@ -120,12 +117,16 @@ std::variant<TextureImage, std::string> decodeHdr(const std::string& path) {
     return image;
 }
 
+bool decodesSrgb(SourceColorSpace colorSpace, int fileChannels) {
+    return colorSpace == SourceColorSpace::Srgb ||
+           (colorSpace == SourceColorSpace::Auto && (fileChannels == 3 || fileChannels == 4));
+}
+
 std::variant<TextureImage, std::string> decode8Bit(const std::string& path, SourceColorSpace colorSpace) {
     int width = 0, height = 0, fileChannels = 0;
     std::unique_ptr<stbi_uc, StbFree> data(stbi_load(path.c_str(), &width, &height, &fileChannels, 4));
-    if (!data) return "cannot read image: " + stbReason();
-    const bool srgb = colorSpace == SourceColorSpace::Srgb ||
-                      (colorSpace == SourceColorSpace::Auto && (fileChannels == 3 || fileChannels == 4));
+    if (!data) return "cannot read image: " + stbFailureReason();
+    const bool srgb = decodesSrgb(colorSpace, fileChannels);
     TextureImage image;
     image.format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
     image.level0 = {uint32_t(width), uint32_t(height), std::vector<std::byte>(size_t(width) * size_t(height) * 4)};
@@ -134,7 +135,35 @@ std::variant<TextureImage, std::string> decode8Bit(const std::string& path, Sour
     return image;
 }
 
+// A 16-bit PNG: decoded to linear values at full precision and renormalised, or (when that would
+// be coarser than 8-bit sRGB somewhere) read again as 8 bits.
+std::variant<TextureImage, std::string> decode16Bit(const std::string& path, SourceColorSpace colorSpace) {
+    int width = 0, height = 0, fileChannels = 0;
+    std::unique_ptr<stbi_us, StbFree> data(stbi_load_16(path.c_str(), &width, &height, &fileChannels, 4));
+    if (!data) return "cannot read image: " + stbFailureReason();
+    const bool srgb = decodesSrgb(colorSpace, fileChannels);
+    std::vector<float> linear(size_t(width) * size_t(height) * 4);
+    for (size_t i = 0; i < linear.size(); ++i) {
+        const float v = float(data.get()[i]) / 65535.0f;
+        linear[i] = srgb && i % 4 < 3 ? srgbToLinear(v) : v;
+    }
+    auto stretched = renormalize(uint32_t(width), uint32_t(height), linear, srgb);
+    if (!stretched) return decode8Bit(path, colorSpace);
+    TextureImage image;
+    image.format = VK_FORMAT_R8G8B8A8_UNORM;
+    image.level0 = std::move(stretched->level);
+    image.average = averageOf(image.level0, image.format);
+    image.renormScale = stretched->scale;
+    image.renormBias = stretched->bias;
+    return image;
+}
+
 }  // namespace
+
+std::string stbFailureReason() {
+    const char* reason = stbi_failure_reason();
+    return reason ? reason : "unknown error";
+}
 
 SourceColorSpace parseSourceColorSpace(const std::string& token) {
     if (token == "sRGB") return SourceColorSpace::Srgb;
@@ -142,9 +171,11 @@ SourceColorSpace parseSourceColorSpace(const std::string& token) {
     return SourceColorSpace::Auto;
 }
 
-std::variant<TextureImage, std::string> decodeTextureFile(const std::string& path, SourceColorSpace colorSpace) {
+std::variant<TextureImage, std::string> decodeTextureFile(const std::string& path, SourceColorSpace colorSpace,
+                                                          TextureRole role) {
     if (Imf::isOpenExrFile(path.c_str())) return decodeExr(path);
     if (stbi_is_hdr(path.c_str())) return decodeHdr(path);
+    if (role == TextureRole::Material && stbi_is_16_bit(path.c_str())) return decode16Bit(path, colorSpace);
     return decode8Bit(path, colorSpace);
 }
 

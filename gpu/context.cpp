@@ -272,6 +272,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     features.features.independentBlend = supported.independentBlend;
     // Material textures are filtered anisotropically where the device can.
     features.features.samplerAnisotropy = supported.samplerAnisotropy;
+    // Normal maps are BC5-compressed where the device samples it.
+    features.features.textureCompressionBC = supported.textureCompressionBC;
     ctx->enabledFeatures_ = features.features;
 
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};

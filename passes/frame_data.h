@@ -127,7 +127,7 @@ struct alignas(16) MaterialTexture {
     std::array<float, 4> bias{};
     uint32_t sampled = 0;  // 1: the input reads the draw's texture of its slot, 0: its constant
     uint32_t channel = uint32_t(TextureChannel::R);
-    uint32_t pad0 = 0;
+    uint32_t reconstructZ = 0;  // 1: a two-channel normal map, the shader reconstructs z
     uint32_t pad1 = 0;
 };
 static_assert(sizeof(MaterialTexture) == 48);
@@ -135,7 +135,7 @@ OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, scale);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, bias);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, sampled);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, channel);
-OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, pad0);
+OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, reconstructZ);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, pad1);
 
 // The inputs the G-buffer pass samples, each from its own binding of descriptor set 1; textured

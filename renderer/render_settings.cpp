@@ -201,6 +201,11 @@ const RenderSettingInfo kSettings[] = {
      "filter) or tetrahedral (keeps neutral greys neutral) (token, default trilinear)",
      OBSCURA_VALUE_TOKEN, 0.0, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
      "trilinear|tetrahedral"},
+    {"textures:compression", number<&FrameSettings::textureCompression>,
+     "block-compressed material textures where the device samples the format: 8-bit colour as BC1 "
+     "(opaque) or BC3 (with alpha), 8-bit tangent-space normal maps read as 2 n - 1 from raw files as "
+     "BC5 (two channels, z reconstructed); off keeps 8-bit textures RGBA8 (bool, default on)",
+     OBSCURA_VALUE_BOOL, 1.0},
 };
 
 bool isTokenChoice(std::string_view choices, std::string_view token) {

@@ -56,6 +56,7 @@ struct FrameSettings {
     std::string ocioConfig, ocioDisplay, ocioView, ocioLook;
     std::string gradingChart;
     passes::LatticeInterpolation gradingInterpolation;
+    bool textureCompression;
 };
 
 struct RenderSettingInfo {

@@ -21,7 +21,7 @@ TexturePtr readDomeTexture(SceneAccess& s, TextureCache& textures, std::string& 
         return nullptr;
     }
     // Float files are linear; 8-bit ones are decoded as their channel count suggests.
-    auto loaded = textures.get(file, SourceColorSpace::Auto);
+    auto loaded = textures.get(file, SourceColorSpace::Auto, TextureRole::Plain);
     if (auto* problem = std::get_if<std::string>(&loaded)) {
         warning = "cannot read inputs:texture:file " + file + " (" + *problem + "); the dome uses its constant colour";
         return nullptr;

@@ -72,6 +72,24 @@ Status writePng(const std::string& path, int width, int height, PngFormat format
     return std::monostate{};
 }
 
+Status writePng16(const std::string& path, int width, int height, const uint16_t* rgb) {
+    if (width <= 0 || height <= 0) {
+        return path + ": invalid size " + std::to_string(width) + "x" + std::to_string(height);
+    }
+    if (rgb == nullptr) return path + ": no pixel data";
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    png.width = static_cast<png_uint_32>(width);
+    png.height = static_cast<png_uint_32>(height);
+    // Without alpha, 16-bit ("linear") data is written as it is (with alpha libpng would
+    // un-premultiply it).
+    png.format = PNG_FORMAT_LINEAR_RGB;
+    if (png_image_write_to_file(&png, path.c_str(), 0, rgb, 0, nullptr) == 0) {
+        return path + ": cannot write PNG: " + png.message;
+    }
+    return std::monostate{};
+}
+
 Status writePng(const std::string& path, const Image& image) {
     const int r = image.channelIndex("R");
     const int g = image.channelIndex("G");

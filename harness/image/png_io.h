@@ -19,6 +19,11 @@ enum class PngFormat { Rgb, Rgba };
 Status writePng(const std::string& path, int width, int height, PngFormat format,
                 const uint8_t* data, size_t rowStrideBytes);
 
+// Writes 16-bit RGB pixels (3 values each, rows top first, tightly packed) as a 16-bit PNG,
+// values unchanged (libpng's simplified API marks 16-bit files gamma 1.0; readers of texture
+// files take the values as sourceColorSpace says).
+Status writePng16(const std::string& path, int width, int height, const uint16_t* rgb);
+
 // Writes the R, G, B (and A, when present) channels of `image` as an 8-bit PNG: values are
 // clamped to [0,1] and rounded, with no transfer function applied (the image is taken to be
 // display-referred already, like makeDiffImage's output). NaN is written as 0.

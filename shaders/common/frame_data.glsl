@@ -70,7 +70,7 @@ struct MaterialTexture {
     vec4 bias;
     uint sampled;           // 1: the input reads the draw's texture of its slot, 0: its constant
     uint channel;           // r, g, b, a (0..3) or TEXTURE_CHANNEL_RGB
-    uint pad0;
+    uint reconstructZ;      // 1: a two-channel normal map, z = sqrt(1 - x^2 - y^2) after scale and bias
     uint pad1;
 };
 

@@ -20,10 +20,13 @@ float scalarInput(float constant, MaterialTexture t, sampler2D tex, vec2 uv) {
 
 // UsdPreviewSurface `normal`: a tangent-space normal (the texture's scale and bias map texels to
 // [-1, 1], e.g. scale 2, bias -1), in the frame of the interpolated tangent (direction of
-// increasing u), the bitangent cross(N, T) * handedness and the normal.
+// increasing u), the bitangent cross(N, T) * handedness and the normal. Two-channel normal maps
+// (16-bit RG, BC5) hold x and y; z is the unit vector's (Kaplanyan 2010, "3Dc encoder
+// improvements": the renormalised normal is what the encoder minimised the error of).
 vec3 perturbedNormal(vec3 n, vec4 tangent, MaterialTexture t, sampler2D tex, vec2 uv) {
     if (t.sampled == 0u) return n;
     vec3 local = sampleTexture(t, tex, uv).xyz;
+    if (t.reconstructZ != 0u) local.z = sqrt(max(0.0, 1.0 - dot(local.xy, local.xy)));
     vec3 T = tangent.xyz - n * dot(n, tangent.xyz);  // re-orthogonalised after interpolation
     if (dot(T, T) < 1e-12 || dot(local, local) < 1e-12) return n;
     T = normalize(T);

@@ -68,6 +68,12 @@ void HostedStage::setToken(const std::string& name, const std::string& token) {
     EXPECT_EQ(api().setRenderSetting(delegate, name.c_str(), &value), OBSCURA_OK) << api().lastError(delegate);
 }
 
+void HostedStage::setBool(const std::string& name, bool on) {
+    int32_t flag = on ? 1 : 0;
+    ObscuraValue value{OBSCURA_VALUE_BOOL, 0, 1, &flag};
+    EXPECT_EQ(api().setRenderSetting(delegate, name.c_str(), &value), OBSCURA_OK) << api().lastError(delegate);
+}
+
 bool HostedStage::warned(const std::string& fragment) const {
     for (const auto& m : host->messages())
         if (m.text.find(fragment) != std::string::npos) return true;

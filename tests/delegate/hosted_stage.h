@@ -37,6 +37,7 @@ struct HostedStage {
     std::vector<float> renderAlbedo() { return renderAov("albedo", 3); }
     // A render setting that is one token.
     void setToken(const std::string& name, const std::string& token);
+    void setBool(const std::string& name, bool on);
     // Whether the host reported a message containing `fragment`.
     bool warned(const std::string& fragment) const;
     // A logged error containing `fragment` is one this test provokes; any other fails it.

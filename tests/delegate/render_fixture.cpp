@@ -70,10 +70,9 @@ float smallFloatStep(float v, int mantissaBits) {
     return std::ldexp(1.0f, exponent - 1 - mantissaBits);
 }
 
-float srgb8Exact(int code) {
-    double c = code / 255.0;
-    return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
-}
+float srgbDecode(double c) { return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4)); }
+
+float srgb8Exact(int code) { return srgbDecode(code / 255.0); }
 
 std::array<double, 2> environmentBrdf(double roughness, double NdotV) {
     const double c0[4] = {-1.0, -0.0275, -0.572, 0.022}, c1[4] = {1.0, 0.0425, 1.04, -0.04};

@@ -39,6 +39,8 @@ void addMaterial(TestHost& host, const std::string& path, std::array<float, 3> d
 // allowed by Vulkan), so analytic expectations get this much slack on top of their tolerance.
 float smallFloatStep(float v, int mantissaBits);
 
+// The IEC 61966-2-1 decode of an sRGB-encoded value in [0, 1].
+float srgbDecode(double encoded);
 // A linear value that 8-bit sRGB storage (the albedo G-buffer target) holds exactly.
 float srgb8Exact(int code);
 

@@ -63,8 +63,17 @@ protected:
             host.addRenderBuffer(std::string("/Buffers/") + aov,
                                  std::string("float32Vec") + (aov[0] == 'a' ? "3" : "4"), kWidth, kHeight);
         host.addRenderBuffer("/Buffers/primId", "int32", kWidth, kHeight);
+        // These tests check texel values to a step of the 8-bit storage; block compression, which
+        // moves them further, has its own tests.
+        setCompression(false);
     }
     ~TextureTest() override { std::filesystem::remove_all(dir_); }
+
+    void setCompression(bool on) {
+        int32_t flag = on ? 1 : 0;
+        ObscuraValue v{OBSCURA_VALUE_BOOL, 0, 1, &flag};
+        ASSERT_EQ(host.api().setRenderSetting(host.delegate(), "textures:compression", &v), OBSCURA_OK);
+    }
 
     // An RGB PNG of `size` x `size` texels coloured by texel(x, y), row 0 at the top.
     std::string writePng(const std::string& name, int size, const std::function<Rgb8(int, int)>& texel) {
@@ -366,6 +375,35 @@ TEST_F(TextureTest, MissingFileWarnsAndKeepsTheConstant) {
     EXPECT_TRUE(warned) << "no warning names " << missing;
 }
 
+TEST_F(TextureTest, UnreadableNormalMapWarnsAndKeepsTheGeometricNormal) {
+    // A file that is no image, bound as a two-channel normal map (raw, 2 n - 1): a warning names
+    // it and the surface shades with its own normal, as unmapped.
+    const std::string broken = (dir_ / "broken_normal.png").string();
+    std::FILE* f = std::fopen(broken.c_str(), "wb");
+    ASSERT_TRUE(f);
+    std::fputs("not an image", f);
+    std::fclose(f);
+    auto values = textured("normal", broken, {{"sourceColorSpace", HostValue::token("raw")},
+                                              {"channel", HostValue::token("rgb")},
+                                              {"scale", float4(2.0f, 2.0f, 2.0f, 1.0f)},
+                                              {"bias", float4(-1.0f, -1.0f, -1.0f, 0.0f)}});
+    const float grey = srgb8Exact(150);
+    values["inputs:diffuseColor"] = HostValue::float3(grey, grey, grey);
+    host.addPrim("material", "/Looks/M", values);
+    addPlane("/Plane", "/Looks/M");
+    host.addPrim("distantLight", "/Sun",
+                 {{"inputs:intensity", HostValue::floatValue(1.0f)},
+                  {"inputs:normalize", HostValue::boolean(true)},
+                  {"inputs:specular", HostValue::floatValue(0.0f)}},
+                 lightPointingAlong({0.0, 0.0, -1.0}));
+    render();
+    const double expected = grey / kPi;
+    EXPECT_NEAR(colorAt(32, 32)[0], expected, 0.01 * expected + smallFloatStep(float(expected), 6));
+    EXPECT_TRUE(std::any_of(host.loggedWarnings().begin(), host.loggedWarnings().end(),
+                            [&](const std::string& w) { return w.find(broken) != std::string::npos; }))
+        << "no warning names " << broken;
+}
+
 TEST_F(TextureTest, MaterialsSharingAFileLoadItOnce) {
     std::string file = writeBlocks("blocks.png");
     host.addPrim("material", "/Looks/A", textured("diffuseColor", file));
@@ -442,6 +480,186 @@ TEST_F(TextureTest, NormalMapsTiltTheShadingNormalInTheTangentFrame) {
         }
         ASSERT_EQ(host.api().removePrim(host.delegate(), plane.c_str()), OBSCURA_OK);
     }
+}
+
+TEST_F(TextureTest, RenormalisedTextureRendersAsItsFloatReference) {
+    // A low-contrast 16-bit sRGB gradient (red codes 0.40..0.46 along u, green 0.20..0.25 along v,
+    // blue constant) is stored renormalised in 8 bits; the same linear values in a float EXR are
+    // the reference. Both pass through the material's scale and bias, which the renormalisation
+    // folds into; they must agree within a step of the 8-bit sRGB albedo target (clamped, so that
+    // no lookup wraps to the far side of the gradient).
+    constexpr int kTexels = 64;
+    auto encoded = [](int x, int y) {
+        return std::array<float, 3>{0.40f + 0.06f * float(x) / (kTexels - 1), 0.20f + 0.05f * float(y) / (kTexels - 1),
+                                    0.7f};
+    };
+    std::vector<uint16_t> codes;
+    std::vector<float> linear;
+    for (int y = 0; y < kTexels; ++y)
+        for (int x = 0; x < kTexels; ++x) {
+            for (float e : encoded(x, y)) {
+                codes.push_back(uint16_t(std::lround(e * 65535.0f)));
+                linear.push_back(srgbDecode(codes.back() / 65535.0));
+            }
+            linear.push_back(1.0f);
+        }
+    std::string png = (dir_ / "low_contrast.png").string(), exr = (dir_ / "low_contrast.exr").string();
+    ASSERT_FALSE(image::isError(image::writePng16(png, kTexels, kTexels, codes.data())));
+    image::ExrLayer layer{"", {"R", "G", "B", "A"}, image::ExrLayer::PixelType::Float, linear.data(),
+                          size_t(kTexels) * 4 * sizeof(float)};
+    ASSERT_FALSE(image::isError(image::writeExr(exr, kTexels, kTexels, {layer})));
+    std::vector<float> images[2];
+    for (int i = 0; i < 2; ++i) {
+        const std::string& file = i == 0 ? exr : png;
+        host.addPrim("material", "/Looks/M",
+                     textured("diffuseColor", file, {{"scale", float4(1.5f, 1.0f, 0.8f, 1.0f)},
+                                                      {"bias", float4(0.0f, 0.05f, 0.0f, 0.0f)},
+                                                      {"wrapS", HostValue::token("clamp")},
+                                                      {"wrapT", HostValue::token("clamp")}}));
+        addPlane("/Plane", "/Looks/M");
+        render();
+        images[i] = albedo;
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Plane"), OBSCURA_OK);
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Looks/M"), OBSCURA_OK);
+    }
+    EXPECT_EQ(std::count_if(host.loggedInfos().begin(), host.loggedInfos().end(),
+                            [](const std::string& m) { return m.find("renormalised") != std::string::npos; }),
+              1);
+    // The outermost pixels are left out: each render's sub-pixel jitter may move the plane's edge
+    // past them.
+    for (int y = 1; y < kHeight - 1; ++y)
+        for (int x = 1; x < kWidth - 1; ++x)
+            for (size_t c = 0; c < 3; ++c) {
+                const size_t i = (size_t(y) * kWidth + size_t(x)) * 3 + c;
+                ASSERT_NEAR(images[1][i], images[0][i], srgbStep(images[0][i]) + 1e-4f)
+                    << "pixel (" << x << ", " << y << ") channel " << c;
+            }
+}
+
+TEST_F(TextureTest, TwoChannelNormalMapsShadeLikeTheirNormal) {
+    // A constant normal tilted 30 degrees towards +u, stored as 0.5 n + 0.5 and read raw with
+    // scale 2, bias -1: a 16-bit PNG is kept at 16 bits in two channels (RG16), an 8-bit one is
+    // BC5-compressed, or with textures:compression off stays RGBA8 as it always was. In each the
+    // shader's normal (z reconstructed where two channels are stored) faces a distant light along
+    // the tilted normal: E albedo / pi, as in NormalMapsTiltTheShadingNormalInTheTangentFrame.
+    const float kAlbedo = srgb8Exact(188);
+    const double tilt = 30.0 * kPi / 180.0;
+    const std::array<double, 3> stored{0.5 * std::sin(tilt) + 0.5, 0.5, 0.5 * std::cos(tilt) + 0.5};
+    std::vector<uint16_t> codes16;
+    for (int i = 0; i < 16; ++i)
+        for (double v : stored) codes16.push_back(uint16_t(std::lround(v * 65535.0)));
+    const std::string png16 = (dir_ / "normal16.png").string();
+    ASSERT_FALSE(image::isError(image::writePng16(png16, 4, 4, codes16.data())));
+    const std::string png8 = writePng("normal8.png", 4, [&](int, int) {
+        return Rgb8{uint8_t(std::lround(stored[0] * 255.0)), uint8_t(std::lround(stored[1] * 255.0)),
+                    uint8_t(std::lround(stored[2] * 255.0))};
+    });
+    host.addPrim("distantLight", "/Sun",
+                 {{"inputs:intensity", HostValue::floatValue(1.0f)},
+                  {"inputs:normalize", HostValue::boolean(true)},
+                  {"inputs:specular", HostValue::floatValue(0.0f)}},
+                 lightPointingAlong({-std::sin(tilt), 0.0, -std::cos(tilt)}));
+    struct Case {
+        std::string file;
+        bool compression;
+        const char* format;
+    };
+    for (const Case& c : {Case{png16, true, "RG16"}, Case{png8, true, "BC5"}, Case{png8, false, "RGBA8"}}) {
+        setCompression(c.compression);
+        auto values = textured("normal", c.file, {{"sourceColorSpace", HostValue::token("raw")},
+                                                  {"channel", HostValue::token("rgb")},
+                                                  {"scale", float4(2.0f, 2.0f, 2.0f, 1.0f)},
+                                                  {"bias", float4(-1.0f, -1.0f, -1.0f, 0.0f)}});
+        values["inputs:diffuseColor"] = HostValue::float3(kAlbedo, kAlbedo, kAlbedo);
+        host.addPrim("material", "/Looks/Bumped", values);
+        addPlane("/Plane", "/Looks/Bumped");
+        render();
+        const double expected = kAlbedo / kPi;
+        // 1% plus a step of the light buffer: at the light's own direction the cosine is flat, so
+        // the stored normal's fraction-of-a-degree error costs nothing visible.
+        EXPECT_NEAR(colorAt(32, 32)[0], expected, 0.01 * expected + smallFloatStep(float(expected), 6)) << c.format;
+        EXPECT_EQ(std::count_if(host.loggedInfos().begin(), host.loggedInfos().end(),
+                                [&](const std::string& m) {
+                                    return m.rfind("loaded texture " + c.file + " (4x4 " + c.format + ",", 0) == 0;
+                                }),
+                  1)
+            << c.format;
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Plane"), OBSCURA_OK);
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Looks/Bumped"), OBSCURA_OK);
+    }
+}
+
+TEST_F(TextureTest, BlockCompressedRampRendersWithinBc1sPrecision) {
+    // A smooth sRGB colour ramp (one texel per pixel) rendered BC1-compressed and uncompressed:
+    // BC1 follows a ramp's colours in each block but holds its endpoints to 5:6:5, at worst half
+    // a 5-bit step (4.1 codes) off, so the albedo, read as sRGB codes, keeps a PSNR of at least
+    // 20 log10(255 / 4.1) = 35.9 dB against the uncompressed render (35 dB asked, leaving room for
+    // the albedo target's own rounding). Off, the texture is the RGBA8 sRGB it always was.
+    const std::string file = writePng("ramp.png", 64, [](int x, int) {
+        const float t = float(x) / 63.0f;
+        return Rgb8{uint8_t(std::lround(20.0f + 210.0f * t)), uint8_t(std::lround(60.0f + 120.0f * t)),
+                    uint8_t(std::lround(200.0f - 160.0f * t))};
+    });
+    std::vector<float> images[2];
+    const char* formats[2] = {"RGBA8 sRGB", "BC1 sRGB"};
+    for (int on = 0; on < 2; ++on) {
+        setCompression(on == 1);
+        host.addPrim("material", "/Looks/M",
+                     textured("diffuseColor", file,
+                              {{"wrapS", HostValue::token("clamp")}, {"wrapT", HostValue::token("clamp")}}));
+        addPlane("/Plane", "/Looks/M");
+        render();
+        images[on] = albedo;
+        EXPECT_EQ(std::count_if(host.loggedInfos().begin(), host.loggedInfos().end(),
+                                [&](const std::string& m) {
+                                    return m.rfind("loaded texture " + file + " (64x64 " + formats[on] + ",", 0) == 0;
+                                }),
+                  1)
+            << formats[on];
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Plane"), OBSCURA_OK);
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Looks/M"), OBSCURA_OK);
+    }
+    // Interior pixels: each render's jitter may move the plane's edge past the outermost ones.
+    double squared = 0.0;
+    size_t count = 0;
+    for (int y = 1; y < kHeight - 1; ++y)
+        for (int x = 1; x < kWidth - 1; ++x)
+            for (size_t c = 0; c < 3; ++c) {
+                const size_t i = (size_t(y) * kWidth + size_t(x)) * 3 + c;
+                const double d = 255.0 * (srgbEncode(images[1][i]) - srgbEncode(images[0][i]));
+                squared += d * d;
+                ++count;
+            }
+    const double psnr = 10.0 * std::log10(255.0 * 255.0 / std::max(squared / double(count), 1e-12));
+    EXPECT_GE(psnr, 35.0);
+    std::printf("BC1 ramp render PSNR %.1f dB\n", psnr);
+}
+
+TEST_F(TextureTest, CompressedTexturesComeBackFromTheDiskCache) {
+    // Once a texture's blocks are encoded they are read from the disk cache (the tests' folder in
+    // the build tree) by the file's content: a second load after the first was released, and a
+    // copy of the file under another name, encode nothing.
+    setCompression(true);
+    const std::string file = writePng("cached.png", 8, [](int x, int y) {
+        return Rgb8{uint8_t(30 * x), uint8_t(30 * y), uint8_t(getpid() % 251)};
+    });
+    const std::string copy = (dir_ / "copy.png").string();
+    std::filesystem::copy_file(file, copy);
+    for (const std::string& f : {file, file, copy}) {
+        host.addPrim("material", "/Looks/M", textured("diffuseColor", f));
+        addPlane("/Plane", "/Looks/M");
+        render();
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Plane"), OBSCURA_OK);
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Looks/M"), OBSCURA_OK);
+    }
+    auto loads = [&](const std::string& f, const char* how) {
+        return std::count_if(host.loggedInfos().begin(), host.loggedInfos().end(), [&](const std::string& m) {
+            return m.rfind("loaded texture " + f + " (8x8 BC1 sRGB,", 0) == 0 && m.find(how) != std::string::npos;
+        });
+    };
+    EXPECT_EQ(loads(file, "from the disk cache") + loads(file, "compressed on the CPU"), 2);
+    EXPECT_GE(loads(file, "from the disk cache"), 1);
+    EXPECT_EQ(loads(copy, "from the disk cache"), 1);
 }
 
 TEST_F(TextureTest, MinifiedTextureAveragesInLinearSpace) {

@@ -1,0 +1,34 @@
+// Encoded textures kept on disk, named by the content hash of their source file and the encoding:
+// BC5 normal maps take seconds to encode well (the talk's exhaustive encoder took hours, Kaplanyan
+// 2010, "3Dc encoder improvements, cont'd"), so each file is encoded once per content. The folder
+// is $OBSCURA_TEXTURE_CACHE, else $XDG_CACHE_HOME/obscura, else ~/.cache/obscura;
+// OBSCURA_TEXTURE_CACHE=off turns the cache off.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace obscura::delegate {
+
+class TextureDiskCache {
+public:
+    // The folder named by the environment (nullopt: off, or no home folder to put it in).
+    static std::optional<std::filesystem::path> folderFromEnvironment();
+    explicit TextureDiskCache(std::optional<std::filesystem::path> folder) : folder_(std::move(folder)) {}
+
+    // The key of `file`'s content encoded as `encoding` (a name that changes with the encoder);
+    // empty when the file cannot be read.
+    static std::string key(const std::string& file, const std::string& encoding);
+    std::optional<std::vector<std::byte>> read(const std::string& key) const;
+    // Written to a temporary name and renamed, so a reader never sees half a file; failures to
+    // write are ignored (the cache only saves time).
+    void write(const std::string& key, const std::vector<std::byte>& bytes) const;
+
+private:
+    std::optional<std::filesystem::path> folder_;
+};
+
+}  // namespace obscura::delegate
