@@ -10,10 +10,10 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace obscura::usda;
     // Small limits keep each input fast and bounded; the defaults are tested in tests/usda.
-    CompositionLimits limits;
-    limits.maxPrims = 20000;
-    limits.maxMemoryBytes = size_t(256) << 20;
-    auto result = Stage::openFromString(std::string(reinterpret_cast<const char*>(data), size), "fuzz.usda", limits);
+    StageOptions options;
+    options.limits.maxPrims = 20000;
+    options.limits.maxMemoryBytes = size_t(256) << 20;
+    auto result = Stage::openFromString(std::string(reinterpret_cast<const char*>(data), size), "fuzz.usda", options);
     auto* stage = std::get_if<std::unique_ptr<Stage>>(&result);
     if (!stage) return 0;
     for (const Prim* prim : (*stage)->prims()) {
