@@ -1,8 +1,8 @@
 #include "delegate/render_delegate.h"
 
+#include "delegate/aov_bindings.h"
 #include "delegate/purposes.h"
 #include "gpu/vk_check.h"
-#include "passes/aov_readback.h"
 
 #include <tbb/parallel_for.h>
 
@@ -12,8 +12,6 @@
 #include <cstdlib>
 #include <cstring>
 
-#include <unistd.h>
-
 namespace obscura::delegate {
 namespace {
 
@@ -22,33 +20,6 @@ namespace {
 int syncOrder(const Prim& p) {
     std::string category = p.schema().category;
     return category == "rprim" ? 1 : 0;
-}
-
-struct AovInfo {
-    const char* name;
-    passes::Aov aov;
-    ObscuraFormat format;
-};
-constexpr AovInfo kAovs[] = {
-    {"color", passes::Aov::Color, OBSCURA_FORMAT_FLOAT32_VEC4},
-    {"depth", passes::Aov::Depth, OBSCURA_FORMAT_FLOAT32},
-    {"normal", passes::Aov::Normal, OBSCURA_FORMAT_FLOAT32_VEC3},
-    {"albedo", passes::Aov::Albedo, OBSCURA_FORMAT_FLOAT32_VEC3},
-    {"primId", passes::Aov::PrimId, OBSCURA_FORMAT_INT32},
-    {"instanceId", passes::Aov::InstanceId, OBSCURA_FORMAT_INT32},
-    {"display", passes::Aov::Display, OBSCURA_FORMAT_UNORM8_VEC4},
-    {"motion", passes::Aov::Motion, OBSCURA_FORMAT_FLOAT32_VEC3},
-};
-
-const char* formatName(ObscuraFormat f) {
-    switch (f) {
-        case OBSCURA_FORMAT_FLOAT32_VEC4: return "float32Vec4";
-        case OBSCURA_FORMAT_FLOAT32_VEC3: return "float32Vec3";
-        case OBSCURA_FORMAT_FLOAT32: return "float32";
-        case OBSCURA_FORMAT_INT32: return "int32";
-        case OBSCURA_FORMAT_UNORM8_VEC4: return "unorm8Vec4";
-        default: return "unknown";
-    }
 }
 
 }  // namespace
@@ -331,11 +302,8 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     if (desc.aovBindingCount > 0 && !desc.aovBindings)
         throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "aovBindings is NULL but aovBindingCount is not 0"};
 
-    // A mapped buffer keeps its contents until unmap: refuse before anything is pulled or drawn.
-    for (uint32_t i = 0; i < desc.aovBindingCount; ++i)
-        if (const char* path = desc.aovBindings[i].renderBufferPath)
-            if (const RenderBuffer* rb = find<RenderBuffer>(path); rb && rb->mapped)
-                throw ApiError{OBSCURA_ERROR_INVALID_STATE, std::string(path) + " is still mapped: unmap it before rendering"};
+    const RenderBufferLookup findBuffer = [this](const char* path) { return find<RenderBuffer>(path); };
+    refuseMappedBuffers(desc, findBuffer);
     device_->context().faults().beginRender();
     auto syncStart = std::chrono::steady_clock::now();
     sync(desc.time, camera, desc);
@@ -343,46 +311,9 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     syncMilliseconds_ = std::chrono::duration<double, std::milli>(syncEnd - syncStart).count();
     if (camera->skipped()) throw ApiError{OBSCURA_ERROR_BAD_PRIM_DATA, "camera " + camera->problem()};
 
-    // Bind render buffers; they all share the viewport's size.
-    std::vector<passes::AovRequest> requests;
-    std::vector<RenderBuffer*> targets;
-    const RenderBuffer* firstSkippedBuffer = nullptr;
-    uint32_t width = desc.viewport[2] > 0 ? uint32_t(desc.viewport[2]) : 0;
-    uint32_t height = desc.viewport[3] > 0 ? uint32_t(desc.viewport[3]) : 0;
-    for (uint32_t i = 0; i < desc.aovBindingCount; ++i) {
-        const ObscuraAovBinding& b = desc.aovBindings[i];
-        if (!b.aov || !b.renderBufferPath) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "AOV binding with NULL names"};
-        const AovInfo* info = nullptr;
-        for (const auto& a : kAovs)
-            if (std::strcmp(a.name, b.aov) == 0) info = &a;
-        if (!info) throw ApiError{OBSCURA_ERROR_NOT_FOUND, std::string("unknown AOV '") + b.aov + "'"};
-        RenderBuffer* rb = find<RenderBuffer>(b.renderBufferPath);
-        if (!rb) throw ApiError{OBSCURA_ERROR_NOT_FOUND, std::string("no render buffer at ") + b.renderBufferPath};
-        // A render buffer with bad data is a skipped prim like any other: the frame renders into the
-        // others and render returns BAD_PRIM_DATA (it keeps its last pixels, or stays unrendered).
-        if (rb->skipped()) {
-            if (!firstSkippedBuffer) firstSkippedBuffer = rb;
-            continue;
-        }
-        if (rb->format() != info->format)
-            throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, std::string("AOV '") + b.aov + "' needs format " +
-                                                               formatName(info->format) + ", " + b.renderBufferPath +
-                                                               " is " + formatName(rb->format())};
-        if (width == 0) width = rb->width(), height = rb->height();
-        if (rb->width() != width || rb->height() != height)
-            throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, std::string(b.renderBufferPath) +
-                                                               " does not match the viewport size"};
-        requests.push_back({info->aov, rb->storage(*device_), rb->deviceStaging(*device_)});
-        targets.push_back(rb);
-    }
-    if ((width == 0 || height == 0) && firstSkippedBuffer)
-        throw ApiError{OBSCURA_ERROR_BAD_PRIM_DATA, "no size to render at: render buffer " + firstSkippedBuffer->problem()};
-    if (width == 0 || height == 0) throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "empty viewport and no render buffers"};
-    const uint32_t maxSize = device_->context().properties().limits.maxImageDimension2D;
-    if (width > maxSize || height > maxSize)
-        throw ApiError{OBSCURA_ERROR_INVALID_ARGUMENT, "viewport " + std::to_string(width) + "x" + std::to_string(height) +
-                                                           " exceeds " + std::to_string(maxSize) +
-                                                           " pixels a side, the device's largest image"};
+    AovBindings bindings =
+        bindAovs(desc, findBuffer, *device_, device_->context().properties().limits.maxImageDimension2D);
+    const uint32_t width = bindings.width, height = bindings.height;
 
     const renderer::FrameSettings& settings = settings_.values();
     if (std::string problem = frame_->updateDisplay(settings); !problem.empty())
@@ -415,14 +346,14 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
     request.sceneVersion = sceneVersion_;
     request.settingsVersion = settings_.version();
     request.environment = dome && dome->environment() ? dome->environment()->image : nullptr;
-    request.aovs = std::move(requests);
+    request.aovs = std::move(bindings.requests);
     FrameSceneSource source(*device_, frame, sceneReport_, logSink_);
     frame_->render(source, request, settings);
     frameSetupMilliseconds_ = std::chrono::duration<double, std::milli>(frame_->recorded() - syncEnd).count();
-    for (RenderBuffer* rb : targets) rb->setRendered(true);
+    for (RenderBuffer* rb : bindings.targets) rb->setRendered(true);
     // Exported buffers go to the host's device: released to it, and the semaphore signalled.
     std::vector<gpu::BufferPtr> exported;
-    for (RenderBuffer* rb : targets)
+    for (RenderBuffer* rb : bindings.targets)
         if (rb->exported()) exported.push_back(rb->storage(*device_));
     if (!exported.empty()) exportTimeline_->release(exported);
 
@@ -456,35 +387,13 @@ void RenderDelegate::exportBuffer(const std::string& path, ObscuraExternalBuffer
     if (!rb) throw ApiError{OBSCURA_ERROR_NOT_FOUND, "no render buffer at " + path};
     if (!rb->rendered()) throw ApiError{OBSCURA_ERROR_INVALID_STATE, path + " has not been rendered"};
     if (rb->mapped) throw ApiError{OBSCURA_ERROR_INVALID_STATE, path + " is mapped: unmap it before exporting it"};
-    const gpu::ExternalHandleSupport& support = device_->context().externalHandles();
     out.memoryFd = -1;
     out.semaphoreFd = -1;
-    if (!support.memoryFd)
+    if (!device_->context().externalHandles().memoryFd)
         throw ApiError{OBSCURA_ERROR_DEVICE, device_->context().summary().name +
                                                  " cannot export memory (no VK_KHR_external_memory_fd): map the buffer"};
     if (!exportTimeline_) exportTimeline_ = std::make_unique<gpu::ExportTimeline>(*device_);
-    rb->setExported();
-    const gpu::BufferPtr& storage = rb->storage(*device_);
-    gpu::ExportedMemory memory = gpu::exportMemory(*device_, *storage);
-    int semaphore = -1;
-    try {
-        semaphore = exportTimeline_->exportSemaphore();
-    } catch (...) {
-        close(memory.fd);
-        throw;
-    }
-    out.width = rb->width();
-    out.height = rb->height();
-    out.format = rb->format();
-    out.rowStride = rb->width() * rb->bytesPerPixel();
-    out.size = storage->size;
-    out.memoryFd = memory.fd;
-    out.allocationSize = memory.allocationSize;
-    out.memoryTypeIndex = memory.memoryTypeIndex;
-    out.dedicated = memory.dedicated ? 1 : 0;
-    out.semaphoreFd = semaphore;
-    std::memcpy(out.deviceUUID, support.deviceUUID, sizeof(out.deviceUUID));
-    std::memcpy(out.driverUUID, support.driverUUID, sizeof(out.driverUUID));
+    rb->exportTo(*device_, *exportTimeline_, out);
 }
 
 void RenderDelegate::unmap(const std::string& path) {

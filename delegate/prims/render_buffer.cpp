@@ -3,6 +3,10 @@
 #include "gpu/device.h"
 #include "gpu/external_memory.h"
 
+#include <cstring>
+
+#include <unistd.h>
+
 namespace obscura::delegate {
 
 ObscuraFormat parseFormat(const std::string& t) {
@@ -67,6 +71,32 @@ const gpu::BufferPtr& RenderBuffer::deviceStaging(gpu::Device& device) {
                                        gpu::MemoryUsage::DeviceLocal, path().c_str());
     }
     return staging_;
+}
+
+void RenderBuffer::exportTo(gpu::Device& device, gpu::ExportTimeline& timeline, ObscuraExternalBuffer& out) {
+    setExported();
+    const gpu::BufferPtr& buffer = storage(device);
+    gpu::ExportedMemory memory = gpu::exportMemory(device, *buffer);
+    int semaphore = -1;
+    try {
+        semaphore = timeline.exportSemaphore();
+    } catch (...) {
+        close(memory.fd);
+        throw;
+    }
+    out.width = width_;
+    out.height = height_;
+    out.format = format_;
+    out.rowStride = width_ * bytesPerPixel();
+    out.size = buffer->size;
+    out.memoryFd = memory.fd;
+    out.allocationSize = memory.allocationSize;
+    out.memoryTypeIndex = memory.memoryTypeIndex;
+    out.dedicated = memory.dedicated ? 1 : 0;
+    out.semaphoreFd = semaphore;
+    const gpu::ExternalHandleSupport& support = device.context().externalHandles();
+    std::memcpy(out.deviceUUID, support.deviceUUID, sizeof(out.deviceUUID));
+    std::memcpy(out.driverUUID, support.driverUUID, sizeof(out.driverUUID));
 }
 
 }  // namespace obscura::delegate

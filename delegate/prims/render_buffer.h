@@ -3,6 +3,7 @@
 
 #include "delegate/prims/prim.h"
 #include "gpu/device.h"
+#include "gpu/external_memory.h"
 
 namespace obscura::delegate {
 
@@ -24,6 +25,9 @@ public:
     // The ABI's display interop (exportRenderBuffer): from now on the storage is exportable device
     // memory, made again when the size or format changes.
     void setExported() { exported_ = true; }
+    // Makes the storage exportable and describes it to the host: its memory's descriptor and the
+    // frames' semaphore's (the caller checked that the device can export memory).
+    void exportTo(gpu::Device& device, gpu::ExportTimeline& timeline, ObscuraExternalBuffer& out);
     bool exported() const { return exported_; }
     bool rendered() const { return rendered_; }
     void setRendered(bool r) { rendered_ = r; }
