@@ -26,6 +26,7 @@ SharedGeometry GeometryCache::get(GeometryContent content, const char* debugName
         if (shared.vertices && shared.indices) return shared;
     }
     const size_t indexBytes = content.bytes.size() - content.vertexBytes;
+    gpu::MemoryCategoryScope geometry(gpu::MemoryCategory::Geometry);
     SharedGeometry created{device_.createBufferWithData(content.bytes.data(), content.vertexBytes,
                                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, debugName),
                            device_.createBufferWithData(content.bytes.data() + content.vertexBytes, indexBytes,

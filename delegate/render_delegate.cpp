@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -20,6 +21,21 @@ namespace {
 int syncOrder(const Prim& p) {
     std::string category = p.schema().category;
     return category == "rprim" ? 1 : 0;
+}
+
+// The 1.1 counters for any host; the 1.3 ones where its struct has room for them.
+void fillMemoryStats(const gpu::MemoryAllocator& allocator, ObscuraMemoryStats& memory) {
+    if (memory.structSize < offsetof(ObscuraMemoryStats, imageBytes)) return;
+    memory.deviceMemoryReserved = allocator.bytesReserved();
+    memory.deviceMemoryInUse = allocator.bytesInUse();
+    memory.deviceMemoryBlocks = uint32_t(allocator.blockCount());
+    if (memory.structSize < sizeof(ObscuraMemoryStats)) return;
+    memory.imageBytes = allocator.bytesInUse(gpu::ResourceTiling::Optimal);
+    memory.frameTargetBytes = allocator.bytesInUse(gpu::MemoryCategory::FrameTargets);
+    memory.frameHistoryBytes = allocator.bytesInUse(gpu::MemoryCategory::FrameHistory);
+    memory.textureBytes = allocator.bytesInUse(gpu::MemoryCategory::Textures);
+    memory.geometryBytes = allocator.bytesInUse(gpu::MemoryCategory::Geometry);
+    memory.renderBufferBytes = allocator.bytesInUse(gpu::MemoryCategory::RenderBuffers);
 }
 
 }  // namespace
@@ -420,13 +436,8 @@ void RenderDelegate::stats(ObscuraRenderStats& out) const {
     // Output structs chain Vulkan style; the header is const only because input structs share it.
     for (auto* next = static_cast<const ObscuraStructHeader*>(out.pNext); next;
          next = static_cast<const ObscuraStructHeader*>(next->pNext)) {
-        if (next->sType == OBSCURA_STRUCTURE_TYPE_MEMORY_STATS && next->structSize >= sizeof(ObscuraMemoryStats)) {
-            auto* memory = const_cast<ObscuraMemoryStats*>(reinterpret_cast<const ObscuraMemoryStats*>(next));
-            const gpu::MemoryAllocator& allocator = device_->memory();
-            memory->deviceMemoryReserved = allocator.bytesReserved();
-            memory->deviceMemoryInUse = allocator.bytesInUse();
-            memory->deviceMemoryBlocks = uint32_t(allocator.blockCount());
-        }
+        if (next->sType == OBSCURA_STRUCTURE_TYPE_MEMORY_STATS)
+            fillMemoryStats(device_->memory(), *const_cast<ObscuraMemoryStats*>(reinterpret_cast<const ObscuraMemoryStats*>(next)));
         if (next->sType == OBSCURA_STRUCTURE_TYPE_INTEROP_STATS && next->structSize >= sizeof(ObscuraInteropStats)) {
             auto* interop = const_cast<ObscuraInteropStats*>(reinterpret_cast<const ObscuraInteropStats*>(next));
             interop->semaphoreValue = exportTimeline_ ? exportTimeline_->value() : 0;

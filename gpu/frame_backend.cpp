@@ -63,6 +63,7 @@ std::vector<ImagePtr> DeviceFrameBackend::transientImages(const TransientMemory&
         return transients_.images;
     // Another plan: the last one's images are retired once the GPU is done (it is: each frame is
     // waited for); their memory is kept for the new ones where it is large enough.
+    MemoryCategoryScope frameTargets(MemoryCategory::FrameTargets);
     std::vector<ImageMemoryPtr> heaps;
     std::vector<TransientMemory::Heap> kept;
     for (size_t h = 0; h < memory.heaps.size(); ++h) {

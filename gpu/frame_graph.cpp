@@ -1,6 +1,7 @@
 #include "gpu/frame_graph.h"
 
 #include "gpu/frame_backend.h"
+#include "gpu/memory.h"
 #include "gpu/history_images.h"
 #include "gpu/timestamps.h"
 #include "gpu/vulkan_functions.h"
@@ -505,6 +506,7 @@ void FrameGraph::realize(FrameBackend& backend) {
     for (size_t i = 0; i < transients.size(); ++i) images_[memory_.placements[i].image].image = transients[i];
     for (auto& img : images_) {
         if (img.residency != Residency::Persistent || img.image || !img.used) continue;
+        MemoryCategoryScope history(MemoryCategory::FrameHistory);
         img.image = backend.createImage(img.desc, img.name);
         img.persistent->image_ = img.image;
     }

@@ -76,6 +76,16 @@ bool MemoryAllocator::tryPlace(Block& block, const VkMemoryRequirements& req, Vk
     return false;
 }
 
+thread_local MemoryCategory currentCategory = MemoryCategory::Other;
+
+MemoryCategoryScope::MemoryCategoryScope(MemoryCategory category) : previous_(currentCategory) {
+    currentCategory = category;
+}
+
+MemoryCategoryScope::~MemoryCategoryScope() { currentCategory = previous_; }
+
+MemoryCategory MemoryCategoryScope::current() { return currentCategory; }
+
 Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsage usage, ResourceTiling tiling) {
     if (faults_ && faults_->strikes(FaultInjection::Kind::OutOfMemory))
         vkCheck(VK_ERROR_OUT_OF_DEVICE_MEMORY, "device memory allocation (OBSCURA_FAULT_INJECTION)");
@@ -110,8 +120,12 @@ Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsag
     a.size = req.size;
     a.mapped = b.mapped ? static_cast<char*>(b.mapped) + a.offset : nullptr;
     a.flags = properties_.memoryTypes[b.memoryType].propertyFlags;
+    a.tiling = tiling;
+    a.category = MemoryCategoryScope::current();
     b.used += req.size;
     inUse_ += req.size;
+    inUseByTiling_[size_t(a.tiling)] += a.size;
+    inUseByCategory_[size_t(a.category)] += a.size;
     return a;
 }
 
@@ -120,6 +134,8 @@ void MemoryAllocator::free(const Allocation& a) {
     Block& b = *blocks_.at(a.block);
     b.used -= a.size;
     inUse_ -= a.size;
+    inUseByTiling_[size_t(a.tiling)] -= a.size;
+    inUseByCategory_[size_t(a.category)] -= a.size;
     // Coalesce with the preceding and the following free range.
     VkDeviceSize offset = a.offset, size = a.size;
     auto next = b.freeRanges.lower_bound(offset);

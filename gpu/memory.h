@@ -8,6 +8,7 @@
 
 #include "gpu/vulkan_functions.h"
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <set>
@@ -16,16 +17,6 @@
 
 namespace obscura::gpu {
 
-struct Allocation {
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    VkDeviceSize offset = 0;
-    VkDeviceSize size = 0;
-    void* mapped = nullptr;     // host pointer at `offset` for host-visible memory
-    uint32_t block = UINT32_MAX;
-    VkMemoryPropertyFlags flags = 0;  // of the memory type it lives in
-    explicit operator bool() const { return memory != VK_NULL_HANDLE; }
-};
-
 enum class MemoryUsage {
     DeviceLocal,   // GPU only
     Upload,        // host writes, GPU reads (staging, per-frame constants)
@@ -33,6 +24,43 @@ enum class MemoryUsage {
 };
 
 enum class ResourceTiling { Linear, Optimal };
+
+// What memory holds, for the counts a host reads (ObscuraMemoryStats): set for the allocations of a
+// scope (MemoryCategoryScope) by the code that owns the resources; anything else is Other.
+enum class MemoryCategory : uint8_t {
+    Other,          // per-frame records, staging, small buffers of the passes
+    FrameTargets,   // the frame graph's transient images (aliased within a frame)
+    FrameHistory,   // images kept from frame to frame: histories, shadow atlas, accumulation
+    Textures,       // material textures (environment maps are the frame's history)
+    Geometry,       // vertex and index data
+    RenderBuffers,  // the AOVs' destinations and their device-local twins
+    Count
+};
+
+// Allocations made on this thread while it lives count towards `category` (scopes nest).
+class MemoryCategoryScope {
+public:
+    explicit MemoryCategoryScope(MemoryCategory category);
+    ~MemoryCategoryScope();
+    MemoryCategoryScope(const MemoryCategoryScope&) = delete;
+    MemoryCategoryScope& operator=(const MemoryCategoryScope&) = delete;
+    static MemoryCategory current();
+
+private:
+    MemoryCategory previous_;
+};
+
+struct Allocation {
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkDeviceSize offset = 0;
+    VkDeviceSize size = 0;
+    void* mapped = nullptr;     // host pointer at `offset` for host-visible memory
+    uint32_t block = UINT32_MAX;
+    VkMemoryPropertyFlags flags = 0;  // of the memory type it lives in
+    ResourceTiling tiling = ResourceTiling::Linear;
+    MemoryCategory category = MemoryCategory::Other;
+    explicit operator bool() const { return memory != VK_NULL_HANDLE; }
+};
 
 class MemoryAllocator {
 public:
@@ -48,6 +76,9 @@ public:
     void free(const Allocation& allocation);
 
     VkDeviceSize bytesInUse() const { return inUse_; }
+    // Of bytesInUse(): images (optimal tiling) or buffers; what a category holds.
+    VkDeviceSize bytesInUse(ResourceTiling tiling) const { return inUseByTiling_[size_t(tiling)]; }
+    VkDeviceSize bytesInUse(MemoryCategory category) const { return inUseByCategory_[size_t(category)]; }
     VkDeviceSize bytesReserved() const;
     size_t blockCount() const { return blocks_.size(); }
 
@@ -74,6 +105,8 @@ private:
     const FaultInjection* faults_;
     std::vector<std::unique_ptr<Block>> blocks_;
     VkDeviceSize inUse_ = 0;
+    std::array<VkDeviceSize, 2> inUseByTiling_{};
+    std::array<VkDeviceSize, size_t(MemoryCategory::Count)> inUseByCategory_{};
 };
 
 }  // namespace obscura::gpu

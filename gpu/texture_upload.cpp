@@ -52,6 +52,7 @@ bool canBlitMips(Device& device, VkFormat format) {
 
 ImagePtr createMipmappedTexture(Device& device, const ImageDesc& descIn, const std::vector<MipLevel>& levels,
                                 const char* debugName) {
+    MemoryCategoryScope textures(MemoryCategory::Textures);
     ImageDesc desc = descIn;
     const auto given = static_cast<uint32_t>(std::min<size_t>(levels.size(), desc.mipLevels));
     desc.usage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;

@@ -144,13 +144,28 @@ int runBench(const BenchOptions& o) {
     order.push_back("total");
     std::erase_if(warmupOrder, [&](const std::string& pass) { return samples.count(pass) > 0; });
     // The delegate's Vulkan memory after the measured frames: what a steady frame holds.
-    ObscuraMemoryStats memory{OBSCURA_STRUCTURE_TYPE_MEMORY_STATS, nullptr, sizeof(memory), 0, 0, 0};
+    ObscuraMemoryStats memory{};
+    memory.sType = OBSCURA_STRUCTURE_TYPE_MEMORY_STATS;
+    memory.structSize = sizeof(memory);
     ObscuraRenderStats stats{};
     stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
     stats.pNext = &memory;
     stats.structSize = sizeof(stats);
     session.api().getRenderStats(session.delegate(), &stats);
     constexpr double kMiB = 1024.0 * 1024.0;
+    // What the memory in use holds, by kind: images and buffers, then the owners that hold most.
+    const uint64_t named = memory.frameTargetBytes + memory.frameHistoryBytes + memory.textureBytes +
+                           memory.geometryBytes + memory.renderBufferBytes;
+    const std::pair<const char*, uint64_t> kinds[] = {
+        {"images", memory.imageBytes},
+        {"buffers", memory.deviceMemoryInUse - memory.imageBytes},
+        {"frame_targets", memory.frameTargetBytes},
+        {"frame_history", memory.frameHistoryBytes},
+        {"textures", memory.textureBytes},
+        {"geometry", memory.geometryBytes},
+        {"render_buffers", memory.renderBufferBytes},
+        {"other", memory.deviceMemoryInUse - named},
+    };
 
     if (o.json) {
         std::printf("{\"scene\": \"%s\", \"device\": \"%s\", \"width\": %d, \"height\": %d, \"frames\": %d, "
@@ -167,8 +182,10 @@ int runBench(const BenchOptions& o) {
         if (!o.display.empty())
             std::printf(", \"display\": {\"mode\": \"%s\", \"render_call_ms\": %.4f, \"show_ms\": %.4f}", o.display.c_str(),
                         median(renderCalls), median(shows));
-        std::printf(", \"device_memory_mib\": {\"in_use\": %.1f, \"reserved\": %.1f}}\n",
+        std::printf(", \"device_memory_mib\": {\"in_use\": %.1f, \"reserved\": %.1f",
                     double(memory.deviceMemoryInUse) / kMiB, double(memory.deviceMemoryReserved) / kMiB);
+        for (const auto& [kind, bytes] : kinds) std::printf(", \"%s\": %.1f", kind, double(bytes) / kMiB);
+        std::printf("}}\n");
     } else {
         std::printf("%s on %s, %dx%d, %d frames, %llu triangles (GPU timestamp medians)\n", o.scene.c_str(),
                     stats.deviceName, o.width, o.height, o.frames, static_cast<unsigned long long>(stats.trianglesDrawn));
@@ -177,6 +194,7 @@ int runBench(const BenchOptions& o) {
         for (const auto& name : warmupOrder) std::printf("  %-16s %10.4f ms\n", name.c_str(), warmupOnly[name]);
         std::printf("device memory: %.1f MiB in use, %.1f MiB reserved\n", double(memory.deviceMemoryInUse) / kMiB,
                     double(memory.deviceMemoryReserved) / kMiB);
+        for (const auto& [kind, bytes] : kinds) std::printf("  %-16s %10.1f MiB\n", kind, double(bytes) / kMiB);
         if (!o.display.empty())
             std::printf("display (%s, wall-clock medians): render call %.4f ms, showing the frame %.4f ms\n",
                         o.display.c_str(), median(renderCalls), median(shows));

@@ -77,6 +77,7 @@ void Mesh::setShutterPositions(const std::optional<std::array<std::vector<float>
             positions[v].close[k] = (*ends)[1][v * 3 + k];
         }
     ctx.onDevice([this, &device = ctx.device, positions = std::move(positions), path] {
+        gpu::MemoryCategoryScope geometry(gpu::MemoryCategory::Geometry);
         shutterPositions_ = device.createBufferWithData(positions.data(), positions.size() * sizeof(positions[0]),
                                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, path.c_str());
     });

@@ -48,6 +48,7 @@ void RenderBuffer::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
 
 const gpu::BufferPtr& RenderBuffer::storage(gpu::Device& device) {
     VkDeviceSize size = VkDeviceSize(width_) * height_ * bytesPerPixel();
+    gpu::MemoryCategoryScope renderBuffers(gpu::MemoryCategory::RenderBuffers);
     if (!storage_ || storage_->size != size || storageExported_ != exported_) {
         // An importer reads an exported buffer as a storage buffer or copies from it.
         storage_ = exported_ ? gpu::createExportableBuffer(device, size,
@@ -64,6 +65,7 @@ const gpu::BufferPtr& RenderBuffer::storage(gpu::Device& device) {
 
 const gpu::BufferPtr& RenderBuffer::deviceStaging(gpu::Device& device) {
     const gpu::BufferPtr& host = storage(device);
+    gpu::MemoryCategoryScope renderBuffers(gpu::MemoryCategory::RenderBuffers);
     if (exported_ || (host->allocation.flags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
         staging_.reset();
     } else if (!staging_ || staging_->size != host->size) {

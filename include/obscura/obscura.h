@@ -74,7 +74,8 @@ extern "C" {
 #endif
 
 #define OBSCURA_ABI_VERSION_MAJOR 1
-#define OBSCURA_ABI_VERSION_MINOR 2  /* 1.1: ObscuraMemoryStats, PFN_ typedefs; 1.2: display interop */
+#define OBSCURA_ABI_VERSION_MINOR 3  /* 1.1: ObscuraMemoryStats, PFN_ typedefs; 1.2: display interop;
+                                        1.3: ObscuraMemoryStats by kind */
 
 /* ---------------------------------------------------------------------------------------------
  * Status codes
@@ -332,7 +333,9 @@ typedef struct ObscuraRenderStats {
 } ObscuraRenderStats;
 
 /* ABI 1.1, chained to ObscuraRenderStats::pNext: the delegate's Vulkan memory now. A steady frame
- * allocates none: these stay put while an unchanged scene renders. */
+ * allocates none: these stay put while an unchanged scene renders. A host built against 1.1 or 1.2
+ * passes the smaller structSize and gets the first three counters; the 1.3 counters say what
+ * deviceMemoryInUse holds (exported render buffers live in memory of their own, counted nowhere). */
 typedef struct ObscuraMemoryStats {
     ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_MEMORY_STATS */
     const void* pNext;
@@ -340,6 +343,13 @@ typedef struct ObscuraMemoryStats {
     uint32_t deviceMemoryBlocks;    /* VkDeviceMemory allocations held */
     uint64_t deviceMemoryReserved;  /* bytes in those allocations */
     uint64_t deviceMemoryInUse;     /* bytes of them holding live buffers and images */
+    /* ABI 1.3: parts of deviceMemoryInUse */
+    uint64_t imageBytes;            /* in images; the rest is in buffers */
+    uint64_t frameTargetBytes;      /* the frame's transient targets (G-buffer, ...), aliased where they can be */
+    uint64_t frameHistoryBytes;     /* images kept between frames: histories, shadow atlas, environment maps */
+    uint64_t textureBytes;          /* material textures */
+    uint64_t geometryBytes;         /* vertex and index data */
+    uint64_t renderBufferBytes;     /* render buffers (and device-local twins the AOVs are packed into) */
 } ObscuraMemoryStats;
 
 /* ---------------------------------------------------------------------------------------------

@@ -26,7 +26,7 @@ from ctypes import (
 )
 
 ABI_VERSION_MAJOR = 1
-ABI_VERSION_MINOR = 2
+ABI_VERSION_MINOR = 3
 GET_API_SYMBOL = "obscuraGetApi"
 
 
@@ -258,7 +258,7 @@ class ObscuraRenderStats(_Extensible):
 
 
 class ObscuraMemoryStats(_Extensible):
-    """ABI 1.1, chained to ObscuraRenderStats.pNext: the delegate's Vulkan memory."""
+    """ABI 1.1, chained to ObscuraRenderStats.pNext: the delegate's Vulkan memory (by kind since 1.3)."""
     _structure_type = StructureType.MEMORY_STATS
     _fields_ = [
         ("sType", c_enum),
@@ -267,6 +267,12 @@ class ObscuraMemoryStats(_Extensible):
         ("deviceMemoryBlocks", c_uint32),
         ("deviceMemoryReserved", c_uint64),
         ("deviceMemoryInUse", c_uint64),
+        ("imageBytes", c_uint64),
+        ("frameTargetBytes", c_uint64),
+        ("frameHistoryBytes", c_uint64),
+        ("textureBytes", c_uint64),
+        ("geometryBytes", c_uint64),
+        ("renderBufferBytes", c_uint64),
     ]
 
 

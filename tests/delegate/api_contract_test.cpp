@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstddef>
+#include <cstring>
 #include <string>
 #include <thread>
 #include <vector>
@@ -98,6 +100,41 @@ TEST(OutputStructs, RenderStatsKeepTheHostsChainAndFillMemoryStats) {
     EXPECT_GT(memory.deviceMemoryBlocks, 0u);
     EXPECT_GT(memory.deviceMemoryInUse, 0u);
     EXPECT_LE(memory.deviceMemoryInUse, memory.deviceMemoryReserved);
+}
+
+// ABI 1.3 says what the memory in use holds: the parts are within it and each owner's is there.
+TEST(OutputStructs, MemoryStatsSayWhatTheMemoryHolds) {
+    TwoPlanes s;
+    ASSERT_EQ(s.render(), OBSCURA_OK) << s.host.lastError();
+    ObscuraMemoryStats memory{};
+    memory.sType = OBSCURA_STRUCTURE_TYPE_MEMORY_STATS;
+    memory.structSize = sizeof(memory);
+    ObscuraRenderStats stats{OBSCURA_STRUCTURE_TYPE_RENDER_STATS, &memory, sizeof(stats)};
+    ASSERT_EQ(s.host.api().getRenderStats(s.host.delegate(), &stats), OBSCURA_OK) << s.host.lastError();
+    const uint64_t parts = memory.frameTargetBytes + memory.frameHistoryBytes + memory.textureBytes +
+                           memory.geometryBytes + memory.renderBufferBytes;
+    EXPECT_LE(parts, memory.deviceMemoryInUse);
+    EXPECT_LE(memory.imageBytes, memory.deviceMemoryInUse);
+    // The G-buffer alone: a depth/stencil and three colour targets of 4 bytes a pixel at least.
+    EXPECT_GE(memory.frameTargetBytes, uint64_t(kWidth) * kHeight * 4 * 4);
+    EXPECT_LE(memory.frameTargetBytes, memory.imageBytes);
+    EXPECT_GE(memory.renderBufferBytes, uint64_t(kWidth) * kHeight * sizeof(int32_t));
+    // Two quads (one shared copy): positions of four corners and two triangles' indices at least.
+    EXPECT_GE(memory.geometryBytes, 4 * 3 * sizeof(float) + 6 * sizeof(uint32_t));
+    EXPECT_EQ(memory.textureBytes, 0u);  // no material textures in this scene
+
+    // A host built against ABI 1.1 passes the smaller struct: the first counters, nothing past them.
+    ObscuraMemoryStats old;
+    std::memset(&old, 0xab, sizeof(old));
+    old.sType = OBSCURA_STRUCTURE_TYPE_MEMORY_STATS;
+    old.pNext = nullptr;
+    old.structSize = offsetof(ObscuraMemoryStats, imageBytes);
+    stats.pNext = &old;
+    ASSERT_EQ(s.host.api().getRenderStats(s.host.delegate(), &stats), OBSCURA_OK) << s.host.lastError();
+    EXPECT_EQ(old.deviceMemoryInUse, memory.deviceMemoryInUse);
+    const auto* past = reinterpret_cast<const unsigned char*>(&old) + offsetof(ObscuraMemoryStats, imageBytes);
+    for (size_t i = 0; i < sizeof(ObscuraMemoryStats) - offsetof(ObscuraMemoryStats, imageBytes); ++i)
+        ASSERT_EQ(past[i], 0xab) << "byte " << i << " past the 1.1 struct was written";
 }
 
 TEST(BadRenderBuffer, OnlyTheBadBufferIsSkipped) {
