@@ -29,29 +29,46 @@ void mergeMetadata(std::map<std::string, Value>& into, const std::map<std::strin
     for (const auto& [key, value] : weaker) into.emplace(key, value);
 }
 
+// A property spec with the node whose namespace its paths are in and its layer's time offset.
 template <class Spec>
-using SpecsByName = std::map<std::string, std::vector<std::pair<const Spec*, const IndexNode*>>>;
+struct SpecOpinion {
+    const Spec* spec;
+    const IndexNode* node;
+    LayerOffset time;
+};
 
-Attribute composeAttribute(const std::string& name, const std::vector<std::pair<const AttributeSpec*, const IndexNode*>>& specs) {
-    const AttributeSpec& strongest = *specs.front().first;
+template <class Spec>
+using SpecsByName = std::map<std::string, std::vector<SpecOpinion<Spec>>>;
+
+// Time samples of a layer at the stage's times (Sdf's layer offsets applied, as UsdAttribute
+// resolves them).
+std::map<double, Value> samplesAtStageTimes(const std::map<double, Value>& samples, const LayerOffset& time) {
+    if (time.isIdentity()) return samples;
+    std::map<double, Value> out;
+    for (const auto& [t, value] : samples) out.emplace_hint(out.end(), time.apply(t), value);
+    return out;
+}
+
+Attribute composeAttribute(const std::string& name, const std::vector<SpecOpinion<AttributeSpec>>& specs) {
+    const AttributeSpec& strongest = *specs.front().spec;
     Attribute attr;
     attr.name = name;
     attr.typeName = strongest.typeName;
     attr.isUniform = strongest.isUniform;
     attr.isCustom = strongest.isCustom;
     attr.where = strongest.where;
-    for (const auto& [spec, node] : specs) {
+    for (const auto& [spec, node, time] : specs) {
         if (!spec->defaultValue) continue;
         if (!spec->defaultValue->blocked) attr.defaultValue = *spec->defaultValue;
         break;
     }
-    for (const auto& [spec, node] : specs) {
+    for (const auto& [spec, node, time] : specs) {
         if (!spec->timeSamples) continue;
-        attr.timeSamples = *spec->timeSamples;
+        attr.timeSamples = samplesAtStageTimes(*spec->timeSamples, time);
         break;
     }
     std::vector<std::pair<const ListOp<std::string>*, const IndexNode*>> connections;
-    for (const auto& [spec, node] : specs) {
+    for (const auto& [spec, node, time] : specs) {
         connections.emplace_back(&spec->connections, node);
         mergeMetadata(attr.metadata, spec->metadata);
     }
@@ -60,11 +77,10 @@ Attribute composeAttribute(const std::string& name, const std::vector<std::pair<
     return attr;
 }
 
-Relationship composeRelationship(const std::string& name,
-                                 const std::vector<std::pair<const RelationshipSpec*, const IndexNode*>>& specs) {
+Relationship composeRelationship(const std::string& name, const std::vector<SpecOpinion<RelationshipSpec>>& specs) {
     std::vector<std::pair<const ListOp<std::string>*, const IndexNode*>> targets;
-    for (const auto& [spec, node] : specs) targets.emplace_back(&spec->targets, node);
-    return Relationship{name, composeMappedPaths(targets), specs.front().first->where};
+    for (const auto& [spec, node, time] : specs) targets.emplace_back(&spec->targets, node);
+    return Relationship{name, composeMappedPaths(targets), specs.front().spec->where};
 }
 
 void readStageMetadata(const Layer& layer, StageMetadata& out) {
@@ -184,8 +200,10 @@ std::unique_ptr<Prim> Composer::composePrim(const std::string& path, const std::
     for (const Opinion& opinion : opinions) {
         mergeMetadata(prim->metadata, opinion.spec->metadata);
         apiSchemas.push_back(&opinion.spec->apiSchemas);
-        for (const auto& [name, spec] : opinion.spec->attributes) attributes[name].emplace_back(&spec, opinion.node);
-        for (const auto& [name, spec] : opinion.spec->relationships) relationships[name].emplace_back(&spec, opinion.node);
+        for (const auto& [name, spec] : opinion.spec->attributes)
+            attributes[name].push_back({&spec, opinion.node, opinion.time});
+        for (const auto& [name, spec] : opinion.spec->relationships)
+            relationships[name].push_back({&spec, opinion.node, opinion.time});
     }
     prim->apiSchemas = composeListOps(apiSchemas);
     if (const auto it = prim->metadata.find("kind"); it != prim->metadata.end() && !it->second.strings.empty())

@@ -143,21 +143,26 @@ private:
     }
 
     void addPseudoRoot(const crate::Spec& spec) {
+        std::vector<LayerOffset> subLayerOffsets;
         for (const FieldValue& field : fieldsOf(spec)) {
             if (field.name == "subLayers") {
                 for (std::string& asset : values_.names(field.rep))
                     layer_->subLayers.push_back(Reference{std::move(asset), "", where_});
+            } else if (field.name == "subLayerOffsets") {
+                subLayerOffsets = values_.layerOffsets(field.rep);
             } else if (field.name == "primChildren") {
                 childOrder_[&layer_->pseudoRoot] = values_.names(field.rep);
             } else if (!kStructuralFields.count(field.name)) {
                 addMetadata(layer_->metadata, field);
             }
         }
+        // Fields come in any order; a file may write fewer offsets than sublayers (identity).
+        for (size_t i = 0; i < std::min(subLayerOffsets.size(), layer_->subLayers.size()); ++i)
+            layer_->subLayers[i].layerOffset = subLayerOffsets[i];
     }
 
     void addPrim(const crate::Spec& spec, const PathNode& node, PrimSpec& prim) {
         const std::string at = "<" + node.text + ">";
-        bool offsetNote = false;
         for (const FieldValue& field : fieldsOf(spec)) {
             const std::string& name = field.name;
             if (name == "specifier") {
@@ -169,9 +174,9 @@ private:
             } else if (name == "primChildren") {
                 childOrder_[&prim] = values_.names(field.rep);
             } else if (name == "references") {
-                prim.references = values_.arcListOp(field.rep, where_, &offsetNote);
+                prim.references = values_.arcListOp(field.rep, where_);
             } else if (name == "payload") {
-                prim.payloads = values_.arcListOp(field.rep, where_, &offsetNote);
+                prim.payloads = values_.arcListOp(field.rep, where_);
             } else if (name == "inherits" || name == "specializes") {
                 auto arcs = values_.nameListOp(field.rep).transformed(
                     [&](const std::string& path) { return Reference{"", path, where_}; });
@@ -184,7 +189,6 @@ private:
                 addMetadata(prim.metadata, field);
             }
         }
-        if (offsetNote) warn("layerOffset", at + ": layer offsets and scales are not applied");
     }
 
     void addVariantSet(const crate::Spec& spec, const PathNode& node) {

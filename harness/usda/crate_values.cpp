@@ -343,16 +343,15 @@ ListOp<std::string> ValueReader::nameListOp(ValueRep rep) {
     return readListOp<std::string>(reader, [&] { return readNames(reader, element); });
 }
 
-Reference ValueReader::readArc(ByteReader& reader, bool isPayload, const SourceLocation& where, bool* offsetNote) {
+Reference ValueReader::readArc(ByteReader& reader, bool isPayload, const SourceLocation& where) {
     const uint64_t at = reader.tell();
     Reference arc;
     arc.where = where;
     arc.assetPath = file_.string(reader.read<uint32_t>(), at);
     arc.primPath = file_.pathText(reader.read<uint32_t>(), at);
     if (!isPayload || file_.version().atLeast(0, 8)) {
-        const auto offset = reader.read<double>();
-        const auto scale = reader.read<double>();
-        if (offset != 0.0 || scale != 1.0) *offsetNote = true;
+        arc.layerOffset.offset = reader.read<double>();
+        arc.layerOffset.scale = reader.read<double>();
     }
     if (!isPayload) {
         std::map<std::string, Value> customData;  // not used by composition
@@ -361,11 +360,11 @@ Reference ValueReader::readArc(ByteReader& reader, bool isPayload, const SourceL
     return arc;
 }
 
-ListOp<Reference> ValueReader::arcListOp(ValueRep rep, const SourceLocation& where, bool* offsetNote) {
+ListOp<Reference> ValueReader::arcListOp(ValueRep rep, const SourceLocation& where) {
     ByteReader reader(file_.bytes(), rep.payload());
     if (rep.type() == Type::Payload) {
         ListOp<Reference> op;
-        op.set(ListOpKind::Explicit, {readArc(reader, true, where, offsetNote)});
+        op.set(ListOpKind::Explicit, {readArc(reader, true, where)});
         return op;
     }
     if (rep.type() != Type::ReferenceListOp && rep.type() != Type::PayloadListOp)
@@ -377,9 +376,24 @@ ListOp<Reference> ValueReader::arcListOp(ValueRep rep, const SourceLocation& whe
         const uint64_t count = reader.read<uint64_t>();
         if (count > reader.size() / 8) throw Failure{at, "list of " + std::to_string(count) + " arcs cannot fit in the file"};
         std::vector<Reference> arcs;
-        for (uint64_t i = 0; i < count; ++i) arcs.push_back(readArc(reader, isPayload, where, offsetNote));
+        for (uint64_t i = 0; i < count; ++i) arcs.push_back(readArc(reader, isPayload, where));
         return arcs;
     });
+}
+
+std::vector<LayerOffset> ValueReader::layerOffsets(ValueRep rep) {
+    if (rep.type() != Type::LayerOffsetVector)
+        throw Failure{rep.payload(), "expected layer offsets, found type " + std::to_string(static_cast<int>(rep.type()))};
+    ByteReader reader(file_.bytes(), rep.payload());
+    const uint64_t at = reader.tell();
+    const uint64_t count = reader.read<uint64_t>();
+    if (count > reader.size() / 16) throw Failure{at, "list of " + std::to_string(count) + " layer offsets cannot fit in the file"};
+    std::vector<LayerOffset> offsets(count);
+    for (LayerOffset& o : offsets) {
+        o.offset = reader.read<double>();
+        o.scale = reader.read<double>();
+    }
+    return offsets;
 }
 
 void ValueReader::readDictionary(ByteReader& reader, const std::string& prefix, std::map<std::string, Value>& out,

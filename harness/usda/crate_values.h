@@ -23,9 +23,10 @@ public:
     std::optional<Value> value(ValueRep rep);
     // Token, string and path list ops (paths as absolute text).
     ListOp<std::string> nameListOp(ValueRep rep);
-    // References, payloads (a list op or a single payload). `offsetNote` is set when an arc
-    // has a layer offset, which composition does not apply.
-    ListOp<Reference> arcListOp(ValueRep rep, const SourceLocation& where, bool* offsetNote);
+    // References, payloads (a list op or a single payload), with their layer offsets.
+    ListOp<Reference> arcListOp(ValueRep rep, const SourceLocation& where);
+    // The pseudo-root's subLayerOffsets: one per sublayer, in order.
+    std::vector<LayerOffset> layerOffsets(ValueRep rep);
     // Dictionary entries flattened into `out` as "prefix" + "key:subkey".
     void dictionary(ValueRep rep, const std::string& prefix, std::map<std::string, Value>& out);
     std::map<std::string, std::string> variantSelections(ValueRep rep);
@@ -40,7 +41,7 @@ private:
     std::optional<Value> value(ValueRep rep, int depth);
     Value readArray(ValueRep rep, uint64_t at);
     std::vector<std::string> readNames(ByteReader& reader, Type element);
-    Reference readArc(ByteReader& reader, bool isPayload, const SourceLocation& where, bool* offsetNote);
+    Reference readArc(ByteReader& reader, bool isPayload, const SourceLocation& where);
     // Counts decoded elements against the budget below.
     void spend(uint64_t elements, uint64_t at);
 

@@ -16,12 +16,24 @@
 
 namespace obscura::usda {
 
+// Sdf's layer offset: time t of the layer (or prim) an arc or sublayer brings in is
+// offset + scale * t where the arc is authored.
+struct LayerOffset {
+    double offset = 0.0;
+    double scale = 1.0;
+    double apply(double t) const { return offset + scale * t; }
+    // This offset applied after `inner`: t -> apply(inner.apply(t)).
+    LayerOffset after(const LayerOffset& inner) const { return {offset + scale * inner.offset, scale * inner.scale}; }
+    bool isIdentity() const { return offset == 0.0 && scale == 1.0; }
+};
+
 // A reference or payload (asset path and/or prim path), or an inherits/specializes/sublayer
 // entry (only one of the two paths set).
 struct Reference {
     std::string assetPath;  // as written; empty for internal arcs
     std::string primPath;   // empty: the referenced layer's defaultPrim
     SourceLocation where;
+    LayerOffset layerOffset;  // references, payloads and sublayers
     bool operator==(const Reference& other) const {
         return assetPath == other.assetPath && primPath == other.primPath;
     }

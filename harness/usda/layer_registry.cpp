@@ -119,21 +119,40 @@ const LayerStack& LayerRegistry::stackOf(const Layer& root) {
     if (const auto it = stacks_.find(&root); it != stacks_.end()) return *it->second;
     auto stack = std::make_unique<LayerStack>();
     std::vector<const Layer*> including;
-    collect(root, *stack, including);
+    collect(root, LayerOffset{}, *stack, including);
     return *(stacks_[&root] = std::move(stack));
 }
 
-void LayerRegistry::collect(const Layer& layer, LayerStack& stack, std::vector<const Layer*>& including) {
+void LayerRegistry::collect(const Layer& layer, const LayerOffset& toRoot, LayerStack& stack,
+                            std::vector<const Layer*>& including) {
     including.push_back(&layer);
     stack.layers.push_back(&layer);
+    stack.offsets.push_back(toRoot);
     for (const Reference& sublayer : layer.subLayers) {
         const Layer& child = open(resolve(layer, sublayer.assetPath), sublayer.assetPath, sublayer.where);
         if (std::find(including.begin(), including.end(), &child) != including.end())
             throw CompositionFailure{
                 Error{sublayer.where, "sublayer cycle: '" + sublayer.assetPath + "' includes the layer that names it"}};
-        collect(child, stack, including);
+        collect(child, toRoot.after(arcTimeOffset(layer, sublayer.layerOffset, child)), stack, including);
     }
     including.pop_back();
+}
+
+const LayerOffset& LayerStack::offsetOf(const Layer& layer) const {
+    const auto it = std::find(layers.begin(), layers.end(), &layer);
+    return offsets.at(size_t(it - layers.begin()));
+}
+
+double timeCodesPerSecond(const Layer& layer) {
+    for (const char* key : {"timeCodesPerSecond", "framesPerSecond"})
+        if (const auto it = layer.metadata.find(key);
+            it != layer.metadata.end() && !it->second.numbers.empty() && it->second.numbers.front() > 0.0)
+            return it->second.numbers.front();
+    return 24.0;
+}
+
+LayerOffset arcTimeOffset(const Layer& from, const LayerOffset& authored, const Layer& to) {
+    return authored.after(LayerOffset{0.0, timeCodesPerSecond(from) / timeCodesPerSecond(to)});
 }
 
 }  // namespace obscura::usda

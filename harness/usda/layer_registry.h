@@ -15,8 +15,19 @@ namespace obscura::usda {
 
 struct LayerStack {
     std::vector<const Layer*> layers;  // strongest first: a layer, then each sublayer's stack in order
+    // offsets[i] takes times of layers[i] to the root layer's: the sublayers' layer offsets, and the
+    // ratio of time codes per second where a sublayer's differ from the layer naming it.
+    std::vector<LayerOffset> offsets;
     const Layer& root() const { return *layers.front(); }
+    const LayerOffset& offsetOf(const Layer& layer) const;
 };
+
+// Time codes per second of a layer, as Sdf reads them: timeCodesPerSecond, else framesPerSecond,
+// else 24.
+double timeCodesPerSecond(const Layer& layer);
+// What an arc or sublayer (written in `from`, with `authored`) does to times of `to`: the authored
+// offset, scaled as well by from's time codes per second over to's.
+LayerOffset arcTimeOffset(const Layer& from, const LayerOffset& authored, const Layer& to);
 
 class LayerRegistry {
 public:
@@ -37,7 +48,7 @@ private:
     // Registers a layer read under `key`, passing on its diagnostics.
     const Layer& keep(std::unique_ptr<Layer> layer, const std::string& key);
     const UsdzPackage& package(const std::string& archivePath, const SourceLocation& at);
-    void collect(const Layer& layer, LayerStack& stack, std::vector<const Layer*>& including);
+    void collect(const Layer& layer, const LayerOffset& toRoot, LayerStack& stack, std::vector<const Layer*>& including);
 
     DiagnosticSink& diagnostics_;
     std::map<std::string, std::unique_ptr<Layer>> layers_;  // by normalized absolute path

@@ -36,6 +36,12 @@ void appendMappings(IndexNode& node, const PathMapping& arcMapping, const std::v
     for (IndexNode& child : node.children) appendMappings(child, arcMapping, outer);
 }
 
+// A grafted subtree's times go on through `outer` (the arc's offset, then the referring node's).
+void prependTimeOffset(IndexNode& node, const LayerOffset& outer) {
+    node.timeToRoot = outer.after(node.timeToRoot);
+    for (IndexNode& child : node.children) prependTimeOffset(child, outer);
+}
+
 void sortChildren(IndexNode& node) {
     std::stable_sort(node.children.begin(), node.children.end(), [](const IndexNode& a, const IndexNode& b) {
         if (a.arc != b.arc) return a.arc < b.arc;
@@ -50,7 +56,9 @@ size_t nodeCount(const IndexNode& node) {
 }
 
 void collectOpinions(const IndexNode& node, std::vector<Opinion>& out) {
-    forEachSpec(node, [&](const PrimSpec& spec, const Layer& layer) { out.push_back(Opinion{&spec, &layer, &node}); });
+    forEachSpec(node, [&](const PrimSpec& spec, const Layer& layer) {
+        out.push_back(Opinion{&spec, &layer, &node, node.timeToRoot.after(node.stack->offsetOf(layer))});
+    });
     for (const IndexNode& child : node.children) collectOpinions(child, out);
 }
 
@@ -61,6 +69,8 @@ struct ResolvedReference {
     std::string written;
     std::string primPath;
     SourceLocation where;
+    LayerOffset authored;       // the arc's own layer offset
+    const Layer* authoredIn;    // the layer that writes it
     bool operator==(const ResolvedReference& other) const {
         return layerPath == other.layerPath && primPath == other.primPath;
     }
@@ -144,6 +154,7 @@ std::optional<IndexNode> PrimIndexer::mirror(const IndexNode& node, const std::s
     out.stack = node.stack;
     out.site = sdfpath::appendChild(node.site, name);
     out.toRoot = node.toRoot;
+    out.timeToRoot = node.timeToRoot;
     out.arc = node.arc;
     out.arcDepth = node.arcDepth;
     out.variantSet = node.variantSet;
@@ -173,6 +184,7 @@ void PrimIndexer::addRelocatedArcs(IndexNode& node) {
     for (const IndexNode& arc : moved.children) {
         IndexNode copy = arc;
         appendMappings(copy, PathMapping{source, node.site}, node.toRoot);
+        prependTimeOffset(copy, node.timeToRoot);
         budget_.hold(heldBytes(copy), relocation->second.where);
         node.children.push_back(std::move(copy));
     }
@@ -199,6 +211,7 @@ void PrimIndexer::graft(IndexNode& node, const IndexNode& target, const Arc& arc
     IndexNode graft = target;
     const std::string referringPath = sdfpath::stripVariants(node.site);
     appendMappings(graft, PathMapping{arc.path, referringPath}, node.toRoot);
+    prependTimeOffset(graft, node.timeToRoot.after(arc.time));
     graft.arc = arc.type;
     graft.arcDepth = sdfpath::depthOf(referringPath);
     budget_.hold(heldBytes(graft), arc.where);
@@ -276,7 +289,7 @@ std::vector<PrimIndexer::Arc> PrimIndexer::arcsAuthoredAt(const IndexNode& node)
     forEachSpec(node, [&](const PrimSpec& spec, const Layer& layer) {
         auto resolveIn = [&](const Reference& ref) {
             return ResolvedReference{ref.assetPath.empty() ? "" : layers_.resolve(layer, ref.assetPath), ref.assetPath,
-                                     ref.primPath, ref.where};
+                                     ref.primPath, ref.where, ref.layerOffset, &layer};
         };
         references.push_back(spec.references.transformed(resolveIn));
         payloads.push_back(spec.payloads.transformed(resolveIn));
@@ -294,14 +307,17 @@ std::vector<PrimIndexer::Arc> PrimIndexer::arcsAuthoredAt(const IndexNode& node)
         arcs.push_back(Arc{ArcType::Inherit, node.stack, ref.primPath, ref.where});
     auto addReferences = [&](ArcType type, const std::vector<ListOp<ResolvedReference>>& ops) {
         for (const ResolvedReference& ref : composeListOps(pointers(ops))) {
+            // The offset as the authoring layer writes it, then that layer's place in its stack.
+            const LayerOffset inStack = node.stack->offsetOf(*ref.authoredIn);
             if (ref.layerPath.empty()) {
-                arcs.push_back(Arc{type, node.stack, ref.primPath, ref.where});
+                arcs.push_back(Arc{type, node.stack, ref.primPath, ref.where, inStack.after(ref.authored)});
                 continue;
             }
             const Layer& layer = layers_.open(ref.layerPath, ref.written, ref.where);
             if (layer.placeholder) continue;
             const std::string path = ref.primPath.empty() ? defaultPrimOf(layer, ref.where) : ref.primPath;
-            arcs.push_back(Arc{type, &layers_.stackOf(layer), path, ref.where});
+            arcs.push_back(Arc{type, &layers_.stackOf(layer), path, ref.where,
+                               inStack.after(arcTimeOffset(*ref.authoredIn, ref.authored, layer))});
         }
     };
     addReferences(ArcType::Reference, references);
@@ -369,6 +385,7 @@ bool PrimIndexer::selectOneVariant(const IndexNode& root, IndexNode& node, std::
         IndexNode variant;
         variant.stack = node.stack;
         variant.toRoot = node.toRoot;
+        variant.timeToRoot = node.timeToRoot;
         variant.arc = ArcType::Variant;
         variant.arcDepth = sdfpath::depthOf(sdfpath::stripVariants(node.site));
         variant.variantSet = set;

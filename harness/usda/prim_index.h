@@ -35,6 +35,7 @@ struct IndexNode {
     const LayerStack* stack = nullptr;
     std::string site;                  // prim path in `stack`, variant selections included: /A{lod=hi}/B
     std::vector<PathMapping> toRoot;   // applied in order: `stack` paths -> the indexed prim's namespace
+    LayerOffset timeToRoot;            // times of `stack`'s root layer -> the root layer stack's
     ArcType arc = ArcType::Root;
     int arcDepth = 0;                  // namespace depth of the prim the arc is authored on
     std::string variantSet, variant;   // the selection a Variant node stands for
@@ -45,6 +46,7 @@ struct Opinion {
     const PrimSpec* spec;
     const Layer* layer;
     const IndexNode* node;
+    LayerOffset time;  // the layer's times -> the stage's (its sublayer and arc offsets)
 };
 
 // Every spec of the index, strongest first.
@@ -78,6 +80,7 @@ private:
         const LayerStack* stack;
         std::string path;
         SourceLocation where;
+        LayerOffset time{};  // the target stack's times -> the times of the stack authoring the arc
     };
     using Key = std::pair<const LayerStack*, std::string>;
 

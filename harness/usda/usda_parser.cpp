@@ -160,7 +160,8 @@ void Parser::parseLayerMetadataItem() {
             if (asset.kind != TokenKind::AssetPath || asset.value.empty())
                 fail(asset, "expected an asset path '@...@' in subLayers, found " + describe(asset));
             layer_->subLayers.push_back(Reference{asset.value, "", where(asset)});
-            if (peek().isPunct('(')) parseArcParameters("sublayer @" + asset.value + "@", false);
+            if (peek().isPunct('('))
+                layer_->subLayers.back().layerOffset = parseArcParameters("sublayer @" + asset.value + "@", false);
         });
         return true;
     });

@@ -81,7 +81,7 @@ private:
     std::vector<std::pair<Token, Token>> parseColonMap(const std::string& what);
     void parseListOf(const std::string& what, bool allowNone, const std::function<void()>& item);
     Reference parseReferenceItem(const std::string& what);
-    void parseArcParameters(const std::string& what, bool allowCustomData);
+    LayerOffset parseArcParameters(const std::string& what, bool allowCustomData);
     std::string parsePath(const std::string& what);
     std::string parseName(const std::string& what);
 

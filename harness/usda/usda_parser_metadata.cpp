@@ -1,5 +1,6 @@
 // Metadata blocks "( ... )", dictionaries, and the list forms shared by arcs, targets and names.
 #include <array>
+#include <cmath>
 #include <utility>
 
 #include "harness/usda/sdf_path.h"
@@ -220,12 +221,13 @@ Reference Parser::parseReferenceItem(const std::string& what) {
     } else {
         fail(token, "expected an asset path '@...@' or a prim path '<...>' in " + what + ", found " + describe(token));
     }
-    if (peek().isPunct('(')) parseArcParameters(what, true);
+    if (peek().isPunct('(')) ref.layerOffset = parseArcParameters(what, true);
     return ref;
 }
 
 // ( offset = 10; scale = 2; customData = {...} ) after a reference, payload or sublayer.
-void Parser::parseArcParameters(const std::string& what, bool allowCustomData) {
+LayerOffset Parser::parseArcParameters(const std::string& what, bool allowCustomData) {
+    LayerOffset layerOffset;
     parseMetadataBlock(what, [&] {
         const Token key = take();
         if (key.isWord("offset") || key.isWord("scale")) {
@@ -233,8 +235,10 @@ void Parser::parseArcParameters(const std::string& what, bool allowCustomData) {
             const Token number = take();
             if (number.kind != TokenKind::Number) fail(number, "expected a number, found " + describe(number));
             const double value = toNumber(number);
-            if (value != (key.isWord("offset") ? 0.0 : 1.0))
-                warn("layerOffset", key, "layer offsets and scales are not applied (" + what + ")");
+            if (!std::isfinite(value) || (key.isWord("scale") && value == 0.0))
+                fail(number, "a layer " + std::string(key.text) + " must be a finite number" +
+                                 (key.isWord("scale") ? " other than 0" : ""));
+            (key.isWord("offset") ? layerOffset.offset : layerOffset.scale) = value;
         } else if (allowCustomData && key.isWord("customData")) {
             expect('=', "after 'customData'");
             std::map<std::string, Value> ignored;
@@ -243,6 +247,7 @@ void Parser::parseArcParameters(const std::string& what, bool allowCustomData) {
             fail(key, "expected 'offset' or 'scale' in the parameters of " + what + ", found " + describe(key));
         }
     });
+    return layerOffset;
 }
 
 std::string Parser::parsePath(const std::string& what) {
