@@ -245,16 +245,16 @@ private:
         std::memcpy(scene_.camera->mapped(), &cd_, sizeof(cd_));
     }
 
-    // The material record a mesh draws with: its bound material's, else Hydra's fallback material
-    // (displayColor as the vertex colour, the default grey's other inputs) with its constant
-    // displayOpacity, one record per opacity (record 0: opaque).
-    std::optional<uint32_t> boundMaterial(const Mesh& mesh) const {
-        if (!mesh.materialPath()) return std::nullopt;
-        auto it = materialIndex_.find(*mesh.materialPath());
+    // The material record a mesh's part draws with: its bound material's, else Hydra's fallback
+    // material (displayColor as the vertex colour, the default grey's other inputs) with the mesh's
+    // constant displayOpacity, one record per opacity (record 0: opaque).
+    std::optional<uint32_t> boundMaterial(const MaterialPart& part) const {
+        if (!part.material) return std::nullopt;
+        auto it = materialIndex_.find(*part.material);
         return it == materialIndex_.end() ? std::nullopt : std::optional(it->second);
     }
-    uint32_t materialOf(const Mesh& mesh) {
-        if (auto bound = boundMaterial(mesh)) return *bound;
+    uint32_t materialOf(const Mesh& mesh, const MaterialPart& part) {
+        if (auto bound = boundMaterial(part)) return *bound;
         auto [it, added] = fallbackMaterials_.emplace(mesh.displayOpacity(), uint32_t(materials_.size()));
         if (added) {
             passes::MaterialData fallback = materials_[0];
@@ -263,20 +263,22 @@ private:
         }
         return it->second;
     }
-    // A draw's instances share its mesh's material, and so its textures.
-    uint32_t texturesOf(const Mesh& mesh) const {
-        if (!mesh.materialPath()) return 0;
-        auto it = texturesOfMaterial_.find(*mesh.materialPath());
+    // A draw's instances share its part's material, and so its textures.
+    uint32_t texturesOf(const MaterialPart& part) const {
+        if (!part.material) return 0;
+        auto it = texturesOfMaterial_.find(*part.material);
         return it == texturesOfMaterial_.end() ? 0 : it->second;
     }
     // Cut-outs (opacityThreshold) discard texels in the G-buffer and the shadow maps alike.
-    bool hasCutout(const Mesh& mesh) { return materials_[materialOf(mesh)].opacity[1] > 0.0f; }
+    bool hasCutout(const Mesh& mesh, const MaterialPart& part) {
+        return materials_[materialOf(mesh, part)].opacity[1] > 0.0f;
+    }
     // UsdPreviewSurface opacity without a threshold blends (the spec: opacityThreshold 0 means no
     // masking): below 1, or textured, the surface is transparent. So is a prim without a material
     // whose displayOpacity is below 1 anywhere.
-    bool isTransparent(const Mesh& mesh) {
-        const passes::MaterialData& m = materials_[materialOf(mesh)];
-        if (!boundMaterial(mesh) && mesh.hasTranslucentVertices()) return true;
+    bool isTransparent(const Mesh& mesh, const MaterialPart& part) {
+        const passes::MaterialData& m = materials_[materialOf(mesh, part)];
+        if (!boundMaterial(part) && mesh.hasTranslucentVertices()) return true;
         return m.opacity[1] <= 0.0f && (m.opacity[0] < 1.0f || m.textures[passes::kTextureOpacity].sampled != 0);
     }
     const Mesh* drawable(const Prim& prim) const {
@@ -290,11 +292,22 @@ private:
         return false;
     }
 
-    // One instance record. `key`: the instance's identity from frame to frame beside its prim's
-    // id (an instancer's ordinal and the instance's number), for temporal AA's object motion; none
-    // for records that are not drawn into the G-buffer (clip volumes).
-    void record(const Mesh& mesh, const Matrix4d& model, const std::optional<std::array<Matrix4d, 2>>& motion = std::nullopt,
-                std::optional<uint64_t> key = 0, int32_t instanceId = -1) {
+    // A material subset bound to a path that is no material draws with the fallback material, as
+    // an unresolved binding does; said once per frame that has it.
+    void noteUnresolved(const MaterialPart& part) {
+        if (part.subset.empty() || !part.material || boundMaterial(part)) return;
+        std::string problem = part.subset + ": material:binding names " + *part.material +
+                              ", which is not a material; its faces draw with the fallback material";
+        auto& unresolved = shortfalls_.unresolvedSubsetMaterials;
+        if (std::find(unresolved.begin(), unresolved.end(), problem) == unresolved.end()) unresolved.push_back(problem);
+    }
+
+    // One instance record of a mesh's part. `key`: the instance's identity from frame to frame
+    // beside its prim's id (an instancer's ordinal and the instance's number), for temporal AA's
+    // object motion; none for records that are not drawn into the G-buffer (clip volumes).
+    void record(const Mesh& mesh, const MaterialPart& part, const Matrix4d& model,
+                const std::optional<std::array<Matrix4d, 2>>& motion = std::nullopt, std::optional<uint64_t> key = 0,
+                int32_t instanceId = -1) {
         passes::InstanceData inst{};
         inst.instanceId = instanceId;
         if (motion) {
@@ -315,10 +328,10 @@ private:
         inst.model = toFloats<passes::Mat4>(model);
         inst.normalMatrix = toFloats<passes::Mat4>(normalMatrix(model));
         inst.primId = mesh.primId();
-        inst.materialIndex = materialOf(mesh);
+        inst.materialIndex = materialOf(mesh, part);
         // UsdPreviewSurface wins over displayColor; without a material, displayColor is the
         // surface colour (as Hydra's fallback material).
-        if (!boundMaterial(mesh)) inst.flags |= passes::kInstanceVertexColor;
+        if (!boundMaterial(part)) inst.flags |= passes::kInstanceVertexColor;
         if (mesh.doubleSided()) inst.flags |= passes::kInstanceDoubleSided;
         // Hybrid AA, per object (seed 004): near the eye the view vector turns fastest as the camera
         // moves, so view-dependent shading defeats reprojection there; edge AA takes those.
@@ -330,49 +343,62 @@ private:
         instances_.push_back(inst);
     }
 
+    // The draw of a mesh's part, for `instanceCount` records from the next one.
+    passes::Draw partDraw(const Mesh& mesh, const MaterialPart& part, size_t instanceCount, bool moving) {
+        noteUnresolved(part);
+        passes::Draw draw{mesh.vertices(), mesh.indices(), part.indices.count,
+                          static_cast<uint32_t>(instances_.size()), static_cast<uint32_t>(instanceCount),
+                          texturesOf(part), hasCutout(mesh, part), isTransparent(mesh, part),
+                          moving, shutterPositionsOf(mesh)};
+        draw.firstIndex = part.indices.first;
+        return draw;
+    }
+
     // Meshes with the same geometry (repeated references share buffers through the geometry
-    // cache) and the same textures become one instanced draw, in the order they first appear.
+    // cache) and the same textures become one instanced draw, in the order they first appear; a
+    // mesh with material subsets draws each material's part on its own.
     void packDraws() {
         for (const auto& [path, prim] : in_.prims)
             if (auto* inst = dynamic_cast<const Instancer*>(prim.get()); inst && !inst->skipped() && inst->visible())
                 instancers_.push_back(inst);
-        std::vector<std::vector<const Mesh*>> batches;
-        std::map<std::tuple<const void*, const void*, uint32_t, bool, bool, const void*>, size_t> batchOf;
+        using Drawn = std::pair<const Mesh*, const MaterialPart*>;
+        std::vector<std::vector<Drawn>> batches;
+        std::map<std::tuple<const void*, const void*, uint32_t, uint32_t, uint32_t, bool, bool, const void*>, size_t> batchOf;
         for (const auto& [path, prim] : in_.prims) {
             const Mesh* mesh = drawable(*prim);
             if (!mesh || isPrototype(path)) continue;
-            // Transparent meshes draw one by one: the transparent pass sorts draws, not instances.
-            if (isTransparent(*mesh)) {
-                batches.push_back({mesh});
-                continue;
+            for (const MaterialPart& part : mesh->materialParts()) {
+                // Transparent meshes draw one by one: the transparent pass sorts draws, not instances.
+                if (isTransparent(*mesh, part)) {
+                    batches.push_back({{mesh, &part}});
+                    continue;
+                }
+                // Opaque and cut-out draws stay apart: the shadow maps rasterise them differently;
+                // moving and static ones too: only moving draws write velocities.
+                auto key = std::make_tuple(static_cast<const void*>(mesh->vertices().get()),
+                                           static_cast<const void*>(mesh->indices().get()), part.indices.first,
+                                           part.indices.count, texturesOf(part), hasCutout(*mesh, part),
+                                           motionOf(*mesh).has_value(),
+                                           static_cast<const void*>(shutterPositionsOf(*mesh).get()));
+                auto [it, added] = batchOf.emplace(key, batches.size());
+                if (added) batches.emplace_back();
+                batches[it->second].push_back({mesh, &part});
             }
-            // Opaque and cut-out draws stay apart: the shadow maps rasterise them differently;
-            // moving and static ones too: only moving draws write velocities.
-            auto key = std::make_tuple(static_cast<const void*>(mesh->vertices().get()),
-                                       static_cast<const void*>(mesh->indices().get()), texturesOf(*mesh),
-                                       hasCutout(*mesh), motionOf(*mesh).has_value(),
-                                       static_cast<const void*>(shutterPositionsOf(*mesh).get()));
-            auto [it, added] = batchOf.emplace(key, batches.size());
-            if (added) batches.emplace_back();
-            batches[it->second].push_back(mesh);
         }
         for (const auto& batch : batches) {
-            const Mesh& first = *batch.front();
-            scene_.draws.push_back({first.vertices(), first.indices(), first.indexCount(),
-                                    static_cast<uint32_t>(instances_.size()), static_cast<uint32_t>(batch.size()),
-                                    texturesOf(first), hasCutout(first), isTransparent(first),
-                                    motionOf(first).has_value(), shutterPositionsOf(first)});
+            const auto [first, firstPart] = batch.front();
+            scene_.draws.push_back(partDraw(*first, *firstPart, batch.size(), motionOf(*first).has_value()));
             Aabb bounds;
-            for (const Mesh* mesh : batch) {
-                record(*mesh, transformOf(*mesh), motionOf(*mesh));
+            for (const auto& [mesh, part] : batch) {
+                record(*mesh, *part, transformOf(*mesh), motionOf(*mesh));
                 bounds.merge(transformAabb(mesh->localBounds(), transformOf(*mesh)));
             }
             drawBounds_.push_back(bounds);
         }
     }
 
-    // One draw per (instancer, prototype mesh): the mesh's transform relative to the instancer,
-    // then each instance's transform.
+    // One draw per (instancer, prototype mesh, material part): the mesh's transform relative to
+    // the instancer, then each instance's transform.
     void packInstancedDraws() {
         for (size_t ordinal = 0; ordinal < instancers_.size(); ++ordinal) {
             const Instancer* inst = instancers_[ordinal];
@@ -385,30 +411,29 @@ private:
                 // The prototype's own transform and the placements may both move within the shutter.
                 auto meshMotion = motionOf(*mesh);
                 const bool placementsMove = in_.shutter && !in_.sample && inst->movesWithinShutter();
-                scene_.draws.push_back({mesh->vertices(), mesh->indices(), mesh->indexCount(),
-                                        static_cast<uint32_t>(instances_.size()), static_cast<uint32_t>(placements.size()),
-                                        texturesOf(*mesh), hasCutout(*mesh), isTransparent(*mesh),
-                                        meshMotion.has_value() || placementsMove, shutterPositionsOf(*mesh)});
-                Aabb bounds;
-                for (size_t number = 0; number < placements.size(); ++number) {
-                    Matrix4d placement =
-                        frameTime_ ? inst->instanceAt(size_t(proto), number, *frameTime_) : placements[number];
-                    Matrix4d model = multiply(transformOf(*mesh), placement);
-                    std::optional<std::array<Matrix4d, 2>> motion;
-                    if (placementsMove) {
-                        motion.emplace();
-                        for (int end = 0; end < 2; ++end)
-                            (*motion)[size_t(end)] = multiply(
-                                meshMotion ? (*meshMotion)[size_t(end)] : mesh->transformAt(blurred_[size_t(end)]),
-                                inst->instanceAt(size_t(proto), number, blurred_[size_t(end)]));
-                    } else if (meshMotion) {
-                        motion = {{multiply((*meshMotion)[0], placement), multiply((*meshMotion)[1], placement)}};
+                for (const MaterialPart& part : mesh->materialParts()) {
+                    scene_.draws.push_back(partDraw(*mesh, part, placements.size(), meshMotion.has_value() || placementsMove));
+                    Aabb bounds;
+                    for (size_t number = 0; number < placements.size(); ++number) {
+                        Matrix4d placement =
+                            frameTime_ ? inst->instanceAt(size_t(proto), number, *frameTime_) : placements[number];
+                        Matrix4d model = multiply(transformOf(*mesh), placement);
+                        std::optional<std::array<Matrix4d, 2>> motion;
+                        if (placementsMove) {
+                            motion.emplace();
+                            for (int end = 0; end < 2; ++end)
+                                (*motion)[size_t(end)] = multiply(
+                                    meshMotion ? (*meshMotion)[size_t(end)] : mesh->transformAt(blurred_[size_t(end)]),
+                                    inst->instanceAt(size_t(proto), number, blurred_[size_t(end)]));
+                        } else if (meshMotion) {
+                            motion = {{multiply((*meshMotion)[0], placement), multiply((*meshMotion)[1], placement)}};
+                        }
+                        record(*mesh, part, model, motion, (uint64_t(ordinal + 1) << 24) | (number & 0xFFFFFFu),
+                               inst->instanceIndexOf(size_t(proto), number));
+                        bounds.merge(transformAabb(mesh->localBounds(), model));
                     }
-                    record(*mesh, model, motion, (uint64_t(ordinal + 1) << 24) | (number & 0xFFFFFFu),
-                           inst->instanceIndexOf(size_t(proto), number));
-                    bounds.merge(transformAabb(mesh->localBounds(), model));
+                    drawBounds_.push_back(bounds);
                 }
-                drawBounds_.push_back(bounds);
             }
         }
     }
@@ -463,7 +488,8 @@ private:
             scene_.clipVolumes.push_back({{mesh->vertices(), mesh->indices(), mesh->indexCount(),
                                            static_cast<uint32_t>(instances_.size()), 1, 0, false},
                                           bit});
-            record(*mesh, mesh->transform(), std::nullopt, std::nullopt);
+            // Drawn whole into the stencil: its parts' materials do not matter.
+            record(*mesh, mesh->materialParts().front(), mesh->transform(), std::nullopt, std::nullopt);
             lights_[i].shadow[3] = bit;
         }
     }

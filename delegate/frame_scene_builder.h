@@ -54,6 +54,7 @@ const Light* environmentDome(const std::map<std::string, std::unique_ptr<Prim>>&
 struct FrameSceneShortfalls {
     uint32_t lightsWithoutShadowRoom = 0;  // shadow-casting lights the atlas had no room for
     std::vector<std::string> unclippedLights;  // lights whose clip volume could not be used, and why
+    std::vector<std::string> unresolvedSubsetMaterials;  // material subsets bound to no material
 };
 
 // The unjittered view the frame sees through: the camera's, or the reference sub-frame's.

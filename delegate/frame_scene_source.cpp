@@ -31,6 +31,9 @@ void FrameSceneSource::report(const passes::FrameScene& scene, const FrameSceneS
     if (shortfalls.unclippedLights != report_.unclippedLights)
         for (const auto& problem : shortfalls.unclippedLights) log_(LogLevel::Warning, problem);
     report_.unclippedLights = shortfalls.unclippedLights;
+    if (shortfalls.unresolvedSubsetMaterials != report_.unresolvedSubsetMaterials)
+        for (const auto& problem : shortfalls.unresolvedSubsetMaterials) log_(LogLevel::Warning, problem);
+    report_.unresolvedSubsetMaterials = shortfalls.unresolvedSubsetMaterials;
     if (scene.instanceCount > passes::kMaxInstanceRecords)
         throw ApiError{OBSCURA_ERROR_OUT_OF_MEMORY, std::to_string(scene.instanceCount) +
                                                         " instances: the G-buffer addresses at most " +

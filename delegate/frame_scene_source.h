@@ -19,6 +19,7 @@ struct FrameSceneReport {
     uint64_t trianglesDrawn = 0;
     uint32_t lightsWithoutShadowRoom = 0;
     std::vector<std::string> unclippedLights;
+    std::vector<std::string> unresolvedSubsetMaterials;
 };
 
 class FrameSceneSource final : public renderer::FrameSceneSource {

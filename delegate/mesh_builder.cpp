@@ -150,10 +150,19 @@ std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh)
         }
     }
 
+    // Triangles are written group after group; a face's vertices stay in face order, so the
+    // vertex buffer (and a subdivided mesh's shared edges) does not depend on the groups.
+    const bool grouped = mesh.faceGroups.size() == mesh.faceVertexCounts.size();
+    const uint32_t groupCount = grouped && !mesh.faceGroups.empty()
+                                    ? *std::max_element(mesh.faceGroups.begin(), mesh.faceGroups.end()) + 1
+                                    : 1;
+    std::vector<std::vector<uint32_t>> groupIndices(groupCount);
+
     // One vertex per face-vertex keeps face-varying and uniform primvars exact.
     out.vertices.reserve(mesh.faceVertexIndices.size());
     size_t base = 0;
     for (size_t f = 0; f < mesh.faceVertexCounts.size(); ++f) {
+        std::vector<uint32_t>& triangles = groupIndices[grouped ? mesh.faceGroups[f] : 0];
         size_t count = size_t(mesh.faceVertexCounts[f]);
         for (size_t k = 0; k < count; ++k) {
             size_t fv = base + k;
@@ -176,9 +185,13 @@ std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh)
         for (size_t k = 1; k + 1 < count; ++k) {
             uint32_t a = uint32_t(base), b = uint32_t(base + k), c = uint32_t(base + k + 1);
             if (mesh.leftHanded) std::swap(b, c);
-            out.indices.insert(out.indices.end(), {a, b, c});
+            triangles.insert(triangles.end(), {a, b, c});
         }
         base += count;
+    }
+    for (const std::vector<uint32_t>& triangles : groupIndices) {
+        out.groupRanges.push_back({uint32_t(out.indices.size()), uint32_t(triangles.size())});
+        out.indices.insert(out.indices.end(), triangles.begin(), triangles.end());
     }
     return out;
 }

@@ -28,11 +28,23 @@ struct MeshInput {
     std::optional<MeshPrimvar> displayColor;
     std::optional<MeshPrimvar> displayOpacity;  // 1 component
     std::optional<MeshPrimvar> st;  // texture coordinates, 2 components
+    // Per face, the material it draws with, as a number the prim gives meaning to (the mesh's
+    // own binding, or one of its material subsets); empty: every face is in group 0.
+    std::vector<uint32_t> faceGroups;
+};
+
+// A run of a mesh's indices: `count` from `first`.
+struct IndexRange {
+    uint32_t first = 0;
+    uint32_t count = 0;
 };
 
 struct MeshGeometry {
     std::vector<passes::Vertex> vertices;
+    // The triangles ordered by their face's group (MeshInput::faceGroups), each group's in face
+    // order; groupRanges[g] is where group g's are (groups past its end have none).
     std::vector<uint32_t> indices;
+    std::vector<IndexRange> groupRanges;
     std::vector<std::string> warnings;  // primvars dropped for a wrong element count, ...
 };
 

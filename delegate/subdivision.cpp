@@ -389,6 +389,10 @@ MeshInput evaluate(const SubdivisionTopology& topology, const MeshInput& mesh) {
     if (fitsMesh(mesh, mesh.displayColor)) out.displayColor = refinePrimvar(topology, *mesh.displayColor);
     if (fitsMesh(mesh, mesh.displayOpacity)) out.displayOpacity = refinePrimvar(topology, *mesh.displayOpacity);
     if (fitsMesh(mesh, mesh.st)) out.st = refinePrimvar(topology, *mesh.st);
+    // Refined faces draw with their input face's material: the surface stays one, split only
+    // where the drawn triangles are grouped.
+    if (mesh.faceGroups.size() == mesh.faceVertexCounts.size())
+        for (int32_t face : topology.baseFace) out.faceGroups.push_back(mesh.faceGroups[size_t(face)]);
     return out;
 }
 

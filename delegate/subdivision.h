@@ -47,7 +47,8 @@ inline constexpr int kMaxRefineLevel = 6;
 //   parent face, vertex/varying/faceVarying interpolated). One whose element count does not fit
 //   its interpolation on the input mesh is dropped: check it with primvarElementCount to warn.
 //   Face-varying values are not shared between faces (hosts expand indexed primvars), so each
-//   face refines its own values with the face-varying boundary rules.
+//   face refines its own values with the face-varying boundary rules;
+// - faceGroups: each refined face's is that of the input face it comes from.
 // Returns the reason for topology or tags that USD's validation (PxOsdMeshTopologyValidation)
 // or OpenSubdiv rejects. Non-manifold edges are not an error: OpenSubdiv refines them as sharp.
 std::variant<MeshInput, std::string> refineMesh(const MeshInput& mesh, SubdivisionScheme scheme,

@@ -1,5 +1,6 @@
 #include "harness/usd_scene_host.h"
 
+#include "harness/material_bind_subsets.h"
 #include "harness/materialx_surface.h"
 #include "harness/shading_network.h"
 #include "harness/usda/matrix4.h"
@@ -41,6 +42,7 @@ const std::map<std::string, std::string> kPrimTypes = {
 
 // Types that organise a scene and are not drawn themselves.
 // UsdSkel's prims pose the prims they skin (usda/skinning.h).
+// GeomSubsets of the materialBind family are served as part of their mesh (material_bind_subsets.h).
 // A Skeleton is served as its bones' guide mesh (addSkeletonGuide).
 const std::set<std::string> kStructuralTypes = {"",          "Xform",         "Scope",          "Shader",
                                                 "NodeGraph", "GeomSubset",    "RenderSettings", "RenderProduct",
@@ -305,6 +307,15 @@ ObscuraDirtyBits UsdSceneHost::changes(const std::string& type, const usda::Prim
     if ((purpose == nullptr) != (purposeBefore == nullptr) || (purpose && !sameAttribute(*purpose, *purposeBefore)))
         bits |= dirtyBitFor(type, "purpose");
     if (boundMaterial(prim) != previous.boundMaterial(before)) bits |= OBSCURA_DIRTY_MATERIAL_ID;
+    // A mesh's material subsets are its children: their faces are its topology, their bindings its own.
+    if (prim.typeName == "Mesh" || before.typeName == "Mesh") {
+        const MaterialBindSubsets subsets = materialBindSubsets(prim, time);
+        const MaterialBindSubsets subsetsBefore = materialBindSubsets(before, time);
+        if (subsets.faceCounts != subsetsBefore.faceCounts || subsets.faceIndices != subsetsBefore.faceIndices ||
+            subsets.paths != subsetsBefore.paths)
+            bits |= dirtyBitFor(type, "materialSubsets:faceIndices");
+        if (subsets.materials != subsetsBefore.materials) bits |= dirtyBitFor(type, "materialSubsets:materials");
+    }
     // A material's values are its surface shader's and its textures': any change in its network.
     auto surface = surfaces_.find(prim.path);
     auto surfaceBefore = previous.surfaces_.find(before.path);
@@ -378,6 +389,8 @@ ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDele
                                                      usda::isSkinningAnimated(stage_, guide->second))
             bits |= dirtyBitFor(type, "points");
         bits |= animatedValueBits(path, type, *prim);
+        if (prim->typeName == "Mesh" && materialBindSubsets(*prim, 0.0).animated)
+            bits |= dirtyBitFor(type, "materialSubsets:faceIndices");
         if (bits) {
             ObscuraStatus s = api.markDirty(delegate, path.c_str(), bits);
             if (s != OBSCURA_OK) return s;
@@ -592,6 +605,21 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         strings_ = {rel->targets.front()};
         stringPointers_ = {strings_[0].c_str()};
         *out = {OBSCURA_VALUE_PATH, 0, 1, stringPointers_.data()};
+        return OBSCURA_OK;
+    }
+    if (startsWith(attribute, "materialSubsets:") && prim->typeName == "Mesh") {
+        const MaterialBindSubsets subsets = materialBindSubsets(*prim, time);
+        if (subsets.empty()) return OBSCURA_ERROR_NOT_FOUND;
+        if (attribute == "materialSubsets:faceCounts" || attribute == "materialSubsets:faceIndices") {
+            ints_ = attribute == "materialSubsets:faceCounts" ? subsets.faceCounts : subsets.faceIndices;
+            *out = {OBSCURA_VALUE_INT, 1, ints_.size(), ints_.data()};
+            return OBSCURA_OK;
+        }
+        if (attribute != "materialSubsets:materials" && attribute != "materialSubsets:paths") return OBSCURA_ERROR_NOT_FOUND;
+        strings_ = attribute == "materialSubsets:materials" ? subsets.materials : subsets.paths;
+        stringPointers_.clear();
+        for (const auto& t : strings_) stringPointers_.push_back(t.c_str());
+        *out = {OBSCURA_VALUE_PATH, 1, strings_.size(), stringPointers_.data()};
         return OBSCURA_OK;
     }
     if (attribute == "material:binding") {

@@ -14,6 +14,19 @@ void Mesh::reset() {
     shutterPoints_.reset();
     indexCount_ = 0;
     localBounds_ = Aabb{};
+    groupRanges_.clear();
+    parts_.clear();
+}
+
+void Mesh::updateMaterialParts() {
+    parts_.clear();
+    for (size_t group = 0; group < groupRanges_.size(); ++group) {
+        if (groupRanges_[group].count == 0) continue;
+        // Group 0 holds the faces of no subset; a subset the host gave no material draws as they do.
+        const bool ownMaterial = group == 0 || group - 1 >= subsetMaterials_.size();
+        parts_.push_back({ownMaterial ? material_ : subsetMaterials_[group - 1], groupRanges_[group],
+                          group == 0 ? std::string() : subsetSubject(subsets_, group - 1, path())});
+    }
 }
 
 void Mesh::pullGprim(SceneAccess& s, SyncContext& ctx) {
@@ -24,7 +37,10 @@ void Mesh::pullGprim(SceneAccess& s, SyncContext& ctx) {
     if (s.dirty("visibility")) visible_ = s.getToken("visibility") != "invisible";
     if (s.dirty("purpose")) purpose_ = purposeBit(s.getToken("purpose"));
     if (s.dirty("doubleSided")) doubleSided_ = s.getBool("doubleSided");
-    if (s.dirty("material:binding")) material_ = s.getPath("material:binding");
+    if (s.dirty("material:binding")) {
+        material_ = s.getPath("material:binding");
+        updateMaterialParts();
+    }
     if (s.dirty("primvars:displayOpacity")) {
         displayOpacity_ = 1.0f;
         varyingOpacity_.reset();
@@ -37,10 +53,14 @@ void Mesh::pullGprim(SceneAccess& s, SyncContext& ctx) {
 }
 
 void Mesh::setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std::string& path) {
-    warnings_ = geometry.warnings;
+    warnings_.clear();
+    for (const std::string& warning : geometry.warnings) warnings_.push_back(path + ": " + warning);
     translucentVertices_ = std::any_of(geometry.vertices.begin(), geometry.vertices.end(),
                                        [](const passes::Vertex& v) { return v.color[3] < 1.0f; });
     indexCount_ = static_cast<uint32_t>(geometry.indices.size());
+    // Tessellators that do not group faces (implicit surfaces, curves) draw with one material.
+    groupRanges_ = geometry.groupRanges.empty() ? std::vector<IndexRange>{{0, indexCount_}} : geometry.groupRanges;
+    updateMaterialParts();
     localBounds_ = Aabb{};
     for (const passes::Vertex& v : geometry.vertices) localBounds_.extend({v.position[0], v.position[1], v.position[2]});
     ctx.onDevice([this, &cache = ctx.geometry, content = geometryContent(geometry.vertices, geometry.indices),
@@ -85,9 +105,14 @@ void Mesh::setShutterPositions(const std::optional<std::array<std::vector<float>
 
 void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     pullGprim(s, ctx);
+    if (s.dirty("materialSubsets:materials")) {
+        subsetMaterials_ = s.getPathArray("materialSubsets:materials");
+        updateMaterialParts();
+    }
 
-    // The drawn polygons are made of everything but the placement, visibility and binding.
-    if (!s.anyDirtyBut({"transform", "visibility", "purpose", "doubleSided", "material:binding"}) &&
+    // The drawn polygons are made of everything but the placement, visibility and bindings.
+    if (!s.anyDirtyBut({"transform", "visibility", "purpose", "doubleSided", "material:binding",
+                        "materialSubsets:materials"}) &&
         !(bits & kDirtyTessellation))
         return;
     if (s.anyDirty({"points", "velocities", "accelerations"})) {
@@ -111,6 +136,17 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         tags_.holeIndices = s.getIntArray("holeIndices").value_or(std::vector<int32_t>{});
         refineLevelOverride_ = s.getInt("obscura:refineLevel");
     }
+    if (s.anyDirty({"materialSubsets:faceCounts", "materialSubsets:faceIndices", "materialSubsets:paths",
+                    "subsetFamily:materialBind:familyType"})) {
+        subsets_.faceCounts = s.getIntArray("materialSubsets:faceCounts").value_or(std::vector<int32_t>{});
+        subsets_.faceIndices = s.getIntArray("materialSubsets:faceIndices").value_or(std::vector<int32_t>{});
+        subsets_.paths = s.getPathArray("materialSubsets:paths");
+        subsets_.familyType = s.getToken("subsetFamily:materialBind:familyType");
+    }
+    // The subsets split the drawn triangles by the face they come from (a subdivided mesh's by its
+    // control face), never the surface: one vertex buffer, one index buffer ordered by material.
+    FaceGroups faceGroups = assignFaceGroups(subsets_, input_.faceVertexCounts.size(), s.path());
+    input_.faceGroups = std::move(faceGroups.groups);
     if (s.dirty("normals")) {
         input_.normals.reset();
         if (auto n = s.getFloatArray("normals")) input_.normals = MeshPrimvar{std::move(*n), s.interpolation("normals")};
@@ -136,6 +172,7 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     if (auto* problem = std::get_if<std::string>(&built)) throw PrimDataError(s.path() + ": " + *problem);
     auto& geometry = std::get<MeshGeometry>(built);
     setGeometry(geometry, ctx, s.path());
+    warnings_.insert(warnings_.end(), faceGroups.warnings.begin(), faceGroups.warnings.end());
     std::optional<std::array<std::vector<float>, 2>> ends;
     if (shutterPoints_)
         ends = {drawnPositions((*shutterPoints_)[0], level, s.path()), drawnPositions((*shutterPoints_)[1], level, s.path())};

@@ -5,6 +5,7 @@
 
 #include "delegate/bounds.h"
 #include "delegate/geometry_cache.h"
+#include "delegate/material_subsets.h"
 #include "delegate/mesh_builder.h"
 #include "delegate/purposes.h"
 #include "delegate/prims/prim.h"
@@ -12,6 +13,14 @@
 #include "gpu/device.h"
 
 namespace obscura::delegate {
+
+// A run of a mesh's indices drawn with one material: the faces of one material subset, or those
+// in none (the mesh's own binding).
+struct MaterialPart {
+    std::optional<std::string> material;  // the bound material's path; none: the fallback material
+    IndexRange indices;
+    std::string subset;  // the material subset it draws, as messages name it (subsetSubject); "" for the mesh's own faces
+};
 
 class Mesh : public Prim {
 public:
@@ -38,12 +47,16 @@ public:
     const gpu::BufferPtr& shutterPositions() const { return shutterPositions_; }
     bool doubleSided() const { return doubleSided_; }
     const std::optional<std::string>& materialPath() const { return material_; }
+    // What draws with which material: one part for a mesh without material subsets; parts
+    // without triangles left out. Together they are every index of indices().
+    const std::vector<MaterialPart>& materialParts() const { return parts_; }
     // Constant primvars:displayOpacity in [0, 1] (1 when not authored or not constant): without a
     // material, below 1 the prim is transparent (Hydra's fallback material reads displayOpacity).
     float displayOpacity() const { return displayOpacity_; }
     // Some drawn vertex's displayOpacity (uniform, vertex or faceVarying, in the vertex alpha) is
     // below 1: without a material the prim is transparent.
     bool hasTranslucentVertices() const { return translucentVertices_; }
+    // What its data lacked, each message naming its prim (the mesh, or one of its material subsets).
     const std::vector<std::string>& warnings() const { return warnings_; }
 
 protected:
@@ -73,6 +86,8 @@ protected:
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
+    // materialParts() from the drawn groups and the bindings of the mesh and its subsets.
+    void updateMaterialParts();
     // The drawn (refined, triangulated) vertex positions of the mesh with `points` instead of its own.
     std::vector<float> drawnPositions(const std::vector<float>& points, int level, const std::string& path);
 
@@ -90,6 +105,10 @@ private:
     float displayOpacity_ = 1.0f;
     bool translucentVertices_ = false;
     std::optional<std::string> material_;
+    MaterialSubsets subsets_;
+    std::vector<std::string> subsetMaterials_;  // materialSubsets:materials
+    std::vector<IndexRange> groupRanges_;        // of the drawn indices: the mesh's own faces, then each subset's
+    std::vector<MaterialPart> parts_;
     gpu::BufferPtr vertices_;
     gpu::BufferPtr indices_;
     std::optional<std::array<std::vector<float>, 2>> shutterPoints_;  // points at the shutter's ends

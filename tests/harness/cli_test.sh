@@ -105,6 +105,22 @@ check "an invalid UTF-8 byte in a prim name" 3 $? "$tmp/out" 'utf8\.usda:5:11: p
 "$obscura" render "$src/tests/import/data/bad_base64.gltf" -o "$tmp/x.png" >"$tmp/out" 2>&1
 check "a glTF buffer with corrupt base64" 3 $? "$tmp/out" "bad_base64\.gltf:11:25: buffers\[0\]\.uri: base64 data has '!' at offset 20"
 
+# GeomSubsets of the materialBind family bind materials per face: the same image as the faces drawn
+# as meshes of their own (ignored subsets would leave every tile blue); a bad index is located on
+# its subset and ignored.
+"$obscura" render "$src/tests/harness/data/geom_subsets.usda" -o "$tmp/subsets.png" --width 64 --height 64 >"$tmp/out" 2>&1
+check "render per-face materials from GeomSubsets" 0 $? "$tmp/out" \
+    'geom_subsets\.usda:81:[0-9]+: warning: /Tiles/RedTiles: indices\[2\] = 9 is outside the mesh.s 4 faces; ignored'
+"$obscura" render "$src/tests/harness/data/geom_subsets_separate.usda" -o "$tmp/separate.png" --width 64 --height 64 >"$tmp/out" 2>&1
+check "render the tiles as separate meshes" 0 $?
+"$obscura" compare "$tmp/subsets.png" "$tmp/separate.png" --psnr-min 40 >"$tmp/out" 2>&1
+check "GeomSubsets draw what separate meshes draw" 0 $?
+sed 's/"materialBind"/"unrelated"/' "$src/tests/harness/data/geom_subsets.usda" >"$tmp/other_family.usda"
+"$obscura" render "$tmp/other_family.usda" -o "$tmp/other_family.png" --width 64 --height 64 >"$tmp/out" 2>&1
+check "render subsets of another family" 0 $?
+"$obscura" compare "$tmp/other_family.png" "$tmp/separate.png" --psnr-min 40 >"$tmp/out" 2>&1
+check "subsets of another family bind nothing" 1 $? "$tmp/out" 'below threshold'
+
 "$obscura" render "$src/tests/harness/data/no_camera.usda" -o "$tmp/x.exr" --aov color,depth >"$tmp/out" 2>&1
 check "scene without camera is framed" 0 $? "$tmp/out" 'no camera; framing'
 

@@ -108,6 +108,7 @@ TEST(SchemaTables, DefaultsMatchUsdFallbacks) {
     EXPECT_STREQ(attr("mesh", "visibility").defaultToken, "inherited");
     EXPECT_DOUBLE_EQ(attr("mesh", "doubleSided").defaultNumbers[0], 0.0);
     EXPECT_DOUBLE_EQ(attr("mesh", "obscura:refineLevel").defaultNumbers[0], -1.0);
+    EXPECT_STREQ(attr("mesh", "subsetFamily:materialBind:familyType").defaultToken, "unrestricted");
     EXPECT_STREQ(attr("renderBuffer", "format").defaultToken, "float32Vec4");
 }
 

@@ -22,6 +22,30 @@ TEST(MeshBuilder, FanTriangulatesPolygons) {
     EXPECT_EQ(g.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 4, 5, 6}));
 }
 
+// Triangles come out group after group, each group's in face order; the vertices do not move.
+TEST(MeshBuilder, FaceGroupsOrderTheTrianglesByGroup) {
+    MeshInput m = quadAndTriangle();
+    m.faceGroups = {2, 0};
+    auto built = buildMeshGeometry(m);
+    ASSERT_TRUE(std::holds_alternative<MeshGeometry>(built));
+    const auto& g = std::get<MeshGeometry>(built);
+    EXPECT_EQ(g.vertices.size(), 7u);
+    EXPECT_EQ(g.indices, (std::vector<uint32_t>{4, 5, 6, 0, 1, 2, 0, 2, 3}));
+    ASSERT_EQ(g.groupRanges.size(), 3u);
+    EXPECT_EQ(g.groupRanges[0].first, 0u);
+    EXPECT_EQ(g.groupRanges[0].count, 3u);
+    EXPECT_EQ(g.groupRanges[1].count, 0u) << "a group without faces";
+    EXPECT_EQ(g.groupRanges[2].first, 3u);
+    EXPECT_EQ(g.groupRanges[2].count, 6u);
+}
+
+TEST(MeshBuilder, WithoutFaceGroupsEveryTriangleIsInGroupZero) {
+    auto built = buildMeshGeometry(quadAndTriangle());
+    const auto& g = std::get<MeshGeometry>(built);
+    ASSERT_EQ(g.groupRanges.size(), 1u);
+    EXPECT_EQ(g.groupRanges[0].count, 9u);
+}
+
 TEST(MeshBuilder, LeftHandedFlipsWindingAndNormals) {
     MeshInput m = quadAndTriangle();
     m.leftHanded = true;

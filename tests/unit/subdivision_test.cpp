@@ -403,5 +403,30 @@ TEST(Subdivision, LevelsOutsideTheRangeAreRejectedOrIgnored) {
     EXPECT_EQ(refined(cube(), SubdivisionScheme::CatmullClark, kMaxRefineLevel).faceVertexCounts.size(), 6u << 12);
 }
 
+// Refined faces keep their control face's group: every refined face of cube face f is in group f.
+TEST(Subdivision, RefinedFacesKeepTheirControlFacesGroup) {
+    MeshInput m = cube();
+    m.faceGroups = {0, 1, 2, 3, 4, 5};
+    const MeshInput out = refined(m, SubdivisionScheme::CatmullClark, 2);
+    ASSERT_EQ(out.faceGroups.size(), out.faceVertexCounts.size());
+    for (uint32_t group = 0; group < 6; ++group)
+        EXPECT_EQ(std::count(out.faceGroups.begin(), out.faceGroups.end(), group), 16) << "group " << group;
+    // Each refined face lies on its control face's side of the cube: the side's axis is extreme
+    // at its points' centroid.
+    const std::array<std::pair<int, float>, 6> sides{{{2, -1}, {2, 1}, {1, -1}, {1, 1}, {0, -1}, {0, 1}}};
+    size_t base = 0;
+    for (size_t face = 0; face < out.faceVertexCounts.size(); ++face) {
+        V3 centroid{0, 0, 0};
+        for (int32_t k = 0; k < out.faceVertexCounts[face]; ++k) {
+            const V3 p = pointAt(out.points, size_t(out.faceVertexIndices[base + size_t(k)]));
+            for (size_t c = 0; c < 3; ++c) centroid[c] += p[c] / float(out.faceVertexCounts[face]);
+        }
+        base += size_t(out.faceVertexCounts[face]);
+        const auto [axis, sign] = sides[out.faceGroups[face]];
+        for (size_t c = 0; c < 3; ++c)
+            if (int(c) != axis) EXPECT_LT(std::fabs(centroid[c]), sign * centroid[size_t(axis)]) << "face " << face;
+    }
+}
+
 }  // namespace
 }  // namespace obscura::delegate
