@@ -235,10 +235,12 @@ LayerOffset Parser::parseArcParameters(const std::string& what, bool allowCustom
             const Token number = take();
             if (number.kind != TokenKind::Number) fail(number, "expected a number, found " + describe(number));
             const double value = toNumber(number);
+            // As Pcp does with an offset it cannot invert: reported, and the arc kept without it.
             if (!std::isfinite(value) || (key.isWord("scale") && value == 0.0))
-                fail(number, "a layer " + std::string(key.text) + " must be a finite number" +
-                                 (key.isWord("scale") ? " other than 0" : ""));
-            (key.isWord("offset") ? layerOffset.offset : layerOffset.scale) = value;
+                warn("layerOffset", number, "invalid layer " + std::string(key.text) + " in " + what +
+                                                ": a layer offset must be finite and its scale other than 0; ignored");
+            else
+                (key.isWord("offset") ? layerOffset.offset : layerOffset.scale) = value;
         } else if (allowCustomData && key.isWord("customData")) {
             expect('=', "after 'customData'");
             std::map<std::string, Value> ignored;

@@ -99,15 +99,17 @@ def "S" (references = @still.usda@</Still> (offset = 50; scale = 3)) {}
     EXPECT_DOUBLE_EQ(xAt(*stage, "/S", 1000.0), 3.0);
 }
 
-TEST(LayerOffsets, AZeroScaleIsAnErrorAtItsPlace) {
-    auto result = Stage::openFromString(R"(#usda 1.0
-def "S" (references = @x.usda@ (scale = 0)) {}
-)",
-                                        "zero.usda");
-    const Error* error = std::get_if<Error>(&result);
-    ASSERT_TRUE(error);
-    EXPECT_EQ(error->where.line, 2) << error->str();
-    EXPECT_NE(error->message.find("scale"), std::string::npos) << error->str();
+TEST(LayerOffsets, AZeroScaleIsReportedAtItsPlaceAndIgnored) {
+    test::LayerFiles files({{"anim.usda", kAnimated}, {"root.usda", R"(#usda 1.0
+def "S" (references = @anim.usda@ (offset = 5; scale = 0)) {}
+)"}});
+    auto stage = files.open();
+    ASSERT_TRUE(stage);
+    ASSERT_EQ(stage->warnings().size(), 1u);
+    EXPECT_EQ(stage->warnings()[0].where.line, 2);
+    EXPECT_NE(stage->warnings()[0].message.find("scale"), std::string::npos) << stage->warnings()[0].message;
+    // The scale is dropped, the valid offset kept.
+    EXPECT_DOUBLE_EQ(xAt(*stage, "/S", 10.0), 5.0);
 }
 
 }  // namespace
