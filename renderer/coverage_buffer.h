@@ -13,8 +13,9 @@
 // tiles' rectangles meet without a gap. Everything else is a hole: no occluder. What the last frame
 // drew must still be where it was (the renderer drops the history when anything drawn changed), and
 // a history-less frame (the first, a camera cut) tests nothing.
-// XXX: two surfaces meeting inside one tile within the parallax allowance could still open a crack
-// narrower than kMaxParallaxPixels between them as the eye moves.
+// XXX: the depth is known at the last frame's sample points only: a gap narrower than a pixel
+// that none of them saw through (two surfaces meeting inside one tile within the parallax
+// allowance as the eye moves, or a crack the next jitter offset samples) is taken as covered.
 #pragma once
 
 #include "renderer/matrix.h"

@@ -211,7 +211,8 @@ const RenderSettingInfo kSettings[] = {
      "tiles, is read back after its fence, reprojected into this frame's view and tested against each "
      "draw's and instance's bounds; what it hides is not drawn by the camera (shadow maps draw "
      "everything). Conservative: a camera cut, the first frame, or a change to what is drawn tests "
-     "nothing (bool, default off)",
+     "nothing; off by default because a sub-pixel gap no sample of the last frame saw through is "
+     "taken as covered (docs/ARCHITECTURE.md) (bool, default off)",
      OBSCURA_VALUE_BOOL, 0.0},
 };
 
