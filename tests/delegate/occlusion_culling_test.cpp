@@ -12,19 +12,24 @@ namespace {
 constexpr int kCrowdInFront = 3;  // crates between the camera and the wall
 constexpr int kCrowdBehind = 6;   // crates behind the wall
 
-// A wall filling the view of a camera at the origin looking along +Y, a box and crates in front of
-// it and a box and crates behind it, lit by a shadowing sun. Culling on or off as asked.
+// A wall filling the view of a camera at the origin looking along +Y, a box, a glass pane and
+// crates in front of it and a box, a glass box and crates behind it, lit by a shadowing sun.
+// Culling on or off as asked.
 struct WalledScene {
     TestHost host;
     explicit WalledScene(bool culling) {
         setBool(host, "occlusionCulling", culling);
         addMaterial(host, "/Looks/Grey", {0.5f, 0.5f, 0.5f}, 0.6f);
         addMaterial(host, "/Looks/Red", {0.8f, 0.1f, 0.1f}, 0.4f);
+        addMaterial(host, "/Looks/Glass", {0.2f, 0.6f, 0.9f}, 0.2f);
+        host.set("/Looks/Glass", "inputs:opacity", HostValue::floatValue(0.5f));
         host.addCamera("/Camera", lookingAlongY({0, 0, 0}, 0));
         host.addCamera("/Other", lookingAlongY({0.4, -0.5, 0.1}, -2));
         addBox(host, "/Wall", {-20, 6, -20}, {20, 6.5, 20}, "/Looks/Grey");
         addBox(host, "/Front", {-1.0, 3, -0.5}, {-0.5, 3.5, 0.2}, "/Looks/Red");
         addBox(host, "/Hidden", {-0.5, 9, -0.4}, {0.5, 10, 0.4}, "/Looks/Red");
+        addBox(host, "/Pane", {0.1, 2.5, 0.1}, {0.8, 2.6, 0.5}, "/Looks/Glass");
+        addBox(host, "/HiddenGlass", {0.6, 9, -0.3}, {1.2, 9.5, 0.3}, "/Looks/Glass");
         addBox(host, "/Crowd/Prototypes/Crate", {-0.15, -0.15, -0.15}, {0.15, 0.15, 0.15}, "/Looks/Red");
         std::vector<std::array<float, 3>> positions;
         for (int i = 0; i < kCrowdInFront; ++i) positions.push_back({0.2f + 0.35f * float(i), 4.0f, -0.2f});
@@ -85,17 +90,18 @@ TEST(OcclusionCulling, TheFirstFrameDrawsEverythingAndTheNextCullsWhatTheWallHid
     // Nothing to reproject yet: every draw is drawn.
     EXPECT_EQ(first.culling.drawsCulled, 0u);
     EXPECT_EQ(first.culling.instancesCulled, 0u);
-    EXPECT_EQ(first.culling.draws, 4u) << "the wall, the two boxes and the crates";
-    EXPECT_EQ(first.culling.instances, uint64_t(3 + kCrowdInFront + kCrowdBehind));
+    EXPECT_EQ(first.culling.draws, 6u) << "the wall, the two boxes, the two glass ones and the crates";
+    EXPECT_EQ(first.culling.instances, uint64_t(5 + kCrowdInFront + kCrowdBehind));
 
     WalledScene::Frame second = culled.render("/Camera");
     expectSameImage(second, drawn.render("/Camera"), "second frame");
-    // The box behind the wall is culled whole; the crates behind it leave the crowd's draw.
-    EXPECT_EQ(second.culling.drawsCulled, 1u);
-    EXPECT_EQ(second.culling.instancesCulled, uint64_t(1 + kCrowdBehind));
-    EXPECT_EQ(second.culling.trianglesCulled, uint64_t(12 * (1 + kCrowdBehind)));
-    EXPECT_EQ(renderStats(culled.host).trianglesDrawn, uint64_t(12 * (2 + kCrowdInFront)));
-    EXPECT_EQ(renderStats(drawn.host).trianglesDrawn, uint64_t(12 * (3 + kCrowdInFront + kCrowdBehind)));
+    // The boxes behind the wall, opaque and transparent, are culled whole; the crates behind it
+    // leave the crowd's draw.
+    EXPECT_EQ(second.culling.drawsCulled, 2u);
+    EXPECT_EQ(second.culling.instancesCulled, uint64_t(2 + kCrowdBehind));
+    EXPECT_EQ(second.culling.trianglesCulled, uint64_t(12 * (2 + kCrowdBehind)));
+    EXPECT_EQ(renderStats(culled.host).trianglesDrawn, uint64_t(12 * (3 + kCrowdInFront)));
+    EXPECT_EQ(renderStats(drawn.host).trianglesDrawn, uint64_t(12 * (5 + kCrowdInFront + kCrowdBehind)));
 }
 
 // A moving camera, then a cut to another camera and back: every frame the same image with culling
@@ -122,6 +128,34 @@ TEST(OcclusionCulling, ACameraPathWithACutRendersTheSameImages) {
     WalledScene::Frame back = culled.render("/Camera");
     expectSameImage(back, drawn.render("/Camera"), "back to the first camera");
     EXPECT_EQ(back.culling.instancesCulled, 0u);
+}
+
+// With MSAA the coverage buffer is made from each pixel's farthest sample depth.
+TEST(OcclusionCulling, MultisampledFramesCullWhatTheWallHides) {
+    WalledScene culled(true), drawn(false);
+    setNumber(culled.host, "msaa", 4);
+    setNumber(drawn.host, "msaa", 4);
+    for (int frame = 0; frame < 3; ++frame) {
+        WalledScene::Frame f = culled.render("/Camera");
+        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
+        EXPECT_EQ(f.culling.instancesCulled, frame == 0 ? 0u : uint64_t(2 + kCrowdBehind)) << "frame " << frame;
+    }
+}
+
+// A box moving within the shutter (motion blur): a still's frames each see it at their own part of
+// the shutter, so no frame's depth stands for the next one, and nothing is culled.
+TEST(OcclusionCulling, MotionWithinTheShutterCullsNothing) {
+    WalledScene culled(true), drawn(false);
+    for (WalledScene* scene : {&culled, &drawn}) {
+        scene->host.set("/Camera", "shutter:open", HostValue::doubleValue(-0.5));
+        scene->host.set("/Camera", "shutter:close", HostValue::doubleValue(0.5));
+        scene->host.setTransformMotion("/Front", -0.5, translation(-0.2, 0, 0), 0.5, translation(0.2, 0, 0));
+    }
+    for (int frame = 0; frame < 3; ++frame) {
+        WalledScene::Frame f = culled.render("/Camera");
+        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
+        EXPECT_EQ(f.culling.instancesCulled, 0u) << "frame " << frame;
+    }
 }
 
 // A moving occluder: the frame after the wall moves draws everything (its depth no longer stands),
