@@ -161,9 +161,9 @@ OBSCURA_PLUGINPATH= "$tmp/lonely/bin/obscura" render "$src/scenes/demo.usda" -o 
 check "missing plugin" 4 $? "$tmp/out" 'no renderer plugin found'
 # A plugin that only speaks ABI 2: refused by version negotiation, exit 4.
 OBSCURA_PLUGINPATH="$fake_plugin" "$tmp/lonely/bin/obscura" render "$src/scenes/demo.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
-check "ABI mismatch" 4 $? "$tmp/out" 'does not provide ABI 1\.2'
+check "ABI mismatch" 4 $? "$tmp/out" 'does not provide ABI 1\.3'
 OBSCURA_PLUGINPATH="$(dirname "$obscura")/../lib/obscura/plugin" "$tmp/lonely/bin/obscura" info >"$tmp/out" 2>&1
-check "OBSCURA_PLUGINPATH finds the plugin" 0 $? "$tmp/out" 'loaded: Obscura, ABI 1\.2'
+check "OBSCURA_PLUGINPATH finds the plugin" 0 $? "$tmp/out" 'loaded: Obscura, ABI 1\.3'
 
 # A UsdUVTexture network (Material -> UsdPreviewSurface <- UsdUVTexture <- UsdPrimvarReader_float2);
 # delegate_tests (TexturedUsda) checks its pixels.
