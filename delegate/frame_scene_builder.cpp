@@ -8,6 +8,7 @@
 #include "passes/frame_data.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -118,6 +119,7 @@ public:
         uploadCamera();
         packDraws();
         packInstancedDraws();
+        cullOccluded();
         orderTransparents();
         packShadowAtlas();
         packClipVolumes();
@@ -391,7 +393,8 @@ private:
             Aabb bounds;
             for (const auto& [mesh, part] : batch) {
                 record(*mesh, *part, transformOf(*mesh), motionOf(*mesh));
-                bounds.merge(transformAabb(mesh->localBounds(), transformOf(*mesh)));
+                instanceBounds_.push_back(transformAabb(mesh->localBounds(), transformOf(*mesh)));
+                bounds.merge(instanceBounds_.back());
             }
             drawBounds_.push_back(bounds);
         }
@@ -430,7 +433,8 @@ private:
                         }
                         record(*mesh, part, model, motion, (uint64_t(ordinal + 1) << 24) | (number & 0xFFFFFFu),
                                inst->instanceIndexOf(size_t(proto), number));
-                        bounds.merge(transformAabb(mesh->localBounds(), model));
+                        instanceBounds_.push_back(transformAabb(mesh->localBounds(), model));
+                        bounds.merge(instanceBounds_.back());
                     }
                     drawBounds_.push_back(bounds);
                 }
@@ -438,11 +442,64 @@ private:
         }
     }
 
+    // Occlusion culling (seed 004 "Occlusion culling"): each draw's bounds, then each of its
+    // instances', against the last frame's coverage buffer reprojected into this view
+    // (renderer/coverage_buffer.h). The camera draws what stays; the shadow maps still draw every
+    // draw (what the camera cannot see may shadow what it can). Draws moving within the shutter are
+    // never culled: their bounds hold one time of it. Transparent draws are culled only whole (the
+    // transparent pass sorts draws).
+    void cullOccluded() {
+        const auto start = std::chrono::steady_clock::now();
+        passes::CullingCounts& counts = scene_.culling;
+        drawCulled_.assign(scene_.draws.size(), false);
+        for (size_t d = 0; d < scene_.draws.size(); ++d) {
+            const passes::Draw& draw = scene_.draws[d];
+            const uint64_t triangles = draw.indexCount / 3;
+            counts.draws += 1;
+            counts.instances += draw.instanceCount;
+            counts.triangles += triangles * draw.instanceCount;
+            const renderer::CoverageBuffer* occlusion = draw.moving || draw.shutterPositions ? nullptr : in_.occlusion;
+            const auto hidden = [&](const Aabb& box) { return occlusion && occlusion->hidden(box.min, box.max); };
+            if (hidden(drawBounds_[d])) {
+                drawCulled_[d] = true;
+                counts.drawsCulled += 1;
+                counts.instancesCulled += draw.instanceCount;
+                counts.trianglesCulled += triangles * draw.instanceCount;
+                continue;
+            }
+            if (draw.transparent) continue;
+            std::vector<uint32_t> kept;
+            if (occlusion && draw.instanceCount > 1)
+                for (uint32_t i = draw.instanceIndex; i < draw.instanceIndex + draw.instanceCount; ++i)
+                    if (!hidden(instanceBounds_[i])) kept.push_back(i);
+            if (!occlusion || draw.instanceCount == 1 || kept.size() == draw.instanceCount) {
+                scene_.cameraDraws.push_back(draw);
+                continue;
+            }
+            const uint64_t culled = draw.instanceCount - kept.size();
+            counts.instancesCulled += culled;
+            counts.trianglesCulled += triangles * culled;
+            if (kept.empty()) {
+                drawCulled_[d] = true;
+                counts.drawsCulled += 1;
+                continue;
+            }
+            // The instances kept, as consecutive records after the others.
+            passes::Draw compacted = draw;
+            compacted.instanceIndex = static_cast<uint32_t>(instances_.size());
+            compacted.instanceCount = static_cast<uint32_t>(kept.size());
+            for (uint32_t i : kept) instances_.push_back(passes::InstanceData(instances_[i]));
+            scene_.cameraDraws.push_back(compacted);
+        }
+        counts.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        if (in_.occlusion) counts.milliseconds += in_.occlusion->reprojectionMilliseconds();
+    }
+
     // Transparent draws back to front: the "over" blend needs what lies behind drawn first.
     void orderTransparents() {
         std::vector<std::pair<double, uint32_t>> transparentByDistance;
         for (uint32_t i = 0; i < scene_.draws.size(); ++i) {
-            if (!scene_.draws[i].transparent) continue;
+            if (!scene_.draws[i].transparent || drawCulled_[i]) continue;
             Vec3d centre = drawBounds_[i].centre();
             Vec3d toEye{centre[0] - eye_[0], centre[1] - eye_[1], centre[2] - eye_[2]};
             transparentByDistance.push_back({toEye[0] * toEye[0] + toEye[1] * toEye[1] + toEye[2] * toEye[2], i});
@@ -555,6 +612,8 @@ private:
     std::vector<passes::InstanceMotion> motions_;
     std::vector<passes::InstanceReprojection> reprojections_;
     std::vector<Aabb> drawBounds_;  // world bounds of each draw, all its instances
+    std::vector<Aabb> instanceBounds_;  // world bounds of each drawn instance record
+    std::vector<bool> drawCulled_;  // occlusion culling hid the whole draw from the camera
 };
 
 }  // namespace

@@ -38,8 +38,14 @@ void FrameSceneSource::report(const passes::FrameScene& scene, const FrameSceneS
         throw ApiError{OBSCURA_ERROR_OUT_OF_MEMORY, std::to_string(scene.instanceCount) +
                                                         " instances: the G-buffer addresses at most " +
                                                         std::to_string(passes::kMaxInstanceRecords)};
+    // What the camera drew: the G-buffer's draws and the transparent ones.
     report_.trianglesDrawn = 0;
-    for (const auto& draw : scene.draws) report_.trianglesDrawn += uint64_t(draw.indexCount / 3) * draw.instanceCount;
+    for (const auto& draw : scene.cameraDraws) report_.trianglesDrawn += uint64_t(draw.indexCount / 3) * draw.instanceCount;
+    for (uint32_t index : scene.transparentDraws) {
+        const passes::Draw& draw = scene.draws[index];
+        report_.trianglesDrawn += uint64_t(draw.indexCount / 3) * draw.instanceCount;
+    }
+    report_.culling = scene.culling;
 }
 
 }  // namespace obscura::delegate

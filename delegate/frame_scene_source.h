@@ -17,6 +17,7 @@ namespace obscura::delegate {
 // logged when it changes, not every frame.
 struct FrameSceneReport {
     uint64_t trianglesDrawn = 0;
+    passes::CullingCounts culling;
     uint32_t lightsWithoutShadowRoom = 0;
     std::vector<std::string> unclippedLights;
     std::vector<std::string> unresolvedSubsetMaterials;

@@ -38,6 +38,13 @@ void fillMemoryStats(const gpu::MemoryAllocator& allocator, ObscuraMemoryStats& 
     memory.renderBufferBytes = allocator.bytesInUse(gpu::MemoryCategory::RenderBuffers);
 }
 
+// Whether a change to the prim may change what the G-buffer draws (occlusion culling's history,
+// FrameRequest::drawnVersion): anything but cameras, lights and render buffers.
+bool changesWhatIsDrawn(const Prim& prim) {
+    return !dynamic_cast<const Camera*>(&prim) && !dynamic_cast<const Light*>(&prim) &&
+           !dynamic_cast<const RenderBuffer*>(&prim);
+}
+
 }  // namespace
 
 RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
@@ -105,6 +112,7 @@ void RenderDelegate::setSceneDelegate(const ObscuraSceneDelegate& sd) {
     sceneDelegate_ = sd;
     hasSceneDelegate_ = true;
     ++sceneVersion_;
+    ++drawnVersion_;
     for (auto& [path, prim] : prims_) {
         prim->markDirty(OBSCURA_DIRTY_ALL);
         dirty_.insert(prim.get());
@@ -133,6 +141,7 @@ void RenderDelegate::insertPrim(const std::string& type, const std::string& path
     else if (type == "instancer") prim = std::make_unique<Instancer>(path, *schema);
     else throw ApiError{OBSCURA_ERROR_UNKNOWN_TYPE, "prim type '" + type + "' has a schema but no implementation"};
     dirty_.insert(prim.get());
+    if (changesWhatIsDrawn(*prim)) ++drawnVersion_;
     prims_.emplace(path, std::move(prim));
     ++sceneVersion_;
 }
@@ -142,6 +151,7 @@ void RenderDelegate::removePrim(const std::string& path) {
     auto it = prims_.find(path);
     if (it == prims_.end()) throw ApiError{OBSCURA_ERROR_NOT_FOUND, "no prim at " + path};
     dirty_.erase(it->second.get());
+    if (changesWhatIsDrawn(*it->second)) ++drawnVersion_;
     prims_.erase(it);
     ++sceneVersion_;
 }
@@ -153,6 +163,7 @@ void RenderDelegate::markDirty(const std::string& path, ObscuraDirtyBits bits) {
     if (bits != OBSCURA_DIRTY_CLEAN) {
         dirty_.insert(it->second.get());
         ++sceneVersion_;
+        if (changesWhatIsDrawn(*it->second)) ++drawnVersion_;
     }
 }
 
@@ -360,6 +371,7 @@ ObscuraStatus RenderDelegate::render(const ObscuraRenderPassDesc& desc) {
                       desc.time,
                       {desc.time + cameraParams.shutterOpen, desc.time + cameraParams.shutterClose}};
     request.sceneVersion = sceneVersion_;
+    request.drawnVersion = drawnVersion_;
     request.settingsVersion = settings_.version();
     request.environment = dome && dome->environment() ? dome->environment()->image : nullptr;
     request.aovs = std::move(bindings.requests);
@@ -438,6 +450,17 @@ void RenderDelegate::stats(ObscuraRenderStats& out) const {
          next = static_cast<const ObscuraStructHeader*>(next->pNext)) {
         if (next->sType == OBSCURA_STRUCTURE_TYPE_MEMORY_STATS)
             fillMemoryStats(device_->memory(), *const_cast<ObscuraMemoryStats*>(reinterpret_cast<const ObscuraMemoryStats*>(next)));
+        if (next->sType == OBSCURA_STRUCTURE_TYPE_CULLING_STATS && next->structSize >= sizeof(ObscuraCullingStats)) {
+            auto* culling = const_cast<ObscuraCullingStats*>(reinterpret_cast<const ObscuraCullingStats*>(next));
+            const passes::CullingCounts& counts = sceneReport_.culling;
+            culling->draws = counts.draws;
+            culling->drawsCulled = counts.drawsCulled;
+            culling->instances = counts.instances;
+            culling->instancesCulled = counts.instancesCulled;
+            culling->triangles = counts.triangles;
+            culling->trianglesCulled = counts.trianglesCulled;
+            culling->milliseconds = counts.milliseconds;
+        }
         if (next->sType == OBSCURA_STRUCTURE_TYPE_INTEROP_STATS && next->structSize >= sizeof(ObscuraInteropStats)) {
             auto* interop = const_cast<ObscuraInteropStats*>(reinterpret_cast<const ObscuraInteropStats*>(next));
             interop->semaphoreValue = exportTimeline_ ? exportTimeline_->value() : 0;

@@ -94,6 +94,7 @@ private:
     std::set<Prim*> dirty_;
     // Counts insertions, removals and dirty marks: temporal AA restarts its mean when it moves.
     uint64_t sceneVersion_ = 0;
+    uint64_t drawnVersion_ = 0;  // FrameRequest::drawnVersion
     int32_t nextPrimId_ = 0;
     renderer::RenderSettings settings_;
 

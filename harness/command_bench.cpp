@@ -144,8 +144,12 @@ int runBench(const BenchOptions& o) {
     order.push_back("total");
     std::erase_if(warmupOrder, [&](const std::string& pass) { return samples.count(pass) > 0; });
     // The delegate's Vulkan memory after the measured frames: what a steady frame holds.
+    ObscuraCullingStats culling{};
+    culling.sType = OBSCURA_STRUCTURE_TYPE_CULLING_STATS;
+    culling.structSize = sizeof(culling);
     ObscuraMemoryStats memory{};
     memory.sType = OBSCURA_STRUCTURE_TYPE_MEMORY_STATS;
+    memory.pNext = &culling;
     memory.structSize = sizeof(memory);
     ObscuraRenderStats stats{};
     stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
@@ -182,6 +186,12 @@ int runBench(const BenchOptions& o) {
         if (!o.display.empty())
             std::printf(", \"display\": {\"mode\": \"%s\", \"render_call_ms\": %.4f, \"show_ms\": %.4f}", o.display.c_str(),
                         median(renderCalls), median(shows));
+        std::printf(", \"culling\": {\"draws\": %u, \"draws_culled\": %u, \"instances\": %llu, "
+                    "\"instances_culled\": %llu, \"triangles\": %llu, \"triangles_culled\": %llu, \"cpu_ms\": %.4f}",
+                    culling.draws, culling.drawsCulled, static_cast<unsigned long long>(culling.instances),
+                    static_cast<unsigned long long>(culling.instancesCulled),
+                    static_cast<unsigned long long>(culling.triangles),
+                    static_cast<unsigned long long>(culling.trianglesCulled), culling.milliseconds);
         std::printf(", \"device_memory_mib\": {\"in_use\": %.1f, \"reserved\": %.1f",
                     double(memory.deviceMemoryInUse) / kMiB, double(memory.deviceMemoryReserved) / kMiB);
         for (const auto& [kind, bytes] : kinds) std::printf(", \"%s\": %.1f", kind, double(bytes) / kMiB);
@@ -195,6 +205,13 @@ int runBench(const BenchOptions& o) {
         std::printf("device memory: %.1f MiB in use, %.1f MiB reserved\n", double(memory.deviceMemoryInUse) / kMiB,
                     double(memory.deviceMemoryReserved) / kMiB);
         for (const auto& [kind, bytes] : kinds) std::printf("  %-16s %10.1f MiB\n", kind, double(bytes) / kMiB);
+        // The last frame's camera view (render setting occlusionCulling).
+        std::printf("occlusion culling (last frame): %u of %u draws, %llu of %llu instances, %llu of %llu triangles "
+                    "culled; %.3f ms CPU\n",
+                    culling.drawsCulled, culling.draws, static_cast<unsigned long long>(culling.instancesCulled),
+                    static_cast<unsigned long long>(culling.instances),
+                    static_cast<unsigned long long>(culling.trianglesCulled),
+                    static_cast<unsigned long long>(culling.triangles), culling.milliseconds);
         if (!o.display.empty())
             std::printf("display (%s, wall-clock medians): render call %.4f ms, showing the frame %.4f ms\n",
                         o.display.c_str(), median(renderCalls), median(shows));

@@ -73,6 +73,18 @@ struct SceneBuffers {
     gpu::BufferHandle shadowRecords;
 };
 
+// Occlusion culling's tally of a frame's camera draws (render setting occlusionCulling): before
+// culling, and what the coverage buffer hid (a draw culled whole, or instances of one).
+struct CullingCounts {
+    uint32_t draws = 0;
+    uint32_t drawsCulled = 0;
+    uint64_t instances = 0;
+    uint64_t instancesCulled = 0;
+    uint64_t triangles = 0;
+    uint64_t trianglesCulled = 0;
+    double milliseconds = 0.0;  // CPU time of the tests
+};
+
 struct FrameScene {
     CameraData cameraData{};   // what `camera` holds, for passes that build push constants
     gpu::BufferPtr camera;     // CameraData (uniform)
@@ -89,11 +101,16 @@ struct FrameScene {
     // and must know whether what they draw changed (the shadow atlas).
     std::vector<InstanceData> instanceRecords;
     std::vector<MaterialData> materialRecords;
-    std::vector<Draw> draws;
+    std::vector<Draw> draws;  // every draw of the scene: what the shadow maps draw from
+    // The opaque and cut-out draws the camera draws into the G-buffer: `draws` less what occlusion
+    // culling hid; an instanced draw may keep some of its instances (their records copied after
+    // the others').
+    std::vector<Draw> cameraDraws;
     uint32_t instanceCount = 0;  // InstanceData records in `instances`
-    // The transparent draws (indices into `draws`), back to front: by the distance from the eye to
-    // the centre of each draw's world bounds (an instanced draw sorts as one).
+    // The transparent draws (indices into `draws`) the camera draws, back to front: by the distance
+    // from the eye to the centre of each draw's world bounds (an instanced draw sorts as one).
     std::vector<uint32_t> transparentDraws;
+    CullingCounts culling;
     ShadowAtlas shadows;
     std::vector<ClipVolume> clipVolumes;
     // Motion blur: the G-buffer writes the velocities of the moving draws (drawn last) and the

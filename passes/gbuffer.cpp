@@ -106,7 +106,7 @@ GBuffer addGBufferPass(gpu::FrameGraph& graph, const FrameScene& scene, gpu::Ima
     for (Variant variant : {Variant::Static, Variant::StaticWithVelocityTarget, Variant::DeformingWithoutVelocity,
                             Variant::Moving, Variant::Deforming})
         for (bool cutout : {false, true})
-            for (const Draw& draw : scene.draws)
+            for (const Draw& draw : scene.cameraDraws)
                 // Transparent surfaces are drawn after lighting (passes/transparent.h).
                 if (!draw.transparent && draw.opacityCutout == cutout && variantOf(draw, scene.motionBlur) == variant)
                     ordered.push_back({variant, &draw});

@@ -12,6 +12,7 @@
 #include "passes/transparent.h"
 #include "renderer/reference_frames.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -43,7 +44,10 @@ FrameRenderer::FrameRenderer(gpu::FrameBackend& backend, VkSampler environmentSa
 
 FrameRenderer::FrameRenderer(std::unique_ptr<gpu::FrameBackend> owned, gpu::FrameBackend* backend,
                              VkSampler environmentSampler, LogSink log)
-    : ownedBackend_(std::move(owned)), backend_(backend ? *backend : *ownedBackend_), log_(std::move(log)) {
+    : ownedBackend_(std::move(owned)),
+      backend_(backend ? *backend : *ownedBackend_),
+      log_(std::move(log)),
+      occlusion_(backend_) {
     bestFitNormals_ = passes::createBestFitNormalsTexture(backend_);
     // With SSAO off the lighting pass reads one unoccluded texel.
     const uint8_t open = 255;
@@ -128,6 +132,18 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
         viewpoint.lastModels = &lastModels_;
         viewpoint.models = &models;
     }
+    // Occlusion culling (seed 004): the last frame's coverage buffer, reprojected into this view.
+    // The reference's sub-frames are not culled: each looks from its own point of the lens.
+    const bool occlusionCulling = settings.occlusionCulling && referenceSubFrames == 0;
+    const CoverageKey coverageKey{camera.key, camera.time, request.drawnVersion, request.settingsVersion};
+    CoverageView coverageView;
+    std::optional<CoverageBuffer> coverage;
+    if (occlusionCulling) {
+        FrameView seen = source.view(viewpoint);
+        coverageView = {seen.view, multiply(seen.projection, viewpoint.clipJitter), width, height};
+        coverage = occlusion_.reproject(coverageKey, coverageView);
+        viewpoint.occlusion = coverage ? &*coverage : nullptr;
+    }
     passes::FrameScene scene = source.scene(viewpoint);
     lastModels_ = std::move(models);
 
@@ -157,6 +173,14 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
         gbuffer = resolve.resolved;
         msaa = MsaaFrame{perSample, resolve.maxDepth};
     }
+    // The next frame's coverage buffer, from the opaque depth (with MSAA the farthest sample's).
+    // Where an instance moves within the shutter, a still's frames see it at other times; hybrid
+    // AA's instances are drawn without the jitter the reprojection assumes: such depth would not
+    // stand for the next frame.
+    const bool anyMoving = std::any_of(scene.draws.begin(), scene.draws.end(),
+                                       [](const passes::Draw& d) { return d.moving || d.shutterPositions; });
+    if (occlusionCulling && !anyMoving && !scene.edgeAa)
+        occlusion_.addToFrame(graph, msaa ? msaa->maxDepth : gbuffer.depth, coverageKey, coverageView);
     gpu::ImageHandle hdr;
     gpu::ImageHandle transparentCoverage;
     bool dofAfterTemporalAa = false;
@@ -228,6 +252,7 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
     passes::addAovReadbackPass(graph, scene, gbuffer, hdr, hdrAlpha, transparentCoverage, display,
                                velocity, request.aovs);
     executeFrame(graph);
+    occlusion_.frameDone();
     converged_ = !temporalAa || temporalAa->converged;
     if (msaa) {
         // Issue 5: the share of pixels the per-sample mask sends to sample-frequency lighting.

@@ -21,6 +21,7 @@
 #include "renderer/environment_cache.h"
 #include "renderer/grading_chart.h"
 #include "renderer/matrix.h"
+#include "renderer/occlusion_history.h"
 #include "renderer/render_settings.h"
 #include "renderer/temporal_accumulation.h"
 
@@ -84,6 +85,10 @@ struct FrameViewpoint {
     // InstanceReprojection record), and where this frame's go; null without temporal AA.
     const InstanceModels* lastModels = nullptr;
     InstanceModels* models = nullptr;
+    // Occlusion culling (render setting occlusionCulling): the last frame's coverage buffer in this
+    // viewpoint's view; draws and instances whose bounds it hides are left out of the camera's
+    // draws. Null: nothing is culled (a reference sub-frame, a frame without history).
+    const CoverageBuffer* occlusion = nullptr;
 };
 
 // World-to-view and view-to-clip (row-vector convention) a viewpoint sees through.
@@ -126,6 +131,9 @@ struct FrameRequest {
     // Counts the host's insertions, removals and dirty marks: while it moves the scene changes,
     // and temporal AA blends rather than averages.
     uint64_t sceneVersion = 0;
+    // Counts the changes to what the G-buffer draws (meshes, instancers, materials; not cameras,
+    // lights or render buffers): while it holds, the last frame's depth is still the scene's.
+    uint64_t drawnVersion = 0;
     uint64_t settingsVersion = 0;  // RenderSettings::version()
     // The textured dome's latlong image the environment maps are made from, or null.
     gpu::ImagePtr environment;
@@ -189,6 +197,7 @@ private:
     } unoccluded_;
     // A frame without a velocity target reads this one texel of kStaticVelocity (the motion AOV).
     gpu::ImagePtr stillVelocity_;
+    OcclusionHistory occlusion_;
     InstanceModels lastModels_;  // the last frame's instance models, for temporal AA's object motion
     gpu::PersistentImage accumulation_;  // reference mode's running sum (passes/accumulate.h)
     // SSAO's temporal accumulation: the history and what it was rendered with, to reproject it or

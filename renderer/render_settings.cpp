@@ -206,6 +206,14 @@ const RenderSettingInfo kSettings[] = {
      "(opaque) or BC3 (with alpha), 8-bit tangent-space normal maps read as 2 n - 1 from raw files as "
      "BC5 (two channels, z reconstructed); off keeps 8-bit textures RGBA8 (bool, default on)",
      OBSCURA_VALUE_BOOL, 1.0},
+    {"occlusionCulling", number<&FrameSettings::occlusionCulling>,
+     "occlusion culling with a coverage buffer (seed 004): the last frame's depth, reduced to 8x8-pixel "
+     "tiles, is read back after its fence, reprojected into this frame's view and tested against each "
+     "draw's and instance's bounds; what it hides is not drawn by the camera (shadow maps draw "
+     "everything). Conservative: a camera cut, the first frame, or a change to what is drawn tests "
+     "nothing; off by default because a sub-pixel gap no sample of the last frame saw through is "
+     "taken as covered (docs/ARCHITECTURE.md) (bool, default off)",
+     OBSCURA_VALUE_BOOL, 0.0},
 };
 
 bool isTokenChoice(std::string_view choices, std::string_view token) {

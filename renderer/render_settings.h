@@ -57,6 +57,7 @@ struct FrameSettings {
     std::string gradingChart;
     passes::LatticeInterpolation gradingInterpolation;
     bool textureCompression;
+    bool occlusionCulling;
 };
 
 struct RenderSettingInfo {

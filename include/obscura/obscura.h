@@ -75,7 +75,7 @@ extern "C" {
 
 #define OBSCURA_ABI_VERSION_MAJOR 1
 #define OBSCURA_ABI_VERSION_MINOR 3  /* 1.1: ObscuraMemoryStats, PFN_ typedefs; 1.2: display interop;
-                                        1.3: ObscuraMemoryStats by kind */
+                                        1.3: ObscuraMemoryStats by kind, ObscuraCullingStats */
 
 /* ---------------------------------------------------------------------------------------------
  * Status codes
@@ -170,7 +170,8 @@ typedef enum ObscuraStructureType {
     OBSCURA_STRUCTURE_TYPE_RENDER_STATS = 7,
     OBSCURA_STRUCTURE_TYPE_MEMORY_STATS = 8,    /* ABI 1.1 */
     OBSCURA_STRUCTURE_TYPE_EXTERNAL_BUFFER = 9, /* ABI 1.2 */
-    OBSCURA_STRUCTURE_TYPE_INTEROP_STATS = 10   /* ABI 1.2 */
+    OBSCURA_STRUCTURE_TYPE_INTEROP_STATS = 10,  /* ABI 1.2 */
+    OBSCURA_STRUCTURE_TYPE_CULLING_STATS = 11   /* ABI 1.3 */
 } ObscuraStructureType;
 
 /* The head every extensible struct starts with, for walking pNext chains. */
@@ -351,6 +352,24 @@ typedef struct ObscuraMemoryStats {
     uint64_t geometryBytes;         /* vertex and index data */
     uint64_t renderBufferBytes;     /* render buffers (and device-local twins the AOVs are packed into) */
 } ObscuraMemoryStats;
+
+/* ABI 1.3, chained to ObscuraRenderStats::pNext: occlusion culling in the last render's camera
+ * view (render setting occlusionCulling). The draws, instances and triangles the camera had to draw
+ * before culling, and those the coverage buffer hid; all culled counts are 0 with the setting off,
+ * on the first frame and after a camera cut. A draw is one instanced draw call (meshes sharing
+ * geometry, or an instancer's prototype). Shadow maps are not counted: they draw everything. */
+typedef struct ObscuraCullingStats {
+    ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_CULLING_STATS */
+    const void* pNext;
+    uint32_t structSize;
+    uint32_t draws;
+    uint32_t drawsCulled;           /* draws none of whose instances were drawn */
+    uint64_t instances;
+    uint64_t instancesCulled;
+    uint64_t triangles;
+    uint64_t trianglesCulled;
+    double milliseconds;            /* CPU time reprojecting the coverage buffer and testing bounds */
+} ObscuraCullingStats;
 
 /* ---------------------------------------------------------------------------------------------
  * The function table, version 1.x (ABI 1.0's layout; 1.1 adds no function)

@@ -101,6 +101,7 @@ class StructureType(enum.IntEnum):
     MEMORY_STATS = 8  # ABI 1.1
     EXTERNAL_BUFFER = 9  # ABI 1.2
     INTEROP_STATS = 10  # ABI 1.2
+    CULLING_STATS = 11  # ABI 1.3
 
 
 class LogLevel(enum.IntEnum):
@@ -276,6 +277,23 @@ class ObscuraMemoryStats(_Extensible):
     ]
 
 
+class ObscuraCullingStats(_Extensible):
+    """ABI 1.3, chained to ObscuraRenderStats.pNext: occlusion culling in the last render's camera view."""
+    _structure_type = StructureType.CULLING_STATS
+    _fields_ = [
+        ("sType", c_enum),
+        ("pNext", c_void_p),
+        ("structSize", c_uint32),
+        ("draws", c_uint32),
+        ("drawsCulled", c_uint32),
+        ("instances", c_uint64),
+        ("instancesCulled", c_uint64),
+        ("triangles", c_uint64),
+        ("trianglesCulled", c_uint64),
+        ("milliseconds", c_double),
+    ]
+
+
 _D = ObscuraDelegate
 _S = c_enum  # every function returns an ObscuraStatus
 
@@ -317,6 +335,7 @@ STRUCTS = {
     "ObscuraDeviceInfo": ObscuraDeviceInfo,
     "ObscuraPassTiming": ObscuraPassTiming,
     "ObscuraMemoryStats": ObscuraMemoryStats,
+    "ObscuraCullingStats": ObscuraCullingStats,
     "ObscuraRenderStats": ObscuraRenderStats,
     "ObscuraApiV1": ObscuraApiV1,
 }

@@ -51,6 +51,7 @@ public:
         glass.transparent = true;
         glass.instanceIndex = 1;
         s.draws = {opaque, glass};
+        s.cameraDraws = {opaque};
         s.transparentDraws = {1};
         s.instanceCount = 2;
         s.edgeAa = viewpoint.edgeAaDistance > 0.0;
@@ -338,6 +339,24 @@ void HybridAaAddsEdgeAaWhileTheSceneChanges() {
 
 // Each group runs in one process: the renderer's construction (its best-fit normal table) costs
 // seconds, the frames milliseconds.
+// Occlusion culling: the coverage buffer is reduced from the G-buffer's depth, right after it; not
+// in reference mode, nor where a draw moves within the shutter (its depth would not stand).
+void OcclusionCullingReducesTheDepthAfterTheGBuffer() {
+    Wiring w;
+    w.settings.occlusionCulling = true;
+    std::vector<std::string> names = running(w.render());
+    auto gbuffer = std::find(names.begin(), names.end(), "gbuffer");
+    ASSERT_NE(gbuffer, names.end());
+    ASSERT_NE(gbuffer + 1, names.end());
+    EXPECT_EQ(*(gbuffer + 1), "coverage_buffer");
+    w.openShutter();
+    EXPECT_FALSE(runs(w.render(), "coverage_buffer")) << "the opaque draw moves within the shutter";
+    Wiring reference;
+    reference.settings.occlusionCulling = true;
+    reference.settings.referenceSubFrames = 2;
+    EXPECT_FALSE(runs(reference.render(), "coverage_buffer"));
+}
+
 TEST(FrameWiring, TheDefaultFrame) {
     {
         SCOPED_TRACE("TheDefaultFrameRunsEveryStepOnce");
@@ -373,6 +392,10 @@ TEST(FrameWiring, SettingsChooseThePasses) {
     {
         SCOPED_TRACE("HybridAaAddsEdgeAaWhileTheSceneChanges");
         HybridAaAddsEdgeAaWhileTheSceneChanges();
+    }
+    {
+        SCOPED_TRACE("OcclusionCullingReducesTheDepthAfterTheGBuffer");
+        OcclusionCullingReducesTheDepthAfterTheGBuffer();
     }
 }
 

@@ -1,0 +1,181 @@
+// Occlusion culling (seed 004 "Occlusion culling", render setting occlusionCulling): what the last
+// frame's coverage buffer hides is not drawn by the camera, and nothing the camera sees is ever
+// culled: every frame of a camera path renders the same image with culling as without, pixel for
+// pixel, while the culled counts say the test had something to hide.
+#include "tests/delegate/render_fixture.h"
+
+#include <gtest/gtest.h>
+
+namespace obscura::test {
+namespace {
+
+constexpr int kCrowdInFront = 3;  // crates between the camera and the wall
+constexpr int kCrowdBehind = 6;   // crates behind the wall
+
+// A wall filling the view of a camera at the origin looking along +Y, a box, a glass pane and
+// crates in front of it and a box, a glass box and crates behind it, lit by a shadowing sun.
+// Culling on or off as asked.
+struct WalledScene {
+    TestHost host;
+    explicit WalledScene(bool culling) {
+        setBool(host, "occlusionCulling", culling);
+        addMaterial(host, "/Looks/Grey", {0.5f, 0.5f, 0.5f}, 0.6f);
+        addMaterial(host, "/Looks/Red", {0.8f, 0.1f, 0.1f}, 0.4f);
+        addMaterial(host, "/Looks/Glass", {0.2f, 0.6f, 0.9f}, 0.2f);
+        host.set("/Looks/Glass", "inputs:opacity", HostValue::floatValue(0.5f));
+        host.addCamera("/Camera", lookingAlongY({0, 0, 0}, 0));
+        host.addCamera("/Other", lookingAlongY({0.4, -0.5, 0.1}, -2));
+        addBox(host, "/Wall", {-20, 6, -20}, {20, 6.5, 20}, "/Looks/Grey");
+        addBox(host, "/Front", {-1.0, 3, -0.5}, {-0.5, 3.5, 0.2}, "/Looks/Red");
+        addBox(host, "/Hidden", {-0.5, 9, -0.4}, {0.5, 10, 0.4}, "/Looks/Red");
+        addBox(host, "/Pane", {0.1, 2.5, 0.1}, {0.8, 2.6, 0.5}, "/Looks/Glass");
+        addBox(host, "/HiddenGlass", {0.6, 9, -0.3}, {1.2, 9.5, 0.3}, "/Looks/Glass");
+        addBox(host, "/Crowd/Prototypes/Crate", {-0.15, -0.15, -0.15}, {0.15, 0.15, 0.15}, "/Looks/Red");
+        std::vector<std::array<float, 3>> positions;
+        for (int i = 0; i < kCrowdInFront; ++i) positions.push_back({0.2f + 0.35f * float(i), 4.0f, -0.2f});
+        for (int i = 0; i < kCrowdBehind; ++i) positions.push_back({-1.0f + 0.4f * float(i), 8.0f + float(i % 3), 0.0f});
+        host.addPrim("instancer", "/Crowd",
+                     {{"prototypes", HostValue::paths({"/Crowd/Prototypes/Crate"})},
+                      {"protoIndices", HostValue::intArray(std::vector<int32_t>(positions.size(), 0))},
+                      {"positions", HostValue::points(positions)}});
+        std::map<std::string, HostValue> sun = {{"inputs:intensity", HostValue::floatValue(3.0f)},
+                                                {"inputs:normalize", HostValue::boolean(true)},
+                                                {"inputs:angle", HostValue::floatValue(0.5f)}};
+        host.addPrim("distantLight", "/Sun", sun, lightPointingAlong({-0.4, 0.6, -0.7}));
+        host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+        host.addRenderBuffer("/Buffers/id", "int32", kWidth, kHeight);
+    }
+
+    // Moves a prim as a host does: the new transform, and the prim marked dirty.
+    void move(const std::string& path, const Matrix& transform) {
+        host.setTransform(path, transform);
+        ASSERT_EQ(host.api().markDirty(host.delegate(), path.c_str(), OBSCURA_DIRTY_TRANSFORM), OBSCURA_OK);
+    }
+
+    struct Frame {
+        std::vector<float> color;
+        std::vector<int32_t> ids;
+        ObscuraCullingStats culling{};
+    };
+    Frame render(const std::string& camera) {
+        Frame frame;
+        EXPECT_EQ(host.render(camera, {{"color", "/Buffers/color"}, {"primId", "/Buffers/id"}}), OBSCURA_OK)
+            << host.lastError();
+        frame.color = host.readFloats("/Buffers/color");
+        frame.ids = host.readInts("/Buffers/id");
+        frame.culling.sType = OBSCURA_STRUCTURE_TYPE_CULLING_STATS;
+        frame.culling.structSize = sizeof(frame.culling);
+        ObscuraRenderStats stats{};
+        stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
+        stats.structSize = sizeof(stats);
+        stats.pNext = &frame.culling;
+        EXPECT_EQ(host.api().getRenderStats(host.delegate(), &stats), OBSCURA_OK);
+        return frame;
+    }
+};
+
+// The same frame from both scenes: identical colour and ids, pixel for pixel.
+void expectSameImage(const WalledScene::Frame& culled, const WalledScene::Frame& drawn, const std::string& frame) {
+    ASSERT_EQ(culled.color.size(), drawn.color.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < culled.color.size(); ++i) differing += culled.color[i] != drawn.color[i];
+    EXPECT_EQ(differing, 0u) << frame << ": colour channels that differ with culling";
+    EXPECT_EQ(culled.ids, drawn.ids) << frame;
+}
+
+TEST(OcclusionCulling, TheFirstFrameDrawsEverythingAndTheNextCullsWhatTheWallHides) {
+    WalledScene culled(true), drawn(false);
+    WalledScene::Frame first = culled.render("/Camera");
+    expectSameImage(first, drawn.render("/Camera"), "first frame");
+    // Nothing to reproject yet: every draw is drawn.
+    EXPECT_EQ(first.culling.drawsCulled, 0u);
+    EXPECT_EQ(first.culling.instancesCulled, 0u);
+    EXPECT_EQ(first.culling.draws, 6u) << "the wall, the two boxes, the two glass ones and the crates";
+    EXPECT_EQ(first.culling.instances, uint64_t(5 + kCrowdInFront + kCrowdBehind));
+
+    WalledScene::Frame second = culled.render("/Camera");
+    expectSameImage(second, drawn.render("/Camera"), "second frame");
+    // The boxes behind the wall, opaque and transparent, are culled whole; the crates behind it
+    // leave the crowd's draw.
+    EXPECT_EQ(second.culling.drawsCulled, 2u);
+    EXPECT_EQ(second.culling.instancesCulled, uint64_t(2 + kCrowdBehind));
+    EXPECT_EQ(second.culling.trianglesCulled, uint64_t(12 * (2 + kCrowdBehind)));
+    EXPECT_EQ(renderStats(culled.host).trianglesDrawn, uint64_t(12 * (3 + kCrowdInFront)));
+    EXPECT_EQ(renderStats(drawn.host).trianglesDrawn, uint64_t(12 * (5 + kCrowdInFront + kCrowdBehind)));
+}
+
+// A moving camera, then a cut to another camera and back: every frame the same image with culling
+// as without; the cut frames draw everything, the moving ones still cull what stays hidden.
+TEST(OcclusionCulling, ACameraPathWithACutRendersTheSameImages) {
+    WalledScene culled(true), drawn(false);
+    uint64_t culledWhileMoving = 0;
+    for (int frame = 0; frame < 6; ++frame) {
+        const Matrix view = lookingAlongY({0.06 * frame, 0.1 * frame, 0.02 * frame}, 0.5 * frame);
+        culled.move("/Camera", view);
+        drawn.move("/Camera", view);
+        WalledScene::Frame f = culled.render("/Camera");
+        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
+        if (frame > 0) culledWhileMoving += f.culling.instancesCulled;
+    }
+    EXPECT_GT(culledWhileMoving, 0u) << "the moving camera's frames cull what the wall keeps hiding";
+
+    WalledScene::Frame cut = culled.render("/Other");
+    expectSameImage(cut, drawn.render("/Other"), "cut");
+    EXPECT_EQ(cut.culling.instancesCulled, 0u) << "a camera cut has no history: it draws everything";
+    WalledScene::Frame after = culled.render("/Other");
+    expectSameImage(after, drawn.render("/Other"), "after the cut");
+    EXPECT_GT(after.culling.instancesCulled, 0u);
+    WalledScene::Frame back = culled.render("/Camera");
+    expectSameImage(back, drawn.render("/Camera"), "back to the first camera");
+    EXPECT_EQ(back.culling.instancesCulled, 0u);
+}
+
+// With MSAA the coverage buffer is made from each pixel's farthest sample depth.
+TEST(OcclusionCulling, MultisampledFramesCullWhatTheWallHides) {
+    WalledScene culled(true), drawn(false);
+    setNumber(culled.host, "msaa", 4);
+    setNumber(drawn.host, "msaa", 4);
+    for (int frame = 0; frame < 3; ++frame) {
+        WalledScene::Frame f = culled.render("/Camera");
+        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
+        EXPECT_EQ(f.culling.instancesCulled, frame == 0 ? 0u : uint64_t(2 + kCrowdBehind)) << "frame " << frame;
+    }
+}
+
+// A box moving within the shutter (motion blur): a still's frames each see it at their own part of
+// the shutter, so no frame's depth stands for the next one, and nothing is culled.
+TEST(OcclusionCulling, MotionWithinTheShutterCullsNothing) {
+    WalledScene culled(true), drawn(false);
+    for (WalledScene* scene : {&culled, &drawn}) {
+        scene->host.set("/Camera", "shutter:open", HostValue::doubleValue(-0.5));
+        scene->host.set("/Camera", "shutter:close", HostValue::doubleValue(0.5));
+        scene->host.setTransformMotion("/Front", -0.5, translation(-0.2, 0, 0), 0.5, translation(0.2, 0, 0));
+    }
+    for (int frame = 0; frame < 3; ++frame) {
+        WalledScene::Frame f = culled.render("/Camera");
+        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
+        EXPECT_EQ(f.culling.instancesCulled, 0u) << "frame " << frame;
+    }
+}
+
+// A moving occluder: the frame after the wall moves draws everything (its depth no longer stands),
+// and what the wall uncovers is drawn.
+TEST(OcclusionCulling, AMovedOccluderCullsNothingUntilItsDepthIsRenderedAgain) {
+    WalledScene culled(true), drawn(false);
+    culled.render("/Camera");
+    drawn.render("/Camera");
+    EXPECT_GT(culled.render("/Camera").culling.instancesCulled, 0u);
+    drawn.render("/Camera");
+    // The wall drops below the view: what was behind it is in plain sight.
+    culled.move("/Wall", translation(0, 0, -30));
+    drawn.move("/Wall", translation(0, 0, -30));
+    WalledScene::Frame moved = culled.render("/Camera");
+    expectSameImage(moved, drawn.render("/Camera"), "after the wall moved");
+    EXPECT_EQ(moved.culling.instancesCulled, 0u);
+    WalledScene::Frame next = culled.render("/Camera");
+    expectSameImage(next, drawn.render("/Camera"), "the frame after");
+    EXPECT_EQ(next.culling.instancesCulled, 0u) << "nothing is hidden any more";
+}
+
+}  // namespace
+}  // namespace obscura::test
