@@ -68,20 +68,19 @@ ObscuraDirtyBits dirtyBitFor(const std::string& type, const std::string& name) {
 std::string flattenIndexed(usda::Value& value, const usda::Value& indices) {
     const size_t count = value.size();
     const size_t width = value.numbers.empty() ? 1 : size_t(value.tupleSize);
-    usda::Value flat = value;
-    flat.numbers.clear();
-    flat.strings.clear();
+    std::vector<double> numbers;
+    std::vector<std::string> strings;
     for (size_t i = 0; i < indices.numbers.size(); ++i) {
         const double index = indices.numbers[i];
         if (!(index >= 0 && index < double(count)))
             return "indices[" + std::to_string(i) + "] = " + std::to_string(int64_t(index)) + " is outside the " +
                    std::to_string(count) + " values";
         const size_t first = size_t(index) * width;
-        if (value.numbers.empty()) flat.strings.push_back(value.strings[size_t(index)]);
-        else flat.numbers.insert(flat.numbers.end(), value.numbers.begin() + long(first),
-                                 value.numbers.begin() + long(first + width));
+        if (value.numbers.empty()) strings.push_back(value.strings[size_t(index)]);
+        else numbers.insert(numbers.end(), value.numbers.begin() + long(first), value.numbers.begin() + long(first + width));
     }
-    value = std::move(flat);
+    value.numbers = std::move(numbers);
+    value.strings = std::move(strings);
     return {};
 }
 
@@ -636,7 +635,7 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     if (!value || (value->empty() && !value->isArray)) return OBSCURA_ERROR_NOT_FOUND;
     // Hosts resolve asset paths (a dome's inputs:texture:file).
     if (value->typeName == "asset")
-        for (auto& asset : value->strings)
+        for (auto& asset : value->strings.edit())
             if (!asset.empty()) asset = resolveAssetPath(asset, *a);
     const usda::Attribute* indices = startsWith(a->name, "primvars:") ? prim->attribute(a->name + ":indices") : nullptr;
     if (auto indexValues = indices ? indices->evaluate(time) : std::nullopt) {
@@ -743,7 +742,7 @@ void UsdSceneHost::applySkinning(const usda::Prim& prim, const usda::Skinning& s
         const usda::Attribute* indices = faceVarying ? prim.attribute("faceVertexIndices") : nullptr;
         auto indexValues = indices ? indices->evaluate(time) : std::nullopt;
         if (!rest || (faceVarying && !indexValues)) return;
-        skinned = usda::skinNormals(stage_, skinning, value.numbers, indexValues ? &indexValues->numbers : nullptr,
+        skinned = usda::skinNormals(stage_, skinning, value.numbers, indexValues ? &indexValues->numbers.vector() : nullptr,
                                     rest->size(), time, &problem);
     }
     if (!problem.empty())

@@ -150,7 +150,7 @@ void Composer::composeChildren(Stage& stage, Prim& parent, const IndexNode& pare
         if (opinions.empty()) continue;
         budget_.addPrim(path, child.where);
         std::unique_ptr<Prim> prim = composePrim(path, opinions, parent);
-        budget_.hold(heldBytes(*prim), child.where);
+        budget_.holdPrim(*prim, child.where);
         std::vector<const PrimSpec*> specs;
         for (const Opinion& opinion : opinions) specs.push_back(opinion.spec);
         composeChildren(stage, *prim, index, childNames(specs));
