@@ -92,7 +92,7 @@ void CompositionBudget::holdPrim(const Prim& prim, const SourceLocation& where) 
     // The prim, its entry in the stage's table by path (a hash node holding a copy of the path), and
     // its place in the parent's children.
     size_t bytes = sizeof(Prim) + 2 * heapOf(prim.path) + kMapNodeOverhead + sizeof(std::string) + sizeof(void*) +
-                   heapOf(prim.name) + heapOf(prim.typeName) + heapOf(prim.kind) +
+                   heapOf(prim.name) + heapOf(prim.typeName) + heapOf(prim.kind) + heapOf(prim.instancingKey) +
                    heapOf(prim.where.file);
     for (const auto& [name, attribute] : prim.attributes) bytes += heldBytes(attribute, countedPayloads_);
     for (const auto& [name, relationship] : prim.relationships) {

@@ -86,6 +86,9 @@ struct Prim {
     std::map<std::string, Attribute> attributes;
     std::map<std::string, Relationship> relationships;
     std::map<std::string, Value> metadata;
+    // For an instance (instanceable = true, and composition arcs bring its content): USD's
+    // instancing key (usda/instancing_key.h); instances with one key share one prototype. "" else.
+    std::string instancingKey;
     Prim* parent = nullptr;
     std::vector<std::unique_ptr<Prim>> children;
     SourceLocation where;

@@ -69,5 +69,56 @@ TEST(SharedValues, TheBudgetCountsSharedValuesOnce) {
     EXPECT_EQ(stage->find("/P399/Geom")->attribute("widths")->defaultValue->numbers.size(), 100000u);
 }
 
+// USD's instancing key: instanceable prims with the same arcs (sites and variant selections)
+// share it; other arcs or selections, or no arcs, do not.
+constexpr const char* kInstances = R"(#usda 1.0
+def Xform "Same1" (instanceable = true
+    references = </Asset>) {}
+def Xform "Same2" (instanceable = true
+    references = </Asset>)
+{
+    double3 xformOp:translate = (1, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Xform "OtherAsset" (instanceable = true
+    references = </Other>) {}
+def Xform "Low" (instanceable = true
+    references = </Asset>
+    variants = { string lod = "low" }) {}
+def Xform "NotInstanceable" (references = </Asset>) {}
+def Xform "NoArcs" (instanceable = true) {}
+class "Asset" (
+    variantSets = "lod"
+    variants = { string lod = "high" }
+)
+{
+    variantSet "lod" = {
+        "high" {
+            def Mesh "Geom" {}
+        }
+        "low" {
+            def Mesh "Geom" {}
+        }
+    }
+}
+class "Other"
+{
+    def Mesh "Geom" {}
+}
+)";
+
+TEST(InstancingKey, SameArcsShareAKey) {
+    auto stage = test::open(kInstances);
+    ASSERT_TRUE(stage);
+    auto key = [&](const char* path) { return stage->find(path)->instancingKey; };
+    EXPECT_FALSE(key("/Same1").empty());
+    EXPECT_EQ(key("/Same1"), key("/Same2"));
+    EXPECT_NE(key("/Same1"), key("/OtherAsset"));
+    EXPECT_NE(key("/Same1"), key("/Low"));
+    EXPECT_EQ(key("/NotInstanceable"), "");
+    EXPECT_EQ(key("/NoArcs"), "");
+    EXPECT_EQ(key("/Same1/Geom"), "");  // descendants are not instances themselves
+}
+
 }  // namespace
 }  // namespace obscura::usda
