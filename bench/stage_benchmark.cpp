@@ -2,10 +2,10 @@
 // own translate, as USD text) composed, then opened and synced whole by the harness as `obscura
 // render` does (the delegate's sync CPU time, ObscuraRenderStats::syncMilliseconds, as a counter);
 // the same for references to crate geometry (the Open Chess Set's pieces, written by OpenUSD)
-// under their own translates, with the peak resident memory; the Open Chess Set (crate geometry, MaterialX looks)
-// composed; and UsdSkel's linear blend
-// skinning of 100,000 points, 4 influences each among 64 joints, at one time (what the host does
-// for each skinned prim at each time the delegate samples).
+// under their own translates, instanceable or not, with the peak resident memory; the Open Chess
+// Set (crate geometry, MaterialX looks) composed; and UsdSkel's linear blend skinning of 100,000
+// points, 4 influences each among 64 joints, at one time (what the host does for each skinned prim
+// at each time the delegate samples).
 #include "harness/session.h"
 #include "harness/usda/skinning.h"
 #include "harness/usda/stage.h"
@@ -51,9 +51,10 @@ void BM_ComposeTenThousandPrimsText(benchmark::State& state) {
 BENCHMARK(BM_ComposeTenThousandPrimsText)->Unit(benchmark::kMillisecond);
 
 // Open (compose and populate) and the first render's sync, as `obscura render` starts; the
-// delegate's sync time as the counter sync_ms.
+// delegate's sync time as the counter sync_ms, and the prims the host inserted as inserted_prims.
 void openAndSync(benchmark::State& state, const std::filesystem::path& file) {
     double syncMs = 0;
+    size_t inserted = 0;
     for (auto _ : state) {
         auto opened = harness::Session::open(file.string());
         if (!std::holds_alternative<std::unique_ptr<harness::Session>>(opened)) {
@@ -71,8 +72,10 @@ void openAndSync(benchmark::State& state, const std::filesystem::path& file) {
         stats.structSize = sizeof(stats);
         session.api().getRenderStats(session.delegate(), &stats);
         syncMs = stats.syncMilliseconds;
+        inserted = session.host().insertedPrims().size();
     }
     state.counters["sync_ms"] = syncMs;
+    state.counters["inserted_prims"] = double(inserted);
 }
 
 void BM_OpenAndSyncTenThousandPrims(benchmark::State& state) {
@@ -87,9 +90,10 @@ const std::filesystem::path kChessAssets = std::filesystem::path(OBSCURA_CORPUS_
 const char* kChessPieces[] = {"Pawn", "Rook", "Knight", "Bishop", "Queen", "King"};
 
 // `count` references to the chess pieces' crate geometry (</Piece> of <Piece>_geom.usd, written by
-// OpenUSD), round robin, each under its own translate on a grid 100 wide: a text root layer over
-// crate content. Written to a temporary folder, as nothing here writes crate files.
-std::filesystem::path crateReferences(int count) {
+// OpenUSD), round robin, each under its own translate on a grid 100 wide, `instanceable` or not: a
+// text root layer over crate content. Written to a temporary folder, as nothing here writes crate
+// files.
+std::filesystem::path crateReferences(int count, bool instanceable) {
     const auto folder = std::filesystem::temp_directory_path() / "obscura_crate_references_benchmark";
     std::filesystem::create_directories(folder);
     std::ofstream text(folder / "root.usda");
@@ -99,7 +103,8 @@ std::filesystem::path crateReferences(int count) {
          << "def DistantLight \"Sun\"\n{\n}\ndef Xform \"World\"\n{\n";
     for (int i = 0; i < count; ++i) {
         const char* piece = kChessPieces[size_t(i) % std::size(kChessPieces)];
-        text << "    def Xform \"P" << i << "\" (\n        references = @"
+        text << "    def Xform \"P" << i << "\" (\n        instanceable = " << (instanceable ? "true" : "false")
+             << "\n        references = @"
              << (kChessAssets / piece / (std::string(piece) + "_geom.usd")).string() << "@</" << piece
              << ">\n    )\n    {\n"
              << "        double3 xformOp:translate = (" << 0.1 * (i % 100) << ", 0, " << 0.1 * (i / 100) << ")\n"
@@ -121,7 +126,7 @@ void BM_ComposeCrateReferences(benchmark::State& state) {
         state.SkipWithError("no corpus");
         return;
     }
-    const auto folder = crateReferences(int(state.range(0)));
+    const auto folder = crateReferences(int(state.range(0)), state.range(1) != 0);
     size_t prims = 0;
     for (auto _ : state) {
         auto stage = usda::Stage::open(folder / "root.usda");
@@ -135,21 +140,39 @@ void BM_ComposeCrateReferences(benchmark::State& state) {
     state.counters["peak_rss_mib"] = peakResidentMiB();
     std::filesystem::remove_all(folder);
 }
-// XXX: 10,000 references stop at the composition memory limit: each composed prim holds its own
-// copy of the values its specs author (bench/RESULTS.md), and instanceable prims are not shared.
-BENCHMARK(BM_ComposeCrateReferences)->Arg(250)->Arg(500)->Arg(kPrims)->Unit(benchmark::kMillisecond);
+// Arguments: references, instanceable. Run one at a time for each one's peak resident memory.
+BENCHMARK(BM_ComposeCrateReferences)
+    ->ArgNames({"references", "instanceable"})
+    ->Args({250, 0})
+    ->Args({500, 0})
+    ->Args({kPrims, 0})
+    ->Args({kPrims, 1})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_OpenAndSyncCrateReferences(benchmark::State& state) {
     if (!std::filesystem::exists(kChessAssets)) {
         state.SkipWithError("no corpus");
         return;
     }
-    const auto folder = crateReferences(int(state.range(0)));
+    const auto folder = crateReferences(int(state.range(0)), state.range(1) != 0);
     openAndSync(state, folder / "root.usda");
     state.counters["peak_rss_mib"] = peakResidentMiB();
     std::filesystem::remove_all(folder);
 }
-BENCHMARK(BM_OpenAndSyncCrateReferences)->Arg(25)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_OpenAndSyncCrateReferences)
+    ->ArgNames({"references", "instanceable"})
+    ->Args({25, 0})
+    ->Args({25, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+// 10,000 references are synced instanced only: without instancing the plugin would triangulate and
+// upload every piece (bench/RESULTS.md: about a second and 200 MB each on lavapipe). Once: on
+// lavapipe the first frame's drawing of 10,000 pieces takes more than half an hour.
+BENCHMARK(BM_OpenAndSyncCrateReferences)
+    ->ArgNames({"references", "instanceable"})
+    ->Args({kPrims, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 void BM_ComposeOpenChessSet(benchmark::State& state) {
     const std::filesystem::path chess =

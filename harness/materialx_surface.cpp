@@ -120,7 +120,7 @@ public:
 private:
     std::optional<Signal> valueOf(const usda::Attribute& attribute, const Numbers& fallback) const {
         auto value = attribute.evaluate(time_);
-        return constant(value && !value->numbers.empty() ? value->numbers : fallback);
+        return constant(value && !value->numbers.empty() ? value->numbers.vector() : fallback);
     }
 
     std::optional<Signal> unmappable(const usda::Prim& node, const std::string& id) {

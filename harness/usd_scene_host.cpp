@@ -52,6 +52,16 @@ bool isPointBased(const std::string& type) { return type == "Mesh" || type == "B
 
 bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
+// Whether the plugin draws `prim` as geometry (an rprim; a Skeleton as its guide mesh) that an
+// instancer can place: what native instancing instances (native_instancing.h).
+bool isInstancedGeometry(const usda::Prim& prim) {
+    if (prim.typeName == "Skeleton") return true;
+    const auto it = kPrimTypes.find(prim.typeName);
+    if (it == kPrimTypes.end() || it->second == "instancer") return false;
+    const schema::PrimSchema* schema = schema::findPrimSchema(it->second);
+    return schema && std::strcmp(schema->category, "rprim") == 0;
+}
+
 // The dirty bit that makes the plugin read attribute `name` of a prim of plugin type `type` again:
 // the schema's (schemas/*.json), under the names this host serves it by: a light input also by
 // its name before UsdLux 21.02 (no "inputs:"), and a primvar the schema does not name may be the
@@ -70,20 +80,19 @@ ObscuraDirtyBits dirtyBitFor(const std::string& type, const std::string& name) {
 std::string flattenIndexed(usda::Value& value, const usda::Value& indices) {
     const size_t count = value.size();
     const size_t width = value.numbers.empty() ? 1 : size_t(value.tupleSize);
-    usda::Value flat = value;
-    flat.numbers.clear();
-    flat.strings.clear();
+    std::vector<double> numbers;
+    std::vector<std::string> strings;
     for (size_t i = 0; i < indices.numbers.size(); ++i) {
         const double index = indices.numbers[i];
         if (!(index >= 0 && index < double(count)))
             return "indices[" + std::to_string(i) + "] = " + std::to_string(int64_t(index)) + " is outside the " +
                    std::to_string(count) + " values";
         const size_t first = size_t(index) * width;
-        if (value.numbers.empty()) flat.strings.push_back(value.strings[size_t(index)]);
-        else flat.numbers.insert(flat.numbers.end(), value.numbers.begin() + long(first),
-                                 value.numbers.begin() + long(first + width));
+        if (value.numbers.empty()) strings.push_back(value.strings[size_t(index)]);
+        else numbers.insert(numbers.end(), value.numbers.begin() + long(first), value.numbers.begin() + long(first + width));
     }
-    value = std::move(flat);
+    value.numbers = std::move(numbers);
+    value.strings = std::move(strings);
     return {};
 }
 
@@ -186,7 +195,20 @@ std::string UsdSceneHost::primvarCountProblem(const usda::Prim& prim, const usda
 std::map<std::string, std::string> UsdSceneHost::scan() {
     std::map<std::string, std::string> found;
     std::map<std::string, int> unsupported;
+    // Instances that differ in what their roots hand down to the prototype are grouped apart.
+    nativeInstancing_ = NativeInstancing(
+        stage_,
+        [this](const usda::Prim& instance) {
+            const usda::Attribute* purpose = stage_.purposeOpinion(instance);
+            const bool purposeToken = purpose && purpose->defaultValue && purpose->defaultValue->strings.size() == 1;
+            return boundMaterial(instance).value_or("") + '\n' + (purposeToken ? purpose->defaultValue->strings.front() : "");
+        },
+        stage_.metadata().startTimeCode.value_or(0.0));
     for (const usda::Prim* prim : stage_.prims()) {
+        // Geometry of the instances after a prototype's first is drawn by its instancer, and their
+        // materials are the first's.
+        if ((isInstancedGeometry(*prim) || prim->typeName == "Material") && nativeInstancing_.drawnByInstancer(*prim))
+            continue;
         if (prim->typeName == "Skeleton") {
             addSkeletonGuide(*prim, found);
             continue;
@@ -224,6 +246,7 @@ std::map<std::string, std::string> UsdSceneHost::scan() {
         }
         found[prim->path] = it->second;
     }
+    for (const NativeInstancer& instancer : nativeInstancing_.instancers()) found[instancer.path] = "instancer";
     for (const auto& [type, count] : unsupported)
         warnOnce("type:" + type, "prim type '" + type + "' is not supported yet; " + std::to_string(count) +
                                      " prim(s) skipped");
@@ -339,9 +362,16 @@ ObscuraStatus UsdSceneHost::adoptChanges(const UsdSceneHost& previous, const Obs
     for (const auto& [path, type] : now) {
         auto it = previous.primTypes_.find(path);
         ObscuraStatus s = OBSCURA_OK;
+        const NativeInstancer* instancer = nativeInstancing_.instancer(path);
         if (it == previous.primTypes_.end() || it->second != type) {
             s = api.insertPrim(delegate, type.c_str(), path.c_str());
             ++touched;
+        } else if (instancer) {
+            const NativeInstancer* before = previous.nativeInstancing_.instancer(path);
+            if (!before || !samePlacements(*instancer, stage_, *before, previous.stage_, time)) {
+                s = api.markDirty(delegate, path.c_str(), OBSCURA_DIRTY_ALL);
+                ++touched;
+            }
         } else if (ObscuraDirtyBits bits = changes(type, *stage_.find(path), previous, *previous.stage_.find(path), time)) {
             s = api.markDirty(delegate, path.c_str(), bits);
             ++touched;
@@ -378,6 +408,13 @@ ObscuraDirtyBits UsdSceneHost::animatedValueBits(const std::string& path, const 
 
 ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDelegate delegate) {
     for (const auto& [path, type] : primTypes_) {
+        if (const NativeInstancer* instancer = nativeInstancing_.instancer(path)) {
+            ObscuraDirtyBits bits = 0;
+            if (nativeInstancing_.hasAnimatedTransforms(*instancer, stage_)) bits |= dirtyBitFor(type, "positions");
+            if (nativeInstancing_.hasAnimatedVisibility(*instancer, stage_)) bits |= dirtyBitFor(type, "invisibleIds");
+            if (ObscuraStatus s = bits ? api.markDirty(delegate, path.c_str(), bits) : OBSCURA_OK; s != OBSCURA_OK) return s;
+            continue;
+        }
         const usda::Prim* prim = stage_.find(path);
         ObscuraDirtyBits bits = 0;
         if (!stage_.transformSampleTimes(*prim).empty()) bits |= dirtyBitFor(type, "transform");
@@ -429,7 +466,7 @@ SceneBounds UsdSceneHost::bounds(double time) {
     // gprims (Cube, Sphere...) are left out of the bounds.
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (const usda::Prim* prim : stage_.prims()) {
-        if (!isPointBased(prim->typeName) || prototypeSpace(*prim)) continue;
+        if (!isPointBased(prim->typeName) || pointInstancerSpace(*prim)) continue;
         const usda::Attribute* points = prim->attribute("points");
         auto value = points ? points->evaluate(time) : std::nullopt;
         if (!value || value->tupleSize != 3) continue;
@@ -467,6 +504,13 @@ std::string UsdSceneHost::instancerOf(const std::string& path) const {
             if (path == root || path.rfind(root + "/", 0) == 0) return instancer;
     }
     return {};
+}
+
+std::string UsdSceneHost::instanceProxyPath(const std::string& path, int32_t instanceId) const {
+    const usda::Prim* prim = stage_.find(path);
+    const NativeInstancer* instancer = prim ? nativeInstancing_.prototypeHolding(*prim) : nullptr;
+    if (!instancer || instanceId < 0 || size_t(instanceId) >= instancer->instances.size()) return {};
+    return instancer->instances[size_t(instanceId)]->path + path.substr(instancer->prototype->path.size());
 }
 
 std::string UsdSceneHost::addFramingCamera(const ObscuraApiV1& api, ObscuraDelegate delegate, double time) {
@@ -579,6 +623,8 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         *out = {OBSCURA_VALUE_FLOAT2, 0, 1, floats_.data()};
         return OBSCURA_OK;
     }
+    if (const NativeInstancer* instancer = nativeInstancing_.instancer(path))
+        return getNativeInstancerValue(*instancer, attribute, time, out);
     const usda::Prim* prim = stage_.find(path);
     if (!prim) return OBSCURA_ERROR_NOT_FOUND;
     if (auto guide = skeletonGuides_.find(path); guide != skeletonGuides_.end())
@@ -664,7 +710,7 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     if (!value || (value->empty() && !value->isArray)) return OBSCURA_ERROR_NOT_FOUND;
     // Hosts resolve asset paths (a dome's inputs:texture:file).
     if (value->typeName == "asset")
-        for (auto& asset : value->strings)
+        for (auto& asset : value->strings.edit())
             if (!asset.empty()) asset = resolveAssetPath(asset, *a);
     const usda::Attribute* indices = startsWith(a->name, "primvars:") ? prim->attribute(a->name + ":indices") : nullptr;
     if (auto indexValues = indices ? indices->evaluate(time) : std::nullopt) {
@@ -771,7 +817,7 @@ void UsdSceneHost::applySkinning(const usda::Prim& prim, const usda::Skinning& s
         const usda::Attribute* indices = faceVarying ? prim.attribute("faceVertexIndices") : nullptr;
         auto indexValues = indices ? indices->evaluate(time) : std::nullopt;
         if (!rest || (faceVarying && !indexValues)) return;
-        skinned = usda::skinNormals(stage_, skinning, value.numbers, indexValues ? &indexValues->numbers : nullptr,
+        skinned = usda::skinNormals(stage_, skinning, value.numbers, indexValues ? &indexValues->numbers.vector() : nullptr,
                                     rest->size(), time, &problem);
     }
     if (!problem.empty())
@@ -802,12 +848,32 @@ std::optional<std::string> UsdSceneHost::boundMaterial(const usda::Prim& prim) c
     return std::nullopt;
 }
 
-const usda::Prim* UsdSceneHost::prototypeSpace(const usda::Prim& prim) const {
+const usda::Prim* UsdSceneHost::pointInstancerSpace(const usda::Prim& prim) const {
     for (const usda::Prim* p = &prim; p; p = p->parent) {
         auto it = prototypeRoots_.find(p->path);
         if (it != prototypeRoots_.end()) return it->second;
     }
     return nullptr;
+}
+
+const usda::Prim* UsdSceneHost::prototypeSpace(const usda::Prim& prim) const {
+    if (const usda::Prim* space = pointInstancerSpace(prim)) return space;
+    // The instancer places each instance, its root's transform included.
+    const NativeInstancer* instancer = isInstancedGeometry(prim) ? nativeInstancing_.prototypeHolding(prim) : nullptr;
+    return instancer ? instancer->prototype : nullptr;
+}
+
+ObscuraStatus UsdSceneHost::getNativeInstancerValue(const NativeInstancer& instancer, const std::string& attribute,
+                                                    double time, ObscuraValue* out) {
+    if (attribute == "prototypes") {
+        strings_ = {instancer.prototype->path};
+        stringPointers_ = {strings_[0].c_str()};
+        *out = {OBSCURA_VALUE_PATH, 1, 1, stringPointers_.data()};
+        return OBSCURA_OK;
+    }
+    // Each instance's visibility is its own (invisibleIds); the instancer itself is visible.
+    auto value = nativeInstancing_.value(instancer, stage_, attribute, time);
+    return value ? fill(*value, out) : OBSCURA_ERROR_NOT_FOUND;
 }
 
 ObscuraStatus UsdSceneHost::getValueThunk(void* user, const char* path, const char* attribute, double time,
@@ -839,6 +905,14 @@ ObscuraStatus UsdSceneHost::sampleTransformThunk(void* user, const char* path, d
     if (self->framingCamera_ && path == self->framingCamera_->path && maxSamples > 0) {
         times[0] = t0;
         std::copy(self->framingCamera_->transform.begin(), self->framingCamera_->transform.end(), matrices);
+        *count = 1;
+        return OBSCURA_OK;
+    }
+    if (self->nativeInstancing_.instancer(path) && maxSamples > 0) {
+        // Instances are placed in world space.
+        times[0] = t0;
+        const usda::Matrix4 identity = usda::matrix4::identity();
+        std::copy(identity.begin(), identity.end(), matrices);
         *count = 1;
         return OBSCURA_OK;
     }

@@ -5,6 +5,7 @@
 
 #include "harness/delegate_message.h"
 #include "harness/materialx_surface.h"
+#include "harness/native_instancing.h"
 #include "harness/usda/skinning.h"
 #include "harness/usda/stage.h"
 
@@ -65,6 +66,11 @@ public:
     const std::map<std::string, std::string>& insertedPrims() const { return primTypes_; }
     // The PointInstancer whose prototypes hold `path`, or "" (picking names the instancer).
     std::string instancerOf(const std::string& path) const;
+    // The instance proxy a native instance's pick names (usdview's): the path of `path`, geometry
+    // of a prototype, in instance `instanceId` of its instancer; "" when `path` is no prototype's.
+    std::string instanceProxyPath(const std::string& path, int32_t instanceId) const;
+    // Native instancing (native_instancing.h): the instancers the host serves.
+    const NativeInstancing& nativeInstancing() const { return nativeInstancing_; }
     // For scenes without a camera (typical of OBJ files): inserts a camera that frames the
     // bounds of every mesh at `time` from the front (+Z), as usdview's free camera does.
     std::string addFramingCamera(const ObscuraApiV1& api, ObscuraDelegate delegate, double time);
@@ -142,7 +148,13 @@ private:
     // PointInstancer prototype roots -> the prim whose space instances live in (the root's
     // parent: USD includes the root's own transform in each instance, not its ancestors').
     std::map<std::string, const usda::Prim*> prototypeRoots_;
+    const usda::Prim* pointInstancerSpace(const usda::Prim& prim) const;
+    // The space a prim's transform is served in: a PointInstancer's, or for geometry of a native
+    // instance's prototype, the instance's; null for world space.
     const usda::Prim* prototypeSpace(const usda::Prim& prim) const;
+    NativeInstancing nativeInstancing_;
+    ObscuraStatus getNativeInstancerValue(const NativeInstancer& instancer, const std::string& attribute, double time,
+                                          ObscuraValue* out);
     // The material bound to a prim or its nearest ancestor with a binding.
     std::optional<std::string> boundMaterial(const usda::Prim& prim) const;
     struct RenderBufferDesc {

@@ -46,13 +46,14 @@ Value interpolate(const Value& lower, const Value& upper, double t) {
     const Blend blend = blendOf(lower);
     if (blend == Blend::Held || lower.numbers.size() != upper.numbers.size()) return lower;
     Value out = lower;
+    std::vector<double>& numbers = out.numbers.edit();
     if (blend == Blend::Linear) {
-        for (size_t i = 0; i < out.numbers.size(); ++i)
-            out.numbers[i] = lower.numbers[i] + (upper.numbers[i] - lower.numbers[i]) * t;
+        for (size_t i = 0; i < numbers.size(); ++i)
+            numbers[i] = lower.numbers[i] + (upper.numbers[i] - lower.numbers[i]) * t;
         return out;
     }
-    for (size_t i = 0; i + 4 <= out.numbers.size(); i += 4)
-        slerp(&lower.numbers[i], &upper.numbers[i], t, &out.numbers[i]);
+    for (size_t i = 0; i + 4 <= numbers.size(); i += 4)
+        slerp(&lower.numbers[i], &upper.numbers[i], t, &numbers[i]);
     return out;
 }
 

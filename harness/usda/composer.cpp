@@ -4,6 +4,7 @@
 #include <map>
 #include <set>
 
+#include "harness/usda/instancing_key.h"
 #include "harness/usda/sdf_path.h"
 
 namespace obscura::usda {
@@ -166,7 +167,10 @@ void Composer::composeChildren(Stage& stage, Prim& parent, const IndexNode& pare
         if (opinions.empty()) continue;
         budget_.addPrim(path, child.where);
         std::unique_ptr<Prim> prim = composePrim(path, opinions, parent);
-        budget_.hold(heldBytes(*prim), child.where);
+        if (const auto it = prim->metadata.find("instanceable"); it != prim->metadata.end() && !it->second.numbers.empty() &&
+                                                               it->second.numbers.front() != 0.0)
+            prim->instancingKey = instancingKey(index);
+        budget_.holdPrim(*prim, child.where);
         std::vector<const PrimSpec*> specs;
         for (const Opinion& opinion : opinions) specs.push_back(opinion.spec);
         composeChildren(stage, *prim, index, childNames(specs));

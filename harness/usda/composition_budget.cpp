@@ -3,6 +3,8 @@
 #include "harness/usda/diagnostics.h"
 #include "harness/usda/prim_index.h"
 
+#include <type_traits>
+
 namespace obscura::usda {
 
 namespace {
@@ -16,22 +18,31 @@ size_t heapOf(const std::string& text) { return text.capacity() > 15 ? text.capa
 
 // A red-black tree node of std::map: three pointers and a colour ahead of the value.
 constexpr size_t kMapNodeOverhead = 32;
+// A node of std::unordered_set<const void*> and its bucket: the next pointer, the key, a bucket.
+constexpr size_t kHashNodeOverhead = 24;
 
-// The heap behind a value (the Value object itself lives in its owner).
-size_t heapOf(const Value& value) {
-    size_t bytes = heapOf(value.typeName) + value.numbers.capacity() * sizeof(double) +
-                   value.strings.capacity() * sizeof(std::string);
-    for (const std::string& text : value.strings) bytes += heapOf(text);
+// A payload of shared elements, the first time it is seen (its table entry included), else nothing.
+template <class T>
+size_t heapOfPayload(const SharedArray<T>& array, std::unordered_set<const void*>& counted) {
+    if (!array.payload() || !counted.insert(array.payload()).second) return 0;
+    size_t bytes = kHashNodeOverhead + array.payloadBytes();
+    if constexpr (std::is_same_v<T, std::string>)
+        for (const std::string& text : array) bytes += heapOf(text);
     return bytes;
 }
 
-size_t heldBytes(const Attribute& attribute) {
+// The heap behind a value (the Value object itself lives in its owner).
+size_t heapOf(const Value& value, std::unordered_set<const void*>& counted) {
+    return heapOf(value.typeName) + heapOfPayload(value.numbers, counted) + heapOfPayload(value.strings, counted);
+}
+
+size_t heldBytes(const Attribute& attribute, std::unordered_set<const void*>& counted) {
     size_t bytes = sizeof(Attribute) + kMapNodeOverhead + sizeof(std::string) + 2 * heapOf(attribute.name) + heapOf(attribute.typeName) +
                    heapOf(attribute.where.file);
-    if (attribute.defaultValue) bytes += heapOf(*attribute.defaultValue);
-    for (const auto& [time, value] : attribute.timeSamples) bytes += kMapNodeOverhead + sizeof(value) + heapOf(value);
+    if (attribute.defaultValue) bytes += heapOf(*attribute.defaultValue, counted);
+    for (const auto& [time, value] : attribute.timeSamples) bytes += kMapNodeOverhead + sizeof(value) + heapOf(value, counted);
     for (const auto& [key, value] : attribute.metadata)
-        bytes += kMapNodeOverhead + sizeof(key) + heapOf(key) + sizeof(value) + heapOf(value);
+        bytes += kMapNodeOverhead + sizeof(key) + heapOf(key) + sizeof(value) + heapOf(value, counted);
     if (attribute.connection) bytes += heapOf(*attribute.connection);
     return bytes;
 }
@@ -77,22 +88,22 @@ size_t heldBytes(const IndexNode& node) {
     return bytes;
 }
 
-size_t heldBytes(const Prim& prim) {
+void CompositionBudget::holdPrim(const Prim& prim, const SourceLocation& where) {
     // The prim, its entry in the stage's table by path (a hash node holding a copy of the path), and
     // its place in the parent's children.
     size_t bytes = sizeof(Prim) + 2 * heapOf(prim.path) + kMapNodeOverhead + sizeof(std::string) + sizeof(void*) +
-                   heapOf(prim.name) + heapOf(prim.typeName) + heapOf(prim.kind) +
+                   heapOf(prim.name) + heapOf(prim.typeName) + heapOf(prim.kind) + heapOf(prim.instancingKey) +
                    heapOf(prim.where.file);
-    for (const auto& [name, attribute] : prim.attributes) bytes += heldBytes(attribute);
+    for (const auto& [name, attribute] : prim.attributes) bytes += heldBytes(attribute, countedPayloads_);
     for (const auto& [name, relationship] : prim.relationships) {
         bytes += sizeof(Relationship) + kMapNodeOverhead + heapOf(relationship.name) +
                  relationship.targets.capacity() * sizeof(std::string);
         for (const std::string& target : relationship.targets) bytes += heapOf(target);
     }
     for (const auto& [key, value] : prim.metadata)
-        bytes += kMapNodeOverhead + sizeof(key) + heapOf(key) + sizeof(value) + heapOf(value);
+        bytes += kMapNodeOverhead + sizeof(key) + heapOf(key) + sizeof(value) + heapOf(value, countedPayloads_);
     for (const std::string& schema : prim.apiSchemas) bytes += sizeof(std::string) + heapOf(schema);
-    return bytes;
+    hold(bytes, where);
 }
 
 }  // namespace obscura::usda

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "harness/usda/stage.h"
@@ -17,8 +18,12 @@ public:
 
     // One more prim on the stage, authored at `where`.
     void addPrim(const std::string& path, const SourceLocation& where);
-    // Memory now held by composition (a prim, a copied index subtree), blamed on `where`.
+    // Memory now held by composition (a copied index subtree), blamed on `where`.
     void hold(size_t bytes, const SourceLocation& where);
+    // A composed prim without its children, blamed on `where`. The elements of its values are
+    // shared with its layers and with the other prims that compose the same specs: each payload
+    // is counted the first time a prim holds it.
+    void holdPrim(const Prim& prim, const SourceLocation& where);
 
     // The index of `primPath` is being built; nodes are added to the innermost one.
     void beginIndex(const std::string& primPath, size_t nodes, const SourceLocation& where);
@@ -34,6 +39,7 @@ private:
     size_t prims_ = 0;
     size_t bytes_ = 0;
     std::vector<IndexInProgress> indexes_;
+    std::unordered_set<const void*> countedPayloads_;
 };
 
 // Estimates of the heap a structure holds (its own size, strings beyond the small-string buffer,
@@ -41,6 +47,5 @@ private:
 // allocator's count on the scenes of the tests.
 size_t heldBytes(const IndexNode& node);       // the node and its subtree
 size_t heldBytesOfNode(const IndexNode& node);  // the node alone
-size_t heldBytes(const Prim& prim);             // the prim without its children
 
 }  // namespace obscura::usda

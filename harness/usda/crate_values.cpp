@@ -126,14 +126,15 @@ Value emptyValue(const TypeInfo& info, bool isArray) {
 // Appends elements read as raw little-endian components, moving quaternions' real part first.
 void appendElements(Value& out, const TypeInfo& info, std::span<const char> bytes, uint64_t elements) {
     const size_t size = componentBytes(info.component);
-    out.numbers.reserve(out.numbers.size() + elements * static_cast<uint64_t>(info.count));
+    std::vector<double>& numbers = out.numbers.edit();
+    numbers.reserve(numbers.size() + elements * static_cast<uint64_t>(info.count));
     for (uint64_t e = 0; e < elements; ++e) {
         const char* element = bytes.data() + e * size * static_cast<uint64_t>(info.count);
         if (info.quaternion) {
-            out.numbers.push_back(componentValue(info.component, element + 3 * size));
-            for (int c = 0; c < 3; ++c) out.numbers.push_back(componentValue(info.component, element + c * size));
+            numbers.push_back(componentValue(info.component, element + 3 * size));
+            for (int c = 0; c < 3; ++c) numbers.push_back(componentValue(info.component, element + c * size));
         } else {
-            for (int c = 0; c < info.count; ++c) out.numbers.push_back(componentValue(info.component, element + c * size));
+            for (int c = 0; c < info.count; ++c) numbers.push_back(componentValue(info.component, element + c * size));
         }
     }
 }
@@ -180,7 +181,7 @@ std::optional<Value> ValueReader::value(ValueRep rep, int depth) {
     Value value = emptyValue(*info, false);
     const auto inlined = static_cast<uint32_t>(rep.payload());
     if (isStringLike(info->component)) {
-        value.strings.push_back(info->component == Component::String ? file_.string(inlined, at)
+        value.strings.edit().push_back(info->component == Component::String ? file_.string(inlined, at)
                                                                      : file_.token(inlined, at));
         return value;
     }
@@ -191,18 +192,18 @@ std::optional<Value> ValueReader::value(ValueRep rep, int depth) {
             // Diagonal matrices with int8 entries: the diagonal.
             const int rows = info->count == 16 ? 4 : info->count == 9 ? 3 : 2;
             for (int r = 0; r < rows; ++r)
-                for (int c = 0; c < rows; ++c) value.numbers.push_back(r == c ? static_cast<int8_t>(bytes[r]) : 0.0);
+                for (int c = 0; c < rows; ++c) value.numbers.edit().push_back(r == c ? static_cast<int8_t>(bytes[r]) : 0.0);
         } else if (info->count > 1) {
             // Vectors whose components are all int8.
-            for (int c = 0; c < info->count; ++c) value.numbers.push_back(static_cast<int8_t>(bytes[c]));
+            for (int c = 0; c < info->count; ++c) value.numbers.edit().push_back(static_cast<int8_t>(bytes[c]));
         } else if (info->component == Component::Double) {
-            value.numbers.push_back(load<float>(bytes));  // doubles exactly representable as floats
+            value.numbers.edit().push_back(load<float>(bytes));  // doubles exactly representable as floats
         } else if (info->component == Component::Int64) {
-            value.numbers.push_back(load<int32_t>(bytes));
+            value.numbers.edit().push_back(load<int32_t>(bytes));
         } else if (info->component == Component::UInt64) {
-            value.numbers.push_back(load<uint32_t>(bytes));
+            value.numbers.edit().push_back(load<uint32_t>(bytes));
         } else {
-            value.numbers.push_back(componentValue(info->component, bytes));
+            value.numbers.edit().push_back(componentValue(info->component, bytes));
         }
         return value;
     }
@@ -226,11 +227,11 @@ Value ValueReader::readArray(ValueRep rep, uint64_t at) {
             throw Failure{at, "array of " + std::to_string(count) + " elements cannot fit in the file"};
         const auto bytes = reader.take(count * elementBytes);
         if (isStringLike(info.component)) {
-            value.strings.reserve(count);
+            std::vector<std::string>& strings = value.strings.edit();
+            strings.reserve(count);
             for (uint64_t i = 0; i < count; ++i) {
                 const uint32_t index = load<uint32_t>(bytes.data() + i * 4);
-                value.strings.push_back(info.component == Component::String ? file_.string(index, at)
-                                                                            : file_.token(index, at));
+                strings.push_back(info.component == Component::String ? file_.string(index, at) : file_.token(index, at));
             }
         } else {
             appendElements(value, info, bytes, count);
@@ -250,16 +251,17 @@ Value ValueReader::readArray(ValueRep rep, uint64_t at) {
         raw();
         return value;
     }
-    value.numbers.reserve(count);
+    std::vector<double>& numbers = value.numbers.edit();
+    numbers.reserve(count);
     if (integral) {
         const auto [block, blockAt] = compressedBlock();
         if (info.component == Component::Int64 || info.component == Component::UInt64) {
             for (int64_t x : decompressIntegers<int64_t>(block, count, blockAt))
-                value.numbers.push_back(info.component == Component::Int64 ? static_cast<double>(x)
-                                                                           : static_cast<double>(static_cast<uint64_t>(x)));
+                numbers.push_back(info.component == Component::Int64 ? static_cast<double>(x)
+                                                                     : static_cast<double>(static_cast<uint64_t>(x)));
         } else {
             for (int32_t x : decompressIntegers<int32_t>(block, count, blockAt))
-                value.numbers.push_back(info.component == Component::Int ? x : static_cast<double>(static_cast<uint32_t>(x)));
+                numbers.push_back(info.component == Component::Int ? x : static_cast<double>(static_cast<uint32_t>(x)));
         }
         return value;
     }
@@ -268,7 +270,7 @@ Value ValueReader::readArray(ValueRep rep, uint64_t at) {
     const char code = reader.read<char>();
     if (code == 'i') {
         const auto [block, blockAt] = compressedBlock();
-        for (int32_t x : decompressIntegers<int32_t>(block, count, blockAt)) value.numbers.push_back(x);
+        for (int32_t x : decompressIntegers<int32_t>(block, count, blockAt)) numbers.push_back(x);
     } else if (code == 't') {
         const uint32_t tableSize = reader.read<uint32_t>();
         if (tableSize > reader.size() / elementBytes) throw Failure{codeAt + 1, "lookup table cannot fit in the file"};
@@ -278,7 +280,7 @@ Value ValueReader::readArray(ValueRep rep, uint64_t at) {
         for (uint32_t index : decompressIntegers<uint32_t>(block, count, blockAt)) {
             if (index >= tableSize)
                 throw Failure{blockAt, "lookup index " + std::to_string(index) + " of " + std::to_string(tableSize)};
-            value.numbers.push_back(table.numbers[index]);
+            numbers.push_back(table.numbers[index]);
         }
     } else {
         throw Failure{codeAt, "unknown float array coding '" + std::string(1, code) + "'"};

@@ -142,7 +142,7 @@ private:
             std::string word;
             while (in >> word) {
                 if (word == "true" || word == "false") {
-                    v.numbers.push_back(word == "true" ? 1.0 : 0.0);
+                    v.numbers.edit().push_back(word == "true" ? 1.0 : 0.0);
                     continue;
                 }
                 char* end = nullptr;
@@ -151,7 +151,7 @@ private:
                     warn(input.line, "input '" + input.name + "': value \"" + text + "\" is not a " + input.type);
                     return;
                 }
-                v.numbers.push_back(number);
+                v.numbers.edit().push_back(number);
             }
             if (!v.isArray && v.numbers.size() != size_t(v.tupleSize)) {
                 warn(input.line, "input '" + input.name + "': value \"" + text + "\" is not a " + input.type);

@@ -52,21 +52,22 @@ BoneMesh boneMesh(const Skinning& skeleton, double time, std::string* problem) {
         const Vec3 u = normalized(cross(direction, axis));
         const Vec3 v = cross(direction, u);
         const double half = kBoneHalfWidth * length;  // a bone of no length folds to its joint
-        const double first = double(mesh.points.numbers.size() / 3);
+        std::vector<double>& points = mesh.points.numbers.edit();
+        std::vector<double>& counts = mesh.faceVertexCounts.numbers.edit();
+        std::vector<double>& indices = mesh.faceVertexIndices.numbers.edit();
+        const double first = double(points.size() / 3);
         // Corners counter-clockwise about the bone: (u+v), (-u+v), (-u-v), (u-v).
         for (const auto& [su, sv] : {std::pair{1.0, 1.0}, {-1.0, 1.0}, {-1.0, -1.0}, {1.0, -1.0}})
-            for (size_t c = 0; c < 3; ++c) mesh.points.numbers.push_back(base[c] + half * (su * u[c] + sv * v[c]));
-        mesh.points.numbers.insert(mesh.points.numbers.end(), apex.begin(), apex.end());
+            for (size_t c = 0; c < 3; ++c) points.push_back(base[c] + half * (su * u[c] + sv * v[c]));
+        points.insert(points.end(), apex.begin(), apex.end());
         // Sides wound counter-clockwise seen from outside (right-handed), then the base, seen from
         // behind the parent joint.
         for (int corner = 0; corner < 4; ++corner) {
-            mesh.faceVertexCounts.numbers.push_back(3);
-            mesh.faceVertexIndices.numbers.insert(mesh.faceVertexIndices.numbers.end(),
-                                                  {first + corner, first + (corner + 1) % 4, first + 4});
+            counts.push_back(3);
+            indices.insert(indices.end(), {first + corner, first + (corner + 1) % 4, first + 4});
         }
-        mesh.faceVertexCounts.numbers.push_back(4);
-        mesh.faceVertexIndices.numbers.insert(mesh.faceVertexIndices.numbers.end(),
-                                              {first + 3, first + 2, first + 1, first});
+        counts.push_back(4);
+        indices.insert(indices.end(), {first + 3, first + 2, first + 1, first});
     }
     return mesh;
 }

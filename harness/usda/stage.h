@@ -14,6 +14,8 @@
 #include <variant>
 #include <vector>
 
+#include "harness/usda/shared_array.h"
+
 namespace obscura::usda {
 
 // Where something is in a text file; line and column are 1-based.
@@ -35,12 +37,14 @@ struct Error {
 //    arrays of those) go to `numbers`, components in file order (quaternions as USD writes them:
 //    real part first), `tupleSize` components per element;
 //  - strings, tokens, asset paths and paths go to `strings`.
+// Both are shared between copies (shared_array.h): a Value copied into a composed prim, or
+// returned by Attribute::evaluate, shares its layer's elements until it is edited.
 struct Value {
     std::string typeName;              // USD type name without "[]": "float3", "token", "matrix4d"...
     bool isArray = false;
     int tupleSize = 1;                 // 3 for float3, 4 for quatf, 16 for matrix4d
-    std::vector<double> numbers;
-    std::vector<std::string> strings;
+    SharedArray<double> numbers;
+    SharedArray<std::string> strings;
     bool blocked = false;              // authored as None: no value (only seen in timeSamples)
     size_t size() const;               // element count
     bool empty() const { return numbers.empty() && strings.empty(); }
@@ -82,6 +86,9 @@ struct Prim {
     std::map<std::string, Attribute> attributes;
     std::map<std::string, Relationship> relationships;
     std::map<std::string, Value> metadata;
+    // For an instance (instanceable = true, and composition arcs bring its content): USD's
+    // instancing key (usda/instancing_key.h); instances with one key share one prototype. "" else.
+    std::string instancingKey;
     Prim* parent = nullptr;
     std::vector<std::unique_ptr<Prim>> children;
     SourceLocation where;

@@ -42,7 +42,7 @@ const ValueType* metadataType(std::string_view key) {
 Value stringValue(std::string typeName, std::string text) {
     Value value;
     value.typeName = std::move(typeName);
-    value.strings.push_back(std::move(text));
+    value.strings.edit().push_back(std::move(text));
     return value;
 }
 
@@ -85,15 +85,16 @@ void Parser::parseMetadataItem(std::map<std::string, Value>& metadata, const Spe
     if (special && special(key, op)) return;
     if (name == "relocates") {
         // Source and target paths, anchored to the prim they are authored on, in pairs.
-        Value pairs = stringValue("relocates", "");
-        pairs.strings.clear();
+        std::vector<std::string> paths;
         for (const auto& [source, target] : parseColonMap(name)) {
             const auto from = sdfpath::makeAbsolute(source.value, primPath_);
             const auto to = sdfpath::makeAbsolute(target.value, primPath_);
             if (source.kind != TokenKind::PathRef || target.kind != TokenKind::PathRef || !from || !to)
                 fail(source, "expected prim paths '<...>: <...>' in relocates");
-            pairs.strings.insert(pairs.strings.end(), {*from, *to});
+            paths.insert(paths.end(), {*from, *to});
         }
+        Value pairs = stringValue("relocates", "");
+        pairs.strings = std::move(paths);
         metadata[name] = std::move(pairs);
         return;
     }

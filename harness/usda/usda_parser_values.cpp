@@ -113,22 +113,22 @@ void Parser::parseScalar(const ValueType& type, Value& out) {
     switch (type.scalar) {
     case ScalarKind::String:
     case ScalarKind::Token:
-        if (token.kind == TokenKind::String) return out.strings.push_back(token.value);
+        if (token.kind == TokenKind::String) return out.strings.edit().push_back(token.value);
         break;
     case ScalarKind::Asset:
-        if (token.kind == TokenKind::AssetPath) return out.strings.push_back(token.value);
+        if (token.kind == TokenKind::AssetPath) return out.strings.edit().push_back(token.value);
         break;
     case ScalarKind::Bool:
-        if (token.isWord("true") || token.isWord("false")) return out.numbers.push_back(token.isWord("true") ? 1.0 : 0.0);
+        if (token.isWord("true") || token.isWord("false")) return out.numbers.edit().push_back(token.isWord("true") ? 1.0 : 0.0);
         if (token.kind == TokenKind::Number && (token.text == "0" || token.text == "1"))
-            return out.numbers.push_back(toNumber(token));
+            return out.numbers.edit().push_back(toNumber(token));
         break;
     case ScalarKind::Integer:
-        if (token.kind == TokenKind::Number && isIntegerLiteral(token.text)) return out.numbers.push_back(toNumber(token));
+        if (token.kind == TokenKind::Number && isIntegerLiteral(token.text)) return out.numbers.edit().push_back(toNumber(token));
         break;
     case ScalarKind::Real:
         if (token.kind == TokenKind::Number || token.isWord("inf") || token.isWord("nan"))
-            return out.numbers.push_back(toNumber(token));
+            return out.numbers.edit().push_back(toNumber(token));
         break;
     }
     fail(token, "expected " + expectation(type.scalar) + " for " + std::string(type.name) + ", found " + describe(token));
@@ -174,24 +174,24 @@ Value Parser::parseInferredValue() {
         if (token.kind == TokenKind::Number || token.isWord("inf") || token.isWord("nan")) {
             found = Kind::Number;
             integers = integers && isIntegerLiteral(token.text);
-            value.numbers.push_back(toNumber(token));
+            value.numbers.edit().push_back(toNumber(token));
         } else if (token.isWord("true") || token.isWord("false")) {
             found = Kind::Bool;
-            value.numbers.push_back(token.isWord("true") ? 1.0 : 0.0);
+            value.numbers.edit().push_back(token.isWord("true") ? 1.0 : 0.0);
         } else if (token.kind == TokenKind::Identifier) {
             found = Kind::Token;
-            value.strings.emplace_back(token.text);
+            value.strings.edit().emplace_back(token.text);
         } else if (token.kind == TokenKind::String) {
             found = Kind::String;
-            value.strings.push_back(token.value);
+            value.strings.edit().push_back(token.value);
         } else if (token.kind == TokenKind::AssetPath) {
             found = Kind::Asset;
-            value.strings.push_back(token.value);
+            value.strings.edit().push_back(token.value);
         } else if (token.kind == TokenKind::PathRef) {
             found = Kind::Path;
             const std::optional<std::string> path = sdfpath::makeAbsolute(token.value, primPath_);
             if (token.value.empty() || !path) fail(token, "invalid path " + describe(token));
-            value.strings.push_back(*path);
+            value.strings.edit().push_back(*path);
         } else {
             fail(token, "expected a value, found " + describe(token));
         }

@@ -20,7 +20,7 @@ std::vector<std::string> opOrder(const Prim& prim, double time) {
     const Attribute* order = prim.attribute("xformOpOrder");
     if (!order) return {};
     const std::optional<Value> value = order->evaluate(time);
-    return value ? value->strings : std::vector<std::string>{};
+    return value ? value->strings.vector() : std::vector<std::string>{};
 }
 
 // "xformOp:rotateXYZ:pivot" -> "rotateXYZ".

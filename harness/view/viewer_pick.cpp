@@ -1,6 +1,6 @@
 // Picking, as usdview picks: the prim path under the cursor from the primId and instanceId AOVs
-// (an instance names its instancer and its index there), and with ctrl the focus distance from the
-// depth AOV.
+// (a PointInstancer's instance names its instancer and its index there, a native instance its
+// instance proxy's path), and with ctrl the focus distance from the depth AOV.
 #include "harness/view/viewer.h"
 
 #include "harness/aov_output.h"
@@ -33,8 +33,11 @@ void Viewer::pick(double x, double y, bool focus) {
         int32_t id = -1;
         if (api.getPrimId(session_.delegate(), prim.c_str(), &id) == OBSCURA_OK && id == primId) path = prim;
     }
-    std::string instancer = instanceId >= 0 ? session_.host().instancerOf(path) : std::string();
-    picked_ = path.empty()       ? "nothing"
+    // A native instance is named by its instance proxy's path, a PointInstancer's by the instancer.
+    const std::string proxy = instanceId >= 0 ? session_.host().instanceProxyPath(path, instanceId) : std::string();
+    const std::string instancer = instanceId >= 0 ? session_.host().instancerOf(path) : std::string();
+    picked_ = path.empty()        ? "nothing"
+              : !proxy.empty()    ? proxy
               : instancer.empty() ? path
                                   : instancer + " instance " + std::to_string(instanceId) + " (" + path + ")";
     std::printf("pick %d %d: %s\n", px, py, picked_.c_str());

@@ -17,7 +17,7 @@ HostedStage::HostedStage(std::variant<std::unique_ptr<usda::Stage>, usda::Error>
     ObscuraDelegateCreateInfo info{
         OBSCURA_STRUCTURE_TYPE_DELEGATE_CREATE_INFO, nullptr, sizeof(info), nullptr, 1, &HostedStage::log, this};
     if (api().createDelegate(&info, &delegate) != OBSCURA_OK) throw std::runtime_error(api().lastError(nullptr));
-    host.emplace(*stage);
+    host = std::make_unique<harness::UsdSceneHost>(*stage);
     if (api().setSceneDelegate(delegate, &host->sceneDelegate()) != OBSCURA_OK ||
         host->populate(api(), delegate) != OBSCURA_OK)
         throw std::runtime_error(api().lastError(delegate));
@@ -26,6 +26,18 @@ HostedStage::HostedStage(std::variant<std::unique_ptr<usda::Stage>, usda::Error>
 HostedStage::~HostedStage() {
     if (delegate) EXPECT_EQ(api().destroyDelegate(delegate), OBSCURA_OK) << api().lastError(delegate);
     expected_.check(errors, "the plugin");
+}
+
+size_t HostedStage::adopt(std::variant<std::unique_ptr<usda::Stage>, usda::Error> edited, double time) {
+    if (auto* error = std::get_if<usda::Error>(&edited)) throw std::runtime_error(error->str());
+    auto editedStage = std::move(std::get<std::unique_ptr<usda::Stage>>(edited));
+    auto editedHost = std::make_unique<harness::UsdSceneHost>(*editedStage);
+    size_t touched = 0;
+    EXPECT_EQ(editedHost->adoptChanges(*host, api(), delegate, time, touched), OBSCURA_OK) << api().lastError(delegate);
+    EXPECT_EQ(api().setSceneDelegate(delegate, &editedHost->sceneDelegate()), OBSCURA_OK);
+    host = std::move(editedHost);
+    stage = std::move(editedStage);
+    return touched;
 }
 
 void HostedStage::log(void* user, ObscuraLogLevel level, const char* message) {

@@ -21,7 +21,7 @@ struct HostedStage {
     std::unique_ptr<usda::Stage> stage;
     std::optional<harness::LoadedPlugin> plugin;
     ObscuraDelegate delegate = nullptr;
-    std::optional<harness::UsdSceneHost> host;
+    std::unique_ptr<harness::UsdSceneHost> host;  // in place: its callback table points at it
     std::vector<std::string> errors;  // logged by the plugin: checked against expectError when the stage goes away
     ObscuraStatus lastStatus = OBSCURA_OK;  // of the last render
 
@@ -35,6 +35,9 @@ struct HostedStage {
     // its values, `channels` per pixel; int32 AOVs (primId) come back converted to float.
     std::vector<float> renderAov(const std::string& aov, size_t channels, double time = 0.0);
     std::vector<float> renderAlbedo() { return renderAov("albedo", 3); }
+    // The stage read again after an edit, adopted as the viewer adopts a file changed on disk
+    // (UsdSceneHost::adoptChanges at `time`); returns how many prims the host touched.
+    size_t adopt(std::variant<std::unique_ptr<usda::Stage>, usda::Error> edited, double time = 0.0);
     // A render setting that is one token.
     void setToken(const std::string& name, const std::string& token);
     void setBool(const std::string& name, bool on);
