@@ -442,14 +442,27 @@ private:
         }
     }
 
-    // Occlusion culling (seed 004 "Occlusion culling"): each draw's bounds, then each of its
-    // instances', against the last frame's coverage buffer reprojected into this view
+    static constexpr double kFrustumGuardPixels = 16.0;
+
+    // View frustum culling, then occlusion culling (seed 004 "Occlusion culling"): each draw's
+    // bounds, then each of its instances', against the view and the last frame's coverage buffer
+    // reprojected into this view
     // (renderer/coverage_buffer.h). The camera draws what stays; the shadow maps still draw every
     // draw (what the camera cannot see may shadow what it can). Draws moving within the shutter are
     // never culled: their bounds hold one time of it. Transparent draws are culled only whole (the
     // transparent pass sorts draws).
     void cullOccluded() {
         const auto start = std::chrono::steady_clock::now();
+        // View frustum culling, always on: a box wholly outside the frustum (its sides grown by a
+        // guard band of kFrustumGuardPixels, beyond temporal AA's jitter, MSAA samples and the
+        // widest pixel filter) is not drawn by the camera. Exact for the image: nothing outside the
+        // frustum reaches a pixel of the G-buffer.
+        const Matrix4d guardedFrustum =
+            multiply(multiply(view_, unjitteredProjection_),
+                     Matrix4d{1.0 / (1.0 + 2.0 * kFrustumGuardPixels / in_.width), 0, 0, 0,  //
+                              0, 1.0 / (1.0 + 2.0 * kFrustumGuardPixels / in_.height), 0, 0,  //
+                              0, 0, 1, 0,                                                        //
+                              0, 0, 0, 1});
         passes::CullingCounts& counts = scene_.culling;
         drawCulled_.assign(scene_.draws.size(), false);
         for (size_t d = 0; d < scene_.draws.size(); ++d) {
@@ -458,9 +471,19 @@ private:
             counts.draws += 1;
             counts.instances += draw.instanceCount;
             counts.triangles += triangles * draw.instanceCount;
-            const renderer::CoverageBuffer* occlusion = draw.moving || draw.shutterPositions ? nullptr : in_.occlusion;
-            const auto hidden = [&](const Aabb& box) { return occlusion && occlusion->hidden(box.min, box.max); };
-            if (hidden(drawBounds_[d])) {
+            // Bounds of a draw moving within the shutter hold one time of it: it is never culled.
+            const bool still = !draw.moving && !draw.shutterPositions;
+            const renderer::CoverageBuffer* occlusion = still ? in_.occlusion : nullptr;
+            const auto outsideView = [&](const Aabb& box) { return still && outsideClipVolume(box, guardedFrustum); };
+            const auto occluded = [&](const Aabb& box) { return occlusion && occlusion->hidden(box.min, box.max); };
+            if (outsideView(drawBounds_[d])) {
+                drawCulled_[d] = true;
+                counts.drawsOutsideView += 1;
+                counts.instancesOutsideView += draw.instanceCount;
+                counts.trianglesOutsideView += triangles * draw.instanceCount;
+                continue;
+            }
+            if (occluded(drawBounds_[d])) {
                 drawCulled_[d] = true;
                 counts.drawsCulled += 1;
                 counts.instancesCulled += draw.instanceCount;
@@ -469,19 +492,25 @@ private:
             }
             if (draw.transparent) continue;
             std::vector<uint32_t> kept;
-            if (occlusion && draw.instanceCount > 1)
-                for (uint32_t i = draw.instanceIndex; i < draw.instanceIndex + draw.instanceCount; ++i)
-                    if (!hidden(instanceBounds_[i])) kept.push_back(i);
-            if (!occlusion || draw.instanceCount == 1 || kept.size() == draw.instanceCount) {
+            uint64_t outside = 0, hidden = 0;
+            if (still && draw.instanceCount > 1)
+                for (uint32_t i = draw.instanceIndex; i < draw.instanceIndex + draw.instanceCount; ++i) {
+                    if (outsideView(instanceBounds_[i])) ++outside;
+                    else if (occluded(instanceBounds_[i])) ++hidden;
+                    else kept.push_back(i);
+                }
+            if (!still || draw.instanceCount == 1 || kept.size() == draw.instanceCount) {
                 scene_.cameraDraws.push_back(draw);
                 continue;
             }
-            const uint64_t culled = draw.instanceCount - kept.size();
-            counts.instancesCulled += culled;
-            counts.trianglesCulled += triangles * culled;
+            counts.instancesOutsideView += outside;
+            counts.trianglesOutsideView += triangles * outside;
+            counts.instancesCulled += hidden;
+            counts.trianglesCulled += triangles * hidden;
             if (kept.empty()) {
                 drawCulled_[d] = true;
-                counts.drawsCulled += 1;
+                if (hidden > 0) counts.drawsCulled += 1;
+                else counts.drawsOutsideView += 1;
                 continue;
             }
             // The instances kept, as consecutive records after the others.

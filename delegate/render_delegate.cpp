@@ -460,6 +460,9 @@ void RenderDelegate::stats(ObscuraRenderStats& out) const {
             culling->triangles = counts.triangles;
             culling->trianglesCulled = counts.trianglesCulled;
             culling->milliseconds = counts.milliseconds;
+            culling->drawsOutsideView = counts.drawsOutsideView;
+            culling->instancesOutsideView = counts.instancesOutsideView;
+            culling->trianglesOutsideView = counts.trianglesOutsideView;
         }
         if (next->sType == OBSCURA_STRUCTURE_TYPE_INTEROP_STATS && next->structSize >= sizeof(ObscuraInteropStats)) {
             auto* interop = const_cast<ObscuraInteropStats*>(reinterpret_cast<const ObscuraInteropStats*>(next));

@@ -187,11 +187,14 @@ int runBench(const BenchOptions& o) {
             std::printf(", \"display\": {\"mode\": \"%s\", \"render_call_ms\": %.4f, \"show_ms\": %.4f}", o.display.c_str(),
                         median(renderCalls), median(shows));
         std::printf(", \"culling\": {\"draws\": %u, \"draws_culled\": %u, \"instances\": %llu, "
-                    "\"instances_culled\": %llu, \"triangles\": %llu, \"triangles_culled\": %llu, \"cpu_ms\": %.4f}",
+                    "\"instances_culled\": %llu, \"triangles\": %llu, \"triangles_culled\": %llu, \"cpu_ms\": %.4f, "
+                    "\"draws_outside_view\": %u, \"instances_outside_view\": %llu, \"triangles_outside_view\": %llu}",
                     culling.draws, culling.drawsCulled, static_cast<unsigned long long>(culling.instances),
                     static_cast<unsigned long long>(culling.instancesCulled),
                     static_cast<unsigned long long>(culling.triangles),
-                    static_cast<unsigned long long>(culling.trianglesCulled), culling.milliseconds);
+                    static_cast<unsigned long long>(culling.trianglesCulled), culling.milliseconds,
+                    culling.drawsOutsideView, static_cast<unsigned long long>(culling.instancesOutsideView),
+                    static_cast<unsigned long long>(culling.trianglesOutsideView));
         std::printf(", \"device_memory_mib\": {\"in_use\": %.1f, \"reserved\": %.1f",
                     double(memory.deviceMemoryInUse) / kMiB, double(memory.deviceMemoryReserved) / kMiB);
         for (const auto& [kind, bytes] : kinds) std::printf(", \"%s\": %.1f", kind, double(bytes) / kMiB);
@@ -212,6 +215,9 @@ int runBench(const BenchOptions& o) {
                     static_cast<unsigned long long>(culling.instances),
                     static_cast<unsigned long long>(culling.trianglesCulled),
                     static_cast<unsigned long long>(culling.triangles), culling.milliseconds);
+        std::printf("outside the view (last frame): %u draws, %llu instances, %llu triangles\n", culling.drawsOutsideView,
+                    static_cast<unsigned long long>(culling.instancesOutsideView),
+                    static_cast<unsigned long long>(culling.trianglesOutsideView));
         if (!o.display.empty())
             std::printf("display (%s, wall-clock medians): render call %.4f ms, showing the frame %.4f ms\n",
                         o.display.c_str(), median(renderCalls), median(shows));

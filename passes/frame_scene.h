@@ -83,6 +83,11 @@ struct CullingCounts {
     uint64_t triangles = 0;
     uint64_t trianglesCulled = 0;
     double milliseconds = 0.0;  // CPU time of the tests
+    // Outside the view frustum (not counted in the culled counts above, which are the coverage
+    // buffer's).
+    uint32_t drawsOutsideView = 0;
+    uint64_t instancesOutsideView = 0;
+    uint64_t trianglesOutsideView = 0;
 };
 
 struct FrameScene {

@@ -369,6 +369,10 @@ typedef struct ObscuraCullingStats {
     uint64_t triangles;
     uint64_t trianglesCulled;
     double milliseconds;            /* CPU time reprojecting the coverage buffer and testing bounds */
+    /* Outside the camera's view frustum (culled always; not counted in the *Culled counts above) */
+    uint32_t drawsOutsideView;
+    uint64_t instancesOutsideView;
+    uint64_t trianglesOutsideView;
 } ObscuraCullingStats;
 
 /* ---------------------------------------------------------------------------------------------

@@ -291,6 +291,9 @@ class ObscuraCullingStats(_Extensible):
         ("triangles", c_uint64),
         ("trianglesCulled", c_uint64),
         ("milliseconds", c_double),
+        ("drawsOutsideView", c_uint32),
+        ("instancesOutsideView", c_uint64),
+        ("trianglesOutsideView", c_uint64),
     ]
 
 

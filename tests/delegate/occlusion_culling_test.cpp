@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace obscura::test {
 namespace {
 
@@ -175,6 +177,60 @@ TEST(OcclusionCulling, AMovedOccluderCullsNothingUntilItsDepthIsRenderedAgain) {
     WalledScene::Frame next = culled.render("/Camera");
     expectSameImage(next, drawn.render("/Camera"), "the frame after");
     EXPECT_EQ(next.culling.instancesCulled, 0u) << "nothing is hidden any more";
+}
+
+// View frustum culling, always on: boxes wholly outside the view (behind the eye, far to one side,
+// instances beyond the frame) are not drawn, a box across the frame's edge is, and the off-screen
+// prims change no pixel: the image equals that of the scene without them.
+struct FrustumScene {
+    TestHost host;
+    explicit FrustumScene(bool offScreenPrims) {
+        addMaterial(host, "/Looks/Grey", {0.5f, 0.5f, 0.5f}, 0.6f);
+        host.addCamera("/Camera", lookingAlongY({0, 0, 0}, 0));
+        host.addPrim("domeLight", "/Sky", {{"inputs:intensity", HostValue::floatValue(1.0f)}});
+        addBox(host, "/InView", {-0.3, 5, -0.3}, {0.3, 5.5, 0.3}, "/Looks/Grey");
+        // The view is about 2.1 units wide at 5 units (the default 50 mm lens): this box crosses
+        // its right edge.
+        addBox(host, "/Edge", {0.9, 5, -0.2}, {1.5, 5.4, 0.2}, "/Looks/Grey");
+        addBox(host, "/Crowd/Prototypes/Crate", {-0.1, -0.1, -0.1}, {0.1, 0.1, 0.1}, "/Looks/Grey");
+        host.addPrim("instancer", "/Crowd",
+                     {{"prototypes", HostValue::paths({"/Crowd/Prototypes/Crate"})},
+                      {"protoIndices", HostValue::intArray({0, 0, 0, 0})},
+                      {"positions", HostValue::points({{-0.5f, 6, 0.3f}, {0.5f, 6, 0.3f}, {-30, 6, 0}, {0, -8, 0}})}});
+        if (offScreenPrims) {
+            addBox(host, "/Behind", {-0.5, -6, -0.5}, {0.5, -5, 0.5}, "/Looks/Grey");
+            addBox(host, "/FarSide", {20, 5, -0.5}, {21, 6, 0.5}, "/Looks/Grey");
+        }
+        host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+        host.addRenderBuffer("/Buffers/id", "int32", kWidth, kHeight);
+    }
+    WalledScene::Frame render() {
+        WalledScene::Frame frame;
+        EXPECT_EQ(host.render("/Camera", {{"color", "/Buffers/color"}, {"primId", "/Buffers/id"}}), OBSCURA_OK)
+            << host.lastError();
+        frame.color = host.readFloats("/Buffers/color");
+        frame.ids = host.readInts("/Buffers/id");
+        frame.culling.sType = OBSCURA_STRUCTURE_TYPE_CULLING_STATS;
+        frame.culling.structSize = sizeof(frame.culling);
+        ObscuraRenderStats stats{};
+        stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
+        stats.structSize = sizeof(stats);
+        stats.pNext = &frame.culling;
+        EXPECT_EQ(host.api().getRenderStats(host.delegate(), &stats), OBSCURA_OK);
+        return frame;
+    }
+};
+
+TEST(FrustumCulling, WhatLiesOutsideTheViewIsNotDrawnAndChangesNoPixel) {
+    FrustumScene with(true), without(false);
+    WalledScene::Frame frame = with.render();
+    expectSameImage(frame, without.render(), "with and without the off-screen prims");
+    EXPECT_EQ(frame.culling.drawsOutsideView, 2u) << "the box behind the eye and the one far to the side";
+    EXPECT_EQ(frame.culling.instancesOutsideView, 4u) << "those two and the crowd's two crates out of the frame";
+    EXPECT_EQ(frame.culling.instancesCulled, 0u) << "occlusion culling is off";
+    int32_t edgeId = -1;
+    ASSERT_EQ(with.host.api().getPrimId(with.host.delegate(), "/Edge", &edgeId), OBSCURA_OK);
+    EXPECT_GT(std::count(frame.ids.begin(), frame.ids.end(), edgeId), 0) << "the box across the frame's edge is drawn";
 }
 
 }  // namespace
