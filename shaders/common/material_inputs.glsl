@@ -11,8 +11,8 @@ vec2 textureCoordinates(MaterialTexture t, vec2 uv) {
 }
 
 // UsdUVTexture (UsdPreviewSurface spec): texel * scale + bias. Untransformed textures look up uv
-// itself. XXX: on lavapipe, pixels along the edge two triangles share read the transform as zero
-// (the texture's corner) where it is not the identity.
+// itself. XXX: on lavapipe, a one-pixel line along the edge two triangles share misreads the
+// transform (the texture there is untransformed or at its coarsest mip); not yet understood.
 vec4 sampleTexture(MaterialTexture t, sampler2D tex, vec2 uv) {
     vec2 at = t.transformed != 0u ? textureCoordinates(t, uv) : uv;
     return texture(tex, at) * t.scale + t.bias;
