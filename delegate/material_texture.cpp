@@ -2,6 +2,7 @@
 
 #include "delegate/normal_map_image.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace obscura::delegate {
@@ -21,6 +22,13 @@ bool readsUnitNormals(const std::array<float, 4>& scale, const std::array<float,
     for (size_t c = 0; c < 2; ++c)
         if (std::abs(scale[c]) != 2.0f || bias[c] != -0.5f * scale[c]) return false;
     return scale[2] == 2.0f && bias[2] == -1.0f;
+}
+
+// One row of the texture coordinates' affine map (xyz; w stays unused). SceneAccess rejects
+// non-finite values as bad prim data.
+void readTransformRow(SceneAccess& scene, const std::string& name, std::array<float, 4>& row) {
+    const std::array<float, 3> value = scene.getFloat3(name.c_str());
+    std::copy(value.begin(), value.end(), row.begin());
 }
 
 }  // namespace
@@ -60,6 +68,10 @@ std::optional<BoundTexture> readBoundTexture(SceneAccess& scene, TextureCache& c
     bound.params.reconstructZ = bound.texture->twoChannelNormal ? 1 : 0;
     bound.params.sampled = 1;
     bound.stPrimvar = scene.getToken(attribute("st").c_str());
+    readTransformRow(scene, attribute("transformS"), bound.params.transformS);
+    readTransformRow(scene, attribute("transformT"), bound.params.transformT);
+    const passes::MaterialTexture identity;
+    bound.params.transformed = bound.params.transformS != identity.transformS || bound.params.transformT != identity.transformT;
     return bound;
 }
 

@@ -17,7 +17,7 @@ namespace obscura::delegate {
 struct BoundTexture {
     TexturePtr texture;
     VkSampler sampler = VK_NULL_HANDLE;
-    passes::MaterialTexture params;  // sampled, scale and bias (with the renormalisation), channel
+    passes::MaterialTexture params;  // sampled, scale and bias (with the renormalisation), channel, st transform
     std::string stPrimvar;           // the primvar the host was asked to serve as primvars:st
 };
 

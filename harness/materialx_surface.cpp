@@ -3,6 +3,7 @@
 #include "harness/shading_network.h"
 
 #include <algorithm>
+#include <array>
 #include <optional>
 #include <set>
 
@@ -19,6 +20,7 @@ struct Texture {
     std::string colorSpace = "raw";
     std::string wrapS = "repeat", wrapT = "repeat";
     std::string st = "st";
+    StTransform transform;  // ND_tiledimage's uvtiling, uvoffset and real-world sizes
     std::string channel = "rgb";
 };
 
@@ -230,15 +232,36 @@ private:
         };
         texture.wrapS = address("uaddressmode");
         texture.wrapT = address("vaddressmode");
-        if (startsWith(id, "ND_tiledimage_")) {
-            auto tiling = this->input(node, "uvtiling", {1.0, 1.0}, depth);
-            if (tiling && (tiling->texture || tiling->offset != Numbers{1.0, 1.0}))
-                problem(node.where, node.path + " (" + id + "): uvtiling other than (1, 1) is not applied");
-        }
+        if (startsWith(id, "ND_tiledimage_")) texture.transform = tiling(node, id, depth);
         texture.st = texcoordPrimvar(node);
         const size_t width = id.ends_with("_float") ? 1 : 3;
         texture.channel = width == 1 ? "r" : "rgb";
         return Signal{Numbers(width, 0.0), Numbers(width, 1.0), texture};
+    }
+
+    // ND_tiledimage's placement of the image; the identity, reported, where an input is textured
+    // or the result is not finite.
+    StTransform tiling(const usda::Prim& node, const std::string& id, int depth) {
+        std::array<std::array<double, 2>, 4> values{};
+        const std::array<std::pair<const char*, double>, 4> inputs = {
+            {{"uvtiling", 1.0}, {"uvoffset", 0.0}, {"realworldimagesize", 1.0}, {"realworldtilesize", 1.0}}};
+        for (size_t i = 0; i < inputs.size(); ++i) {
+            auto signal = input(node, inputs[i].first, {inputs[i].second, inputs[i].second}, depth);
+            if (!signal) return {};
+            if (signal->texture) {
+                problem(node.where, node.path + " (" + id + "): a textured inputs:" + inputs[i].first + " is not applied");
+                return {};
+            }
+            const Numbers v = broadcast(signal->offset, 2);
+            values[i] = {v[0], v[1]};
+        }
+        auto placed = tiledImage(values[0], values[1], values[2], values[3]);
+        if (!placed) {
+            problem(node.where, node.path + " (" + id + "): uvtiling, uvoffset and the real-world sizes must give " +
+                                    "finite coordinates; the image is not tiled");
+            return {};
+        }
+        return *placed;
     }
 
     const usda::Stage& stage_;
@@ -346,6 +369,8 @@ void store(MaterialXMapping& out, Folder& folder, const usda::Prim& surface, con
     out.values[prefix + "file"] = token(t.file);
     out.values[prefix + "channel"] = token(width == 1 && t.channel == "rgb" ? "r" : t.channel);
     out.values[prefix + "st"] = token(t.st);
+    out.values[prefix + "transformS"] = numbers("float3", Numbers(t.transform.s.begin(), t.transform.s.end()));
+    out.values[prefix + "transformT"] = numbers("float3", Numbers(t.transform.t.begin(), t.transform.t.end()));
     out.values[prefix + "wrapS"] = token(t.wrapS);
     out.values[prefix + "wrapT"] = token(t.wrapT);
     out.values[prefix + "sourceColorSpace"] = token(t.colorSpace);

@@ -2,7 +2,8 @@
 // definition, "ND_...", as usdMtlx and DCCs author them) mapped onto Obscura's material model, the
 // inputs of UsdPreviewSurface (schemas/material.json): Standard Surface, UsdPreviewSurface's own
 // node definition, glTF PBR and OpenPBR surfaces, each input with its model's default. Networks
-// feeding an input are folded where the model can hold them: ND_image_* (and ND_tiledimage_*)
+// feeding an input are folded where the model can hold them: ND_image_* (and ND_tiledimage_*,
+// its uvtiling and uvoffset an affine map of the texture coordinates)
 // become the input's texture (file, colour space, address modes, ND_texcoord/ND_geompropvalue
 // primvar), ND_normalmap a normal map (scale 2, bias -1, as UsdPreviewSurface's normal maps),
 // ND_multiply/ND_add/ND_subtract/ND_mix with constants a texture's scale and bias or a constant
@@ -12,6 +13,7 @@
 // MaterialX node definitions: https://materialx.org/assets/MaterialX.v1.38.Spec.pdf
 #pragma once
 
+#include "harness/shading_network.h"
 #include "harness/usda/stage.h"
 
 #include <map>
@@ -19,11 +21,6 @@
 #include <vector>
 
 namespace obscura::harness {
-
-struct MaterialProblem {
-    std::string message;
-    usda::SourceLocation where;
-};
 
 struct MaterialXMapping {
     // Values by the delegate's attribute names: "inputs:diffuseColor", "obscura:normal:file", ...;

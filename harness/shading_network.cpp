@@ -2,7 +2,9 @@
 
 #include "harness/usda/usdz_package.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <set>
 #include <string_view>
@@ -46,19 +48,58 @@ usda::Value tokenValue(std::string text) {
     return value;
 }
 
-// inputs:varname of the UsdPrimvarReader_float2 connected to the texture's inputs:st.
-std::optional<std::string> readerPrimvar(const usda::Stage& stage, const usda::Prim& texture) {
-    const usda::Attribute* st = texture.attribute("inputs:st");
-    if (!st || !st->connection) return std::nullopt;
-    const usda::Prim* reader = connectedShader(stage, *st);
-    if (!reader || shaderId(*reader) != "UsdPrimvarReader_float2") return std::nullopt;
-    // varname names a primvar, not something that varies over time.
-    auto name = evaluateInput(stage, *reader, "inputs:varname", 0.0);
-    if (!name || name->strings.empty() || name->strings[0].empty()) return std::nullopt;
-    return name->strings[0];
+usda::Value float3Value(const std::array<double, 3>& row) {
+    usda::Value value;
+    value.typeName = "float3";
+    value.tupleSize = 3;
+    value.numbers.assign(row.begin(), row.end());
+    return value;
+}
+
+// A UsdTransform2d's input of `size` numbers at `time`, or its default; nullopt when what is
+// authored is not `size` finite numbers (then `problem` says so).
+std::optional<std::vector<double>> transformInput(const usda::Stage& stage, const usda::Prim& shader,
+                                                  const char* name, std::vector<double> fallback, double time,
+                                                  std::optional<MaterialProblem>& problem) {
+    const usda::Attribute* from = nullptr;
+    auto value = evaluateInput(stage, shader, name, time, &from);
+    if (!value) return fallback;
+    const bool finite = std::all_of(value->numbers.begin(), value->numbers.end(), [](double v) { return std::isfinite(v); });
+    if (value->numbers.size() == fallback.size() && finite) return value->numbers;
+    if (!problem)
+        problem = MaterialProblem{shader.path + "." + name + " must be " + std::to_string(fallback.size()) +
+                                      " finite number" + (fallback.size() > 1 ? "s" : "") + "; the transform is ignored",
+                                  from->where};
+    return std::nullopt;
 }
 
 }  // namespace
+
+TextureCoordinates textureCoordinates(const usda::Stage& stage, const usda::Prim& texture, double time) {
+    TextureCoordinates out;
+    const usda::Attribute* st = texture.attribute("inputs:st");
+    // Each UsdTransform2d met on the way to the reader applies before those already met.
+    for (int depth = 0; st && st->connection && depth < kMaxConnectionDepth; ++depth) {
+        const usda::Prim* shader = connectedShader(stage, *st);
+        if (!shader) break;
+        const std::string id = shaderId(*shader);
+        if (id == "UsdPrimvarReader_float2") {
+            // varname names a primvar, not something that varies over time.
+            auto name = evaluateInput(stage, *shader, "inputs:varname", 0.0);
+            if (name && !name->strings.empty() && !name->strings[0].empty()) out.primvar = name->strings[0];
+            break;
+        }
+        if (id != "UsdTransform2d") break;
+        auto scale = transformInput(stage, *shader, "inputs:scale", {1.0, 1.0}, time, out.problem);
+        auto rotation = transformInput(stage, *shader, "inputs:rotation", {0.0}, time, out.problem);
+        auto translation = transformInput(stage, *shader, "inputs:translation", {0.0, 0.0}, time, out.problem);
+        if (scale && rotation && translation)
+            out.transform = compose(out.transform, transform2d({(*scale)[0], (*scale)[1]}, (*rotation)[0],
+                                                               {(*translation)[0], (*translation)[1]}));
+        st = shader->attribute("inputs:in");
+    }
+    return out;
+}
 
 std::variant<ConnectionSource, std::string> connectionSource(const usda::Stage& stage, const usda::Attribute& connected) {
     const usda::Attribute* attribute = &connected;
@@ -144,7 +185,8 @@ std::optional<TextureConnection> textureConnection(const usda::Stage& stage, con
 }
 
 std::optional<usda::Value> flattenedTextureAttribute(const usda::Stage& stage, const usda::Prim& surface,
-                                                     const std::string& attribute, double time) {
+                                                     const std::string& attribute, double time,
+                                                     std::optional<MaterialProblem>* problem) {
     constexpr std::string_view kPrefix = "obscura:";
     const auto lastColon = attribute.rfind(':');
     if (attribute.rfind(kPrefix, 0) != 0 || lastColon <= kPrefix.size()) return std::nullopt;
@@ -157,8 +199,13 @@ std::optional<usda::Value> flattenedTextureAttribute(const usda::Stage& stage, c
 
     if (field == "channel") return tokenValue(connection->channel);
     if (field == "st") {
-        auto primvar = readerPrimvar(stage, texture);
+        auto primvar = textureCoordinates(stage, texture, time).primvar;
         return primvar ? std::optional(tokenValue(*primvar)) : std::nullopt;
+    }
+    if (field == "transformS" || field == "transformT") {
+        TextureCoordinates coordinates = textureCoordinates(stage, texture, time);
+        if (problem) *problem = coordinates.problem;
+        return float3Value(field == "transformS" ? coordinates.transform.s : coordinates.transform.t);
     }
     if (field == "file") {
         const usda::Attribute* from = nullptr;
@@ -188,7 +235,7 @@ std::string texturePrimvar(const usda::Stage& stage, const usda::Prim& surface) 
     for (std::string_view input : kTexturableInputs) {
         const usda::Attribute* connected = surface.attribute(std::string(input));
         auto connection = connected ? textureConnection(stage, *connected) : std::nullopt;
-        if (connection) return readerPrimvar(stage, *connection->texture).value_or("st");
+        if (connection) return textureCoordinates(stage, *connection->texture, 0.0).primvar.value_or("st");
     }
     return "st";
 }

@@ -1,9 +1,10 @@
 // UsdShade networks flattened for the delegate: the UsdUVTexture connected to a UsdPreviewSurface
-// input (and the UsdPrimvarReader_float2 feeding the texture's st) is served as the material's
-// obscura:<input>:* attributes (schemas/material.json). UsdPreviewSurface spec:
+// input (and the UsdPrimvarReader_float2 feeding the texture's st, through any UsdTransform2d) is
+// served as the material's obscura:<input>:* attributes (schemas/material.json). UsdPreviewSurface spec:
 // https://openusd.org/release/spec_usdpreviewsurface.html
 #pragma once
 
+#include "harness/texture_coordinates.h"
 #include "harness/usda/stage.h"
 
 #include <optional>
@@ -11,6 +12,12 @@
 #include <string>
 
 namespace obscura::harness {
+
+// Bad data in a shading network, where it was authored.
+struct MaterialProblem {
+    std::string message;
+    usda::SourceLocation where;
+};
 
 // Where a connection leads as USD composes shading networks (UsdShadeConnectableAPI,
 // UsdShadeUtils::GetValueProducingAttributes, first target): through NodeGraph and Material
@@ -49,20 +56,32 @@ struct TextureConnection {
 };
 std::optional<TextureConnection> textureConnection(const usda::Stage& stage, const usda::Attribute& input);
 
+// Where a UsdUVTexture's inputs:st comes from: the UsdPrimvarReader_float2 at the end of a chain
+// of UsdTransform2d shaders (none or several), and their transforms composed. A transform whose
+// inputs are not finite is left out and reported in `problem`.
+struct TextureCoordinates {
+    std::optional<std::string> primvar;  // inputs:varname; nullopt without a reader
+    StTransform transform;
+    std::optional<MaterialProblem> problem;
+};
+TextureCoordinates textureCoordinates(const usda::Stage& stage, const usda::Prim& texture, double time);
+
 // The value of "obscura:<input>:<field>" for a UsdPreviewSurface shader at `time`; nullopt when
 // the input has no texture or the field is not authored (the schema default applies). Texture
 // inputs connected to other inputs (a material's interface) take their value from there; a
-// relative inputs:file is resolved against the folder of the layer that authored it.
+// relative inputs:file is resolved against the folder of the layer that authored it. Bad data met
+// on the way goes to `problem`.
 std::optional<usda::Value> flattenedTextureAttribute(const usda::Stage& stage, const usda::Prim& surface,
-                                                     const std::string& attribute, double time);
+                                                     const std::string& attribute, double time,
+                                                     std::optional<MaterialProblem>* problem = nullptr);
 
 // An asset path as an absolute file path: relative paths are anchored to the folder of the layer
 // that authored `attribute` (USD's ArDefaultResolver); in a USDZ package, to its folder in the
 // package, the file extracted to a temporary one (usda::extractPackagedFile).
 std::string resolveAssetPath(const std::string& asset, const usda::Attribute& attribute);
 
-// The primvar the shader's textures look up (inputs:varname of the UsdPrimvarReader_float2
-// connected to the first textured input's inputs:st), or "st".
+// The primvar the shader's textures look up (inputs:varname of the UsdPrimvarReader_float2 that
+// feeds the first textured input's inputs:st, directly or through UsdTransform2d), or "st".
 std::string texturePrimvar(const usda::Stage& stage, const usda::Prim& surface);
 
 }  // namespace obscura::harness

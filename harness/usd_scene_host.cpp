@@ -682,7 +682,10 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     }
     auto surface = surfaces_.find(path);
     if (surface != surfaces_.end() && startsWith(attribute, "obscura:")) {
-        auto texture = flattenedTextureAttribute(stage_, *surface->second, attribute, time);
+        std::optional<MaterialProblem> problem;
+        auto texture = flattenedTextureAttribute(stage_, *surface->second, attribute, time, &problem);
+        if (problem)
+            warnOnce("shading:" + problem->message, path + ": " + problem->message, problem->where);
         return texture ? fill(*texture, out) : OBSCURA_ERROR_NOT_FOUND;
     }
     const usda::Attribute* a = resolveAttribute(path, attribute);

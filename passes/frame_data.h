@@ -128,15 +128,21 @@ struct alignas(16) MaterialTexture {
     uint32_t sampled = 0;  // 1: the input reads the draw's texture of its slot, 0: its constant
     uint32_t channel = uint32_t(TextureChannel::R);
     uint32_t reconstructZ = 0;  // 1: a two-channel normal map, the shader reconstructs z
-    uint32_t pad1 = 0;
+    uint32_t transformed = 0;   // 1: transformS and transformT are not the identity
+    // The texture coordinates' affine map, one row per output: s' = dot(transformS.xyz, (s, t, 1)),
+    // t' likewise; w unused. The identity unless UsdTransform2d or MaterialX tiling moved them.
+    std::array<float, 4> transformS{1.0f, 0.0f, 0.0f, 0.0f};
+    std::array<float, 4> transformT{0.0f, 1.0f, 0.0f, 0.0f};
 };
-static_assert(sizeof(MaterialTexture) == 48);
+static_assert(sizeof(MaterialTexture) == 80);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, scale);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, bias);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, sampled);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, channel);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, reconstructZ);
-OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, pad1);
+OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, transformed);
+OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, transformS);
+OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, transformT);
 
 // The inputs the G-buffer pass samples, each from its own binding of descriptor set 1; textured
 // emission is constant per material (its texture's average): the lighting pass has no texture
@@ -160,7 +166,7 @@ struct alignas(16) MaterialData {
     std::array<float, 4> anisotropy{};  // x obscura:anisotropy, y obscura:anisotropyRotation in radians
     std::array<MaterialTexture, kMaterialTextureSlots> textures;
 };
-static_assert(sizeof(MaterialData) == 96 + 6 * 48);
+static_assert(sizeof(MaterialData) == 96 + 6 * 80);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, diffuseRoughness);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, emissiveMetallic);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, opacity);

@@ -4,11 +4,13 @@ A material whose surface output is a Principled BSDF maps its inputs onto the Us
 inputs Obscura has, as Blender's USD exporter maps them (usd_writer_material.cc): Base Color ->
 diffuseColor, Metallic, Roughness, Emission x Emission Strength -> emissiveColor, Alpha ->
 opacity, IOR, Clearcoat; an Image Texture node on one of these (or behind a Normal Map node on
-Normal) becomes that input's texture. Anything else falls back to the material's viewport display
+Normal) becomes that input's texture, a Mapping node on its Vector its coordinate transform. Anything else falls back to the material's viewport display
 colour (Material.diffuse_color, metallic, roughness) with one warning naming the material.
 """
 
 from __future__ import annotations
+
+import math
 
 import bpy
 
@@ -40,6 +42,25 @@ def image_file(node) -> str:
     return bpy.path.abspath(image.filepath_raw, library=image.library)
 
 
+def _coordinate_transform(node, prefix: str) -> dict:
+    """A Mapping node (type Point) on the Image Texture's Vector, as Blender's USD exporter writes it
+    into a UsdTransform2d: location + rotate(Z rotation) (scale uv), the rows of
+    obscura:<input>:transformS and transformT. Other nodes there (UV Map, Texture Coordinate) read
+    the mesh's UVs unchanged."""
+    mapping = linked_node(node.inputs["Vector"])
+    if mapping is None or mapping.bl_idname != "ShaderNodeMapping":
+        return {}
+    sockets = ("Location", "Rotation", "Scale")
+    if mapping.vector_type != "POINT" or any(mapping.inputs[name].is_linked for name in sockets):
+        raise Unsupported(f"the Mapping node {mapping.name!r} (only a Point mapping with constant inputs maps)")
+    location, rotation, scale = (mapping.inputs[name].default_value for name in sockets)
+    if rotation[0] != 0.0 or rotation[1] != 0.0:
+        raise Unsupported(f"the Mapping node {mapping.name!r} rotates about X or Y")
+    c, s = math.cos(rotation[2]), math.sin(rotation[2])
+    return {prefix + "transformS": (c * scale[0], -s * scale[1], location[0]),
+            prefix + "transformT": (s * scale[0], c * scale[1], location[1])}
+
+
 def _texture(node, usd_input: str, channel: str) -> dict:
     if node.bl_idname != "ShaderNodeTexImage":
         raise Unsupported(f"a {node.bl_label} node on {usd_input}")
@@ -47,7 +68,8 @@ def _texture(node, usd_input: str, channel: str) -> dict:
     wrap = {"REPEAT": "repeat", "EXTEND": "clamp", "MIRROR": "mirror", "CLIP": "black"}.get(node.extension, "repeat")
     prefix = f"obscura:{usd_input}:"
     return {prefix + "file": image_file(node), prefix + "channel": channel, prefix + "wrapS": wrap,
-            prefix + "wrapT": wrap, prefix + "sourceColorSpace": "raw" if raw else "sRGB"}
+            prefix + "wrapT": wrap, prefix + "sourceColorSpace": "raw" if raw else "sRGB",
+            **_coordinate_transform(node, prefix)}
 
 
 def principled_values(bsdf) -> dict:

@@ -71,7 +71,9 @@ struct MaterialTexture {
     uint sampled;           // 1: the input reads the draw's texture of its slot, 0: its constant
     uint channel;           // r, g, b, a (0..3) or TEXTURE_CHANNEL_RGB
     uint reconstructZ;      // 1: a two-channel normal map, z = sqrt(1 - x^2 - y^2) after scale and bias
-    uint pad1;
+    uint transformed;       // 1: transformS and transformT are not the identity
+    vec4 transformS;        // xyz: s' = dot(transformS.xyz, vec3(s, t, 1)) (UsdTransform2d, MaterialX tiling)
+    vec4 transformT;        // xyz: t' likewise
 };
 
 const uint TEXTURE_DIFFUSE = 0u;

@@ -3,8 +3,20 @@
 #ifndef OBSCURA_MATERIAL_INPUTS_GLSL
 #define OBSCURA_MATERIAL_INPUTS_GLSL
 
-// UsdUVTexture (UsdPreviewSurface spec): texel * scale + bias.
-vec4 sampleTexture(MaterialTexture t, sampler2D tex, vec2 uv) { return texture(tex, uv) * t.scale + t.bias; }
+// The texture's own coordinates: the affine map of st (UsdTransform2d, MaterialX uvtiling and
+// uvoffset) applied in st; uv is the image's (s, 1 - t) (common/gbuffer_vertex.glsl).
+vec2 textureCoordinates(MaterialTexture t, vec2 uv) {
+    vec3 st = vec3(uv.x, 1.0 - uv.y, 1.0);
+    return vec2(dot(t.transformS.xyz, st), 1.0 - dot(t.transformT.xyz, st));
+}
+
+// UsdUVTexture (UsdPreviewSurface spec): texel * scale + bias. Untransformed textures look up uv
+// itself. XXX: on lavapipe, a one-pixel line along the edge two triangles share misreads the
+// transform (the texture there is untransformed or at its coarsest mip); not yet understood.
+vec4 sampleTexture(MaterialTexture t, sampler2D tex, vec2 uv) {
+    vec2 at = t.transformed != 0u ? textureCoordinates(t, uv) : uv;
+    return texture(tex, at) * t.scale + t.bias;
+}
 
 vec3 colorInput(vec3 constant, MaterialTexture t, sampler2D tex, vec2 uv) {
     if (t.sampled == 0u) return constant;
@@ -23,6 +35,8 @@ float scalarInput(float constant, MaterialTexture t, sampler2D tex, vec2 uv) {
 // increasing u), the bitangent cross(N, T) * handedness and the normal. Two-channel normal maps
 // (16-bit RG, BC5) hold x and y; z is the unit vector's (Kaplanyan 2010, "3Dc encoder
 // improvements": the renormalised normal is what the encoder minimised the error of).
+// XXX: a rotated or mirrored texture-coordinate transform turns the map's x and y away from the
+// mesh's tangent and bitangent; they are read in the mesh's frame.
 vec3 perturbedNormal(vec3 n, vec4 tangent, MaterialTexture t, sampler2D tex, vec2 uv) {
     if (t.sampled == 0u) return n;
     vec3 local = sampleTexture(t, tex, uv).xyz;

@@ -340,6 +340,35 @@ def test_principled_anisotropy_feeds_the_anisotropic_lobe():
            values["inputs:obscura:anisotropyRotation"])
 
 
+def test_mapping_node_becomes_the_textures_coordinate_transform():
+    """A Point Mapping node before an Image Texture: location + rotate(Z) (scale uv), as Blender's
+    USD exporter writes it into a UsdTransform2d; a rotation about X is no 2D transform."""
+    from obscura_render import materials
+
+    material = principled("Mapped", 0.5)
+    tree = material.node_tree
+    texture = tree.nodes.new("ShaderNodeTexImage")
+    texture.image = bpy.data.images.load(uniform_png("mapped", (188, 188, 188)))
+    tree.links.new(texture.outputs["Color"], tree.nodes["Principled BSDF"].inputs["Base Color"])
+    mapping = tree.nodes.new("ShaderNodeMapping")
+    mapping.vector_type = "POINT"
+    mapping.inputs["Location"].default_value = (0.25, 0.5, 0.0)
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.pi / 2)
+    mapping.inputs["Scale"].default_value = (2.0, 3.0, 1.0)
+    tree.links.new(mapping.outputs["Vector"], texture.inputs["Vector"])
+    values = materials.principled_values(tree.nodes["Principled BSDF"])
+    # rotate(90 degrees) (2 u, 3 v) = (-3 v, 2 u), then moved by the location.
+    for row, expected in (("transformS", (0.0, -3.0, 0.25)), ("transformT", (2.0, 0.0, 0.5))):
+        got = values[f"obscura:diffuseColor:{row}"]
+        expect(all(math.isclose(g, e, abs_tol=1e-6) for g, e in zip(got, expected)), f"{row}: {got} vs {expected}")
+    mapping.inputs["Rotation"].default_value = (0.3, 0.0, 0.0)
+    try:
+        materials.principled_values(tree.nodes["Principled BSDF"])
+        expect(False, "a rotation about X maps")
+    except materials.Unsupported as e:
+        expect("rotates about X or Y" in str(e), str(e))
+
+
 def test_unsupported_nodes_fall_back_with_one_warning_naming_the_material():
     scene = empty_scene()
     add_camera(scene)

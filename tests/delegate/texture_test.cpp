@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <limits>
 
 namespace obscura::test {
 namespace {
@@ -187,6 +188,78 @@ TEST_F(TextureTest, WrapModesOutsideTheUnitSquare) {
     }
     // Repeat shows the pattern twice across: the top-left block again at the second cell pair.
     EXPECT_EQ(expectedBlock(40.5 / 32.0, 2.0 - 8.5 / 32.0, "repeat"), 0);
+}
+
+// The rows of an affine map of st, as obscura:<input>:transformS and transformT hold them.
+struct StMap {
+    std::array<float, 3> s, t;
+    std::array<double, 2> operator()(double u, double v) const {
+        return {s[0] * u + s[1] * v + s[2], t[0] * u + t[1] * v + t[2]};
+    }
+};
+
+std::map<std::string, HostValue> transformed(const StMap& map) {
+    return {{"transformS", HostValue::float3(map.s[0], map.s[1], map.s[2])},
+            {"transformT", HostValue::float3(map.t[0], map.t[1], map.t[2])}};
+}
+
+// UsdTransform2d's st' = translation + rotate(rotation) (scale st): scale (2, 2) tiles the blocks
+// twice, rotation 90 degrees turns them counter-clockwise, a translation shifts them. Each cell
+// centre shows the block its transformed st falls in (the default wrap repeats).
+TEST_F(TextureTest, TransformedCoordinatesTileRotateAndShiftTheTexture) {
+    std::string file = writeBlocks("blocks.png");
+    const std::vector<std::pair<std::string, StMap>> cases = {
+        {"scale (2, 2)", {{2, 0, 0}, {0, 2, 0}}},
+        {"rotation 90", {{0, -1, 0}, {1, 0, 0}}},
+        {"translation (0.25, 0.5)", {{1, 0, 0.25f}, {0, 1, 0.5f}}},
+    };
+    host.addPrim("material", "/Looks/M", textured("diffuseColor", file));
+    addPlane("/Plane", "/Looks/M");
+    for (const auto& [what, map] : cases) {
+        for (const auto& [field, value] : transformed(map))
+            host.set("/Looks/M", "obscura:diffuseColor:" + field, value);
+        markDirty("/Looks/M");
+        render();
+        int differs = 0;  // cells where the untransformed texture would show another block
+        for (int y = 8; y < kHeight; y += 16)
+            for (int x = 8; x < kWidth; x += 16) {
+                const double s = (x + 0.5) / kWidth, t = 1.0 - (y + 0.5) / kHeight;
+                const auto [s2, t2] = map(s, t);
+                const int block = expectedBlock(s2, t2, "repeat");
+                expectAlbedo(x, y, decoded(kBlocks[size_t(block)]), what);
+                differs += block != expectedBlock(s, t, "repeat");
+            }
+        EXPECT_GE(differs, 8) << what << " moves the blocks";
+    }
+}
+
+// The forward pass of transparent surfaces samples through the same map: an opacity mask, quarter
+// opaque on the left half of the image and opaque on the right, turned 90 degrees puts the
+// quarter-opaque half at the top; over the empty background the colour's alpha is the opacity.
+TEST_F(TextureTest, TransparentSurfacesSampleThroughTheTransformToo) {
+    std::string file = writePng("mask.png", 8, [](int x, int) { return x < 4 ? Rgb8{64, 64, 64} : Rgb8{255, 255, 255}; });
+    std::map<std::string, HostValue> values = textured(
+        "opacity", file, {{"sourceColorSpace", HostValue::token("raw")}, {"transformS", HostValue::float3(0, -1, 0)},
+                          {"transformT", HostValue::float3(1, 0, 0)}});
+    host.addPrim("material", "/Looks/M", values);
+    addPlane("/Plane", "/Looks/M");
+    render();
+    for (int x : {8, 24, 40, 56}) {
+        EXPECT_NEAR(colorAt(x, 16)[3], 64.0f / 255.0f, 2.0f / 255.0f) << "top half, column " << x;
+        EXPECT_NEAR(colorAt(x, 48)[3], 1.0f, 2.0f / 255.0f) << "bottom half, column " << x;
+    }
+    EXPECT_EQ(primIds[size_t(32) * kWidth + 32], -1) << "the plane is transparent, drawn forward";
+}
+
+// Non-finite rows are bad data, reported like other bad material inputs: the material is skipped.
+TEST_F(TextureTest, NonFiniteTransformIsReported) {
+    std::string file = writeBlocks("blocks.png");
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    host.addPrim("material", "/Looks/M", textured("diffuseColor", file, {{"transformT", HostValue::float3(0, nan, 0)}}));
+    addPlane("/Plane", "/Looks/M");
+    host.expectError("skipped prim /Looks/M: obscura:diffuseColor:transformT: value is NaN");
+    EXPECT_EQ(host.render("/Camera", {{"albedo", "/Buffers/albedo"}}), OBSCURA_ERROR_BAD_PRIM_DATA);
+    EXPECT_NE(host.lastError().find("/Looks/M"), std::string::npos) << host.lastError();
 }
 
 TEST_F(TextureTest, ScaleAndBiasTransformTheTexel) {
