@@ -52,7 +52,7 @@ usda::Value float3Value(const std::array<double, 3>& row) {
     usda::Value value;
     value.typeName = "float3";
     value.tupleSize = 3;
-    value.numbers.assign(row.begin(), row.end());
+    value.numbers = std::vector<double>(row.begin(), row.end());
     return value;
 }
 
