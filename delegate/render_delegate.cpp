@@ -1,6 +1,7 @@
 #include "delegate/render_delegate.h"
 
 #include "delegate/aov_bindings.h"
+#include "delegate/chained_stats.h"
 #include "delegate/purposes.h"
 #include "gpu/vk_check.h"
 
@@ -8,7 +9,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -21,21 +21,6 @@ namespace {
 int syncOrder(const Prim& p) {
     std::string category = p.schema().category;
     return category == "rprim" ? 1 : 0;
-}
-
-// The 1.1 counters for any host; the 1.3 ones where its struct has room for them.
-void fillMemoryStats(const gpu::MemoryAllocator& allocator, ObscuraMemoryStats& memory) {
-    if (memory.structSize < offsetof(ObscuraMemoryStats, imageBytes)) return;
-    memory.deviceMemoryReserved = allocator.bytesReserved();
-    memory.deviceMemoryInUse = allocator.bytesInUse();
-    memory.deviceMemoryBlocks = uint32_t(allocator.blockCount());
-    if (memory.structSize < sizeof(ObscuraMemoryStats)) return;
-    memory.imageBytes = allocator.bytesInUse(gpu::ResourceTiling::Optimal);
-    memory.frameTargetBytes = allocator.bytesInUse(gpu::MemoryCategory::FrameTargets);
-    memory.frameHistoryBytes = allocator.bytesInUse(gpu::MemoryCategory::FrameHistory);
-    memory.textureBytes = allocator.bytesInUse(gpu::MemoryCategory::Textures);
-    memory.geometryBytes = allocator.bytesInUse(gpu::MemoryCategory::Geometry);
-    memory.renderBufferBytes = allocator.bytesInUse(gpu::MemoryCategory::RenderBuffers);
 }
 
 // Whether a change to the prim may change what the G-buffer draws (occlusion culling's history,
@@ -445,30 +430,7 @@ void RenderDelegate::stats(ObscuraRenderStats& out) const {
     s.frameSetupMilliseconds = frameSetupMilliseconds_;
     std::snprintf(s.deviceName, sizeof(s.deviceName), "%s", device_->context().summary().name.c_str());
     out = s;
-    // Output structs chain Vulkan style; the header is const only because input structs share it.
-    for (auto* next = static_cast<const ObscuraStructHeader*>(out.pNext); next;
-         next = static_cast<const ObscuraStructHeader*>(next->pNext)) {
-        if (next->sType == OBSCURA_STRUCTURE_TYPE_MEMORY_STATS)
-            fillMemoryStats(device_->memory(), *const_cast<ObscuraMemoryStats*>(reinterpret_cast<const ObscuraMemoryStats*>(next)));
-        if (next->sType == OBSCURA_STRUCTURE_TYPE_CULLING_STATS && next->structSize >= sizeof(ObscuraCullingStats)) {
-            auto* culling = const_cast<ObscuraCullingStats*>(reinterpret_cast<const ObscuraCullingStats*>(next));
-            const passes::CullingCounts& counts = sceneReport_.culling;
-            culling->draws = counts.draws;
-            culling->drawsCulled = counts.drawsCulled;
-            culling->instances = counts.instances;
-            culling->instancesCulled = counts.instancesCulled;
-            culling->triangles = counts.triangles;
-            culling->trianglesCulled = counts.trianglesCulled;
-            culling->milliseconds = counts.milliseconds;
-            culling->drawsOutsideView = counts.drawsOutsideView;
-            culling->instancesOutsideView = counts.instancesOutsideView;
-            culling->trianglesOutsideView = counts.trianglesOutsideView;
-        }
-        if (next->sType == OBSCURA_STRUCTURE_TYPE_INTEROP_STATS && next->structSize >= sizeof(ObscuraInteropStats)) {
-            auto* interop = const_cast<ObscuraInteropStats*>(reinterpret_cast<const ObscuraInteropStats*>(next));
-            interop->semaphoreValue = exportTimeline_ ? exportTimeline_->value() : 0;
-        }
-    }
+    fillChainedStats(out.pNext, {device_->memory(), sceneReport_.culling, exportTimeline_ ? exportTimeline_->value() : 0});
 }
 
 int32_t RenderDelegate::primId(const std::string& path) const {
