@@ -14,6 +14,29 @@ namespace {
 constexpr int kCrowdInFront = 3;  // crates between the camera and the wall
 constexpr int kCrowdBehind = 6;   // crates behind the wall
 
+// A frame's colour and primId AOVs (buffers /Buffers/color and /Buffers/id) and its culling stats.
+struct CulledFrame {
+    std::vector<float> color;
+    std::vector<int32_t> ids;
+    ObscuraCullingStats culling{};
+};
+
+CulledFrame renderCulledFrame(TestHost& host, const std::string& camera) {
+    CulledFrame frame;
+    EXPECT_EQ(host.render(camera, {{"color", "/Buffers/color"}, {"primId", "/Buffers/id"}}), OBSCURA_OK)
+        << host.lastError();
+    frame.color = host.readFloats("/Buffers/color");
+    frame.ids = host.readInts("/Buffers/id");
+    frame.culling.sType = OBSCURA_STRUCTURE_TYPE_CULLING_STATS;
+    frame.culling.structSize = sizeof(frame.culling);
+    ObscuraRenderStats stats{};
+    stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
+    stats.structSize = sizeof(stats);
+    stats.pNext = &frame.culling;
+    EXPECT_EQ(host.api().getRenderStats(host.delegate(), &stats), OBSCURA_OK);
+    return frame;
+}
+
 // A wall filling the view of a camera at the origin looking along +Y, a box, a glass pane and
 // crates in front of it and a box, a glass box and crates behind it, lit by a shadowing sun.
 // Culling on or off as asked.
@@ -54,26 +77,8 @@ struct WalledScene {
         ASSERT_EQ(host.api().markDirty(host.delegate(), path.c_str(), OBSCURA_DIRTY_TRANSFORM), OBSCURA_OK);
     }
 
-    struct Frame {
-        std::vector<float> color;
-        std::vector<int32_t> ids;
-        ObscuraCullingStats culling{};
-    };
-    Frame render(const std::string& camera) {
-        Frame frame;
-        EXPECT_EQ(host.render(camera, {{"color", "/Buffers/color"}, {"primId", "/Buffers/id"}}), OBSCURA_OK)
-            << host.lastError();
-        frame.color = host.readFloats("/Buffers/color");
-        frame.ids = host.readInts("/Buffers/id");
-        frame.culling.sType = OBSCURA_STRUCTURE_TYPE_CULLING_STATS;
-        frame.culling.structSize = sizeof(frame.culling);
-        ObscuraRenderStats stats{};
-        stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
-        stats.structSize = sizeof(stats);
-        stats.pNext = &frame.culling;
-        EXPECT_EQ(host.api().getRenderStats(host.delegate(), &stats), OBSCURA_OK);
-        return frame;
-    }
+    using Frame = CulledFrame;
+    Frame render(const std::string& camera) { return renderCulledFrame(host, camera); }
 };
 
 // The same frame from both scenes: identical colour and ids, pixel for pixel.
@@ -204,21 +209,7 @@ struct FrustumScene {
         host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
         host.addRenderBuffer("/Buffers/id", "int32", kWidth, kHeight);
     }
-    WalledScene::Frame render() {
-        WalledScene::Frame frame;
-        EXPECT_EQ(host.render("/Camera", {{"color", "/Buffers/color"}, {"primId", "/Buffers/id"}}), OBSCURA_OK)
-            << host.lastError();
-        frame.color = host.readFloats("/Buffers/color");
-        frame.ids = host.readInts("/Buffers/id");
-        frame.culling.sType = OBSCURA_STRUCTURE_TYPE_CULLING_STATS;
-        frame.culling.structSize = sizeof(frame.culling);
-        ObscuraRenderStats stats{};
-        stats.sType = OBSCURA_STRUCTURE_TYPE_RENDER_STATS;
-        stats.structSize = sizeof(stats);
-        stats.pNext = &frame.culling;
-        EXPECT_EQ(host.api().getRenderStats(host.delegate(), &stats), OBSCURA_OK);
-        return frame;
-    }
+    CulledFrame render() { return renderCulledFrame(host, "/Camera"); }
 };
 
 TEST(FrustumCulling, WhatLiesOutsideTheViewIsNotDrawnAndChangesNoPixel) {
