@@ -1,7 +1,9 @@
 // USD's native instancing as Hydra draws it (UsdImaging's instance adapter): instanceable prims
 // whose composition arcs are the same (usda/instancing_key.h) share one prototype, and the host
 // serves each prototype's geometry once, under the first instance, with one instancer prim that
-// places it at every instance — the delegate's instancer, as a PointInstancer is served.
+// places it at every instance — the delegate's instancer, as a PointInstancer is served. The reader
+// composes an instance's descendants from its arcs alone (usda/prim_index.h), so the first instance
+// is a faithful prototype of them all.
 //
 // Choices where the plugin cannot do what USD does:
 //  - what an instance root hands down to its prototype's geometry (its material binding and its

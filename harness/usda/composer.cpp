@@ -4,7 +4,6 @@
 #include <map>
 #include <set>
 
-#include "harness/usda/instancing_key.h"
 #include "harness/usda/sdf_path.h"
 
 namespace obscura::usda {
@@ -162,14 +161,13 @@ void Composer::composeChildren(Stage& stage, Prim& parent, const IndexNode& pare
             children.push_back({target.first, target.second});
     for (const ChildName& child : children) {
         const std::string path = sdfpath::appendChild(parent.path, child.name);
-        const IndexNode& index = indexer_.index(*rootStack_, path, child.where);
+        const PrimIndexer::StagePrimIndex& staged = indexer_.stageIndex(*rootStack_, path, child.where);
+        const IndexNode& index = *staged.index;
         const std::vector<Opinion> opinions = opinionsOf(index);
         if (opinions.empty()) continue;
         budget_.addPrim(path, child.where);
         std::unique_ptr<Prim> prim = composePrim(path, opinions, parent);
-        if (const auto it = prim->metadata.find("instanceable"); it != prim->metadata.end() && !it->second.numbers.empty() &&
-                                                               it->second.numbers.front() != 0.0)
-            prim->instancingKey = instancingKey(index);
+        prim->instancingKey = staged.instancingKey;
         budget_.holdPrim(*prim, child.where);
         std::vector<const PrimSpec*> specs;
         for (const Opinion& opinion : opinions) specs.push_back(opinion.spec);

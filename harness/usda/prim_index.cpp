@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "harness/usda/instancing_key.h"
 #include "harness/usda/sdf_path.h"
 
 namespace obscura::usda {
@@ -19,10 +20,10 @@ void forEachSpec(const IndexNode& node, F&& f) {
         if (const PrimSpec* spec = layer->find(node.site)) f(*spec, *layer);
 }
 
-bool hasSpec(const IndexNode& node) {
-    bool found = false;
-    forEachSpec(node, [&](const PrimSpec&, const Layer&) { found = true; });
-    return found;
+// The specs that give the node's opinions: none for an inert node.
+template <class F>
+void forEachContributingSpec(const IndexNode& node, F&& f) {
+    if (!node.inert) forEachSpec(node, f);
 }
 
 bool subtreeHasSpec(const IndexNode& node) {
@@ -56,7 +57,7 @@ size_t nodeCount(const IndexNode& node) {
 }
 
 void collectOpinions(const IndexNode& node, std::vector<Opinion>& out) {
-    forEachSpec(node, [&](const PrimSpec& spec, const Layer& layer) {
+    forEachContributingSpec(node, [&](const PrimSpec& spec, const Layer& layer) {
         out.push_back(Opinion{&spec, &layer, &node, node.timeToRoot.after(node.stack->offsetOf(layer))});
     });
     for (const IndexNode& child : node.children) collectOpinions(child, out);
@@ -84,6 +85,23 @@ std::vector<Opinion> opinionsOf(const IndexNode& root) {
     return out;
 }
 
+const Value* strongestMetadata(const IndexNode& root, const std::string& key) {
+    const Value* found = nullptr;
+    forEachContributingSpec(root, [&](const PrimSpec& spec, const Layer&) {
+        if (found) return;
+        if (const auto it = spec.metadata.find(key); it != spec.metadata.end()) found = &it->second;
+    });
+    for (auto child = root.children.begin(); !found && child != root.children.end(); ++child)
+        found = strongestMetadata(*child, key);
+    return found;
+}
+
+bool hasSpec(const IndexNode& node) {
+    bool found = false;
+    forEachSpec(node, [&](const PrimSpec&, const Layer&) { found = true; });
+    return found;
+}
+
 std::string mapToRoot(const IndexNode& node, const std::string& path) {
     std::string mapped = path;
     for (const PathMapping& mapping : node.toRoot) mapped = sdfpath::replacePrefix(mapped, mapping.from, mapping.to);
@@ -100,9 +118,7 @@ const IndexNode& PrimIndexer::index(const LayerStack& stack, const std::string& 
     if (inProgress_.size() >= kMaxArcNesting)
         throw CompositionFailure{Error{requestedAt, "composition arcs nested more than " +
                                                         std::to_string(kMaxArcNesting) + " deep"}};
-    if (sdfpath::depthOf(primPath) > kMaxNamespaceDepth)
-        throw CompositionFailure{Error{requestedAt, "prims nested more than " + std::to_string(kMaxNamespaceDepth) +
-                                                        " deep under <" + sdfpath::parentOf(primPath) + ">"}};
+    checkNamespaceDepth(primPath, requestedAt);
     inProgress_.insert(key);
 
     IndexNode root;
@@ -111,8 +127,46 @@ const IndexNode& PrimIndexer::index(const LayerStack& stack, const std::string& 
         root.stack = &stack;
         root.site = primPath;
     } else {
-        root = *mirror(index(stack, parent, requestedAt), sdfpath::nameOf(primPath), true);
+        root = *mirror(index(stack, parent, requestedAt), sdfpath::nameOf(primPath), true, false);
     }
+    build(root, primPath, requestedAt);
+
+    inProgress_.erase(key);
+    return memo_.emplace(key, std::move(root)).first->second;
+}
+
+// Pcp computes an instance proxy's index from its parent's with the nodes the instance's arcs did
+// not bring marked inert (Pcp_ChildNodeIsInstanceable); further down they stay inert. Other prims'
+// indexes are their sites' (index()), which arcs targeting those sites share.
+const PrimIndexer::StagePrimIndex& PrimIndexer::stageIndex(const LayerStack& stack, const std::string& primPath,
+                                                           const SourceLocation& requestedAt) {
+    const Key key{&stack, primPath};
+    if (const auto it = stagePrims_.find(key); it != stagePrims_.end()) return it->second;
+    const std::string parent = sdfpath::parentOf(primPath);
+    const StagePrimIndex* parentIndex = parent == "/" ? nullptr : &stageIndex(stack, parent, requestedAt);
+    StagePrimIndex prim;
+    if (parentIndex && (parentIndex->withinInstance || !parentIndex->instancingKey.empty())) {
+        checkNamespaceDepth(primPath, requestedAt);
+        IndexNode root = *mirror(*parentIndex->index, sdfpath::nameOf(primPath), true, !parentIndex->instancingKey.empty());
+        build(root, primPath, requestedAt);
+        prim.index = &withinInstances_.emplace(key, std::move(root)).first->second;
+        prim.withinInstance = true;
+    } else {
+        prim.index = &index(stack, primPath, requestedAt);
+    }
+    prim.instancingKey = instancingKey(*prim.index);
+    budget_.hold(sizeof(Key) + primPath.capacity() + sizeof(StagePrimIndex) + prim.instancingKey.capacity() + 32,
+                 requestedAt);
+    return stagePrims_.emplace(key, std::move(prim)).first->second;
+}
+
+void PrimIndexer::checkNamespaceDepth(const std::string& primPath, const SourceLocation& requestedAt) const {
+    if (sdfpath::depthOf(primPath) > kMaxNamespaceDepth)
+        throw CompositionFailure{Error{requestedAt, "prims nested more than " + std::to_string(kMaxNamespaceDepth) +
+                                                        " deep under <" + sdfpath::parentOf(primPath) + ">"}};
+}
+
+void PrimIndexer::build(IndexNode& root, const std::string& primPath, const SourceLocation& requestedAt) {
     // The memo's entry: its key and map node.
     budget_.hold(heldBytes(root) + sizeof(Key) + primPath.capacity() + 32, requestedAt);
     budget_.beginIndex(primPath, nodeCount(root), requestedAt);
@@ -122,9 +176,6 @@ const IndexNode& PrimIndexer::index(const LayerStack& stack, const std::string& 
     addImpliedClassArcs(root);
     moveSpecializesLast(root);
     budget_.endIndex();
-
-    inProgress_.erase(key);
-    return memo_.emplace(key, std::move(root)).first->second;
 }
 
 void PrimIndexer::expandArcs(IndexNode& node, std::vector<const IndexNode*>& chain) {
@@ -134,6 +185,10 @@ void PrimIndexer::expandArcs(IndexNode& node, std::vector<const IndexNode*>& cha
     const size_t carried = node.children.size();
     for (size_t i = 0; i < carried; ++i) expandArcs(node.children[i], chain);
 
+    if (node.inert) {
+        chain.pop_back();
+        return;
+    }
     addRelocatedArcs(node);
     for (const Arc& arc : arcsAuthoredAt(node)) {
         checkCycle(arc, chain);
@@ -149,7 +204,8 @@ void PrimIndexer::expandArcs(IndexNode& node, std::vector<const IndexNode*>& cha
     chain.pop_back();
 }
 
-std::optional<IndexNode> PrimIndexer::mirror(const IndexNode& node, const std::string& name, bool keepEmpty) {
+std::optional<IndexNode> PrimIndexer::mirror(const IndexNode& node, const std::string& name, bool keepEmpty,
+                                             bool ignored) {
     IndexNode out;
     out.stack = node.stack;
     out.site = sdfpath::appendChild(node.site, name);
@@ -159,8 +215,12 @@ std::optional<IndexNode> PrimIndexer::mirror(const IndexNode& node, const std::s
     out.arcDepth = node.arcDepth;
     out.variantSet = node.variantSet;
     out.variant = node.variant;
+    out.dueToAncestor = true;
+    out.inert = node.inert || ignored;
+    // Below a node the instance's arcs brought, everything is the instance's to share.
     for (const IndexNode& child : node.children)
-        if (auto mirrored = mirror(child, name, false)) out.children.push_back(std::move(*mirrored));
+        if (auto mirrored = mirror(child, name, false, ignored && child.dueToAncestor))
+            out.children.push_back(std::move(*mirrored));
     if (!keepEmpty && out.children.empty() && !hasSpec(out) && !relocationsOf(*out.stack).count(out.site))
         return std::nullopt;
     return out;
@@ -183,6 +243,7 @@ void PrimIndexer::addRelocatedArcs(IndexNode& node) {
     // to the target, and the node's own mappings on to the indexed prim.
     for (const IndexNode& arc : moved.children) {
         IndexNode copy = arc;
+        copy.dueToAncestor = false;
         appendMappings(copy, PathMapping{source, node.site}, node.toRoot);
         prependTimeOffset(copy, node.timeToRoot);
         budget_.hold(heldBytes(copy), relocation->second.where);
@@ -193,10 +254,13 @@ void PrimIndexer::addRelocatedArcs(IndexNode& node) {
 RelocatedChildren PrimIndexer::relocatedChildren(const IndexNode& root) {
     RelocatedChildren out;
     auto visit = [&](auto&& self, const IndexNode& node) -> void {
-        for (const auto& [target, relocation] : relocationsOf(*node.stack)) {
-            if (sdfpath::parentOf(relocation.source) == node.site)
-                out.movedAway.insert(sdfpath::nameOf(relocation.source));
-            if (sdfpath::parentOf(target) == node.site) out.movedIn.emplace(sdfpath::nameOf(target), relocation.where);
+        if (!node.inert) {
+            for (const auto& [target, relocation] : relocationsOf(*node.stack)) {
+                if (sdfpath::parentOf(relocation.source) == node.site)
+                    out.movedAway.insert(sdfpath::nameOf(relocation.source));
+                if (sdfpath::parentOf(target) == node.site)
+                    out.movedIn.emplace(sdfpath::nameOf(target), relocation.where);
+            }
         }
         for (const IndexNode& child : node.children) self(self, child);
     };
@@ -214,6 +278,7 @@ void PrimIndexer::graft(IndexNode& node, const IndexNode& target, const Arc& arc
     prependTimeOffset(graft, node.timeToRoot.after(arc.time));
     graft.arc = arc.type;
     graft.arcDepth = sdfpath::depthOf(referringPath);
+    graft.dueToAncestor = false;
     budget_.hold(heldBytes(graft), arc.where);
     node.children.push_back(std::move(graft));
 }
@@ -227,7 +292,7 @@ void PrimIndexer::addImpliedClassArcs(IndexNode& node) {
     for (IndexNode& child : node.children) addImpliedClassArcs(child);
     std::vector<Arc> implied;
     auto visit = [&](auto&& self, const IndexNode& parent, const IndexNode& child) -> void {
-        if (child.arc == ArcType::Inherit || child.arc == ArcType::Specialize) {
+        if ((child.arc == ArcType::Inherit || child.arc == ArcType::Specialize) && !child.inert) {
             // The class's path in the namespace of `node`: through the mappings the authoring
             // node has beyond `node`'s own.
             std::string path = sdfpath::stripVariants(child.site);
@@ -364,7 +429,7 @@ void PrimIndexer::selectVariants(IndexNode& root) {
 bool PrimIndexer::selectOneVariant(const IndexNode& root, IndexNode& node, std::vector<const IndexNode*>& chain) {
     chain.push_back(&node);
     std::map<std::string, SourceLocation> sets;
-    forEachSpec(node, [&](const PrimSpec& spec, const Layer&) {
+    forEachContributingSpec(node, [&](const PrimSpec& spec, const Layer&) {
         for (const auto& entry : spec.variantSets) sets.emplace(entry.first, spec.where);
     });
     for (const auto& [set, where] : sets) {

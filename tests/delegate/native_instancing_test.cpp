@@ -224,6 +224,28 @@ def Scope "Looks"
     EXPECT_NEAR(albedo[(size_t(17) * kWidth + 32) * 3 + 1], 0.1f, 0.02f);
 }
 
+// Beneath an instance, the referencing layer's opinions are ignored (instance proxies compose only
+// the instance's arcs): an override under the first instance does not reach the prototype, nor one
+// under the second its instance. Without instancing the same overrides show.
+TEST(NativeInstancing, OverridesBeneathInstancesDoNotShow) {
+    const std::string blue = "    over \"Geom\"\n    {\n        color3f[] primvars:displayColor = [(0.1, 0.2, 0.9)]\n    }\n";
+    auto albedoOf = [&](bool instanceable) {
+        HostedStage scene = open(std::string(kStage) + instance("A", "Arrow", instanceable, translate(-0.5, 0), blue) +
+                                 instance("B", "Arrow", instanceable, translate(0.5, 0), blue) +
+                                 instance("C", "Arrow", instanceable, translate(0, 0.5)));
+        EXPECT_EQ(scene.host->nativeInstancing().instancers().size(), instanceable ? 1u : 0u);
+        return scene.renderAlbedo();
+    };
+    auto blueAt = [](const std::vector<float>& albedo, int x, int y) { return albedo[(size_t(y) * kWidth + size_t(x)) * 3 + 2]; };
+    const std::vector<float> instanced = albedoOf(true), plain = albedoOf(false);
+    // A at (-0.5, 0), B at (0.5, 0), C at (0, 0.5): the asset's orange everywhere when instanced.
+    for (const auto& [x, y] : {std::pair{17, 32}, std::pair{47, 32}, std::pair{32, 17}})
+        EXPECT_NEAR(blueAt(instanced, x, y), 0.2f, 0.02f) << x << "," << y;
+    EXPECT_NEAR(blueAt(plain, 17, 32), 0.9f, 0.02f);
+    EXPECT_NEAR(blueAt(plain, 47, 32), 0.9f, 0.02f);
+    EXPECT_NEAR(blueAt(plain, 32, 17), 0.2f, 0.02f);
+}
+
 // The stage read again after an edit (the viewer's reload): moving one instance touches only its
 // instancer, and the plugin then draws what it draws for the same edit without instancing (a
 // second render, as a reload's, is compared with a second render: temporal accumulation differs
