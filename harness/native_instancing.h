@@ -6,9 +6,13 @@
 // is a faithful prototype of them all.
 //
 // Choices where the plugin cannot do what USD does:
-//  - what an instance root hands down to its prototype's geometry (its material binding and its
-//    purpose) is the first instance's: instances that differ there are grouped apart, as
-//    UsdImaging groups them by inherited binding;
+//  - what an instance root hands down to its prototype's geometry (its material binding, its
+//    purpose, and the constant primvars it or its ancestors author, which USD's primvar inheritance
+//    gives the prototype's gprims that lack their own) is the first instance's: instances that
+//    differ there are grouped apart, as UsdImaging groups them by inherited binding. Hydra serves
+//    inherited primvars as the instancer's per-instance primvars, but the delegate's instancer
+//    (schemas/instancer.json) carries placements and visibility only, so grouping is what keeps
+//    each instance's own colour; instances that hand down the same values still share;
 //  - an instance's transform reaches the instancer as position, orientation and scale (the
 //    instancer's attributes), so an instance whose transform shears (at the stage's start time)
 //    is not instanced: its geometry is served as any other prim's;
@@ -37,8 +41,8 @@ struct NativeInstancer {
 
 class NativeInstancing {
 public:
-    // What an instance root hands down to its descendants beyond its composition arcs (bindings,
-    // purpose), as text: instances that differ there do not share a prototype.
+    // What an instance root hands down to its descendants beyond its composition arcs (binding,
+    // purpose, constant primvars), as text: instances that differ there do not share a prototype.
     using HandedDown = std::function<std::string(const usda::Prim&)>;
 
     NativeInstancing() = default;

@@ -96,6 +96,28 @@ std::string flattenIndexed(usda::Value& value, const usda::Value& indices) {
     return {};
 }
 
+// An attribute's values (its default and time samples) as text, for instances to compare what
+// their roots hand down; exact, as the values the plugin would be served.
+void appendValuesText(const usda::Attribute& attribute, std::string& text) {
+    auto appendNumber = [&](double n) {
+        char number[32];
+        std::snprintf(number, sizeof(number), "%.17g,", n);
+        text += number;
+    };
+    auto append = [&](const usda::Value& value) {
+        text += value.typeName + '[';
+        for (double n : value.numbers) appendNumber(n);
+        for (const std::string& string : value.strings) text += std::to_string(string.size()) + ':' + string;
+        text += ']';
+    };
+    if (attribute.defaultValue) append(*attribute.defaultValue);
+    for (const auto& [time, value] : attribute.timeSamples) {
+        text += '@';
+        appendNumber(time);
+        append(value);
+    }
+}
+
 bool isIntegerType(const std::string& type) {
     return startsWith(type, "int") || startsWith(type, "uint") || type == "uchar" || type == "bool";
 }
@@ -201,7 +223,15 @@ std::map<std::string, std::string> UsdSceneHost::scan() {
         [this](const usda::Prim& instance) {
             const usda::Attribute* purpose = stage_.purposeOpinion(instance);
             const bool purposeToken = purpose && purpose->defaultValue && purpose->defaultValue->strings.size() == 1;
-            return boundMaterial(instance).value_or("") + '\n' + (purposeToken ? purpose->defaultValue->strings.front() : "");
+            std::string text =
+                boundMaterial(instance).value_or("") + '\n' + (purposeToken ? purpose->defaultValue->strings.front() : "");
+            for (const auto& [name, primvar] : stage_.inheritablePrimvars(instance)) {
+                text += '\n' + name + '=';
+                appendValuesText(*primvar, text);
+                if (const usda::Attribute* indices = stage_.primAuthoring(instance, *primvar).attribute(name + ":indices"))
+                    appendValuesText(*indices, text);
+            }
+            return text;
         },
         stage_.metadata().startTimeCode.value_or(0.0));
     for (const usda::Prim* prim : stage_.prims()) {
@@ -319,12 +349,20 @@ ObscuraDirtyBits UsdSceneHost::changes(const std::string& type, const usda::Prim
         bits |= name == "prototypes" ? OBSCURA_DIRTY_ALL : name == "material:binding" ? OBSCURA_DIRTY_MATERIAL_ID
                                                                                       : OBSCURA_DIRTY_PARAMS;
     }
-    // What the prim inherits from its ancestors: transform, visibility, purpose, material binding.
+    // What the prim inherits from its ancestors: transform, visibility, purpose, material binding,
+    // constant primvars.
     const usda::Stage& old = previous.stage_;
     if (stage_.transformSampleTimes(prim) != old.transformSampleTimes(before) ||
         stage_.worldTransform(prim, time) != old.worldTransform(before, time))
         bits |= dirtyBitFor(type, "transform");
     if (stage_.isVisible(prim, time) != old.isVisible(before, time)) bits |= dirtyBitFor(type, "visibility");
+    const auto primvars = stage_.inheritablePrimvars(*prim.parent), primvarsBefore = old.inheritablePrimvars(*before.parent);
+    for (const auto& [name, attribute] : primvars) {
+        const auto it = primvarsBefore.find(name);
+        if (it == primvarsBefore.end() || !sameAttribute(*attribute, *it->second)) bits |= dirtyBitFor(type, name);
+    }
+    for (const auto& [name, attribute] : primvarsBefore)
+        if (!primvars.count(name)) bits |= dirtyBitFor(type, name);
     const usda::Attribute* purpose = stage_.purposeOpinion(prim);
     const usda::Attribute* purposeBefore = old.purposeOpinion(before);
     if ((purpose == nullptr) != (purposeBefore == nullptr) || (purpose && !sameAttribute(*purpose, *purposeBefore)))
@@ -393,6 +431,9 @@ ObscuraDirtyBits UsdSceneHost::animatedValueBits(const std::string& path, const 
         return bits;
     }
     const usda::Prim* valuesFrom = type == "material" ? surfaces_.at(path) : &prim;
+    if (type != "material")
+        for (const auto& [name, attr] : stage_.inheritablePrimvars(*prim.parent))
+            if (attr->isAnimated()) bits |= dirtyBitFor(type, name);
     for (const auto& [name, attr] : valuesFrom->attributes) {
         // A surface input takes its value from the interface input it connects to.
         const usda::Attribute* source = type == "material" && attr.connection ? valueProducingAttribute(stage_, attr) : &attr;
@@ -543,11 +584,14 @@ const usda::Attribute* UsdSceneHost::resolveAttribute(const std::string& path, c
         std::string primvar = bound != surfaces_.end() ? texturePrimvar(stage_, *bound->second) : "st";
         if (auto mapped = material ? mappedSurfaces_.find(*material) : mappedSurfaces_.end(); mapped != mappedSurfaces_.end())
             primvar = mapped->second.mapping.stPrimvar;
-        return prim->attribute("primvars:" + primvar);
+        return stage_.primvar(*prim, "primvars:" + primvar);
     }
     // UsdGeomPointBased: primvars:normals, when authored, takes precedence over normals.
     if (attribute == "normals")
         if (const usda::Attribute* primvar = prim->attribute("primvars:normals")) return primvar;
+    // Constant primvars are inherited down namespace (an instance root's among them).
+    if (startsWith(attribute, "primvars:"))
+        if (const usda::Attribute* a = stage_.primvar(*prim, attribute)) return a;
     if (const usda::Attribute* a = prim->attribute(attribute)) return a;
     // UsdLux before 21.02 named light inputs without the "inputs:" prefix.
     if (startsWith(attribute, "inputs:")) return prim->attribute(attribute.substr(7));
@@ -715,7 +759,8 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     if (value->typeName == "asset")
         for (auto& asset : value->strings.edit())
             if (!asset.empty()) asset = resolveAssetPath(asset, *a);
-    const usda::Attribute* indices = startsWith(a->name, "primvars:") ? prim->attribute(a->name + ":indices") : nullptr;
+    const usda::Attribute* indices =
+        startsWith(a->name, "primvars:") ? stage_.primAuthoring(*prim, *a).attribute(a->name + ":indices") : nullptr;
     if (auto indexValues = indices ? indices->evaluate(time) : std::nullopt) {
         if (std::string problem = flattenIndexed(*value, *indexValues); !problem.empty()) {
             warnOnce("indices:" + path + a->name, path + ": " + a->name + ":" + problem + " of " + a->name,

@@ -175,6 +175,16 @@ public:
     // its nearest imageable ancestor's; null when none is authored (the fallback, "default").
     // Purpose is uniform: its value is the attribute's default.
     const Attribute* purposeOpinion(const Prim& prim) const;
+    // UsdGeomPrimvarsAPI::FindInheritablePrimvars: the primvars `prim` hands down to its
+    // descendants, by name: its own and its ancestors' of constant interpolation with an authored
+    // value, the nearest of each name (one of another interpolation stops those above it).
+    std::map<std::string, const Attribute*> inheritablePrimvars(const Prim& prim) const;
+    // FindPrimvarWithInheritance: primvar `name` ("primvars:displayColor") of the prim when it
+    // authors a value, else the one its ancestors hand down; null when neither.
+    const Attribute* primvar(const Prim& prim, const std::string& name) const;
+    // The prim, `prim` or an ancestor, whose attribute `attribute` is (an inherited primvar's
+    // :indices are its owner's); `prim` when none is.
+    const Prim& primAuthoring(const Prim& prim, const Attribute& attribute) const;
 
 private:
     Stage();

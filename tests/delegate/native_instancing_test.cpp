@@ -246,6 +246,46 @@ TEST(NativeInstancing, OverridesBeneathInstancesDoNotShow) {
     EXPECT_NEAR(blueAt(plain, 32, 17), 0.2f, 0.02f);
 }
 
+// A constant primvar on an instance root is inherited by the prototype's gprims that author none
+// (USD's primvar inheritance), so each instance shows its root's colour: instances that hand down
+// other values are grouped apart, those that hand down the same share. An arrow's own colour wins
+// over its root's.
+TEST(NativeInstancing, ConstantPrimvarsOfInstanceRootsColourTheirOwnInstances) {
+    const std::string tile = R"(
+class "Tile"
+{
+    def Mesh "Geom"
+    {
+        point3f[] points = [(-0.15, -0.15, 0), (0.15, -0.15, 0), (0.15, 0.15, 0), (-0.15, 0.15, 0)]
+        int[] faceVertexCounts = [4]
+        int[] faceVertexIndices = [0, 1, 2, 3]
+        uniform token subdivisionScheme = "none"
+    }
+}
+)";
+    auto colour = [](const char* rgb) { return "    color3f[] primvars:displayColor = [" + std::string(rgb) + "]\n"; };
+    const std::string blue = colour("(0.1, 0.2, 0.9)"), red = colour("(0.9, 0.1, 0.1)");
+    HostedStage scene = open(std::string(kStage) + tile + instance("A", "Tile", true, translate(-0.5, 0), blue) +
+                             instance("B", "Tile", true, translate(0.5, 0), red) +
+                             instance("C", "Tile", true, translate(0, 0.5), blue) +
+                             instance("D", "Arrow", true, translate(0, -0.5), red));
+    const auto& instancers = scene.host->nativeInstancing().instancers();
+    ASSERT_EQ(instancers.size(), 3u) << "A and C, B, D";
+    EXPECT_EQ(instancers[0].instances.size(), 2u);
+    const std::vector<float> albedo = scene.renderAlbedo();
+    auto rgbAt = [&](int x, int y) {
+        const size_t i = (size_t(y) * kWidth + size_t(x)) * 3;
+        return std::array<float, 3>{albedo[i], albedo[i + 1], albedo[i + 2]};
+    };
+    auto expectNear = [](const std::array<float, 3>& got, const std::array<float, 3>& want, const char* where) {
+        for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], 0.02f) << where << " channel " << c;
+    };
+    expectNear(rgbAt(17, 32), {0.1f, 0.2f, 0.9f}, "A");
+    expectNear(rgbAt(47, 32), {0.9f, 0.1f, 0.1f}, "B");
+    expectNear(rgbAt(32, 17), {0.1f, 0.2f, 0.9f}, "C");
+    expectNear(rgbAt(32, 47), {0.8f, 0.5f, 0.2f}, "D, the arrow's own colour");
+}
+
 // The stage read again after an edit (the viewer's reload): moving one instance touches only its
 // instancer, and the plugin then draws what it draws for the same edit without instancing (a
 // second render, as a reload's, is compared with a second render: temporal accumulation differs
