@@ -16,6 +16,9 @@
 //  - an instance's transform reaches the instancer as position, orientation and scale (the
 //    instancer's attributes), so an instance whose transform shears (at the stage's start time)
 //    is not instanced: its geometry is served as any other prim's;
+//  - instances inside another instance's prototype (a building's instanced windows) are drawn as
+//    part of it, at every outer instance, not instanced again: Hydra nests instancers there, but the
+//    delegate's instancer takes meshes as prototypes, not other instancers (schemas/instancer.json);
 //  - only geometry (rprims) is instanced; cameras and lights inside instances are served at
 //    every instance, and materials once, from the prototype (the geometry's bindings resolve to
 //    the first instance's copies).

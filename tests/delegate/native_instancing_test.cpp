@@ -286,6 +286,67 @@ class "Tile"
     expectNear(rgbAt(32, 47), {0.8f, 0.5f, 0.2f}, "D, the arrow's own colour");
 }
 
+// Instances inside a prototype (windows of a building) are drawn with it: the delegate's instancer
+// takes meshes as prototypes, not other instancers, so only the outermost instances are
+// instanced. The image is the one drawn without instancing, every window in place.
+TEST(NativeInstancing, NestedInstancesDrawWithTheirOuterPrototype) {
+    auto buildings = [](bool instanceable) {
+        const std::string flag = instanceable ? "true" : "false";
+        auto window = [&](const char* name, double x) {
+            return "    def Xform \"" + std::string(name) + "\" (instanceable = " + flag +
+                   "\n        references = </Window>)\n    {\n        double3 xformOp:translate = (" + std::to_string(x) +
+                   ", 0, 0.01)\n        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n    }\n";
+        };
+        return std::string(kStage) + R"(
+class "Window"
+{
+    def Mesh "Pane"
+    {
+        point3f[] points = [(-0.06, -0.06, 0), (0.06, -0.06, 0), (0.06, 0.06, 0), (-0.06, 0.06, 0)]
+        int[] faceVertexCounts = [4]
+        int[] faceVertexIndices = [0, 1, 2, 3]
+        color3f[] primvars:displayColor = [(0.1, 0.2, 0.9)]
+        uniform token subdivisionScheme = "none"
+    }
+}
+class "Building"
+{
+    def Mesh "Wall"
+    {
+        point3f[] points = [(-0.3, -0.2, 0), (0.3, -0.2, 0), (0.3, 0.2, 0), (-0.3, 0.2, 0)]
+        int[] faceVertexCounts = [4]
+        int[] faceVertexIndices = [0, 1, 2, 3]
+        color3f[] primvars:displayColor = [(0.6, 0.6, 0.6)]
+        uniform token subdivisionScheme = "none"
+    }
+)" + window("Left", -0.15) + window("Right", 0.15) + "}\n" +
+               instance("North", "Building", instanceable, translate(0, 0.5)) +
+               instance("South", "Building", instanceable,
+                        translate(0, -0.5, "    float xformOp:rotateZ = 180\n", ", \"xformOp:rotateZ\"")) +
+               instance("Sign", "Window", instanceable, translate(0.7, 0));
+    };
+    HostedStage instanced = open(buildings(true));
+    HostedStage plain = open(buildings(false));
+    // The buildings and the lone window are instanced; the first building's wall and windows are
+    // its prototype's meshes, and the window's prototype is the sign's pane.
+    auto counts = typeCounts(instanced);
+    EXPECT_EQ(counts["instancer"], 2);
+    EXPECT_EQ(counts["mesh"], 4);
+    EXPECT_TRUE(instanced.host->insertedPrims().count("/North/Left/Pane"));
+    EXPECT_FALSE(instanced.host->insertedPrims().count("/South/Left/Pane"));
+    EXPECT_EQ(typeCounts(plain)["mesh"], 7);
+    const std::vector<float> a = instanced.renderAlbedo(), b = plain.renderAlbedo();
+    ASSERT_EQ(a.size(), b.size());
+    size_t windows = 0, differing = 0;
+    for (size_t i = 0; i < a.size(); i += 3) {
+        if (b[i + 2] > 0.8f) ++windows;
+        if (std::abs(a[i] - b[i]) > 1e-3f || std::abs(a[i + 1] - b[i + 1]) > 1e-3f || std::abs(a[i + 2] - b[i + 2]) > 1e-3f)
+            ++differing;
+    }
+    EXPECT_GT(windows, 5u * 8u) << "five windows of about 3.7 pixels square each";
+    EXPECT_EQ(differing, 0u);
+}
+
 // The stage read again after an edit (the viewer's reload): moving one instance touches only its
 // instancer, and the plugin then draws what it draws for the same edit without instancing (a
 // second render, as a reload's, is compared with a second render: temporal accumulation differs
