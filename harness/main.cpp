@@ -2,10 +2,12 @@
 // compares and benchmarks scenes (DESIGN.md, CLI contract). CLI11 lives in this file only.
 #include "harness/commands.h"
 #include "harness/exit_codes.h"
+#include "harness/plugin_variant_fallbacks.h"
 
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 
 namespace {
@@ -51,6 +53,18 @@ void addStageOptions(CLI::App& command, obscura::usda::StageOptions& options) {
                 return {};
             },
             "SET=A[,B...]"));
+}
+
+// The variant fallbacks of the plugins on PXR_PLUGINPATH_NAME, as UsdStage reads them, under the
+// sets --variant-fallback gives.
+void addPluginVariantFallbacks(obscura::usda::StageOptions& options) {
+    const char* searchPath = std::getenv("PXR_PLUGINPATH_NAME");
+    const obscura::harness::PluginVariantFallbacks plugins =
+        obscura::harness::readPluginVariantFallbacks(searchPath ? searchPath : "");
+    for (const auto& w : plugins.warnings)
+        std::fprintf(stderr, "obscura: warning: %s:%d:%d: %s\n", w.where.file.c_str(), w.where.line, w.where.column,
+                     w.message.c_str());
+    for (const auto& [set, variants] : plugins.fallbacks) options.variantFallbacks.emplace(set, variants);
 }
 
 }  // namespace
@@ -166,15 +180,20 @@ int main(int argc, char** argv) {
     if (*frameOpt) render.frame = frame;
     if (app.got_subcommand("info")) return runInfo();
     if (gc->parsed()) return runGradeChart(gradeChart);
-    if (app.got_subcommand("render")) return runRender(render);
+    if (app.got_subcommand("render")) {
+        addPluginVariantFallbacks(render.stage);
+        return runRender(render);
+    }
     if (app.got_subcommand("compare")) return runCompare(compare);
     if (fs->parsed()) return runFarmSubmit(farmSubmit);
     if (fst->parsed()) return runFarmStatus(farmJob);
     if (fr->parsed()) return runFarmResubmit(farmJob);
     if (v->parsed()) {
+        addPluginVariantFallbacks(viewOptions.stage);
         const char* validation = std::getenv("OBSCURA_VALIDATION");
         viewOptions.validation = validation && *validation && std::string(validation) != "0";
         return runView(viewOptions);
     }
+    addPluginVariantFallbacks(bench.stage);
     return runBench(bench);
 }

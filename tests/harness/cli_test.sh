@@ -150,6 +150,19 @@ check "the fallback chooses what is drawn" 1 $?
 check "without a fallback the variant is not drawn" 1 $?
 "$obscura" render "$scene" -o "$tmp/x.png" --variant-fallback shape >"$tmp/out" 2>&1
 check "a fallback without variants is a usage error" 2 $? "$tmp/out" "'shape' is not SET=VARIANT"
+# Plugins' UsdVariantFallbacks on PXR_PLUGINPATH_NAME, as UsdStage reads them; --variant-fallback wins.
+mkdir -p "$tmp/looks" "$tmp/broken"
+printf '{"Plugins": [{"Name": "looks", "Info": {"UsdVariantFallbacks": {"shape": ["cone", "box"]}}}]}\n' >"$tmp/looks/plugInfo.json"
+printf '{\n  "Plugins": [,]\n}\n' >"$tmp/broken/plugInfo.json"
+PXR_PLUGINPATH_NAME="$tmp/broken:$tmp/looks" "$obscura" render "$scene" -o "$tmp/plug.png" --width 32 --height 32 >"$tmp/out" 2>&1
+check "a malformed plugInfo.json is named at its line and column" 0 $? "$tmp/out" 'broken/plugInfo\.json:2:15: malformed plugInfo\.json'
+"$obscura" compare "$tmp/box.png" "$tmp/plug.png" --psnr-min 60 >"$tmp/out" 2>&1
+check "a plugin's fallback chooses what is drawn" 0 $?
+PXR_PLUGINPATH_NAME="$tmp/looks" "$obscura" render "$scene" -o "$tmp/plug.png" --width 32 --height 32 \
+    --variant-fallback shape=ball >"$tmp/out" 2>&1
+check "--variant-fallback over a plugin's" 0 $?
+"$obscura" compare "$tmp/ball.png" "$tmp/plug.png" --psnr-min 60 >"$tmp/out" 2>&1
+check "the command line's fallback wins" 0 $?
 
 "$obscura" render "$tmp/does-not-exist.usda" -o "$tmp/x.png" >"$tmp/out" 2>&1
 check "missing scene file" 3 $? "$tmp/out" 'does-not-exist'
