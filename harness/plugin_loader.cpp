@@ -1,12 +1,13 @@
 #include "harness/plugin_loader.h"
 
-#include <nlohmann/json.hpp>
+#include "harness/plug_info_json.h"
 
 #include <dlfcn.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 
@@ -21,12 +22,14 @@ void readPlugInfo(const fs::path& file, DiscoveryResult& out) {
         out.problems.push_back(file.string() + ": cannot be read");
         return;
     }
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     nlohmann::json doc;
     try {
-        // OpenUSD's plugInfo.json allows # comments; nlohmann's parser takes them with ignore_comments.
-        doc = nlohmann::json::parse(in, nullptr, true, true);
+        doc = parsePlugInfoJson(text);
     } catch (const nlohmann::json::parse_error& e) {
-        out.problems.push_back(file.string() + ": " + e.what());
+        const auto [line, column] = plugInfoLineAndColumn(text, e.byte);
+        out.problems.push_back(file.string() + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " +
+                               e.what());
         return;
     }
     if (!doc.is_object() || !doc.contains("Plugins") || !doc["Plugins"].is_array()) {

@@ -1,6 +1,6 @@
 #include "harness/plugin_variant_fallbacks.h"
 
-#include <nlohmann/json.hpp>
+#include "harness/plug_info_json.h"
 
 #include <glob.h>
 
@@ -15,25 +15,6 @@ namespace obscura::harness {
 namespace fs = std::filesystem;
 
 namespace {
-
-// 1-based line and column of the 1-based byte index nlohmann reports for a parse error.
-std::pair<int, int> lineAndColumn(const std::string& text, size_t byte) {
-    const size_t end = std::min(byte == 0 ? 0 : byte - 1, text.size());
-    const size_t lineStart = end == 0 ? 0 : text.rfind('\n', end - 1) + 1;  // npos + 1 == 0: the first line
-    return {1 + int(std::count(text.begin(), text.begin() + long(end), '\n')), 1 + int(end - lineStart)};
-}
-
-// OpenUSD's plugInfo.json takes lines whose first non-blank character is '#' as comments; they are
-// blanked, so that the parser's lines and columns stay the file's.
-std::string withoutComments(std::string text) {
-    for (size_t start = 0; start < text.size();) {
-        const size_t end = std::min(text.find('\n', start), text.size());
-        const size_t first = text.find_first_not_of(" \t", start);
-        if (first < end && text[first] == '#') std::fill(text.begin() + long(first), text.begin() + long(end), ' ');
-        start = end + 1;
-    }
-    return text;
-}
 
 class Reader {
 public:
@@ -61,11 +42,11 @@ private:
         }
         nlohmann::json doc;
         try {
-            doc = nlohmann::json::parse(withoutComments(text), nullptr, true, true);
+            doc = parsePlugInfoJson(text);
         } catch (const nlohmann::json::parse_error& e) {
             const std::string what = e.what();
             const size_t detail = what.find(": ", what.find("column"));
-            const auto [line, column] = lineAndColumn(text, e.byte);
+            const auto [line, column] = plugInfoLineAndColumn(text, e.byte);
             warn(file, line, column,
                  "malformed plugInfo.json (" + (detail == std::string::npos ? what : what.substr(detail + 2)) +
                      "); its plugins' variant fallbacks are ignored");
