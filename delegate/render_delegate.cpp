@@ -1,6 +1,7 @@
 #include "delegate/render_delegate.h"
 
 #include "delegate/aov_bindings.h"
+#include "delegate/cache_folder.h"
 #include "delegate/chained_stats.h"
 #include "delegate/purposes.h"
 #include "gpu/vk_check.h"
@@ -56,9 +57,9 @@ RenderDelegate::RenderDelegate(const ObscuraDelegateCreateInfo& info) {
     options.log = logSink_;
     auto context = gpu::Context::create(options);
     if (!context) throw ApiError{OBSCURA_ERROR_DEVICE, context.error()};
-    device_ = std::make_unique<gpu::Device>(std::move(*context));
+    device_ = std::make_unique<gpu::Device>(std::move(*context), cacheFolderFromEnvironment("OBSCURA_PIPELINE_CACHE"));
     textures_ = std::make_unique<TextureCache>(*device_, options.log,
-                                               TextureDiskCache(TextureDiskCache::folderFromEnvironment()));
+                                               TextureDiskCache(cacheFolderFromEnvironment("OBSCURA_TEXTURE_CACHE")));
     geometry_ = std::make_unique<GeometryCache>(*device_);
     frame_ = std::make_unique<renderer::FrameRenderer>(*device_, textures_->sampler(WrapMode::Repeat, WrapMode::Clamp),
                                                        options.log);

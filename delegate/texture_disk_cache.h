@@ -1,8 +1,7 @@
 // Encoded textures kept on disk, named by the content hash of their source file and the encoding:
 // BC5 normal maps take seconds to encode well (the talk's exhaustive encoder took hours, Kaplanyan
 // 2010, "3Dc encoder improvements, cont'd"), so each file is encoded once per content. The folder
-// is $OBSCURA_TEXTURE_CACHE, else $XDG_CACHE_HOME/obscura, else ~/.cache/obscura;
-// OBSCURA_TEXTURE_CACHE=off turns the cache off.
+// is cacheFolderFromEnvironment("OBSCURA_TEXTURE_CACHE") (delegate/cache_folder.h).
 #pragma once
 
 #include <cstddef>
@@ -15,8 +14,6 @@ namespace obscura::delegate {
 
 class TextureDiskCache {
 public:
-    // The folder named by the environment (nullopt: off, or no home folder to put it in).
-    static std::optional<std::filesystem::path> folderFromEnvironment();
     explicit TextureDiskCache(std::optional<std::filesystem::path> folder) : folder_(std::move(folder)) {}
 
     // The key of `file`'s content encoded as `encoding` (a name that changes with the encoder);

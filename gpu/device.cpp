@@ -17,8 +17,10 @@ VkImageAspectFlags aspectsOf(VkFormat f) {
     return VK_IMAGE_ASPECT_DEPTH_BIT | (hasStencil(f) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
 }
 
-Device::Device(std::unique_ptr<Context> context) : context_(std::move(context)) {
+Device::Device(std::unique_ptr<Context> context, std::optional<std::filesystem::path> pipelineCacheFolder)
+    : context_(std::move(context)) {
     memory_ = std::make_unique<MemoryAllocator>(context_->device(), context_->memoryProperties(), &context_->faults());
+    pipelineCache_ = std::make_unique<PipelineDiskCache>(*context_, std::move(pipelineCacheFolder));
     if (context_->validationEnabled())
         setObjectName_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
             vkGetDeviceProcAddr(context_->device(), "vkSetDebugUtilsObjectNameEXT"));
@@ -53,6 +55,7 @@ Device::~Device() {
     vkDestroyDescriptorPool(vk(), descriptorPool_, nullptr);
     vkDestroySampler(vk(), linearClamp_, nullptr);
     vkDestroySampler(vk(), nearestClamp_, nullptr);
+    pipelineCache_.reset();
     memory_.reset();
 }
 

@@ -5,7 +5,9 @@
 
 #include "gpu/context.h"
 #include "gpu/memory.h"
+#include "gpu/pipeline_disk_cache.h"
 
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
@@ -64,7 +66,10 @@ VkImageAspectFlags aspectsOf(VkFormat format);
 
 class Device {
 public:
-    explicit Device(std::unique_ptr<Context> context);
+    // `pipelineCacheFolder`: where compiled pipelines are kept between processes
+    // (gpu/pipeline_disk_cache.h); nullopt keeps them in memory only.
+    explicit Device(std::unique_ptr<Context> context,
+                    std::optional<std::filesystem::path> pipelineCacheFolder = std::nullopt);
     ~Device();
     Device(const Device&) = delete;
     Device& operator=(const Device&) = delete;
@@ -72,6 +77,8 @@ public:
     Context& context() { return *context_; }
     VkDevice vk() const { return context_->device(); }
     MemoryAllocator& memory() { return *memory_; }
+    // Every pipeline is created through it.
+    VkPipelineCache pipelineCache() const { return pipelineCache_->vk(); }
     // A Buffer::id / Image::id for a resource made outside this class (gpu/external_memory.h).
     uint64_t newResourceId() { return nextResourceId_++; }
 
@@ -117,6 +124,7 @@ private:
 
     std::unique_ptr<Context> context_;
     std::unique_ptr<MemoryAllocator> memory_;
+    std::unique_ptr<PipelineDiskCache> pipelineCache_;
     std::vector<std::function<void()>> retired_;
     uint64_t nextResourceId_ = 1;
     struct PendingUpload {

@@ -58,7 +58,7 @@ Pipeline::Pipeline(Device& device, const ComputePipelineDesc& desc) : device_(de
     ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT,
                 module, "main", nullptr};
     ci.layout = layout_;
-    VkResult r = vkCreateComputePipelines(device_.vk(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
+    VkResult r = vkCreateComputePipelines(device_.vk(), device_.pipelineCache(), 1, &ci, nullptr, &pipeline_);
     vkDestroyShaderModule(device_.vk(), module, nullptr);
     vkCheck(r, "vkCreateComputePipelines");
 }
@@ -143,7 +143,7 @@ Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(d
     ci.pColorBlendState = &cb;
     ci.pDynamicState = &dyn;
     ci.layout = layout_;
-    VkResult r = vkCreateGraphicsPipelines(device_.vk(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
+    VkResult r = vkCreateGraphicsPipelines(device_.vk(), device_.pipelineCache(), 1, &ci, nullptr, &pipeline_);
     vkDestroyShaderModule(device_.vk(), vs, nullptr);
     if (fs) vkDestroyShaderModule(device_.vk(), fs, nullptr);
     vkCheck(r, "vkCreateGraphicsPipelines");

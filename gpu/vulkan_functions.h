@@ -88,6 +88,9 @@
     X(vkUpdateDescriptorSets)          \
     X(vkCreatePipelineLayout)          \
     X(vkDestroyPipelineLayout)         \
+    X(vkCreatePipelineCache)           \
+    X(vkDestroyPipelineCache)          \
+    X(vkGetPipelineCacheData)          \
     X(vkCreateComputePipelines)        \
     X(vkCreateGraphicsPipelines)       \
     X(vkDestroyPipeline)               \

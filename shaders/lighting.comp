@@ -4,7 +4,11 @@
 // Tiled light culling (Andersson 2011, "DirectX 11 rendering in Battlefield 3"): each 16x16 tile
 // bounds its pixels' depths, keeps the local lights whose influence sphere touches that box, then
 // every pixel shades with its tile's list, each light's share through its shadow maps (per pixel,
-// shadow_sampling.glsl). Accumulates into B10G11R11_UFLOAT, pre-exposed by the camera's exposure
+// shadow_sampling.glsl). The tile's depth range is cut into 32 slices (2.5D culling, Harada 2012,
+// "A 2.5D culling for Forward+"): a light is kept only if its sphere's depth range meets a slice
+// some pixel of the tile lies in, and a pixel skips the kept lights whose range misses its own
+// slice, so a tile spanning a wall and the floor far behind it no longer lights both with the
+// lights of either (the cost follows the lights near each surface, as clustered shading's does). Accumulates into B10G11R11_UFLOAT, pre-exposed by the camera's exposure
 // (seed 004 "HDR": keep the accumulation in a range the small float format holds).
 // Built twice (cmake/ObscuraShaders.cmake variants): with PER_SAMPLE_LIGHTING (render setting
 // msaa > 1) pixels the custom resolve tagged in the stencil's edge bit are lit once per sample of
@@ -68,6 +72,13 @@ shared uint tileLightCount;
 shared uint tileLights[MAX_TILE_LIGHTS];
 shared vec3 tileBoxMin;
 shared vec3 tileBoxMax;
+// The tile's depth slices: the view distances its surfaces span, the slices they occupy, and the
+// slices each listed light's influence sphere reaches.
+shared float tileNearDistance;
+shared float tileSliceScale;
+shared uint tileSliceMask;
+shared uint tileLightSlices[MAX_TILE_LIGHTS];
+const uint DEPTH_SLICES = 32u;
 
 vec3 unproject(mat4 inverseMatrix, vec2 ndc, float depth) {
     vec4 p = inverseMatrix * vec4(ndc, depth, 1.0);
@@ -81,6 +92,24 @@ bool touchesTile(LightData light) {
     vec3 nearest = clamp(centre, tileBoxMin, tileBoxMax);
     vec3 d = centre - nearest;
     return dot(d, d) <= light.factors.w * light.factors.w;
+}
+
+// The slice of the tile's depth range holding view distance `distance`; monotonic, so a light
+// whose depth range holds a point's distance has the point's slice within its own slices.
+uint depthSlice(float distance) {
+    return uint(clamp((distance - tileNearDistance) * tileSliceScale, 0.0, float(DEPTH_SLICES - 1u)));
+}
+
+uint depthSliceBit(float distance) { return 1u << depthSlice(distance); }
+
+// The slices a light's influence sphere reaches (all of them for distant lights and domes).
+uint lightSlices(LightData light) {
+    if (!isLocalLight(light)) return ~0u;
+    float distance = -(camera.view * vec4(light.positionType.xyz, 1.0)).z;
+    uint first = depthSlice(distance - light.factors.w);
+    uint last = depthSlice(distance + light.factors.w);
+    uint upToLast = last + 1u >= DEPTH_SLICES ? ~0u : (1u << (last + 1u)) - 1u;
+    return upToLast & ~((1u << first) - 1u);
 }
 
 // Exposed radiance of the G-buffer surface seen through window position `windowPosition` at
@@ -104,7 +133,9 @@ vec3 shadeSurface(uint instanceTarget, float depth, vec4 normalRoughness, vec4 a
 
     vec3 radiance = mat.emissiveMetallic.rgb;
     uint count = min(tileLightCount, MAX_TILE_LIGHTS);
+    uint slice = depthSliceBit(viewDistance);
     for (uint i = 0u; i < count; ++i) {
+        if ((tileLightSlices[i] & slice) == 0u) continue;
         LightData light = lights[tileLights[i]];
         // A clipped light reaches only surfaces inside its volume (seed 004 "clip volumes").
         if (light.shadow.w != 0u && (insideClipVolumes & light.shadow.w) == 0u) continue;
@@ -235,6 +266,7 @@ void main() {
         tileMinDepthBits = floatBitsToUint(1.0);
         tileMaxDepthBits = 0u;
         tileLightCount = 0u;
+        tileSliceMask = 0u;
 #ifdef PER_SAMPLE_LIGHTING
         tileTaggedPixels = 0u;
 #endif
@@ -277,16 +309,37 @@ void main() {
         }
         tileBoxMin = lo;
         tileBoxMax = hi;
+        float nearDistance = linearDepthFromDevice(camera.projection, depths[0]);
+        float farDistance = linearDepthFromDevice(camera.projection, depths[1]);
+        tileNearDistance = min(nearDistance, farDistance);
+        tileSliceScale = float(DEPTH_SLICES) / max(abs(farDistance - nearDistance), 1e-6);
     }
 #ifdef PER_SAMPLE_LIGHTING
     if (gl_LocalInvocationIndex == 0u && tileTaggedPixels > 0u) atomicAdd(taggedPixelCount, tileTaggedPixels);
 #endif
     barrier();
+    if (instanceId != 0u) atomicOr(tileSliceMask, depthSliceBit(linearDepthFromDevice(camera.projection, depth)));
+#ifdef PER_SAMPLE_LIGHTING
+    if (perSample) {
+        for (int k = 0; k < textureSamples(instanceSamples); ++k) {
+            ivec2 source = sampleSource(pixel, k, textureSamples(instanceSamples));
+            if (instanceIdFromTarget(texelFetch(instanceSamples, source, k).r) == 0u) continue;
+            float sampleDistance = linearDepthFromDevice(camera.projection, texelFetch(depthSamples, source, k).r);
+            atomicOr(tileSliceMask, depthSliceBit(sampleDistance));
+        }
+    }
+#endif
+    barrier();
     if (tileHasSurface) {
         for (uint i = gl_LocalInvocationIndex; i < lightCount; i += TILE_SIZE * TILE_SIZE) {
             if (!touchesTile(lights[i])) continue;
+            uint slices = lightSlices(lights[i]);
+            if ((slices & tileSliceMask) == 0u) continue;
             uint slot = atomicAdd(tileLightCount, 1u);
-            if (slot < MAX_TILE_LIGHTS) tileLights[slot] = i;
+            if (slot < MAX_TILE_LIGHTS) {
+                tileLights[slot] = i;
+                tileLightSlices[slot] = slices;
+            }
         }
     }
     barrier();

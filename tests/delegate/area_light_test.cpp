@@ -1,11 +1,9 @@
 // UsdLux area and shaped lights on a Lambert plane against closed-form irradiance: a rectangle
 // and a disk parallel to the plane (configuration factors of a differential area to a parallel
 // rectangle and disk, e.g. Howell's catalogue, cases B-3 and B-4), the ShapingAPI cone and its
-// softness, one-sided emission, normalize; and tiled light culling against the sum of every
-// light's analytic contribution.
+// softness, one-sided emission, normalize.
 #include "tests/delegate/render_fixture.h"
 
-#include <random>
 
 namespace obscura::test {
 namespace {
@@ -178,56 +176,6 @@ TEST(AreaLight, FocusNarrowsTheSpread) {
         double l = bulb.radiance * std::pow(bulb.cosTheta, focus);
         expectRadiance(color, x, y, {l, l, l});
     }
-}
-
-TEST(TiledLightCulling, ManySmallLightsSumLikeEveryLightAtEveryPixel) {
-    // 300 dim lights close to the plane: each one's influence range (where its irradiance bound
-    // L * pi r^2 / d^2 falls to 2^-12) spans a few tiles, so tiles keep different lists. Every
-    // pixel must equal the analytic sum over all lights, less at most the lights culling was
-    // allowed to drop: those whose bound at that pixel is below the threshold.
-    LitPlaneScene s;
-    struct Bulb { double x, y, h, r, radiance; };
-    std::vector<Bulb> bulbs;
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<double> across(-1.2, 1.2), height(0.03, 0.15), level(0.02, 0.06);
-    for (int i = 0; i < 300; ++i) {
-        Bulb b{across(rng), across(rng), height(rng), 0.02, level(rng)};
-        bulbs.push_back(b);
-        s.host.addPrim("sphereLight", "/Bulbs/b" + std::to_string(i),
-                       {{"inputs:intensity", HostValue::floatValue(float(b.radiance))},
-                        {"inputs:radius", HostValue::floatValue(float(b.r))},
-                        {"inputs:specular", HostValue::floatValue(0.0f)}},
-                       translation(b.x, b.y, b.h));
-    }
-    auto color = s.renderColor();
-    const double threshold = 1.0 / 4096.0;
-    int checked = 0, droppable = 0, pairs = 0;
-    double largest = 0;
-    for (int y = 0; y < kHeight; y += 3)
-        for (int x = 0; x < kWidth; x += 3) {
-            auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
-            double e = 0, mayDrop = 0;
-            for (const Bulb& b : bulbs) {
-                double dx = p[0] - b.x, dy = p[1] - b.y, d2 = dx * dx + dy * dy + b.h * b.h;
-                double contribution = kPi * b.radiance * b.r * b.r / d2 * (b.h / std::sqrt(d2));
-                e += contribution;
-                ++pairs;
-                if (kPi * b.radiance * b.r * b.r / d2 < threshold) mayDrop += contribution, ++droppable;
-            }
-            double l = kLitPlaneAlbedo / kPi * e;
-            largest = std::max(largest, l);
-            float got = color[(size_t(y) * kWidth + x) * 4];
-            ASSERT_LE(got, l + 0.01 * l + smallFloatStep(float(l), 6)) << "pixel " << x << ", " << y;
-            ASSERT_GE(got, l - 0.01 * l - smallFloatStep(float(l), 6) - kLitPlaneAlbedo / kPi * mayDrop)
-                << "pixel " << x << ", " << y;
-            ++checked;
-        }
-    EXPECT_GT(checked, 400);
-    // The scene exercises culling: most light-pixel pairs are out of range, yet lights matter.
-    EXPECT_GT(droppable, pairs / 2);
-    EXPECT_GT(largest, 1e-3);
-    std::printf("tiled culling: %d pixels checked, %.0f%% of light-pixel pairs out of range, peak radiance %.4f\n",
-                checked, 100.0 * droppable / pairs, largest);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // that minimises the angle of the reconstructed normal against the common per-channel one, on the
 // corpus's real normal maps.
 #include "delegate/bc5_encoder.h"
+#include "delegate/cache_folder.h"
 #include "delegate/normal_map_image.h"
 #include "delegate/texture_disk_cache.h"
 
@@ -91,12 +92,12 @@ TEST(TextureDiskCache, KeysFollowTheContentAndOffWritesNothing) {
     EXPECT_FALSE(cache.read(TextureDiskCache::key(c, "bc5")));
 
     setenv("OBSCURA_TEXTURE_CACHE", "off", 1);
-    EXPECT_FALSE(TextureDiskCache::folderFromEnvironment());
+    EXPECT_FALSE(cacheFolderFromEnvironment("OBSCURA_TEXTURE_CACHE"));
     setenv("OBSCURA_TEXTURE_CACHE", dir.c_str(), 1);
-    EXPECT_EQ(TextureDiskCache::folderFromEnvironment(), dir);
+    EXPECT_EQ(cacheFolderFromEnvironment("OBSCURA_TEXTURE_CACHE"), dir);
     unsetenv("OBSCURA_TEXTURE_CACHE");
     setenv("XDG_CACHE_HOME", dir.c_str(), 1);
-    EXPECT_EQ(TextureDiskCache::folderFromEnvironment(), dir / "obscura");
+    EXPECT_EQ(cacheFolderFromEnvironment("OBSCURA_TEXTURE_CACHE"), dir / "obscura");
     std::filesystem::remove_all(dir);
 }
 

@@ -1,0 +1,36 @@
+#include "gpu/replace_file.h"
+
+#include <unistd.h>
+
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace obscura::gpu {
+
+bool replaceFile(const std::filesystem::path& file, const void* data, size_t size) {
+    std::error_code error;
+    std::filesystem::create_directories(file.parent_path(), error);
+    // The process id keeps concurrent writers of the same file apart.
+    const std::filesystem::path temporary = file.string() + ".tmp" + std::to_string(getpid());
+    {
+        std::ofstream out(temporary, std::ios::binary);
+        out.write(static_cast<const char*>(data), std::streamsize(size));
+        if (!out) {
+            std::filesystem::remove(temporary, error);
+            return false;
+        }
+    }
+    std::filesystem::rename(temporary, file, error);
+    if (!error) return true;
+    std::filesystem::remove(temporary, error);
+    return false;
+}
+
+std::optional<std::vector<char>> readWholeFile(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return std::nullopt;
+    return std::vector<char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace obscura::gpu
