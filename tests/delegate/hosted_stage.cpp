@@ -8,6 +8,17 @@
 
 namespace obscura::test {
 
+std::string usdaCamera(const std::string& attributes) {
+    return "def Camera \"Camera\"\n{\n"
+           "    float focalLength = 50\n"
+           "    float horizontalAperture = 20.955\n"
+           "    float verticalAperture = 20.955\n"
+           "    float2 clippingRange = (0.1, 100)\n" +
+           attributes +
+           "    double3 xformOp:translate = (0, 0, 5)\n"
+           "    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}\n";
+}
+
 HostedStage::HostedStage(std::variant<std::unique_ptr<usda::Stage>, usda::Error> opened) {
     if (auto* error = std::get_if<usda::Error>(&opened)) throw std::runtime_error(error->str());
     stage = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));

@@ -17,6 +17,12 @@
 
 namespace obscura::test {
 
+// USDA text of the delegate tests' camera (render_fixture.h's lit-plane camera): at (0, 0, 5)
+// looking down -Z, a 50 mm lens behind a square 20.955 mm aperture, so its view spans
+// [-1.04775, 1.04775]^2 at z = 0; clipping range (0.1, 100). `attributes` (whole lines, e.g. a
+// shutter) are added to its body.
+std::string usdaCamera(const std::string& attributes = "");
+
 struct HostedStage {
     std::unique_ptr<usda::Stage> stage;
     std::optional<harness::LoadedPlugin> plugin;

@@ -300,16 +300,7 @@ TEST(MaterialXSurface, TheChessSetsPiecesAreTextured) {
 // through a multiply node whose second input is sampled; each frame's albedo follows the samples
 // (base 1: albedo = base_color; sRGB codes 200 then 40, linear 0.577581 and 0.021219).
 TEST(MaterialXSurface, AnAnimatedNetworkRendersEachFramesColour) {
-    const std::string camera = R"(#usda 1.0
-def Camera "Camera"
-{
-    float focalLength = 50
-    float horizontalAperture = 20.955
-    float verticalAperture = 20.955
-    double3 xformOp:translate = (0, 0, 5)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-}
-def Mesh "Plane"
+    const std::string camera = "#usda 1.0\n" + usdaCamera() + R"(def Mesh "Plane"
 {
     point3f[] points = [(-2, -2, 0), (2, -2, 0), (2, 2, 0), (-2, 2, 0)]
     int[] faceVertexCounts = [4]

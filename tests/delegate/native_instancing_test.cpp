@@ -17,17 +17,7 @@ namespace {
 
 // A camera at z = 5 whose view fills [-1.04775, 1.04775]^2 at z = 0, a sun, and an asymmetric
 // arrow (so that turns and mirrors show) as the referenced asset.
-const char* kStage = R"(#usda 1.0
-def Camera "Camera"
-{
-    float focalLength = 50
-    float horizontalAperture = 20.955
-    float verticalAperture = 20.955
-    float2 clippingRange = (0.1, 100)
-    double3 xformOp:translate = (0, 0, 5)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-}
-def DistantLight "Sun"
+const std::string kStage = "#usda 1.0\n" + usdaCamera() + R"(def DistantLight "Sun"
 {
     float inputs:intensity = 2
     float3 xformOp:rotateXYZ = (-30, 20, 0)

@@ -12,16 +12,7 @@
 namespace obscura::test {
 namespace {
 
-const char* kStage = R"(#usda 1.0
-def Camera "Camera"
-{
-    float focalLength = 50
-    float horizontalAperture = 20.955
-    float verticalAperture = 20.955
-    double3 xformOp:translate = (0, 0, 5)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-}
-def Mesh "Quad"
+const std::string kStage = "#usda 1.0\n" + usdaCamera() + R"(def Mesh "Quad"
 {
     point3f[] points = [(0, 0, 0), (1.2, 0, 0), (1.2, 1.2, 0), (0, 1.2, 0)]
     int[] faceVertexCounts = [4]

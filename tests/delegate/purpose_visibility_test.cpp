@@ -13,18 +13,6 @@
 namespace obscura::test {
 namespace {
 
-const char* kCamera = R"(
-def Camera "Camera"
-{
-    float focalLength = 50
-    float horizontalAperture = 20.955
-    float verticalAperture = 20.955
-    float2 clippingRange = (0.1, 100)
-    double3 xformOp:translate = (0, 0, 5)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-}
-)";
-
 // A quad covering the quadrant whose centre is (x, y) * 0.52 (x, y = +-1) at depth z, with extra
 // attribute lines.
 std::string quad(const std::string& name, int x, int y, const std::string& extra = "", double z = 0.0) {
@@ -49,7 +37,7 @@ std::array<bool, 4> drawnQuadrants(HostedStage& scene, double time = 0.0) {
 }
 
 std::string purposeStage() {
-    return std::string("#usda 1.0\n") + kCamera +
+    return std::string("#usda 1.0\n") + usdaCamera() +
            quad("Default", -1, 1) +
            "def Xform \"RenderGroup\" { uniform token purpose = \"render\"\n" + quad("Child", 1, 1) + "}\n" +
            "def Xform \"ProxyGroup\" { uniform token purpose = \"proxy\"\n" + quad("Child", -1, -1) + "}\n" +
@@ -89,7 +77,7 @@ TEST(Purpose, AnUnknownPurposeInTheSettingIsRefused) {
 TEST(Purpose, BadPurposeDataIsReportedAndTheRestDraws) {
     // A purpose of the wrong type: the host warns where it is authored and the prim draws as default;
     // a token outside the schema's: the plugin skips that prim alone.
-    std::string text = std::string("#usda 1.0\n") + kCamera + quad("WrongType", -1, 1, "uniform float purpose = 1") +
+    std::string text = std::string("#usda 1.0\n") + usdaCamera() + quad("WrongType", -1, 1, "uniform float purpose = 1") +
                        quad("Unknown", 1, 1, "uniform token purpose = \"preview\"") + quad("Fine", -1, -1);
     HostedStage scene(usda::Stage::openFromString(text, "bad_purpose.usda"));
     scene.expectError("skipped prim /Unknown: purpose");
@@ -106,7 +94,7 @@ TEST(Purpose, BadPurposeDataIsReportedAndTheRestDraws) {
 
 TEST(Visibility, AnAnimatedAncestorResyncsItsChildrenEachFrame) {
     // The parent turns invisible at time 1 and visible again at 2; the children author nothing.
-    std::string text = std::string("#usda 1.0\n") + kCamera +
+    std::string text = std::string("#usda 1.0\n") + usdaCamera() +
                        "def Xform \"Blink\" { token visibility.timeSamples = { 0: \"inherited\", 1: \"invisible\", 2: "
                        "\"inherited\" }\n" +
                        quad("Child", -1, 1) + "def Xform \"Deeper\" {\n" + quad("Grandchild", 1, 1) + "}\n}\n" +

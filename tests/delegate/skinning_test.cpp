@@ -26,19 +26,10 @@ std::pair<int, int> pixelOf(double x, double y) {
 // by 90 degrees per time code from time 0. The shutter spans [-halfShutter, halfShutter] around
 // the frame.
 std::string armStage(const std::string& jointIndices, double halfShutter = 0.0) {
-    return R"(#usda 1.0
-def Camera "Camera"
-{
-    float focalLength = 50
-    float horizontalAperture = 20.955
-    float verticalAperture = 20.955
-    float2 clippingRange = (0.1, 100)
-    double shutter:open = )" + std::to_string(-halfShutter) + R"(
-    double shutter:close = )" + std::to_string(halfShutter) + R"(
-    double3 xformOp:translate = (0, 0, 5)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-}
-def SkelRoot "Rig"
+    return "#usda 1.0\n" +
+           usdaCamera("    double shutter:open = " + std::to_string(-halfShutter) + "\n    double shutter:close = " +
+                      std::to_string(halfShutter) + "\n") +
+           R"(def SkelRoot "Rig"
 {
     def Skeleton "Skel"
     {
@@ -147,17 +138,7 @@ TEST(Skinning, BadJointIndicesAreReportedAndTheArmIsDrawnUnskinned) {
 // +Z by 90 degrees at time 1. Each bone is a square pyramid from its parent joint, its base a fifth
 // of its length wide, its sides facing the camera, so a point 0.2 along a bone of length 1 lies
 // within 0.08 of its axis.
-const char* kSkeletonOnly = R"(#usda 1.0
-def Camera "Camera"
-{
-    float focalLength = 50
-    float horizontalAperture = 20.955
-    float verticalAperture = 20.955
-    float2 clippingRange = (0.1, 100)
-    double3 xformOp:translate = (0, 0, 5)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-}
-def SkelRoot "Rig"
+const std::string kSkeletonOnly = "#usda 1.0\n" + usdaCamera() + R"(def SkelRoot "Rig"
 {
     def Skeleton "Skel"
     {

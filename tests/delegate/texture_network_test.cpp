@@ -252,16 +252,7 @@ def Material "MissingInterface"
 TEST(NodeGraphUsda, AnAnimatedInterfaceInputAnimatesTheMaterial) {
     // The colour is sampled on the Material's interface only; the surface shader's input connects
     // to it through the NodeGraph's. Each frame's albedo follows the samples (sRGB codes 200 then 40).
-    const std::string text = R"(#usda 1.0
-def Camera "Camera"
-{
-    float focalLength = 50
-    float horizontalAperture = 20.955
-    float verticalAperture = 20.955
-    double3 xformOp:translate = (0, 0, 5)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-}
-def Mesh "Plane"
+    const std::string text = "#usda 1.0\n" + usdaCamera() + R"(def Mesh "Plane"
 {
     point3f[] points = [(-2, -2, 0), (2, -2, 0), (2, 2, 0), (-2, 2, 0)]
     int[] faceVertexCounts = [4]

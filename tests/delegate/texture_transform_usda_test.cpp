@@ -24,16 +24,7 @@ std::string planeWith(const std::string& shaders, const std::string& stSource, c
     metersPerUnit = 1
     upAxis = "Y"
 )
-def Camera "Camera"
-{
-    float focalLength = 50
-    float horizontalAperture = 20.955
-    float verticalAperture = 20.955
-    float2 clippingRange = (0.1, 100)
-    double3 xformOp:translate = (0, 0, 5)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-}
-def Mesh "Plane"
+)" + usdaCamera() + R"(def Mesh "Plane"
 {
     point3f[] points = [(-1.04775, -1.04775, 0), (1.04775, -1.04775, 0), (1.04775, 1.04775, 0), (-1.04775, 1.04775, 0)]
     int[] faceVertexCounts = [4]
