@@ -52,7 +52,9 @@ BENCHMARK(BM_ComposeTenThousandPrimsText)->Unit(benchmark::kMillisecond);
 
 // Open (compose and populate) and the first render's sync, as `obscura render` starts; the
 // delegate's sync time as the counter sync_ms, and the prims the host inserted as inserted_prims.
-void openAndSync(benchmark::State& state, const std::filesystem::path& file) {
+// `settings`: render settings as `--set` takes them.
+void openAndSync(benchmark::State& state, const std::filesystem::path& file,
+                 const std::vector<std::string>& settings = {}) {
     double syncMs = 0;
     size_t inserted = 0;
     for (auto _ : state) {
@@ -62,6 +64,10 @@ void openAndSync(benchmark::State& state, const std::filesystem::path& file) {
             break;
         }
         harness::Session& session = *std::get<std::unique_ptr<harness::Session>>(opened);
+        if (auto problem = session.applySettings(settings)) {
+            state.SkipWithError(problem->message.c_str());
+            break;
+        }
         std::string buffer = session.host().addRenderBuffer(session.api(), session.delegate(), "color", 16, 16);
         ObscuraAovBinding binding{"color", buffer.c_str()};
         ObscuraRenderPassDesc desc{OBSCURA_STRUCTURE_TYPE_RENDER_PASS_DESC, nullptr, sizeof(desc), "/Camera",
@@ -92,13 +98,16 @@ const char* kChessPieces[] = {"Pawn", "Rook", "Knight", "Bishop", "Queen", "King
 // `count` references to the chess pieces' crate geometry (</Piece> of <Piece>_geom.usd, written by
 // OpenUSD), round robin, each under its own translate on a grid 100 wide, `instanceable` or not: a
 // text root layer over crate content. Written to a temporary folder, as nothing here writes crate
-// files.
-std::filesystem::path crateReferences(int count, bool instanceable) {
+// files. The camera frames the whole grid, or with `closeUp` a few dozen pieces of its first rows
+// from 1.2 units away (the rest outside the view, culled: the delegate still syncs every piece;
+// the benchmark turns shadows off then).
+std::filesystem::path crateReferences(int count, bool instanceable, bool closeUp = false) {
     const auto folder = std::filesystem::temp_directory_path() / "obscura_crate_references_benchmark";
     std::filesystem::create_directories(folder);
     std::ofstream text(folder / "root.usda");
     text << "#usda 1.0\n(\n    metersPerUnit = 1\n    upAxis = \"Y\"\n)\n"
-         << "def Camera \"Camera\"\n{\n    double3 xformOp:translate = (5, 1, 15)\n"
+         << "def Camera \"Camera\"\n{\n    double3 xformOp:translate = " << (closeUp ? "(0.05, 0.05, 1.2)" : "(5, 1, 15)")
+         << "\n"
          << "    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}\n"
          << "def DistantLight \"Sun\"\n{\n}\ndef Xform \"World\"\n{\n";
     for (int i = 0; i < count; ++i) {
@@ -154,23 +163,27 @@ void BM_OpenAndSyncCrateReferences(benchmark::State& state) {
         state.SkipWithError("no corpus");
         return;
     }
-    const auto folder = crateReferences(int(state.range(0)), state.range(1) != 0);
-    openAndSync(state, folder / "root.usda");
+    const bool closeUp = state.range(2) != 0;
+    const auto folder = crateReferences(int(state.range(0)), state.range(1) != 0, closeUp);
+    // Close up, the sun's cascades would still reach the pieces between the view and the sun (all
+    // rows behind the camera): shadows off, so the first frame draws what the view holds.
+    openAndSync(state, folder / "root.usda", closeUp ? std::vector<std::string>{"shadows=0"} : std::vector<std::string>{});
     state.counters["peak_rss_mib"] = peakResidentMiB();
     std::filesystem::remove_all(folder);
 }
 BENCHMARK(BM_OpenAndSyncCrateReferences)
-    ->ArgNames({"references", "instanceable"})
-    ->Args({25, 0})
-    ->Args({25, 1})
+    ->ArgNames({"references", "instanceable", "close_up"})
+    ->Args({25, 0, 0})
+    ->Args({25, 1, 0})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
 // 10,000 references are synced instanced only: without instancing the plugin would triangulate and
-// upload every piece (bench/RESULTS.md: about a second and 200 MB each on lavapipe). Once: on
-// lavapipe the first frame's drawing of 10,000 pieces takes more than half an hour.
+// upload every piece (bench/RESULTS.md: about a second and 200 MB each on lavapipe). Once, seen
+// close up: on lavapipe the first frame's drawing of all 10,000 pieces takes more than half an
+// hour (`close_up:0` on a GPU).
 BENCHMARK(BM_OpenAndSyncCrateReferences)
-    ->ArgNames({"references", "instanceable"})
-    ->Args({kPrims, 1})
+    ->ArgNames({"references", "instanceable", "close_up"})
+    ->Args({kPrims, 1, 1})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
