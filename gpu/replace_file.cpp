@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <atomic>
+#include <cstdint>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -11,8 +13,11 @@ namespace obscura::gpu {
 bool replaceFile(const std::filesystem::path& file, const void* data, size_t size) {
     std::error_code error;
     std::filesystem::create_directories(file.parent_path(), error);
-    // The process id keeps concurrent writers of the same file apart.
-    const std::filesystem::path temporary = file.string() + ".tmp" + std::to_string(getpid());
+    // The process id and a count within the process keep concurrent writers of the same file apart
+    // (two delegates of one process may save the same device's pipelines at once).
+    static std::atomic<uint64_t> writes{0};
+    const std::filesystem::path temporary =
+        file.string() + ".tmp" + std::to_string(getpid()) + "-" + std::to_string(writes.fetch_add(1));
     {
         std::ofstream out(temporary, std::ios::binary);
         out.write(static_cast<const char*>(data), std::streamsize(size));
