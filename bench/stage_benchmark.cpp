@@ -5,7 +5,9 @@
 // under their own translates, instanceable or not, with the peak resident memory; the Open Chess
 // Set (crate geometry, MaterialX looks) composed; and UsdSkel's linear blend skinning of 100,000
 // points, 4 influences each among 64 joints, at one time (what the host does for each skinned prim
-// at each time the delegate samples).
+// at each time the delegate samples); and a glTF, an FBX and an OBJ file imported through Assimp in
+// this process and in the harness's child process (what the isolation costs per import).
+#include "harness/import/assimp_to_usda.h"
 #include "harness/session.h"
 #include "harness/usda/skinning.h"
 #include "harness/usda/stage.h"
@@ -264,6 +266,24 @@ void BM_SkinPoints(benchmark::State& state) {
     state.SetItemsProcessed(state.iterations() * points);
 }
 BENCHMARK(BM_SkinPoints)->Arg(100000)->Unit(benchmark::kMillisecond);
+
+// Argument 0: the import in this process; 1: in the child process, as the harness imports.
+template <const char* kFile>
+void BM_Import(benchmark::State& state) {
+    const std::filesystem::path file = std::filesystem::path(OBSCURA_IMPORT_DATA_DIR) / kFile;
+    for (auto _ : state) {
+        auto imported = state.range(0) ? harness::importWithAssimp(file) : harness::importInThisProcess(file);
+        if (auto* error = std::get_if<harness::ImportError>(&imported)) {
+            state.SkipWithError(error->message.c_str());
+            return;
+        }
+        benchmark::DoNotOptimize(imported);
+    }
+}
+constexpr char kGltf[] = "scene.gltf", kFbx[] = "scene.fbx", kObj[] = "cube.obj";
+BENCHMARK(BM_Import<kGltf>)->ArgName("child")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Import<kFbx>)->ArgName("child")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Import<kObj>)->ArgName("child")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace obscura::bench

@@ -1,7 +1,9 @@
 #include "harness/import/assimp_to_usda.h"
 
+#include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
+#include <assimp/importerdesc.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -9,6 +11,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <sstream>
 
 #include "harness/import/convert.h"
 #include "harness/import/gltf_data_uris.h"
@@ -25,14 +29,36 @@ using importer::SourceFormat;
 // Validation rejects corrupt data (out-of-range indices, missing arrays) before conversion.
 constexpr unsigned kPostProcess = aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure;
 
-std::optional<SourceFormat> formatOf(const std::filesystem::path& file) {
+std::string lowerCaseExtension(const std::filesystem::path& file) {
     std::string extension = file.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return extension;
+}
+
+std::optional<SourceFormat> formatOf(const std::filesystem::path& file) {
+    const std::string extension = lowerCaseExtension(file);
     if (extension == ".gltf" || extension == ".glb") return SourceFormat::Gltf;
     if (extension == ".fbx") return SourceFormat::Fbx;
     if (extension == ".obj") return SourceFormat::Obj;
     return std::nullopt;
+}
+
+// Assimp offers a file to the readers of its extension and then to every reader that recognises
+// its first bytes: a .gltf starting with a Quick3D header went to the Quick3D reader, which
+// crashed on it (tests/import/data/quick3d_header.gltf). Only the readers of the file's own
+// extension stay registered; Assimp deletes only the readers it still holds, so the others are
+// deleted here.
+void keepOnlyReadersOf(Assimp::Importer& reader, const std::string& extension) {
+    for (size_t i = reader.GetImporterCount(); i-- > 0;) {
+        const aiImporterDesc* info = reader.GetImporterInfo(i);
+        std::istringstream extensions(info && info->mFileExtensions ? info->mFileExtensions : "");
+        bool reads = false;
+        for (std::string listed; extensions >> listed;) reads = reads || "." + listed == extension;
+        if (reads) continue;
+        std::unique_ptr<Assimp::BaseImporter> other(reader.GetImporter(i));
+        if (reader.UnregisterLoader(other.get()) != AI_SUCCESS) other.release();
+    }
 }
 
 std::optional<double> metadataNumber(const aiScene& scene, const char* key) {
@@ -147,15 +173,19 @@ std::string convert(const importer::Source& source, importer::Warnings& warnings
 
 bool isAssimpFormat(const std::filesystem::path& file) { return formatOf(file).has_value(); }
 
-std::variant<ImportResult, ImportError> importWithAssimp(const std::filesystem::path& file) {
+std::variant<ImportResult, ImportError> importInThisProcess(const std::filesystem::path& file,
+                                                            const std::function<void(ImportStep)>& onStep) {
     const std::optional<SourceFormat> format = formatOf(file);
     if (!format) return ImportError{file.string() + ": not a format imported through Assimp (.gltf, .glb, .fbx, .obj)"};
     if (std::string problem = checkGltfDataUris(file); !problem.empty()) return ImportError{problem};
     Assimp::Importer reader;
+    keepOnlyReadersOf(reader, lowerCaseExtension(file));
     // FBX pivots and pre-rotations are folded into each node's transform rather than added as
     // "$AssimpFbx$" helper nodes, so animation channels target the nodes the file names.
     reader.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
+    if (onStep) onStep(ImportStep::ReaderStarts);
     const aiScene* scene = reader.ReadFile(file.string(), kPostProcess);
+    if (onStep) onStep(ImportStep::ReaderReturned);
     if (!scene || !scene->mRootNode)
         return ImportError{"cannot import " + file.string() + ": " + reader.GetErrorString()};
 

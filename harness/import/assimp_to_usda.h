@@ -9,6 +9,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -22,11 +23,25 @@ struct ImportResult {
 
 struct ImportError {
     std::string message;  // names the file and Assimp's reason
+    // The import's process ended abnormally: while Assimp read the file (a reader's bug, met on a
+    // malformed file), or while its scene was converted (a bug of ours).
+    enum class Crash { None, InReader, InConversion } crash = Crash::None;
 };
 
 // .gltf, .glb, .fbx and .obj, in any letter case.
 bool isAssimpFormat(const std::filesystem::path& file);
 
+// Reads and converts in a child process (harness/import/forked_call.h): Assimp 5 still crashes on
+// some malformed files, and a crash there must be an error for the host, not its end.
 std::variant<ImportResult, ImportError> importWithAssimp(const std::filesystem::path& file);
+
+// The import's progress, for a caller watching it from another process: a crash between the two
+// steps is Assimp's, anywhere else it is ours.
+enum class ImportStep { ReaderStarts, ReaderReturned };
+
+// The same import in this process, where a reader crash is this process's. onStep, if given, is
+// told of each step as it is reached.
+std::variant<ImportResult, ImportError> importInThisProcess(const std::filesystem::path& file,
+                                                            const std::function<void(ImportStep)>& onStep = {});
 
 }  // namespace obscura::harness

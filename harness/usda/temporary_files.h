@@ -1,9 +1,14 @@
 // Files the harness writes so that readers of plain files (the delegate's texture loader) can open
 // what lives only inside another file: textures in USDZ packages, images embedded in glTF. Each is
-// written once per process under its key, into a temporary folder removed at exit.
+// written once per process under its key, into a temporary folder removed when the process exits.
+//
+// A child process of the harness (an isolated import, harness/import/forked_call.h) writes into
+// its parent's folder, under names of its own, and hands what it wrote to the parent, which adopts
+// the files: it reuses them and removes them with the rest.
 #pragma once
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -14,5 +19,11 @@ namespace obscura::usda {
 std::string temporaryFile(const std::string& key, const std::string& fileName,
                           const std::function<std::optional<std::string>(std::string* error)>& bytes,
                           std::string* error);
+
+// Every file written or adopted so far, by key.
+std::map<std::string, std::string> temporaryFilesByKey();
+
+// Takes on files a child process wrote: temporaryFile returns them for their keys from now on.
+void adoptTemporaryFiles(const std::map<std::string, std::string>& files);
 
 }  // namespace obscura::usda

@@ -563,6 +563,55 @@ TEST(AssimpImport, ShortBase64BufferIsAnError) {
         << std::get<ImportError>(result).message;
 }
 
+// A .gltf whose first bytes are a Quick3D header (found by fuzz_import): Assimp would offer it to
+// its Quick3D reader too, which crashes on it. Only the glTF readers see it, and they refuse it.
+// Imported in this process on purpose: a reader crash would end the test.
+TEST(AssimpImport, AFileIsReadOnlyByTheReadersOfItsExtension) {
+    const std::filesystem::path file = kData / "quick3d_header.gltf";
+    auto result = importInThisProcess(file);
+    ASSERT_TRUE(std::holds_alternative<ImportError>(result));
+    const ImportError& error = std::get<ImportError>(result);
+    EXPECT_EQ(error.crash, ImportError::Crash::None);
+    EXPECT_EQ(error.message.rfind("cannot import " + file.string() + ": ", 0), 0u) << error.message;
+    // Where the Quick3D reader does not crash, it refuses the file in its own words.
+    EXPECT_EQ(error.message.find("Quick3D"), std::string::npos) << error.message;
+}
+
+// The harness imports in a child process: the same result as in this process, and the embedded
+// images the child wrote are this process's to reuse.
+TEST(AssimpImport, TheImportInAChildProcessAnswersAsInThisOne) {
+    for (const char* name : {"scene.gltf", "scene.fbx", "cube.obj", "skinned.gltf", "nonfinite.gltf"}) {
+        auto child = importWithAssimp(kData / name);
+        auto here = importInThisProcess(kData / name);
+        ASSERT_TRUE(std::holds_alternative<ImportResult>(child)) << name << ": " << std::get<ImportError>(child).message;
+        ASSERT_TRUE(std::holds_alternative<ImportResult>(here)) << name;
+        EXPECT_EQ(std::get<ImportResult>(child).usda, std::get<ImportResult>(here).usda) << name;
+        EXPECT_EQ(std::get<ImportResult>(child).warnings, std::get<ImportResult>(here).warnings) << name;
+    }
+    for (const char* name : {"corrupt.gltf", "bad_base64.gltf", "quick3d_header.gltf", "no_such_scene.obj"}) {
+        auto child = importWithAssimp(kData / name);
+        auto here = importInThisProcess(kData / name);
+        ASSERT_TRUE(std::holds_alternative<ImportError>(child)) << name;
+        ASSERT_TRUE(std::holds_alternative<ImportError>(here)) << name;
+        EXPECT_EQ(std::get<ImportError>(child).message, std::get<ImportError>(here).message) << name;
+        EXPECT_EQ(std::get<ImportError>(child).crash, ImportError::Crash::None) << name;
+    }
+}
+
+// A relative path is relative to this process's working folder, also in the child, and messages
+// name the file as given.
+TEST(AssimpImport, ARelativePathMeansWhatItMeansInThisProcess) {
+    const std::filesystem::path before = std::filesystem::current_path();
+    std::filesystem::current_path(kData);
+    auto found = importWithAssimp("cube.obj");
+    auto missing = importWithAssimp("no_such_scene.obj");
+    std::filesystem::current_path(before);
+    EXPECT_TRUE(std::holds_alternative<ImportResult>(found));
+    ASSERT_TRUE(std::holds_alternative<ImportError>(missing));
+    EXPECT_EQ(std::get<ImportError>(missing).message.rfind("cannot import no_such_scene.obj: ", 0), 0u)
+        << std::get<ImportError>(missing).message;
+}
+
 TEST(AssimpImport, FormatsByExtension) {
     for (const char* name : {"a.gltf", "a.glb", "a.fbx", "a.obj", "A.GLTF", "dir/b.Glb", "C.FBX", "d.OBJ"})
         EXPECT_TRUE(isAssimpFormat(name)) << name;
