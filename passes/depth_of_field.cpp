@@ -89,10 +89,14 @@ gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, const FrameScene&
     };
     const SampledRead linear = SampledRead::Linear;
 
+    // Frames an integral is made of come in RGBA16F (docs/ARCHITECTURE.md "Accumulation
+    // precision"); their layers keep it, or the small float format's truncation would bias the mean.
+    const VkFormat hdrFormat = graph.imageDesc(hdrColor).format;
+    const VkFormat layerFormat = hdrFormat == kFieldFormat ? kFieldFormat : kFieldInputFormat;
     std::vector<gpu::ImageHandle> layers = addDofPass(
         graph, "dof_downsample",
-        {sampled(hdrColor), sampled(gbuffer.depth), storageWrite(half("dofNearLayer", kFieldInputFormat)),
-         storageWrite(half("dofFarLayer", kFieldInputFormat)), storageWrite(half("dofHalfCoc", kHalfCocFormat))},
+        {sampled(hdrColor), sampled(gbuffer.depth), storageWrite(half("dofNearLayer", layerFormat)),
+         storageWrite(half("dofFarLayer", layerFormat)), storageWrite(half("dofHalfCoc", kHalfCocFormat))},
         constants);
     const gpu::ImageHandle nearLayer = layers[0], farLayer = layers[1], halfCoc = layers[2];
 
@@ -113,8 +117,7 @@ gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, const FrameScene&
          storageWrite(half("dofNearField", kFieldFormat)), storageWrite(half("dofFarField", kFieldFormat))},
         constants);
 
-    gpu::ImageHandle output =
-        graph.createImage("dofColor", imageDesc2D(graph.imageDesc(hdrColor).format, scene.width, scene.height));
+    gpu::ImageHandle output = graph.createImage("dofColor", imageDesc2D(hdrFormat, scene.width, scene.height));
     return addDofPass(graph, "dof_composite",
                       {sampled(hdrColor), sampled(gbuffer.depth), sampled(fields[0], linear),
                        sampled(fields[1], linear), sampled(halfCoc, linear), sampled(neighbourhood),

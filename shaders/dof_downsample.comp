@@ -14,8 +14,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 0) uniform sampler2D lightAccumulation;
 layout(set = 0, binding = 1) uniform sampler2D depthTexture;
-layout(set = 0, binding = 2, r11f_g11f_b10f) uniform writeonly image2D nearLayer;
-layout(set = 0, binding = 3, r11f_g11f_b10f) uniform writeonly image2D farLayer;
+// R11G11B10F, or RGBA16F in the frames of an integral (passes/depth_of_field.cpp): written without a format.
+layout(set = 0, binding = 2) uniform writeonly image2D nearLayer;
+layout(set = 0, binding = 3) uniform writeonly image2D farLayer;
 // Near and far CoC (fractions of the largest), and each field's share of the texel's pixels.
 layout(set = 0, binding = 4, rgba8) uniform writeonly image2D halfCoc;
 
