@@ -202,36 +202,44 @@ float viewVisibility(uint view, bool perspective, vec3 position, vec3 normal, fl
     return softShadowFilter(view, perspective, r, lightSize, texelWorld, turn);
 }
 
+// The view a shadowed light's maps see `position` through, with how a texel of it measures there.
+struct ShadowLookup {
+    uint view;
+    bool perspective;
+    float texelWorld;  // a texel's world size at the receiver
+};
+
 // A distant light's cascades (shadow.x first view, shadow.y count): the first cascade whose range
-// holds the pixel's view distance; beyond the last one the light is unshadowed. The penumbra is
-// sized in world units, so it keeps its width across cascade boundaries (only its texels change).
-float cascadeVisibility(uvec4 shadow, vec3 position, vec3 normal, float viewDistance, float lightSize, float turn) {
+// holds the pixel's view distance; beyond the last one the light is unshadowed (false). The
+// penumbra is sized in world units, so it keeps its width across cascade boundaries (only its
+// texels change).
+bool cascadeLookup(uvec4 shadow, float viewDistance, out ShadowLookup lookup) {
     for (uint c = 0u; c < shadow.y; ++c) {
         uint view = shadow.x + c;
-        if (viewDistance <= shadowViews[view].params.y)
-            return viewVisibility(view, false, position, normal, shadowViews[view].params.x, lightSize, turn);
+        if (viewDistance <= shadowViews[view].params.y) {
+            lookup = ShadowLookup(view, false, shadowViews[view].params.x);
+            return true;
+        }
     }
-    return 1.0;
+    return false;
 }
 
 // A local light's cube faces (+X, -X, +Y, -Y, +Z, -Z from shadow.x): the face of the major axis
 // of the direction from the light; a texel's world size grows with the distance along it.
-float cubeVisibility(uvec4 shadow, vec3 position, vec3 normal, vec3 lightPosition, float lightSize, float turn) {
+ShadowLookup cubeLookup(uvec4 shadow, vec3 position, vec3 lightPosition) {
     vec3 d = position - lightPosition;
     vec3 a = abs(d);
     uint face = a.x >= a.y && a.x >= a.z ? (d.x > 0.0 ? 0u : 1u)
               : a.y >= a.z               ? (d.y > 0.0 ? 2u : 3u)
                                          : (d.z > 0.0 ? 4u : 5u);
     uint view = shadow.x + face;
-    float distance = max(a.x, max(a.y, a.z));
-    return viewVisibility(view, true, position, normal, shadowViews[view].params.x * distance, lightSize, turn);
+    return ShadowLookup(view, true, shadowViews[view].params.x * max(a.x, max(a.y, a.z)));
 }
 
 // A spot light's one map along its axis.
-float spotVisibility(uvec4 shadow, vec3 position, vec3 normal, vec3 lightPosition, vec3 axis, float lightSize,
-                     float turn) {
+ShadowLookup spotLookup(uvec4 shadow, vec3 position, vec3 lightPosition, vec3 axis) {
     float distance = max(dot(position - lightPosition, axis), 0.0);
-    return viewVisibility(shadow.x, true, position, normal, shadowViews[shadow.x].params.x * distance, lightSize, turn);
+    return ShadowLookup(shadow.x, true, shadowViews[shadow.x].params.x * distance);
 }
 
 // The size the penumbra grows with: a distant light's tan(half angle); a sphere's radius (none
@@ -257,10 +265,19 @@ float shadowFilterTurn(vec2 pixel, uint noiseFrame) {
 float shadowVisibility(LightData light, vec3 position, vec3 normal, float viewDistance, float turn) {
     uvec4 shadow = light.shadow;
     if (shadow.y == 0u) return 1.0;
-    float size = shadowLightSize(light);
-    if (shadow.z == SHADOW_CASCADES) return cascadeVisibility(shadow, position, normal, viewDistance, size, turn);
-    if (shadow.z == SHADOW_CUBE) return cubeVisibility(shadow, position, normal, light.positionType.xyz, size, turn);
-    return spotVisibility(shadow, position, normal, light.positionType.xyz, light.directionAngle.xyz, size, turn);
+    // One filter call site for every kind of view: lavapipe compiles each inlined copy of the
+    // soft-shadow filter into every light's loop body, and three copies cost it more registers
+    // (and time, also for lights without shadows) than the filter's own work.
+    ShadowLookup lookup;
+    if (shadow.z == SHADOW_CASCADES) {
+        if (!cascadeLookup(shadow, viewDistance, lookup)) return 1.0;
+    } else if (shadow.z == SHADOW_CUBE) {
+        lookup = cubeLookup(shadow, position, light.positionType.xyz);
+    } else {
+        lookup = spotLookup(shadow, position, light.positionType.xyz, light.directionAngle.xyz);
+    }
+    return viewVisibility(lookup.view, lookup.perspective, position, normal, lookup.texelWorld, shadowLightSize(light),
+                          turn);
 }
 
 #endif
