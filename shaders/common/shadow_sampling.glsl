@@ -154,10 +154,11 @@ float viewDistanceOfDepth(uint view, bool perspective, float depth) {
     return perspective ? p.z * p.w / (p.w - depth * (p.w - p.z)) : depth * p.z;
 }
 
-// Percentage-closer soft shadows for a light of `lightSize`: the tangent of a distant light's
-// half angle, or a local light's radius (world units). `texelWorld`: a texel's world size at the
+// Percentage-closer soft shadows for a light of `lightSize` (the tangent of a distant light's half
+// angle, or a local light's radius, world units): the penumbra filter's radius in texels, or -1
+// where the blocker search finds nothing (fully lit). `texelWorld`: a texel's world size at the
 // receiver.
-float softShadowFilter(uint view, bool perspective, ShadowReceiver r, float lightSize, float texelWorld, float turn) {
+float softShadowRadius(uint view, bool perspective, ShadowReceiver r, float lightSize, float texelWorld, float turn) {
     float receiverDistance = viewDistanceOfDepth(view, perspective, r.atlas.z);
     // The region of the map where blockers can hide part of the light: from the receiver the light
     // spans a cone; its section is widest at the map's near end (depth 0, or the near plane).
@@ -179,13 +180,11 @@ float softShadowFilter(uint view, bool perspective, ShadowReceiver r, float ligh
         for (int k = 0; k < 4; ++k)
             blockerDistance += blocking[k] * viewDistanceOfDepth(view, perspective, depths[k]);
     }
-    if (blockers == 0.0) return 1.0;
+    if (blockers == 0.0) return -1.0;
     blockerDistance /= blockers;
     float gap = max(receiverDistance - blockerDistance, 0.0);
     float penumbraWorld = perspective ? lightSize * gap / max(blockerDistance, 1e-6) : lightSize * gap;
-    float radius = clamp(penumbraWorld / texelWorld, 0.0, SHADOW_MAX_FILTER_RADIUS_TEXELS);
-    if (radius <= SHADOW_MIN_FILTER_RADIUS_TEXELS) return percentageCloserFilter(r.atlas, r.tileRect);
-    return discFilter(r, radius, turn);
+    return clamp(penumbraWorld / texelWorld, 0.0, SHADOW_MAX_FILTER_RADIUS_TEXELS);
 }
 
 // Fraction of the light reaching `position` through view `view`: the receiver moved
@@ -194,12 +193,19 @@ float softShadowFilter(uint view, bool perspective, ShadowReceiver r, float ligh
 float viewVisibility(uint view, bool perspective, vec3 position, vec3 normal, float texelWorld, float lightSize,
                      float turn) {
     vec3 offsetPosition = position + normal * (texelWorld * SHADOW_NORMAL_OFFSET_TEXELS);
-    if (lightSize <= 0.0) {
+    // One call site of the minimum filter (see shadowVisibility).
+    vec3 atlas;
+    if (lightSize > 0.0) {
+        ShadowReceiver r = shadowReceiver(view, offsetPosition, normal, texelWorld);
+        float radius = softShadowRadius(view, perspective, r, lightSize, texelWorld, turn);
+        if (radius < 0.0) return 1.0;
+        if (radius > SHADOW_MIN_FILTER_RADIUS_TEXELS) return discFilter(r, radius, turn);
+        atlas = r.atlas;
+    } else {
         vec4 clip = shadowViews[view].worldToAtlas * vec4(offsetPosition, 1.0);
-        return percentageCloserFilter(clip.xyz / clip.w, shadowViews[view].tileRect);
+        atlas = clip.xyz / clip.w;
     }
-    ShadowReceiver r = shadowReceiver(view, offsetPosition, normal, texelWorld);
-    return softShadowFilter(view, perspective, r, lightSize, texelWorld, turn);
+    return percentageCloserFilter(atlas, shadowViews[view].tileRect);
 }
 
 // The view a shadowed light's maps see `position` through, with how a texel of it measures there.
