@@ -29,13 +29,15 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, const FrameScene& scene
                       sampled(environment.prefiltered, environment.sampler)}};
     // The PER_SAMPLE_LIGHTING build of lighting.comp: the multisampled G-buffer and the tagged count.
     if (perSample) {
-        pass.shader = "lighting_per_sample";
         const GBuffer& samples = perSample->multisampled;
         pass.bindings.insert(pass.bindings.end(),
                              {sampled(samples.depth), sampled(samples.normalRoughness),
                               sampled(samples.albedoMetallic), sampled(samples.instance),
                               bufferWrite(perSample->taggedPixelCount)});
     }
+    // Without shadow views, the build without shadow lookups (lighting.comp UNSHADOWED_LIGHTING).
+    pass.shader = std::string(perSample ? "lighting_per_sample" : "lighting") +
+                  (scene.shadows.views.empty() ? "_unshadowed" : "");
     pass.texelsPerGroup = {kLightingTileSize, kLightingTileSize};
     pass.label = "lighting";
     return addComputePass(graph, std::move(pass)).images[0];

@@ -33,11 +33,16 @@ EnvironmentSample sampleEnvironment(SurfacePoint s) {
 }
 
 // One light's reflection off s towards the eye, scaled by its shadow maps' visibility; the
-// shadow lookups only where the light reaches the surface at all.
+// shadow lookups only where the light reaches the surface at all. UNSHADOWED_LIGHTING (the
+// lighting pass of a frame whose lights have no shadow views) leaves the lookups out of the
+// shader: lavapipe pays for their code in every light's loop body even where none runs (the
+// lighting pass without them: bench/RESULTS.md).
 vec3 reflectShadowedLight(SurfacePoint s, LightData light, float viewDistance) {
     vec3 reflected = reflectFromLight(s, light);
+#ifndef UNSHADOWED_LIGHTING
     if (light.shadow.y > 0u && any(greaterThan(reflected, vec3(0.0))))
         reflected *= shadowVisibility(light, s.P, s.N, viewDistance, s.shadowTurn);
+#endif
     return reflected;
 }
 
