@@ -35,8 +35,10 @@ float scalarInput(float constant, MaterialTexture t, sampler2D tex, vec2 uv) {
 // increasing u), the bitangent cross(N, T) * handedness and the normal. Two-channel normal maps
 // (16-bit RG, BC5) hold x and y; z is the unit vector's (Kaplanyan 2010, "3Dc encoder
 // improvements": the renormalised normal is what the encoder minimised the error of).
-// XXX: a rotated or mirrored texture-coordinate transform turns the map's x and y away from the
-// mesh's tangent and bitangent; they are read in the mesh's frame.
+// The map's x and y run along the texture's own coordinates: through a transformed lookup
+// (st' = A st + b) those are the columns of A^-1 in the mesh's (tangent, bitangent) frame, so a
+// rotated or mirrored texture turns its normals with it. Only their directions are used: a
+// non-uniform scale would also tilt the map's slopes, which is left out.
 vec3 perturbedNormal(vec3 n, vec4 tangent, MaterialTexture t, sampler2D tex, vec2 uv) {
     if (t.sampled == 0u) return n;
     vec3 local = sampleTexture(t, tex, uv).xyz;
@@ -45,7 +47,14 @@ vec3 perturbedNormal(vec3 n, vec4 tangent, MaterialTexture t, sampler2D tex, vec
     if (dot(T, T) < 1e-12 || dot(local, local) < 1e-12) return n;
     T = normalize(T);
     vec3 B = cross(n, T) * (tangent.w < 0.0 ? -1.0 : 1.0);
-    return normalize(T * local.x + B * local.y + n * local.z);
+    mat2 mapAxes = mat2(1.0);
+    mat2 linear = mat2(t.transformS.x, t.transformT.x, t.transformS.y, t.transformT.y);  // A, by columns
+    if (t.transformed != 0u && abs(determinant(linear)) > 1e-12) {
+        mat2 inverseLinear = inverse(linear);
+        mapAxes = mat2(normalize(inverseLinear[0]), normalize(inverseLinear[1]));
+    }
+    vec2 inFrame = mapAxes * local.xy;  // x and y in the (T, B) frame
+    return normalize(T * inFrame.x + B * inFrame.y + n * local.z);
 }
 
 // UsdPreviewSurface opacityThreshold: above 0, opacity is a cut-out mask and the surface is absent

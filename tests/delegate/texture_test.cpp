@@ -117,6 +117,10 @@ protected:
         color = host.readFloats("/Buffers/color");
         primIds = host.readInts("/Buffers/primId");
     }
+    // Normal maps tilted along each map axis, lit along and against where the tilt must point.
+    void expectNormalMapTilts(const std::map<std::string, HostValue>& lookup, std::array<int, 2> worldAxis,
+                              std::array<double, 2> worldSign);
+
     void markDirty(const std::string& path, ObscuraDirtyBits bits = OBSCURA_DIRTY_PARAMS) {
         ASSERT_EQ(host.api().markDirty(host.delegate(), path.c_str(), bits), OBSCURA_OK);
     }
@@ -513,11 +517,14 @@ TEST_F(TextureTest, OpenExrTexturesAreLinearHalfFloats) {
     ASSERT_EQ(loadsOf(file), 1u);
 }
 
-TEST_F(TextureTest, NormalMapsTiltTheShadingNormalInTheTangentFrame) {
-    // A constant tangent-space normal tilted 30 degrees towards +u (then towards +v), stored as
-    // it is in a float EXR (scale 1, bias 0). u runs along +X and v along +Y on the plane, so the
-    // shading normal tilts towards +X (+Y): a distant light along that normal gives the full
-    // E albedo / pi, one mirrored about the plane's normal cos 60 of it (unmapped: cos 30 both).
+// A constant tangent-space normal tilted 30 degrees towards +u (then towards +v), stored as it is
+// in a float EXR (scale 1, bias 0), looked up through `lookup` (the texture's transform, if any).
+// u runs along +X and v along +Y on the plane; the shading normal must tilt towards world axis
+// worldAxis[k] (0: X, 1: Y) with sign worldSign[k] for the map's axis k: a distant light along that
+// normal gives the full E albedo / pi, one mirrored about the plane's normal cos 60 of it (unmapped:
+// cos 30 both).
+void TextureTest::expectNormalMapTilts(const std::map<std::string, HostValue>& lookup,
+                                       std::array<int, 2> worldAxis, std::array<double, 2> worldSign) {
     const float kAlbedo = srgb8Exact(188);
     const double tilt = 30.0 * kPi / 180.0;
     for (int axis = 0; axis < 2; ++axis) {
@@ -530,14 +537,16 @@ TEST_F(TextureTest, NormalMapsTiltTheShadingNormalInTheTangentFrame) {
                               4 * 4 * sizeof(float)};
         ASSERT_FALSE(image::isError(image::writeExr(file, 4, 4, {layer})));
         std::string material = "/Looks/Bumped" + std::to_string(axis), plane = "/Plane" + std::to_string(axis);
-        auto values = textured("normal", file, {{"sourceColorSpace", HostValue::token("raw")},
-                                                {"channel", HostValue::token("rgb")}});
+        std::map<std::string, HostValue> fields{{"sourceColorSpace", HostValue::token("raw")},
+                                                {"channel", HostValue::token("rgb")}};
+        fields.insert(lookup.begin(), lookup.end());
+        auto values = textured("normal", file, fields);
         values["inputs:diffuseColor"] = HostValue::float3(kAlbedo, kAlbedo, kAlbedo);
         host.addPrim("material", material, values);
         addPlane(plane, material);
         for (double side : {1.0, -1.0}) {
             std::array<double, 3> towards{0, 0, -std::cos(tilt)};
-            towards[size_t(axis)] = -side * std::sin(tilt);
+            towards[size_t(worldAxis[size_t(axis)])] = -side * worldSign[size_t(axis)] * std::sin(tilt);
             host.addPrim("distantLight", "/Sun",
                          {{"inputs:intensity", HostValue::floatValue(1.0f)},
                           {"inputs:normalize", HostValue::boolean(true)},
@@ -552,7 +561,20 @@ TEST_F(TextureTest, NormalMapsTiltTheShadingNormalInTheTangentFrame) {
             ASSERT_EQ(host.api().removePrim(host.delegate(), "/Sun"), OBSCURA_OK);
         }
         ASSERT_EQ(host.api().removePrim(host.delegate(), plane.c_str()), OBSCURA_OK);
+        ASSERT_EQ(host.api().removePrim(host.delegate(), material.c_str()), OBSCURA_OK);
     }
+}
+
+TEST_F(TextureTest, NormalMapsTiltTheShadingNormalInTheTangentFrame) {
+    expectNormalMapTilts({}, {0, 1}, {1.0, 1.0});
+}
+
+// The texture turned 90 degrees counter-clockwise (UsdTransform2d rotation 90: s' = -t, t' = s):
+// the map's +u now runs along the plane's -v (world -Y) and its +v along +u (world +X). A mirror
+// (s' = -s) turns +u to world -X and keeps +v.
+TEST_F(TextureTest, NormalMapsTurnWithTheirTextureTransform) {
+    expectNormalMapTilts(transformed({{0, -1, 0}, {1, 0, 0}}), {1, 0}, {-1.0, 1.0});
+    expectNormalMapTilts(transformed({{-1, 0, 0}, {0, 1, 0}}), {0, 1}, {-1.0, 1.0});
 }
 
 TEST_F(TextureTest, RenormalisedTextureRendersAsItsFloatReference) {
