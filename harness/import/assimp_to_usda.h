@@ -31,7 +31,7 @@ struct ImportError {
 // .gltf, .glb, .fbx and .obj, in any letter case.
 bool isAssimpFormat(const std::filesystem::path& file);
 
-// Reads and converts in a child process (harness/import/forked_call.h): Assimp 5 still crashes on
+// Reads and converts in a child process (harness/import/child_server.h): Assimp 5 still crashes on
 // some malformed files, and a crash there must be an error for the host, not its end.
 std::variant<ImportResult, ImportError> importWithAssimp(const std::filesystem::path& file);
 

@@ -15,7 +15,7 @@ namespace obscura::harness {
 namespace {
 
 // One stream socket pair carries frames both ways: a 64-bit length, then that many bytes. A reply
-// is any number of non-empty frames ended by an empty one. A socket and not a pipe because a send
+// is any number of frames (ReplyChannel::send) ended by the length kReplyEnd alone. A socket and not a pipe because a send
 // to a peer that has died must fail (MSG_NOSIGNAL), not raise SIGPIPE and end the host.
 
 bool writeAll(int fd, const char* data, size_t size) {
@@ -40,14 +40,21 @@ bool readAll(int fd, char* data, size_t size) {
     return true;
 }
 
+constexpr uint64_t kReplyEnd = ~uint64_t(0);
+
 bool writeFrame(int fd, const std::string& bytes) {
     const uint64_t size = bytes.size();
     return writeAll(fd, reinterpret_cast<const char*>(&size), sizeof size) && writeAll(fd, bytes.data(), bytes.size());
 }
 
-std::optional<std::string> readFrame(int fd) {
+// A frame, or nullopt at the end of the stream or of a reply (`replyEnded` then says which).
+std::optional<std::string> readFrame(int fd, bool* replyEnded = nullptr) {
     uint64_t size = 0;
     if (!readAll(fd, reinterpret_cast<char*>(&size), sizeof size)) return std::nullopt;
+    if (size == kReplyEnd) {
+        if (replyEnded) *replyEnded = true;
+        return std::nullopt;
+    }
     std::string bytes(size, '\0');
     if (!readAll(fd, bytes.data(), size)) return std::nullopt;
     return bytes;
@@ -55,9 +62,7 @@ std::optional<std::string> readFrame(int fd) {
 
 }  // namespace
 
-void ReplyChannel::send(const std::string& bytes) {
-    if (!bytes.empty()) writeFrame(fd_, bytes);
-}
+void ReplyChannel::send(const std::string& frame) { writeFrame(fd_, frame); }
 
 ChildServer::~ChildServer() {
     std::lock_guard lock(mutex_);
@@ -95,7 +100,8 @@ void ChildServer::serve(int socket) {
     ReplyChannel reply(socket);
     while (std::optional<std::string> request = readFrame(socket)) {
         work_(*request, reply);
-        if (!writeFrame(socket, "")) return;
+        const uint64_t end = kReplyEnd;
+        if (!writeAll(socket, reinterpret_cast<const char*>(&end), sizeof end)) return;
     }
 }
 
@@ -132,12 +138,11 @@ ChildReply ChildServer::call(const std::string& request) {
             return reply;
         }
     }
-    while (std::optional<std::string> frame = readFrame(socket_)) {
-        if (frame->empty()) {
-            reply.end = ChildReply::End::Answered;
-            return reply;
-        }
-        reply.bytes += *frame;
+    bool replyEnded = false;
+    while (std::optional<std::string> frame = readFrame(socket_, &replyEnded)) reply.frames.push_back(std::move(*frame));
+    if (replyEnded) {
+        reply.end = ChildReply::End::Answered;
+        return reply;
     }
     reply.how = stop();
     return reply;

@@ -14,6 +14,7 @@
 #include <functional>
 #include <mutex>
 #include <string>
+#include <vector>
 
 namespace obscura::harness {
 
@@ -21,8 +22,8 @@ namespace obscura::harness {
 class ReplyChannel {
 public:
     explicit ReplyChannel(int fd) : fd_(fd) {}
-    // Each send reaches the parent whole and in order, even if the child dies after it.
-    void send(const std::string& bytes);
+    // Each send reaches the parent as one frame, whole and in order, even if the child dies after it.
+    void send(const std::string& frame);
 
 private:
     int fd_;
@@ -30,7 +31,7 @@ private:
 
 struct ChildReply {
     enum class End { Answered, ChildDied, NoChild } end = End::NoChild;
-    std::string bytes;  // everything the work sent, in order, up to where it stopped
+    std::vector<std::string> frames;  // what the work sent, one per send, up to where it stopped
     std::string how;    // how the child died ("signal 11 (Segmentation fault)", "exit status 1"),
                         // or why none could be started
 };

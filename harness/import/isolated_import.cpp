@@ -1,8 +1,6 @@
 // importWithAssimp: importInThisProcess in a child process (harness/import/child_server.h), one
 // for the process's imports until one crashes it. The child sends a mark at each ImportStep, then
 // the result; when it dies, the last mark says whose code it died in.
-#include <cstdint>
-#include <cstring>
 #include <optional>
 
 #include "harness/import/assimp_to_usda.h"
@@ -13,105 +11,93 @@ namespace obscura::harness {
 
 namespace {
 
-// The child's messages: a step mark (one byte), or a result or an error, each followed by
-// length-prefixed strings (the USD text, the warnings' count and the warnings, then the count of
-// temporary files and each one's key and path; or the error's message).
-constexpr char kReaderStarts = 'S', kReaderReturned = 'R', kResult = 'O', kError = 'E';
+// The child's frames: a step mark, then kResult followed by the USD text, the warnings' count, the
+// warnings, the count of temporary files and each one's key and path; or kError and the message.
+const std::string kReaderStarts = "S", kReaderReturned = "R", kResult = "O", kError = "E";
 
-std::string lengthPrefixed(const std::string& text) {
-    const uint64_t size = text.size();
-    std::string bytes(sizeof size, '\0');
-    std::memcpy(bytes.data(), &size, sizeof size);
-    return bytes + text;
-}
-
-std::string encode(const std::variant<ImportResult, ImportError>& imported) {
-    if (const auto* error = std::get_if<ImportError>(&imported))
-        return std::string(1, kError) + lengthPrefixed(error->message);
+void sendAnswer(const std::variant<ImportResult, ImportError>& imported, ReplyChannel& parent) {
+    if (const auto* error = std::get_if<ImportError>(&imported)) {
+        parent.send(kError);
+        parent.send(error->message);
+        return;
+    }
     const ImportResult& result = std::get<ImportResult>(imported);
-    std::string bytes = std::string(1, kResult) + lengthPrefixed(result.usda);
-    bytes += lengthPrefixed(std::to_string(result.warnings.size()));
-    for (const std::string& warning : result.warnings) bytes += lengthPrefixed(warning);
+    parent.send(kResult);
+    parent.send(result.usda);
+    parent.send(std::to_string(result.warnings.size()));
+    for (const std::string& warning : result.warnings) parent.send(warning);
     // The embedded images the conversion wrote, for the parent to adopt.
     const std::map<std::string, std::string> files = usda::temporaryFilesByKey();
-    bytes += lengthPrefixed(std::to_string(files.size()));
-    for (const auto& [key, path] : files) bytes += lengthPrefixed(key) + lengthPrefixed(path);
-    return bytes;
+    parent.send(std::to_string(files.size()));
+    for (const auto& [key, path] : files) {
+        parent.send(key);
+        parent.send(path);
+    }
 }
 
-// What the child sent: its last step mark, and its answer if the bytes hold a whole one.
+// What the child sent: its last step mark, and its answer if the frames hold a whole one.
 struct Received {
-    char lastStep = 0;
+    std::string lastStep;
     std::optional<std::variant<ImportResult, ImportError>> answer;
     std::map<std::string, std::string> temporaryFiles;
 };
 
-class Decoder {
+class Frames {
 public:
-    explicit Decoder(const std::string& bytes) : bytes_(bytes) {}
+    explicit Frames(const std::vector<std::string>& frames) : frames_(frames) {}
 
-    bool done() const { return at_ == bytes_.size(); }
-    char tag() { return bytes_[at_++]; }
-
-    std::optional<std::string> text() {
-        uint64_t size = 0;
-        if (bytes_.size() - at_ < sizeof size) return std::nullopt;
-        std::memcpy(&size, bytes_.data() + at_, sizeof size);
-        at_ += sizeof size;
-        if (bytes_.size() - at_ < size) return std::nullopt;
-        std::string out = bytes_.substr(at_, size);
-        at_ += size;
-        return out;
+    bool done() const { return at_ == frames_.size(); }
+    std::optional<std::string> next() {
+        if (done()) return std::nullopt;
+        return frames_[at_++];
     }
-
     std::optional<unsigned long> count() {
-        const std::optional<std::string> digits = text();
+        const std::optional<std::string> digits = next();
         if (!digits || digits->empty() || digits->find_first_not_of("0123456789") != std::string::npos)
             return std::nullopt;
         return std::stoul(*digits);
     }
 
 private:
-    const std::string& bytes_;
+    const std::vector<std::string>& frames_;
     size_t at_ = 0;
 };
 
-// Fills received's answer and files when the bytes hold them whole.
-void decodeAnswer(char tag, Decoder& in, Received& received) {
+// Fills received's answer and files when the frames hold them whole.
+void receiveAnswer(const std::string& tag, Frames& in, Received& received) {
     if (tag == kError) {
-        std::optional<std::string> message = in.text();
+        std::optional<std::string> message = in.next();
         if (message && in.done()) received.answer = ImportError{*message};
         return;
     }
     ImportResult result;
-    std::optional<std::string> usda = in.text();
+    std::optional<std::string> usda = in.next();
     std::optional<unsigned long> warnings = in.count();
     if (!usda || !warnings) return;
     result.usda = std::move(*usda);
     for (unsigned long n = *warnings; n > 0; --n) {
-        std::optional<std::string> warning = in.text();
+        std::optional<std::string> warning = in.next();
         if (!warning) return;
         result.warnings.push_back(std::move(*warning));
     }
     std::optional<unsigned long> files = in.count();
     if (!files) return;
     for (unsigned long n = *files; n > 0; --n) {
-        std::optional<std::string> key = in.text(), path = in.text();
+        std::optional<std::string> key = in.next(), path = in.next();
         if (!key || !path) return;
         received.temporaryFiles[*key] = *path;
     }
     if (in.done()) received.answer = std::move(result);
 }
 
-Received decode(const std::string& bytes) {
+Received receive(const std::vector<std::string>& frames) {
     Received received;
-    Decoder in(bytes);
-    while (!in.done()) {
-        const char tag = in.tag();
-        if (tag == kReaderStarts || tag == kReaderReturned) {
-            received.lastStep = tag;
+    Frames in(frames);
+    while (std::optional<std::string> tag = in.next()) {
+        if (*tag == kReaderStarts || *tag == kReaderReturned) {
+            received.lastStep = *tag;
         } else {
-            if (tag == kResult || tag == kError) decodeAnswer(tag, in, received);
+            if (*tag == kResult || *tag == kError) receiveAnswer(*tag, in, received);
             break;
         }
     }
@@ -128,15 +114,15 @@ std::variant<ImportResult, ImportError> importWithAssimp(const std::filesystem::
         std::error_code ec;
         std::filesystem::current_path(request.substr(0, split), ec);
         auto imported = importInThisProcess(request.substr(split + 1), [&](ImportStep step) {
-            parent.send(std::string(1, step == ImportStep::ReaderStarts ? kReaderStarts : kReaderReturned));
+            parent.send(step == ImportStep::ReaderStarts ? kReaderStarts : kReaderReturned);
         });
-        parent.send(encode(imported));
+        sendAnswer(imported, parent);
     });
     std::error_code ec;
     const ChildReply child = importer.call(std::filesystem::current_path(ec).string() + '\0' + file.string());
     const std::string failed = "cannot import " + file.string() + ": ";
     if (child.end == ChildReply::End::NoChild) return ImportError{failed + child.how};
-    Received received = decode(child.bytes);
+    Received received = receive(child.frames);
     const bool answered = child.end == ChildReply::End::Answered;
     if (answered && received.answer) {
         usda::adoptTemporaryFiles(received.temporaryFiles);

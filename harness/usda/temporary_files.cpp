@@ -65,18 +65,16 @@ private:
 // only its children wrote there.
 TemporaryFiles gFiles;
 
-TemporaryFiles& files() { return gFiles; }
-
 }  // namespace
 
 std::string temporaryFile(const std::string& key, const std::string& fileName,
                           const std::function<std::optional<std::string>(std::string* error)>& bytes,
                           std::string* error) {
-    return files().file(key, fileName, bytes, error);
+    return gFiles.file(key, fileName, bytes, error);
 }
 
-std::map<std::string, std::string> temporaryFilesByKey() { return files().byKey(); }
+std::map<std::string, std::string> temporaryFilesByKey() { return gFiles.byKey(); }
 
-void adoptTemporaryFiles(const std::map<std::string, std::string>& adopted) { files().adopt(adopted); }
+void adoptTemporaryFiles(const std::map<std::string, std::string>& adopted) { gFiles.adopt(adopted); }
 
 }  // namespace obscura::usda

@@ -2,7 +2,7 @@
 // what lives only inside another file: textures in USDZ packages, images embedded in glTF. Each is
 // written once per process under its key, into a temporary folder removed when the process exits.
 //
-// A child process of the harness (an isolated import, harness/import/forked_call.h) writes into
+// A child process of the harness (an isolated import, harness/import/child_server.h) writes into
 // its parent's folder, under names of its own, and hands what it wrote to the parent, which adopts
 // the files: it reuses them and removes them with the rest.
 #pragma once

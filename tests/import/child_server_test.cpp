@@ -11,11 +11,12 @@
 #include <fstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace obscura::harness {
 namespace {
 
-// Requests: "echo X" sends X back in two parts, "pid" sends the child's pid, "segv" dies by
+// Requests: "echo X" sends X back in two frames (its first two characters, then the rest), "pid" sends the child's pid, "segv" dies by
 // SIGSEGV after sending "before", "exit N" exits with status N, "big" sends 8 MiB.
 std::string bigReply() {
     std::string big(8 << 20, '\0');
@@ -54,15 +55,15 @@ TEST(ChildServer, WhatTheChildSendsComesBackInOrder) {
     ChildServer server(work);
     const ChildReply reply = server.call("echo first second");
     EXPECT_EQ(reply.end, ChildReply::End::Answered) << reply.how;
-    EXPECT_EQ(reply.bytes, "first second");
-    EXPECT_EQ(server.call("echo again").bytes, "again");
+    EXPECT_EQ(reply.frames, (std::vector<std::string>{"fi", "rst second"}));
+    EXPECT_EQ(server.call("echo again").frames, (std::vector<std::string>{"ag", "ain"}));
 }
 
 TEST(ChildServer, OneChildServesRequestsUntilItDies) {
     ChildServer server(work);
-    const std::string first = server.call("pid").bytes;
+    const std::string first = server.call("pid").frames.at(0);
     EXPECT_NE(first, std::to_string(::getpid()));
-    EXPECT_EQ(server.call("pid").bytes, first);
+    EXPECT_EQ(server.call("pid").frames.at(0), first);
 }
 
 // Far more than a socket buffers: this process reads while the child writes.
@@ -70,19 +71,20 @@ TEST(ChildServer, MoreThanASocketHoldsComesBackWhole) {
     ChildServer server(work);
     const ChildReply reply = server.call("big");
     EXPECT_EQ(reply.end, ChildReply::End::Answered) << reply.how;
-    EXPECT_TRUE(reply.bytes == bigReply()) << reply.bytes.size() << " bytes came back";
+    ASSERT_EQ(reply.frames.size(), 1u);
+    EXPECT_TRUE(reply.frames[0] == bigReply()) << reply.frames[0].size() << " bytes came back";
 }
 
 TEST(ChildServer, AChildKilledByASignalIsToldAndTheNextRequestGetsANewOne) {
     ChildServer server(work);
-    const std::string before = server.call("pid").bytes;
+    const std::string before = server.call("pid").frames.at(0);
     const ChildReply reply = server.call("segv");
     EXPECT_EQ(reply.end, ChildReply::End::ChildDied);
-    EXPECT_EQ(reply.bytes, "before");
+    EXPECT_EQ(reply.frames, std::vector<std::string>{"before"});
     EXPECT_EQ(reply.how, "signal 11 (Segmentation fault)");
     const ChildReply next = server.call("pid");
     EXPECT_EQ(next.end, ChildReply::End::Answered);
-    EXPECT_NE(next.bytes, before);
+    EXPECT_NE(next.frames.at(0), before);
 }
 
 TEST(ChildServer, AChildThatExitsIsToldItsStatus) {
@@ -95,13 +97,13 @@ TEST(ChildServer, AChildThatExitsIsToldItsStatus) {
 // Killed from outside while idle: the request goes to a new child.
 TEST(ChildServer, AChildKilledBetweenRequestsIsReplaced) {
     ChildServer server(work);
-    const pid_t child = std::stoi(server.call("pid").bytes);
+    const pid_t child = std::stoi(server.call("pid").frames.at(0));
     ASSERT_EQ(::kill(child, SIGKILL), 0);
     // Dead (a zombie, its socket closed) before the next request, or the test would race the kill.
     while (processState(child) != 'Z') std::this_thread::sleep_for(std::chrono::milliseconds(1));
     const ChildReply reply = server.call("echo still here");
     EXPECT_EQ(reply.end, ChildReply::End::Answered) << reply.how;
-    EXPECT_EQ(reply.bytes, "still here");
+    EXPECT_EQ(reply.frames, (std::vector<std::string>{"st", "ill here"}));
 }
 
 }  // namespace
