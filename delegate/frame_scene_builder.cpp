@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <tuple>
 #include <vector>
@@ -491,15 +492,17 @@ private:
                 continue;
             }
             if (draw.transparent) continue;
+            // On the GPU route every still draw's instances in view are candidates, one alone too.
+            const bool gpuCulled = still && in_.gpuOcclusionCulling;
             std::vector<uint32_t> kept;
             uint64_t outside = 0, hidden = 0;
-            if (still && draw.instanceCount > 1)
+            if (still && (draw.instanceCount > 1 || gpuCulled))
                 for (uint32_t i = draw.instanceIndex; i < draw.instanceIndex + draw.instanceCount; ++i) {
                     if (outsideView(instanceBounds_[i])) ++outside;
                     else if (occluded(instanceBounds_[i])) ++hidden;
                     else kept.push_back(i);
                 }
-            if (!still || draw.instanceCount == 1 || kept.size() == draw.instanceCount) {
+            if (!gpuCulled && (!still || draw.instanceCount == 1 || kept.size() == draw.instanceCount)) {
                 scene_.cameraDraws.push_back(draw);
                 continue;
             }
@@ -513,6 +516,10 @@ private:
                 else counts.drawsOutsideView += 1;
                 continue;
             }
+            if (gpuCulled) {
+                scene_.cameraDraws.push_back(gpuCandidates(draw, kept));
+                continue;
+            }
             // The instances kept, as consecutive records after the others.
             passes::Draw compacted = draw;
             compacted.instanceIndex = static_cast<uint32_t>(instances_.size());
@@ -522,6 +529,28 @@ private:
         }
         counts.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         if (in_.occlusion) counts.milliseconds += in_.occlusion->reprojectionMilliseconds();
+    }
+
+    // GPU occlusion culling (passes/occlusion_cull.h): `draw` with its instances `kept` (records)
+    // as candidates of the culling pass, which writes the draw's commands numbered by its cullSlot.
+    passes::Draw gpuCandidates(const passes::Draw& draw, const std::vector<uint32_t>& kept) {
+        passes::Draw culled = draw;
+        culled.cullSlot = scene_.gpuCulledDraws++;
+        culled.firstCandidate = static_cast<uint32_t>(candidates_.size());
+        culled.instanceCount = static_cast<uint32_t>(kept.size());
+        // The bounds in single precision, rounded outwards: the pass never tests a smaller box.
+        const auto rounded = [](const Vec3d& v, float towards) {
+            std::array<float, 3> out{};
+            for (size_t c = 0; c < 3; ++c) out[c] = std::nextafter(static_cast<float>(v[c]), towards);
+            return out;
+        };
+        constexpr float kInfinity = std::numeric_limits<float>::infinity();
+        for (uint32_t record : kept) {
+            const Aabb& box = instanceBounds_[record];
+            candidates_.push_back(
+                {rounded(box.min, -kInfinity), record, rounded(box.max, kInfinity), culled.cullSlot});
+        }
+        return culled;
     }
 
     // Transparent draws back to front: the "over" blend needs what lies behind drawn first.
@@ -596,6 +625,10 @@ private:
         scene_.motionBlur = in_.shutter && !in_.sample && (cameraMoves_ || !motions_.empty());
         scene_.materials = upload(nullptr, 0, materials_, storage, "materials");
         scene_.lights = upload(&header, sizeof(header), lights_, storage, "lights");
+        if (!candidates_.empty()) {
+            scene_.occlusionCandidateCount = static_cast<uint32_t>(candidates_.size());
+            scene_.occlusionCandidates = upload(nullptr, 0, candidates_, storage, "occlusion candidates");
+        }
     }
 
     // The dome's frame, and the domes the camera sees: each one's radiance, the textured one's
@@ -642,6 +675,7 @@ private:
     std::vector<passes::InstanceReprojection> reprojections_;
     std::vector<Aabb> drawBounds_;  // world bounds of each draw, all its instances
     std::vector<Aabb> instanceBounds_;  // world bounds of each drawn instance record
+    std::vector<passes::OcclusionCandidate> candidates_;  // GPU occlusion culling's, draw by draw
     std::vector<bool> drawCulled_;  // occlusion culling hid the whole draw from the camera
 };
 

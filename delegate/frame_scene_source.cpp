@@ -3,6 +3,8 @@
 #include "delegate/api_error.h"
 #include "passes/frame_resources.h"
 
+#include <algorithm>
+
 namespace obscura::delegate {
 
 renderer::FrameView FrameSceneSource::view(const renderer::FrameViewpoint& viewpoint) const {
@@ -15,6 +17,13 @@ passes::FrameScene FrameSceneSource::scene(const renderer::FrameViewpoint& viewp
     // The frame's own scene reports; the reference's sub-frames see the same prims.
     if (!viewpoint.sample) report(scene, shortfalls);
     return scene;
+}
+
+void FrameSceneSource::culledOnGpu(uint32_t draws, uint64_t instances, uint64_t triangles) {
+    report_.culling.drawsCulled += draws;
+    report_.culling.instancesCulled += instances;
+    report_.culling.trianglesCulled += triangles;
+    report_.trianglesDrawn -= std::min(triangles, report_.trianglesDrawn);
 }
 
 FrameSceneInputs FrameSceneSource::inputs(const renderer::FrameViewpoint& viewpoint) const {

@@ -32,6 +32,7 @@ public:
     renderer::FrameView view(const renderer::FrameViewpoint& viewpoint) const override;
     // Throws ApiError (OUT_OF_MEMORY) for more instances than the G-buffer addresses.
     passes::FrameScene scene(const renderer::FrameViewpoint& viewpoint) override;
+    void culledOnGpu(uint32_t draws, uint64_t instances, uint64_t triangles) override;
 
 private:
     FrameSceneInputs inputs(const renderer::FrameViewpoint& viewpoint) const;

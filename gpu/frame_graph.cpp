@@ -57,6 +57,9 @@ UsageState stateOf(Usage u, bool depthFormat) {
         case Usage::StorageBufferWrite:
             return {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                     0, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT};
+        case Usage::IndirectCommandRead:
+            return {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+                    VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT, 0, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT};
         case Usage::TransferSrc:
             return {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
                     VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_BUFFER_USAGE_TRANSFER_SRC_BIT};

@@ -37,6 +37,7 @@ enum class Usage {
     StorageBufferRead,      // compute
     StorageBufferReadGraphics,  // a storage buffer read in vertex or fragment shaders
     StorageBufferWrite,     // compute
+    IndirectCommandRead,    // the commands of indirect draws
     TransferSrc,
     TransferDst,
 };

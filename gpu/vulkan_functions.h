@@ -111,6 +111,8 @@
     X(vkCmdDispatch)                   \
     X(vkCmdDraw)                       \
     X(vkCmdDrawIndexed)                \
+    X(vkCmdDrawIndexedIndirect)        \
+    X(vkCmdFillBuffer)                 \
     X(vkCmdPipelineBarrier2)           \
     X(vkCmdPushConstants)              \
     X(vkCmdResetQueryPool)             \

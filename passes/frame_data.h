@@ -105,6 +105,39 @@ OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, instanceId);
 OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, pad1);
 OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, pad2);
 
+// GPU occlusion culling (passes/occlusion_cull.h): an instance the camera may draw, its world
+// bounds, its InstanceData record and its draw's command (Draw::cullSlot).
+struct alignas(16) OcclusionCandidate {
+    std::array<float, 3> boundsMin;
+    uint32_t record;
+    std::array<float, 3> boundsMax;
+    uint32_t command;
+};
+static_assert(sizeof(OcclusionCandidate) == 32);
+OBSCURA_SHADER_OFFSET(OcclusionCandidate, OcclusionCandidate, boundsMin);
+OBSCURA_SHADER_OFFSET(OcclusionCandidate, OcclusionCandidate, record);
+OBSCURA_SHADER_OFFSET(OcclusionCandidate, OcclusionCandidate, boundsMax);
+OBSCURA_SHADER_OFFSET(OcclusionCandidate, OcclusionCandidate, command);
+
+// VkDrawIndexedIndirectCommand (its first five members), and where its draw's drawn records start
+// in the culling pass's list.
+struct CulledDrawCommand {
+    uint32_t indexCount;
+    uint32_t instanceCount;
+    uint32_t firstIndex;
+    int32_t vertexOffset;
+    uint32_t firstInstance;
+    uint32_t listOffset;
+    uint32_t pad0 = 0, pad1 = 0;
+};
+static_assert(sizeof(CulledDrawCommand) == 32);
+OBSCURA_SHADER_OFFSET(CulledDrawCommand, CulledDrawCommand, indexCount);
+OBSCURA_SHADER_OFFSET(CulledDrawCommand, CulledDrawCommand, instanceCount);
+OBSCURA_SHADER_OFFSET(CulledDrawCommand, CulledDrawCommand, firstIndex);
+OBSCURA_SHADER_OFFSET(CulledDrawCommand, CulledDrawCommand, vertexOffset);
+OBSCURA_SHADER_OFFSET(CulledDrawCommand, CulledDrawCommand, firstInstance);
+OBSCURA_SHADER_OFFSET(CulledDrawCommand, CulledDrawCommand, listOffset);
+
 struct alignas(16) InstanceReprojection {
     Mat4 currentToPreviousWorld;  // this frame's world space to last frame's, for temporal AA
 };

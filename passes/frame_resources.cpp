@@ -11,6 +11,8 @@ void importSceneBuffers(gpu::FrameGraph& graph, FrameScene& scene) {
                      graph.importBuffer("lights", scene.lights),
                      graph.importBuffer("environment", scene.environment),
                      graph.importBuffer("shadowRecords", scene.shadows.records)};
+    if (scene.occlusionCandidates)
+        scene.buffers.occlusionCandidates = graph.importBuffer("occlusionCandidates", scene.occlusionCandidates);
 }
 
 GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkSampleCountFlagBits samples,

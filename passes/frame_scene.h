@@ -27,6 +27,14 @@ struct Draw {
     // Where the draw's indexCount indices start in `indices`: a mesh whose faces bind several
     // materials (GeomSubsets) draws each material's range of one index buffer.
     uint32_t firstIndex = 0;
+    // GPU occlusion culling (passes/occlusion_cull.h): the draw's instanceCount instances are the
+    // candidates from firstCandidate on in FrameScene::occlusionCandidates, and the culling pass
+    // writes the instances it draws into the commands numbered cullSlot. kNotCulledOnGpu: drawn
+    // as it is, its records from instanceIndex on.
+    static constexpr uint32_t kNotCulledOnGpu = UINT32_MAX;
+    uint32_t cullSlot = kNotCulledOnGpu;
+    uint32_t firstCandidate = 0;
+    bool culledOnGpu() const { return cullSlot != kNotCulledOnGpu; }
 };
 
 // The textures a material samples, one per MaterialTextureSlot, white where the input is
@@ -71,6 +79,26 @@ struct SceneBuffers {
     gpu::BufferHandle lights;
     gpu::BufferHandle environment;
     gpu::BufferHandle shadowRecords;
+    gpu::BufferHandle occlusionCandidates;  // unset when no draw is culled on the GPU
+};
+
+// What GPU occlusion culling hands the G-buffer (passes/occlusion_cull.h): for each draw culled on
+// the GPU (Draw::cullSlot) an indexed indirect command per phase, and the records they draw.
+struct CulledDraws {
+    enum class Phase { Early, Late };
+    Phase phase = Phase::Early;
+    uint32_t drawCount = 0;      // draws culled on the GPU: the commands of one phase
+    uint32_t candidateCount = 0;  // FrameScene::occlusionCandidateCount
+    gpu::BufferHandle commands;  // CulledDrawCommand[2 * drawCount]: the early phase's, then the late one's
+    gpu::BufferHandle lists;     // record indices, each command's from its listOffset
+
+    // Which of `commands` is `draw`'s in this phase, and where its drawn records start in `lists`:
+    // the early phase's at its first candidate, the late one's as many further as there are
+    // candidates.
+    uint32_t command(const Draw& draw) const { return (phase == Phase::Late ? drawCount : 0) + draw.cullSlot; }
+    uint32_t listOffset(const Draw& draw) const {
+        return (phase == Phase::Late ? candidateCount : 0) + draw.firstCandidate;
+    }
 };
 
 // Occlusion culling's tally of a frame's camera draws (render setting occlusionCulling): before
@@ -116,6 +144,11 @@ struct FrameScene {
     // from the eye to the centre of each draw's world bounds (an instanced draw sorts as one).
     std::vector<uint32_t> transparentDraws;
     CullingCounts culling;
+    // GPU occlusion culling: OcclusionCandidate[] (storage) of the draws culled on the GPU, each
+    // draw's consecutive from its firstCandidate; null when none is.
+    gpu::BufferPtr occlusionCandidates;
+    uint32_t occlusionCandidateCount = 0;
+    uint32_t gpuCulledDraws = 0;  // draws with a cullSlot: 0 .. gpuCulledDraws - 1
     ShadowAtlas shadows;
     std::vector<ClipVolume> clipVolumes;
     // Motion blur: the G-buffer writes the velocities of the moving draws (drawn last) and the

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <optional>
 #include <string>
 
 namespace obscura::passes {
@@ -47,18 +48,23 @@ bool deforms(Variant variant) { return variant == Variant::Deforming || variant 
 bool readsMotion(Variant variant) { return writesVelocity(variant) || deforms(variant); }
 
 // Set 0: the camera, the records, the best-fit normal table and the lights (the principal lobe of
-// anisotropic materials), and for variants that move the instances' motion.
-std::vector<ShaderBinding> gbufferBindings(bool motion, const SceneBuffers& buffers, gpu::ImageHandle bestFitNormals) {
+// anisotropic materials), and for variants that move the instances' motion, or for draws culled on
+// the GPU the records the culling pass left them.
+std::vector<ShaderBinding> gbufferBindings(bool motion, const SceneBuffers& buffers, gpu::ImageHandle bestFitNormals,
+                                           const CulledDraws* culled = nullptr) {
     std::vector<ShaderBinding> bindings{bufferRead(buffers.camera), bufferRead(buffers.instances),
                                         bufferRead(buffers.materials), sampled(bestFitNormals),
                                         bufferRead(buffers.lights)};
     if (motion) bindings.push_back(bufferRead(buffers.instanceMotions));
+    else if (culled) bindings.push_back(bufferRead(culled->lists));
     return bindings;
 }
 
 // `cutout`: the draw's material has an opacity threshold; the other draws take the shaders'
 // OPAQUE_SURFACE variant, whose depth test runs before shading (common/gbuffer_surface.glsl).
-gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, bool cutout, VkSampleCountFlagBits samples,
+// `culled`: the draw's records come from GPU occlusion culling's list (a static variant only).
+gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, bool cutout, bool culled,
+                                                  VkSampleCountFlagBits samples,
                                                   const std::vector<ShaderBinding>& bindings) {
     gpu::GraphicsPipelineDesc d;
     d.fragmentShader = std::string(writesVelocity(variant) ? "gbuffer_moving" : "gbuffer") +
@@ -67,6 +73,7 @@ gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, bool cutout, 
     d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
     d.pushConstantSize = sizeof(GBufferPush);
     setSceneVertexInput(d);
+    if (culled) d.vertexShader = "gbuffer_culled.vert";
     if (variant == Variant::Moving) d.vertexShader = "gbuffer_moving.vert";
     if (deforms(variant)) {
         d.vertexShader = "gbuffer_deforming.vert";
@@ -84,73 +91,132 @@ gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, bool cutout, 
     return d;
 }
 
+struct Ordered {
+    Variant variant;
+    const Draw* draw;
+};
+
 Variant variantOf(const Draw& draw, bool velocityTarget) {
     if (draw.shutterPositions) return velocityTarget ? Variant::Deforming : Variant::DeformingWithoutVelocity;
     if (!velocityTarget) return Variant::Static;
     return draw.moving ? Variant::Moving : Variant::StaticWithVelocityTarget;
 }
 
-}  // namespace
-
-GBuffer addGBufferPass(gpu::FrameGraph& graph, const FrameScene& scene, gpu::ImageHandle bestFitNormals,
-                       VkSampleCountFlagBits samples, bool alphaToCoverage) {
-    GBuffer gb = createGBufferImages(graph, scene, samples, "gbuffer");
-    // Moving geometry is drawn last (seed 000 "An improved reconstruction filter (3)"), so static
-    // surfaces never cover a velocity a moving one wrote; draws are grouped by pipeline.
-    // Within a variant, opaque draws come before cut-outs: what they hide is then never shaded.
-    struct Ordered {
-        Variant variant;
-        const Draw* draw;
-    };
+// The draws of one raster pass, grouped by pipeline. Moving geometry is drawn last (seed 000 "An
+// improved reconstruction filter (3)"), so static surfaces never cover a velocity a moving one
+// wrote. Within a variant, opaque draws come before cut-outs: what they hide is then never shaded.
+// Under GPU occlusion culling (`culled`) the early pass draws the static variants (the culled
+// draws' early instances among them) and the late pass the culled draws' late instances, then
+// the moving variants.
+std::vector<Ordered> orderedDraws(const FrameScene& scene, const CulledDraws* culled) {
     std::vector<Ordered> ordered;
     for (Variant variant : {Variant::Static, Variant::StaticWithVelocityTarget, Variant::DeformingWithoutVelocity,
-                            Variant::Moving, Variant::Deforming})
+                            Variant::Moving, Variant::Deforming}) {
+        const bool lastVariants = variant == Variant::Moving || variant == Variant::Deforming;
         for (bool cutout : {false, true})
-            for (const Draw& draw : scene.cameraDraws)
+            for (const Draw& draw : scene.cameraDraws) {
                 // Transparent surfaces are drawn after lighting (passes/transparent.h).
-                if (!draw.transparent && draw.opacityCutout == cutout && variantOf(draw, scene.motionBlur) == variant)
-                    ordered.push_back({variant, &draw});
+                if (draw.transparent || draw.opacityCutout != cutout || variantOf(draw, scene.motionBlur) != variant)
+                    continue;
+                if (culled && culled->phase == CulledDraws::Phase::Early && lastVariants) continue;
+                if (culled && culled->phase == CulledDraws::Phase::Late && !lastVariants && !draw.culledOnGpu())
+                    continue;
+                ordered.push_back({variant, &draw});
+            }
+    }
+    return ordered;
+}
+
+// One raster pass of the G-buffer over `gb`: cleared first, or (the late pass) drawn over.
+GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, const FrameScene& scene, GBuffer gb,
+                             bool clear, gpu::ImageHandle bestFitNormals, VkSampleCountFlagBits samples,
+                             bool alphaToCoverage, const CulledDraws* culled) {
+    const std::vector<Ordered> ordered = orderedDraws(scene, culled);
     const bool anyMotion =
         std::any_of(ordered.begin(), ordered.end(), [](const Ordered& o) { return readsMotion(o.variant); });
+    std::optional<CulledDraws> culledDraws;
+    if (culled) culledDraws = *culled;
 
     graph.addPass(
-        "gbuffer", gpu::PassKind::Raster,
+        name, gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {
             declareBindings(pass, gbufferBindings(anyMotion, scene.buffers, bestFitNormals), ShaderStage::Graphics);
-            gb.depth = pass.depthStencilAttachment(gb.depth, VkClearDepthStencilValue{1.0f, 0});
-            gb.normalRoughness = pass.colorAttachment(gb.normalRoughness, VkClearColorValue{{0.5f, 0.5f, 1.0f, 1.0f}});
-            gb.albedoMetallic = pass.colorAttachment(gb.albedoMetallic, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
-            gb.instance = pass.colorAttachment(gb.instance, VkClearColorValue{.uint32 = {0, 0, 0, 0}});
-            if (gb.velocity.valid())
-                gb.velocity =
-                    pass.colorAttachment(gb.velocity, VkClearColorValue{{kStaticVelocity, 0.0f, 0.0f, 0.0f}});
+            if (culled) {
+                declareBindings(pass, {bufferRead(culled->lists)}, ShaderStage::Graphics);
+                pass.read(culled->commands, gpu::Usage::IndirectCommandRead);
+            }
+            using Load = gpu::FrameGraph::PassBuilder::Load;
+            if (clear) {
+                gb.depth = pass.depthStencilAttachment(gb.depth, VkClearDepthStencilValue{1.0f, 0});
+                gb.normalRoughness =
+                    pass.colorAttachment(gb.normalRoughness, VkClearColorValue{{0.5f, 0.5f, 1.0f, 1.0f}});
+                gb.albedoMetallic =
+                    pass.colorAttachment(gb.albedoMetallic, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
+                gb.instance = pass.colorAttachment(gb.instance, VkClearColorValue{.uint32 = {0, 0, 0, 0}});
+                if (gb.velocity.valid())
+                    gb.velocity =
+                        pass.colorAttachment(gb.velocity, VkClearColorValue{{kStaticVelocity, 0.0f, 0.0f, 0.0f}});
+            } else {
+                gb.depth = pass.depthStencilAttachment(gb.depth, Load::Keep);
+                gb.normalRoughness = pass.colorAttachment(gb.normalRoughness, Load::Keep);
+                gb.albedoMetallic = pass.colorAttachment(gb.albedoMetallic, Load::Keep);
+                gb.instance = pass.colorAttachment(gb.instance, Load::Keep);
+                if (gb.velocity.valid()) gb.velocity = pass.colorAttachment(gb.velocity, Load::Keep);
+            }
         },
-        [ordered, &scene, bestFitNormals, samples, alphaToCoverage](VkCommandBuffer cmd,
-                                                                     const gpu::PassResources& res) {
+        [ordered, &scene, bestFitNormals, samples, alphaToCoverage, culledDraws](VkCommandBuffer cmd,
+                                                                                  const gpu::PassResources& res) {
             gpu::Device& device = res.device();
             const gpu::Pipeline* bound = nullptr;
             Variant boundVariant = Variant::Static;
-            bool boundCutout = false;
+            bool boundCutout = false, boundCulled = false;
             const MaterialTextures* pushed = nullptr;
             for (const Ordered& o : ordered) {
                 // Draws come grouped by variant: the pipeline changes only between groups.
                 const bool cutout = o.draw->opacityCutout;
-                if (!bound || o.variant != boundVariant || cutout != boundCutout) {
+                const bool culledDraw = culledDraws && o.draw->culledOnGpu();
+                if (!bound || o.variant != boundVariant || cutout != boundCutout || culledDraw != boundCulled) {
                     const std::vector<ShaderBinding> bindings =
-                        gbufferBindings(readsMotion(o.variant), scene.buffers, bestFitNormals);
+                        gbufferBindings(readsMotion(o.variant), scene.buffers, bestFitNormals,
+                                        culledDraw ? &*culledDraws : nullptr);
                     bound = &res.pipelines().get<gpu::GraphicsPipelineDesc>(
-                        std::string(pipelineName(o.variant)) + (cutout ? ".cutout." : ".") + std::to_string(samples),
-                        [&] { return describeGBufferPipeline(o.variant, cutout, samples, bindings); });
+                        std::string(pipelineName(o.variant)) + (cutout ? ".cutout." : ".") +
+                            (culledDraw ? "culled." : "") + std::to_string(samples),
+                        [&] { return describeGBufferPipeline(o.variant, cutout, culledDraw, samples, bindings); });
                     boundVariant = o.variant;
                     boundCutout = cutout;
+                    boundCulled = culledDraw;
                     bindBindings(cmd, *bound, bindings, res);
                     pushed = nullptr;  // a new layout: the pushed set starts over
                 }
-                GBufferPush push{o.draw->instanceIndex, uint32_t(samples), alphaToCoverage ? 1u : 0u};
-                recordMaterialDraw(device, cmd, *bound, scene, *o.draw, pushed, &push, sizeof(push));
+                if (culledDraw) {
+                    // The draw's records from its list; its instance count from the culling pass.
+                    GBufferPush push{culledDraws->listOffset(*o.draw), uint32_t(samples), alphaToCoverage ? 1u : 0u};
+                    IndirectDraw indirect{res.buffer(culledDraws->commands),
+                                          VkDeviceSize(culledDraws->command(*o.draw)) * sizeof(CulledDrawCommand)};
+                    recordMaterialDraw(device, cmd, *bound, scene, *o.draw, pushed, &push, sizeof(push), &indirect);
+                } else {
+                    GBufferPush push{o.draw->instanceIndex, uint32_t(samples), alphaToCoverage ? 1u : 0u};
+                    recordMaterialDraw(device, cmd, *bound, scene, *o.draw, pushed, &push, sizeof(push));
+                }
             }
         });
     return gb;
+}
+
+}  // namespace
+
+GBuffer addGBufferPass(gpu::FrameGraph& graph, const FrameScene& scene, gpu::ImageHandle bestFitNormals,
+                       VkSampleCountFlagBits samples, bool alphaToCoverage, const CulledDraws* early) {
+    GBuffer gb = createGBufferImages(graph, scene, samples, "gbuffer");
+    return addGBufferRasterPass(graph, "gbuffer", scene, gb, true, bestFitNormals, samples, alphaToCoverage, early);
+}
+
+GBuffer addGBufferLatePass(gpu::FrameGraph& graph, const FrameScene& scene, const GBuffer& early,
+                           gpu::ImageHandle bestFitNormals, VkSampleCountFlagBits samples, bool alphaToCoverage,
+                           const CulledDraws& late) {
+    return addGBufferRasterPass(graph, "gbuffer_late", scene, early, false, bestFitNormals, samples, alphaToCoverage,
+                                &late);
 }
 
 }  // namespace obscura::passes

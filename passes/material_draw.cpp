@@ -20,7 +20,7 @@ void setSceneVertexInput(gpu::GraphicsPipelineDesc& d) {
 
 void recordMaterialDraw(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pipeline& pipeline,
                         const FrameScene& scene, const Draw& draw, const MaterialTextures*& pushed,
-                        const void* push, uint32_t pushSize) {
+                        const void* push, uint32_t pushSize, const IndirectDraw* indirect) {
     // Textures change per material: pushed, not allocated (VK_KHR_push_descriptor).
     const MaterialTextures& textures = scene.materialTextures[draw.textures];
     if (&textures != pushed) {
@@ -39,7 +39,8 @@ void recordMaterialDraw(gpu::Device& device, VkCommandBuffer cmd, const gpu::Pip
     vkCmdBindIndexBuffer(cmd, draw.indices->buffer, 0, VK_INDEX_TYPE_UINT32);
     vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, pushSize,
                        push);
-    vkCmdDrawIndexed(cmd, draw.indexCount, draw.instanceCount, draw.firstIndex, 0, 0);
+    if (indirect) vkCmdDrawIndexedIndirect(cmd, indirect->buffer, indirect->offset, 1, 0);
+    else vkCmdDrawIndexed(cmd, draw.indexCount, draw.instanceCount, draw.firstIndex, 0, 0);
 }
 
 }  // namespace obscura::passes

@@ -19,7 +19,8 @@ VkDescriptorType descriptorType(Kind kind) {
         case Kind::StorageWrite:
         case Kind::StorageReadWrite: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
         case Kind::BufferRead:
-        case Kind::BufferWrite: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        case Kind::BufferWrite:
+        case Kind::BufferReadWrite: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         case Kind::Unbound: break;
     }
     throw std::logic_error("shader pass: an unbound binding has no descriptor type");
@@ -43,6 +44,7 @@ std::vector<gpu::Usage> usagesOf(Kind kind, ShaderStage stage) {
         case Kind::StorageWrite: return {gpu::Usage::StorageImageWrite};
         case Kind::StorageReadWrite: return {gpu::Usage::StorageImageRead, gpu::Usage::StorageImageWrite};
         case Kind::BufferWrite: return {gpu::Usage::StorageBufferWrite};
+        case Kind::BufferReadWrite: return {gpu::Usage::StorageBufferRead, gpu::Usage::StorageBufferWrite};
         default: return {};
     }
 }
@@ -97,6 +99,7 @@ ShaderBinding storageWriteLevel(gpu::ImageHandle image, uint32_t level) {
 ShaderBinding storageReadWrite(gpu::ImageHandle image) { return {.kind = Kind::StorageReadWrite, .image = image}; }
 ShaderBinding bufferRead(gpu::BufferHandle buffer) { return {.kind = Kind::BufferRead, .buffer = buffer}; }
 ShaderBinding bufferWrite(gpu::BufferHandle buffer) { return {.kind = Kind::BufferWrite, .buffer = buffer}; }
+ShaderBinding bufferReadWrite(gpu::BufferHandle buffer) { return {.kind = Kind::BufferReadWrite, .buffer = buffer}; }
 ShaderBinding unbound() { return {}; }
 
 std::vector<gpu::BindingDesc> bindingLayout(const std::vector<ShaderBinding>& bindings) {
@@ -139,7 +142,8 @@ void bindBindings(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, const std:
                 writer.storageImage(i, b.level ? res.levelView(b.image, *b.level) : res.view(b.image));
                 break;
             case Kind::BufferRead:
-            case Kind::BufferWrite: writer.buffer(i, res.buffer(b.buffer)); break;
+            case Kind::BufferWrite:
+            case Kind::BufferReadWrite: writer.buffer(i, res.buffer(b.buffer)); break;
         }
     }
     writer.bind(cmd);

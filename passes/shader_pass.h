@@ -28,6 +28,7 @@ struct ShaderBinding {
         StorageReadWrite,  // storage image read and written in place
         BufferRead,        // storage buffer
         BufferWrite,
+        BufferReadWrite,   // storage buffer read and written (atomics)
     };
     Kind kind = Kind::Unbound;
     gpu::ImageHandle image;
@@ -46,6 +47,7 @@ ShaderBinding storageWriteLevel(gpu::ImageHandle image, uint32_t level);
 ShaderBinding storageReadWrite(gpu::ImageHandle image);
 ShaderBinding bufferRead(gpu::BufferHandle buffer);
 ShaderBinding bufferWrite(gpu::BufferHandle buffer);
+ShaderBinding bufferReadWrite(gpu::BufferHandle buffer);
 ShaderBinding unbound();
 
 // Where a pass's shaders run: the stages its reads are declared for (Graphics: vertex and

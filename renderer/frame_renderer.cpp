@@ -47,7 +47,8 @@ FrameRenderer::FrameRenderer(std::unique_ptr<gpu::FrameBackend> owned, gpu::Fram
     : ownedBackend_(std::move(owned)),
       backend_(backend ? *backend : *ownedBackend_),
       log_(std::move(log)),
-      occlusion_(backend_) {
+      occlusion_(backend_),
+      gpuOcclusion_(backend_) {
     bestFitNormals_ = passes::createBestFitNormalsTexture(backend_);
     // With SSAO off the lighting pass reads one unoccluded texel.
     const uint8_t open = 255;
@@ -132,9 +133,12 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
         viewpoint.lastModels = &lastModels_;
         viewpoint.models = &models;
     }
-    // Occlusion culling (seed 004): the last frame's coverage buffer, reprojected into this view.
-    // The reference's sub-frames are not culled: each looks from its own point of the lens.
-    const bool occlusionCulling = settings.occlusionCulling && referenceSubFrames == 0;
+    // Occlusion culling (seed 004): the last frame's coverage buffer, reprojected into this view,
+    // or this frame's own depth on the GPU. The reference's sub-frames are not culled: each looks
+    // from its own point of the lens.
+    const bool culling = settings.occlusionCulling && referenceSubFrames == 0;
+    viewpoint.gpuOcclusionCulling = culling && settings.occlusionCullingRoute == OcclusionCullingRoute::Gpu;
+    const bool occlusionCulling = culling && !viewpoint.gpuOcclusionCulling;
     const CoverageKey coverageKey{camera.key, camera.time, request.drawnVersion, request.settingsVersion};
     CoverageView coverageView;
     std::optional<CoverageBuffer> coverage;
@@ -159,8 +163,12 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
     gpu::ImageHandle shadowAtlas;
     if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, scene, &shadowHistory_);
     auto samples = VkSampleCountFlagBits(referenceSubFrames == 0 ? settings.msaaSamples : 1u);
-    passes::GBuffer gbuffer = passes::addGBufferPass(
-        graph, scene, graph.importTexture("bestFitNormals", bestFitNormals_), samples, settings.msaaAlphaToCoverage);
+    const gpu::ImageHandle bestFitNormals = graph.importTexture("bestFitNormals", bestFitNormals_);
+    passes::GBuffer gbuffer =
+        scene.gpuCulledDraws > 0
+            ? gpuOcclusion_.addGBuffer(graph, scene, {request.drawnVersion, request.settingsVersion, scene.instanceCount},
+                                       bestFitNormals, samples, settings.msaaAlphaToCoverage)
+            : passes::addGBufferPass(graph, scene, bestFitNormals, samples, settings.msaaAlphaToCoverage);
     std::optional<MsaaFrame> msaa;
     if (samples != VK_SAMPLE_COUNT_1_BIT) {
         if (!msaaTaggedPixels_)
@@ -253,6 +261,10 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
                                velocity, request.aovs);
     executeFrame(graph);
     occlusion_.frameDone();
+    if (scene.gpuCulledDraws > 0) {
+        GpuOcclusionCulling::Culled culled = gpuOcclusion_.culled(scene);
+        source.culledOnGpu(culled.draws, culled.instances, culled.triangles);
+    }
     converged_ = !temporalAa || temporalAa->converged;
     if (msaa) {
         // Issue 5: the share of pixels the per-sample mask sends to sample-frequency lighting.

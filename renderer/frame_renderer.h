@@ -19,6 +19,7 @@
 #include "passes/temporal_aa.h"
 #include "pass_support/thin_lens.h"
 #include "renderer/environment_cache.h"
+#include "renderer/gpu_occlusion_culling.h"
 #include "renderer/grading_chart.h"
 #include "renderer/matrix.h"
 #include "renderer/occlusion_history.h"
@@ -89,6 +90,9 @@ struct FrameViewpoint {
     // viewpoint's view; draws and instances whose bounds it hides are left out of the camera's
     // draws. Null: nothing is culled (a reference sub-frame, a frame without history).
     const CoverageBuffer* occlusion = nullptr;
+    // Occlusion culling on the GPU (occlusionCulling:route gpu): the draws that stay still leave
+    // their instances inside the view to the culling pass (FrameScene::occlusionCandidates).
+    bool gpuOcclusionCulling = false;
 };
 
 // World-to-view and view-to-clip (row-vector convention) a viewpoint sees through.
@@ -104,6 +108,9 @@ public:
     virtual FrameView view(const FrameViewpoint& viewpoint) const = 0;
     // The GPU records and draws of the scene seen from `viewpoint`.
     virtual passes::FrameScene scene(const FrameViewpoint& viewpoint) = 0;
+    // Once the frame of scene() ran: what occlusion culling on the GPU left out of its camera
+    // draws (whole draws, instances, triangles), which scene()'s counts could not yet hold.
+    virtual void culledOnGpu(uint32_t draws, uint64_t instances, uint64_t triangles) = 0;
 
 protected:
     ~FrameSceneSource() = default;
@@ -198,6 +205,7 @@ private:
     // A frame without a velocity target reads this one texel of kStaticVelocity (the motion AOV).
     gpu::ImagePtr stillVelocity_;
     OcclusionHistory occlusion_;
+    GpuOcclusionCulling gpuOcclusion_;
     InstanceModels lastModels_;  // the last frame's instance models, for temporal AA's object motion
     gpu::PersistentImage accumulation_;  // reference mode's running sum (passes/accumulate.h)
     // SSAO's temporal accumulation: the history and what it was rendered with, to reproject it or

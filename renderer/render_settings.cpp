@@ -207,13 +207,23 @@ const RenderSettingInfo kSettings[] = {
      "BC5 (two channels, z reconstructed); off keeps 8-bit textures RGBA8 (bool, default on)",
      OBSCURA_VALUE_BOOL, 1.0},
     {"occlusionCulling", number<&FrameSettings::occlusionCulling>,
-     "occlusion culling with a coverage buffer (seed 004): the last frame's depth, reduced to 8x8-pixel "
-     "tiles, is read back after its fence, reprojected into this frame's view and tested against each "
-     "draw's and instance's bounds; what it hides is not drawn by the camera (shadow maps draw "
-     "everything). Conservative: a camera cut, the first frame, or a change to what is drawn tests "
-     "nothing; off by default because a sub-pixel gap no sample of the last frame saw through is "
-     "taken as covered (docs/ARCHITECTURE.md) (bool, default off)",
+     "occlusion culling (seed 004): what the camera's depth hides is not drawn by the camera (shadow "
+     "maps draw everything), tested as occlusionCulling:route says (bool, default off)",
      OBSCURA_VALUE_BOOL, 0.0},
+    {"occlusionCulling:route", [](FrameSettings& s, double, const std::string& t) {
+         s.occlusionCullingRoute =
+             t == "coverageBuffer" ? OcclusionCullingRoute::CoverageBuffer : OcclusionCullingRoute::Gpu;
+     },
+     "gpu: in two phases within the frame, on the GPU: what the last frame saw is drawn first, a "
+     "depth pyramid is built from it, every instance's bounds are tested against it by a compute pass "
+     "that writes indirect draws, and what else is visible is drawn then; it never leaves out what "
+     "the frame shows. coverageBuffer: the talk's coverage buffer, the last frame's depth reduced to "
+     "8x8-pixel tiles, read back after its fence, reprojected on the CPU into this frame's view; a "
+     "camera cut, the first frame or a change to what is drawn tests nothing, and a sub-pixel gap no "
+     "sample of the last frame saw through is taken as covered (docs/ARCHITECTURE.md) (token, "
+     "default gpu)",
+     OBSCURA_VALUE_TOKEN, 0.0, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+     "gpu|coverageBuffer", "gpu"},
 };
 
 bool isTokenChoice(std::string_view choices, std::string_view token) {

@@ -19,6 +19,12 @@
 
 namespace obscura::renderer {
 
+// Where occlusion culling tests (render setting occlusionCulling:route).
+enum class OcclusionCullingRoute {
+    Gpu,             // this frame's early depth, on the GPU (passes/occlusion_cull.h)
+    CoverageBuffer,  // the last frame's depth, reprojected on the CPU (renderer/coverage_buffer.h)
+};
+
 // Every setting's current value, typed, in the units the frame works in unless the name says
 // otherwise. Default-constructed it holds each setting's default from the table.
 struct FrameSettings {
@@ -58,6 +64,7 @@ struct FrameSettings {
     passes::LatticeInterpolation gradingInterpolation;
     bool textureCompression;
     bool occlusionCulling;
+    OcclusionCullingRoute occlusionCullingRoute;
 };
 
 struct RenderSettingInfo {

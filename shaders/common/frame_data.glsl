@@ -50,6 +50,27 @@ struct InstanceData {
     uint pad2;
 };
 
+// GPU occlusion culling (shaders/occlusion_cull.comp): an instance the camera may draw, its world
+// bounds, its InstanceData record and its draw's command (Draw::cullSlot).
+struct OcclusionCandidate {
+    vec3 boundsMin;
+    uint record;
+    vec3 boundsMax;
+    uint command;
+};
+
+// VkDrawIndexedIndirectCommand, and where its draw's drawn records start in the list.
+struct CulledDrawCommand {
+    uint indexCount;
+    uint instanceCount;
+    uint firstIndex;
+    int vertexOffset;
+    uint firstInstance;
+    uint listOffset;
+    uint pad0;
+    uint pad1;
+};
+
 // Temporal AA's object motion: where an instance that moved since the last frame was then, as
 // this frame's world space to last frame's (last model x inverse of this model).
 struct InstanceReprojection {

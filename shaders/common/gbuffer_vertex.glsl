@@ -15,6 +15,11 @@ CAMERA_BLOCK(0);
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
 
 layout(push_constant) uniform Push { uint instanceIndex; } push;
+#ifdef CULLED_INSTANCES
+// GPU occlusion culling (shaders/occlusion_cull.comp): the records the culling pass left to the
+// draw, from the draw's list offset (the push constant).
+layout(set = 0, binding = 5, std430) readonly buffer DrawnRecords { uint drawnRecords[]; };
+#endif
 
 layout(location = 0) out vec3 outNormal;
 layout(location = 1) out vec4 outColor;
@@ -26,8 +31,12 @@ layout(location = 5) out vec4 outTangent;
 // Writes the surface outputs for the vertex at `position` (object space) and returns its world
 // position.
 vec4 surfaceVertex(vec3 position) {
+#ifdef CULLED_INSTANCES
+    outInstance = drawnRecords[push.instanceIndex + uint(gl_InstanceIndex)];
+#else
     // One record per GPU instance, consecutive from the draw's first record.
     outInstance = push.instanceIndex + uint(gl_InstanceIndex);
+#endif
     InstanceData inst = instances[outInstance];
     vec4 world = inst.model * vec4(position, 1.0);
     outWorldPosition = world.xyz;

@@ -1,7 +1,8 @@
-// Occlusion culling (seed 004 "Occlusion culling", render setting occlusionCulling): what the last
-// frame's coverage buffer hides is not drawn by the camera, and nothing the camera sees is ever
-// culled: every frame of a camera path renders the same image with culling as without, pixel for
-// pixel, while the culled counts say the test had something to hide.
+// Occlusion culling (seed 004 "Occlusion culling", render setting occlusionCulling), both routes
+// (occlusionCulling:route): what the last frame's coverage buffer hides, or what this frame's early
+// depth hides on the GPU, is not drawn by the camera, and nothing the camera sees is ever culled:
+// every frame of a camera path renders the same image with culling as without, pixel for pixel,
+// while the culled counts say the test had something to hide.
 #include "tests/delegate/render_fixture.h"
 
 #include <gtest/gtest.h>
@@ -39,11 +40,14 @@ CulledFrame renderCulledFrame(TestHost& host, const std::string& camera) {
 
 // A wall filling the view of a camera at the origin looking along +Y, a box, a glass pane and
 // crates in front of it and a box, a glass box and crates behind it, lit by a shadowing sun.
-// Culling on or off as asked.
+// Culling on or off as asked, by the route named.
+constexpr const char* kCoverageBuffer = "coverageBuffer";
+constexpr const char* kGpu = "gpu";
 struct WalledScene {
     TestHost host;
-    explicit WalledScene(bool culling) {
+    explicit WalledScene(bool culling, const char* route = kCoverageBuffer, int width = kWidth, int height = kHeight) {
         setBool(host, "occlusionCulling", culling);
+        setToken(host, "occlusionCulling:route", route);
         addMaterial(host, "/Looks/Grey", {0.5f, 0.5f, 0.5f}, 0.6f);
         addMaterial(host, "/Looks/Red", {0.8f, 0.1f, 0.1f}, 0.4f);
         addMaterial(host, "/Looks/Glass", {0.2f, 0.6f, 0.9f}, 0.2f);
@@ -67,8 +71,8 @@ struct WalledScene {
                                                 {"inputs:normalize", HostValue::boolean(true)},
                                                 {"inputs:angle", HostValue::floatValue(0.5f)}};
         host.addPrim("distantLight", "/Sun", sun, lightPointingAlong({-0.4, 0.6, -0.7}));
-        host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
-        host.addRenderBuffer("/Buffers/id", "int32", kWidth, kHeight);
+        host.addRenderBuffer("/Buffers/color", "float32Vec4", width, height);
+        host.addRenderBuffer("/Buffers/id", "int32", width, height);
     }
 
     // Moves a prim as a host does: the new transform, and the prim marked dirty.
@@ -182,6 +186,109 @@ TEST(OcclusionCulling, AMovedOccluderCullsNothingUntilItsDepthIsRenderedAgain) {
     WalledScene::Frame next = culled.render("/Camera");
     expectSameImage(next, drawn.render("/Camera"), "the frame after");
     EXPECT_EQ(next.culling.instancesCulled, 0u) << "nothing is hidden any more";
+}
+
+// The GPU route (two phases within the frame): the first frame has no history, so its early phase
+// draws every candidate and none is left out; from the next on, what the wall hides is culled
+// (transparent draws are not: the transparent pass draws them as they are).
+TEST(GpuOcclusionCulling, TheFirstFrameDrawsEverythingAndTheNextCullsWhatTheWallHides) {
+    WalledScene culled(true, kGpu), drawn(false);
+    WalledScene::Frame first = culled.render("/Camera");
+    expectSameImage(first, drawn.render("/Camera"), "first frame");
+    EXPECT_EQ(first.culling.instancesCulled, 0u);
+    EXPECT_EQ(first.culling.draws, 6u);
+    for (int frame = 1; frame < 3; ++frame) {
+        WalledScene::Frame next = culled.render("/Camera");
+        expectSameImage(next, drawn.render("/Camera"), "frame " + std::to_string(frame));
+        EXPECT_EQ(next.culling.drawsCulled, 1u) << "the opaque box behind the wall";
+        EXPECT_EQ(next.culling.instancesCulled, uint64_t(1 + kCrowdBehind));
+        EXPECT_EQ(next.culling.trianglesCulled, uint64_t(12 * (1 + kCrowdBehind)));
+        EXPECT_EQ(renderStats(culled.host).trianglesDrawn, uint64_t(12 * (4 + kCrowdInFront)));
+    }
+}
+
+// A frame whose sides are no power of two: the pyramid's levels end in texels that cover part of
+// their span (their farthest depth is that of the pixels there are), with the image's edges along
+// the hidden box's rectangle at the coarser levels.
+TEST(GpuOcclusionCulling, AFrameOfOddSizeCullsWhatTheWallHides) {
+    for (auto [width, height] : {std::pair{67, 37}, std::pair{33, 95}}) {
+        WalledScene culled(true, kGpu, width, height), drawn(false, kGpu, width, height);
+        for (int frame = 0; frame < 2; ++frame) {
+            WalledScene::Frame f = culled.render("/Camera");
+            const std::string name = std::to_string(width) + "x" + std::to_string(height);
+            expectSameImage(f, drawn.render("/Camera"), name + " frame " + std::to_string(frame));
+            EXPECT_EQ(f.culling.instancesCulled, frame == 0 ? 0u : uint64_t(1 + kCrowdBehind)) << name;
+        }
+    }
+}
+
+// A moving camera, a cut and back: the same image with culling as without in every frame. The test
+// is this frame's own depth, so a cut culls as well as any frame (the last frame's visible set is
+// only the first guess of what to draw early).
+TEST(GpuOcclusionCulling, ACameraPathWithACutRendersTheSameImages) {
+    WalledScene culled(true, kGpu), drawn(false);
+    uint64_t culledWhileMoving = 0;
+    for (int frame = 0; frame < 6; ++frame) {
+        const Matrix view = lookingAlongY({0.06 * frame, 0.1 * frame, 0.02 * frame}, 0.5 * frame);
+        culled.move("/Camera", view);
+        drawn.move("/Camera", view);
+        WalledScene::Frame f = culled.render("/Camera");
+        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
+        if (frame > 0) culledWhileMoving += f.culling.instancesCulled;
+    }
+    EXPECT_GT(culledWhileMoving, 0u) << "the moving camera's frames cull what the wall keeps hiding";
+    WalledScene::Frame cut = culled.render("/Other");
+    expectSameImage(cut, drawn.render("/Other"), "cut");
+    EXPECT_GT(cut.culling.instancesCulled, 0u) << "the cut's own depth hides what lies behind the wall";
+    WalledScene::Frame back = culled.render("/Camera");
+    expectSameImage(back, drawn.render("/Camera"), "back to the first camera");
+    EXPECT_EQ(back.culling.instancesCulled, uint64_t(1 + kCrowdBehind));
+}
+
+// With MSAA the depth pyramid takes each pixel's farthest sample.
+TEST(GpuOcclusionCulling, MultisampledFramesCullWhatTheWallHides) {
+    WalledScene culled(true, kGpu), drawn(false);
+    setNumber(culled.host, "msaa", 4);
+    setNumber(drawn.host, "msaa", 4);
+    for (int frame = 0; frame < 3; ++frame) {
+        WalledScene::Frame f = culled.render("/Camera");
+        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
+        EXPECT_EQ(f.culling.instancesCulled, frame == 0 ? 0u : uint64_t(1 + kCrowdBehind)) << "frame " << frame;
+    }
+}
+
+// A box moving within the shutter is never culled (its bounds hold one time of it); what stands
+// still behind the wall still is, as each frame tests its own depth.
+TEST(GpuOcclusionCulling, MotionWithinTheShutterCullsOnlyWhatStandsStill) {
+    WalledScene culled(true, kGpu), drawn(false);
+    for (WalledScene* scene : {&culled, &drawn}) {
+        scene->host.set("/Camera", "shutter:open", HostValue::doubleValue(-0.5));
+        scene->host.set("/Camera", "shutter:close", HostValue::doubleValue(0.5));
+        scene->host.setTransformMotion("/Hidden", -0.5, translation(-0.2, 0, 0), 0.5, translation(0.2, 0, 0));
+    }
+    for (int frame = 0; frame < 3; ++frame) {
+        WalledScene::Frame f = culled.render("/Camera");
+        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
+        EXPECT_EQ(f.culling.instancesCulled, frame == 0 ? 0u : uint64_t(kCrowdBehind)) << "frame " << frame;
+    }
+}
+
+// What an occluder uncovers is drawn in the very frame it is uncovered: the late phase finds it
+// visible against this frame's depth, though the last frame culled it.
+TEST(GpuOcclusionCulling, WhatAMovedOccluderUncoversIsDrawnInTheSameFrame) {
+    WalledScene culled(true, kGpu), drawn(false);
+    culled.render("/Camera");
+    drawn.render("/Camera");
+    EXPECT_EQ(culled.render("/Camera").culling.instancesCulled, uint64_t(1 + kCrowdBehind));
+    drawn.render("/Camera");
+    culled.move("/Wall", translation(0, 0, -30));
+    drawn.move("/Wall", translation(0, 0, -30));
+    WalledScene::Frame moved = culled.render("/Camera");
+    expectSameImage(moved, drawn.render("/Camera"), "after the wall moved");
+    EXPECT_EQ(moved.culling.instancesCulled, 0u) << "nothing is hidden any more";
+    int32_t hiddenId = -1;
+    ASSERT_EQ(culled.host.api().getPrimId(culled.host.delegate(), "/Hidden", &hiddenId), OBSCURA_OK);
+    EXPECT_GT(std::count(moved.ids.begin(), moved.ids.end(), hiddenId), 0) << "the box the wall hid is drawn";
 }
 
 // View frustum culling, always on: boxes wholly outside the view (behind the eye, far to one side,

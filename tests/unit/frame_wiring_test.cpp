@@ -24,6 +24,7 @@ public:
     explicit SceneOfTwoDraws(gpu::FrameBackend& backend) : backend_(backend) {}
 
     FrameView view(const FrameViewpoint&) const override { return {kIdentity, kIdentity}; }
+    void culledOnGpu(uint32_t, uint64_t, uint64_t) override {}
 
     passes::FrameScene scene(const FrameViewpoint& viewpoint) override {
         passes::FrameScene s;
@@ -52,6 +53,13 @@ public:
         glass.instanceIndex = 1;
         s.draws = {opaque, glass};
         s.cameraDraws = {opaque};
+        // Occlusion culling on the GPU: the still opaque draw's one instance is a candidate.
+        if (viewpoint.gpuOcclusionCulling && !opaque.moving) {
+            s.cameraDraws.front().cullSlot = 0;
+            s.gpuCulledDraws = 1;
+            s.occlusionCandidates = records("occlusion candidates");
+            s.occlusionCandidateCount = 1;
+        }
         s.transparentDraws = {1};
         s.instanceCount = 2;
         s.edgeAa = viewpoint.edgeAaDistance > 0.0;
@@ -344,6 +352,7 @@ void HybridAaAddsEdgeAaWhileTheSceneChanges() {
 void OcclusionCullingReducesTheDepthAfterTheGBuffer() {
     Wiring w;
     w.settings.occlusionCulling = true;
+    w.settings.occlusionCullingRoute = OcclusionCullingRoute::CoverageBuffer;
     std::vector<std::string> names = running(w.render());
     auto gbuffer = std::find(names.begin(), names.end(), "gbuffer");
     ASSERT_NE(gbuffer, names.end());
@@ -355,6 +364,41 @@ void OcclusionCullingReducesTheDepthAfterTheGBuffer() {
     reference.settings.occlusionCulling = true;
     reference.settings.referenceSubFrames = 2;
     EXPECT_FALSE(runs(reference.render(), "coverage_buffer"));
+}
+
+// Occlusion culling on the GPU: the G-buffer in two passes, the early culling before the first,
+// the depth pyramid of its depth and the late culling between them; the culled draws' commands
+// are indirect reads of the G-buffer passes. Not in reference mode; a draw moving within the
+// shutter is drawn as it is, so a frame without a still draw culls nothing.
+void GpuOcclusionCullingSplitsTheGBufferAroundTheDepthPyramid() {
+    Wiring w;
+    w.settings.occlusionCulling = true;
+    std::vector<std::string> names = running(w.render());
+    auto early = std::find(names.begin(), names.end(), "occlusion_cull_early");
+    ASSERT_NE(early, names.end());
+    // The first frame clears the new stamps before; the test's image has levels above 5 (hi_z_top).
+    ASSERT_NE(early, names.begin());
+    EXPECT_EQ(std::vector<std::string>(early - 1, early + 6),
+              (std::vector<std::string>{"occlusion_stamps_clear", "occlusion_cull_early", "gbuffer", "hi_z",
+                                        "hi_z_top", "occlusion_cull_late", "gbuffer_late"}));
+    EXPECT_FALSE(runs(w.backend.frames.back(), "coverage_buffer"));
+    const Frame& frame = w.backend.frames.back();
+    for (const char* pass : {"gbuffer", "gbuffer_late"}) {
+        bool waits = false;
+        for (const auto& p : frame.passes)
+            if (p.name == pass)
+                for (const auto& b : p.barriers)
+                    waits |= !b.isImage && b.dstAccess == VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT &&
+                             b.srcStage == VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+        EXPECT_TRUE(waits) << pass << " waits for the culling pass's commands";
+    }
+    EXPECT_FALSE(runs(w.render(), "occlusion_stamps_clear")) << "the stamps are kept from frame to frame";
+    w.openShutter();
+    EXPECT_FALSE(runs(w.render(), "occlusion_cull_early")) << "the opaque draw moves within the shutter";
+    Wiring reference;
+    reference.settings.occlusionCulling = true;
+    reference.settings.referenceSubFrames = 2;
+    EXPECT_FALSE(runs(reference.render(), "occlusion_cull_early"));
 }
 
 TEST(FrameWiring, TheDefaultFrame) {
@@ -396,6 +440,10 @@ TEST(FrameWiring, SettingsChooseThePasses) {
     {
         SCOPED_TRACE("OcclusionCullingReducesTheDepthAfterTheGBuffer");
         OcclusionCullingReducesTheDepthAfterTheGBuffer();
+    }
+    {
+        SCOPED_TRACE("GpuOcclusionCullingSplitsTheGBufferAroundTheDepthPyramid");
+        GpuOcclusionCullingSplitsTheGBufferAroundTheDepthPyramid();
     }
 }
 
