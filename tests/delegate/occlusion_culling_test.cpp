@@ -94,6 +94,21 @@ void expectSameImage(const WalledScene::Frame& culled, const WalledScene::Frame&
     EXPECT_EQ(culled.ids, drawn.ids) << frame;
 }
 
+// Six frames of a camera moving and turning: the same images with culling as without, and the
+// frames after the first cull what the wall keeps hiding.
+void expectSameImagesAlongACameraPath(WalledScene& culled, WalledScene& drawn) {
+    uint64_t culledWhileMoving = 0;
+    for (int frame = 0; frame < 6; ++frame) {
+        const Matrix view = lookingAlongY({0.06 * frame, 0.1 * frame, 0.02 * frame}, 0.5 * frame);
+        culled.move("/Camera", view);
+        drawn.move("/Camera", view);
+        WalledScene::Frame f = culled.render("/Camera");
+        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
+        if (frame > 0) culledWhileMoving += f.culling.instancesCulled;
+    }
+    EXPECT_GT(culledWhileMoving, 0u) << "the moving camera's frames cull what the wall keeps hiding";
+}
+
 TEST(OcclusionCulling, TheFirstFrameDrawsEverythingAndTheNextCullsWhatTheWallHides) {
     WalledScene culled(true), drawn(false);
     WalledScene::Frame first = culled.render("/Camera");
@@ -119,16 +134,7 @@ TEST(OcclusionCulling, TheFirstFrameDrawsEverythingAndTheNextCullsWhatTheWallHid
 // as without; the cut frames draw everything, the moving ones still cull what stays hidden.
 TEST(OcclusionCulling, ACameraPathWithACutRendersTheSameImages) {
     WalledScene culled(true), drawn(false);
-    uint64_t culledWhileMoving = 0;
-    for (int frame = 0; frame < 6; ++frame) {
-        const Matrix view = lookingAlongY({0.06 * frame, 0.1 * frame, 0.02 * frame}, 0.5 * frame);
-        culled.move("/Camera", view);
-        drawn.move("/Camera", view);
-        WalledScene::Frame f = culled.render("/Camera");
-        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
-        if (frame > 0) culledWhileMoving += f.culling.instancesCulled;
-    }
-    EXPECT_GT(culledWhileMoving, 0u) << "the moving camera's frames cull what the wall keeps hiding";
+    expectSameImagesAlongACameraPath(culled, drawn);
 
     WalledScene::Frame cut = culled.render("/Other");
     expectSameImage(cut, drawn.render("/Other"), "cut");
@@ -227,16 +233,7 @@ TEST(GpuOcclusionCulling, AFrameOfOddSizeCullsWhatTheWallHides) {
 // only the first guess of what to draw early).
 TEST(GpuOcclusionCulling, ACameraPathWithACutRendersTheSameImages) {
     WalledScene culled(true, kGpu), drawn(false);
-    uint64_t culledWhileMoving = 0;
-    for (int frame = 0; frame < 6; ++frame) {
-        const Matrix view = lookingAlongY({0.06 * frame, 0.1 * frame, 0.02 * frame}, 0.5 * frame);
-        culled.move("/Camera", view);
-        drawn.move("/Camera", view);
-        WalledScene::Frame f = culled.render("/Camera");
-        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
-        if (frame > 0) culledWhileMoving += f.culling.instancesCulled;
-    }
-    EXPECT_GT(culledWhileMoving, 0u) << "the moving camera's frames cull what the wall keeps hiding";
+    expectSameImagesAlongACameraPath(culled, drawn);
     WalledScene::Frame cut = culled.render("/Other");
     expectSameImage(cut, drawn.render("/Other"), "cut");
     EXPECT_GT(cut.culling.instancesCulled, 0u) << "the cut's own depth hides what lies behind the wall";
