@@ -538,19 +538,21 @@ private:
         culled.cullSlot = scene_.gpuCulledDraws++;
         culled.firstCandidate = static_cast<uint32_t>(candidates_.size());
         culled.instanceCount = static_cast<uint32_t>(kept.size());
-        // The bounds in single precision, rounded outwards: the pass never tests a smaller box.
+        for (uint32_t record : kept) candidates_.push_back(candidate(record, culled.cullSlot));
+        return culled;
+    }
+
+    // The instance record's world bounds as a candidate of the draw numbered `cullSlot`, in single
+    // precision rounded outwards: the culling pass never tests a smaller box.
+    passes::OcclusionCandidate candidate(uint32_t record, uint32_t cullSlot) const {
         const auto rounded = [](const Vec3d& v, float towards) {
             std::array<float, 3> out{};
             for (size_t c = 0; c < 3; ++c) out[c] = std::nextafter(static_cast<float>(v[c]), towards);
             return out;
         };
         constexpr float kInfinity = std::numeric_limits<float>::infinity();
-        for (uint32_t record : kept) {
-            const Aabb& box = instanceBounds_[record];
-            candidates_.push_back(
-                {rounded(box.min, -kInfinity), record, rounded(box.max, kInfinity), culled.cullSlot});
-        }
-        return culled;
+        const Aabb& box = instanceBounds_[record];
+        return {rounded(box.min, -kInfinity), record, rounded(box.max, kInfinity), cullSlot};
     }
 
     // Transparent draws back to front: the "over" blend needs what lies behind drawn first.
@@ -577,8 +579,37 @@ private:
             lightCastsShadows_);
         shortfalls_.lightsWithoutShadowRoom = shadows.lightsLeftUnshadowed;
         scene_.shadows = std::move(shadows.atlas);
+        if (in_.gpuOcclusionCulling &&
+            uint64_t(scene_.shadows.views.size()) * instances_.size() <= passes::kMaxShadowCullingStamps)
+            shadowCandidates(shadows.viewProjections);
         scene_.shadows.records =
             upload(nullptr, 0, shadows.records, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "shadow views");
+    }
+
+    // GPU occlusion culling of the shadow views (passes/occlusion_cull.h): each still caster's
+    // instances inside a view are candidates of its draw into that view. Moving draws (their bounds
+    // hold one time of the shutter) and what casts no shadow are drawn as they are.
+    void shadowCandidates(const std::vector<Matrix4d>& viewProjections) {
+        passes::ShadowAtlas& atlas = scene_.shadows;
+        for (size_t v = 0; v < atlas.views.size(); ++v) {
+            passes::ShadowMapView& view = atlas.views[v];
+            view.culled.resize(view.draws.size());
+            for (size_t i = 0; i < view.draws.size(); ++i) {
+                const passes::Draw& draw = scene_.draws[view.draws[i]];
+                if (draw.transparent || draw.moving || draw.shutterPositions) continue;
+                passes::CulledViewDraw& culled = view.culled[i];
+                culled.cullSlot = atlas.gpuCulledDraws++;
+                culled.firstCandidate = static_cast<uint32_t>(shadowCandidates_.size());
+                for (uint32_t record = draw.instanceIndex; record < draw.instanceIndex + draw.instanceCount; ++record)
+                    if (!outsideClipVolume(instanceBounds_[record], viewProjections[v]))
+                        shadowCandidates_.push_back(candidate(record, culled.cullSlot));
+                culled.candidateCount = static_cast<uint32_t>(shadowCandidates_.size()) - culled.firstCandidate;
+            }
+        }
+        if (shadowCandidates_.empty()) return;
+        atlas.occlusionCandidateCount = static_cast<uint32_t>(shadowCandidates_.size());
+        atlas.occlusionCandidates =
+            upload(nullptr, 0, shadowCandidates_, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "shadow occlusion candidates");
     }
 
     // Clip volumes: each clipped light's mesh gets a stencil bit and an instance record of its own
@@ -676,6 +707,7 @@ private:
     std::vector<Aabb> drawBounds_;  // world bounds of each draw, all its instances
     std::vector<Aabb> instanceBounds_;  // world bounds of each drawn instance record
     std::vector<passes::OcclusionCandidate> candidates_;  // GPU occlusion culling's, draw by draw
+    std::vector<passes::OcclusionCandidate> shadowCandidates_;  // the shadow views', view by view
     std::vector<bool> drawCulled_;  // occlusion culling hid the whole draw from the camera
 };
 

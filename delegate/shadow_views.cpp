@@ -166,6 +166,7 @@ ShadowAtlasBuild buildShadowAtlas(const ShadowInputs& in, std::vector<passes::Li
         record.params = {float(pending.texelWorldSize), float(pending.cascadeEnd), float(pending.depthRange[0]),
                          float(pending.depthRange[1])};
         build.records.push_back(record);
+        build.viewProjections.push_back(pending.viewProjection);
         build.atlas.views.push_back(std::move(view));
     }
     return build;

@@ -24,6 +24,7 @@ constexpr uint32_t kMaxShadowAtlasSide = 8192;
 struct ShadowAtlasBuild {
     passes::ShadowAtlas atlas;                     // all but its GPU records
     std::vector<passes::ShadowViewData> records;   // one per view, for atlas.records
+    std::vector<Matrix4d> viewProjections;          // one per view: world -> clip, in double precision
     uint32_t lightsLeftUnshadowed = 0;  // lights that cast shadows but found no room in the atlas
 };
 

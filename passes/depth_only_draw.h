@@ -22,7 +22,9 @@ OBSCURA_SHADER_OFFSET(DepthOnlyPush, depth_only_vert::Push, instanceIndex);
 // binding 0), the depth format and tests, and a fragment stage if they need one.
 gpu::GraphicsPipelineDesc describeDepthOnlyDraw();
 
-// Binds the draw's buffers, pushes `push` with the draw's first instance, and draws every instance.
-void recordDepthOnlyDraw(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, const Draw& draw, DepthOnlyPush push);
+// Binds the draw's buffers, pushes `push` (its instanceIndex: the draw's first instance record, or
+// under GPU occlusion culling its list offset), and draws every instance, or as `indirect` says.
+void recordDepthOnlyDraw(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, const Draw& draw, DepthOnlyPush push,
+                         const IndirectDraw* indirect = nullptr);
 
 }  // namespace obscura::passes

@@ -119,8 +119,8 @@ OBSCURA_SHADER_OFFSET(OcclusionCandidate, OcclusionCandidate, record);
 OBSCURA_SHADER_OFFSET(OcclusionCandidate, OcclusionCandidate, boundsMax);
 OBSCURA_SHADER_OFFSET(OcclusionCandidate, OcclusionCandidate, command);
 
-// VkDrawIndexedIndirectCommand (its first five members), and where its draw's drawn records start
-// in the culling pass's list.
+// VkDrawIndexedIndirectCommand (its first five members), where its draw's drawn records start in
+// the culling pass's list, and for a shadow view's draw the view.
 struct CulledDrawCommand {
     uint32_t indexCount;
     uint32_t instanceCount;
@@ -128,7 +128,8 @@ struct CulledDrawCommand {
     int32_t vertexOffset;
     uint32_t firstInstance;
     uint32_t listOffset;
-    uint32_t pad0 = 0, pad1 = 0;
+    uint32_t view = 0;  // a shadow view's command: the view it draws into (ShadowViewData)
+    uint32_t pad0 = 0;
 };
 static_assert(sizeof(CulledDrawCommand) == 32);
 OBSCURA_SHADER_OFFSET(CulledDrawCommand, CulledDrawCommand, indexCount);
@@ -137,6 +138,7 @@ OBSCURA_SHADER_OFFSET(CulledDrawCommand, CulledDrawCommand, firstIndex);
 OBSCURA_SHADER_OFFSET(CulledDrawCommand, CulledDrawCommand, vertexOffset);
 OBSCURA_SHADER_OFFSET(CulledDrawCommand, CulledDrawCommand, firstInstance);
 OBSCURA_SHADER_OFFSET(CulledDrawCommand, CulledDrawCommand, listOffset);
+OBSCURA_SHADER_OFFSET(CulledDrawCommand, CulledDrawCommand, view);
 
 struct alignas(16) InstanceReprojection {
     Mat4 currentToPreviousWorld;  // this frame's world space to last frame's, for temporal AA

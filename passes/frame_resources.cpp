@@ -13,6 +13,8 @@ void importSceneBuffers(gpu::FrameGraph& graph, FrameScene& scene) {
                      graph.importBuffer("shadowRecords", scene.shadows.records)};
     if (scene.occlusionCandidates)
         scene.buffers.occlusionCandidates = graph.importBuffer("occlusionCandidates", scene.occlusionCandidates);
+    if (scene.shadows.occlusionCandidates)
+        scene.buffers.shadowCandidates = graph.importBuffer("shadowCandidates", scene.shadows.occlusionCandidates);
 }
 
 GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkSampleCountFlagBits samples,

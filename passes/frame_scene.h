@@ -46,11 +46,22 @@ struct MaterialTextures {
 
 // One view of the shadow atlas (a cascade of a distant light, a cube face of a sphere light): a
 // square tile the shadow-map pass renders the view's draws into, depth only.
+// GPU occlusion culling of one draw into one shadow view: like Draw::cullSlot and firstCandidate,
+// its candidates among ShadowAtlas::occlusionCandidates.
+struct CulledViewDraw {
+    uint32_t cullSlot = Draw::kNotCulledOnGpu;
+    uint32_t firstCandidate = 0;
+    uint32_t candidateCount = 0;
+};
+
 struct ShadowMapView {
     Mat4 viewProjection{};        // world -> clip of the view
     uint32_t x = 0, y = 0;        // the tile's first texel in the atlas
     uint32_t size = 0;            // the tile's side in texels
     std::vector<uint32_t> draws;  // indices into FrameScene::draws whose bounds reach the view
+    // Under GPU occlusion culling, one per draw of `draws` (cullSlot kNotCulledOnGpu: drawn as it
+    // is, every instance); empty otherwise.
+    std::vector<CulledViewDraw> culled;
 };
 
 // Every shadow map of the frame in one depth image; lights find their views through
@@ -60,7 +71,16 @@ struct ShadowAtlas {
     uint32_t height = 1;
     std::vector<ShadowMapView> views;
     gpu::BufferPtr records;  // ShadowViewData[] (storage), one per view, never empty
+    // GPU occlusion culling: OcclusionCandidate[] (storage) of the views' culled draws, each
+    // culled draw's consecutive (its command is its cullSlot); null when none is.
+    gpu::BufferPtr occlusionCandidates;
+    uint32_t occlusionCandidateCount = 0;
+    uint32_t gpuCulledDraws = 0;
 };
+
+// The stamps of shadow views are kept per view and instance record: beyond this many, the views
+// are not culled on the GPU.
+constexpr uint64_t kMaxShadowCullingStamps = uint64_t(1) << 24;
 
 // A light's clip volume (passes/clip_volumes.h): a closed mesh rasterised into one stencil bit.
 struct ClipVolume {
@@ -80,24 +100,34 @@ struct SceneBuffers {
     gpu::BufferHandle environment;
     gpu::BufferHandle shadowRecords;
     gpu::BufferHandle occlusionCandidates;  // unset when no draw is culled on the GPU
+    gpu::BufferHandle shadowCandidates;     // unset when no shadow view's draw is
 };
 
-// What GPU occlusion culling hands the G-buffer (passes/occlusion_cull.h): for each draw culled on
-// the GPU (Draw::cullSlot) an indexed indirect command per phase, and the records they draw.
+// An indexed draw whose command a pass wrote into a buffer (VkDrawIndexedIndirectCommand at `offset`).
+struct IndirectDraw {
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceSize offset = 0;
+};
+
+// What GPU occlusion culling hands the G-buffer and the shadow maps (passes/occlusion_cull.h): for
+// each draw culled on the GPU (Draw::cullSlot, CulledViewDraw::cullSlot) an indexed indirect
+// command per phase, and the records they draw.
 struct CulledDraws {
     enum class Phase { Early, Late };
     Phase phase = Phase::Early;
+    // The shadow atlas's draws (ShadowAtlas::occlusionCandidates, CulledViewDraw), not the camera's.
+    bool shadowViews = false;
     uint32_t drawCount = 0;      // draws culled on the GPU: the commands of one phase
     uint32_t candidateCount = 0;  // FrameScene::occlusionCandidateCount
     gpu::BufferHandle commands;  // CulledDrawCommand[2 * drawCount]: the early phase's, then the late one's
     gpu::BufferHandle lists;     // record indices, each command's from its listOffset
 
-    // Which of `commands` is `draw`'s in this phase, and where its drawn records start in `lists`:
-    // the early phase's at its first candidate, the late one's as many further as there are
-    // candidates.
-    uint32_t command(const Draw& draw) const { return (phase == Phase::Late ? drawCount : 0) + draw.cullSlot; }
-    uint32_t listOffset(const Draw& draw) const {
-        return (phase == Phase::Late ? candidateCount : 0) + draw.firstCandidate;
+    // Which of `commands` is the draw's of `cullSlot` in this phase, and where the drawn records of
+    // the draw whose candidates start at `firstCandidate` start in `lists`: the early phase's at
+    // its first candidate, the late one's as many further as there are candidates.
+    uint32_t command(uint32_t cullSlot) const { return (phase == Phase::Late ? drawCount : 0) + cullSlot; }
+    uint32_t listOffset(uint32_t firstCandidate) const {
+        return (phase == Phase::Late ? candidateCount : 0) + firstCandidate;
     }
 };
 

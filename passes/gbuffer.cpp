@@ -191,9 +191,11 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
                 }
                 if (culledDraw) {
                     // The draw's records from its list; its instance count from the culling pass.
-                    GBufferPush push{culledDraws->listOffset(*o.draw), uint32_t(samples), alphaToCoverage ? 1u : 0u};
+                    GBufferPush push{culledDraws->listOffset(o.draw->firstCandidate), uint32_t(samples),
+                                     alphaToCoverage ? 1u : 0u};
                     IndirectDraw indirect{res.buffer(culledDraws->commands),
-                                          VkDeviceSize(culledDraws->command(*o.draw)) * sizeof(CulledDrawCommand)};
+                                          VkDeviceSize(culledDraws->command(o.draw->cullSlot)) *
+                                              sizeof(CulledDrawCommand)};
                     recordMaterialDraw(device, cmd, *bound, scene, *o.draw, pushed, &push, sizeof(push), &indirect);
                 } else {
                     GBufferPush push{o.draw->instanceIndex, uint32_t(samples), alphaToCoverage ? 1u : 0u};

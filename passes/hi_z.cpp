@@ -42,7 +42,8 @@ uint64_t hiZPyramidFloats(uint32_t width, uint32_t height) {
     return floats;
 }
 
-gpu::BufferHandle addHiZPasses(gpu::FrameGraph& graph, gpu::ImageHandle depth, gpu::BufferHandle pyramid) {
+gpu::BufferHandle addHiZPasses(gpu::FrameGraph& graph, gpu::ImageHandle depth, gpu::BufferHandle pyramid,
+                               const std::string& label) {
     const gpu::ImageDesc& desc = graph.imageDesc(depth);
     const bool multisampled = desc.samples != VK_SAMPLE_COUNT_1_BIT;
     ComputePass tiles{multisampled ? "hi_z_multisampled" : "hi_z", {sampled(depth), bufferWrite(pyramid)},
@@ -50,12 +51,13 @@ gpu::BufferHandle addHiZPasses(gpu::FrameGraph& graph, gpu::ImageHandle depth, g
     // One invocation per texel of level 1, a 16x16 group per 32x32 pixels.
     tiles.texels = std::array<uint32_t, 2>{levelSide(desc.width, 1), levelSide(desc.height, 1)};
     tiles.texelsPerGroup = {16, 16};
-    tiles.label = "hi_z";
+    tiles.label = label;
     pyramid = addComputePass(graph, std::move(tiles)).buffers[0];
     if (topLevel(desc.width, desc.height) <= kLevelsPerTile) return pyramid;
     ComputePass top{"hi_z_top", {bufferReadWrite(pyramid)}, bytesOf(TopPush{{desc.width, desc.height}})};
     top.texels = std::array<uint32_t, 2>{1, 1};  // one workgroup
     top.texelsPerGroup = {1, 1};
+    top.label = label + "_top";
     return addComputePass(graph, std::move(top)).buffers[0];
 }
 

@@ -7,14 +7,17 @@
 #include "gpu/frame_graph.h"
 
 #include <cstdint>
+#include <string>
 
 namespace obscura::passes {
 
 // The floats of the pyramid of a `width` x `height` depth: levels 1 up to the single texel.
 uint64_t hiZPyramidFloats(uint32_t width, uint32_t height);
 
-// Reduces `depth` (the G-buffer's depth, single-sample or multisampled) into `pyramid`, a buffer
-// of hiZPyramidFloats() floats; returns its written version.
-gpu::BufferHandle addHiZPasses(gpu::FrameGraph& graph, gpu::ImageHandle depth, gpu::BufferHandle pyramid);
+// Reduces `depth` (the G-buffer's depth, single-sample or multisampled, or the shadow atlas) into
+// `pyramid`, a buffer of hiZPyramidFloats() floats; returns its written version. The passes are
+// named `label` and `label`_top.
+gpu::BufferHandle addHiZPasses(gpu::FrameGraph& graph, gpu::ImageHandle depth, gpu::BufferHandle pyramid,
+                               const std::string& label = "hi_z");
 
 }  // namespace obscura::passes

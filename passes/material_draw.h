@@ -11,12 +11,6 @@ namespace obscura::passes {
 // passes that draw the scene's materials.
 void setSceneVertexInput(gpu::GraphicsPipelineDesc& desc);
 
-// An indexed draw whose command a pass wrote into a buffer (VkDrawIndexedIndirectCommand at `offset`).
-struct IndirectDraw {
-    VkBuffer buffer = VK_NULL_HANDLE;
-    VkDeviceSize offset = 0;
-};
-
 // Records one draw of the scene with its material textures pushed into set 1 (unless `pushed`
 // holds them already) and `push` as push constants (its first uint: the draw's first instance),
 // with its own counts, or those of `indirect`.

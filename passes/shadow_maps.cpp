@@ -7,6 +7,8 @@
 #include "gpu/vulkan_functions.h"
 
 #include <array>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace obscura::passes {
@@ -19,17 +21,22 @@ namespace {
 constexpr float kDepthBiasConstant = 1.0f;
 constexpr float kDepthBiasSlope = 2.0f;
 
-// Set 0: the instance records, and for cut-out draws the materials.
-std::vector<ShaderBinding> shadowBindings(const SceneBuffers& buffers, bool cutout) {
-    std::vector<ShaderBinding> bindings{bufferRead(buffers.instances)};
-    if (cutout) bindings.push_back(bufferRead(buffers.materials));
+// Set 0: the instance records, for cut-out draws the materials, and for draws culled on the GPU
+// the records the culling pass left them.
+std::vector<ShaderBinding> shadowBindings(const SceneBuffers& buffers, bool cutout,
+                                          const CulledDraws* culled = nullptr) {
+    std::vector<ShaderBinding> bindings{bufferRead(buffers.instances),
+                                        cutout ? bufferRead(buffers.materials) : unbound()};
+    if (culled) bindings.push_back(bufferRead(culled->lists));
     return bindings;
 }
 
 // Opaque draws write depth with no fragment stage; draws with an opacity cut-out add one that
 // discards the texels the G-buffer discards.
-gpu::GraphicsPipelineDesc describeShadowDepthPipeline(const std::vector<ShaderBinding>& bindings, bool cutout) {
+gpu::GraphicsPipelineDesc describeShadowDepthPipeline(const std::vector<ShaderBinding>& bindings, bool cutout,
+                                                      bool culled) {
     gpu::GraphicsPipelineDesc d = describeDepthOnlyDraw();
+    if (culled) d.vertexShader = "depth_only_culled.vert";
     d.bindings = bindingLayout(bindings);
     if (cutout) {
         d.fragmentShader = "shadow_cutout.frag";
@@ -65,12 +72,21 @@ uint64_t viewKey(const FrameScene& scene, const ShadowMapView& view) {
     return h;
 }
 
-// Records the draws of every view in `views` that `cutout` selects, each view into its tile.
+// Whether the draw numbered `i` in `view` is culled on the GPU.
+bool culledInView(const ShadowMapView& view, size_t i) {
+    return !view.culled.empty() && view.culled[i].cullSlot != Draw::kNotCulledOnGpu;
+}
+
+// Records the draws of every view in `views` that `cutout` selects, each view into its tile. Under
+// GPU occlusion culling (`culled`) the culled draws (`culledDraws`: those alone, or the others)
+// draw their instances of `culled`'s phase.
 void recordViews(VkCommandBuffer cmd, const gpu::PassResources& res, const FrameScene& scene,
-                 const std::vector<uint32_t>& views, bool cutout) {
-    const std::vector<ShaderBinding> bindings = shadowBindings(scene.buffers, cutout);
+                 const std::vector<uint32_t>& views, bool cutout, const CulledDraws* culled = nullptr,
+                 bool culledDraws = false) {
+    const std::vector<ShaderBinding> bindings = shadowBindings(scene.buffers, cutout, culledDraws ? culled : nullptr);
     const gpu::Pipeline& pipeline = res.pipelines().get<gpu::GraphicsPipelineDesc>(
-        cutout ? "shadow_depth_cutout" : "shadow_depth", [&] { return describeShadowDepthPipeline(bindings, cutout); });
+        std::string(cutout ? "shadow_depth_cutout" : "shadow_depth") + (culledDraws ? ".culled" : ""),
+        [&] { return describeShadowDepthPipeline(bindings, cutout, culledDraws); });
     bool bound = false;
     for (uint32_t v : views) {
         const ShadowMapView& view = scene.shadows.views[v];
@@ -78,9 +94,10 @@ void recordViews(VkCommandBuffer cmd, const gpu::PassResources& res, const Frame
         VkRect2D tile{{int32_t(view.x), int32_t(view.y)}, {view.size, view.size}};
         DepthOnlyPush push{view.viewProjection, 0};
         bool inTile = false;
-        for (uint32_t index : view.draws) {
-            const Draw& draw = scene.draws[index];
+        for (size_t i = 0; i < view.draws.size(); ++i) {
+            const Draw& draw = scene.draws[view.draws[i]];
             if (draw.opacityCutout != cutout || !casts(draw)) continue;
+            if (culled && culledInView(view, i) != culledDraws) continue;
             if (!bound) {
                 bindBindings(cmd, pipeline, bindings, res);
                 bound = true;
@@ -96,7 +113,15 @@ void recordViews(VkCommandBuffer cmd, const gpu::PassResources& res, const Frame
                 vkCmdSetScissor(cmd, 0, 1, &tile);
                 inTile = true;
             }
-            recordDepthOnlyDraw(cmd, pipeline, draw, push);
+            if (culledDraws) {
+                const CulledViewDraw& c = view.culled[i];
+                push.instanceIndex = culled->listOffset(c.firstCandidate);
+                IndirectDraw indirect{res.buffer(culled->commands),
+                                      VkDeviceSize(culled->command(c.cullSlot)) * sizeof(CulledDrawCommand)};
+                recordDepthOnlyDraw(cmd, pipeline, draw, push, &indirect);
+            } else {
+                recordDepthOnlyDraw(cmd, pipeline, draw, push);
+            }
         }
     }
 }
@@ -113,51 +138,90 @@ void clearTiles(VkCommandBuffer cmd, const FrameScene& scene, const std::vector<
     if (!rects.empty()) vkCmdClearAttachments(cmd, 1, &clear, uint32_t(rects.size()), rects.data());
 }
 
-}  // namespace
+// The views to render this frame: every one without a history; with one, those whose key changed
+// (the history takes their keys). `wholeAtlas`: the atlas holds nothing yet and is cleared whole.
+std::vector<uint32_t> viewsToRender(const FrameScene& scene, ShadowAtlasHistory* history, bool& wholeAtlas) {
+    const uint32_t viewCount = uint32_t(scene.shadows.views.size());
+    std::vector<uint32_t> views;
+    wholeAtlas = !history || !history->atlas.holdsContents();
+    if (history && wholeAtlas) history->viewKeys.clear();
+    if (history) history->viewKeys.resize(viewCount, 0);
+    for (uint32_t v = 0; v < viewCount; ++v) {
+        if (history) {
+            const uint64_t key = viewKey(scene, scene.shadows.views[v]);
+            if (!wholeAtlas && key == history->viewKeys[v]) continue;
+            history->viewKeys[v] = key;
+        }
+        views.push_back(v);
+    }
+    return views;
+}
 
-gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, const FrameScene& scene, ShadowAtlasHistory* history) {
+// The atlas of this frame: a transient one without a history, the kept one with it.
+gpu::ImageHandle atlasOf(gpu::FrameGraph& graph, const FrameScene& scene, ShadowAtlasHistory* history) {
     gpu::ImageDesc desc;
     desc.format = kShadowAtlasFormat;
     desc.width = scene.shadows.width;
     desc.height = scene.shadows.height;
-    const uint32_t viewCount = uint32_t(scene.shadows.views.size());
-    std::vector<uint32_t> views;  // those to render this frame
-    gpu::ImageHandle atlas;
-    bool wholeAtlas = true;
-    if (!history) {
-        atlas = graph.createImage("shadowAtlas", desc);
-        for (uint32_t v = 0; v < viewCount; ++v) views.push_back(v);
-    } else {
-        desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-        atlas = graph.importPersistent("shadowAtlas", history->atlas, desc);
-        // A new atlas (the first, or another size) holds nothing yet: every view is rendered, over
-        // a cleared image.
-        wholeAtlas = !history->atlas.holdsContents();
-        if (wholeAtlas) history->viewKeys.clear();
-        history->viewKeys.resize(viewCount, 0);
-        for (uint32_t v = 0; v < viewCount; ++v) {
-            const uint64_t key = viewKey(scene, scene.shadows.views[v]);
-            if (!wholeAtlas && key == history->viewKeys[v]) continue;
-            history->viewKeys[v] = key;
-            views.push_back(v);
-        }
-        // Nothing changed: the kept atlas is read as it is, and no pass runs.
-        if (!wholeAtlas && views.empty()) return atlas;
-    }
+    if (!history) return graph.createImage("shadowAtlas", desc);
+    desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    return graph.importPersistent("shadowAtlas", history->atlas, desc);
+}
+
+// One raster pass over `render.views` of the atlas: the first clears their tiles (or the whole
+// atlas), the late one draws over them.
+gpu::ImageHandle addShadowRasterPass(gpu::FrameGraph& graph, const std::string& name, const FrameScene& scene,
+                                     const ShadowMapRender& render, bool first, const CulledDraws* culled) {
+    gpu::ImageHandle atlas = render.atlas;
+    std::optional<CulledDraws> culledDraws;
+    if (culled) culledDraws = *culled;
+    const bool late = culled && culled->phase == CulledDraws::Phase::Late;
     graph.addPass(
-        "shadow_maps", gpu::PassKind::Raster,
+        name, gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {
-            declareBindings(pass, shadowBindings(scene.buffers, true), ShaderStage::Graphics);
+            declareBindings(pass, shadowBindings(scene.buffers, true, culled), ShaderStage::Graphics);
+            if (culled) pass.read(culled->commands, gpu::Usage::IndirectCommandRead);
             // An empty view list leaves the atlas cleared to the far depth: nothing casts.
-            atlas = wholeAtlas ? pass.depthStencilAttachment(atlas, VkClearDepthStencilValue{1.0f, 0})
-                               : pass.depthStencilAttachment(atlas);
+            atlas = first && render.wholeAtlas ? pass.depthStencilAttachment(atlas, VkClearDepthStencilValue{1.0f, 0})
+                                               : pass.depthStencilAttachment(atlas);
         },
-        [&scene, views, wholeAtlas](VkCommandBuffer cmd, const gpu::PassResources& res) {
-            if (!wholeAtlas) clearTiles(cmd, scene, views);
-            recordViews(cmd, res, scene, views, false);
-            recordViews(cmd, res, scene, views, true);
+        [&scene, render, first, late, culledDraws](VkCommandBuffer cmd, const gpu::PassResources& res) {
+            if (first && !render.wholeAtlas) clearTiles(cmd, scene, render.views);
+            const CulledDraws* phase = culledDraws ? &*culledDraws : nullptr;
+            for (bool cutout : {false, true}) {
+                // The late pass draws the culled draws' late instances alone.
+                if (!late) recordViews(cmd, res, scene, render.views, cutout, phase, false);
+                if (phase) recordViews(cmd, res, scene, render.views, cutout, phase, true);
+            }
         });
     return atlas;
+}
+
+}  // namespace
+
+ShadowMapRender planShadowMaps(gpu::FrameGraph& graph, const FrameScene& scene, ShadowAtlasHistory* history) {
+    ShadowMapRender render;
+    render.atlas = atlasOf(graph, scene, history);
+    render.views = viewsToRender(scene, history, render.wholeAtlas);
+    render.rendered = !history || render.wholeAtlas || !render.views.empty();
+    return render;
+}
+
+gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, const FrameScene& scene, ShadowAtlasHistory* history) {
+    ShadowMapRender render = planShadowMaps(graph, scene, history);
+    // Nothing changed: the kept atlas is read as it is, and no pass runs.
+    if (!render.rendered) return render.atlas;
+    return addShadowRasterPass(graph, "shadow_maps", scene, render, true, nullptr);
+}
+
+void addShadowMapEarlyPass(gpu::FrameGraph& graph, const FrameScene& scene, ShadowMapRender& render,
+                           const CulledDraws& early) {
+    render.atlas = addShadowRasterPass(graph, "shadow_maps", scene, render, true, &early);
+}
+
+gpu::ImageHandle addShadowMapLatePass(gpu::FrameGraph& graph, const FrameScene& scene, ShadowMapRender early,
+                                      const CulledDraws& late) {
+    return addShadowRasterPass(graph, "shadow_maps_late", scene, early, false, &late);
 }
 
 }  // namespace obscura::passes

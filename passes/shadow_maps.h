@@ -30,4 +30,21 @@ struct ShadowAtlasHistory {
 gpu::ImageHandle addShadowMapPass(gpu::FrameGraph& graph, const FrameScene& scene,
                                   ShadowAtlasHistory* history = nullptr);
 
+// Under GPU occlusion culling (ShadowAtlas::gpuCulledDraws, passes/occlusion_cull.h) the shadow
+// maps are two passes over the views planShadowMaps() chose: the early one draws the draws drawn
+// as they are and the culled draws' early instances; after the atlas's depth pyramid and the late
+// culling, the late one draws the culled draws' late instances into the same views.
+struct ShadowMapRender {
+    gpu::ImageHandle atlas;       // as the last pass left it
+    std::vector<uint32_t> views;  // the views rendered this frame
+    bool wholeAtlas = true;       // the atlas is cleared whole
+    bool rendered = true;         // false: nothing changed, the kept atlas is read as it is
+};
+// The views to render this frame (the history takes their keys) and the atlas they go into.
+ShadowMapRender planShadowMaps(gpu::FrameGraph& graph, const FrameScene& scene, ShadowAtlasHistory* history);
+void addShadowMapEarlyPass(gpu::FrameGraph& graph, const FrameScene& scene, ShadowMapRender& render,
+                           const CulledDraws& early);
+gpu::ImageHandle addShadowMapLatePass(gpu::FrameGraph& graph, const FrameScene& scene, ShadowMapRender early,
+                                      const CulledDraws& late);
+
 }  // namespace obscura::passes

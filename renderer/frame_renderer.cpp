@@ -161,13 +161,16 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
     gpu::FrameGraph graph;
     passes::importSceneBuffers(graph, scene);
     gpu::ImageHandle shadowAtlas;
-    if (referenceSubFrames == 0) shadowAtlas = passes::addShadowMapPass(graph, scene, &shadowHistory_);
+    const GpuOcclusionCulling::Versions versions{request.drawnVersion, request.settingsVersion};
+    if (referenceSubFrames == 0)
+        shadowAtlas = scene.shadows.gpuCulledDraws > 0
+                          ? gpuOcclusion_.addShadowMaps(graph, scene, versions, shadowHistory_)
+                          : passes::addShadowMapPass(graph, scene, &shadowHistory_);
     auto samples = VkSampleCountFlagBits(referenceSubFrames == 0 ? settings.msaaSamples : 1u);
     const gpu::ImageHandle bestFitNormals = graph.importTexture("bestFitNormals", bestFitNormals_);
     passes::GBuffer gbuffer =
         scene.gpuCulledDraws > 0
-            ? gpuOcclusion_.addGBuffer(graph, scene, {request.drawnVersion, request.settingsVersion, scene.instanceCount},
-                                       bestFitNormals, samples, settings.msaaAlphaToCoverage)
+            ? gpuOcclusion_.addGBuffer(graph, scene, versions, bestFitNormals, samples, settings.msaaAlphaToCoverage)
             : passes::addGBufferPass(graph, scene, bestFitNormals, samples, settings.msaaAlphaToCoverage);
     std::optional<MsaaFrame> msaa;
     if (samples != VK_SAMPLE_COUNT_1_BIT) {

@@ -2,10 +2,10 @@
 
 #include "passes/gbuffer.h"
 #include "passes/hi_z.h"
-#include "passes/occlusion_cull.h"
 
+#include <algorithm>
 #include <cstring>
-#include <vector>
+#include <string>
 
 namespace obscura::renderer {
 
@@ -17,52 +17,65 @@ gpu::BufferPtr& GpuOcclusionCulling::sized(gpu::BufferPtr& buffer, VkDeviceSize 
     return buffer;
 }
 
-passes::GBuffer GpuOcclusionCulling::addGBuffer(gpu::FrameGraph& graph, const passes::FrameScene& scene,
-                                                const RecordsKey& key, gpu::ImageHandle bestFitNormals,
-                                                VkSampleCountFlagBits samples, bool alphaToCoverage) {
+passes::CulledDraws GpuOcclusionCulling::addEarlyCulling(gpu::FrameGraph& graph, const passes::FrameScene& scene,
+                                                         Route& route, passes::CulledDraws culled,
+                                                         const std::vector<passes::CulledDrawCommand>& commands,
+                                                         const Route::Key& key, passes::VisibilityStamps& stamps,
+                                                         uint32_t width, uint32_t height,
+                                                         gpu::BufferHandle& pyramid) {
     constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    // The stamps: zeros (never a frame's stamp) when made again; a change to the records makes the
-    // last frame's meaningless, and the early phase then draws every candidate.
-    const VkDeviceSize stampBytes = VkDeviceSize(std::max(scene.instanceCount, 1u)) * sizeof(uint32_t);
-    const bool made = !stamps_ || stamps_->size < stampBytes;
+    const char* prefix = culled.shadowViews ? "shadow " : "camera ";
+    // The stamps: a change to the records makes the last frame's meaningless, and the early phase
+    // then draws every candidate. A new buffer is cleared within the frame (0 is never a stamp).
+    const VkDeviceSize stampBytes = std::max<VkDeviceSize>(key.stampCount, 1) * sizeof(uint32_t);
+    const bool made = !route.stamps || route.stamps->size < stampBytes;
     if (made) {
-        stamps_ = backend_.createBuffer(stampBytes, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                        gpu::MemoryUsage::DeviceLocal, "visibility stamps");
-        stamped_.reset();
+        route.stamps = backend_.createBuffer(stampBytes, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                             gpu::MemoryUsage::DeviceLocal, (std::string(prefix) + "visibility stamps").c_str());
+        route.stamped.reset();
     }
-    passes::VisibilityStamps stamps;
-    stamps.last = stamped_ == key ? lastStamp_ : 0;
-    stamps.current = lastStamp_ + 1 == 0 ? 1 : lastStamp_ + 1;
-    lastStamp_ = stamps.current;
-    stamped_ = key;
-    stamps.buffer = graph.importBuffer("visibilityStamps", stamps_);
-    // A new buffer is cleared within the frame (0 is never a frame's stamp).
+    stamps.last = route.stamped == key ? route.lastStamp : 0;
+    stamps.current = route.lastStamp + 1 == 0 ? 1 : route.lastStamp + 1;
+    route.lastStamp = stamps.current;
+    route.stamped = key;
+    stamps.buffer = graph.importBuffer(std::string(prefix) + "visibilityStamps", route.stamps);
     if (made) stamps.buffer = passes::addStampsClearPass(graph, stamps.buffer);
 
     // Each culled draw's commands, with no instance counted: the early phase's, then the late one's.
+    sized(route.commands, VkDeviceSize(2) * culled.drawCount * sizeof(passes::CulledDrawCommand),
+          storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, gpu::MemoryUsage::Readback, "culled draw commands");
+    auto* mapped = static_cast<passes::CulledDrawCommand*>(route.commands->mapped());
+    std::memcpy(mapped, commands.data(), commands.size() * sizeof(passes::CulledDrawCommand));
+    for (size_t c = 0; c < commands.size(); ++c) {
+        mapped[culled.drawCount + c] = commands[c];
+        mapped[culled.drawCount + c].listOffset += culled.candidateCount;
+    }
+    culled.phase = passes::CulledDraws::Phase::Early;
+    culled.commands = graph.importBuffer(std::string(prefix) + "culledDrawCommands", route.commands);
+    culled.lists = graph.importBuffer(
+        std::string(prefix) + "culledDrawLists",
+        sized(route.lists, VkDeviceSize(2) * culled.candidateCount * sizeof(uint32_t), storage,
+              gpu::MemoryUsage::DeviceLocal, "culled draw lists"));
+    pyramid = graph.importBuffer(std::string(prefix) + "hiZPyramid",
+                                 sized(route.pyramid, passes::hiZPyramidFloats(width, height) * sizeof(float), storage,
+                                       gpu::MemoryUsage::DeviceLocal, "depth pyramid"));
+    return passes::addOcclusionCullPass(graph, scene, culled, stamps, pyramid);
+}
+
+passes::GBuffer GpuOcclusionCulling::addGBuffer(gpu::FrameGraph& graph, const passes::FrameScene& scene,
+                                                const Versions& versions, gpu::ImageHandle bestFitNormals,
+                                                VkSampleCountFlagBits samples, bool alphaToCoverage) {
     passes::CulledDraws culled;
     culled.drawCount = scene.gpuCulledDraws;
     culled.candidateCount = scene.occlusionCandidateCount;
-    sized(commands_, VkDeviceSize(2) * culled.drawCount * sizeof(passes::CulledDrawCommand),
-          storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, gpu::MemoryUsage::Readback, "culled draw commands");
-    auto* commands = static_cast<passes::CulledDrawCommand*>(commands_->mapped());
-    for (const passes::Draw& draw : scene.cameraDraws) {
-        if (!draw.culledOnGpu()) continue;
-        for (auto phase : {passes::CulledDraws::Phase::Early, passes::CulledDraws::Phase::Late}) {
-            culled.phase = phase;
-            commands[culled.command(draw)] = {draw.indexCount, 0, draw.firstIndex, 0, 0, culled.listOffset(draw)};
-        }
-    }
-    culled.phase = passes::CulledDraws::Phase::Early;
-    culled.commands = graph.importBuffer("culledDrawCommands", commands_);
-    culled.lists = graph.importBuffer(
-        "culledDrawLists", sized(lists_, VkDeviceSize(2) * culled.candidateCount * sizeof(uint32_t), storage,
-                                 gpu::MemoryUsage::DeviceLocal, "culled draw lists"));
-    gpu::BufferHandle pyramid = graph.importBuffer(
-        "hiZPyramid", sized(pyramid_, passes::hiZPyramidFloats(scene.width, scene.height) * sizeof(float), storage,
-                            gpu::MemoryUsage::DeviceLocal, "depth pyramid"));
-
-    culled = passes::addOcclusionCullPass(graph, scene, culled, stamps, pyramid);
+    std::vector<passes::CulledDrawCommand> commands(culled.drawCount);
+    for (const passes::Draw& draw : scene.cameraDraws)
+        if (draw.culledOnGpu())
+            commands[draw.cullSlot] = {draw.indexCount, 0, draw.firstIndex, 0, 0, culled.listOffset(draw.firstCandidate)};
+    passes::VisibilityStamps stamps;
+    gpu::BufferHandle pyramid;
+    culled = addEarlyCulling(graph, scene, camera_, culled, commands, {versions, scene.instanceCount}, stamps,
+                             scene.width, scene.height, pyramid);
     passes::GBuffer gbuffer = passes::addGBufferPass(graph, scene, bestFitNormals, samples, alphaToCoverage, &culled);
     pyramid = passes::addHiZPasses(graph, gbuffer.depth, pyramid);
     culled.phase = passes::CulledDraws::Phase::Late;
@@ -72,10 +85,42 @@ passes::GBuffer GpuOcclusionCulling::addGBuffer(gpu::FrameGraph& graph, const pa
     return passes::addGBufferLatePass(graph, scene, gbuffer, bestFitNormals, samples, alphaToCoverage, culled);
 }
 
+gpu::ImageHandle GpuOcclusionCulling::addShadowMaps(gpu::FrameGraph& graph, const passes::FrameScene& scene,
+                                                    const Versions& versions, passes::ShadowAtlasHistory& history) {
+    const passes::ShadowAtlas& atlas = scene.shadows;
+    passes::CulledDraws culled;
+    culled.shadowViews = true;
+    culled.drawCount = atlas.gpuCulledDraws;
+    culled.candidateCount = atlas.occlusionCandidateCount;
+    std::vector<passes::CulledDrawCommand> commands(culled.drawCount);
+    for (uint32_t v = 0; v < atlas.views.size(); ++v) {
+        const passes::ShadowMapView& view = atlas.views[v];
+        for (size_t i = 0; i < view.culled.size(); ++i) {
+            const passes::CulledViewDraw& c = view.culled[i];
+            if (c.cullSlot == passes::Draw::kNotCulledOnGpu) continue;
+            const passes::Draw& draw = scene.draws[view.draws[i]];
+            commands[c.cullSlot] = {draw.indexCount, 0, draw.firstIndex, 0, 0, culled.listOffset(c.firstCandidate), v};
+        }
+    }
+    // No view changed: the kept atlas is read as it is, and nothing is culled.
+    passes::ShadowMapRender early = passes::planShadowMaps(graph, scene, &history);
+    if (!early.rendered) return early.atlas;
+    passes::VisibilityStamps stamps;
+    gpu::BufferHandle pyramid;
+    const uint64_t stampCount = uint64_t(atlas.views.size()) * scene.instanceCount;
+    culled = addEarlyCulling(graph, scene, shadows_, culled, commands, {versions, stampCount}, stamps, atlas.width,
+                             atlas.height, pyramid);
+    passes::addShadowMapEarlyPass(graph, scene, early, culled);
+    pyramid = passes::addHiZPasses(graph, early.atlas, pyramid, "shadow_hi_z");
+    culled.phase = passes::CulledDraws::Phase::Late;
+    culled = passes::addOcclusionCullPass(graph, scene, culled, stamps, pyramid);
+    return passes::addShadowMapLatePass(graph, scene, early, culled);
+}
+
 GpuOcclusionCulling::Culled GpuOcclusionCulling::culled(const passes::FrameScene& scene) const {
     Culled result;
-    if (scene.gpuCulledDraws == 0 || !commands_) return result;
-    const auto* commands = static_cast<const passes::CulledDrawCommand*>(commands_->mapped());
+    if (scene.gpuCulledDraws == 0 || !camera_.commands) return result;
+    const auto* commands = static_cast<const passes::CulledDrawCommand*>(camera_.commands->mapped());
     for (const passes::Draw& draw : scene.cameraDraws) {
         if (!draw.culledOnGpu()) continue;
         const uint64_t drawn = uint64_t(commands[draw.cullSlot].instanceCount) +

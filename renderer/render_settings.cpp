@@ -207,8 +207,8 @@ const RenderSettingInfo kSettings[] = {
      "BC5 (two channels, z reconstructed); off keeps 8-bit textures RGBA8 (bool, default on)",
      OBSCURA_VALUE_BOOL, 1.0},
     {"occlusionCulling", number<&FrameSettings::occlusionCulling>,
-     "occlusion culling (seed 004): what the camera's depth hides is not drawn by the camera (shadow "
-     "maps draw everything), tested as occlusionCulling:route says (bool, default off)",
+     "occlusion culling (seed 004): what the camera's depth hides is not drawn by the camera, tested "
+     "as occlusionCulling:route says (bool, default off)",
      OBSCURA_VALUE_BOOL, 0.0},
     {"occlusionCulling:route", [](FrameSettings& s, double, const std::string& t) {
          s.occlusionCullingRoute =
@@ -217,11 +217,12 @@ const RenderSettingInfo kSettings[] = {
      "gpu: in two phases within the frame, on the GPU: what the last frame saw is drawn first, a "
      "depth pyramid is built from it, every instance's bounds are tested against it by a compute pass "
      "that writes indirect draws, and what else is visible is drawn then; it never leaves out what "
-     "the frame shows. coverageBuffer: the talk's coverage buffer, the last frame's depth reduced to "
+     "the frame shows, and culls the shadow views the same way against their own depth. "
+     "coverageBuffer: the talk's coverage buffer, the last frame's depth reduced to "
      "8x8-pixel tiles, read back after its fence, reprojected on the CPU into this frame's view; a "
      "camera cut, the first frame or a change to what is drawn tests nothing, and a sub-pixel gap no "
-     "sample of the last frame saw through is taken as covered (docs/ARCHITECTURE.md) (token, "
-     "default gpu)",
+     "sample of the last frame saw through is taken as covered, and the shadow maps draw every "
+     "caster (docs/ARCHITECTURE.md) (token, default gpu)",
      OBSCURA_VALUE_TOKEN, 0.0, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
      "gpu|coverageBuffer", "gpu"},
 };

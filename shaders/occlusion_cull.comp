@@ -11,7 +11,9 @@
 // What the late phase culls is hidden behind depth this frame really has, so nothing visible is
 // ever left out (seed 004's coverage buffer tests last frame's depth instead and may be wrong where
 // the view changed). Each drawn instance appends its record to its draw's list and counts itself
-// into the draw's indirect command.
+// into the draw's indirect command. SHADOW_VIEWS (occlusion_cull_shadow.comp): the candidates of
+// the shadow atlas's views, each command a draw into one view, tested against the atlas's pyramid
+// within the view's tile; their stamps are kept per view and record.
 #include "common/frame_data.glsl"
 #include "common/hi_z.glsl"
 
@@ -22,7 +24,11 @@ layout(set = 0, binding = 1, std430) buffer Commands { CulledDrawCommand command
 layout(set = 0, binding = 2, std430) writeonly buffer Lists { uint drawnRecords[]; };
 // Per instance record: the stamp of the last frame that found it visible.
 layout(set = 0, binding = 3, std430) buffer Visibility { uint visibleStamp[]; };
+#ifdef SHADOW_VIEWS
+layout(set = 0, binding = 4, std430) readonly buffer ShadowViews { ShadowViewData views[]; };
+#else
 CAMERA_BLOCK(4);
+#endif
 layout(set = 0, binding = 5, std430) readonly buffer Pyramid { float farthest[]; };
 
 layout(push_constant) uniform Push {
@@ -31,8 +37,8 @@ layout(push_constant) uniform Push {
     uint commandCount;  // commands of one phase: the late phase's follow the early's
     uint stamp;         // this frame's
     uint lastStamp;     // the last frame's; 0: no history, the early phase draws every candidate
-    uint pad;
-    uvec2 pixels;       // the depth's size
+    uint recordCount;   // instance records: a shadow view's stamps follow the previous view's
+    uvec2 pixels;       // the depth's size (the atlas's)
 } push;
 
 // Pixels a box's screen rectangle grows by: the instances hybrid AA draws unjittered lie up to
@@ -43,25 +49,24 @@ const float kMarginPixels = 1.0;
 const float kDepthMargin = 1.0 / 1048576.0;
 
 // Whether the box lies behind the pyramid's farthest depth over every pixel it may cover.
-bool hidden(vec3 boxMin, vec3 boxMax) {
+// `toPixels`: world -> clip whose x/w, y/w are pixel coordinates and z/w the depth; `tile`: the
+// first and the last pixel the view draws into.
+bool hidden(vec3 boxMin, vec3 boxMax, mat4 toPixels, ivec4 tile) {
     vec2 lo = vec2(1e30), hi = vec2(-1e30);
     float nearest = 1.0;
     for (uint c = 0u; c < 8u; ++c) {
         vec3 corner = vec3((c & 1u) != 0u ? boxMax.x : boxMin.x, (c & 2u) != 0u ? boxMax.y : boxMin.y,
                            (c & 4u) != 0u ? boxMax.z : boxMin.z);
-        vec4 clip = camera.viewProjection * vec4(corner, 1.0);
+        vec4 clip = toPixels * vec4(corner, 1.0);
         // A box reaching the eye's plane or the near plane is never hidden.
         if (clip.w <= 0.0 || clip.z < 0.0) return false;
-        vec3 ndc = clip.xyz / clip.w;
-        lo = min(lo, ndc.xy);
-        hi = max(hi, ndc.xy);
-        nearest = min(nearest, ndc.z);
+        vec3 projected = clip.xyz / clip.w;
+        lo = min(lo, projected.xy);
+        hi = max(hi, projected.xy);
+        nearest = min(nearest, projected.z);
     }
-    vec2 size = vec2(push.pixels);
-    ivec2 first = ivec2(floor((lo * 0.5 + 0.5) * size - kMarginPixels));
-    ivec2 last = ivec2(floor((hi * 0.5 + 0.5) * size + kMarginPixels));
-    first = max(first, ivec2(0));
-    last = min(last, ivec2(push.pixels) - 1);
+    ivec2 first = max(ivec2(floor(lo - kMarginPixels)), tile.xy);
+    ivec2 last = min(ivec2(floor(hi + kMarginPixels)), tile.zw);
     if (any(greaterThan(first, last))) return false;
     // The finest level at which the rectangle spans at most two texels a side.
     uint span = uint(max(last.x - first.x, last.y - first.y));
@@ -76,6 +81,29 @@ bool hidden(vec3 boxMin, vec3 boxMax) {
     return nearest > occluder + kDepthMargin;
 }
 
+// The candidate's box tested in its view: the camera's, or its command's shadow view.
+bool hidden(OcclusionCandidate candidate) {
+#ifdef SHADOW_VIEWS
+    ShadowViewData view = views[commands[candidate.command].view];
+    return hidden(candidate.boundsMin, candidate.boundsMax, view.worldToAtlas, ivec4(view.tileRect));
+#else
+    // Clip to pixels: x' = (x/w * 0.5 + 0.5) * width, as the viewport maps them.
+    vec2 size = vec2(push.pixels);
+    mat4 toPixels = mat4(vec4(0.5 * size.x, 0.0, 0.0, 0.0), vec4(0.0, 0.5 * size.y, 0.0, 0.0),
+                         vec4(0.0, 0.0, 1.0, 0.0), vec4(0.5 * size, 0.0, 1.0)) * camera.viewProjection;
+    return hidden(candidate.boundsMin, candidate.boundsMax, toPixels, ivec4(0, 0, ivec2(push.pixels) - 1));
+#endif
+}
+
+// Where the candidate's stamp is: per record, and for shadow views per view too.
+uint stampIndex(OcclusionCandidate candidate) {
+#ifdef SHADOW_VIEWS
+    return commands[candidate.command].view * push.recordCount + candidate.record;
+#else
+    return candidate.record;
+#endif
+}
+
 void draw(OcclusionCandidate candidate) {
     uint command = candidate.command + push.late * push.commandCount;
     uint slot = atomicAdd(commands[command].instanceCount, 1u);
@@ -86,12 +114,13 @@ void main() {
     uint index = gl_GlobalInvocationID.x;
     if (index >= push.candidateCount) return;
     OcclusionCandidate candidate = candidates[index];
-    bool drawnEarly = push.lastStamp == 0u || visibleStamp[candidate.record] == push.lastStamp;
+    uint stamp = stampIndex(candidate);
+    bool drawnEarly = push.lastStamp == 0u || visibleStamp[stamp] == push.lastStamp;
     if (push.late == 0u) {
         if (drawnEarly) draw(candidate);
         return;
     }
-    if (hidden(candidate.boundsMin, candidate.boundsMax)) return;
-    visibleStamp[candidate.record] = push.stamp;
+    if (hidden(candidate)) return;
+    visibleStamp[stamp] = push.stamp;
     if (!drawnEarly) draw(candidate);
 }

@@ -355,9 +355,12 @@ typedef struct ObscuraMemoryStats {
 
 /* ABI 1.3, chained to ObscuraRenderStats::pNext: occlusion culling in the last render's camera
  * view (render setting occlusionCulling). The draws, instances and triangles the camera had to draw
- * before culling, and those the coverage buffer hid; all culled counts are 0 with the setting off,
- * on the first frame and after a camera cut. A draw is one instanced draw call (meshes sharing
- * geometry, or an instancer's prototype). Shadow maps are not counted: they draw everything. */
+ * before culling, and those occlusion culling hid: on the gpu route (occlusionCulling:route) what
+ * the frame's own early depth hid, read back once the frame ran; on the coverageBuffer route what
+ * the last frame's depth hid. All culled counts are 0 with the setting off and on the first frame,
+ * and on the coverageBuffer route after a camera cut. A draw is one instanced draw call (meshes
+ * sharing geometry, or an instancer's prototype). Shadow maps are not counted (the gpu route culls
+ * their views' draws too; the coverageBuffer route draws every caster). */
 typedef struct ObscuraCullingStats {
     ObscuraStructureType sType;     /* OBSCURA_STRUCTURE_TYPE_CULLING_STATS */
     const void* pNext;
@@ -368,7 +371,7 @@ typedef struct ObscuraCullingStats {
     uint64_t instancesCulled;
     uint64_t triangles;
     uint64_t trianglesCulled;
-    double milliseconds;            /* CPU time reprojecting the coverage buffer and testing bounds */
+    double milliseconds;            /* CPU time testing bounds (and reprojecting the coverage buffer) */
     /* Outside the camera's view frustum (culled always; not counted in the *Culled counts above) */
     uint32_t drawsOutsideView;
     uint64_t instancesOutsideView;

@@ -59,7 +59,7 @@ struct OcclusionCandidate {
     uint command;
 };
 
-// VkDrawIndexedIndirectCommand, and where its draw's drawn records start in the list.
+// VkDrawIndexedIndirectCommand, where its draw's drawn records start in the list, and its view.
 struct CulledDrawCommand {
     uint indexCount;
     uint instanceCount;
@@ -67,8 +67,8 @@ struct CulledDrawCommand {
     int vertexOffset;
     uint firstInstance;
     uint listOffset;
+    uint view;  // a shadow view's command: the view it draws into
     uint pad0;
-    uint pad1;
 };
 
 // Temporal AA's object motion: where an instance that moved since the last frame was then, as

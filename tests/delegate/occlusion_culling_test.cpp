@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
+#include <vector>
 
 namespace obscura::test {
 namespace {
@@ -286,6 +288,62 @@ TEST(GpuOcclusionCulling, WhatAMovedOccluderUncoversIsDrawnInTheSameFrame) {
     int32_t hiddenId = -1;
     ASSERT_EQ(culled.host.api().getPrimId(culled.host.delegate(), "/Hidden", &hiddenId), OBSCURA_OK);
     EXPECT_GT(std::count(moved.ids.begin(), moved.ids.end(), hiddenId), 0) << "the box the wall hid is drawn";
+}
+
+// The GPU route culls the shadow views too, each against its own depth: crates under a roof are
+// hidden from the sun by it (the camera, looking under the roof, sees them). As the sun turns every
+// frame, every cascade is rendered again, and crates at the roof's edge step out of its shadow:
+// the shadows, and so the images, are those of the scene without culling, frame by frame.
+struct RoofedScene {
+    TestHost host;
+    explicit RoofedScene(bool culling) {
+        setBool(host, "occlusionCulling", culling);
+        setToken(host, "occlusionCulling:route", kGpu);
+        addMaterial(host, "/Looks/Grey", {0.5f, 0.5f, 0.5f}, 0.6f);
+        addMaterial(host, "/Looks/Red", {0.8f, 0.1f, 0.1f}, 0.4f);
+        host.addCamera("/Camera", lookingAlongY({0, 0, 0}, -8));
+        addBox(host, "/Ground", {-10, 2, -1.2}, {10, 30, -1.0}, "/Looks/Grey");
+        addBox(host, "/Roof", {-1.2, 5, 0.6}, {1.2, 9, 0.7}, "/Looks/Grey");
+        addBox(host, "/Crates/Prototypes/Crate", {-0.15, -0.15, -0.15}, {0.15, 0.15, 0.15}, "/Looks/Red");
+        std::vector<std::array<float, 3>> positions;
+        for (int i = 0; i < 8; ++i)
+            for (int j = 0; j < 3; ++j) positions.push_back({-1.4f + 0.4f * float(i), 5.5f + 1.2f * float(j), -0.85f});
+        host.addPrim("instancer", "/Crates",
+                     {{"prototypes", HostValue::paths({"/Crates/Prototypes/Crate"})},
+                      {"protoIndices", HostValue::intArray(std::vector<int32_t>(positions.size(), 0))},
+                      {"positions", HostValue::points(positions)}});
+        host.addPrim("distantLight", "/Sun",
+                     {{"inputs:intensity", HostValue::floatValue(3.0f)},
+                      {"inputs:normalize", HostValue::boolean(true)},
+                      {"inputs:angle", HostValue::floatValue(0.5f)}},
+                     lightPointingAlong({0, 0.1, -1}));
+        host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+        host.addRenderBuffer("/Buffers/id", "int32", kWidth, kHeight);
+    }
+    void turnSun(int frame) {
+        host.setTransform("/Sun", lightPointingAlong({0.12 * frame, 0.1, -1}));
+        ASSERT_EQ(host.api().markDirty(host.delegate(), "/Sun", OBSCURA_DIRTY_TRANSFORM), OBSCURA_OK);
+    }
+};
+
+TEST(GpuOcclusionCulling, ShadowViewsCullWhatTheirOwnDepthHidesAndCastTheSameShadows) {
+    RoofedScene culled(true), drawn(false);
+    for (int frame = 0; frame < 5; ++frame) {
+        culled.turnSun(frame);
+        drawn.turnSun(frame);
+        CulledFrame f = renderCulledFrame(culled.host, "/Camera");
+        expectSameImage(f, renderCulledFrame(drawn.host, "/Camera"), "frame " + std::to_string(frame));
+    }
+    // The shadow views were culled on the GPU, in both phases, in the frame just rendered.
+    uint32_t count = 0;
+    ASSERT_EQ(culled.host.api().getPassTimings(culled.host.delegate(), nullptr, &count), OBSCURA_OK);
+    std::vector<ObscuraPassTiming> timings(count);
+    ASSERT_EQ(culled.host.api().getPassTimings(culled.host.delegate(), timings.data(), &count), OBSCURA_OK);
+    std::vector<std::string> passes;
+    for (const ObscuraPassTiming& timing : timings) passes.push_back(timing.pass);
+    for (const char* pass : {"shadow_occlusion_cull_early", "shadow_maps", "shadow_hi_z", "shadow_occlusion_cull_late",
+                             "shadow_maps_late"})
+        EXPECT_NE(std::find(passes.begin(), passes.end(), pass), passes.end()) << pass;
 }
 
 // View frustum culling, always on: boxes wholly outside the view (behind the eye, far to one side,
