@@ -32,10 +32,10 @@ constexpr uint32_t kCandidatesPerGroup = 256;
 
 }  // namespace
 
-gpu::BufferHandle addStampsClearPass(gpu::FrameGraph& graph, gpu::BufferHandle stamps) {
+gpu::BufferHandle addStampsClearPass(gpu::FrameGraph& graph, gpu::BufferHandle stamps, const std::string& name) {
     gpu::BufferHandle cleared;
     graph.addPass(
-        "occlusion_stamps_clear", gpu::PassKind::Transfer,
+        name, gpu::PassKind::Transfer,
         [&](gpu::FrameGraph::PassBuilder& pass) { cleared = pass.write(stamps, gpu::Usage::TransferDst); },
         [stamps](VkCommandBuffer cmd, const gpu::PassResources& res) {
             vkCmdFillBuffer(cmd, res.buffer(stamps), 0, VK_WHOLE_SIZE, 0);

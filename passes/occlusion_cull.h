@@ -11,6 +11,7 @@
 #include "passes/frame_scene.h"
 
 #include <cstdint>
+#include <string>
 
 namespace obscura::passes {
 
@@ -23,8 +24,9 @@ struct VisibilityStamps {
     uint32_t last = 0;
 };
 
-// Clears a buffer of stamps made anew (0: no frame's); returns its written version.
-gpu::BufferHandle addStampsClearPass(gpu::FrameGraph& graph, gpu::BufferHandle stamps);
+// Clears a buffer of stamps made anew (0: no frame's) in a pass named `name`; returns its written
+// version.
+gpu::BufferHandle addStampsClearPass(gpu::FrameGraph& graph, gpu::BufferHandle stamps, const std::string& name);
 
 // Adds the culling pass of `culled.phase`. `culled.commands` holds the frame's commands with no
 // instance counted yet; the late phase tests against `pyramid` (passes/hi_z.h), which the early

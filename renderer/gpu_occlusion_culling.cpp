@@ -1,5 +1,6 @@
 #include "renderer/gpu_occlusion_culling.h"
 
+#include "passes/buffer_copy.h"
 #include "passes/gbuffer.h"
 #include "passes/hi_z.h"
 
@@ -24,39 +25,47 @@ passes::CulledDraws GpuOcclusionCulling::addEarlyCulling(gpu::FrameGraph& graph,
                                                          uint32_t width, uint32_t height,
                                                          gpu::BufferHandle& pyramid) {
     constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    const char* prefix = culled.shadowViews ? "shadow " : "camera ";
+    // Resources and passes of the shadow views' route are named apart from the camera's.
+    const std::string prefix = culled.shadowViews ? "shadow_" : "";
     // The stamps: a change to the records makes the last frame's meaningless, and the early phase
     // then draws every candidate. A new buffer is cleared within the frame (0 is never a stamp).
     const VkDeviceSize stampBytes = std::max<VkDeviceSize>(key.stampCount, 1) * sizeof(uint32_t);
     const bool made = !route.stamps || route.stamps->size < stampBytes;
     if (made) {
         route.stamps = backend_.createBuffer(stampBytes, storage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                             gpu::MemoryUsage::DeviceLocal, (std::string(prefix) + "visibility stamps").c_str());
+                                             gpu::MemoryUsage::DeviceLocal, (prefix + "visibility stamps").c_str());
         route.stamped.reset();
     }
     stamps.last = route.stamped == key ? route.lastStamp : 0;
     stamps.current = route.lastStamp + 1 == 0 ? 1 : route.lastStamp + 1;
     route.lastStamp = stamps.current;
     route.stamped = key;
-    stamps.buffer = graph.importBuffer(std::string(prefix) + "visibilityStamps", route.stamps);
-    if (made) stamps.buffer = passes::addStampsClearPass(graph, stamps.buffer);
+    stamps.buffer = graph.importBuffer(prefix + "visibilityStamps", route.stamps);
+    if (made) stamps.buffer = passes::addStampsClearPass(graph, stamps.buffer, prefix + "occlusion_stamps_clear");
 
-    // Each culled draw's commands, with no instance counted: the early phase's, then the late one's.
-    sized(route.commands, VkDeviceSize(2) * culled.drawCount * sizeof(passes::CulledDrawCommand),
-          storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, gpu::MemoryUsage::Readback, "culled draw commands");
-    auto* mapped = static_cast<passes::CulledDrawCommand*>(route.commands->mapped());
-    std::memcpy(mapped, commands.data(), commands.size() * sizeof(passes::CulledDrawCommand));
-    for (size_t c = 0; c < commands.size(); ++c) {
-        mapped[culled.drawCount + c] = commands[c];
-        mapped[culled.drawCount + c].listOffset += culled.candidateCount;
+    // Each culled draw's commands, with no instance counted: the early phase's, then the late one's,
+    // copied into device-local memory where the culling passes count.
+    std::vector<passes::CulledDrawCommand> both(commands);
+    for (passes::CulledDrawCommand late : commands) {
+        late.listOffset += culled.candidateCount;
+        both.push_back(late);
     }
+    const VkDeviceSize commandBytes = both.size() * sizeof(passes::CulledDrawCommand);
+    std::vector<uint8_t> bytes(commandBytes);
+    std::memcpy(bytes.data(), both.data(), commandBytes);
+    sized(route.commands, commandBytes,
+          storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+              VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+          gpu::MemoryUsage::DeviceLocal, "culled draw commands");
     culled.phase = passes::CulledDraws::Phase::Early;
-    culled.commands = graph.importBuffer(std::string(prefix) + "culledDrawCommands", route.commands);
+    culled.commands = passes::addBufferCopyPass(
+        graph, prefix + "occlusion_commands", graph.createBuffer(prefix + "commandsOfTheHost", std::move(bytes)),
+        graph.importBuffer(prefix + "culledDrawCommands", route.commands), commandBytes);
     culled.lists = graph.importBuffer(
-        std::string(prefix) + "culledDrawLists",
+        prefix + "culledDrawLists",
         sized(route.lists, VkDeviceSize(2) * culled.candidateCount * sizeof(uint32_t), storage,
               gpu::MemoryUsage::DeviceLocal, "culled draw lists"));
-    pyramid = graph.importBuffer(std::string(prefix) + "hiZPyramid",
+    pyramid = graph.importBuffer(prefix + "hiZPyramid",
                                  sized(route.pyramid, passes::hiZPyramidFloats(width, height) * sizeof(float), storage,
                                        gpu::MemoryUsage::DeviceLocal, "depth pyramid"));
     return passes::addOcclusionCullPass(graph, scene, culled, stamps, pyramid);
@@ -80,9 +89,14 @@ passes::GBuffer GpuOcclusionCulling::addGBuffer(gpu::FrameGraph& graph, const pa
     pyramid = passes::addHiZPasses(graph, gbuffer.depth, pyramid);
     culled.phase = passes::CulledDraws::Phase::Late;
     culled = passes::addOcclusionCullPass(graph, scene, culled, stamps, pyramid);
+    gbuffer = passes::addGBufferLatePass(graph, scene, gbuffer, bestFitNormals, samples, alphaToCoverage, culled);
     // The counts come back to the host once the frame ran (culled()).
-    graph.markOutput(culled.commands);
-    return passes::addGBufferLatePass(graph, scene, gbuffer, bestFitNormals, samples, alphaToCoverage, culled);
+    const VkDeviceSize commandBytes = VkDeviceSize(2) * culled.drawCount * sizeof(passes::CulledDrawCommand);
+    sized(camera_.counted, commandBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUsage::Readback,
+          "culled draw counts");
+    graph.markOutput(passes::addBufferCopyPass(graph, "occlusion_counts", culled.commands,
+                                               graph.importBuffer("culledDrawCounts", camera_.counted), commandBytes));
+    return gbuffer;
 }
 
 gpu::ImageHandle GpuOcclusionCulling::addShadowMaps(gpu::FrameGraph& graph, const passes::FrameScene& scene,
@@ -119,8 +133,8 @@ gpu::ImageHandle GpuOcclusionCulling::addShadowMaps(gpu::FrameGraph& graph, cons
 
 GpuOcclusionCulling::Culled GpuOcclusionCulling::culled(const passes::FrameScene& scene) const {
     Culled result;
-    if (scene.gpuCulledDraws == 0 || !camera_.commands) return result;
-    const auto* commands = static_cast<const passes::CulledDrawCommand*>(camera_.commands->mapped());
+    if (scene.gpuCulledDraws == 0 || !camera_.counted) return result;
+    const auto* commands = static_cast<const passes::CulledDrawCommand*>(camera_.counted->mapped());
     for (const passes::Draw& draw : scene.cameraDraws) {
         if (!draw.culledOnGpu()) continue;
         const uint64_t drawn = uint64_t(commands[draw.cullSlot].instanceCount) +

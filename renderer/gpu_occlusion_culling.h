@@ -3,8 +3,9 @@
 // culled by compute, each in two phases around a depth pyramid (passes/hi_z.h): the early culling
 // pass, the early raster pass, the pyramid of its depth, the late culling pass, the late raster
 // pass. It keeps the visibility stamps from frame to frame (per instance record for the camera,
-// per shadow view and record for the atlas), and the camera's commands host-visible, so that what
-// the culling left out is counted once the frame ran.
+// per shadow view and record for the atlas). The commands start each frame from the host's and are
+// counted into device-local memory; the camera's go back to the host, so that what the culling
+// left out is counted once the frame ran.
 #pragma once
 
 #include "gpu/frame_backend.h"
@@ -51,7 +52,8 @@ private:
     // One culled view's buffers (the camera's, the atlas's) and its stamps' history.
     struct Route {
         gpu::BufferPtr stamps;    // uint per stamp (passes::VisibilityStamps)
-        gpu::BufferPtr commands;  // CulledDrawCommand[2 * culled draws], host-visible
+        gpu::BufferPtr commands;  // CulledDrawCommand[2 * culled draws], device-local
+        gpu::BufferPtr counted;   // the camera's commands once the frame ran, host-visible
         gpu::BufferPtr lists;     // uint[2 * candidates]
         gpu::BufferPtr pyramid;   // float[hiZPyramidFloats]
         uint32_t lastStamp = 0;   // the last culled frame's stamp; 0: none
