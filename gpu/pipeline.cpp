@@ -1,11 +1,28 @@
 #include "gpu/pipeline.h"
 
+#include "gpu/context.h"
 #include "gpu/shader_registry.h"
 #include "gpu/vk_check.h"
 
 #include <algorithm>
 
 namespace obscura::gpu {
+namespace {
+
+// The specialization constants every shader stage gets (shaders/common/device_traits.glsl), built
+// in place: the info points at its own members.
+struct DeviceTraits {
+    explicit DeviceTraits(Device& device)
+        : compactCode(device.context().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) {}
+    DeviceTraits(const DeviceTraits&) = delete;
+    DeviceTraits& operator=(const DeviceTraits&) = delete;
+
+    VkBool32 compactCode;  // constant 0, COMPACT_CODE: a CPU device
+    VkSpecializationMapEntry entry{0, 0, sizeof(VkBool32)};
+    VkSpecializationInfo info{1, &entry, sizeof(VkBool32), &compactCode};
+};
+
+}  // namespace
 
 VkShaderModule Pipeline::loadModule(const std::string& name) {
     auto words = findShader(name);
@@ -54,9 +71,10 @@ Pipeline::Pipeline(Device& device, const ComputePipelineDesc& desc) : device_(de
     bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
     createLayout(desc.bindings, desc.pushConstantSize, VK_SHADER_STAGE_COMPUTE_BIT);
     VkShaderModule module = loadModule(desc.shader);
+    const DeviceTraits traits(device_);
     VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT,
-                module, "main", nullptr};
+                module, "main", &traits.info};
     ci.layout = layout_;
     VkResult r = vkCreateComputePipelines(device_.vk(), device_.pipelineCache(), 1, &ci, nullptr, &pipeline_);
     vkDestroyShaderModule(device_.vk(), module, nullptr);
@@ -69,9 +87,12 @@ Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(d
                  desc.pushedSamplers);
     VkShaderModule vs = loadModule(desc.vertexShader);
     VkShaderModule fs = desc.fragmentShader.empty() ? VK_NULL_HANDLE : loadModule(desc.fragmentShader);
+    const DeviceTraits traits(device_);
     VkPipelineShaderStageCreateInfo stages[2] = {
-        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs, "main", nullptr},
-        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, fs, "main", nullptr}};
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs, "main",
+         &traits.info},
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, fs, "main",
+         &traits.info}};
 
     std::vector<VkVertexInputBindingDescription> bindings;
     for (uint32_t b = 0; b < desc.vertexStrides.size(); ++b)
