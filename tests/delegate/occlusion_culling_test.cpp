@@ -83,6 +83,13 @@ struct WalledScene {
         ASSERT_EQ(host.api().markDirty(host.delegate(), path.c_str(), OBSCURA_DIRTY_TRANSFORM), OBSCURA_OK);
     }
 
+    // Opens the camera's shutter over [-0.5, 0.5] and moves `path` 0.4 units along x within it.
+    void moveWithinTheShutter(const std::string& path) {
+        host.set("/Camera", "shutter:open", HostValue::doubleValue(-0.5));
+        host.set("/Camera", "shutter:close", HostValue::doubleValue(0.5));
+        host.setTransformMotion(path, -0.5, translation(-0.2, 0, 0), 0.5, translation(0.2, 0, 0));
+    }
+
     using Frame = CulledFrame;
     Frame render(const std::string& camera) { return renderCulledFrame(host, camera); }
 };
@@ -94,6 +101,16 @@ void expectSameImage(const WalledScene::Frame& culled, const WalledScene::Frame&
     for (size_t i = 0; i < culled.color.size(); ++i) differing += culled.color[i] != drawn.color[i];
     EXPECT_EQ(differing, 0u) << frame << ": colour channels that differ with culling";
     EXPECT_EQ(culled.ids, drawn.ids) << frame;
+}
+
+// Three frames of the still camera: the same images with culling as without, frame `f` culling
+// `expected(f)` instances.
+void expectCulledOverThreeFrames(WalledScene& culled, WalledScene& drawn, uint64_t (*expected)(int)) {
+    for (int frame = 0; frame < 3; ++frame) {
+        WalledScene::Frame f = culled.render("/Camera");
+        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
+        EXPECT_EQ(f.culling.instancesCulled, expected(frame)) << "frame " << frame;
+    }
 }
 
 // Six frames of a camera moving and turning: the same images with culling as without, and the
@@ -154,27 +171,15 @@ TEST(OcclusionCulling, MultisampledFramesCullWhatTheWallHides) {
     WalledScene culled(true), drawn(false);
     setNumber(culled.host, "msaa", 4);
     setNumber(drawn.host, "msaa", 4);
-    for (int frame = 0; frame < 3; ++frame) {
-        WalledScene::Frame f = culled.render("/Camera");
-        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
-        EXPECT_EQ(f.culling.instancesCulled, frame == 0 ? 0u : uint64_t(2 + kCrowdBehind)) << "frame " << frame;
-    }
+    expectCulledOverThreeFrames(culled, drawn, [](int frame) { return uint64_t(frame == 0 ? 0 : 2 + kCrowdBehind); });
 }
 
 // A box moving within the shutter (motion blur): a still's frames each see it at their own part of
 // the shutter, so no frame's depth stands for the next one, and nothing is culled.
 TEST(OcclusionCulling, MotionWithinTheShutterCullsNothing) {
     WalledScene culled(true), drawn(false);
-    for (WalledScene* scene : {&culled, &drawn}) {
-        scene->host.set("/Camera", "shutter:open", HostValue::doubleValue(-0.5));
-        scene->host.set("/Camera", "shutter:close", HostValue::doubleValue(0.5));
-        scene->host.setTransformMotion("/Front", -0.5, translation(-0.2, 0, 0), 0.5, translation(0.2, 0, 0));
-    }
-    for (int frame = 0; frame < 3; ++frame) {
-        WalledScene::Frame f = culled.render("/Camera");
-        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
-        EXPECT_EQ(f.culling.instancesCulled, 0u) << "frame " << frame;
-    }
+    for (WalledScene* scene : {&culled, &drawn}) scene->moveWithinTheShutter("/Front");
+    expectCulledOverThreeFrames(culled, drawn, [](int) { return uint64_t(0); });
 }
 
 // A moving occluder: the frame after the wall moves draws everything (its depth no longer stands),
@@ -249,27 +254,15 @@ TEST(GpuOcclusionCulling, MultisampledFramesCullWhatTheWallHides) {
     WalledScene culled(true, kGpu), drawn(false);
     setNumber(culled.host, "msaa", 4);
     setNumber(drawn.host, "msaa", 4);
-    for (int frame = 0; frame < 3; ++frame) {
-        WalledScene::Frame f = culled.render("/Camera");
-        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
-        EXPECT_EQ(f.culling.instancesCulled, frame == 0 ? 0u : uint64_t(1 + kCrowdBehind)) << "frame " << frame;
-    }
+    expectCulledOverThreeFrames(culled, drawn, [](int frame) { return uint64_t(frame == 0 ? 0 : 1 + kCrowdBehind); });
 }
 
 // A box moving within the shutter is never culled (its bounds hold one time of it); what stands
 // still behind the wall still is, as each frame tests its own depth.
 TEST(GpuOcclusionCulling, MotionWithinTheShutterCullsOnlyWhatStandsStill) {
     WalledScene culled(true, kGpu), drawn(false);
-    for (WalledScene* scene : {&culled, &drawn}) {
-        scene->host.set("/Camera", "shutter:open", HostValue::doubleValue(-0.5));
-        scene->host.set("/Camera", "shutter:close", HostValue::doubleValue(0.5));
-        scene->host.setTransformMotion("/Hidden", -0.5, translation(-0.2, 0, 0), 0.5, translation(0.2, 0, 0));
-    }
-    for (int frame = 0; frame < 3; ++frame) {
-        WalledScene::Frame f = culled.render("/Camera");
-        expectSameImage(f, drawn.render("/Camera"), "frame " + std::to_string(frame));
-        EXPECT_EQ(f.culling.instancesCulled, frame == 0 ? 0u : uint64_t(kCrowdBehind)) << "frame " << frame;
-    }
+    for (WalledScene* scene : {&culled, &drawn}) scene->moveWithinTheShutter("/Hidden");
+    expectCulledOverThreeFrames(culled, drawn, [](int frame) { return uint64_t(frame == 0 ? 0 : kCrowdBehind); });
 }
 
 // What an occluder uncovers is drawn in the very frame it is uncovered: the late phase finds it
