@@ -535,11 +535,4 @@ MeshGeometry tessellatePoints(const PointsInput& p, int segments) {
     return out;
 }
 
-std::vector<float> positionsOf(const MeshGeometry& geometry) {
-    std::vector<float> positions;
-    positions.reserve(geometry.vertices.size() * 3);
-    for (const passes::Vertex& v : geometry.vertices) positions.insert(positions.end(), v.position, v.position + 3);
-    return positions;
-}
-
 }  // namespace obscura::delegate

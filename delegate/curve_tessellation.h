@@ -90,7 +90,4 @@ double pointsMaxRadius(const PointsInput& points);
 uint64_t pointTriangleCount(const PointsInput& points, int segments);
 MeshGeometry tessellatePoints(const PointsInput& points, int segments);
 
-// The drawn positions of a tessellation (xyz per vertex), for the shutter's ends.
-std::vector<float> positionsOf(const MeshGeometry& geometry);
-
 }  // namespace obscura::delegate

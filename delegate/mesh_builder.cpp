@@ -196,4 +196,11 @@ std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh)
     return out;
 }
 
+std::vector<float> positionsOf(const MeshGeometry& geometry) {
+    std::vector<float> positions;
+    positions.reserve(geometry.vertices.size() * 3);
+    for (const passes::Vertex& v : geometry.vertices) positions.insert(positions.end(), v.position, v.position + 3);
+    return positions;
+}
+
 }  // namespace obscura::delegate

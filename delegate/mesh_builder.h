@@ -57,4 +57,7 @@ size_t primvarElementCount(const MeshInput& mesh, ObscuraInterpolation interpola
 // (area-weighted face normals), as Hydra does for unrefined meshes.
 std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh);
 
+// The drawn positions of built geometry (xyz per vertex): a tessellation's at the shutter's ends.
+std::vector<float> positionsOf(const MeshGeometry& geometry);
+
 }  // namespace obscura::delegate

@@ -115,6 +115,7 @@ void RenderDelegate::insertPrim(const std::string& type, const std::string& path
     if (type == "mesh") prim = std::make_unique<Mesh>(path, *schema, nextPrimId_++);
     else if (auto kind = ImplicitSurface::kindOf(type)) prim = std::make_unique<ImplicitSurface>(path, *schema, nextPrimId_++, *kind);
     else if (type == "basisCurves") prim = std::make_unique<Curves>(path, *schema, nextPrimId_++);
+    else if (type == "nurbsPatch") prim = std::make_unique<NurbsPatch>(path, *schema, nextPrimId_++);
     else if (type == "points") prim = std::make_unique<Points>(path, *schema, nextPrimId_++);
     else if (type == "camera") prim = std::make_unique<Camera>(path, *schema);
     else if (type == "distantLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Distant);

@@ -13,6 +13,7 @@
 #include "delegate/prims/light.h"
 #include "delegate/prims/material.h"
 #include "delegate/prims/mesh.h"
+#include "delegate/prims/nurbs_patch.h"
 #include "delegate/prims/render_buffer.h"
 #include "delegate/texture_cache.h"
 #include "gpu/external_memory.h"

@@ -37,6 +37,7 @@ const std::map<std::string, std::string> kPrimTypes = {
     {"Capsule_1", "capsule1"},
     {"Plane", "plane"},
     {"BasisCurves", "basisCurves"},
+    {"NurbsPatch", "nurbsPatch"},
     {"Points", "points"},
 };
 
@@ -48,7 +49,9 @@ const std::set<std::string> kStructuralTypes = {"",          "Xform",         "S
                                                 "NodeGraph", "GeomSubset",    "RenderSettings", "RenderProduct",
                                                 "RenderVar", "SkelRoot",      "SkelAnimation",  "BlendShape"};
 
-bool isPointBased(const std::string& type) { return type == "Mesh" || type == "BasisCurves" || type == "Points"; }
+bool isPointBased(const std::string& type) {
+    return type == "Mesh" || type == "BasisCurves" || type == "Points" || type == "NurbsPatch";
+}
 
 bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 

@@ -46,19 +46,6 @@ std::vector<DetailSphere> spheresAt(const std::vector<float>& points, const std:
     return spheres;
 }
 
-// The drawn positions of the tessellation of `input` moved to the shutter's ends.
-template <typename Input, typename Tessellate>
-std::optional<std::array<std::vector<float>, 2>> shutterEnds(const std::optional<std::array<std::vector<float>, 2>>& points,
-                                                             Input input, const Tessellate& tessellate) {
-    if (!points) return std::nullopt;
-    std::array<std::vector<float>, 2> ends;
-    for (size_t end = 0; end < 2; ++end) {
-        input.points = (*points)[end];
-        ends[end] = positionsOf(tessellate(input));
-    }
-    return ends;
-}
-
 }  // namespace
 
 std::vector<DetailSphere> Curves::detailSpheres() const {

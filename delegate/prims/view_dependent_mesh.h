@@ -63,4 +63,18 @@ double projectedScale(const std::vector<DetailSphere>& spheres, const std::vecto
 std::vector<ViewDependentMesh*> chooseViewDependentDetail(const std::map<std::string, std::unique_ptr<Prim>>& prims,
                                                           const Camera& camera, uint32_t width, uint32_t height);
 
+// The drawn positions of `tessellate(input)` with the input's points moved to each of the
+// shutter's ends (Mesh::pullShutterPoints), or nullopt for a prim that does not deform.
+template <typename Input, typename Tessellate>
+std::optional<std::array<std::vector<float>, 2>> shutterEnds(const std::optional<std::array<std::vector<float>, 2>>& points,
+                                                             Input input, const Tessellate& tessellate) {
+    if (!points) return std::nullopt;
+    std::array<std::vector<float>, 2> ends;
+    for (size_t end = 0; end < 2; ++end) {
+        input.points = (*points)[end];
+        ends[end] = positionsOf(tessellate(input));
+    }
+    return ends;
+}
+
 }  // namespace obscura::delegate

@@ -53,6 +53,7 @@ size_t HostedStage::adopt(std::variant<std::unique_ptr<usda::Stage>, usda::Error
 
 void HostedStage::log(void* user, ObscuraLogLevel level, const char* message) {
     if (level == OBSCURA_LOG_ERROR) static_cast<HostedStage*>(user)->errors.push_back(message);
+    if (level == OBSCURA_LOG_WARNING) static_cast<HostedStage*>(user)->warnings.push_back(message);
 }
 
 std::vector<float> HostedStage::renderAov(const std::string& aov, size_t channels, double time) {

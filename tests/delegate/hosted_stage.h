@@ -29,6 +29,7 @@ struct HostedStage {
     ObscuraDelegate delegate = nullptr;
     std::unique_ptr<harness::UsdSceneHost> host;  // in place: its callback table points at it
     std::vector<std::string> errors;  // logged by the plugin: checked against expectError when the stage goes away
+    std::vector<std::string> warnings;  // logged by the plugin
     ObscuraStatus lastStatus = OBSCURA_OK;  // of the last render
 
     explicit HostedStage(std::variant<std::unique_ptr<usda::Stage>, usda::Error> opened);
