@@ -65,8 +65,14 @@ std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::
     return frames;
 }
 
+uint32_t stillLensCells(uint32_t count) { return count % 2 == 0 ? count / 2 : count; }
+
 StillLensSample stillLensSample(uint32_t index, uint32_t count, const passes::ApertureShape& aperture) {
     if (count == 0) return {{0.0, 0.0}, {}};
+    // Frames 2c and 2c + 1 share cell c (stillLensCells).
+    const uint32_t visits = count / stillLensCells(count);
+    index = (index % count) / visits;
+    count /= visits;
     uint32_t rows = 1;
     for (uint32_t r = 1; r * r <= count; ++r)
         if (count % r == 0) rows = r;

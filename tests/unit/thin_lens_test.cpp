@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <numbers>
 
@@ -216,21 +217,24 @@ TEST(ReferenceSubFrames, StratifiedOverTheApertureShutterAndPixel) {
 }
 
 // A still's frames look through cells of the aperture that partition it: every point of the
-// square before the mapping lies in exactly one of N cells, each frame looks from its cell centre's
-// point, and the cells are all visited once, for counts that are squares, rectangles and primes.
+// square before the mapping lies in exactly one of the cells, each frame looks from its cell
+// centre's point, and each cell is visited by two frames of an even count (frames 2c and 2c + 1)
+// and by one of an odd count, for counts that are squares, rectangles and primes.
 TEST(StillLensSamples, CellsPartitionTheAperture) {
     for (int blades : {0, 6})
         for (uint32_t count : {16u, 8u, 7u, 1u}) {
             passes::ApertureShape shape = passes::apertureShape(blades, 15.0);
+            const uint32_t visits = count % 2 == 0 ? 2 : 1;
+            EXPECT_EQ(stillLensCells(count), count / visits);
             constexpr int kFine = 64;
             std::vector<int> owners(kFine * kFine, 0);
-            std::set<std::pair<long, long>> centres;
+            std::map<std::pair<long, long>, std::vector<uint32_t>> framesOfCell;
             for (uint32_t k = 0; k < count; ++k) {
                 StillLensSample s = stillLensSample(k, count, shape);
-                EXPECT_NEAR(s.cell.share(), 1.0 / std::sqrt(double(count)), 1e-12);
+                EXPECT_NEAR(s.cell.share(), 1.0 / std::sqrt(double(count / visits)), 1e-12);
                 auto expected = passes::sampleAperture(s.cell.centre, shape);
                 EXPECT_EQ(s.position, expected) << "the frame looks from its cell's centre";
-                centres.insert({std::lround(s.cell.centre[0] * 1e6), std::lround(s.cell.centre[1] * 1e6)});
+                framesOfCell[{std::lround(s.cell.centre[0] * 1e6), std::lround(s.cell.centre[1] * 1e6)}].push_back(k);
                 for (int j = 0; j < kFine; ++j)
                     for (int i = 0; i < kFine; ++i) {
                         double x = (2.0 * i + 1.0) / kFine - 1.0, y = (2.0 * j + 1.0) / kFine - 1.0;
@@ -239,8 +243,12 @@ TEST(StillLensSamples, CellsPartitionTheAperture) {
                             ++owners[size_t(j * kFine + i)];
                     }
             }
-            EXPECT_EQ(centres.size(), count) << "every cell once";
-            for (int n : owners) ASSERT_EQ(n, 1) << count << " cells: each point of the square in one";
+            EXPECT_EQ(framesOfCell.size(), count / visits) << "every cell";
+            for (const auto& [cell, frames] : framesOfCell) {
+                ASSERT_EQ(frames.size(), visits) << count << " frames";
+                if (visits == 2) EXPECT_EQ(frames[1], frames[0] + 1) << "frames 2c and 2c + 1";
+            }
+            for (int n : owners) ASSERT_EQ(n, int(visits)) << count << " frames: each point of the square in " << visits;
         }
 }
 
