@@ -244,7 +244,9 @@ std::optional<usda::SourceLocation> UsdSceneHost::locate(const PrimMessage& mess
 std::string UsdSceneHost::primvarCountProblem(const usda::Prim& prim, const usda::Attribute& attribute,
                                               const usda::Value& value, double time) const {
     const auto interpolation = attribute.metadata.find("interpolation");
-    if (prim.typeName != "Mesh" || interpolation == attribute.metadata.end() || interpolation->second.strings.empty())
+    // A TetMesh is served as a mesh of its points (its uniform and faceVarying primvars are not served).
+    const bool mesh = prim.typeName == "Mesh" || prim.typeName == "TetMesh";
+    if (!mesh || interpolation == attribute.metadata.end() || interpolation->second.strings.empty())
         return {};
     const std::string& mode = interpolation->second.strings.front();
     auto countOf = [&](const char* name) -> size_t {

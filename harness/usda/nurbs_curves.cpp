@@ -141,7 +141,7 @@ std::optional<AttributeProblem> validate(const NurbsCurvesData& c) {
             return AttributeProblem{"order", "order[" + std::to_string(i) + "] = " + std::to_string(c.order[i]) +
                                                  " is outside [2, " + std::to_string(c.curveVertexCounts[i]) +
                                                  "] (2 to the curve's vertex count)"};
-        knots += size_t(c.curveVertexCounts[i] + c.order[i]);
+        knots += size_t(c.curveVertexCounts[i]) + size_t(c.order[i]);
     }
     if (c.knots.size() != knots)
         return AttributeProblem{"knots", "knots has " + std::to_string(c.knots.size()) + " values but the curves need " +
@@ -156,7 +156,7 @@ std::optional<AttributeProblem> validate(const NurbsCurvesData& c) {
         if (!(c.pointWeights[i] > 0.0 && std::isfinite(c.pointWeights[i])))
             return AttributeProblem{"pointWeights", "pointWeights[" + std::to_string(i) + "] = " + number(c.pointWeights[i]) +
                                                         " is not a positive number"};
-    for (size_t curve = 0, first = 0; curve < curves; first += size_t(c.curveVertexCounts[curve] + c.order[curve]), ++curve) {
+    for (size_t curve = 0, first = 0; curve < curves; first += size_t(c.curveVertexCounts[curve]) + size_t(c.order[curve]), ++curve) {
         const size_t n = size_t(c.curveVertexCounts[curve]), p = size_t(c.order[curve] - 1);
         const double* U = &c.knots[first];
         for (size_t k = 0; k < n + p + 1; ++k) {

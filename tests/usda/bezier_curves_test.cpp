@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <random>
 
 #include "harness/usda/hermite_curves.h"
 #include "harness/usda/nurbs_curves.h"
@@ -184,6 +185,45 @@ TEST(NurbsCurves, BadDataNamesTheAttribute) {
     bad = good;
     bad.ranges = {0.5, 2.0};
     EXPECT_EQ(problemOf(bad).attribute, "ranges");
+}
+
+TEST(NurbsCurves, AnyInputIsConvertedOrRefused) {
+    // Random curves, half of them with a value spoiled (NaN, infinite, huge, negative): each
+    // conversion either succeeds with counts that fit or names a problem, and never reads outside
+    // its arrays (scripts/test.sh runs it under the sanitizers).
+    std::mt19937 random(7);
+    auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(random); };
+    const double spoilers[] = {std::nan(""), INFINITY, -INFINITY, 1e300, -1.0, 0.0};
+    for (int trial = 0; trial < 2000; ++trial) {
+        NurbsCurvesData data;
+        for (int curve = pick(0, 3); curve > 0; --curve) {
+            const int n = pick(1, 7), order = pick(1, 6);
+            data.curveVertexCounts.push_back(n);
+            data.order.push_back(order);
+            double knot = 0.0;
+            for (int k = 0; k < n + order; ++k) data.knots.push_back(knot += pick(0, 2));
+            data.pointCount += size_t(n);
+            if (pick(0, 1)) data.ranges.insert(data.ranges.end(), {double(pick(0, 4)), double(pick(0, 12))});
+        }
+        if (pick(0, 1))
+            for (size_t i = 0; i < data.pointCount; ++i) data.pointWeights.push_back(pick(1, 100) / 10.0);
+        if (pick(0, 1) && !data.knots.empty()) data.knots[size_t(pick(0, int(data.knots.size()) - 1))] = spoilers[pick(0, 5)];
+        if (pick(0, 3) == 0 && !data.pointWeights.empty()) data.pointWeights[0] = spoilers[pick(0, 5)];
+        if (pick(0, 3) == 0) data.pointCount += size_t(pick(0, 2));
+        auto result = nurbsToBezier(data);
+        if (auto* bezier = std::get_if<BezierCurves>(&result)) {
+            size_t controls = 0;
+            for (int count : bezier->curveVertexCounts) {
+                EXPECT_EQ((count - 1) % 3, 0);
+                controls += size_t(count);
+            }
+            EXPECT_EQ(bezier->vertex.rows(), controls);
+            for (size_t column : bezier->vertex.columns) EXPECT_LT(column, data.pointCount);
+            for (size_t column : bezier->varying.columns) EXPECT_LT(column, bezier->varying.inputCount);
+        } else {
+            EXPECT_FALSE(std::get<AttributeProblem>(result).message.empty());
+        }
+    }
 }
 
 TEST(HermiteCurves, EachSegmentIsItsHermitePolynomial) {
