@@ -705,6 +705,13 @@ ObscuraStatus UsdSceneHost::fill(const usda::Value& v, ObscuraValue* out) {
     return OBSCURA_OK;
 }
 
+ObscuraStatus UsdSceneHost::fillToken(const char* token, ObscuraValue* out) {
+    usda::Value value;
+    value.typeName = "token";
+    value.strings = {token};
+    return fill(value, out);
+}
+
 ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string& attribute, double time,
                                      ObscuraValue* out) {
     auto rb = renderBuffers_.find(path);
@@ -885,14 +892,8 @@ void UsdSceneHost::addSkeletonGuide(const usda::Prim& skeleton, std::map<std::st
 
 std::optional<ObscuraStatus> UsdSceneHost::skeletonGuideValue(const usda::Skinning& skeleton, const std::string& attribute,
                                                               double time, ObscuraValue* out) {
-    auto token = [&](const char* text) {
-        usda::Value value;
-        value.typeName = "token";
-        value.strings = {text};
-        return fill(value, out);
-    };
-    if (attribute == "purpose") return token("guide");
-    if (attribute == "subdivisionScheme") return token("none");  // bones are flat-faced
+    if (attribute == "purpose") return fillToken("guide", out);
+    if (attribute == "subdivisionScheme") return fillToken("none", out);  // bones are flat-faced
     if (attribute != "points" && attribute != "faceVertexCounts" && attribute != "faceVertexIndices") return std::nullopt;
     std::string problem;
     const usda::BoneMesh bones = usda::boneMesh(skeleton, time, &problem);
@@ -944,19 +945,15 @@ std::optional<ObscuraStatus> UsdSceneHost::convertedValue(const usda::Prim& prim
                                                           double time, ObscuraValue* out) {
     const bool curves = isConvertedCurves(prim.typeName);
     if (!curves && prim.typeName != "TetMesh") return std::nullopt;
-    auto token = [&](const char* text) {
-        usda::Value value{"token", false, 1, {}, {text}, false};
-        return fill(value, out);
-    };
     auto ints = [&](std::vector<int32_t> values) {
         ints_ = std::move(values);
         *out = {OBSCURA_VALUE_INT, 1, ints_.size(), ints_.data()};
         return OBSCURA_OK;
     };
-    if (curves && attribute == "type") return token("cubic");
-    if (curves && attribute == "basis") return token("bezier");
-    if (curves && attribute == "wrap") return token("nonperiodic");
-    if (!curves && attribute == "subdivisionScheme") return token("none");  // tets are flat-faced
+    if (curves && attribute == "type") return fillToken("cubic", out);
+    if (curves && attribute == "basis") return fillToken("bezier", out);
+    if (curves && attribute == "wrap") return fillToken("nonperiodic", out);
+    if (!curves && attribute == "subdivisionScheme") return fillToken("none", out);  // tets are flat-faced
     const bool topology = curves ? attribute == "curveVertexCounts"
                                  : attribute == "faceVertexCounts" || attribute == "faceVertexIndices";
     if (!topology && !isPerElement(attribute)) return std::nullopt;

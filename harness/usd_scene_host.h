@@ -102,6 +102,7 @@ private:
     ObscuraDirtyBits changes(const std::string& type, const usda::Prim& prim, const UsdSceneHost& previous, const usda::Prim& before,
                              double time) const;
     ObscuraStatus fill(const usda::Value& value, ObscuraValue* out);
+    ObscuraStatus fillToken(const char* token, ObscuraValue* out);
     // The surface shader a Material's outputs:surface (else outputs:mtlx:surface) leads to, through
     // NodeGraph outputs, or null with the reason.
     const usda::Prim* surfaceShader(const usda::Prim& material, std::string& problem) const;
