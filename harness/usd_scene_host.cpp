@@ -3,9 +3,12 @@
 #include "harness/material_bind_subsets.h"
 #include "harness/materialx_surface.h"
 #include "harness/shading_network.h"
+#include "harness/usda/hermite_curves.h"
 #include "harness/usda/matrix4.h"
+#include "harness/usda/nurbs_curves.h"
 #include "harness/usda/skeleton_bones.h"
 #include "harness/usda/skinning.h"
+#include "harness/usda/tet_mesh.h"
 #include "schemas/schema.h"
 
 #include <algorithm>
@@ -39,7 +42,26 @@ const std::map<std::string, std::string> kPrimTypes = {
     {"BasisCurves", "basisCurves"},
     {"NurbsPatch", "nurbsPatch"},
     {"Points", "points"},
+    // Served converted, as UsdImaging's adapters serve them (convertedValue): curves as cubic
+    // Bezier basis curves, a TetMesh as the mesh of its surface.
+    {"NurbsCurves", "basisCurves"},
+    {"HermiteCurves", "basisCurves"},
+    {"TetMesh", "mesh"},
 };
+
+// Attributes of the types served converted that the plugin does not read under their own names,
+// and the served attribute each feeds: its dirty bit makes the plugin read the conversion again.
+const std::map<std::pair<std::string, std::string>, std::string> kConvertedInputs = {
+    {{"NurbsCurves", "order"}, "curveVertexCounts"},
+    {{"NurbsCurves", "knots"}, "curveVertexCounts"},
+    {{"NurbsCurves", "ranges"}, "curveVertexCounts"},
+    {{"NurbsCurves", "pointWeights"}, "curveVertexCounts"},  // rational spans are cut into pieces by them
+    {{"HermiteCurves", "tangents"}, "points"},
+    {{"TetMesh", "tetVertexIndices"}, "faceVertexIndices"},
+    {{"TetMesh", "surfaceFaceVertexIndices"}, "faceVertexIndices"},
+};
+
+bool isConvertedCurves(const std::string& type) { return type == "NurbsCurves" || type == "HermiteCurves"; }
 
 // Types that organise a scene and are not drawn themselves.
 // UsdSkel's prims pose the prims they skin (usda/skinning.h).
@@ -50,7 +72,8 @@ const std::set<std::string> kStructuralTypes = {"",          "Xform",         "S
                                                 "RenderVar", "SkelRoot",      "SkelAnimation",  "BlendShape"};
 
 bool isPointBased(const std::string& type) {
-    return type == "Mesh" || type == "BasisCurves" || type == "Points" || type == "NurbsPatch";
+    return type == "Mesh" || type == "BasisCurves" || type == "Points" || type == "NurbsPatch" || isConvertedCurves(type) ||
+           type == "TetMesh";
 }
 
 bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
@@ -76,6 +99,35 @@ ObscuraDirtyBits dirtyBitFor(const std::string& type, const std::string& name) {
     if (!attribute) attribute = schema::findAttribute(*prim, "inputs:" + name);
     if (!attribute && startsWith(name, "primvars:")) attribute = schema::findAttribute(*prim, "primvars:st");
     return attribute ? attribute->dirtyBit : 0;
+}
+
+// The same for USD attribute `name` of `prim`, under the name it is served by (kConvertedInputs).
+ObscuraDirtyBits attributeDirtyBit(const usda::Prim& prim, const std::string& type, const std::string& name) {
+    const auto converted = kConvertedInputs.find({prim.typeName, name});
+    return dirtyBitFor(type, converted == kConvertedInputs.end() ? name : converted->second);
+}
+
+// Values with one element per point, curve, segment end or face (UsdGeomPrimvar's interpolations):
+// what a converted prim serves converted.
+bool isPerElement(const std::string& name) {
+    return name == "points" || name == "velocities" || name == "accelerations" || name == "widths" ||
+           name == "normals" || startsWith(name, "primvars:");
+}
+
+// UsdGeomPrimvar's interpolation as authored on `attribute`; "" when it is not.
+std::string authoredInterpolation(const usda::Attribute& attribute) {
+    const auto authored = attribute.metadata.find("interpolation");
+    return authored == attribute.metadata.end() || authored->second.strings.empty() ? "" : authored->second.strings.front();
+}
+
+// The interpolation of a converted curves' attribute: as authored, else the plugin schema's fallback
+// for the attribute it is served as (widths and normals vertex, displayColor constant), else
+// UsdGeomPrimvar's (constant) for other primvars and vertex for point data (velocities).
+std::string curvesInterpolation(const usda::Attribute& attribute, const std::string& name) {
+    if (std::string authored = authoredInterpolation(attribute); !authored.empty()) return authored;
+    const schema::AttributeSchema* served = schema::findAttribute(*schema::findPrimSchema("basisCurves"), name);
+    if (served && served->interpolation) return served->interpolation;
+    return startsWith(name, "primvars:") ? "constant" : "vertex";
 }
 
 // UsdGeomPrimvar::ComputeFlattened: element i of the result is values[indices[i]]. Returns the
@@ -194,7 +246,9 @@ std::optional<usda::SourceLocation> UsdSceneHost::locate(const PrimMessage& mess
 std::string UsdSceneHost::primvarCountProblem(const usda::Prim& prim, const usda::Attribute& attribute,
                                               const usda::Value& value, double time) const {
     const auto interpolation = attribute.metadata.find("interpolation");
-    if (prim.typeName != "Mesh" || interpolation == attribute.metadata.end() || interpolation->second.strings.empty())
+    // A TetMesh is served as a mesh of its points (its uniform and faceVarying primvars are not served).
+    const bool mesh = prim.typeName == "Mesh" || prim.typeName == "TetMesh";
+    if (!mesh || interpolation == attribute.metadata.end() || interpolation->second.strings.empty())
         return {};
     const std::string& mode = interpolation->second.strings.front();
     auto countOf = [&](const char* name) -> size_t {
@@ -340,7 +394,7 @@ ObscuraDirtyBits UsdSceneHost::changes(const std::string& type, const usda::Prim
     for (const std::string& name : names) {
         const usda::Attribute* a = prim.attribute(name);
         const usda::Attribute* b = before.attribute(name);
-        if (!a || !b || !sameAttribute(*a, *b)) bits |= dirtyBitFor(type, name);
+        if (!a || !b || !sameAttribute(*a, *b)) bits |= attributeDirtyBit(prim, type, name);
     }
     std::set<std::string> relationships;
     for (const auto& [name, r] : prim.relationships) relationships.insert(name);
@@ -440,7 +494,7 @@ ObscuraDirtyBits UsdSceneHost::animatedValueBits(const std::string& path, const 
     for (const auto& [name, attr] : valuesFrom->attributes) {
         // A surface input takes its value from the interface input it connects to.
         const usda::Attribute* source = type == "material" && attr.connection ? valueProducingAttribute(stage_, attr) : &attr;
-        if (source && source->isAnimated()) bits |= dirtyBitFor(type, name);
+        if (source && source->isAnimated()) bits |= attributeDirtyBit(prim, type, name);
         // A texture's inputs are served as the material's obscura:<input>:<field>.
         if (auto texture = type == "material" ? textureConnection(stage_, attr) : std::nullopt)
             for (const auto& [textureInput, textureAttr] : texture->texture->attributes)
@@ -506,8 +560,9 @@ std::string UsdSceneHost::defaultCamera() const {
 }
 
 SceneBounds UsdSceneHost::bounds(double time) {
-    // XXX: only point-based prims (Mesh, BasisCurves, Points) are framed, by their points; implicit
-    // gprims (Cube, Sphere...) are left out of the bounds.
+    // XXX: only point-based prims (Mesh, BasisCurves, Points, TetMesh, and NurbsCurves and
+    // HermiteCurves by their Bezier control points, which hold the curves) are framed, by their
+    // points; implicit gprims (Cube, Sphere...) are left out of the bounds.
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (const usda::Prim* prim : stage_.prims()) {
         if (!isPointBased(prim->typeName) || pointInstancerSpace(*prim)) continue;
@@ -516,6 +571,11 @@ SceneBounds UsdSceneHost::bounds(double time) {
         if (!value || value->tupleSize != 3) continue;
         if (auto skin = skinnings_.find(prim->path); skin != skinnings_.end())
             applySkinning(*prim, skin->second, *points, *value, time);
+        if (const ConvertedPrim* converted = isConvertedCurves(prim->typeName) ? convertedForm(*prim, time) : nullptr) {
+            const auto* bezier = std::get_if<usda::BezierCurves>(&converted->form);
+            if (!bezier) continue;
+            value->numbers = bezierControlPoints(*prim, *bezier, *value, time);
+        }
         auto m = stage_.worldTransform(*prim, time);
         for (size_t i = 0; i + 2 < value->numbers.size(); i += 3) {
             const double* p = &value->numbers[i];
@@ -647,6 +707,13 @@ ObscuraStatus UsdSceneHost::fill(const usda::Value& v, ObscuraValue* out) {
     return OBSCURA_OK;
 }
 
+ObscuraStatus UsdSceneHost::fillToken(const char* token, ObscuraValue* out) {
+    usda::Value value;
+    value.typeName = "token";
+    value.strings = {token};
+    return fill(value, out);
+}
+
 ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string& attribute, double time,
                                      ObscuraValue* out) {
     auto rb = renderBuffers_.find(path);
@@ -676,6 +743,7 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     if (!prim) return OBSCURA_ERROR_NOT_FOUND;
     if (auto guide = skeletonGuides_.find(path); guide != skeletonGuides_.end())
         if (auto served = skeletonGuideValue(guide->second, attribute, time, out)) return *served;
+    if (auto served = convertedValue(*prim, attribute, time, out)) return *served;
     if (attribute == "purpose") return computedPurpose(*prim, out);
     if (attribute == "visibility") {
         strings_ = {stage_.isVisible(*prim, time) ? "inherited" : "invisible"};
@@ -735,11 +803,19 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
             warnOnce("shading:" + problem->message, path + ": " + problem->message, problem->where);
         return texture ? fill(*texture, out) : OBSCURA_ERROR_NOT_FOUND;
     }
+    usda::Value value;
+    if (ObscuraStatus status = authoredValue(*prim, attribute, time, value); status != OBSCURA_OK) return status;
+    return fill(value, out);
+}
+
+ObscuraStatus UsdSceneHost::authoredValue(const usda::Prim& prim, const std::string& attribute, double time,
+                                          usda::Value& out) {
+    const std::string& path = prim.path;
     const usda::Attribute* a = resolveAttribute(path, attribute);
     if (!a) return OBSCURA_ERROR_NOT_FOUND;
-    // Textures on the inputs the delegate textures arrive as obscura:<input>:* (above); an input
+    // Textures on the inputs the delegate textures arrive as obscura:<input>:* (getValue); an input
     // connected to an interface input (a Material's or NodeGraph's) takes its value there.
-    bool textured = surface != surfaces_.end() && isTexturableInput(attribute) && textureConnection(stage_, *a);
+    bool textured = surfaces_.count(path) && isTexturableInput(attribute) && textureConnection(stage_, *a);
     if (a->connection && !textured) {
         if (const usda::Attribute* source = valueProducingAttribute(stage_, *a)) {
             a = source;
@@ -763,7 +839,7 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         for (auto& asset : value->strings.edit())
             if (!asset.empty()) asset = resolveAssetPath(asset, *a);
     const usda::Attribute* indices =
-        startsWith(a->name, "primvars:") ? stage_.primAuthoring(*prim, *a).attribute(a->name + ":indices") : nullptr;
+        startsWith(a->name, "primvars:") ? stage_.primAuthoring(prim, *a).attribute(a->name + ":indices") : nullptr;
     if (auto indexValues = indices ? indices->evaluate(time) : std::nullopt) {
         if (std::string problem = flattenIndexed(*value, *indexValues); !problem.empty()) {
             warnOnce("indices:" + path + a->name, path + ": " + a->name + ":" + problem + " of " + a->name,
@@ -776,14 +852,15 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         return OBSCURA_ERROR_INVALID_ARGUMENT;
     }
     if (startsWith(a->name, "primvars:") || a->name == "normals") {
-        if (std::string problem = primvarCountProblem(*prim, *a, *value, time); !problem.empty()) {
+        if (std::string problem = primvarCountProblem(prim, *a, *value, time); !problem.empty()) {
             warnOnce("count:" + path + a->name, path + ": " + problem, a->where);
             return OBSCURA_ERROR_NOT_FOUND;
         }
     }
     if (auto skin = skinnings_.find(path); skin != skinnings_.end() && (attribute == "points" || attribute == "normals"))
-        applySkinning(*prim, skin->second, *a, *value, time);
-    return fill(*value, out);
+        applySkinning(prim, skin->second, *a, *value, time);
+    out = std::move(*value);
+    return OBSCURA_OK;
 }
 
 const MaterialXMapping* UsdSceneHost::mappedSurface(const std::string& material, double time) {
@@ -817,14 +894,8 @@ void UsdSceneHost::addSkeletonGuide(const usda::Prim& skeleton, std::map<std::st
 
 std::optional<ObscuraStatus> UsdSceneHost::skeletonGuideValue(const usda::Skinning& skeleton, const std::string& attribute,
                                                               double time, ObscuraValue* out) {
-    auto token = [&](const char* text) {
-        usda::Value value;
-        value.typeName = "token";
-        value.strings = {text};
-        return fill(value, out);
-    };
-    if (attribute == "purpose") return token("guide");
-    if (attribute == "subdivisionScheme") return token("none");  // bones are flat-faced
+    if (attribute == "purpose") return fillToken("guide", out);
+    if (attribute == "subdivisionScheme") return fillToken("none", out);  // bones are flat-faced
     if (attribute != "points" && attribute != "faceVertexCounts" && attribute != "faceVertexIndices") return std::nullopt;
     std::string problem;
     const usda::BoneMesh bones = usda::boneMesh(skeleton, time, &problem);
@@ -834,6 +905,95 @@ std::optional<ObscuraStatus> UsdSceneHost::skeletonGuideValue(const usda::Skinni
                 : attribute == "faceVertexCounts" ? bones.faceVertexCounts
                                                   : bones.faceVertexIndices,
                 out);
+}
+
+const UsdSceneHost::ConvertedPrim* UsdSceneHost::convertedForm(const usda::Prim& prim, double time) {
+    const bool tets = prim.typeName == "TetMesh";
+    if (!tets && !isConvertedCurves(prim.typeName)) return nullptr;
+    auto it = converted_.find(prim.path);
+    if (it != converted_.end() && it->second.time == time) return &it->second;
+    ConvertedPrim converted{time, usda::AttributeProblem{}};
+    if (tets) {
+        auto surface = usda::tetMeshSurface(prim, time);
+        if (auto* faces = std::get_if<std::vector<int>>(&surface)) converted.form = std::move(*faces);
+        else converted.form = std::get<usda::AttributeProblem>(surface);
+    } else {
+        auto curves = prim.typeName == "NurbsCurves" ? usda::nurbsCurvesAsBezier(prim, time)
+                                                     : usda::hermiteCurvesAsBezier(prim, time);
+        if (auto* bezier = std::get_if<usda::BezierCurves>(&curves)) converted.form = std::move(*bezier);
+        else converted.form = std::get<usda::AttributeProblem>(curves);
+    }
+    if (auto* problem = std::get_if<usda::AttributeProblem>(&converted.form))
+        warnOnce("converted:" + prim.path, prim.path + ": " + problem->message + "; not drawn",
+                 usda::whereAuthored(prim, problem->attribute));
+    return &(converted_[prim.path] = std::move(converted));
+}
+
+std::vector<double> UsdSceneHost::bezierControlPoints(const usda::Prim& prim, const usda::BezierCurves& curves,
+                                                      const usda::Value& points, double time) const {
+    std::vector<double> input = points.numbers;
+    // A Hermite curve's inner control points lie along its tangents (usda/hermite_curves.h).
+    // XXX: skinning moves the points but not the tangents.
+    if (curves.positions.inputCount > curves.vertex.inputCount) {
+        const usda::Attribute* tangents = prim.attribute("tangents");
+        if (auto value = tangents ? tangents->evaluate(time) : std::nullopt)
+            input.insert(input.end(), value->numbers.begin(), value->numbers.end());
+    }
+    if (input.size() != curves.positions.inputCount * 3) return {};  // what was validated at another time
+    return curves.positions.apply(input, 3);
+}
+
+std::optional<ObscuraStatus> UsdSceneHost::convertedValue(const usda::Prim& prim, const std::string& attribute,
+                                                          double time, ObscuraValue* out) {
+    const bool curves = isConvertedCurves(prim.typeName);
+    if (!curves && prim.typeName != "TetMesh") return std::nullopt;
+    auto ints = [&](std::vector<int32_t> values) {
+        ints_ = std::move(values);
+        *out = {OBSCURA_VALUE_INT, 1, ints_.size(), ints_.data()};
+        return OBSCURA_OK;
+    };
+    if (curves && attribute == "type") return fillToken("cubic", out);
+    if (curves && attribute == "basis") return fillToken("bezier", out);
+    if (curves && attribute == "wrap") return fillToken("nonperiodic", out);
+    if (!curves && attribute == "subdivisionScheme") return fillToken("none", out);  // tets are flat-faced
+    const bool topology = curves ? attribute == "curveVertexCounts"
+                                 : attribute == "faceVertexCounts" || attribute == "faceVertexIndices";
+    if (!topology && !isPerElement(attribute)) return std::nullopt;
+    const ConvertedPrim& converted = *convertedForm(prim, time);
+    if (std::holds_alternative<usda::AttributeProblem>(converted.form)) {
+        if (topology) return ints({});
+        if (attribute != "points") return OBSCURA_ERROR_NOT_FOUND;
+        floats_.clear();
+        *out = {OBSCURA_VALUE_FLOAT3, 1, 0, floats_.data()};
+        return OBSCURA_OK;
+    }
+    if (const auto* faces = std::get_if<std::vector<int>>(&converted.form)) {
+        if (attribute == "faceVertexCounts") return ints(std::vector<int32_t>(faces->size() / 3, 3));
+        if (attribute == "faceVertexIndices") return ints(*faces);
+        // XXX: a TetMesh's uniform and faceVarying primvars (per tet, per tet face) are not served.
+        const usda::Attribute* a = resolveAttribute(prim.path, attribute);
+        const std::string interpolation = a ? authoredInterpolation(*a) : "";
+        if (interpolation == "uniform" || interpolation == "faceVarying") return OBSCURA_ERROR_NOT_FOUND;
+        return std::nullopt;  // the points and vertex primvars are the tets' own
+    }
+    const usda::BezierCurves& bezier = std::get<usda::BezierCurves>(converted.form);
+    if (attribute == "curveVertexCounts") return ints(std::vector<int32_t>(bezier.curveVertexCounts.begin(), bezier.curveVertexCounts.end()));
+    usda::Value value;
+    if (ObscuraStatus status = authoredValue(prim, attribute, time, value); status != OBSCURA_OK) return status;
+    if (attribute == "points") {
+        value.numbers = bezierControlPoints(prim, bezier, value, time);
+        return fill(value, out);
+    }
+    const usda::Attribute* a = resolveAttribute(prim.path, attribute);
+    const auto elementSize = a->metadata.find("elementSize");
+    auto served = usda::convertCurvesPrimvar(
+        bezier, value, curvesInterpolation(*a, attribute),
+        elementSize == a->metadata.end() || elementSize->second.numbers.empty() ? 1 : size_t(std::max(1.0, elementSize->second.numbers.front())));
+    if (auto* problem = std::get_if<std::string>(&served)) {
+        warnOnce("count:" + prim.path + a->name, prim.path + ": " + a->name + " has " + *problem + "; ignored", a->where);
+        return OBSCURA_ERROR_NOT_FOUND;
+    }
+    return fill(std::get<usda::Value>(served), out);
 }
 
 void UsdSceneHost::bindSkeleton(const usda::Prim& prim) {

@@ -6,6 +6,7 @@
 #include "harness/delegate_message.h"
 #include "harness/materialx_surface.h"
 #include "harness/native_instancing.h"
+#include "harness/usda/bezier_curves.h"
 #include "harness/usda/skinning.h"
 #include "harness/usda/stage.h"
 
@@ -17,6 +18,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace obscura::harness {
@@ -90,6 +92,9 @@ private:
     static ObscuraStatus sampleTransformThunk(void* user, const char* path, double t0, double t1, uint32_t maxSamples,
                                               double* times, double* matrices, uint32_t* count);
     ObscuraStatus getValue(const std::string& path, const std::string& attribute, double time, ObscuraValue* out);
+    // An attribute of `prim` (as resolveAttribute names it) at `time` as the delegate is served it:
+    // its connection followed, assets resolved, indices flattened, counts checked, skinned.
+    ObscuraStatus authoredValue(const usda::Prim& prim, const std::string& attribute, double time, usda::Value& out);
     // The stage's prims the delegate draws, by path, with their delegate types; fills surfaces_ and
     // prototypeRoots_ and reports what it leaves out.
     std::map<std::string, std::string> scan();
@@ -97,6 +102,7 @@ private:
     ObscuraDirtyBits changes(const std::string& type, const usda::Prim& prim, const UsdSceneHost& previous, const usda::Prim& before,
                              double time) const;
     ObscuraStatus fill(const usda::Value& value, ObscuraValue* out);
+    ObscuraStatus fillToken(const char* token, ObscuraValue* out);
     // The surface shader a Material's outputs:surface (else outputs:mtlx:surface) leads to, through
     // NodeGraph outputs, or null with the reason.
     const usda::Prim* surfaceShader(const usda::Prim& material, std::string& problem) const;
@@ -130,6 +136,24 @@ private:
     // (transform, visibility, displayColor).
     std::optional<ObscuraStatus> skeletonGuideValue(const usda::Skinning& skeleton, const std::string& attribute,
                                                     double time, ObscuraValue* out);
+    // NurbsCurves and HermiteCurves served as cubic Bezier basisCurves, TetMeshes as the mesh of
+    // their surface (usda/nurbs_curves.h, usda/hermite_curves.h, usda/tet_mesh.h), converted at the
+    // time the delegate pulls; a prim whose data the conversion refuses is served empty.
+    struct ConvertedPrim {
+        double time;
+        std::variant<usda::BezierCurves, std::vector<int>, usda::AttributeProblem> form;  // curves, surface triangles
+    };
+    std::map<std::string, ConvertedPrim> converted_;
+    // The converted form of `prim` at `time`, its problem reported once naming the prim; null for a
+    // prim of a type served as authored.
+    const ConvertedPrim* convertedForm(const usda::Prim& prim, double time);
+    // A converted curves prim's Bezier control points from its `points` (authoredValue's) at `time`.
+    std::vector<double> bezierControlPoints(const usda::Prim& prim, const usda::BezierCurves& curves,
+                                            const usda::Value& points, double time) const;
+    // A converted prim's own attributes at `time`; nullopt for what it answers as authored (placement,
+    // visibility, purpose, doubleSided...).
+    std::optional<ObscuraStatus> convertedValue(const usda::Prim& prim, const std::string& attribute, double time,
+                                                ObscuraValue* out);
     // Materials whose surface is not UsdPreviewSurface (MaterialX node definitions, or surfaces
     // drawn with their base colour): their mapping onto UsdPreviewSurface's inputs at one time.
     struct MappedSurface {
