@@ -75,7 +75,7 @@ check "malformed scene names file:line:column" 3 $? "$tmp/out" 'malformed\.usda:
 "$obscura" render "$src/tests/harness/data/bad_prims.usda" -o "$tmp/bad.png" --width 64 --height 64 >"$tmp/out" 2>&1
 check "bad prims exit 3" 3 $? "$tmp/out" 'NaNPoints.*NaN'
 grep -q 'IndexOutOfRange' "$tmp/out"; check "every bad prim is reported" 0 $?
-grep -q "prim type 'NurbsPatch' is not supported" "$tmp/out"; check "unsupported prim types warned once" 0 $?
+grep -q "prim type 'Volume' is not supported" "$tmp/out"; check "unsupported prim types warned once" 0 $?
 grep -q 'NegativeRadius: radius is -1' "$tmp/out"; check "a sphere of negative radius is reported" 0 $?
 [ -s "$tmp/bad.png" ]; check "the rest still renders" 0 $?
 # Bad data the delegate finds is located in the file as a compiler would: file:line:column of the

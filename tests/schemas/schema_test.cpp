@@ -41,7 +41,7 @@ TEST(SchemaTables, EveryPrimTypeIsFound) {
         {"diskLight", "sprim"},   {"cube", "rprim"},       {"sphere", "rprim"},
         {"cylinder", "rprim"},    {"cylinder1", "rprim"},  {"cone", "rprim"},
         {"capsule", "rprim"},     {"capsule1", "rprim"},   {"plane", "rprim"},
-        {"basisCurves", "rprim"}, {"points", "rprim"}};
+        {"basisCurves", "rprim"}, {"points", "rprim"},     {"nurbsPatch", "rprim"}};
     EXPECT_EQ(primSchemas().size(), std::size(expected));
     for (const auto& [name, category] : expected) {
         const PrimSchema* prim = findPrimSchema(name);
@@ -68,7 +68,7 @@ TEST(SchemaTables, PlugInfoDeclaresEveryPrimType) {
 }
 
 TEST(SchemaTables, UnknownNamesGiveNull) {
-    EXPECT_EQ(findPrimSchema("nurbsPatch"), nullptr);
+    EXPECT_EQ(findPrimSchema("volume"), nullptr);
     EXPECT_EQ(findPrimSchema("gprim"), nullptr);  // the attributes gprims share, not a prim type
     EXPECT_EQ(findPrimSchema("Mesh"), nullptr);   // prim type tokens, not USD type names
     EXPECT_EQ(findPrimSchema(""), nullptr);
