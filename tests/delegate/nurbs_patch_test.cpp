@@ -116,6 +116,47 @@ TEST(NurbsPatch, BadDataSkipsOnlyThatPrimAndNamesIt) {
     EXPECT_GE(ids[size_t(kHeight / 2 * kWidth + kWidth / 2)], 0.0f);
 }
 
+// A bilinear square 1 unit across whose points move 0.2 along X between time codes 0 and 1.
+std::string movingSquare() {
+    return "def NurbsPatch \"Square\"\n{\n    int uVertexCount = 2\n    int vVertexCount = 2\n    int uOrder = 2\n"
+           "    int vOrder = 2\n    double[] uKnots = [0, 0, 1, 1]\n    double[] vKnots = [0, 0, 1, 1]\n"
+           "    point3f[] points.timeSamples = {\n"
+           "        0: [(-0.5, -0.5, 0), (0.5, -0.5, 0), (-0.5, 0.5, 0), (0.5, 0.5, 0)],\n"
+           "        1: [(-0.3, -0.5, 0), (0.7, -0.5, 0), (-0.3, 0.5, 0), (0.7, 0.5, 0)],\n    }\n}\n";
+}
+
+TEST(NurbsPatch, DeformingWithinTheShutterIsItsMotion) {
+    // The shutter spans time codes 0 to 1 around the frame at 0.5 (timeCodesPerSecond 1).
+    HostedStage scene(usda::Stage::openFromString(
+        "#usda 1.0\n(\n    timeCodesPerSecond = 1\n)\n" +
+            usdaCamera("    double shutter:open = -0.5\n    double shutter:close = 0.5\n") + movingSquare(),
+        "moving.usda"));
+    const std::vector<float> motion = scene.renderAov("motion", 3, 0.5);
+    ASSERT_EQ(motion.size(), size_t(kWidth) * kHeight * 3);
+    // 0.2 units at the focus distance's view of 2 x 1.04775 units across kWidth pixels.
+    const double expected = 0.2 * kWidth / (2.0 * 1.04775);
+    const size_t centre = size_t(kHeight / 2 * kWidth + kWidth / 2) * 3;
+    EXPECT_NEAR(motion[centre], expected, 0.05 * expected);
+    EXPECT_NEAR(motion[centre + 1], 0.0, 0.05 * expected);
+    EXPECT_TRUE(scene.errors.empty()) << scene.errors.front();
+}
+
+TEST(NurbsPatch, InstancedThroughAPointInstancer) {
+    const std::string instancer = "def PointInstancer \"Scatter\"\n{\n"
+                                  "    rel prototypes = [</Scatter/Prototypes/Ball>]\n"
+                                  "    int[] protoIndices = [0, 0]\n"
+                                  "    point3f[] positions = [(-0.5, 0, 0), (0.5, 0, 0)]\n"
+                                  "    def Scope \"Prototypes\"\n    {\n" +
+                                  nurbsSphere("Ball", 0.25) + "    }\n}\n";
+    HostedStage scene(usda::Stage::openFromString("#usda 1.0\n" + usdaCamera() + instancer, "scatter.usda"));
+    const std::vector<float> ids = scene.renderAov("primId", 1);
+    auto idAt = [&](double x) { return ids[size_t(kHeight / 2 * kWidth + int((x / 1.04775 + 1.0) * kWidth / 2))]; };
+    EXPECT_GE(idAt(-0.5), 0.0f);
+    EXPECT_GE(idAt(0.5), 0.0f);
+    EXPECT_LT(idAt(0.0), 0.0f);  // between them: nothing
+    EXPECT_TRUE(scene.errors.empty()) << scene.errors.front();
+}
+
 TEST(NurbsPatch, TrimCurvesAreNamedAsNotApplied) {
     HostedStage scene(usda::Stage::openFromString(
         "#usda 1.0\n" + usdaCamera() + nurbsSphere("Trimmed", 0.5, "    int[] trimCurve:counts = [1]\n"), "trimmed.usda"));
