@@ -107,6 +107,25 @@ TEST(EdgeConvergence, MsaaStillIsThePixelIntegral) {
     EXPECT_GE(msaaPsnr, 45.0);
 }
 
+// Colour edges inside one surface: a lit card of chequered faces (one mesh, one displayColor per
+// face), its cells 3.7 pixels wide so the edges fall anywhere in a pixel. Its samples agree on
+// instance, depth and normal, so no pixel is tagged for per-sample lighting: each is lit once, and
+// its base colour must be the mean of what its samples saw for the still to be the pixel integral.
+TEST(EdgeConvergence, MsaaStillResolvesColourEdgesInsideOneSurface) {
+    BlurScene s(Lens{}, kWidth, kHeight);
+    s.setShutter(0.0, 0.0);
+    s.addSky();
+    const double cell = 3.7 * pinholeUnitsPerPixel(kDistance, kWidth);
+    addChequerCard(s.host, "/Chequer", {0.3 * cell, 0.2 * cell, -kDistance}, cell, 36, 20, {0.8f, 0.75f, 0.7f},
+                   {0.1f, 0.12f, 0.2f});
+    image::Image reference = s.renderReference(kReferenceSubFrames);
+    s.setNumber("msaa", 4);
+    image::Image msaa = s.render();
+    const double msaaPsnr = mappedPsnr(msaa, reference);
+    report("colour edges inside a surface, 4x MSAA still vs reference", msaaPsnr);
+    EXPECT_GE(msaaPsnr, 45.0);
+}
+
 // A still through a pixel filter f: behind a straight vertical edge of a glowing half-plane at
 // image x = e, the pixel whose centre is c sees the share of the filter beyond the edge, F(c - e),
 // F the filter's cumulative distribution (integrated here from the filters' formulas). 64 frames
