@@ -73,7 +73,7 @@ MsaaResolve addMsaaResolvePass(gpu::FrameGraph& graph, const FrameScene& scene, 
     if (velocity) resolved.velocity = written[5];
 
     std::vector<ShaderBinding> bindings{sampled(multisampled.albedoMetallic), sampled(centreDepth),
-                                        sampled(edgeQuads), bufferRead(scene.buffers.camera)};
+                                        sampled(edgeQuads)};
     graph.addPass(
         "msaa_resolve_depth", gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {

@@ -187,8 +187,10 @@ const uint SAMPLE_ROUND = TILE_SIZE * TILE_SIZE;
 // one whose sample `s` falls within this pixel's box this frame. The frame's jitter moved the
 // image by `jitter` pixels, so the sample at window position w sees what lies at w - jitter.
 ivec2 sampleSource(ivec2 pixel, int s, int sampleCount) {
-    return resolvedSampleSource(pixel, s, sampleCount, camera.sampleResolve, camera.clipJitter * camera.resolution * 0.5,
-                                ivec2(camera.resolution));
+    if (camera.sampleResolve != SAMPLE_RESOLVE_PIXEL_BOX) return pixel;
+    vec2 jitter = camera.clipJitter * camera.resolution * 0.5;
+    vec2 seen = standardSampleLocation(sampleCount, s) - jitter;
+    return clamp(pixel - ivec2(floor(seen)), ivec2(0), ivec2(camera.resolution) - 1);
 }
 
 // Whether a pixel the resolve did not tag must still be lit per sample: under
@@ -207,6 +209,18 @@ bool borrowsDifferentSamples(ivec2 pixel) {
             return true;
     }
     return false;
+}
+
+// The base colour and metallic an untagged pixel is lit with: the mean of the samples it resolves.
+// Those lie on one surface (the resolve's test), but may see different colours of it: faces of
+// another displayColor, or, in a still's per-sample shading, both sides of a texture's edge. The
+// lighting is linear in the base colour (bilinear where metallic varies too), so the mean keeps a
+// colour edge's coverage at pixel frequency, where sample 0 alone would alias it.
+vec4 pixelAlbedoMetallic(ivec2 pixel) {
+    int sampleCount = textureSamples(albedoMetallicSamples);
+    vec4 sum = vec4(0.0);
+    for (int s = 0; s < sampleCount; ++s) sum += texelFetch(albedoMetallicSamples, sampleSource(pixel, s, sampleCount), s);
+    return sum / float(sampleCount);
 }
 
 ShadingJob sampleJob(uint pair, uint pairs, uint sampleCount) {
@@ -357,9 +371,15 @@ void main() {
     for (uint round = 0u; round < rounds; ++round) {
         ShadingJob job;
         job.instanceTarget = 0u;
-        if (round == 0u && pixelFrequency)
-            job = ShadingJob(instanceTarget, depth, texelFetch(normalRoughnessTexture, pixel, 0),
-                             texelFetch(albedoMetallicTexture, pixel, 0), vec2(pixel) + 0.5, pixel);
+        if (round == 0u && pixelFrequency) {
+#ifdef PER_SAMPLE_LIGHTING
+            vec4 albedoMetallic = pixelAlbedoMetallic(pixel);
+#else
+            vec4 albedoMetallic = texelFetch(albedoMetallicTexture, pixel, 0);
+#endif
+            job = ShadingJob(instanceTarget, depth, texelFetch(normalRoughnessTexture, pixel, 0), albedoMetallic,
+                             vec2(pixel) + 0.5, pixel);
+        }
 #ifdef PER_SAMPLE_LIGHTING
         if (round > 0u) job = sampleJob((round - 1u) * SAMPLE_ROUND + gl_LocalInvocationIndex, pairs, sampleCount);
 #endif

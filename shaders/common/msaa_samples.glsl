@@ -4,7 +4,6 @@
 #define OBSCURA_MSAA_SAMPLES_GLSL
 
 #include "best_fit_normals.glsl"
-#include "frame_data.glsl"
 #include "gbuffer_discontinuity.glsl"
 #include "instance_target.glsl"
 #include "view_depth.glsl"
@@ -25,16 +24,6 @@ vec2 standardSampleLocation(int sampleCount, int s) {
     if (sampleCount == 4) return four[s];
     if (sampleCount == 8) return eight[s];
     return vec2(0.5);
-}
-
-// The pixel whose sample `s` of `sampleCount` a pixel resolves: its own, or under
-// SAMPLE_RESOLVE_PIXEL_BOX (`sampleResolve`) the one whose sample falls within its box this frame.
-// The frame's jitter moved the image by `jitterPixels`, so the sample at window position w sees
-// what lies at w - jitter; `size` is the image's.
-ivec2 resolvedSampleSource(ivec2 pixel, int s, int sampleCount, uint sampleResolve, vec2 jitterPixels, ivec2 size) {
-    if (sampleResolve != SAMPLE_RESOLVE_PIXEL_BOX) return pixel;
-    vec2 seen = standardSampleLocation(sampleCount, s) - jitterPixels;
-    return clamp(pixel - ivec2(floor(seen)), ivec2(0), size - 1);
 }
 
 GBufferSample fetchGBufferSample(sampler2DMS depthSamples, sampler2DMS normalRoughnessSamples,
