@@ -15,12 +15,6 @@ bool geometryDirty(const SceneAccess& s, ObscuraDirtyBits bits) {
            s.anyDirtyBut({"transform", "visibility", "purpose", "doubleSided", "material:binding"});
 }
 
-std::optional<MeshPrimvar> pullPrimvar(SceneAccess& s, const char* name, size_t components) {
-    auto values = s.getFloatArray(name);
-    if (!values) return std::nullopt;
-    return MeshPrimvar{std::move(*values), s.interpolation(name), components};
-}
-
 // UsdGeomCurves / UsdGeomPoints: `widths`, else the primvar of the same name.
 std::optional<MeshPrimvar> pullWidths(SceneAccess& s) {
     if (auto widths = pullPrimvar(s, "widths", 1)) return widths;

@@ -71,6 +71,12 @@ void Mesh::setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std
     });
 }
 
+std::optional<MeshPrimvar> pullPrimvar(SceneAccess& s, const char* name, size_t components) {
+    auto values = s.getFloatArray(name);
+    if (!values) return std::nullopt;
+    return MeshPrimvar{std::move(*values), s.interpolation(name), components};
+}
+
 std::optional<std::array<std::vector<float>, 2>> Mesh::pullShutterPoints(SceneAccess& s, const std::vector<float>& points,
                                                                          const SyncContext& ctx) {
     if (!(ctx.shutterClose > ctx.shutterOpen)) return std::nullopt;

@@ -22,6 +22,9 @@ struct MaterialPart {
     std::string subset;  // the material subset it draws, as messages name it (subsetSubject); "" for the mesh's own faces
 };
 
+// Primvar `name` with its interpolation, `components` values per element; nullopt when not authored.
+std::optional<MeshPrimvar> pullPrimvar(SceneAccess& scene, const char* name, size_t components);
+
 class Mesh : public Prim {
 public:
     Mesh(std::string path, const schema::PrimSchema& schema, int32_t primId)

@@ -24,12 +24,6 @@ NurbsDirection pullDirection(SceneAccess& s, const char* vertexCount, const char
     return d;
 }
 
-std::optional<MeshPrimvar> pullPrimvar(SceneAccess& s, const char* name, size_t components) {
-    auto values = s.getFloatArray(name);
-    if (!values) return std::nullopt;
-    return MeshPrimvar{std::move(*values), s.interpolation(name), components};
-}
-
 // Steps per span at a level: 2^level.
 int stepsAt(int level) { return 1 << std::max(0, level); }
 
