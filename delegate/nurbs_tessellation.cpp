@@ -139,10 +139,12 @@ Vec3 combinePoints(const PatchBasis& b, const Coefficients& c, const NurbsPatchI
     return sum;
 }
 
-// Steps per span at which nurbsBendMagnitude samples the second derivatives: their largest value
-// is at a span's ends for a polynomial cubic (linear in between), and at its ends or middle for
-// the conics (symmetric), all of which these samples hit.
-constexpr int kBendSamples = 8;
+// Steps per span at which nurbsBendMagnitude samples the second derivatives in one direction: 8,
+// fewer over many spans (at least 2, about 1024 samples a direction), so that a patch of a million
+// control points is not evaluated 64 million times. The largest value is at a span's ends for a
+// polynomial cubic (linear in between) and at its ends or middle for the conics (symmetric), all
+// of which even 2 steps hit.
+int bendSamples(const NurbsDirection& d) { return std::clamp(1024 / std::max(d.spanCount(), 1), 2, 8); }
 
 const char* interpolationName(ObscuraInterpolation i) {
     switch (i) {
@@ -361,7 +363,7 @@ uint64_t nurbsTriangleCount(const NurbsPatchInput& patch, std::array<int, 2> ste
 }
 
 std::array<double, 2> nurbsBendMagnitude(const NurbsPatchInput& patch) {
-    const Samples us = samplesOf(patch.u, kBendSamples), vs = samplesOf(patch.v, kBendSamples);
+    const Samples us = samplesOf(patch.u, bendSamples(patch.u)), vs = samplesOf(patch.v, bendSamples(patch.v));
     std::array<double, 2> bend{0.0, 0.0};
     for (const Sample& v : vs.at)
         for (const Sample& u : us.at) {
