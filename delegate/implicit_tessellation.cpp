@@ -224,6 +224,11 @@ double wantedImplicitLevel(double radiusPixels, double maxErrorPixels) {
     return std::log2(segments / 8.0);
 }
 
+double wantedStepLevel(double bendPixels, double maxErrorPixels) {
+    const double steps = std::sqrt(bendPixels / (8.0 * maxErrorPixels));
+    return steps > 1.0 ? std::log2(steps) : 0.0;
+}
+
 int chooseImplicitLevel(double wantedLevel, int currentLevel) {
     constexpr double kHysteresis = 0.75;
     if (std::isnan(wantedLevel)) wantedLevel = kImplicitMaxLevel;

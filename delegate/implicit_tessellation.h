@@ -50,6 +50,12 @@ int implicitSegments(int level);
 // not yet clamped or rounded.
 double wantedImplicitLevel(double radiusPixels, double maxErrorPixels);
 
+// The level (2^level steps along a parametric span) whose chords stay within `maxErrorPixels` of a
+// curve whose second derivative over the span's parameter, normalised to [0, 1], is at most
+// `bendPixels` on screen: a step of 1/n departs from its chord by at most bendPixels / (8 n^2).
+// Not yet clamped or rounded; 0 where one step is close enough.
+double wantedStepLevel(double bendPixels, double maxErrorPixels);
+
 // The level to draw with, given the level wanted now and the one drawn so far (-1: none yet):
 // the current level stays while the wanted one is within 0.75 of it (hysteresis), otherwise the
 // nearest level, clamped to [kImplicitMinLevel, kImplicitMaxLevel].

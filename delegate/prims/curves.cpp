@@ -3,7 +3,6 @@
 #include "delegate/implicit_tessellation.h"
 
 #include <algorithm>
-#include <cmath>
 
 namespace obscura::delegate {
 namespace {
@@ -50,10 +49,9 @@ std::vector<DetailSphere> Curves::detailSpheres() const {
 bool Curves::chooseDetail(double pixelsPerUnit) {
     const int sides = chooseImplicitLevel(wantedImplicitLevel(curveMaxRadius(input_) * pixelsPerUnit, kMaxChordErrorPixels),
                                           sidesLevel_);
-    // A segment cut into n steps stays within 6 M / (8 n^2) of its chords (curve_tessellation.h).
-    const double bendPixels = curveBendMagnitude(input_) * pixelsPerUnit;
-    const double wantedSteps = std::sqrt(0.75 * bendPixels / kMaxChordErrorPixels);
-    const int steps = chooseImplicitLevel(wantedSteps > 1.0 ? std::log2(wantedSteps) : 0.0, stepsLevel_);
+    // A cubic segment's second derivative is at most 6 M (curve_tessellation.h).
+    const double bendPixels = 6.0 * curveBendMagnitude(input_) * pixelsPerUnit;
+    const int steps = chooseImplicitLevel(wantedStepLevel(bendPixels, kMaxChordErrorPixels), stepsLevel_);
     if (sides == sidesLevel_ && steps == stepsLevel_) return false;
     sidesLevel_ = sides;
     stepsLevel_ = steps;

@@ -3,7 +3,6 @@
 #include "delegate/implicit_tessellation.h"
 
 #include <algorithm>
-#include <cmath>
 
 namespace obscura::delegate {
 namespace {
@@ -47,12 +46,9 @@ std::vector<DetailSphere> NurbsPatch::detailSpheres() const {
 }
 
 bool NurbsPatch::chooseDetail(double pixelsPerUnit) {
-    // A span cut into n steps stays within bend / (8 n^2) of its chords (nurbs_tessellation.h).
     std::array<int, 2> levels = levels_;
-    for (size_t k = 0; k < 2; ++k) {
-        const double wantedSteps = std::sqrt(bend_[k] * pixelsPerUnit / (8.0 * kMaxChordErrorPixels));
-        levels[k] = chooseImplicitLevel(wantedSteps > 1.0 ? std::log2(wantedSteps) : 0.0, levels_[k]);
-    }
+    for (size_t k = 0; k < 2; ++k)
+        levels[k] = chooseImplicitLevel(wantedStepLevel(bend_[k] * pixelsPerUnit, kMaxChordErrorPixels), levels_[k]);
     if (levels == levels_) return false;
     levels_ = levels;
     markDirty(kDirtyTessellation);
