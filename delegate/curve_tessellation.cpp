@@ -486,11 +486,9 @@ double pointsMaxRadius(const PointsInput& p) {
     return widest;
 }
 
-uint64_t pointTriangleCount(const PointsInput& p, int segments) {
-    return uint64_t(p.points.size() / 3) * uint64_t(segments) * uint64_t(segments - 2);
-}
+uint64_t pointTriangleCount(const PointsInput& p) { return uint64_t(p.points.size() / 3) * 12u; }
 
-MeshGeometry tessellatePoints(const PointsInput& p, int segments) {
+MeshGeometry pointImpostorBoxes(const PointsInput& p) {
     MeshGeometry out;
     const size_t count = p.points.size() / 3;
     const MeshPrimvar* colors = nullptr;
@@ -498,39 +496,31 @@ MeshGeometry tessellatePoints(const PointsInput& p, int segments) {
         size_t expected = p.displayColor->interpolation == OBSCURA_INTERPOLATION_CONSTANT ? 1 : count;
         colors = usable(p.displayColor, expected, "primvars:displayColor", out.warnings);
     }
-    const int bands = segments / 2;
-    out.vertices.reserve(count * size_t(2 + (bands - 1) * segments));
-    out.indices.reserve(count * size_t(segments * (segments - 2) * 3));
+    // Corner c sits at x = bit 0, y = bit 1, z = bit 2 (0: -, 1: +). Each face as two triangles
+    // wound counter-clockwise seen from outside.
+    static constexpr std::array<uint32_t, 36> kFaces{0, 2, 3, 0, 3, 1,   // -z
+                                                     4, 5, 7, 4, 7, 6,   // +z
+                                                     0, 1, 5, 0, 5, 4,   // -y
+                                                     2, 6, 7, 2, 7, 3,   // +y
+                                                     0, 4, 6, 0, 6, 2,   // -x
+                                                     1, 3, 7, 1, 7, 5};  // +x
+    out.vertices.reserve(count * 8);
+    out.indices.reserve(count * kFaces.size());
     for (size_t i = 0; i < count; ++i) {
         const V3 centre = pointOf(p.points, i);
         const double radius = pointRadius(p, i);
         std::array<double, 3> color{kGrey, kGrey, kGrey};
         if (colors)
             for (size_t k = 0; k < 3; ++k) color[k] = colors->values[(colors->values.size() == 3 ? 0 : i) * 3 + k];
-        const uint32_t south = uint32_t(out.vertices.size());
-        out.vertices.push_back(vertexAt(add(centre, {0, 0, -radius}), {0, 0, -1}, {1, 0, 0}, color, 0.5, 0.0));
-        // Rings from south to north (z up), segments around from +X.
-        for (int ring = 1; ring < bands; ++ring) {
-            double latitude = -std::numbers::pi / 2 + std::numbers::pi * ring / bands;
-            for (int k = 0; k < segments; ++k) {
-                double phi = 2.0 * std::numbers::pi * k / segments;
-                V3 n{std::cos(latitude) * std::cos(phi), std::cos(latitude) * std::sin(phi), std::sin(latitude)};
-                out.vertices.push_back(vertexAt(add(centre, scale(n, radius)), n, {-std::sin(phi), std::cos(phi), 0}, color,
-                                                double(k) / segments, double(ring) / bands));
-            }
+        const uint32_t first = uint32_t(out.vertices.size());
+        for (uint32_t c = 0; c < 8; ++c) {
+            const V3 corner{c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0};
+            const V3 offset = scale(corner, radius);
+            passes::Vertex v = vertexAt(add(centre, offset), scale(corner, 1.0 / std::sqrt(3.0)), offset, color, 0.5, 0.5);
+            v.tangent[3] = float(radius);
+            out.vertices.push_back(v);
         }
-        const uint32_t north = uint32_t(out.vertices.size());
-        out.vertices.push_back(vertexAt(add(centre, {0, 0, radius}), {0, 0, 1}, {1, 0, 0}, color, 0.5, 1.0));
-        auto at = [&](int ring, int k) { return south + 1 + uint32_t((ring - 1) * segments + k % segments); };
-        // East x north points outwards: (k, ring), (k + 1, ring), (k + 1, ring + 1), (k, ring + 1).
-        for (int k = 0; k < segments; ++k) {
-            out.indices.insert(out.indices.end(), {south, at(1, k + 1), at(1, k)});
-            out.indices.insert(out.indices.end(), {at(bands - 1, k), at(bands - 1, k + 1), north});
-            for (int ring = 1; ring + 1 < bands; ++ring) {
-                uint32_t a = at(ring, k), b = at(ring, k + 1), c = at(ring + 1, k + 1), d = at(ring + 1, k);
-                out.indices.insert(out.indices.end(), {a, b, c, a, c, d});
-            }
-        }
+        for (uint32_t corner : kFaces) out.indices.push_back(first + corner);
     }
     return out;
 }

@@ -85,9 +85,12 @@ std::string pointsProblem(const PointsInput& points);
 // Half the width of point `index` of validated points.
 double pointRadius(const PointsInput& points, size_t index);
 double pointsMaxRadius(const PointsInput& points);
-// A sphere of `segments` around its pole axis and segments / 2 bands from pole to pole makes
-// segments (segments - 2) triangles.
-uint64_t pointTriangleCount(const PointsInput& points, int segments);
-MeshGeometry tessellatePoints(const PointsInput& points, int segments);
+// Triangles of pointImpostorBoxes: 12 per point.
+uint64_t pointTriangleCount(const PointsInput& points);
+// Each validated point as the cube that bounds its sphere (8 corners, 12 outward triangles),
+// drawn as a sphere impostor (shaders/common/sphere_impostor.glsl): each corner carries, in the
+// tangent's place, its offset from the point (xyz) and the sphere's radius (w); its normal points
+// away from the point; its colour is the point's displayColor (else 0.18 grey).
+MeshGeometry pointImpostorBoxes(const PointsInput& points);
 
 }  // namespace obscura::delegate

@@ -354,6 +354,7 @@ private:
                           texturesOf(part), hasCutout(mesh, part), isTransparent(mesh, part),
                           moving, shutterPositionsOf(mesh)};
         draw.firstIndex = part.indices.first;
+        draw.sphereImpostors = mesh.drawsSphereImpostors();
         return draw;
     }
 

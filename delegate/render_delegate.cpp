@@ -285,7 +285,7 @@ void RenderDelegate::sync(double time, const Camera* camera, const ObscuraRender
     takeShutter();
     syncPrims({afterCamera, rprims}, ctx, false);
     syncPrims({rprims, dirty.end()}, ctx, parallel);
-    // Implicit surfaces, curves and points refine with their size on screen: those whose level
+    // Implicit surfaces, curves and NURBS patches refine with their size on screen: those whose level
     // changed are tessellated again, with the transforms and instance placements just synced.
     // The viewport's size, else the first bound render buffer's (checked when they are bound).
     uint32_t width = desc.viewport[2] > 0 ? uint32_t(desc.viewport[2]) : 0;

@@ -14,9 +14,13 @@ namespace obscura::passes {
 struct DepthOnlyPush {
     Mat4 viewProjection;     // world -> clip
     uint32_t instanceIndex;  // the draw's first instance record
+    // The pipeline's slope-scaled depth bias factor, for fragment stages that write their own
+    // depth (sphere impostors in the shadow maps); 0 where there is none.
+    float depthBiasSlope = 0.0f;
 };
 OBSCURA_SHADER_OFFSET(DepthOnlyPush, depth_only_vert::Push, viewProjection);
 OBSCURA_SHADER_OFFSET(DepthOnlyPush, depth_only_vert::Push, instanceIndex);
+OBSCURA_SHADER_OFFSET(DepthOnlyPush, depth_only_vert::Push, depthBiasSlope);
 
 // Vertex stage, vertex layout and the push constants; callers add set 0 (the instance records at
 // binding 0), the depth format and tests, and a fragment stage if they need one.

@@ -24,6 +24,9 @@ struct Draw {
     bool transparent = false;
     bool moving = false;         // its instances move within the shutter (motion blur's velocities)
     gpu::BufferPtr shutterPositions;  // deforming: ShutterPositions per vertex (moving draws only)
+    // Its triangles are cubes bounding spheres (UsdGeomPoints): the passes draw the spheres they
+    // bound, ray-cast per pixel (shaders/common/sphere_impostor.glsl).
+    bool sphereImpostors = false;
     // Where the draw's indexCount indices start in `indices`: a mesh whose faces bind several
     // materials (GeomSubsets) draws each material's range of one index buffer.
     uint32_t firstIndex = 0;

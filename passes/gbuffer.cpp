@@ -47,6 +47,25 @@ bool deforms(Variant variant) { return variant == Variant::Deforming || variant 
 
 bool readsMotion(Variant variant) { return writesVelocity(variant) || deforms(variant); }
 
+// How a draw's fragments make its surface: opaque (the depth test runs before shading), cut out by
+// its material's opacity threshold, or sphere impostors (the sphere each cube bounds, its depth
+// written by the shader; a cut-out material cuts them too).
+enum class Surface { Opaque, Spheres, Cutout };
+
+Surface surfaceOf(const Draw& draw) {
+    if (draw.sphereImpostors) return Surface::Spheres;
+    return draw.opacityCutout ? Surface::Cutout : Surface::Opaque;
+}
+
+const char* surfaceName(Surface surface) {
+    switch (surface) {
+        case Surface::Opaque: return "";
+        case Surface::Spheres: return "spheres.";
+        case Surface::Cutout: return "cutout.";
+    }
+    return "";
+}
+
 // Set 0: the camera, the records, the best-fit normal table and the lights (the principal lobe of
 // anisotropic materials), and for variants that move the instances' motion, or for draws culled on
 // the GPU the records the culling pass left them.
@@ -60,15 +79,15 @@ std::vector<ShaderBinding> gbufferBindings(bool motion, const SceneBuffers& buff
     return bindings;
 }
 
-// `cutout`: the draw's material has an opacity threshold; the other draws take the shaders'
-// OPAQUE_SURFACE variant, whose depth test runs before shading (common/gbuffer_surface.glsl).
-// `culled`: the draw's records come from GPU occlusion culling's list (a static variant only).
-gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, bool cutout, bool culled,
+// Opaque surfaces take the shaders' OPAQUE_SURFACE variant, whose depth test runs before shading,
+// sphere impostors their SPHERE_IMPOSTOR one (common/gbuffer_surface.glsl). `culled`: the draw's
+// records come from GPU occlusion culling's list (a static variant only).
+gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, Surface surface, bool culled,
                                                   VkSampleCountFlagBits samples,
                                                   const std::vector<ShaderBinding>& bindings) {
     gpu::GraphicsPipelineDesc d;
     d.fragmentShader = std::string(writesVelocity(variant) ? "gbuffer_moving" : "gbuffer") +
-                       (cutout ? ".frag" : "_opaque.frag");
+                       (surface == Surface::Opaque ? "_opaque.frag" : surface == Surface::Spheres ? "_spheres.frag" : ".frag");
     d.bindings = bindingLayout(bindings);
     d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
     d.pushConstantSize = sizeof(GBufferPush);
@@ -104,7 +123,7 @@ Variant variantOf(const Draw& draw, bool velocityTarget) {
 
 // The draws of one raster pass, grouped by pipeline. Moving geometry is drawn last (seed 000 "An
 // improved reconstruction filter (3)"), so static surfaces never cover a velocity a moving one
-// wrote. Within a variant, opaque draws come before cut-outs: what they hide is then never shaded.
+// wrote. Within a variant, opaque draws come first: what they hide is then never shaded.
 // Under GPU occlusion culling (`culled`) the early pass draws the static variants (the culled
 // draws' early instances among them) and the late pass the culled draws' late instances, then
 // the moving variants.
@@ -113,10 +132,10 @@ std::vector<Ordered> orderedDraws(const FrameScene& scene, const CulledDraws* cu
     for (Variant variant : {Variant::Static, Variant::StaticWithVelocityTarget, Variant::DeformingWithoutVelocity,
                             Variant::Moving, Variant::Deforming}) {
         const bool lastVariants = variant == Variant::Moving || variant == Variant::Deforming;
-        for (bool cutout : {false, true})
+        for (Surface surface : {Surface::Opaque, Surface::Spheres, Surface::Cutout})
             for (const Draw& draw : scene.cameraDraws) {
                 // Transparent surfaces are drawn after lighting (passes/transparent.h).
-                if (draw.transparent || draw.opacityCutout != cutout || variantOf(draw, scene.motionBlur) != variant)
+                if (draw.transparent || surfaceOf(draw) != surface || variantOf(draw, scene.motionBlur) != variant)
                     continue;
                 if (culled && culled->phase == CulledDraws::Phase::Early && lastVariants) continue;
                 if (culled && culled->phase == CulledDraws::Phase::Late && !lastVariants && !draw.culledOnGpu())
@@ -169,22 +188,23 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
             gpu::Device& device = res.device();
             const gpu::Pipeline* bound = nullptr;
             Variant boundVariant = Variant::Static;
-            bool boundCutout = false, boundCulled = false;
+            Surface boundSurface = Surface::Opaque;
+            bool boundCulled = false;
             const MaterialTextures* pushed = nullptr;
             for (const Ordered& o : ordered) {
                 // Draws come grouped by variant: the pipeline changes only between groups.
-                const bool cutout = o.draw->opacityCutout;
+                const Surface surface = surfaceOf(*o.draw);
                 const bool culledDraw = culledDraws && o.draw->culledOnGpu();
-                if (!bound || o.variant != boundVariant || cutout != boundCutout || culledDraw != boundCulled) {
+                if (!bound || o.variant != boundVariant || surface != boundSurface || culledDraw != boundCulled) {
                     const std::vector<ShaderBinding> bindings =
                         gbufferBindings(readsMotion(o.variant), scene.buffers, bestFitNormals,
                                         culledDraw ? &*culledDraws : nullptr);
                     bound = &res.pipelines().get<gpu::GraphicsPipelineDesc>(
-                        std::string(pipelineName(o.variant)) + (cutout ? ".cutout." : ".") +
+                        std::string(pipelineName(o.variant)) + "." + surfaceName(surface) +
                             (culledDraw ? "culled." : "") + std::to_string(samples),
-                        [&] { return describeGBufferPipeline(o.variant, cutout, culledDraw, samples, bindings); });
+                        [&] { return describeGBufferPipeline(o.variant, surface, culledDraw, samples, bindings); });
                     boundVariant = o.variant;
-                    boundCutout = cutout;
+                    boundSurface = surface;
                     boundCulled = culledDraw;
                     bindBindings(cmd, *bound, bindings, res);
                     pushed = nullptr;  // a new layout: the pushed set starts over

@@ -7,6 +7,7 @@
 #include "gpu/vulkan_functions.h"
 
 #include <array>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,26 +22,42 @@ namespace {
 constexpr float kDepthBiasConstant = 1.0f;
 constexpr float kDepthBiasSlope = 2.0f;
 
-// Set 0: the instance records, for cut-out draws the materials, and for draws culled on the GPU
-// the records the culling pass left them.
-std::vector<ShaderBinding> shadowBindings(const SceneBuffers& buffers, bool cutout,
+// How a caster's fragments make its depth: the rasteriser's alone (opaque), cut out by its
+// material's opacity threshold, or sphere impostors (the sphere each cube bounds, its depth
+// written by the fragment stage; a cut-out material cuts them too).
+enum class Caster { Opaque, Cutout, Spheres };
+
+Caster casterOf(const Draw& draw) {
+    if (draw.sphereImpostors) return Caster::Spheres;
+    return draw.opacityCutout ? Caster::Cutout : Caster::Opaque;
+}
+
+// Set 0: the instance records, for cut-out draws and sphere impostors the materials, and for draws
+// culled on the GPU the records the culling pass left them.
+std::vector<ShaderBinding> shadowBindings(const SceneBuffers& buffers, Caster caster,
                                           const CulledDraws* culled = nullptr) {
     std::vector<ShaderBinding> bindings{bufferRead(buffers.instances),
-                                        cutout ? bufferRead(buffers.materials) : unbound()};
+                                        caster != Caster::Opaque ? bufferRead(buffers.materials) : unbound()};
     if (culled) bindings.push_back(bufferRead(culled->lists));
     return bindings;
 }
 
 // Opaque draws write depth with no fragment stage; draws with an opacity cut-out add one that
-// discards the texels the G-buffer discards.
-gpu::GraphicsPipelineDesc describeShadowDepthPipeline(const std::vector<ShaderBinding>& bindings, bool cutout,
+// discards the texels the G-buffer discards, sphere impostors its variant that writes the depth of
+// their spheres.
+gpu::GraphicsPipelineDesc describeShadowDepthPipeline(const std::vector<ShaderBinding>& bindings, Caster caster,
                                                       bool culled) {
     gpu::GraphicsPipelineDesc d = describeDepthOnlyDraw();
     if (culled) d.vertexShader = "depth_only_culled.vert";
     d.bindings = bindingLayout(bindings);
-    if (cutout) {
+    if (caster != Caster::Opaque) {
         d.fragmentShader = "shadow_cutout.frag";
         d.pushedSamplers = 1;  // set 1: the draw's opacity texture
+    }
+    if (caster == Caster::Spheres) {
+        d.vertexShader = culled ? "depth_only_culled_spheres.vert" : "depth_only_spheres.vert";
+        d.fragmentShader = "shadow_cutout_spheres.frag";
+        d.vertexAttributes.push_back({4, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)});
     }
     d.depthFormat = kShadowAtlasFormat;
     d.depthBiasConstant = kDepthBiasConstant;
@@ -77,32 +94,33 @@ bool culledInView(const ShadowMapView& view, size_t i) {
     return !view.culled.empty() && view.culled[i].cullSlot != Draw::kNotCulledOnGpu;
 }
 
-// Records the draws of every view in `views` that `cutout` selects, each view into its tile. Under
+// Records the draws of every view in `views` that are `caster`s, each view into its tile. Under
 // GPU occlusion culling (`culled`) the culled draws (`culledDraws`: those alone, or the others)
 // draw their instances of `culled`'s phase.
 void recordViews(VkCommandBuffer cmd, const gpu::PassResources& res, const FrameScene& scene,
-                 const std::vector<uint32_t>& views, bool cutout, const CulledDraws* culled = nullptr,
+                 const std::vector<uint32_t>& views, Caster caster, const CulledDraws* culled = nullptr,
                  bool culledDraws = false) {
-    const std::vector<ShaderBinding> bindings = shadowBindings(scene.buffers, cutout, culledDraws ? culled : nullptr);
+    const std::vector<ShaderBinding> bindings = shadowBindings(scene.buffers, caster, culledDraws ? culled : nullptr);
+    const char* names[] = {"shadow_depth", "shadow_depth_cutout", "shadow_depth_spheres"};
     const gpu::Pipeline& pipeline = res.pipelines().get<gpu::GraphicsPipelineDesc>(
-        std::string(cutout ? "shadow_depth_cutout" : "shadow_depth") + (culledDraws ? ".culled" : ""),
-        [&] { return describeShadowDepthPipeline(bindings, cutout, culledDraws); });
+        std::string(names[int(caster)]) + (culledDraws ? ".culled" : ""),
+        [&] { return describeShadowDepthPipeline(bindings, caster, culledDraws); });
     bool bound = false;
     for (uint32_t v : views) {
         const ShadowMapView& view = scene.shadows.views[v];
         VkViewport viewport{float(view.x), float(view.y), float(view.size), float(view.size), 0.0f, 1.0f};
         VkRect2D tile{{int32_t(view.x), int32_t(view.y)}, {view.size, view.size}};
-        DepthOnlyPush push{view.viewProjection, 0};
+        DepthOnlyPush push{view.viewProjection, 0, kDepthBiasSlope};
         bool inTile = false;
         for (size_t i = 0; i < view.draws.size(); ++i) {
             const Draw& draw = scene.draws[view.draws[i]];
-            if (draw.opacityCutout != cutout || !casts(draw)) continue;
+            if (casterOf(draw) != caster || !casts(draw)) continue;
             if (culled && culledInView(view, i) != culledDraws) continue;
             if (!bound) {
                 bindBindings(cmd, pipeline, bindings, res);
                 bound = true;
             }
-            if (cutout) {
+            if (caster != Caster::Opaque) {
                 const MaterialTextures& textures = scene.materialTextures[draw.textures];
                 gpu::pushSampledImages(res.device(), cmd, pipeline,
                                        {{textures.samplers[kTextureOpacity], textures.images[kTextureOpacity]->view,
@@ -179,7 +197,7 @@ gpu::ImageHandle addShadowRasterPass(gpu::FrameGraph& graph, const std::string& 
     graph.addPass(
         name, gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {
-            declareBindings(pass, shadowBindings(scene.buffers, true, culled), ShaderStage::Graphics);
+            declareBindings(pass, shadowBindings(scene.buffers, Caster::Cutout, culled), ShaderStage::Graphics);
             if (culled) pass.read(culled->commands, gpu::Usage::IndirectCommandRead);
             // An empty view list leaves the atlas cleared to the far depth: nothing casts.
             atlas = first && render.wholeAtlas ? pass.depthStencilAttachment(atlas, VkClearDepthStencilValue{1.0f, 0})
@@ -188,10 +206,10 @@ gpu::ImageHandle addShadowRasterPass(gpu::FrameGraph& graph, const std::string& 
         [&scene, render, first, late, culledDraws](VkCommandBuffer cmd, const gpu::PassResources& res) {
             if (first && !render.wholeAtlas) clearTiles(cmd, scene, render.views);
             const CulledDraws* phase = culledDraws ? &*culledDraws : nullptr;
-            for (bool cutout : {false, true}) {
+            for (Caster caster : {Caster::Opaque, Caster::Cutout, Caster::Spheres}) {
                 // The late pass draws the culled draws' late instances alone.
-                if (!late) recordViews(cmd, res, scene, render.views, cutout, phase, false);
-                if (phase) recordViews(cmd, res, scene, render.views, cutout, phase, true);
+                if (!late) recordViews(cmd, res, scene, render.views, caster, phase, false);
+                if (phase) recordViews(cmd, res, scene, render.views, caster, phase, true);
             }
         });
     return atlas;

@@ -5,6 +5,8 @@
 #include "passes/material_draw.h"
 #include "passes/shader_pass.h"
 
+#include <string>
+
 namespace obscura::passes {
 namespace {
 
@@ -15,11 +17,12 @@ struct TransparentPush {
 OBSCURA_SHADER_OFFSET(TransparentPush, transparent_frag::Push, instanceIndex);
 OBSCURA_SHADER_OFFSET(TransparentPush, transparent_frag::Push, fadeDistance);
 
-gpu::GraphicsPipelineDesc describeTransparentPipeline(VkFormat hdrFormat,
+// `spheres`: the draws are sphere impostors (the shader's SPHERE_IMPOSTOR variant).
+gpu::GraphicsPipelineDesc describeTransparentPipeline(VkFormat hdrFormat, bool spheres,
                                                       const std::vector<ShaderBinding>& bindings) {
     gpu::GraphicsPipelineDesc d;
     setSceneVertexInput(d);
-    d.fragmentShader = "transparent.frag";
+    d.fragmentShader = spheres ? "transparent_spheres.frag" : "transparent.frag";
     d.bindings = bindingLayout(bindings);
     d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
     d.pushConstantSize = sizeof(TransparentPush);
@@ -67,13 +70,20 @@ TransparentResult addTransparentPass(gpu::FrameGraph& graph, const FrameScene& s
         [&scene, draws, bindings, settings, anyDraws, hdrFormat](VkCommandBuffer cmd, const gpu::PassResources& res) {
             if (!anyDraws) return;
             gpu::Device& device = res.device();
-            const gpu::Pipeline& pipeline = res.pipelines().get<gpu::GraphicsPipelineDesc>(
-                hdrFormat == VK_FORMAT_R16G16B16A16_SFLOAT ? "transparent.halfFloat" : "transparent",
-                [&] { return describeTransparentPipeline(hdrFormat, bindings); });
-            bindBindings(cmd, pipeline, bindings, res);
+            const gpu::Pipeline* bound = nullptr;
             const MaterialTextures* pushed = nullptr;
+            // Back to front: the pipeline changes where sphere impostors and other draws alternate.
             for (uint32_t index : draws) {
                 const Draw& draw = scene.draws[index];
+                const gpu::Pipeline& pipeline = res.pipelines().get<gpu::GraphicsPipelineDesc>(
+                    std::string(hdrFormat == VK_FORMAT_R16G16B16A16_SFLOAT ? "transparent.halfFloat" : "transparent") +
+                        (draw.sphereImpostors ? ".spheres" : ""),
+                    [&] { return describeTransparentPipeline(hdrFormat, draw.sphereImpostors, bindings); });
+                if (&pipeline != bound) {
+                    bindBindings(cmd, pipeline, bindings, res);
+                    bound = &pipeline;
+                    pushed = nullptr;  // a new layout: the pushed set starts over
+                }
                 TransparentPush push{draw.instanceIndex, settings.fadeDistance};
                 recordMaterialDraw(device, cmd, pipeline, scene, draw, pushed, &push, sizeof(push));
             }

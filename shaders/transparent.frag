@@ -11,12 +11,14 @@
 // a specular response". So opacity is the coverage of the diffuse layer (and its emission): the
 // output is premultiplied, diffuse x opacity + specular, alpha = opacity, blended
 // src + dst (1 - alpha): a matte surface blends as lit * opacity + behind * (1 - opacity), and
-// glass keeps its reflections.
+// glass keeps its reflections. Built with SPHERE_IMPOSTOR for sphere impostors
+// (common/sphere_impostor.glsl): the near side of the sphere each cube bounds.
 #include "common/frame_data.glsl"
 #include "common/material_inputs.glsl"
 #include "common/light_evaluation.glsl"
 #include "common/environment_map.glsl"
 #include "common/view_depth.glsl"
+#include "common/sphere_impostor.glsl"
 
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec4 inColor;  // displayColor, displayOpacity
@@ -73,9 +75,23 @@ float depthFade(sampler2D depthImage, ivec2 pixel, float fragmentDepth, float fa
 void main() {
     InstanceData inst = instances[inInstance];
     MaterialData mat = materials[inst.materialIndex];
+#ifdef SPHERE_IMPOSTOR
+    ImpostorHit sphere = impostorHit(camera.viewProjection, inst.normalMatrix, inWorldPosition, inTangent);
+    if (!sphere.hit) discard;
+    vec3 worldPosition = sphere.position;
+    float fragmentDepth = sphere.depth;
+    vec4 tangent = impostorTangent(inst.model, sphere.normal);
+    vec3 n = sphere.normal;
+    bool backFacing = sphere.backFacing;
+#else
+    vec3 worldPosition = inWorldPosition;
+    float fragmentDepth = gl_FragCoord.z;
+    vec4 tangent = inTangent;
     vec3 n = normalize(inNormal);
-    if ((inst.flags & INSTANCE_DOUBLE_SIDED) != 0u && !gl_FrontFacing) n = -n;
-    n = perturbedNormal(n, inTangent, mat.textures[TEXTURE_NORMAL], normalTexture, inUv);
+    bool backFacing = !gl_FrontFacing;
+#endif
+    if ((inst.flags & INSTANCE_DOUBLE_SIDED) != 0u && backFacing) n = -n;
+    n = perturbedNormal(n, tangent, mat.textures[TEXTURE_NORMAL], normalTexture, inUv);
     vec3 albedo = (inst.flags & INSTANCE_VERTEX_COLOR) != 0u
                       ? inColor.rgb
                       : colorInput(mat.diffuseRoughness.rgb, mat.textures[TEXTURE_DIFFUSE], diffuseTexture, inUv);
@@ -89,14 +105,14 @@ void main() {
     // The same principal lobe as opaque surfaces (the G-buffer pass), so a material looks alike
     // at any opacity.
     if (mat.anisotropy.x > 0.0)
-        principalLobe(n, roughness, inTangent, mat.anisotropy.xy, inWorldPosition,
-                      normalize(camera.position.xyz - inWorldPosition));
+        principalLobe(n, roughness, tangent, mat.anisotropy.xy, worldPosition,
+                      normalize(camera.position.xyz - worldPosition));
 
-    float fade = depthFade(sceneDepth, ivec2(gl_FragCoord.xy), gl_FragCoord.z, push.fadeDistance);
+    float fade = depthFade(sceneDepth, ivec2(gl_FragCoord.xy), fragmentDepth, push.fadeDistance);
     if (fade <= 0.0) discard;
 
     SurfacePoint s = surfaceFromMaterial(mat, albedo, metallic);
-    s.P = inWorldPosition;
+    s.P = worldPosition;
     s.N = n;
     s.V = normalize(camera.position.xyz - s.P);
     s.roughness = roughness;
@@ -106,7 +122,7 @@ void main() {
     s.shadowTurn = shadowFilterTurn(floor(gl_FragCoord.xy), camera.noiseFrame);
     // Coverage scales the diffuse layer only (see above): the lights' response is linear in it.
     s.diffuse *= opacity;
-    float viewDistance = linearDepthFromDevice(camera.projection, gl_FragCoord.z);
+    float viewDistance = linearDepthFromDevice(camera.projection, fragmentDepth);
     vec3 radiance = mat.emissiveMetallic.rgb * opacity;
     // Clipped lights light transparents unclipped: their volumes mark opaque pixels in stencil.
     for (uint i = 0u; i < lightCount; ++i)

@@ -95,19 +95,6 @@ void Curves::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
                         geometry.vertices.size(), ctx, s.path());
 }
 
-std::vector<DetailSphere> Points::detailSpheres() const {
-    return spheresAt(input_.points, [&](size_t i) { return pointRadius(input_, i); });
-}
-
-bool Points::chooseDetail(double pixelsPerUnit) {
-    const int level =
-        chooseImplicitLevel(wantedImplicitLevel(pointsMaxRadius(input_) * pixelsPerUnit, kMaxChordErrorPixels), level_);
-    if (level == level_) return false;
-    level_ = level;
-    markDirty(kDirtyTessellation);
-    return true;
-}
-
 void Points::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     pullGprim(s, ctx);
     if (!geometryDirty(s, bits)) return;
@@ -119,15 +106,14 @@ void Points::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     }
     if (std::string problem = pointsProblem(input_); !problem.empty()) throw PrimDataError(s.path() + ": " + problem);
     if (input_.points.empty()) return dropGeometry(ctx);  // nothing to draw, nothing kept from before
-    if (level_ < 0) return;                             // tessellated once the view is known
-    CappedLevel capped = capTessellation(
-        level_, kImplicitMinLevel, [&](int level) { return pointTriangleCount(input_, implicitSegments(level)); }, s.path());
-    const int segments = implicitSegments(capped.level);
-    MeshGeometry geometry = tessellatePoints(input_, segments);
-    if (!capped.warning.empty()) geometry.warnings.push_back(capped.warning);
+    if (const uint64_t triangles = pointTriangleCount(input_); triangles > kMaxTessellatedTriangles)
+        throw PrimDataError(s.path() + ": " + std::to_string(input_.points.size() / 3) + " points need " +
+                            std::to_string(triangles) + " triangles, over the cap of " +
+                            std::to_string(kMaxTessellatedTriangles) + " per prim");
+    MeshGeometry geometry = pointImpostorBoxes(input_);
     setGeometry(geometry, ctx, s.path());
-    setShutterPositions(shutterEnds(shutterPoints_, input_, [&](const PointsInput& in) { return tessellatePoints(in, segments); }),
-                        geometry.vertices.size(), ctx, s.path());
+    setShutterPositions(shutterEnds(shutterPoints_, input_, pointImpostorBoxes), geometry.vertices.size(), ctx,
+                        s.path());
 }
 
 }  // namespace obscura::delegate

@@ -1,7 +1,7 @@
 // The BasisCurves and Points rprims: meshes whose triangles the delegate makes from the curves'
-// control points and widths (tubes or ribbons) or the points' widths (spheres), through
-// curve_tessellation.h, at a density chosen from their size on screen (view_dependent_mesh.h).
-// Everything else — the transform over the shutter, deformation within it (velocities or
+// control points and widths (tubes or ribbons, at a density chosen from their size on screen:
+// view_dependent_mesh.h) or the points' widths (sphere impostors: a bounding cube per point, which
+// the passes ray-cast), through curve_tessellation.h. Everything else — the transform over the shutter, deformation within it (velocities or
 // point samples), instancing through PointInstancer prototypes, materials — is the mesh's.
 #pragma once
 
@@ -28,20 +28,16 @@ private:
     CurveDetail detail_;
 };
 
-class Points final : public ViewDependentMesh {
+// Exact spheres at any size on screen, 12 triangles each: no density to choose.
+class Points final : public Mesh {
 public:
-    using ViewDependentMesh::ViewDependentMesh;
-    // Each point's sphere.
-    std::vector<DetailSphere> detailSpheres() const override;
-    // Segments around each sphere keep its chords within kMaxChordErrorPixels of its silhouette
-    // at the nearest point.
-    bool chooseDetail(double pixelsPerUnit) override;
+    using Mesh::Mesh;
+    bool drawsSphereImpostors() const override { return true; }
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
     PointsInput input_;
     std::optional<std::array<std::vector<float>, 2>> shutterPoints_;
-    int level_ = -1;
 };
 
 }  // namespace obscura::delegate

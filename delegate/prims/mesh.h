@@ -59,6 +59,8 @@ public:
     // Some drawn vertex's displayOpacity (uniform, vertex or faceVarying, in the vertex alpha) is
     // below 1: without a material the prim is transparent.
     bool hasTranslucentVertices() const { return translucentVertices_; }
+    // Its triangles bound spheres the passes ray-cast (passes::Draw::sphereImpostors): points.
+    virtual bool drawsSphereImpostors() const { return false; }
     // What its data lacked, each message naming its prim (the mesh, or one of its material subsets).
     const std::vector<std::string>& warnings() const { return warnings_; }
 

@@ -1,5 +1,5 @@
 // Meshes whose polygons the delegate makes at a density that follows their size on screen: the
-// implicit gprims, curves and points. After each sync, every such prim is told how many pixels an
+// implicit gprims and curves. After each sync, every such prim is told how many pixels an
 // object-space unit covers where it is nearest the camera (over its own placement or each
 // instance of it), chooses its density from that with hysteresis (implicit_tessellation.h's
 // levels), and is tessellated again only when the density changed.
@@ -20,9 +20,9 @@ class Camera;
 // Chords within a quarter pixel of the silhouette: below what 16 temporal-AA samples resolve.
 constexpr double kMaxChordErrorPixels = 0.25;
 
-// No prim is tessellated into more triangles than this (a point cloud of 100,000 spheres at the
-// coarsest level takes 4.8 million): beyond it a finer level is refused with a warning, and a
-// prim that exceeds it even at its coarsest is skipped.
+// No prim is tessellated into more triangles than this (a curve set seen close asks for far more):
+// beyond it a finer level is refused with a warning, and a prim that exceeds it
+// even at its coarsest is skipped (as a point cloud of over 666,666 points, 12 triangles each).
 constexpr uint64_t kMaxTessellatedTriangles = 8'000'000;
 
 // The finest level from `level` down to `coarsest` whose triangle count is within the cap; the

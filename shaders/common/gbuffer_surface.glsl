@@ -8,11 +8,16 @@
 #ifndef OBSCURA_GBUFFER_SURFACE_GLSL
 #define OBSCURA_GBUFFER_SURFACE_GLSL
 
+#ifdef SPHERE_IMPOSTOR
+#extension GL_EXT_demote_to_helper_invocation : require
+#endif
+
 #include "frame_data.glsl"
 #include "best_fit_normals.glsl"
 #include "material_inputs.glsl"
 #include "instance_target.glsl"
 #include "msaa_samples.glsl"
+#include "sphere_impostor.glsl"
 
 // Built twice (cmake variants): with OPAQUE_SURFACE for draws whose material cuts nothing out
 // (passes/gbuffer.cpp picks by Draw::opacityCutout). Those never discard nor narrow the sample
@@ -82,15 +87,61 @@ uint cutoutCoverage(MaterialData mat, vec2 uv) {
     return mask;
 }
 
+#ifdef SPHERE_IMPOSTOR
+// The samples of an N-sample pixel whose lines of sight meet the sphere: the fragment's point and
+// offset moved to each sample along the cube's face (their screen derivatives `dx`, `dy`, taken
+// where every invocation of the quad runs) at the standard sample locations (msaa_samples.glsl).
+uint impostorCoverage(mat4 viewProjection, mat4 normalMatrix, vec3 onBox, vec4 sphere, vec3 dx, vec3 dy, int samples) {
+    uint mask = 0u;
+    for (int s = 0; s < samples; ++s) {
+        vec2 offset = standardSampleLocation(samples, s) - 0.5;
+        vec3 shift = offset.x * dx + offset.y * dy;
+        if (impostorHit(viewProjection, normalMatrix, onBox + shift, vec4(sphere.xyz + shift, sphere.w)).hit)
+            mask |= 1u << uint(s);
+    }
+    return mask;
+}
+#endif
+
 // Writes RT0..RT2 and the samples the surface covers, or discards the fragment where the material
-// cuts the surface out of every sample.
+// cuts the surface out of every sample. Built with SPHERE_IMPOSTOR for sphere impostors
+// (sphere_impostor.glsl): the surface is the sphere the fragment's cube bounds, its depth written
+// here (so no early depth test) and its samples those whose lines of sight meet it.
 void writeSurface() {
     InstanceData inst = instances[inInstance];
     MaterialData mat = materials[inst.materialIndex];
+#ifdef SPHERE_IMPOSTOR
+    // Derivatives first, while every invocation of the quad runs.
+    vec3 dx = dFdx(inWorldPosition), dy = dFdy(inWorldPosition);
+    ImpostorHit sphere = impostorHit(camera.viewProjection, inst.normalMatrix, inWorldPosition, inTangent);
+    uint sphereCoverage = push.sampleCount <= 1u ? (sphere.hit ? ~0u : 0u)
+                          : impostorCoverage(camera.viewProjection, inst.normalMatrix, inWorldPosition, inTangent,
+                                             dx, dy, int(push.sampleCount));
+    // Demoted, not discarded: the material's texture lookups below still take screen derivatives
+    // over the quad.
+    if (sphereCoverage == 0u) demote;
+    // The pixel's centre may miss where some sample meets the rim: shade that sample's point.
+    for (int s = 0; !sphere.hit && s < int(push.sampleCount); ++s) {
+        vec2 offset = standardSampleLocation(int(push.sampleCount), s) - 0.5;
+        vec3 shift = offset.x * dx + offset.y * dy;
+        if ((sphereCoverage & (1u << uint(s))) != 0u)
+            sphere = impostorHit(camera.viewProjection, inst.normalMatrix, inWorldPosition + shift,
+                                 vec4(inTangent.xyz + shift, inTangent.w));
+    }
+    gl_FragDepth = sphere.depth;
+    vec3 worldPosition = sphere.position;
+    vec4 tangent = impostorTangent(inst.model, sphere.normal);
+    vec3 n = sphere.normal;
+    bool backFacing = sphere.backFacing;
+#else
+    vec3 worldPosition = inWorldPosition;
+    vec4 tangent = inTangent;
     vec3 n = normalize(inNormal);
+    bool backFacing = !gl_FrontFacing;
+#endif
     // Double-sided surfaces face the viewer; single-sided ones keep their orientation.
-    if ((inst.flags & INSTANCE_DOUBLE_SIDED) != 0u && !gl_FrontFacing) n = -n;
-    n = perturbedNormal(n, inTangent, mat.textures[TEXTURE_NORMAL], normalTexture, inUv);
+    if ((inst.flags & INSTANCE_DOUBLE_SIDED) != 0u && backFacing) n = -n;
+    n = perturbedNormal(n, tangent, mat.textures[TEXTURE_NORMAL], normalTexture, inUv);
     vec3 albedo = (inst.flags & INSTANCE_VERTEX_COLOR) != 0u
                       ? inColor.rgb
                       : colorInput(mat.diffuseRoughness.rgb, mat.textures[TEXTURE_DIFFUSE], diffuseTexture, inUv);
@@ -98,10 +149,13 @@ void writeSurface() {
     float metallic = scalarInput(mat.emissiveMetallic.a, mat.textures[TEXTURE_METALLIC], metallicTexture, inUv);
     float occlusion = scalarInput(mat.opacity.z, mat.textures[TEXTURE_OCCLUSION], occlusionTexture, inUv);
     if (mat.anisotropy.x > 0.0)
-        principalLobe(n, roughness, inTangent, mat.anisotropy.xy, inWorldPosition,
-                      normalize(camera.position.xyz - inWorldPosition));
+        principalLobe(n, roughness, tangent, mat.anisotropy.xy, worldPosition,
+                      normalize(camera.position.xyz - worldPosition));
 #ifndef OPAQUE_SURFACE
     uint coverage = cutoutCoverage(mat, inUv);
+#ifdef SPHERE_IMPOSTOR
+    coverage &= sphereCoverage;
+#endif
     if (coverage == 0u) discard;
     gl_SampleMask[0] = int(coverage);
 #endif

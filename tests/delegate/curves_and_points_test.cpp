@@ -1,9 +1,10 @@
 // BasisCurves and Points through the ABI, against their geometry: a tube's silhouette is
 // 2 f tan(asin(r / d)) wide and a ribbon facing the camera w f / d, a point's sphere covers the
-// disc of radius f tan(asin(r / d)) and its depth at the centre is the pole's, the motion AOV of
-// moving points is their displacement on screen, they instance through a PointInstancer, bad
-// data skips only its prim with the prim named, and a tessellation over the cap is coarsened with
-// a warning.
+// disc of radius f tan(asin(r / d)) and its depth at the centre is the pole's, every pixel of a
+// point seen close is the exact sphere's (sphere impostors) and its shadow the sphere's, the
+// motion AOV of moving points is their displacement on screen, they instance through a
+// PointInstancer, bad data skips only its prim with the prim named, and a tessellation over the
+// cap is coarsened with a warning.
 #include "tests/delegate/render_fixture.h"
 
 #include <gtest/gtest.h>
@@ -139,8 +140,8 @@ TEST(Points, SphereSilhouetteAndDepthAtItsCentre) {
         auto ids = host.readInts("/Buffers/id");
         const double expected = std::tan(std::asin(radius / distance)) * kPixelsPerUnitAtUnitDistance;
         EXPECT_NEAR(std::sqrt(pixelsOf(ids, primIdOf(host, "/Dots")) / kPi), expected, 0.5) << "at distance " << distance;
-        // The centre's ray meets the sphere's pole (a vertex of the tessellation) at d - r: the
-        // depth there is the true sphere's, to float precision.
+        // The centre's ray meets the sphere's pole at d - r: the depth there is the true sphere's,
+        // to float precision.
         const float depth = host.readFloats("/Buffers/depth")[size_t(kSize / 2 * kSize + kSize / 2)];
         EXPECT_NEAR(depth, clipDepth(distance - radius), 4 * std::numeric_limits<float>::epsilon())
             << "at distance " << distance;
@@ -258,23 +259,146 @@ TEST(CurvesAndPoints, BadDataSkipsOnlyThatPrimAndNamesIt) {
 TEST(CurvesAndPoints, TessellationOverTheCapIsCoarsenedWithAWarning) {
     TestHost host;
     addViewer(host, 10.0);
-    // One of 40 spheres holds the eye, so asks for the finest level, 512 segments: 40 x 512 x 510
-    // triangles, over the 8 million cap; drawn at the next level down (the rest are seen).
-    std::vector<std::array<float, 3>> points{{0, 0, 10.0f}};
-    for (int i = 1; i < 40; ++i) points.push_back({float(i % 8) - 4.0f, float(i / 8) - 2.0f, -20.0f});
-    host.addPrim("points", "/Cloud", {{"points", HostValue::points(points)}, {"widths", floats({1.0f})}});
-    host.setInterpolation("/Cloud", "widths", OBSCURA_INTERPOLATION_CONSTANT);
+    // 5000 straight tubes; the eye inside the first asks for the finest level, 512 sides: 4 x 512 - 4
+    // triangles a tube (sides x 2 along, two caps of sides - 2), over the 8 million cap; drawn at the
+    // next level down.
+    constexpr int kTubes = 5000;
+    std::vector<std::array<float, 3>> points{{0, 0, 10.0f}, {0, 0, 9.0f}};
+    for (int i = 1; i < kTubes; ++i) {
+        const float x = float(i % 100) * 0.1f - 5.0f, y = float(i / 100) * 0.1f - 2.5f;
+        points.push_back({x, y, -20.0f});
+        points.push_back({x, y, -21.0f});
+    }
+    host.addPrim("basisCurves", "/Hair",
+                 {{"points", HostValue::points(points)},
+                  {"curveVertexCounts", HostValue::intArray(std::vector<int32_t>(kTubes, 2))},
+                  {"type", HostValue::token("linear")},
+                  {"widths", floats({0.05f})}});
+    host.setInterpolation("/Hair", "widths", OBSCURA_INTERPOLATION_CONSTANT);
     ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}}), OBSCURA_OK) << host.lastError();
     bool warned = false;
     for (const std::string& warning : host.loggedWarnings())
-        warned |= warning.find("/Cloud: tessellation capped at 8000000 triangles") != std::string::npos;
+        warned |= warning.find("/Hair: tessellation capped at 8000000 triangles") != std::string::npos;
     EXPECT_TRUE(warned);
     bool named = false;
     for (const std::string& warning : host.loggedWarnings())
-        named |= warning.find(std::to_string(40u * 512u * 510u)) != std::string::npos &&
-                 warning.find(std::to_string(40u * 256u * 254u)) != std::string::npos;
+        named |= warning.find(std::to_string(kTubes * (4u * 512u - 4u))) != std::string::npos &&
+                 warning.find(std::to_string(kTubes * (4u * 256u - 4u))) != std::string::npos;
     EXPECT_TRUE(named) << "the warning names the triangles asked for and drawn";
-    EXPECT_GT(pixelsOf(host.readInts("/Buffers/id"), primIdOf(host, "/Cloud")), 0);
+    EXPECT_GT(pixelsOf(host.readInts("/Buffers/id"), primIdOf(host, "/Hair")), 0);
+}
+
+TEST(Points, OverTheCapAreSkippedAndNamed) {
+    TestHost host;
+    addViewer(host, 10.0);
+    std::vector<std::array<float, 3>> points(666'667, {0.0f, 0.0f, 0.0f});
+    host.addPrim("points", "/Cloud", {{"points", HostValue::points(points)}});
+    addStraightCurve(host, "/Good", 0.5f, false);
+    const std::string message = "/Cloud: 666667 points need 8000004 triangles, over the cap of 8000000 per prim";
+    host.expectError("skipped prim " + message);
+    EXPECT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}}), OBSCURA_ERROR_BAD_PRIM_DATA);
+    bool named = false;
+    for (const std::string& error : host.loggedErrors()) named |= error.find(message) != std::string::npos;
+    EXPECT_TRUE(named);
+    EXPECT_EQ(pixelsOf(host.readInts("/Buffers/id"), primIdOf(host, "/Cloud")), 0);
+    EXPECT_GT(pixelsOf(host.readInts("/Buffers/id"), primIdOf(host, "/Good")), 0);
+}
+
+// Points are exact spheres, not tessellations: a unit sphere 6 units away (100 pixels across), every
+// pixel centre whose line of sight meets the sphere is the point's and no other is (but within a
+// thousandth of the radius of the rim), and the depth there is the nearer intersection's to
+// 2e-4 units (a dozen float steps of the depth buffer there): 25 times tighter than a tessellation
+// within a quarter pixel of the silhouette (its chords fall up to 0.25 / 51 of the radius inside the
+// sphere). Under a non-uniform scale the sphere is the ellipsoid the scale makes of it.
+TEST(Points, EveryPixelSeesTheExactSphere) {
+    const double distance = 6.0, radius = 1.0;
+    for (double yScale : {1.0, 0.5}) {
+        TestHost host;
+        addViewer(host, distance);
+        host.addPrim("points", "/Dot", {{"points", HostValue::points({{0, 0, 0}})}, {"widths", floats({float(2 * radius)})}},
+                     Matrix{1, 0, 0, 0, 0, yScale, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1});
+        ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}, {"depth", "/Buffers/depth"}}), OBSCURA_OK)
+            << host.lastError();
+        const auto ids = host.readInts("/Buffers/id");
+        const auto depths = host.readFloats("/Buffers/depth");
+        const int32_t dot = primIdOf(host, "/Dot");
+        int wrongCoverage = 0, wrongDepth = 0, covered = 0;
+        double worstDepthError = 0.0;
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x) {
+                // The line of sight through the pixel's centre, in the unscaled sphere's space:
+                // the eye at (0, 0, distance), direction (u, v / yScale, -1).
+                const double u = (x + 0.5 - kSize / 2.0) / (kSize / 2.0) * kTanHalfFov;
+                const double v = (kSize / 2.0 - y - 0.5) / (kSize / 2.0) * kTanHalfFov / yScale;
+                const double a = u * u + v * v + 1.0;
+                const double disc = distance * distance - a * (distance * distance - radius * radius);
+                // Closest approach of the line to the centre, against the radius.
+                const double closest = std::sqrt(distance * distance * (u * u + v * v) / a);
+                const size_t pixel = size_t(y * kSize + x);
+                if (std::abs(closest - radius) < 1e-3 * radius) continue;
+                if ((disc >= 0.0) != (ids[pixel] == dot)) ++wrongCoverage;
+                if (disc < 0.0 || ids[pixel] != dot) continue;
+                ++covered;
+                const double t = (distance - std::sqrt(disc)) / a;  // view distance: the direction's z is -1
+                const double error = std::abs(viewDistance(depths[pixel]) - t);
+                worstDepthError = std::max(worstDepthError, error);
+                wrongDepth += error > 2e-4;
+            }
+        EXPECT_GT(covered, 1000) << "y scale " << yScale;
+        EXPECT_EQ(wrongCoverage, 0) << "y scale " << yScale;
+        EXPECT_EQ(wrongDepth, 0) << "y scale " << yScale << ": worst depth error " << worstDepthError;
+        std::printf("y scale %.1f: %d pixels, worst depth error %.2e units\n", yScale, covered, worstDepthError);
+        EXPECT_TRUE(host.loggedErrors().empty()) << host.loggedErrors().front();
+    }
+}
+
+// A point's shadow is its sphere's, not its cube's: a sphere of radius r at height h over the grey
+// plane, lit by a distant light from above and to the side. A plane point whose line towards the
+// light passes within 0.8 r of the centre is in shadow; one whose line passes beyond 1.2 r is lit
+// (the cube's shadow reaches 1.73 r at its corners).
+TEST(Points, ShadowIsTheSpheres) {
+    LitPlaneScene scene;
+    setBool(scene.host, "taa", false);
+    const std::array<double, 3> toLight{-0.5 / std::sqrt(1.25), 0.0, 1.0 / std::sqrt(1.25)};
+    scene.host.addPrim("distantLight", "/Sun",
+                       {{"inputs:intensity", HostValue::floatValue(3.0f)},
+                        {"inputs:normalize", HostValue::boolean(true)},
+                        {"inputs:angle", HostValue::floatValue(0.0f)},
+                        {"inputs:specular", HostValue::floatValue(0.0f)}},
+                       lightPointingAlong({-toLight[0], -toLight[1], -toLight[2]}));
+    const double radius = 0.25, height = 1.2;
+    scene.host.addPrim("points", "/Dot",
+                       {{"points", HostValue::points({{0, 0, float(height)}})}, {"widths", floats({float(2 * radius)})}});
+    scene.host.addRenderBuffer("/Buffers/id", "int32", kWidth, kHeight);
+    ASSERT_EQ(scene.host.render("/Camera", {{"color", "/Buffers/color"}, {"primId", "/Buffers/id"}}), OBSCURA_OK)
+        << scene.host.lastError();
+    const auto color = scene.host.readFloats("/Buffers/color");
+    const auto ids = scene.host.readInts("/Buffers/id");
+    const int32_t dot = primIdOf(scene.host, "/Dot");
+    // Lit: Lambert under the light's irradiance at its incidence (no specular from this light).
+    const double lit = kLitPlaneAlbedo / kPi * 3.0 * toLight[2];
+    int shadowed = 0, litPixels = 0, wrong = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            if (ids[size_t(y * kWidth + x)] == dot) continue;
+            const auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
+            // Distance from the centre to the line p + s toLight.
+            const std::array<double, 3> c{-p[0], -p[1], height - p[2]};
+            const double along = c[0] * toLight[0] + c[1] * toLight[1] + c[2] * toLight[2];
+            const double miss = std::sqrt(std::max(0.0, c[0] * c[0] + c[1] * c[1] + c[2] * c[2] - along * along)) / radius;
+            const double radiance = color[(size_t(y) * kWidth + x) * 4 + 1];
+            if (miss < 0.8) {
+                ++shadowed;
+                wrong += radiance > 0.05 * lit;
+            } else if (miss > 1.2) {
+                ++litPixels;
+                wrong += std::abs(radiance - lit) > 0.05 * lit;
+            }
+        }
+    EXPECT_GT(shadowed, 50);
+    EXPECT_GT(litPixels, 1000);
+    EXPECT_EQ(wrong, 0);
+    EXPECT_TRUE(scene.host.loggedErrors().empty()) << scene.host.loggedErrors().front();
 }
 
 }  // namespace

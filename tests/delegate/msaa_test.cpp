@@ -2,7 +2,8 @@
 // the supersampled image far better than with one sample; the custom resolve tags silhouettes and
 // leaves flat surfaces alone (the share printed against the edge length); a very bright object
 // against a dark one resolves to the coverage-weighted mix of the tone-mapped samples (no bright
-// outline), which a plain average of the samples would miss by far; the reference mode and
+// outline), which a plain average of the samples would miss by far, and so does a point's sphere
+// impostor at the samples its sphere covers; the reference mode and
 // temporal AA keep working with it; sample counts the device does not offer are refused.
 // Emissive surfaces only (no lights): what reaches a pixel is coverage, so edges are the story.
 #include "tests/delegate/camera_scene.h"
@@ -259,6 +260,66 @@ TEST(Msaa, BrightEdgeAgainstDarkResolvesWithoutOutline) {
                 edgePixels, double(bright), double(dark), 100.0 * worstError, hdrOutline / edgePixels,
                 plainOutline / edgePixels);
     EXPECT_GT(edgePixels, 40);
+}
+
+// A point's sphere (an impostor: its cube ray-cast per pixel) covers exactly the samples whose
+// lines of sight meet it, as a triangle edge covers those inside it: a bright emissive sphere on a
+// dark plane resolves at every pixel to the mix of its analytically covered samples.
+TEST(Msaa, SphereImpostorsCoverTheSamplesTheirSphereMeets) {
+    const float bright = 64.0f, dark = 0.02f;
+    const std::array<double, 3> centre{0.3, -0.1, 0.0};
+    const double radius = 0.6;
+    TestHost host;
+    host.addCamera("/Camera", translation(0, 0, kLitPlaneCameraDistance), kLitPlaneFocalLength, kLitPlaneAperture);
+    addMaterial(host, "/Looks/Bright", {0, 0, 0}, 1.0f, 0.0f, {bright, bright, bright});
+    addMaterial(host, "/Looks/Dark", {0, 0, 0}, 1.0f, 0.0f, {dark, dark, dark});
+    addPlane(host, "/Background", "/Looks/Dark", 10.0, translation(0, 0, -1));
+    HostValue widths;
+    widths.type = OBSCURA_VALUE_FLOAT;
+    widths.isArray = true;
+    widths.floats = {float(2 * radius)};
+    host.addPrim("points", "/Dot",
+                 {{"points", HostValue::points({{float(centre[0]), float(centre[1]), float(centre[2])}})},
+                  {"widths", widths},
+                  {"material:binding", HostValue::path("/Looks/Bright")}});
+    host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+    setBool(host, "taa", false);
+    ASSERT_EQ(setInt(host, "msaa", 4), OBSCURA_OK) << host.lastError();
+    ASSERT_EQ(host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_OK) << host.lastError();
+    const std::vector<float> color = host.readFloats("/Buffers/color");
+    // Whether the line of sight through window position (x, y) meets the sphere; nullopt within a
+    // thousandth of the radius of its rim.
+    auto meets = [&](double x, double y) -> std::optional<bool> {
+        const double t = kLitPlaneTanHalfFov;
+        const std::array<double, 3> d{(x / kWidth * 2.0 - 1.0) * t, (1.0 - y / kHeight * 2.0) * t, -1.0};
+        const std::array<double, 3> o{-centre[0], -centre[1], kLitPlaneCameraDistance - centre[2]};
+        const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], od = o[0] * d[0] + o[1] * d[1] + o[2] * d[2];
+        const double closest = std::sqrt(std::max(0.0, o[0] * o[0] + o[1] * o[1] + o[2] * o[2] - od * od / dd));
+        if (std::abs(closest - radius) < 1e-3 * radius) return std::nullopt;
+        return closest < radius;
+    };
+    int edgePixels = 0, checked = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            int covered = 0;
+            bool decided = true;
+            for (const auto& [sx, sy] : kFourSamples) {
+                std::optional<bool> in = meets(x + sx, y + sy);
+                if (!in) decided = false;
+                covered += in.value_or(false) ? 1 : 0;
+            }
+            if (!decided) continue;
+            ++checked;
+            const double coverage = covered / 4.0;
+            const double expected = inverseReinhard(coverage * reinhard(bright) + (1.0 - coverage) * reinhard(dark));
+            const float measured = color[(size_t(y) * kWidth + x) * 4];
+            EXPECT_NEAR(measured, expected, 0.01 * expected + smallFloatStep(float(expected), 6))
+                << "pixel " << x << ", " << y << " with " << covered << " samples";
+            edgePixels += covered > 0 && covered < 4;
+        }
+    std::printf("sphere impostor under 4x MSAA: %d pixels checked, %d on its rim\n", checked, edgePixels);
+    EXPECT_GT(edgePixels, 40);
+    EXPECT_TRUE(host.loggedErrors().empty()) << host.loggedErrors().front();
 }
 
 TEST(Msaa, MotionBlurAndTransparentsWorkOnTheResolvedGBuffer) {

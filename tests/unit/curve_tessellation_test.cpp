@@ -230,23 +230,29 @@ TEST(CurveTessellation, BendMagnitudeIsZeroForStraightCubics) {
     EXPECT_NEAR(curveBendMagnitude(c), std::sqrt(2.0), 1e-12);  // |Q0 - 2 Q1 + Q2| = |(1, -1, 0)|
 }
 
-TEST(PointTessellation, SpheresAtTheirRadiusWithTheTrianglesCounted) {
+TEST(PointTessellation, EachPointIsTheCubeBoundingItsSphereCarryingItsOffsetAndRadius) {
     PointsInput p;
     p.points = {0, 0, 0, 3, 1, -2};
     p.widths = MeshPrimvar{{1.0f, 0.5f}, OBSCURA_INTERPOLATION_VERTEX, 1};
     ASSERT_EQ(pointsProblem(p), "");
-    for (int segments : {8, 16, 32}) {
-        MeshGeometry g = tessellatePoints(p, segments);
-        EXPECT_EQ(g.indices.size() / 3, pointTriangleCount(p, segments));
-        EXPECT_EQ(pointTriangleCount(p, segments), 2u * uint64_t(segments) * uint64_t(segments - 2));
-        for (size_t i = 0; i < g.vertices.size(); ++i) {
-            const size_t point = i < g.vertices.size() / 2 ? 0 : 1;
-            V3 offset = sub(positionOf(g.vertices[i]), at(p.points, point));
-            EXPECT_NEAR(length(offset), point == 0 ? 0.5 : 0.25, 1e-6);
-            EXPECT_NEAR(dot(normalOf(g.vertices[i]), scale(offset, 1.0 / length(offset))), 1.0, 1e-5);
+    MeshGeometry g = pointImpostorBoxes(p);
+    ASSERT_EQ(g.vertices.size(), 16u);
+    EXPECT_EQ(g.indices.size() / 3, pointTriangleCount(p));
+    EXPECT_EQ(pointTriangleCount(p), 24u);
+    for (size_t i = 0; i < g.vertices.size(); ++i) {
+        const size_t point = i / 8;
+        const double radius = point == 0 ? 0.5 : 0.25;
+        const passes::Vertex& v = g.vertices[i];
+        V3 offset = sub(positionOf(v), at(p.points, point));
+        for (size_t k = 0; k < 3; ++k) {
+            EXPECT_NEAR(std::abs(offset[k]), radius, 1e-6) << "a corner of the cube around the sphere";
+            EXPECT_NEAR(v.tangent[k], offset[k], 1e-6) << "the corner's offset from its point";
         }
-        expectOutwardFaces(g);
+        EXPECT_FLOAT_EQ(v.tangent[3], float(radius));
     }
+    for (size_t t = 0; t < g.indices.size(); t += 3)
+        EXPECT_EQ(g.indices[t] / 8, g.indices[t + 2] / 8) << "a triangle joins corners of one point's cube";
+    expectOutwardFaces(g);
     p.widths = MeshPrimvar{{1.0f}, OBSCURA_INTERPOLATION_VERTEX, 1};
     EXPECT_NE(pointsProblem(p).find("widths has 1 elements but its interpolation needs 2"), std::string::npos);
     p.widths = MeshPrimvar{{-1.0f}, OBSCURA_INTERPOLATION_CONSTANT, 1};
