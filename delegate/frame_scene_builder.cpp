@@ -7,6 +7,8 @@
 #include "passes/clip_volumes.h"
 #include "passes/frame_data.h"
 
+#include <Imath/half.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -34,6 +36,11 @@ gpu::BufferPtr uploadRecords(gpu::Device& device, const void* header, size_t hea
     if (headerSize) std::memcpy(dst, header, headerSize);
     if (!records.empty()) std::memcpy(dst + headerSize, records.data(), records.size() * sizeof(T));
     return buffer;
+}
+
+// GLSL's packHalf2x16: `low` in the low 16 bits, each rounded to the nearest half float.
+uint32_t packHalves(float low, float high) {
+    return uint32_t(Imath::half(low).bits()) | uint32_t(Imath::half(high).bits()) << 16;
 }
 
 // The inverse transpose of the upper 3x3, in the shader's mat4 layout.
@@ -308,9 +315,11 @@ private:
     // One instance record of a mesh's part. `key`: the instance's identity from frame to frame
     // beside its prim's id (an instancer's ordinal and the instance's number), for temporal AA's
     // object motion; none for records that are not drawn into the G-buffer (clip volumes).
+    // `display`: what its instancer's primvars give the instance in place of the mesh's displayColor
+    // and displayOpacity.
     void record(const Mesh& mesh, const MaterialPart& part, const Matrix4d& model,
                 const std::optional<std::array<Matrix4d, 2>>& motion = std::nullopt, std::optional<uint64_t> key = 0,
-                int32_t instanceId = -1) {
+                int32_t instanceId = -1, const Instancer::InstanceDisplay& display = {}) {
         passes::InstanceData inst{};
         inst.instanceId = instanceId;
         if (motion) {
@@ -334,7 +343,13 @@ private:
         inst.materialIndex = materialOf(mesh, part);
         // UsdPreviewSurface wins over displayColor; without a material, displayColor is the
         // surface colour (as Hydra's fallback material).
-        if (!boundMaterial(part)) inst.flags |= passes::kInstanceVertexColor;
+        if (!boundMaterial(part)) {
+            inst.flags |= passes::kInstanceVertexColor;
+            const std::array<float, 3> color = display.color.value_or(std::array<float, 3>{});
+            inst.displayColor = {packHalves(color[0], color[1]), packHalves(color[2], display.opacity.value_or(1.0f))};
+            if (display.color) inst.flags |= passes::kInstanceDisplayColor;
+            if (display.opacity) inst.flags |= passes::kInstanceDisplayOpacity;
+        }
         if (mesh.doubleSided()) inst.flags |= passes::kInstanceDoubleSided;
         // Hybrid AA, per object (seed 004): near the eye the view vector turns fastest as the camera
         // moves, so view-dependent shading defeats reprojection there; edge AA takes those.
@@ -418,6 +433,8 @@ private:
                 const bool placementsMove = in_.shutter && !in_.sample && inst->movesWithinShutter();
                 for (const MaterialPart& part : mesh->materialParts()) {
                     scene_.draws.push_back(partDraw(*mesh, part, placements.size(), meshMotion.has_value() || placementsMove));
+                    // Instances the instancer makes translucent take the transparent pass, the draw whole.
+                    if (!boundMaterial(part) && inst->hasTranslucentInstances()) scene_.draws.back().transparent = true;
                     Aabb bounds;
                     for (size_t number = 0; number < placements.size(); ++number) {
                         Matrix4d placement =
@@ -434,7 +451,7 @@ private:
                             motion = {{multiply((*meshMotion)[0], placement), multiply((*meshMotion)[1], placement)}};
                         }
                         record(*mesh, part, model, motion, (uint64_t(ordinal + 1) << 24) | (number & 0xFFFFFFu),
-                               inst->instanceIndexOf(size_t(proto), number));
+                               inst->instanceIndexOf(size_t(proto), number), inst->displayOf(size_t(proto), number));
                         instanceBounds_.push_back(transformAabb(mesh->localBounds(), model));
                         bounds.merge(instanceBounds_.back());
                     }

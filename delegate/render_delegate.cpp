@@ -213,6 +213,8 @@ void RenderDelegate::reportSync(const Prim& prim) {
     if (prim.skipped()) log(OBSCURA_LOG_ERROR, "skipped prim " + prim.problem());
     if (auto* mesh = dynamic_cast<const Mesh*>(&prim))
         for (const auto& w : mesh->warnings()) log(OBSCURA_LOG_WARNING, w);
+    if (auto* instancer = dynamic_cast<const Instancer*>(&prim))
+        for (const auto& w : instancer->warnings()) log(OBSCURA_LOG_WARNING, w);
     if (auto* material = dynamic_cast<const Material*>(&prim))
         for (const auto& w : material->warnings()) log(OBSCURA_LOG_WARNING, material->path() + ": " + w);
     if (auto* light = dynamic_cast<const Light*>(&prim); light && !light->warning().empty())

@@ -79,7 +79,15 @@ static_assert(offsetof(CameraData, pad) == shader_layout::CameraData::pad0);
 
 // kInstanceEdgeAa: hybrid AA (seed 004) chose edge AA over temporal AA for this instance: it is
 // drawn without the jitter, its pixels keep no history and the edge AA passes smooth its edges.
-enum InstanceFlags : uint32_t { kInstanceDoubleSided = 1u, kInstanceVertexColor = 2u, kInstanceEdgeAa = 4u };
+// kInstanceDisplayColor, kInstanceDisplayOpacity: its PointInstancer gives the instance its own
+// displayColor, displayOpacity (InstanceData::displayColor), in place of its mesh's.
+enum InstanceFlags : uint32_t {
+    kInstanceDoubleSided = 1u,
+    kInstanceVertexColor = 2u,
+    kInstanceEdgeAa = 4u,
+    kInstanceDisplayColor = 8u,
+    kInstanceDisplayOpacity = 16u,
+};
 
 struct alignas(16) InstanceData {
     Mat4 model;
@@ -91,7 +99,9 @@ struct alignas(16) InstanceData {
     uint32_t reprojection = 0;  // moved since the last frame: its InstanceReprojection record + 1
     // The instanceId AOV: the instance's index in its PointInstancer's arrays; -1 for a plain mesh.
     int32_t instanceId = -1;
-    uint32_t pad1 = 0, pad2 = 0;
+    // The instance's displayColor and displayOpacity from its PointInstancer's primvars (Hydra's
+    // instance primvars), as half floats (packHalf2x16): (r, g), (b, opacity).
+    std::array<uint32_t, 2> displayColor{};
 };
 static_assert(sizeof(InstanceData) == 160);
 OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, model);
@@ -102,8 +112,7 @@ OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, flags);
 OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, motionIndex);
 OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, reprojection);
 OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, instanceId);
-OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, pad1);
-OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, pad2);
+OBSCURA_SHADER_OFFSET(InstanceData, InstanceData, displayColor);
 
 // GPU occlusion culling (passes/occlusion_cull.h): an instance the camera may draw, its world
 // bounds, its InstanceData record and its draw's command (Draw::cullSlot).

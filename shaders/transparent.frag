@@ -93,14 +93,15 @@ void main() {
     if ((inst.flags & INSTANCE_DOUBLE_SIDED) != 0u && backFacing) n = -n;
     n = perturbedNormal(n, tangent, mat.textures[TEXTURE_NORMAL], normalTexture, inUv);
     vec3 albedo = (inst.flags & INSTANCE_VERTEX_COLOR) != 0u
-                      ? inColor.rgb
+                      ? displayColorOf(inst, inColor).rgb
                       : colorInput(mat.diffuseRoughness.rgb, mat.textures[TEXTURE_DIFFUSE], diffuseTexture, inUv);
     float roughness = scalarInput(mat.diffuseRoughness.a, mat.textures[TEXTURE_ROUGHNESS], roughnessTexture, inUv);
     float metallic = scalarInput(mat.emissiveMetallic.a, mat.textures[TEXTURE_METALLIC], metallicTexture, inUv);
     float opacity = scalarInput(mat.opacity.x, mat.textures[TEXTURE_OPACITY], opacityTexture, inUv);
     // Hydra's fallback material: displayOpacity varying over the prim (the constant one is the
-    // material record's).
-    if ((inst.flags & INSTANCE_VERTEX_COLOR) != 0u) opacity *= inColor.a;
+    // material record's), or the instance's own, which replaces both.
+    if ((inst.flags & INSTANCE_DISPLAY_OPACITY) != 0u) opacity = displayColorOf(inst, inColor).a;
+    else if ((inst.flags & INSTANCE_VERTEX_COLOR) != 0u) opacity *= inColor.a;
     float occlusion = scalarInput(mat.opacity.z, mat.textures[TEXTURE_OCCLUSION], occlusionTexture, inUv);
     // The same principal lobe as opaque surfaces (the G-buffer pass), so a material looks alike
     // at any opacity.

@@ -1,5 +1,6 @@
 #include "delegate/prims/instancer.h"
 
+#include "delegate/prims/mesh.h"
 #include "delegate/prims/point_motion.h"
 
 #include <algorithm>
@@ -43,6 +44,44 @@ std::vector<float> turnOrientations(const std::vector<float>& orientations, cons
     return turned;
 }
 
+namespace {
+
+// Instance primvar `name`: one element per instance or one for all; otherwise ignored with a
+// warning.
+std::optional<MeshPrimvar> instancePrimvar(SceneAccess& s, const char* name, size_t components, size_t instances,
+                                           std::vector<std::string>& warnings) {
+    std::optional<MeshPrimvar> primvar = pullPrimvar(s, name, components);
+    if (!primvar) return std::nullopt;
+    const size_t count = primvar->values.size() / components;
+    if (count == 1 || count == instances) return primvar;
+    warnings.push_back(s.path() + ": " + name + " has " + std::to_string(count) + " elements but there are " +
+                       std::to_string(instances) + " instances; ignored");
+    return std::nullopt;
+}
+
+// Element `i` of a validated instance primvar (its only one when constant).
+const float* elementOf(const MeshPrimvar& primvar, size_t i) {
+    return &primvar.values[(primvar.values.size() == primvar.components ? 0 : i) * primvar.components];
+}
+
+}  // namespace
+
+Instancer::InstanceDisplay Instancer::displayOf(size_t index, size_t k) const {
+    const size_t i = size_t(instanceIndexOf(index, k));
+    InstanceDisplay display;
+    if (displayColor_) {
+        const float* c = elementOf(*displayColor_, i);
+        display.color = std::array<float, 3>{c[0], c[1], c[2]};
+    }
+    if (displayOpacity_) display.opacity = *elementOf(*displayOpacity_, i);
+    return display;
+}
+
+bool Instancer::hasTranslucentInstances() const {
+    return displayOpacity_ &&
+           std::any_of(displayOpacity_->values.begin(), displayOpacity_->values.end(), [](float o) { return o < 1.0f; });
+}
+
 int Instancer::prototypeOf(const std::string& meshPath) const {
     for (size_t i = 0; i < prototypes_.size(); ++i) {
         const std::string& root = prototypes_[i];
@@ -60,6 +99,9 @@ void Instancer::reset() {
     indicesByPrototype_.clear();
     shutterPoints_.reset();
     shutterPlacements_.reset();
+    displayColor_.reset();
+    displayOpacity_.reset();
+    warnings_.clear();
 }
 
 void Instancer::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
@@ -72,6 +114,11 @@ void Instancer::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
     if (s.dirty("invisibleIds")) invisible_ = s.getIntArray("invisibleIds").value_or(std::vector<int32_t>{});
     if (s.dirty("prototypes")) prototypes_ = s.getPathArray("prototypes");
     if (s.dirty("protoIndices")) protoIndices_ = s.getIntArray("protoIndices").value_or(std::vector<int32_t>{});
+    if (s.anyDirty({"protoIndices", "primvars:displayColor", "primvars:displayOpacity"})) {
+        warnings_.clear();
+        displayColor_ = instancePrimvar(s, "primvars:displayColor", 3, protoIndices_.size(), warnings_);
+        displayOpacity_ = instancePrimvar(s, "primvars:displayOpacity", 1, protoIndices_.size(), warnings_);
+    }
     if (s.anyDirty({"positions", "orientations", "scales", "velocities", "accelerations", "angularVelocities"})) {
         points_ = PointArrays{s.getFloatArray("positions").value_or(std::vector<float>{}),
                               s.getFloatArray("orientations").value_or(std::vector<float>{}),

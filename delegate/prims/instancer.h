@@ -2,6 +2,7 @@
 // drawn with GPU instancing — the meshes stay in memory once.
 #pragma once
 
+#include "delegate/mesh_builder.h"
 #include "delegate/prims/prim.h"
 
 #include <array>
@@ -34,6 +35,18 @@ public:
     Matrix4d instanceAt(size_t index, size_t k, double time) const;
     bool visible() const { return visible_; }
     size_t instanceCount() const { return protoIndices_.size(); }
+    // What its primvars:displayColor and displayOpacity give instance `k` of prototype `index`,
+    // overriding its prototype meshes' own (Hydra's instance primvars): one element per instance
+    // (vertex or varying interpolation) or one for all (constant); unset where not authored.
+    struct InstanceDisplay {
+        std::optional<std::array<float, 3>> color;
+        std::optional<float> opacity;
+    };
+    InstanceDisplay displayOf(size_t index, size_t k) const;
+    // Some instance's displayOpacity is below 1.
+    bool hasTranslucentInstances() const;
+    // Primvars of a count that fits neither (ignored), each message naming the instancer.
+    const std::vector<std::string>& warnings() const { return warnings_; }
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
@@ -59,6 +72,8 @@ private:
     bool visible_ = true;
     std::vector<std::vector<Matrix4d>> byPrototype_;
     std::vector<std::vector<int32_t>> indicesByPrototype_;  // parallel to byPrototype_
+    std::optional<MeshPrimvar> displayColor_, displayOpacity_;
+    std::vector<std::string> warnings_;
 };
 
 // Orientations (w, x, y, z per instance) followed by the turn of their angular velocities (xyz per

@@ -46,8 +46,7 @@ struct InstanceData {
     uint motionIndex;    // moving within the shutter: its InstanceMotion record; unused when static
     uint reprojection;   // moved since the last frame: its InstanceReprojection record + 1; 0 unmoved
     int instanceId;      // the instanceId AOV: index in its PointInstancer's arrays, -1 for a plain mesh
-    uint pad1;
-    uint pad2;
+    uvec2 displayColor;  // INSTANCE_DISPLAY_COLOR / _OPACITY: half floats (r, g), (b, opacity)
 };
 
 // GPU occlusion culling (shaders/occlusion_cull.comp): an instance the camera may draw, its world
@@ -169,5 +168,16 @@ const uint INSTANCE_DOUBLE_SIDED = 1u;
 const uint INSTANCE_VERTEX_COLOR = 2u;
 // Hybrid AA (seed 004): drawn unjittered, no temporal history, edges smoothed by the edge AA passes.
 const uint INSTANCE_EDGE_AA = 4u;
+// Its PointInstancer's primvars give the instance its own displayColor, displayOpacity.
+const uint INSTANCE_DISPLAY_COLOR = 8u;
+const uint INSTANCE_DISPLAY_OPACITY = 16u;
+
+// The displayColor (rgb) and displayOpacity (a) a surface without material shows: the vertex's,
+// unless the instance has its own (Hydra's instance primvars override the prototype's).
+vec4 displayColorOf(InstanceData inst, vec4 vertexColor) {
+    vec2 rg = unpackHalf2x16(inst.displayColor.x), ba = unpackHalf2x16(inst.displayColor.y);
+    return vec4((inst.flags & INSTANCE_DISPLAY_COLOR) != 0u ? vec3(rg, ba.x) : vertexColor.rgb,
+                (inst.flags & INSTANCE_DISPLAY_OPACITY) != 0u ? ba.y : vertexColor.a);
+}
 
 #endif

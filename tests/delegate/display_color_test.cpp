@@ -3,6 +3,8 @@
 // middle column of points) fills the view of a camera at (0, 0, 5) looking down -Z, lit head-on by
 // a normalized distant light with no specular, so a pixel's radiance is Lambert's
 // displayColor / pi * E; colours are values 8-bit sRGB (the albedo G-buffer target) holds exactly.
+// A PointInstancer's displayColor and displayOpacity primvars colour each instance in place of its
+// prototype's (Hydra's instance primvars).
 #include "tests/delegate/render_fixture.h"
 
 #include <gtest/gtest.h>
@@ -181,6 +183,48 @@ TEST(DisplayColor, VertexOpacityInterpolatesBetweenPoints) {
         double u = (planePointAtPixel(x, 32, kLitPlaneCameraDistance, kLitPlaneTanHalfFov)[0] + kHalf) / (2.0 * kHalf);
         expectOver(color, x, 32, kGreen, 0.2 + 0.8 * u);
     }
+}
+
+// The halves (red) as the prototype of two instances, each squeezed to a panel of one side of the
+// view: the left centred at pixel column 16, the right at 48.
+void instanceHalves(DisplayColorScene& s, std::map<std::string, HostValue> primvars) {
+    s.addHalves({kRed}, OBSCURA_INTERPOLATION_CONSTANT);
+    std::map<std::string, HostValue> values{{"prototypes", HostValue::paths({"/Halves"})},
+                                            {"protoIndices", HostValue::intArray({0, 0})},
+                                            {"positions", HostValue::points({{-0.5f, 0, 0}, {0.5f, 0, 0}})},
+                                            {"scales", HostValue::points({{0.4f, 0.8f, 1.0f}, {0.4f, 0.8f, 1.0f}})}};
+    values.insert(primvars.begin(), primvars.end());
+    s.host.addPrim("instancer", "/Instancer", values);
+    for (const auto& [name, value] : primvars) s.host.setInterpolation("/Instancer", name, OBSCURA_INTERPOLATION_VERTEX);
+}
+
+TEST(DisplayColor, InstancerPrimvarsColourEachInstance) {
+    DisplayColorScene s;
+    instanceHalves(s, {{"primvars:displayColor", HostValue::points({kGreen, kBlue})}});
+    auto color = s.render();
+    expectRadiance(color, 16, 32, lambert(kGreen));
+    expectRadiance(color, 48, 32, lambert(kBlue));
+}
+
+TEST(DisplayColor, InstancerOpacityMakesThoseInstancesTranslucent) {
+    DisplayColorScene s;
+    instanceHalves(s, {{"primvars:displayOpacity", floats({0.5f, 1.0f})}});
+    auto color = s.render();
+    expectOver(color, 16, 32, kRed, 0.5);  // the prototype's colour, the instance's opacity
+    expectOver(color, 48, 32, kRed, 1.0);
+}
+
+TEST(DisplayColor, InstancerPrimvarOfAWrongCountIsIgnoredWithAWarning) {
+    DisplayColorScene s;
+    instanceHalves(s, {{"primvars:displayColor", HostValue::points({kGreen, kBlue, kGreen})}});
+    auto color = s.render();
+    expectRadiance(color, 16, 32, lambert(kRed));
+    expectRadiance(color, 48, 32, lambert(kRed));
+    bool warned = false;
+    for (const std::string& w : s.host.loggedWarnings())
+        warned |= w.find("/Instancer: primvars:displayColor has 3 elements but there are 2 instances; ignored") !=
+                  std::string::npos;
+    EXPECT_TRUE(warned);
 }
 
 }  // namespace
