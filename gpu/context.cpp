@@ -100,8 +100,7 @@ bool meetsRequirements(VkPhysicalDevice pd) {
     vkGetPhysicalDeviceFeatures2(pd, &f);
     VkPhysicalDeviceProperties p;
     vkGetPhysicalDeviceProperties(pd, &p);
-    return p.apiVersion >= VK_API_VERSION_1_3 && f13.dynamicRendering && f13.synchronization2 && f13.maintenance4 &&
-           f13.shaderDemoteToHelperInvocation;
+    return p.apiVersion >= VK_API_VERSION_1_3 && f13.dynamicRendering && f13.synchronization2 && f13.maintenance4;
 }
 
 // OBSCURA_DEVICE / the create-info selector: an index into the device list or a name substring.
@@ -258,8 +257,6 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     f13.dynamicRendering = VK_TRUE;
     f13.synchronization2 = VK_TRUE;
     f13.maintenance4 = VK_TRUE;
-    // Sphere impostors leave their misses as helpers: the quad's derivatives stay defined.
-    f13.shaderDemoteToHelperInvocation = VK_TRUE;
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
     f12.hostQueryReset = VK_TRUE;
     f12.scalarBlockLayout = VK_TRUE;

@@ -13,6 +13,8 @@
 layout(location = 0) in vec2 inUv;
 layout(location = 1) flat in uint inInstance;
 #ifdef SPHERE_IMPOSTOR
+// The sphere lies behind the cube face that answers (common/gbuffer_surface.glsl says the same).
+layout(depth_greater) out float gl_FragDepth;
 layout(location = 2) in vec3 inWorldPosition;
 layout(location = 3) in vec4 inSphere;
 

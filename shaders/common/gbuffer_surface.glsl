@@ -9,7 +9,10 @@
 #define OBSCURA_GBUFFER_SURFACE_GLSL
 
 #ifdef SPHERE_IMPOSTOR
-#extension GL_EXT_demote_to_helper_invocation : require
+// The sphere lies behind the cube face that answers for the pixel (sphere_impostor.glsl), so the
+// written depth is never nearer than the face's: the depth test may still reject fragments before
+// shading. (Not so where the eye is inside the cube or the sphere, whose far side answers there.)
+layout(depth_greater) out float gl_FragDepth;
 #endif
 
 #include "frame_data.glsl"
@@ -117,9 +120,10 @@ void writeSurface() {
     uint sphereCoverage = push.sampleCount <= 1u ? (sphere.hit ? ~0u : 0u)
                           : impostorCoverage(camera.viewProjection, inst.normalMatrix, inWorldPosition, inTangent,
                                              dx, dy, int(push.sampleCount));
-    // Demoted, not discarded: the material's texture lookups below still take screen derivatives
-    // over the quad.
-    if (sphereCoverage == 0u) demote;
+    // Misses leave at once: most of a cube's fragments (its far faces, its corners) miss. XXX: a
+    // textured material's lookups in the quads along the rim then take their derivatives from
+    // invocations that left (Vulkan's demote would keep them, at the cost of shading every miss).
+    if (sphereCoverage == 0u) discard;
     // The pixel's centre may miss where some sample meets the rim: shade that sample's point.
     for (int s = 0; !sphere.hit && s < int(push.sampleCount); ++s) {
         vec2 offset = standardSampleLocation(int(push.sampleCount), s) - 0.5;

@@ -309,45 +309,60 @@ TEST(Points, OverTheCapAreSkippedAndNamed) {
 // thousandth of the radius of the rim), and the depth there is the nearer intersection's to
 // 2e-4 units (a dozen float steps of the depth buffer there): 25 times tighter than a tessellation
 // within a quarter pixel of the silhouette (its chords fall up to 0.25 / 51 of the radius inside the
-// sphere). Under a non-uniform scale the sphere is the ellipsoid the scale makes of it.
+// sphere). Under a non-uniform scale the sphere is the ellipsoid the scale makes of it. With the eye
+// inside the cube that bounds the sphere (its near faces behind the eye) the sphere is still seen
+// whole, and with the eye inside the sphere its far side is.
 TEST(Points, EveryPixelSeesTheExactSphere) {
-    const double distance = 6.0, radius = 1.0;
-    for (double yScale : {1.0, 0.5}) {
+    const double radius = 1.0;
+    struct Case {
+        std::array<double, 3> eye;
+        double yScale;
+        const char* name;
+    };
+    for (const Case& c : {Case{{0, 0, 6}, 1.0, "far"}, Case{{0, 0, 6}, 0.5, "squeezed"},
+                          Case{{0.8, 0.8, 0.9}, 1.0, "eye in the cube"}, Case{{0.2, -0.1, 0.5}, 1.0, "eye in the sphere"}}) {
         TestHost host;
-        addViewer(host, distance);
+        host.addCamera("/Camera", translation(c.eye[0], c.eye[1], c.eye[2]), kFocalLength, kAperture);
+        setBool(host, "taa", false);
+        host.addRenderBuffer("/Buffers/id", "int32", kSize, kSize);
+        host.addRenderBuffer("/Buffers/depth", "float32", kSize, kSize);
         host.addPrim("points", "/Dot", {{"points", HostValue::points({{0, 0, 0}})}, {"widths", floats({float(2 * radius)})}},
-                     Matrix{1, 0, 0, 0, 0, yScale, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1});
+                     Matrix{1, 0, 0, 0, 0, c.yScale, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1});
         ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}, {"depth", "/Buffers/depth"}}), OBSCURA_OK)
             << host.lastError();
         const auto ids = host.readInts("/Buffers/id");
         const auto depths = host.readFloats("/Buffers/depth");
         const int32_t dot = primIdOf(host, "/Dot");
+        const bool inside = c.eye[0] * c.eye[0] + c.eye[1] * c.eye[1] + c.eye[2] * c.eye[2] < radius * radius;
         int wrongCoverage = 0, wrongDepth = 0, covered = 0;
         double worstDepthError = 0.0;
         for (int y = 0; y < kSize; ++y)
             for (int x = 0; x < kSize; ++x) {
-                // The line of sight through the pixel's centre, in the unscaled sphere's space:
-                // the eye at (0, 0, distance), direction (u, v / yScale, -1).
-                const double u = (x + 0.5 - kSize / 2.0) / (kSize / 2.0) * kTanHalfFov;
-                const double v = (kSize / 2.0 - y - 0.5) / (kSize / 2.0) * kTanHalfFov / yScale;
-                const double a = u * u + v * v + 1.0;
-                const double disc = distance * distance - a * (distance * distance - radius * radius);
-                // Closest approach of the line to the centre, against the radius.
-                const double closest = std::sqrt(distance * distance * (u * u + v * v) / a);
+                // The line of sight through the pixel's centre, o + t d, in the unscaled sphere's
+                // space: d's z is -1, so t is the view distance.
+                const std::array<double, 3> o{c.eye[0], c.eye[1] / c.yScale, c.eye[2]};
+                const std::array<double, 3> d{(x + 0.5 - kSize / 2.0) / (kSize / 2.0) * kTanHalfFov,
+                                              (kSize / 2.0 - y - 0.5) / (kSize / 2.0) * kTanHalfFov / c.yScale, -1.0};
+                const double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                const double b = o[0] * d[0] + o[1] * d[1] + o[2] * d[2];
+                const double oo = o[0] * o[0] + o[1] * o[1] + o[2] * o[2];
+                const double disc = b * b - a * (oo - radius * radius);
+                const double closest = std::sqrt(std::max(0.0, oo - b * b / a));  // of the line to the centre
+                const double t = (-b + (inside ? 1.0 : -1.0) * std::sqrt(std::max(disc, 0.0))) / a;
+                const bool meets = disc >= 0.0 && t > kNear;
                 const size_t pixel = size_t(y * kSize + x);
                 if (std::abs(closest - radius) < 1e-3 * radius) continue;
-                if ((disc >= 0.0) != (ids[pixel] == dot)) ++wrongCoverage;
-                if (disc < 0.0 || ids[pixel] != dot) continue;
+                if (meets != (ids[pixel] == dot)) ++wrongCoverage;
+                if (!meets || ids[pixel] != dot) continue;
                 ++covered;
-                const double t = (distance - std::sqrt(disc)) / a;  // view distance: the direction's z is -1
                 const double error = std::abs(viewDistance(depths[pixel]) - t);
                 worstDepthError = std::max(worstDepthError, error);
                 wrongDepth += error > 2e-4;
             }
-        EXPECT_GT(covered, 1000) << "y scale " << yScale;
-        EXPECT_EQ(wrongCoverage, 0) << "y scale " << yScale;
-        EXPECT_EQ(wrongDepth, 0) << "y scale " << yScale << ": worst depth error " << worstDepthError;
-        std::printf("y scale %.1f: %d pixels, worst depth error %.2e units\n", yScale, covered, worstDepthError);
+        EXPECT_GT(covered, 1000) << c.name;
+        EXPECT_EQ(wrongCoverage, 0) << c.name;
+        EXPECT_EQ(wrongDepth, 0) << c.name << ": worst depth error " << worstDepthError;
+        std::printf("%s: %d pixels, worst depth error %.2e units\n", c.name, covered, worstDepthError);
         EXPECT_TRUE(host.loggedErrors().empty()) << host.loggedErrors().front();
     }
 }
