@@ -496,6 +496,7 @@ MeshGeometry pointImpostorBoxes(const PointsInput& p) {
         size_t expected = p.displayColor->interpolation == OBSCURA_INTERPOLATION_CONSTANT ? 1 : count;
         colors = usable(p.displayColor, expected, "primvars:displayColor", out.warnings);
     }
+    const MeshPrimvar* opacities = usable(p.displayOpacity, count, "primvars:displayOpacity", out.warnings);
     // Corner c sits at x = bit 0, y = bit 1, z = bit 2 (0: -, 1: +). Each face as two triangles
     // wound counter-clockwise seen from outside.
     static constexpr std::array<uint32_t, 36> kFaces{0, 2, 3, 0, 3, 1,   // -z
@@ -518,6 +519,7 @@ MeshGeometry pointImpostorBoxes(const PointsInput& p) {
             const V3 offset = scale(corner, radius);
             passes::Vertex v = vertexAt(add(centre, offset), scale(corner, 1.0 / std::sqrt(3.0)), offset, color, 0.5, 0.5);
             v.tangent[3] = float(radius);
+            if (opacities) v.color[3] = std::clamp(opacities->values[i], 0.0f, 1.0f);
             out.vertices.push_back(v);
         }
         for (uint32_t corner : kFaces) out.indices.push_back(first + corner);

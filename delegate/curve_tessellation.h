@@ -80,6 +80,7 @@ struct PointsInput {
     std::vector<float> points;
     std::optional<MeshPrimvar> widths;
     std::optional<MeshPrimvar> displayColor;
+    std::optional<MeshPrimvar> displayOpacity;  // one per point (a constant one is the gprim's)
 };
 std::string pointsProblem(const PointsInput& points);
 // Half the width of point `index` of validated points.
@@ -90,7 +91,8 @@ uint64_t pointTriangleCount(const PointsInput& points);
 // Each validated point as the cube that bounds its sphere (8 corners, 12 outward triangles),
 // drawn as a sphere impostor (shaders/common/sphere_impostor.glsl): each corner carries, in the
 // tangent's place, its offset from the point (xyz) and the sphere's radius (w); its normal points
-// away from the point; its colour is the point's displayColor (else 0.18 grey).
+// away from the point; its colour is the point's displayColor (else 0.18 grey) and displayOpacity
+// (else 1).
 MeshGeometry pointImpostorBoxes(const PointsInput& points);
 
 }  // namespace obscura::delegate

@@ -378,8 +378,10 @@ private:
     // mesh with material subsets draws each material's part on its own.
     void packDraws() {
         for (const auto& [path, prim] : in_.prims)
-            if (auto* inst = dynamic_cast<const Instancer*>(prim.get()); inst && !inst->skipped() && inst->visible())
-                instancers_.push_back(inst);
+            if (auto* inst = dynamic_cast<const Instancer*>(prim.get())) {
+                allInstancers_.push_back(inst);
+                if (!inst->skipped() && inst->visible()) instancers_.push_back(inst);
+            }
         using Drawn = std::pair<const Mesh*, const MaterialPart*>;
         std::vector<std::vector<Drawn>> batches;
         std::map<std::tuple<const void*, const void*, uint32_t, uint32_t, uint32_t, bool, bool, const void*>, size_t> batchOf;
@@ -417,28 +419,128 @@ private:
         }
     }
 
-    // One draw per (instancer, prototype mesh, material part): the mesh's transform relative to
-    // the instancer, then each instance's transform.
+    // One level of a prototype mesh's instancing: the instancer, and which of its prototypes holds
+    // the level below (the mesh, or an instancer nested in that prototype).
+    struct InstancingLevel {
+        const Instancer* instancer;
+        size_t prototype;
+    };
+
+    // Whether some instancer (drawn or not) has `path` in a prototype; `except` aside.
+    bool heldByAnInstancer(const std::string& path, const Instancer* except = nullptr) const {
+        return std::any_of(allInstancers_.begin(), allInstancers_.end(),
+                           [&](const Instancer* inst) { return inst != except && inst->prototypeOf(path) >= 0; });
+    }
+
+    // The drawn instancers that place `path` themselves: those with it in a prototype, less those
+    // in whose prototype an instancer nested there places it.
+    std::vector<InstancingLevel> placersOf(const std::string& path) const {
+        std::vector<InstancingLevel> placers;
+        for (const Instancer* inst : instancers_) {
+            const int proto = inst->prototypeOf(path);
+            if (proto < 0) continue;
+            bool nested = false;
+            for (const Instancer* inner : allInstancers_)
+                nested |= inner != inst && inner->prototypeOf(path) >= 0 && inst->prototypeOf(inner->path()) == proto;
+            if (!nested) placers.push_back({inst, size_t(proto)});
+        }
+        return placers;
+    }
+
+    // Every chain of instancers that places a prototype mesh, from one that places it out to one no
+    // instancer's prototype holds (UsdGeomPointInstancer prototypes may hold instancers in turn);
+    // none for a mesh no drawn instancer places, or whose chain passes a hidden or skipped instancer.
+    // Nesting deeper than kMaxInstancingDepth (a cycle: malformed) draws nothing.
+    static constexpr int kMaxInstancingDepth = 16;
+    std::vector<std::vector<InstancingLevel>> instancingChains(const std::string& path, int depth = 0) const {
+        std::vector<std::vector<InstancingLevel>> chains;
+        if (depth > kMaxInstancingDepth) return chains;
+        for (const InstancingLevel& level : placersOf(path)) {
+            if (!heldByAnInstancer(level.instancer->path(), level.instancer)) {
+                chains.push_back({level});
+                continue;
+            }
+            for (std::vector<InstancingLevel>& outer : instancingChains(level.instancer->path(), depth + 1)) {
+                outer.insert(outer.begin(), level);
+                chains.push_back(std::move(outer));
+            }
+        }
+        return chains;
+    }
+
+    // Instances of a chain: every combination of one instance at each level.
+    static size_t chainInstanceCount(const std::vector<InstancingLevel>& chain) {
+        size_t count = 1;
+        for (const InstancingLevel& level : chain) count *= level.instancer->instancesOf(level.prototype).size();
+        return count;
+    }
+
+    // The instance of each level that combination `number` takes, innermost first (the innermost
+    // varies fastest).
+    static std::vector<size_t> chainInstances(const std::vector<InstancingLevel>& chain, size_t number) {
+        std::vector<size_t> picks;
+        for (const InstancingLevel& level : chain) {
+            const size_t count = level.instancer->instancesOf(level.prototype).size();
+            picks.push_back(number % count);
+            number /= count;
+        }
+        return picks;
+    }
+
+    // Combination `picks`'s placement: each level's instance transform, innermost first, in the
+    // row-vector convention (a nested instancer's placements lie in its holder's prototype space).
+    // At the frame's placements, or at absolute time `time`.
+    static Matrix4d chainPlacement(const std::vector<InstancingLevel>& chain, const std::vector<size_t>& picks,
+                                   std::optional<double> time) {
+        Matrix4d placement = kIdentity;
+        for (size_t l = 0; l < chain.size(); ++l) {
+            const InstancingLevel& level = chain[l];
+            placement = multiply(placement, time ? level.instancer->instanceAt(level.prototype, picks[l], *time)
+                                                 : level.instancer->instancesOf(level.prototype)[picks[l]]);
+        }
+        return placement;
+    }
+
+    // What the chain's instance primvars give the combination: the innermost level's that has one.
+    static Instancer::InstanceDisplay chainDisplay(const std::vector<InstancingLevel>& chain,
+                                                   const std::vector<size_t>& picks) {
+        Instancer::InstanceDisplay display;
+        for (size_t l = 0; l < chain.size(); ++l) {
+            const Instancer::InstanceDisplay own = chain[l].instancer->displayOf(chain[l].prototype, picks[l]);
+            if (!display.color) display.color = own.color;
+            if (!display.opacity) display.opacity = own.opacity;
+        }
+        return display;
+    }
+
+    // One draw per (outermost instancer, prototype mesh, material part): the mesh's transform
+    // relative to its prototype, then each level's instance transform, innermost first.
     void packInstancedDraws() {
+        std::vector<std::pair<const Mesh*, std::vector<InstancingLevel>>> placed;
+        for (const auto& [path, prim] : in_.prims)
+            if (const Mesh* mesh = drawable(*prim))
+                for (std::vector<InstancingLevel>& chain : instancingChains(path)) placed.emplace_back(mesh, std::move(chain));
         for (size_t ordinal = 0; ordinal < instancers_.size(); ++ordinal) {
             const Instancer* inst = instancers_[ordinal];
-            for (const auto& [path, prim] : in_.prims) {
-                const Mesh* mesh = drawable(*prim);
-                int proto = mesh ? inst->prototypeOf(path) : -1;
-                if (proto < 0) continue;
-                const auto& placements = inst->instancesOf(size_t(proto));
-                if (placements.empty()) continue;
+            for (const auto& [mesh, chain] : placed) {
+                if (chain.back().instancer != inst) continue;
+                const size_t count = chainInstanceCount(chain);
+                if (count == 0) continue;
                 // The prototype's own transform and the placements may both move within the shutter.
                 auto meshMotion = motionOf(*mesh);
-                const bool placementsMove = in_.shutter && !in_.sample && inst->movesWithinShutter();
+                const bool placementsMove =
+                    in_.shutter && !in_.sample &&
+                    std::any_of(chain.begin(), chain.end(), [](const InstancingLevel& l) { return l.instancer->movesWithinShutter(); });
+                const bool translucent =
+                    std::any_of(chain.begin(), chain.end(), [](const InstancingLevel& l) { return l.instancer->hasTranslucentInstances(); });
                 for (const MaterialPart& part : mesh->materialParts()) {
-                    scene_.draws.push_back(partDraw(*mesh, part, placements.size(), meshMotion.has_value() || placementsMove));
-                    // Instances the instancer makes translucent take the transparent pass, the draw whole.
-                    if (!boundMaterial(part) && inst->hasTranslucentInstances()) scene_.draws.back().transparent = true;
+                    scene_.draws.push_back(partDraw(*mesh, part, count, meshMotion.has_value() || placementsMove));
+                    // Instances the instancers make translucent take the transparent pass, the draw whole.
+                    if (!boundMaterial(part) && translucent) scene_.draws.back().transparent = true;
                     Aabb bounds;
-                    for (size_t number = 0; number < placements.size(); ++number) {
-                        Matrix4d placement =
-                            frameTime_ ? inst->instanceAt(size_t(proto), number, *frameTime_) : placements[number];
+                    for (size_t number = 0; number < count; ++number) {
+                        const std::vector<size_t> picks = chainInstances(chain, number);
+                        const Matrix4d placement = chainPlacement(chain, picks, frameTime_);
                         Matrix4d model = multiply(transformOf(*mesh), placement);
                         std::optional<std::array<Matrix4d, 2>> motion;
                         if (placementsMove) {
@@ -446,12 +548,13 @@ private:
                             for (int end = 0; end < 2; ++end)
                                 (*motion)[size_t(end)] = multiply(
                                     meshMotion ? (*meshMotion)[size_t(end)] : mesh->transformAt(blurred_[size_t(end)]),
-                                    inst->instanceAt(size_t(proto), number, blurred_[size_t(end)]));
+                                    chainPlacement(chain, picks, blurred_[size_t(end)]));
                         } else if (meshMotion) {
                             motion = {{multiply((*meshMotion)[0], placement), multiply((*meshMotion)[1], placement)}};
                         }
                         record(*mesh, part, model, motion, (uint64_t(ordinal + 1) << 24) | (number & 0xFFFFFFu),
-                               inst->instanceIndexOf(size_t(proto), number), inst->displayOf(size_t(proto), number));
+                               chain.front().instancer->instanceIndexOf(chain.front().prototype, picks.front()),
+                               chainDisplay(chain, picks));
                         instanceBounds_.push_back(transformAabb(mesh->localBounds(), model));
                         bounds.merge(instanceBounds_.back());
                     }
@@ -718,7 +821,8 @@ private:
     std::vector<bool> lightCastsShadows_;
     std::vector<const Light*> lightPrims_;
     // Draws.
-    std::vector<const Instancer*> instancers_;
+    std::vector<const Instancer*> instancers_;     // drawn: not skipped, visible
+    std::vector<const Instancer*> allInstancers_;  // drawn or not: what hides their prototypes
     std::vector<passes::InstanceData> instances_;
     std::vector<passes::InstanceMotion> motions_;
     std::vector<passes::InstanceReprojection> reprojections_;

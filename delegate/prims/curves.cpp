@@ -104,6 +104,7 @@ void Points::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         input_.displayColor = pullPrimvar(s, "primvars:displayColor", 3);
         shutterPoints_ = pullShutterPoints(s, input_.points, ctx);
     }
+    input_.displayOpacity = varyingOpacity_;  // a constant one is the gprim's (pullGprim)
     if (std::string problem = pointsProblem(input_); !problem.empty()) throw PrimDataError(s.path() + ": " + problem);
     if (input_.points.empty()) return dropGeometry(ctx);  // nothing to draw, nothing kept from before
     if (const uint64_t triangles = pointTriangleCount(input_); triangles > kMaxTessellatedTriangles)

@@ -227,5 +227,66 @@ TEST(DisplayColor, InstancerPrimvarOfAWrongCountIsIgnoredWithAWarning) {
     EXPECT_TRUE(warned);
 }
 
+// Points (sphere impostors) take displayOpacity like meshes: constant through the fallback
+// material, per point through their vertices; below 1 they draw in the transparent pass, the near
+// side of each sphere. Two red points of radius 0.3 at x = -0.5 and 0.5.
+constexpr double kDotRadius = 0.3;
+constexpr std::array<double, 2> kDotX{-0.5, 0.5};
+
+void addDots(DisplayColorScene& s, const HostValue& opacity, ObscuraInterpolation interpolation) {
+    s.host.addPrim("points", "/Dots",
+                   {{"points", HostValue::points({{float(kDotX[0]), 0, 0}, {float(kDotX[1]), 0, 0}})},
+                    {"widths", floats({float(2 * kDotRadius)})},
+                    {"primvars:displayColor", HostValue::points({kRed})},
+                    {"primvars:displayOpacity", opacity}});
+    s.host.setInterpolation("/Dots", "widths", OBSCURA_INTERPOLATION_CONSTANT);
+    s.host.setInterpolation("/Dots", "primvars:displayColor", OBSCURA_INTERPOLATION_CONSTANT);
+    s.host.setInterpolation("/Dots", "primvars:displayOpacity", interpolation);
+}
+
+// Lambert at pixel (x, 31), on the near side of dot `dot` where that pixel's line of sight meets
+// it (the light shines down -Z, so N.L is the normal's z), seen through `opacity`.
+void expectDot(const std::vector<float>& color, size_t dot, double opacity) {
+    const double tanHalf = kLitPlaneTanHalfFov, d = kLitPlaneCameraDistance;
+    const int x = int(std::floor((kDotX[dot] / (d * tanHalf) + 1.0) / 2.0 * kWidth)), y = 31;
+    const auto p = planePointAtPixel(x, y, d, tanHalf);
+    // Eye (0, 0, d) towards p; o: the eye from the dot's centre.
+    const std::array<double, 3> dir{p[0], p[1], -d}, o{-kDotX[dot], 0.0, d};
+    const double a = dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2];
+    const double b = o[0] * dir[0] + o[1] * dir[1] + o[2] * dir[2];
+    const double c = o[0] * o[0] + o[1] * o[1] + o[2] * o[2] - kDotRadius * kDotRadius;
+    ASSERT_GT(b * b - a * c, 0.0) << "the pixel sees the dot";
+    const double t = (-b - std::sqrt(b * b - a * c)) / a;
+    const double facing = (o[2] + t * dir[2]) / kDotRadius;
+    const float* px = &color[(size_t(y) * kWidth + size_t(x)) * 4];
+    const int mantissa[3] = {6, 6, 5};
+    for (size_t ch = 0; ch < 3; ++ch) {
+        const double expected = kRed[ch] / kPi * kIrradiance * facing * opacity;
+        EXPECT_NEAR(px[ch], expected, 0.01 * expected + smallFloatStep(float(expected), mantissa[ch]))
+            << "dot " << dot << " channel " << ch;
+    }
+    EXPECT_NEAR(px[3], opacity, 1.0f / 255.0f) << "dot " << dot;
+}
+
+TEST(DisplayColor, ConstantOpacityMakesPointsTranslucent) {
+    DisplayColorScene s;
+    addDots(s, floats({0.5f}), OBSCURA_INTERPOLATION_CONSTANT);
+    auto color = s.render();
+    expectDot(color, 0, 0.5);
+    expectDot(color, 1, 0.5);
+    EXPECT_NEAR(color[(size_t(31) * kWidth + 32) * 4 + 3], 0.0f, 1e-6f) << "between them: neither sphere nor its cube";
+    // Pixel (24, 23) sees the left dot's cube (its near face spans 0.319 either side of the centre
+    // on the z = 0 plane) but passes 0.377 from the centre, outside the sphere (0.318 there).
+    EXPECT_NEAR(color[(size_t(23) * kWidth + 24) * 4 + 3], 0.0f, 1e-6f) << "inside the cube, outside the sphere";
+}
+
+TEST(DisplayColor, PerPointOpacityMakesThosePointsTranslucent) {
+    DisplayColorScene s;
+    addDots(s, floats({0.25f, 1.0f}), OBSCURA_INTERPOLATION_VERTEX);
+    auto color = s.render();
+    expectDot(color, 0, 0.25);
+    expectDot(color, 1, 1.0);
+}
+
 }  // namespace
 }  // namespace obscura::test

@@ -1,5 +1,6 @@
 // PointInstancer: prototypes drawn once per instance (GPU instancing), placed by USD's
-// scale-orient-translate order in the instancer's space; prototypes never draw on their own.
+// scale-orient-translate order in the instancer's space; prototypes never draw on their own; an
+// instancer in another's prototype places its prototypes within each of the other's instances.
 #include "tests/delegate/render_fixture.h"
 
 #include <gtest/gtest.h>
@@ -125,6 +126,51 @@ TEST(Instancing, BadInstanceDataSkipsTheInstancer) {
     s.host.api().markDirty(s.host.delegate(), "/Instancer", OBSCURA_DIRTY_ALL);
     s.render(OBSCURA_ERROR_BAD_PRIM_DATA);
     EXPECT_NE(s.host.lastError().find("positions"), std::string::npos) << s.host.lastError();
+}
+
+// An instancer of two squares (x = -1 and 1) sits 1 up in the prototype of an instancer of two
+// rows (y = -2 and 1.5), itself moved 0.5 along x: four squares, at x = -0.5 and 1.5, y = -1 and
+// 2.5. Nothing is drawn where either instancer alone would put a square.
+struct NestedScene : InstancedScene {
+    NestedScene() {
+        addPlane(host, "/Outer/Protos/Row/Protos/Tile", "", 0.25);
+        host.addPrim("instancer", "/Outer/Protos/Row",
+                     {{"prototypes", HostValue::paths({"/Outer/Protos/Row/Protos/Tile"})},
+                      {"protoIndices", HostValue::intArray({0, 0})},
+                      {"positions", HostValue::points({{-1, 0, 0}, {1, 0, 0}})}},
+                     translation(0, 1, 0));
+        host.addPrim("instancer", "/Outer",
+                     {{"prototypes", HostValue::paths({"/Outer/Protos/Row"})},
+                      {"protoIndices", HostValue::intArray({0, 0})},
+                      {"positions", HostValue::points({{0, -2, 0}, {0, 1.5f, 0}})}},
+                     translation(0.5, 0, 0));
+    }
+    int32_t tile() {
+        int32_t id = -2;
+        host.api().getPrimId(host.delegate(), "/Outer/Protos/Row/Protos/Tile", &id);
+        return id;
+    }
+};
+
+TEST(Instancing, NestedInstancersPlaceTheirPrototypesInEveryOuterInstance) {
+    NestedScene s;
+    auto ids = s.render();
+    const int32_t tile = s.tile();
+    for (double x : {-0.5, 1.5})
+        for (double y : {-1.0, 2.5}) EXPECT_EQ(at(ids, x, y), tile) << "a tile at " << x << ", " << y;
+    int tiles = 0;
+    for (int32_t id : ids) tiles += id == tile;
+    EXPECT_EQ(tiles, 4 * 4 * 4) << "four tiles of 4 x 4 pixels, none elsewhere";
+    EXPECT_NE(at(ids, -1.0, 1.0), tile) << "where the inner instancer alone would put one";
+    EXPECT_NE(at(ids, 0.5, -2.0), tile) << "where the outer instancer alone would put one";
+}
+
+TEST(Instancing, AHiddenNestedInstancerHidesItsPrototypesInEveryOuterInstance) {
+    NestedScene s;
+    s.host.set("/Outer/Protos/Row", "visibility", HostValue::token("invisible"));
+    auto ids = s.render();
+    const int32_t tile = s.tile();
+    EXPECT_EQ(std::count(ids.begin(), ids.end(), tile), 0);
 }
 
 }  // namespace
