@@ -91,17 +91,26 @@ uint cutoutCoverage(MaterialData mat, vec2 uv) {
 }
 
 #ifdef SPHERE_IMPOSTOR
-// The samples of an N-sample pixel whose lines of sight meet the sphere: the fragment's point and
-// offset moved to each sample along the cube's face (their screen derivatives `dx`, `dy`, taken
-// where every invocation of the quad runs) at the standard sample locations (msaa_samples.glsl).
-uint impostorCoverage(mat4 viewProjection, mat4 normalMatrix, vec3 onBox, vec4 sphere, vec3 dx, vec3 dy, int samples) {
+// How far the fragment's point moves along the cube's face to sample s of an N-sample pixel at the
+// standard sample locations (msaa_samples.glsl), from its screen derivatives `dx`, `dy` (taken
+// where every invocation of the quad runs).
+vec3 sampleShift(int samples, int s, vec3 dx, vec3 dy) {
+    vec2 offset = standardSampleLocation(samples, s) - 0.5;
+    return offset.x * dx + offset.y * dy;
+}
+
+// The sphere seen through sample s: the fragment's point and its offset from the centre, moved.
+ImpostorHit sampleImpostorHit(InstanceData inst, int s, vec3 dx, vec3 dy) {
+    vec3 shift = sampleShift(int(push.sampleCount), s, dx, dy);
+    return impostorHit(camera.viewProjection, inst.normalMatrix, inWorldPosition + shift,
+                       vec4(inTangent.xyz + shift, inTangent.w));
+}
+
+// The samples of the pixel whose lines of sight meet the sphere.
+uint impostorCoverage(InstanceData inst, vec3 dx, vec3 dy) {
     uint mask = 0u;
-    for (int s = 0; s < samples; ++s) {
-        vec2 offset = standardSampleLocation(samples, s) - 0.5;
-        vec3 shift = offset.x * dx + offset.y * dy;
-        if (impostorHit(viewProjection, normalMatrix, onBox + shift, vec4(sphere.xyz + shift, sphere.w)).hit)
-            mask |= 1u << uint(s);
-    }
+    for (int s = 0; s < int(push.sampleCount); ++s)
+        if (sampleImpostorHit(inst, s, dx, dy).hit) mask |= 1u << uint(s);
     return mask;
 }
 #endif
@@ -109,7 +118,7 @@ uint impostorCoverage(mat4 viewProjection, mat4 normalMatrix, vec3 onBox, vec4 s
 // Writes RT0..RT2 and the samples the surface covers, or discards the fragment where the material
 // cuts the surface out of every sample. Built with SPHERE_IMPOSTOR for sphere impostors
 // (sphere_impostor.glsl): the surface is the sphere the fragment's cube bounds, its depth written
-// here (so no early depth test) and its samples those whose lines of sight meet it.
+// here (declared depth_greater) and its samples those whose lines of sight meet it.
 void writeSurface() {
     InstanceData inst = instances[inInstance];
     MaterialData mat = materials[inst.materialIndex];
@@ -117,21 +126,14 @@ void writeSurface() {
     // Derivatives first, while every invocation of the quad runs.
     vec3 dx = dFdx(inWorldPosition), dy = dFdy(inWorldPosition);
     ImpostorHit sphere = impostorHit(camera.viewProjection, inst.normalMatrix, inWorldPosition, inTangent);
-    uint sphereCoverage = push.sampleCount <= 1u ? (sphere.hit ? ~0u : 0u)
-                          : impostorCoverage(camera.viewProjection, inst.normalMatrix, inWorldPosition, inTangent,
-                                             dx, dy, int(push.sampleCount));
+    uint sphereCoverage = push.sampleCount <= 1u ? (sphere.hit ? ~0u : 0u) : impostorCoverage(inst, dx, dy);
     // Misses leave at once: most of a cube's fragments (its far faces, its corners) miss. XXX: a
     // textured material's lookups in the quads along the rim then take their derivatives from
     // invocations that left (Vulkan's demote would keep them, at the cost of shading every miss).
     if (sphereCoverage == 0u) discard;
     // The pixel's centre may miss where some sample meets the rim: shade that sample's point.
-    for (int s = 0; !sphere.hit && s < int(push.sampleCount); ++s) {
-        vec2 offset = standardSampleLocation(int(push.sampleCount), s) - 0.5;
-        vec3 shift = offset.x * dx + offset.y * dy;
-        if ((sphereCoverage & (1u << uint(s))) != 0u)
-            sphere = impostorHit(camera.viewProjection, inst.normalMatrix, inWorldPosition + shift,
-                                 vec4(inTangent.xyz + shift, inTangent.w));
-    }
+    for (int s = 0; !sphere.hit && s < int(push.sampleCount); ++s)
+        if ((sphereCoverage & (1u << uint(s))) != 0u) sphere = sampleImpostorHit(inst, s, dx, dy);
     gl_FragDepth = sphere.depth;
     vec3 worldPosition = sphere.position;
     vec4 tangent = impostorTangent(inst.model, sphere.normal);
