@@ -24,8 +24,7 @@ vec3 viewRayDirection(mat4 viewProjection, vec3 world) {
 }
 
 // Where the object-space line o + t d meets the sphere of `radius` about the origin: its entry and
-// exit parameters, or the closest approach twice where it misses (false). Continuous across the
-// silhouette, so screen derivatives of what it yields stay finite there.
+// exit parameters, or the closest approach twice where it misses (false).
 bool sphereRoots(vec3 o, vec3 d, float radius, out vec2 t) {
     float a = dot(d, d), b = dot(o, d), c = dot(o, o) - radius * radius;
     float disc = b * b - a * c;
