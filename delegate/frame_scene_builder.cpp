@@ -166,6 +166,13 @@ private:
         invert(projection, inverseProjection);
         cd.inverseProjection = toFloats<passes::Mat4>(inverseProjection);
         eye_ = transformPoint({0, 0, 0}, cameraToWorld);
+        // How far from the eye the near plane reaches (its corners, the lens's shear included):
+        // geometry nearer may be clipped by it. Orthographic views: unbounded.
+        const Matrix4d& p = unjitteredProjection;
+        nearReach_ = cam.params().orthographic
+                         ? std::numeric_limits<double>::infinity()
+                         : cam.params().clippingRange[0] * std::hypot(1.0, (1.0 + std::abs(p[8])) / std::abs(p[0]),
+                                                                      (1.0 + std::abs(p[9])) / std::abs(p[5]));
         cd.position = {float(eye_[0]), float(eye_[1]), float(eye_[2]), 1.0f};
         cd.resolution = {float(in_.width), float(in_.height)};
         cd.exposureScale = float(cam.linearExposureScale() * std::exp2(in_.exposureStops));
@@ -361,6 +368,17 @@ private:
         instances_.push_back(inst);
     }
 
+    // Whether an instance of a sphere impostor draw, placed by `model` within world `bounds`, lets
+    // the G-buffer cull its cube's back faces: the placement keeps the winding (no mirroring) and the
+    // cube lies clear of the eye and of the near plane, so its near faces answer for every pixel
+    // (shaders/common/sphere_impostor.glsl).
+    bool impostorBackFacesHidden(const Matrix4d& model, const Aabb& bounds) const {
+        const double det = model[0] * (model[5] * model[10] - model[6] * model[9]) -
+                           model[1] * (model[4] * model[10] - model[6] * model[8]) +
+                           model[2] * (model[4] * model[9] - model[5] * model[8]);
+        return det > 0.0 && distanceTo(bounds, eye_) > nearReach_;
+    }
+
     // The draw of a mesh's part, for `instanceCount` records from the next one.
     passes::Draw partDraw(const Mesh& mesh, const MaterialPart& part, size_t instanceCount, bool moving) {
         noteUnresolved(part);
@@ -409,11 +427,14 @@ private:
         for (const auto& batch : batches) {
             const auto [first, firstPart] = batch.front();
             scene_.draws.push_back(partDraw(*first, *firstPart, batch.size(), motionOf(*first).has_value()));
+            passes::Draw& draw = scene_.draws.back();
+            draw.cullBackFaces = draw.sphereImpostors;
             Aabb bounds;
             for (const auto& [mesh, part] : batch) {
                 record(*mesh, *part, transformOf(*mesh), motionOf(*mesh));
                 instanceBounds_.push_back(transformAabb(mesh->localBounds(), transformOf(*mesh)));
                 bounds.merge(instanceBounds_.back());
+                draw.cullBackFaces = draw.cullBackFaces && impostorBackFacesHidden(transformOf(*mesh), instanceBounds_.back());
             }
             drawBounds_.push_back(bounds);
         }
@@ -535,8 +556,10 @@ private:
                     std::any_of(chain.begin(), chain.end(), [](const InstancingLevel& l) { return l.instancer->hasTranslucentInstances(); });
                 for (const MaterialPart& part : mesh->materialParts()) {
                     scene_.draws.push_back(partDraw(*mesh, part, count, meshMotion.has_value() || placementsMove));
+                    passes::Draw& draw = scene_.draws.back();
                     // Instances the instancers make translucent take the transparent pass, the draw whole.
-                    if (!boundMaterial(part) && translucent) scene_.draws.back().transparent = true;
+                    if (!boundMaterial(part) && translucent) draw.transparent = true;
+                    draw.cullBackFaces = draw.sphereImpostors;
                     Aabb bounds;
                     for (size_t number = 0; number < count; ++number) {
                         const std::vector<size_t> picks = chainInstances(chain, number);
@@ -557,6 +580,7 @@ private:
                                chainDisplay(chain, picks));
                         instanceBounds_.push_back(transformAabb(mesh->localBounds(), model));
                         bounds.merge(instanceBounds_.back());
+                        draw.cullBackFaces = draw.cullBackFaces && impostorBackFacesHidden(model, instanceBounds_.back());
                     }
                     drawBounds_.push_back(bounds);
                 }
@@ -808,6 +832,7 @@ private:
     // The camera.
     Matrix4d view_ = kIdentity, unjitteredProjection_ = kIdentity;
     Vec3d eye_{};
+    double nearReach_ = 0.0;
     std::optional<double> frameTime_;
     std::array<double, 2> blurred_{};
     passes::CameraData cd_{};

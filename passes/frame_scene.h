@@ -27,6 +27,9 @@ struct Draw {
     // Its triangles are cubes bounding spheres (UsdGeomPoints): the passes draw the spheres they
     // bound, ray-cast per pixel (shaders/common/sphere_impostor.glsl).
     bool sphereImpostors = false;
+    // The G-buffer may cull back faces: sphere impostors whose cubes keep their winding and lie
+    // clear of the eye and the near plane, so only their near faces answer.
+    bool cullBackFaces = false;
     // Where the draw's indexCount indices start in `indices`: a mesh whose faces bind several
     // materials (GeomSubsets) draws each material's range of one index buffer.
     uint32_t firstIndex = 0;

@@ -82,10 +82,11 @@ std::vector<ShaderBinding> gbufferBindings(bool motion, const SceneBuffers& buff
 // Opaque surfaces take the shaders' OPAQUE_SURFACE variant, whose depth test runs before shading,
 // sphere impostors their SPHERE_IMPOSTOR one (common/gbuffer_surface.glsl). `culled`: the draw's
 // records come from GPU occlusion culling's list (a static variant only).
-gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, Surface surface, bool culled,
+gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, Surface surface, bool culled, bool cullBackFaces,
                                                   VkSampleCountFlagBits samples,
                                                   const std::vector<ShaderBinding>& bindings) {
     gpu::GraphicsPipelineDesc d;
+    if (cullBackFaces) d.cullMode = VK_CULL_MODE_BACK_BIT;
     d.fragmentShader = std::string(writesVelocity(variant) ? "gbuffer_moving" : "gbuffer") +
                        (surface == Surface::Opaque ? "_opaque.frag" : surface == Surface::Spheres ? "_spheres.frag" : ".frag");
     d.bindings = bindingLayout(bindings);
@@ -189,22 +190,26 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
             const gpu::Pipeline* bound = nullptr;
             Variant boundVariant = Variant::Static;
             Surface boundSurface = Surface::Opaque;
-            bool boundCulled = false;
+            bool boundCulled = false, boundBackFaces = false;
             const MaterialTextures* pushed = nullptr;
             for (const Ordered& o : ordered) {
                 // Draws come grouped by variant: the pipeline changes only between groups.
                 const Surface surface = surfaceOf(*o.draw);
                 const bool culledDraw = culledDraws && o.draw->culledOnGpu();
-                if (!bound || o.variant != boundVariant || surface != boundSurface || culledDraw != boundCulled) {
+                const bool backFaces = o.draw->cullBackFaces;
+                if (!bound || o.variant != boundVariant || surface != boundSurface || culledDraw != boundCulled ||
+                    backFaces != boundBackFaces) {
                     const std::vector<ShaderBinding> bindings =
                         gbufferBindings(readsMotion(o.variant), scene.buffers, bestFitNormals,
                                         culledDraw ? &*culledDraws : nullptr);
                     bound = &res.pipelines().get<gpu::GraphicsPipelineDesc>(
                         std::string(pipelineName(o.variant)) + "." + surfaceName(surface) +
-                            (culledDraw ? "culled." : "") + std::to_string(samples),
-                        [&] { return describeGBufferPipeline(o.variant, surface, culledDraw, samples, bindings); });
+                            (culledDraw ? "culled." : "") + (backFaces ? "backFacesCulled." : "") +
+                            std::to_string(samples),
+                        [&] { return describeGBufferPipeline(o.variant, surface, culledDraw, backFaces, samples, bindings); });
                     boundVariant = o.variant;
                     boundSurface = surface;
+                    boundBackFaces = backFaces;
                     boundCulled = culledDraw;
                     bindBindings(cmd, *bound, bindings, res);
                     pushed = nullptr;  // a new layout: the pushed set starts over

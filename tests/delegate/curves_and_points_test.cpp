@@ -309,7 +309,8 @@ TEST(Points, OverTheCapAreSkippedAndNamed) {
 // thousandth of the radius of the rim), and the depth there is the nearer intersection's to
 // 2e-4 units (a dozen float steps of the depth buffer there): 25 times tighter than a tessellation
 // within a quarter pixel of the silhouette (its chords fall up to 0.25 / 51 of the radius inside the
-// sphere). Under a non-uniform scale the sphere is the ellipsoid the scale makes of it. With the eye
+// sphere). Under a non-uniform scale the sphere is the ellipsoid the scale makes of it, and a
+// mirroring one (which turns the cube's faces inside out) changes nothing. With the eye
 // inside the cube that bounds the sphere (its near faces behind the eye) the sphere is still seen
 // whole, and with the eye inside the sphere its far side is.
 TEST(Points, EveryPixelSeesTheExactSphere) {
@@ -319,7 +320,7 @@ TEST(Points, EveryPixelSeesTheExactSphere) {
         double yScale;
         const char* name;
     };
-    for (const Case& c : {Case{{0, 0, 6}, 1.0, "far"}, Case{{0, 0, 6}, 0.5, "squeezed"},
+    for (const Case& c : {Case{{0, 0, 6}, 1.0, "far"}, Case{{0, 0, 6}, 0.5, "squeezed"}, Case{{0, 0, 6}, -1.0, "mirrored"},
                           Case{{0.8, 0.8, 0.9}, 1.0, "eye in the cube"}, Case{{0.2, -0.1, 0.5}, 1.0, "eye in the sphere"}}) {
         TestHost host;
         host.addCamera("/Camera", translation(c.eye[0], c.eye[1], c.eye[2]), kFocalLength, kAperture);
