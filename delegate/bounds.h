@@ -54,6 +54,18 @@ inline Aabb transformAabb(const Aabb& local, const Matrix4d& m) {
     return world;
 }
 
+// Whether every point of `box` lies beyond the near plane of `viewProjection` (clip z > 0, in front
+// of the eye): nothing of it is clipped there.
+inline bool beyondNearPlane(const Aabb& box, const Matrix4d& viewProjection) {
+    if (box.empty()) return false;
+    for (const Vec3d& p : box.corners()) {
+        double z = p[0] * viewProjection[2] + p[1] * viewProjection[6] + p[2] * viewProjection[10] + viewProjection[14];
+        double w = p[0] * viewProjection[3] + p[1] * viewProjection[7] + p[2] * viewProjection[11] + viewProjection[15];
+        if (!(z > 0.0 && w > 0.0)) return false;
+    }
+    return true;
+}
+
 // True when the box lies entirely outside one plane of the clip volume of `viewProjection`
 // (Vulkan: -w <= x, y <= w, 0 <= z <= w). Each plane is a half-space in homogeneous
 // coordinates, so the test is exact for the convex box and also holds for perspective views

@@ -368,15 +368,31 @@ private:
         instances_.push_back(inst);
     }
 
-    // Whether an instance of a sphere impostor draw, placed by `model` within world `bounds`, lets
-    // the G-buffer cull its cube's back faces: the placement keeps the winding (no mirroring) and the
-    // cube lies clear of the eye and of the near plane, so its near faces answer for every pixel
-    // (shaders/common/sphere_impostor.glsl).
-    bool impostorBackFacesHidden(const Matrix4d& model, const Aabb& bounds) const {
-        const double det = model[0] * (model[5] * model[10] - model[6] * model[9]) -
-                           model[1] * (model[4] * model[10] - model[6] * model[8]) +
-                           model[2] * (model[4] * model[9] - model[5] * model[8]);
-        return det > 0.0 && distanceTo(bounds, eye_) > nearReach_;
+    // Whether a placement keeps the winding of what it places (no mirroring).
+    static bool keepsWinding(const Matrix4d& model) {
+        return model[0] * (model[5] * model[10] - model[6] * model[9]) -
+                   model[1] * (model[4] * model[10] - model[6] * model[8]) +
+                   model[2] * (model[4] * model[9] - model[5] * model[8]) >
+               0.0;
+    }
+
+    // Notes an instance of the last draw, placed by `model` within world `bounds`, for back-face
+    // culling of sphere impostors: a view may cull a cube's back faces where its near faces answer
+    // for every pixel (shaders/common/sphere_impostor.glsl): the placement keeps the winding and the
+    // cube lies wholly beyond the view's near plane — for the camera, clear of the eye by more than
+    // the near plane reaches.
+    void noteImpostorInstance(const Matrix4d& model, const Aabb& bounds) {
+        passes::Draw& draw = scene_.draws.back();
+        const bool winding = draw.sphereImpostors && keepsWinding(model);
+        impostorWinding_.back() = impostorWinding_.back() && winding;
+        draw.cullBackFaces = draw.cullBackFaces && winding && distanceTo(bounds, eye_) > nearReach_;
+    }
+
+    // Starts the notes of a new draw (the last one).
+    void startImpostorNotes() {
+        passes::Draw& draw = scene_.draws.back();
+        draw.cullBackFaces = draw.sphereImpostors;
+        impostorWinding_.push_back(draw.sphereImpostors);
     }
 
     // The draw of a mesh's part, for `instanceCount` records from the next one.
@@ -427,14 +443,13 @@ private:
         for (const auto& batch : batches) {
             const auto [first, firstPart] = batch.front();
             scene_.draws.push_back(partDraw(*first, *firstPart, batch.size(), motionOf(*first).has_value()));
-            passes::Draw& draw = scene_.draws.back();
-            draw.cullBackFaces = draw.sphereImpostors;
+            startImpostorNotes();
             Aabb bounds;
             for (const auto& [mesh, part] : batch) {
                 record(*mesh, *part, transformOf(*mesh), motionOf(*mesh));
                 instanceBounds_.push_back(transformAabb(mesh->localBounds(), transformOf(*mesh)));
                 bounds.merge(instanceBounds_.back());
-                draw.cullBackFaces = draw.cullBackFaces && impostorBackFacesHidden(transformOf(*mesh), instanceBounds_.back());
+                noteImpostorInstance(transformOf(*mesh), instanceBounds_.back());
             }
             drawBounds_.push_back(bounds);
         }
@@ -556,10 +571,9 @@ private:
                     std::any_of(chain.begin(), chain.end(), [](const InstancingLevel& l) { return l.instancer->hasTranslucentInstances(); });
                 for (const MaterialPart& part : mesh->materialParts()) {
                     scene_.draws.push_back(partDraw(*mesh, part, count, meshMotion.has_value() || placementsMove));
-                    passes::Draw& draw = scene_.draws.back();
                     // Instances the instancers make translucent take the transparent pass, the draw whole.
-                    if (!boundMaterial(part) && translucent) draw.transparent = true;
-                    draw.cullBackFaces = draw.sphereImpostors;
+                    if (!boundMaterial(part) && translucent) scene_.draws.back().transparent = true;
+                    startImpostorNotes();
                     Aabb bounds;
                     for (size_t number = 0; number < count; ++number) {
                         const std::vector<size_t> picks = chainInstances(chain, number);
@@ -580,7 +594,7 @@ private:
                                chainDisplay(chain, picks));
                         instanceBounds_.push_back(transformAabb(mesh->localBounds(), model));
                         bounds.merge(instanceBounds_.back());
-                        draw.cullBackFaces = draw.cullBackFaces && impostorBackFacesHidden(model, instanceBounds_.back());
+                        noteImpostorInstance(model, instanceBounds_.back());
                     }
                     drawBounds_.push_back(bounds);
                 }
@@ -724,6 +738,11 @@ private:
             lightCastsShadows_);
         shortfalls_.lightsWithoutShadowRoom = shadows.lightsLeftUnshadowed;
         scene_.shadows = std::move(shadows.atlas);
+        for (size_t v = 0; v < scene_.shadows.views.size(); ++v) {
+            passes::ShadowMapView& view = scene_.shadows.views[v];
+            for (uint32_t d : view.draws)
+                view.cullBackFaces.push_back(impostorWinding_[d] && beyondNearPlane(drawBounds_[d], shadows.viewProjections[v]));
+        }
         if (in_.gpuOcclusionCulling &&
             uint64_t(scene_.shadows.views.size()) * instances_.size() <= passes::kMaxShadowCullingStamps)
             shadowCandidates(shadows.viewProjections);
@@ -833,6 +852,8 @@ private:
     Matrix4d view_ = kIdentity, unjitteredProjection_ = kIdentity;
     Vec3d eye_{};
     double nearReach_ = 0.0;
+    // Per draw: sphere impostors whose every instance keeps its cube's winding.
+    std::vector<bool> impostorWinding_;
     std::optional<double> frameTime_;
     std::array<double, 2> blurred_{};
     passes::CameraData cd_{};

@@ -65,6 +65,9 @@ struct ShadowMapView {
     uint32_t x = 0, y = 0;        // the tile's first texel in the atlas
     uint32_t size = 0;            // the tile's side in texels
     std::vector<uint32_t> draws;  // indices into FrameScene::draws whose bounds reach the view
+    // One per draw of `draws`: the view may cull its back faces (a sphere impostor draw whose
+    // instances keep their cubes' winding, wholly beyond the view's near plane); empty: none.
+    std::vector<bool> cullBackFaces;
     // Under GPU occlusion culling, one per draw of `draws` (cullSlot kNotCulledOnGpu: drawn as it
     // is, every instance); empty otherwise.
     std::vector<CulledViewDraw> culled;

@@ -46,8 +46,9 @@ std::vector<ShaderBinding> shadowBindings(const SceneBuffers& buffers, Caster ca
 // discards the texels the G-buffer discards, sphere impostors its variant that writes the depth of
 // their spheres.
 gpu::GraphicsPipelineDesc describeShadowDepthPipeline(const std::vector<ShaderBinding>& bindings, Caster caster,
-                                                      bool culled) {
+                                                      bool culled, bool cullBackFaces) {
     gpu::GraphicsPipelineDesc d = describeDepthOnlyDraw();
+    if (cullBackFaces) d.cullMode = VK_CULL_MODE_BACK_BIT;
     if (culled) d.vertexShader = "depth_only_culled.vert";
     d.bindings = bindingLayout(bindings);
     if (caster != Caster::Opaque) {
@@ -102,10 +103,12 @@ void recordViews(VkCommandBuffer cmd, const gpu::PassResources& res, const Frame
                  bool culledDraws = false) {
     const std::vector<ShaderBinding> bindings = shadowBindings(scene.buffers, caster, culledDraws ? culled : nullptr);
     const char* names[] = {"shadow_depth", "shadow_depth_cutout", "shadow_depth_spheres"};
-    const gpu::Pipeline& pipeline = res.pipelines().get<gpu::GraphicsPipelineDesc>(
-        std::string(names[int(caster)]) + (culledDraws ? ".culled" : ""),
-        [&] { return describeShadowDepthPipeline(bindings, caster, culledDraws); });
-    bool bound = false;
+    auto pipelineFor = [&](bool cullBackFaces) -> const gpu::Pipeline& {
+        return res.pipelines().get<gpu::GraphicsPipelineDesc>(
+            std::string(names[int(caster)]) + (culledDraws ? ".culled" : "") + (cullBackFaces ? ".backFacesCulled" : ""),
+            [&] { return describeShadowDepthPipeline(bindings, caster, culledDraws, cullBackFaces); });
+    };
+    const gpu::Pipeline* bound = nullptr;
     for (uint32_t v : views) {
         const ShadowMapView& view = scene.shadows.views[v];
         VkViewport viewport{float(view.x), float(view.y), float(view.size), float(view.size), 0.0f, 1.0f};
@@ -116,9 +119,10 @@ void recordViews(VkCommandBuffer cmd, const gpu::PassResources& res, const Frame
             const Draw& draw = scene.draws[view.draws[i]];
             if (casterOf(draw) != caster || !casts(draw)) continue;
             if (culled && culledInView(view, i) != culledDraws) continue;
-            if (!bound) {
+            const gpu::Pipeline& pipeline = pipelineFor(!view.cullBackFaces.empty() && view.cullBackFaces[i]);
+            if (&pipeline != bound) {
                 bindBindings(cmd, pipeline, bindings, res);
-                bound = true;
+                bound = &pipeline;
             }
             if (caster != Caster::Opaque) {
                 const MaterialTextures& textures = scene.materialTextures[draw.textures];
