@@ -480,12 +480,6 @@ double pointRadius(const PointsInput& p, size_t i) {
     return 0.5 * p.widths->values[p.widths->values.size() == 1 ? 0 : i];
 }
 
-double pointsMaxRadius(const PointsInput& p) {
-    double widest = 0.0;
-    for (size_t i = 0; i < p.points.size() / 3; ++i) widest = std::max(widest, pointRadius(p, i));
-    return widest;
-}
-
 uint64_t pointTriangleCount(const PointsInput& p) { return uint64_t(p.points.size() / 3) * 12u; }
 
 MeshGeometry pointImpostorBoxes(const PointsInput& p) {

@@ -85,7 +85,6 @@ struct PointsInput {
 std::string pointsProblem(const PointsInput& points);
 // Half the width of point `index` of validated points.
 double pointRadius(const PointsInput& points, size_t index);
-double pointsMaxRadius(const PointsInput& points);
 // Triangles of pointImpostorBoxes: 12 per point.
 uint64_t pointTriangleCount(const PointsInput& points);
 // Each validated point as the cube that bounds its sphere (8 corners, 12 outward triangles),

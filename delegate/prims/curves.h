@@ -1,8 +1,9 @@
 // The BasisCurves and Points rprims: meshes whose triangles the delegate makes from the curves'
 // control points and widths (tubes or ribbons, at a density chosen from their size on screen:
 // view_dependent_mesh.h) or the points' widths (sphere impostors: a bounding cube per point, which
-// the passes ray-cast), through curve_tessellation.h. Everything else — the transform over the shutter, deformation within it (velocities or
-// point samples), instancing through PointInstancer prototypes, materials — is the mesh's.
+// the passes ray-cast), through curve_tessellation.h. Everything else — the transform over the
+// shutter, deformation within it (velocities or point samples), instancing through PointInstancer
+// prototypes, materials — is the mesh's.
 #pragma once
 
 #include "delegate/curve_tessellation.h"
