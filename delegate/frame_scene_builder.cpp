@@ -229,6 +229,7 @@ private:
             if (prim->skipped()) continue;
             if (auto* m = dynamic_cast<const Material*>(prim.get())) {
                 materialIndex_[path] = static_cast<uint32_t>(materials_.size());
+                if (!m->diffusePrimvar().empty()) diffusePrimvars_[uint32_t(materials_.size())] = m->diffusePrimvar();
                 materials_.push_back(m->data());
                 passes::MaterialTextures textures = white;
                 for (uint32_t slot = 0; slot < passes::kMaterialTextureSlots; ++slot)
@@ -349,13 +350,21 @@ private:
         inst.primId = mesh.primId();
         inst.materialIndex = materialOf(mesh, part);
         // UsdPreviewSurface wins over displayColor; without a material, displayColor is the
-        // surface colour (as Hydra's fallback material).
-        if (!boundMaterial(part)) {
-            inst.flags |= passes::kInstanceVertexColor;
+        // surface colour (as Hydra's fallback material). A material whose diffuseColor reads a
+        // primvar takes the vertex colour the host served it as, and the instance's displayColor
+        // where that primvar is displayColor (Hydra's instance primvars).
+        const std::optional<uint32_t> bound = boundMaterial(part);
+        const auto read = bound ? diffusePrimvars_.find(*bound) : diffusePrimvars_.end();
+        const bool readsPrimvar = read != diffusePrimvars_.end();
+        if (!bound) inst.flags |= passes::kInstanceVertexColor;
+        if (readsPrimvar) inst.flags |= passes::kInstanceVertexAlbedo;
+        const bool instanceColor = display.color && (!bound || (readsPrimvar && read->second == "displayColor"));
+        const bool instanceOpacity = display.opacity && !bound;
+        if (instanceColor || instanceOpacity) {
             const std::array<float, 3> color = display.color.value_or(std::array<float, 3>{});
             inst.displayColor = {packHalves(color[0], color[1]), packHalves(color[2], display.opacity.value_or(1.0f))};
-            if (display.color) inst.flags |= passes::kInstanceDisplayColor;
-            if (display.opacity) inst.flags |= passes::kInstanceDisplayOpacity;
+            if (instanceColor) inst.flags |= passes::kInstanceDisplayColor;
+            if (instanceOpacity) inst.flags |= passes::kInstanceDisplayOpacity;
         }
         if (mesh.doubleSided()) inst.flags |= passes::kInstanceDoubleSided;
         // Hybrid AA, per object (seed 004): near the eye the view vector turns fastest as the camera
@@ -862,6 +871,7 @@ private:
     std::vector<passes::MaterialData> materials_;
     std::map<std::string, uint32_t> texturesOfMaterial_;
     std::map<std::string, uint32_t> materialIndex_;
+    std::map<uint32_t, std::string> diffusePrimvars_;  // material record -> the primvar its diffuseColor reads
     std::map<float, uint32_t> fallbackMaterials_{{1.0f, 0u}};
     std::vector<passes::LightData> lights_;
     std::vector<bool> lightCastsShadows_;

@@ -84,4 +84,16 @@ std::string resolveAssetPath(const std::string& asset, const usda::Attribute& at
 // feeds the first textured input's inputs:st, directly or through UsdTransform2d), or "st".
 std::string texturePrimvar(const usda::Stage& stage, const usda::Prim& surface);
 
+// A UsdPrimvarReader connected to a colour input of a UsdPreviewSurface (UsdPreviewSurface spec,
+// "Primvar Reading"): the prim's primvar named by inputs:varname is the input's value, and where
+// the prim has none, the reader's inputs:fallback (unauthored: zero).
+struct PrimvarRead {
+    std::string primvar;                        // "displayColor", "Cd"
+    const usda::Attribute* fallback = nullptr;  // the attribute holding inputs:fallback; null: zero
+};
+// The reader of three components (UsdPrimvarReader_float3, _normal, _point, _vector) connected to
+// `input` of `surface`, directly or through NodeGraph outputs; nullopt when the input reads none.
+std::optional<PrimvarRead> colorPrimvarRead(const usda::Stage& stage, const usda::Prim& surface,
+                                            const std::string& input);
+
 }  // namespace obscura::harness

@@ -91,13 +91,15 @@ bool isInstancedGeometry(const usda::Prim& prim) {
 // The dirty bit that makes the plugin read attribute `name` of a prim of plugin type `type` again:
 // the schema's (schemas/*.json), under the names this host serves it by: a light input also by
 // its name before UsdLux 21.02 (no "inputs:"), and a primvar the schema does not name may be the
-// one the material's textures read, served as primvars:st. 0: the plugin does not read it.
+// one the material's textures read, served as primvars:st, or the one its diffuseColor reads,
+// served as primvars:displayColor. 0: the plugin does not read it.
 ObscuraDirtyBits dirtyBitFor(const std::string& type, const std::string& name) {
     const schema::PrimSchema* prim = schema::findPrimSchema(type);
     if (!prim) return 0;
     const schema::AttributeSchema* attribute = schema::findAttribute(*prim, name);
     if (!attribute) attribute = schema::findAttribute(*prim, "inputs:" + name);
     if (!attribute && startsWith(name, "primvars:")) attribute = schema::findAttribute(*prim, "primvars:st");
+    if (!attribute && startsWith(name, "primvars:")) attribute = schema::findAttribute(*prim, "primvars:displayColor");
     return attribute ? attribute->dirtyBit : 0;
 }
 
@@ -370,6 +372,13 @@ bool sameAttribute(const usda::Attribute& a, const usda::Attribute& b) {
            sameValues(a.metadata, b.metadata);
 }
 
+// Whether two primvar readers give a prim the same value: one primvar, one fallback.
+bool sameRead(const std::optional<PrimvarRead>& a, const std::optional<PrimvarRead>& b) {
+    if (!a || !b) return !a && !b;
+    if (a->primvar != b->primvar || !a->fallback != !b->fallback) return false;
+    return !a->fallback || sameAttribute(*a->fallback, *b->fallback);
+}
+
 // Whether the attributes of `a`, `b` and of their descendants (a material's shaders) are the same.
 bool sameSubtree(const usda::Prim& a, const usda::Prim& b) {
     if (a.attributes.size() != b.attributes.size() || a.children.size() != b.children.size() || a.typeName != b.typeName)
@@ -425,6 +434,9 @@ ObscuraDirtyBits UsdSceneHost::changes(const std::string& type, const usda::Prim
     if ((purpose == nullptr) != (purposeBefore == nullptr) || (purpose && !sameAttribute(*purpose, *purposeBefore)))
         bits |= dirtyBitFor(type, "purpose");
     if (boundMaterial(prim) != previous.boundMaterial(before)) bits |= OBSCURA_DIRTY_MATERIAL_ID;
+    // The primvar served as displayColor follows the bound material's reader.
+    if (!sameRead(diffusePrimvarRead(prim), previous.diffusePrimvarRead(before)))
+        bits |= dirtyBitFor(type, "primvars:displayColor");
     // A mesh's material subsets are its children: their faces are its topology, their bindings its own.
     if (prim.typeName == "Mesh" || before.typeName == "Mesh") {
         const MaterialBindSubsets subsets = materialBindSubsets(prim, time);
@@ -649,6 +661,20 @@ const usda::Attribute* UsdSceneHost::resolveAttribute(const std::string& path, c
             primvar = mapped->second.mapping.stPrimvar;
         return stage_.primvar(*prim, "primvars:" + primvar);
     }
+    // A material whose diffuseColor reads a primvar gets it as the prim's displayColor, or the
+    // reader's fallback where the prim has none (unauthored: zero, the reader's default).
+    if (attribute == "primvars:displayColor")
+        if (auto read = diffusePrimvarRead(*prim)) {
+            static const usda::Attribute kZeroColor{"inputs:fallback", "float3", false, false, [] {
+                usda::Value zero;
+                zero.typeName = "float3";
+                zero.tupleSize = 3;
+                zero.numbers = std::vector<double>{0.0, 0.0, 0.0};
+                return zero;
+            }()};
+            const usda::Attribute* primvar = stage_.primvar(*prim, "primvars:" + read->primvar);
+            return primvar ? primvar : read->fallback ? read->fallback : &kZeroColor;
+        }
     // UsdGeomPointBased: primvars:normals, when authored, takes precedence over normals.
     if (attribute == "normals")
         if (const usda::Attribute* primvar = prim->attribute("primvars:normals")) return primvar;
@@ -796,6 +822,14 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         return value == mapped->values.end() ? OBSCURA_ERROR_NOT_FOUND : fill(value->second, out);
     }
     auto surface = surfaces_.find(path);
+    if (surface != surfaces_.end() && attribute == "obscura:diffuseColor:primvar") {
+        auto read = colorPrimvarRead(stage_, *surface->second, "inputs:diffuseColor");
+        if (!read) return OBSCURA_ERROR_NOT_FOUND;
+        usda::Value name;
+        name.typeName = "token";
+        name.strings = std::vector<std::string>{read->primvar};
+        return fill(name, out);
+    }
     if (surface != surfaces_.end() && startsWith(attribute, "obscura:")) {
         std::optional<MaterialProblem> problem;
         auto texture = flattenedTextureAttribute(stage_, *surface->second, attribute, time, &problem);
@@ -816,7 +850,10 @@ ObscuraStatus UsdSceneHost::authoredValue(const usda::Prim& prim, const std::str
     // Textures on the inputs the delegate textures arrive as obscura:<input>:* (getValue); an input
     // connected to an interface input (a Material's or NodeGraph's) takes its value there.
     bool textured = surfaces_.count(path) && isTexturableInput(attribute) && textureConnection(stage_, *a);
-    if (a->connection && !textured) {
+    // A diffuseColor that reads a primvar is served as obscura:diffuseColor:primvar.
+    bool readsPrimvar = attribute == "inputs:diffuseColor" && surfaces_.count(path) &&
+                        colorPrimvarRead(stage_, *surfaces_.at(path), attribute);
+    if (a->connection && !textured && !readsPrimvar) {
         if (const usda::Attribute* source = valueProducingAttribute(stage_, *a)) {
             a = source;
         } else {
@@ -834,6 +871,8 @@ ObscuraStatus UsdSceneHost::authoredValue(const usda::Prim& prim, const std::str
     auto value = a->evaluate(time);
     // A declared but valueless attribute is unauthored; an empty array is an authored value.
     if (!value || (value->empty() && !value->isArray)) return OBSCURA_ERROR_NOT_FOUND;
+    // A primvar reader's fallback served as displayColor: one constant element.
+    if (attribute == "primvars:displayColor") value->isArray = true;
     // Hosts resolve asset paths (a dome's inputs:texture:file).
     if (value->typeName == "asset")
         for (auto& asset : value->strings.edit())
@@ -1048,6 +1087,13 @@ ObscuraStatus UsdSceneHost::computedPurpose(const usda::Prim& prim, ObscuraValue
         return OBSCURA_ERROR_NOT_FOUND;
     }
     return fill(value, out);
+}
+
+std::optional<PrimvarRead> UsdSceneHost::diffusePrimvarRead(const usda::Prim& prim) const {
+    auto material = boundMaterial(prim);
+    auto surface = material ? surfaces_.find(*material) : surfaces_.end();
+    if (surface == surfaces_.end()) return std::nullopt;
+    return colorPrimvarRead(stage_, *surface->second, "inputs:diffuseColor");
 }
 
 std::optional<std::string> UsdSceneHost::boundMaterial(const usda::Prim& prim) const {

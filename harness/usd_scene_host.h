@@ -6,6 +6,7 @@
 #include "harness/delegate_message.h"
 #include "harness/materialx_surface.h"
 #include "harness/native_instancing.h"
+#include "harness/shading_network.h"
 #include "harness/usda/bezier_curves.h"
 #include "harness/usda/skinning.h"
 #include "harness/usda/stage.h"
@@ -181,6 +182,9 @@ private:
                                           ObscuraValue* out);
     // The material bound to a prim or its nearest ancestor with a binding.
     std::optional<std::string> boundMaterial(const usda::Prim& prim) const;
+    // The UsdPrimvarReader on inputs:diffuseColor of the UsdPreviewSurface bound to a prim; its
+    // primvar is served as the prim's primvars:displayColor (resolveAttribute).
+    std::optional<PrimvarRead> diffusePrimvarRead(const usda::Prim& prim) const;
     struct RenderBufferDesc {
         int width, height;
         std::string format;

@@ -81,12 +81,16 @@ static_assert(offsetof(CameraData, pad) == shader_layout::CameraData::pad0);
 // drawn without the jitter, its pixels keep no history and the edge AA passes smooth its edges.
 // kInstanceDisplayColor, kInstanceDisplayOpacity: its PointInstancer gives the instance its own
 // displayColor, displayOpacity (InstanceData::displayColor), in place of its mesh's.
+// kInstanceVertexColor: Hydra's fallback material (no material bound): the vertex colour is the
+// base colour, its alpha the opacity. kInstanceVertexAlbedo: the bound material's diffuseColor
+// reads a primvar, served as the vertex colour: its rgb is the base colour.
 enum InstanceFlags : uint32_t {
     kInstanceDoubleSided = 1u,
     kInstanceVertexColor = 2u,
     kInstanceEdgeAa = 4u,
     kInstanceDisplayColor = 8u,
     kInstanceDisplayOpacity = 16u,
+    kInstanceVertexAlbedo = 32u,
 };
 
 struct alignas(16) InstanceData {

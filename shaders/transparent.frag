@@ -92,7 +92,7 @@ void main() {
 #endif
     if ((inst.flags & INSTANCE_DOUBLE_SIDED) != 0u && backFacing) n = -n;
     n = perturbedNormal(n, tangent, mat.textures[TEXTURE_NORMAL], normalTexture, inUv);
-    vec3 albedo = (inst.flags & INSTANCE_VERTEX_COLOR) != 0u
+    vec3 albedo = albedoFromDisplayColor(inst)
                       ? displayColorOf(inst, inColor).rgb
                       : colorInput(mat.diffuseRoughness.rgb, mat.textures[TEXTURE_DIFFUSE], diffuseTexture, inUv);
     float roughness = scalarInput(mat.diffuseRoughness.a, mat.textures[TEXTURE_ROUGHNESS], roughnessTexture, inUv);

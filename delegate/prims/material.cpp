@@ -15,6 +15,7 @@ void Material::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
     float opacity = std::clamp(s.getFloat("inputs:opacity"), 0.0f, 1.0f);
     float opacityThreshold = std::clamp(s.getFloat("inputs:opacityThreshold"), 0.0f, 1.0f);
     data_.diffuseRoughness = {diffuse[0], diffuse[1], diffuse[2], roughness};
+    diffusePrimvar_ = s.getToken("obscura:diffuseColor:primvar");
     data_.emissiveMetallic = {emissive[0], emissive[1], emissive[2], metallic};
     // UsdPreviewSurface: occlusion is a fraction of the ambient light; outside [0, 1] it has no meaning.
     float occlusion = s.getFloat("inputs:occlusion");

@@ -20,6 +20,9 @@ public:
     // empty where the input is constant.
     const std::array<std::optional<BoundTexture>, passes::kMaterialTextureSlots>& textures() const { return textures_; }
     const std::vector<std::string>& warnings() const { return warnings_; }
+    // The primvar diffuseColor reads (obscura:diffuseColor:primvar): the host serves it as the
+    // bound prims' displayColor, their base colour in place of diffuseColor. Empty: none.
+    const std::string& diffusePrimvar() const { return diffusePrimvar_; }
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
@@ -27,6 +30,7 @@ private:
     passes::MaterialData data_{};
     std::array<std::optional<BoundTexture>, passes::kMaterialTextureSlots> textures_;
     std::vector<std::string> warnings_;
+    std::string diffusePrimvar_;
 };
 
 }  // namespace obscura::delegate

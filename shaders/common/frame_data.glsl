@@ -171,6 +171,8 @@ const uint INSTANCE_EDGE_AA = 4u;
 // Its PointInstancer's primvars give the instance its own displayColor, displayOpacity.
 const uint INSTANCE_DISPLAY_COLOR = 8u;
 const uint INSTANCE_DISPLAY_OPACITY = 16u;
+// The bound material's diffuseColor reads a primvar, served as the vertex colour.
+const uint INSTANCE_VERTEX_ALBEDO = 32u;
 
 // The displayColor (rgb) and displayOpacity (a) a surface without material shows: the vertex's,
 // unless the instance has its own (Hydra's instance primvars override the prototype's).
@@ -178,6 +180,11 @@ vec4 displayColorOf(InstanceData inst, vec4 vertexColor) {
     vec2 rg = unpackHalf2x16(inst.displayColor.x), ba = unpackHalf2x16(inst.displayColor.y);
     return vec4((inst.flags & INSTANCE_DISPLAY_COLOR) != 0u ? vec3(rg, ba.x) : vertexColor.rgb,
                 (inst.flags & INSTANCE_DISPLAY_OPACITY) != 0u ? ba.y : vertexColor.a);
+}
+
+// Whether the base colour is displayColorOf's rgb rather than the material's diffuseColor.
+bool albedoFromDisplayColor(InstanceData inst) {
+    return (inst.flags & (INSTANCE_VERTEX_COLOR | INSTANCE_VERTEX_ALBEDO)) != 0u;
 }
 
 #endif
