@@ -229,7 +229,8 @@ private:
             if (prim->skipped()) continue;
             if (auto* m = dynamic_cast<const Material*>(prim.get())) {
                 materialIndex_[path] = static_cast<uint32_t>(materials_.size());
-                if (!m->diffusePrimvar().empty()) diffusePrimvars_[uint32_t(materials_.size())] = m->diffusePrimvar();
+                if (!m->diffusePrimvar().empty() || !m->opacityPrimvar().empty())
+                    primvarReaders_[uint32_t(materials_.size())] = m;
                 materials_.push_back(m->data());
                 passes::MaterialTextures textures = white;
                 for (uint32_t slot = 0; slot < passes::kMaterialTextureSlots; ++slot)
@@ -287,6 +288,19 @@ private:
         auto it = texturesOfMaterial_.find(*part.material);
         return it == texturesOfMaterial_.end() ? 0 : it->second;
     }
+    // What a bound material reads from primvars the host serves as displayColor and
+    // displayOpacity (Material::diffusePrimvar, opacityPrimvar), and whether it reads those
+    // primvars themselves, which a PointInstancer may give each instance.
+    struct PrimvarReads {
+        bool color = false, opacity = false, displayColor = false, displayOpacity = false;
+    };
+    PrimvarReads primvarReads(std::optional<uint32_t> bound) const {
+        const auto it = bound ? primvarReaders_.find(*bound) : primvarReaders_.end();
+        if (it == primvarReaders_.end()) return {};
+        const Material& m = *it->second;
+        return {!m.diffusePrimvar().empty(), !m.opacityPrimvar().empty(), m.diffusePrimvar() == "displayColor",
+                m.opacityPrimvar() == "displayOpacity"};
+    }
     // Cut-outs (opacityThreshold) discard texels in the G-buffer and the shadow maps alike.
     bool hasCutout(const Mesh& mesh, const MaterialPart& part) {
         return materials_[materialOf(mesh, part)].opacity[1] > 0.0f;
@@ -296,7 +310,10 @@ private:
     // whose displayOpacity is below 1 anywhere.
     bool isTransparent(const Mesh& mesh, const MaterialPart& part) {
         const passes::MaterialData& m = materials_[materialOf(mesh, part)];
-        if (!boundMaterial(part) && mesh.hasTranslucentVertices()) return true;
+        // XXX: with an opacityThreshold the primvar's opacity cuts nothing out (blending only).
+        const bool readsOpacity = primvarReads(boundMaterial(part)).opacity && m.opacity[1] <= 0.0f;
+        if ((!boundMaterial(part) || readsOpacity) && mesh.hasTranslucentVertices()) return true;
+        if (readsOpacity && mesh.displayOpacity() < 1.0f) return true;
         return m.opacity[1] <= 0.0f && (m.opacity[0] < 1.0f || m.textures[passes::kTextureOpacity].sampled != 0);
     }
     const Mesh* drawable(const Prim& prim) const {
@@ -350,21 +367,24 @@ private:
         inst.primId = mesh.primId();
         inst.materialIndex = materialOf(mesh, part);
         // UsdPreviewSurface wins over displayColor; without a material, displayColor is the
-        // surface colour (as Hydra's fallback material). A material whose diffuseColor reads a
-        // primvar takes the vertex colour the host served it as, and the instance's displayColor
-        // where that primvar is displayColor (Hydra's instance primvars).
+        // surface colour (as Hydra's fallback material). A material whose diffuseColor (opacity)
+        // reads a primvar takes the vertex colour (alpha) the host served it as, and the
+        // instance's displayColor (displayOpacity) where that is the primvar read (Hydra's
+        // instance primvars).
         const std::optional<uint32_t> bound = boundMaterial(part);
-        const auto read = bound ? diffusePrimvars_.find(*bound) : diffusePrimvars_.end();
-        const bool readsPrimvar = read != diffusePrimvars_.end();
+        const PrimvarReads reads = primvarReads(bound);
         if (!bound) inst.flags |= passes::kInstanceVertexColor;
-        if (readsPrimvar) inst.flags |= passes::kInstanceVertexAlbedo;
-        const bool instanceColor = display.color && (!bound || (readsPrimvar && read->second == "displayColor"));
-        const bool instanceOpacity = display.opacity && !bound;
-        if (instanceColor || instanceOpacity) {
+        if (reads.color) inst.flags |= passes::kInstanceVertexAlbedo;
+        if (reads.opacity) inst.flags |= passes::kInstanceVertexOpacity;
+        const bool instanceColor = display.color && (!bound || reads.displayColor);
+        std::optional<float> opacity = display.opacity && (!bound || reads.displayOpacity) ? display.opacity : std::nullopt;
+        // A constant displayOpacity the reader is served stays out of the mesh's vertices.
+        if (!opacity && reads.opacity && mesh.displayOpacity() < 1.0f) opacity = mesh.displayOpacity();
+        if (instanceColor || opacity) {
             const std::array<float, 3> color = display.color.value_or(std::array<float, 3>{});
-            inst.displayColor = {packHalves(color[0], color[1]), packHalves(color[2], display.opacity.value_or(1.0f))};
+            inst.displayColor = {packHalves(color[0], color[1]), packHalves(color[2], opacity.value_or(1.0f))};
             if (instanceColor) inst.flags |= passes::kInstanceDisplayColor;
-            if (instanceOpacity) inst.flags |= passes::kInstanceDisplayOpacity;
+            if (opacity) inst.flags |= passes::kInstanceDisplayOpacity;
         }
         if (mesh.doubleSided()) inst.flags |= passes::kInstanceDoubleSided;
         // Hybrid AA, per object (seed 004): near the eye the view vector turns fastest as the camera
@@ -581,7 +601,8 @@ private:
                 for (const MaterialPart& part : mesh->materialParts()) {
                     scene_.draws.push_back(partDraw(*mesh, part, count, meshMotion.has_value() || placementsMove));
                     // Instances the instancers make translucent take the transparent pass, the draw whole.
-                    if (!boundMaterial(part) && translucent) scene_.draws.back().transparent = true;
+                    if ((!boundMaterial(part) || primvarReads(boundMaterial(part)).displayOpacity) && translucent)
+                        scene_.draws.back().transparent = true;
                     startImpostorNotes();
                     Aabb bounds;
                     for (size_t number = 0; number < count; ++number) {
@@ -871,7 +892,7 @@ private:
     std::vector<passes::MaterialData> materials_;
     std::map<std::string, uint32_t> texturesOfMaterial_;
     std::map<std::string, uint32_t> materialIndex_;
-    std::map<uint32_t, std::string> diffusePrimvars_;  // material record -> the primvar its diffuseColor reads
+    std::map<uint32_t, const Material*> primvarReaders_;  // material records whose inputs read primvars
     std::map<float, uint32_t> fallbackMaterials_{{1.0f, 0u}};
     std::vector<passes::LightData> lights_;
     std::vector<bool> lightCastsShadows_;

@@ -240,13 +240,15 @@ std::string texturePrimvar(const usda::Stage& stage, const usda::Prim& surface) 
     return "st";
 }
 
-std::optional<PrimvarRead> colorPrimvarRead(const usda::Stage& stage, const usda::Prim& surface,
-                                            const std::string& input) {
+std::optional<PrimvarRead> primvarRead(const usda::Stage& stage, const usda::Prim& surface, const std::string& input) {
     static const std::set<std::string, std::less<>> kColorReaders = {
         "UsdPrimvarReader_float3", "UsdPrimvarReader_normal", "UsdPrimvarReader_point", "UsdPrimvarReader_vector"};
+    static const std::set<std::string, std::less<>> kScalarReaders = {"UsdPrimvarReader_float"};
+    const auto& readers = input == "inputs:diffuseColor" ? kColorReaders : kScalarReaders;
+    if (input != "inputs:diffuseColor" && input != "inputs:opacity") return std::nullopt;
     const usda::Attribute* connected = surface.attribute(input);
     const usda::Prim* reader = connected ? connectedShader(stage, *connected) : nullptr;
-    if (!reader || !kColorReaders.count(shaderId(*reader))) return std::nullopt;
+    if (!reader || !readers.count(shaderId(*reader))) return std::nullopt;
     // varname names a primvar, not something that varies over time.
     auto name = evaluateInput(stage, *reader, "inputs:varname", 0.0);
     if (!name || name->strings.empty() || name->strings[0].empty()) return std::nullopt;

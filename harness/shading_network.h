@@ -91,9 +91,10 @@ struct PrimvarRead {
     std::string primvar;                        // "displayColor", "Cd"
     const usda::Attribute* fallback = nullptr;  // the attribute holding inputs:fallback; null: zero
 };
-// The reader of three components (UsdPrimvarReader_float3, _normal, _point, _vector) connected to
-// `input` of `surface`, directly or through NodeGraph outputs; nullopt when the input reads none.
-std::optional<PrimvarRead> colorPrimvarRead(const usda::Stage& stage, const usda::Prim& surface,
-                                            const std::string& input);
+// The reader connected to `input` of `surface`, directly or through NodeGraph outputs, when it
+// gives the input's type: three components (UsdPrimvarReader_float3, _normal, _point, _vector)
+// for "inputs:diffuseColor", one (UsdPrimvarReader_float) for "inputs:opacity"; nullopt when the
+// input reads none.
+std::optional<PrimvarRead> primvarRead(const usda::Stage& stage, const usda::Prim& surface, const std::string& input);
 
 }  // namespace obscura::harness

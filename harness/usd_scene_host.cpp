@@ -61,6 +61,25 @@ const std::map<std::pair<std::string, std::string>, std::string> kConvertedInput
     {{"TetMesh", "surfaceFaceVertexIndices"}, "faceVertexIndices"},
 };
 
+// The primvars a prim is served from the UsdPrimvarReader on an input of its material, by the name
+// the plugin reads them under, with the reader's default where neither the prim nor the reader has
+// a value (UsdPreviewSurface spec: zero).
+struct ServedRead {
+    std::string input;
+    usda::Attribute zero;
+};
+usda::Attribute zeroFallback(const char* type, int components) {
+    usda::Value zero;
+    zero.typeName = type;
+    zero.tupleSize = components;
+    zero.numbers = std::vector<double>(size_t(components), 0.0);
+    return usda::Attribute{"inputs:fallback", type, false, false, std::move(zero)};
+}
+const std::map<std::string, ServedRead> kServedReads = {
+    {"primvars:displayColor", {"inputs:diffuseColor", zeroFallback("float3", 3)}},
+    {"primvars:displayOpacity", {"inputs:opacity", zeroFallback("float", 1)}},
+};
+
 bool isConvertedCurves(const std::string& type) { return type == "NurbsCurves" || type == "HermiteCurves"; }
 
 // Types that organise a scene and are not drawn themselves.
@@ -435,8 +454,9 @@ ObscuraDirtyBits UsdSceneHost::changes(const std::string& type, const usda::Prim
         bits |= dirtyBitFor(type, "purpose");
     if (boundMaterial(prim) != previous.boundMaterial(before)) bits |= OBSCURA_DIRTY_MATERIAL_ID;
     // The primvar served as displayColor follows the bound material's reader.
-    if (!sameRead(diffusePrimvarRead(prim), previous.diffusePrimvarRead(before)))
-        bits |= dirtyBitFor(type, "primvars:displayColor");
+    for (const auto& [served, read] : kServedReads)
+        if (!sameRead(boundPrimvarRead(prim, read.input), previous.boundPrimvarRead(before, read.input)))
+            bits |= dirtyBitFor(type, served);
     // A mesh's material subsets are its children: their faces are its topology, their bindings its own.
     if (prim.typeName == "Mesh" || before.typeName == "Mesh") {
         const MaterialBindSubsets subsets = materialBindSubsets(prim, time);
@@ -661,19 +681,13 @@ const usda::Attribute* UsdSceneHost::resolveAttribute(const std::string& path, c
             primvar = mapped->second.mapping.stPrimvar;
         return stage_.primvar(*prim, "primvars:" + primvar);
     }
-    // A material whose diffuseColor reads a primvar gets it as the prim's displayColor, or the
-    // reader's fallback where the prim has none (unauthored: zero, the reader's default).
-    if (attribute == "primvars:displayColor")
-        if (auto read = diffusePrimvarRead(*prim)) {
-            static const usda::Attribute kZeroColor{"inputs:fallback", "float3", false, false, [] {
-                usda::Value zero;
-                zero.typeName = "float3";
-                zero.tupleSize = 3;
-                zero.numbers = std::vector<double>{0.0, 0.0, 0.0};
-                return zero;
-            }()};
+    // A material whose diffuseColor (opacity) reads a primvar gets it as the prim's displayColor
+    // (displayOpacity), or the reader's fallback where the prim has none (unauthored: zero, the
+    // reader's default).
+    if (const auto served = kServedReads.find(attribute); served != kServedReads.end())
+        if (auto read = boundPrimvarRead(*prim, served->second.input)) {
             const usda::Attribute* primvar = stage_.primvar(*prim, "primvars:" + read->primvar);
-            return primvar ? primvar : read->fallback ? read->fallback : &kZeroColor;
+            return primvar ? primvar : read->fallback ? read->fallback : &served->second.zero;
         }
     // UsdGeomPointBased: primvars:normals, when authored, takes precedence over normals.
     if (attribute == "normals")
@@ -822,8 +836,9 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         return value == mapped->values.end() ? OBSCURA_ERROR_NOT_FOUND : fill(value->second, out);
     }
     auto surface = surfaces_.find(path);
-    if (surface != surfaces_.end() && attribute == "obscura:diffuseColor:primvar") {
-        auto read = colorPrimvarRead(stage_, *surface->second, "inputs:diffuseColor");
+    if (surface != surfaces_.end() && (attribute == "obscura:diffuseColor:primvar" || attribute == "obscura:opacity:primvar")) {
+        // "obscura:<input>:primvar"
+        auto read = primvarRead(stage_, *surface->second, "inputs:" + attribute.substr(8, attribute.size() - 16));
         if (!read) return OBSCURA_ERROR_NOT_FOUND;
         usda::Value name;
         name.typeName = "token";
@@ -850,9 +865,8 @@ ObscuraStatus UsdSceneHost::authoredValue(const usda::Prim& prim, const std::str
     // Textures on the inputs the delegate textures arrive as obscura:<input>:* (getValue); an input
     // connected to an interface input (a Material's or NodeGraph's) takes its value there.
     bool textured = surfaces_.count(path) && isTexturableInput(attribute) && textureConnection(stage_, *a);
-    // A diffuseColor that reads a primvar is served as obscura:diffuseColor:primvar.
-    bool readsPrimvar = attribute == "inputs:diffuseColor" && surfaces_.count(path) &&
-                        colorPrimvarRead(stage_, *surfaces_.at(path), attribute);
+    // A diffuseColor or opacity that reads a primvar is served as obscura:<input>:primvar.
+    bool readsPrimvar = surfaces_.count(path) && primvarRead(stage_, *surfaces_.at(path), attribute);
     if (a->connection && !textured && !readsPrimvar) {
         if (const usda::Attribute* source = valueProducingAttribute(stage_, *a)) {
             a = source;
@@ -871,8 +885,8 @@ ObscuraStatus UsdSceneHost::authoredValue(const usda::Prim& prim, const std::str
     auto value = a->evaluate(time);
     // A declared but valueless attribute is unauthored; an empty array is an authored value.
     if (!value || (value->empty() && !value->isArray)) return OBSCURA_ERROR_NOT_FOUND;
-    // A primvar reader's fallback served as displayColor: one constant element.
-    if (attribute == "primvars:displayColor") value->isArray = true;
+    // A primvar reader's fallback served as displayColor or displayOpacity: one constant element.
+    if (kServedReads.count(attribute)) value->isArray = true;
     // Hosts resolve asset paths (a dome's inputs:texture:file).
     if (value->typeName == "asset")
         for (auto& asset : value->strings.edit())
@@ -1089,11 +1103,11 @@ ObscuraStatus UsdSceneHost::computedPurpose(const usda::Prim& prim, ObscuraValue
     return fill(value, out);
 }
 
-std::optional<PrimvarRead> UsdSceneHost::diffusePrimvarRead(const usda::Prim& prim) const {
+std::optional<PrimvarRead> UsdSceneHost::boundPrimvarRead(const usda::Prim& prim, const std::string& input) const {
     auto material = boundMaterial(prim);
     auto surface = material ? surfaces_.find(*material) : surfaces_.end();
     if (surface == surfaces_.end()) return std::nullopt;
-    return colorPrimvarRead(stage_, *surface->second, "inputs:diffuseColor");
+    return primvarRead(stage_, *surface->second, input);
 }
 
 std::optional<std::string> UsdSceneHost::boundMaterial(const usda::Prim& prim) const {

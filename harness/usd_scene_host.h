@@ -182,9 +182,10 @@ private:
                                           ObscuraValue* out);
     // The material bound to a prim or its nearest ancestor with a binding.
     std::optional<std::string> boundMaterial(const usda::Prim& prim) const;
-    // The UsdPrimvarReader on inputs:diffuseColor of the UsdPreviewSurface bound to a prim; its
-    // primvar is served as the prim's primvars:displayColor (resolveAttribute).
-    std::optional<PrimvarRead> diffusePrimvarRead(const usda::Prim& prim) const;
+    // The UsdPrimvarReader on `input` (inputs:diffuseColor, inputs:opacity) of the UsdPreviewSurface
+    // bound to a prim; its primvar is served as the prim's primvars:displayColor, displayOpacity
+    // (resolveAttribute).
+    std::optional<PrimvarRead> boundPrimvarRead(const usda::Prim& prim, const std::string& input) const;
     struct RenderBufferDesc {
         int width, height;
         std::string format;

@@ -83,7 +83,9 @@ static_assert(offsetof(CameraData, pad) == shader_layout::CameraData::pad0);
 // displayColor, displayOpacity (InstanceData::displayColor), in place of its mesh's.
 // kInstanceVertexColor: Hydra's fallback material (no material bound): the vertex colour is the
 // base colour, its alpha the opacity. kInstanceVertexAlbedo: the bound material's diffuseColor
-// reads a primvar, served as the vertex colour: its rgb is the base colour.
+// reads a primvar, served as the vertex colour: its rgb is the base colour. kInstanceVertexOpacity:
+// its opacity reads one, served as displayOpacity: the vertex alpha (or the instance's) is the
+// opacity.
 enum InstanceFlags : uint32_t {
     kInstanceDoubleSided = 1u,
     kInstanceVertexColor = 2u,
@@ -91,6 +93,7 @@ enum InstanceFlags : uint32_t {
     kInstanceDisplayColor = 8u,
     kInstanceDisplayOpacity = 16u,
     kInstanceVertexAlbedo = 32u,
+    kInstanceVertexOpacity = 64u,
 };
 
 struct alignas(16) InstanceData {

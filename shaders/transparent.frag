@@ -99,9 +99,10 @@ void main() {
     float metallic = scalarInput(mat.emissiveMetallic.a, mat.textures[TEXTURE_METALLIC], metallicTexture, inUv);
     float opacity = scalarInput(mat.opacity.x, mat.textures[TEXTURE_OPACITY], opacityTexture, inUv);
     // Hydra's fallback material: displayOpacity varying over the prim (the constant one is the
-    // material record's), or the instance's own, which replaces both.
+    // material record's), or the instance's own, which replaces both; a material whose opacity
+    // reads a primvar (its record's opacity then 1) takes the vertex's or the instance's.
     if ((inst.flags & INSTANCE_DISPLAY_OPACITY) != 0u) opacity = displayColorOf(inst, inColor).a;
-    else if ((inst.flags & INSTANCE_VERTEX_COLOR) != 0u) opacity *= inColor.a;
+    else if ((inst.flags & (INSTANCE_VERTEX_COLOR | INSTANCE_VERTEX_OPACITY)) != 0u) opacity *= inColor.a;
     float occlusion = scalarInput(mat.opacity.z, mat.textures[TEXTURE_OCCLUSION], occlusionTexture, inUv);
     // The same principal lobe as opaque surfaces (the G-buffer pass), so a material looks alike
     // at any opacity.

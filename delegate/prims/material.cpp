@@ -21,7 +21,9 @@ void Material::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
     float occlusion = s.getFloat("inputs:occlusion");
     if (!(occlusion >= 0.0f && occlusion <= 1.0f))
         throw PrimDataError(s.path() + ": inputs:occlusion must be in [0, 1]");
-    data_.opacity = {opacity, opacityThreshold, occlusion, 0.0f};
+    // An opacity read from a primvar replaces the authored one (the prim's, in its vertices).
+    opacityPrimvar_ = s.getToken("obscura:opacity:primvar");
+    data_.opacity = {opacityPrimvar_.empty() ? opacity : 1.0f, opacityThreshold, occlusion, 0.0f};
     auto specular = s.getFloat3("inputs:specularColor");
     float ior = s.getFloat("inputs:ior");
     if (!(ior >= 1.0f)) throw PrimDataError(s.path() + ": inputs:ior must be at least 1");

@@ -23,6 +23,8 @@ public:
     // The primvar diffuseColor reads (obscura:diffuseColor:primvar): the host serves it as the
     // bound prims' displayColor, their base colour in place of diffuseColor. Empty: none.
     const std::string& diffusePrimvar() const { return diffusePrimvar_; }
+    // The same for opacity (obscura:opacity:primvar): served as displayOpacity, the opacity.
+    const std::string& opacityPrimvar() const { return opacityPrimvar_; }
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
@@ -31,6 +33,7 @@ private:
     std::array<std::optional<BoundTexture>, passes::kMaterialTextureSlots> textures_;
     std::vector<std::string> warnings_;
     std::string diffusePrimvar_;
+    std::string opacityPrimvar_;
 };
 
 }  // namespace obscura::delegate

@@ -173,6 +173,8 @@ const uint INSTANCE_DISPLAY_COLOR = 8u;
 const uint INSTANCE_DISPLAY_OPACITY = 16u;
 // The bound material's diffuseColor reads a primvar, served as the vertex colour.
 const uint INSTANCE_VERTEX_ALBEDO = 32u;
+// The bound material's opacity reads a primvar, served as displayOpacity (the vertex alpha).
+const uint INSTANCE_VERTEX_OPACITY = 64u;
 
 // The displayColor (rgb) and displayOpacity (a) a surface without material shows: the vertex's,
 // unless the instance has its own (Hydra's instance primvars override the prototype's).

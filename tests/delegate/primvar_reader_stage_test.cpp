@@ -1,7 +1,8 @@
-// Materials whose diffuseColor reads a primvar (UsdPreviewSurface spec, "Primvar Reading"), through
-// the harness from USD text: a UsdPrimvarReader_float3 on diffuseColor gives each prim bound to
-// the material the primvar it names (vertex colours, as DCCs export them), the reader's fallback
-// where a prim has none, and a PointInstancer's displayColor per instance.
+// Materials whose diffuseColor or opacity reads a primvar (UsdPreviewSurface spec, "Primvar
+// Reading"), through the harness from USD text: a UsdPrimvarReader_float3 on diffuseColor (a
+// UsdPrimvarReader_float on opacity) gives each prim bound to the material the primvar it names
+// (vertex colours and alphas, as DCCs export them), the reader's fallback where a prim has none,
+// and a PointInstancer's displayColor (displayOpacity) per instance.
 #include "tests/delegate/hosted_stage.h"
 #include "tests/delegate/render_fixture.h"
 
@@ -138,6 +139,76 @@ TEST(PrimvarReaderStage, EditingTheReaderRecoloursTheBoundPrims) {
                   "#usda 1.0\n" + usdaCamera() + readerMaterial("Cd") + quad("Quad", -0.5, primvars), "reader.usda")),
               2u);
     expectColour(albedoAt(scene.renderAlbedo(), kLeft, kRow), {0.05f, 0.05f, 0.8f}, "Cd after the edit");
+}
+
+// A material whose opacity reads a primvar (its own authored 0.9 replaced), red and matte.
+std::string opacityReaderMaterial(const std::string& varname, const std::string& fallback = "") {
+    return "def Material \"Look\"\n{\n"
+           "    token outputs:surface.connect = </Look/Surface.outputs:surface>\n"
+           "    def Shader \"Surface\"\n    {\n"
+           "        uniform token info:id = \"UsdPreviewSurface\"\n"
+           "        color3f inputs:diffuseColor = (0.8, 0.05, 0.05)\n"
+           "        float inputs:opacity = 0.9\n"
+           "        float inputs:opacity.connect = </Look/Alpha.outputs:result>\n"
+           "        token outputs:surface\n    }\n"
+           "    def Shader \"Alpha\"\n    {\n"
+           "        uniform token info:id = \"UsdPrimvarReader_float\"\n"
+           "        string inputs:varname = \"" + varname + "\"\n" + fallback +
+           "        float outputs:result\n    }\n}\n";
+}
+
+// The colour AOV's alpha at a pixel: the opacity of a transparent surface over nothing.
+float alphaAt(const std::vector<float>& color, int x, int y) { return color.at((size_t(y) * kWidth + size_t(x)) * 4 + 3); }
+
+TEST(PrimvarReaderStage, OpacityReadsEachPrimsDisplayOpacity) {
+    HostedStage scene(usda::Stage::openFromString(
+        "#usda 1.0\n" + usdaCamera() + opacityReaderMaterial("displayOpacity") +
+            quad("Half", -0.5, "    float[] primvars:displayOpacity = [0.5]\n") +
+            quad("Whole", 0.5, "    float[] primvars:displayOpacity = [1]\n"),
+        "reader.usda"));
+    std::vector<float> color = scene.renderAov("color", 4);
+    EXPECT_NEAR(alphaAt(color, kLeft, kRow), 0.5f, 1.0f / 255.0f);
+    EXPECT_NEAR(alphaAt(color, kRight, kRow), 1.0f, 1.0f / 255.0f);
+    EXPECT_FALSE(scene.warned("not supported"));
+}
+
+// Opacity of another name, varying over the quad (0.2 at its left edge, 1 at its right), and the
+// reader's fallback (unauthored: zero) on a quad without it.
+TEST(PrimvarReaderStage, OpacityOfAnyPrimvarOrTheFallback) {
+    HostedStage scene(usda::Stage::openFromString(
+        "#usda 1.0\n" + usdaCamera() + opacityReaderMaterial("alpha") +
+            quad("Ramp", -0.5,
+                 "    float[] primvars:alpha = [0.2, 1, 1, 0.2] (\n        interpolation = \"vertex\"\n    )\n") +
+            quad("Without", 0.5, ""),
+        "reader.usda"));
+    std::vector<float> color = scene.renderAov("color", 4);
+    EXPECT_NEAR(alphaAt(color, kLeft, kRow), 0.6f, 0.02f);
+    EXPECT_LT(alphaAt(color, kLeft - 10, kRow), 0.4f);
+    EXPECT_GT(alphaAt(color, kLeft + 10, kRow), 0.8f);
+    EXPECT_NEAR(alphaAt(color, kRight, kRow), 0.0f, 1.0f / 255.0f);
+
+    HostedStage withFallback(usda::Stage::openFromString(
+        "#usda 1.0\n" + usdaCamera() + opacityReaderMaterial("alpha", "            float inputs:fallback = 0.3\n") +
+            quad("Without", 0.5, ""),
+        "reader.usda"));
+    EXPECT_NEAR(alphaAt(withFallback.renderAov("color", 4), kRight, kRow), 0.3f, 1.0f / 255.0f);
+}
+
+// Hydra's instance primvars reach a material whose opacity reads displayOpacity.
+TEST(PrimvarReaderStage, InstanceOpacityThroughTheReader) {
+    const std::string text =
+        "#usda 1.0\n" + usdaCamera() + opacityReaderMaterial("displayOpacity") +
+        "def PointInstancer \"Instancer\"\n{\n"
+        "    rel prototypes = [</Instancer/Prototypes/Quad>]\n"
+        "    int[] protoIndices = [0, 0]\n"
+        "    point3f[] positions = [(-0.5, 0, 0), (0.5, 0, 0)]\n"
+        "    float[] primvars:displayOpacity = [0.25, 1] (\n        interpolation = \"vertex\"\n    )\n"
+        "    def Scope \"Prototypes\"\n    {\n" +
+        quad("Quad", 0.0, "    float[] primvars:displayOpacity = [0.6]\n") + "    }\n}\n";
+    HostedStage scene(usda::Stage::openFromString(text, "reader.usda"));
+    std::vector<float> color = scene.renderAov("color", 4);
+    EXPECT_NEAR(alphaAt(color, kLeft, kRow), 0.25f, 1.0f / 255.0f);
+    EXPECT_NEAR(alphaAt(color, kRight, kRow), 1.0f, 1.0f / 255.0f);
 }
 
 // Without a reader, the material's diffuseColor wins over displayColor, as before.
