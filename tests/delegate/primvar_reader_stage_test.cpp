@@ -9,30 +9,44 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <memory>
 #include <string>
+#include <variant>
 
 namespace obscura::test {
 namespace {
 
 using Rgb = std::array<float, 3>;
 
-// A material whose diffuseColor (authored blue, which the reader replaces) reads `varname`,
-// through a NodeGraph output as real assets connect it; `fallback` is the reader's line, if any.
-std::string readerMaterial(const std::string& varname, const std::string& fallback = "") {
+// A material whose `input` (a declaration, "color3f inputs:diffuseColor") is authored `authored`,
+// which the connection replaces, and connected through a NodeGraph output, as real assets connect
+// it, to a primvar reader `readerId` of `varname`; `fallback` is the reader's line, if any.
+std::string readerLook(const std::string& input, const std::string& authored, const std::string& readerId,
+                       const std::string& varname, const std::string& fallback) {
+    const std::string type = input.substr(0, input.find(' '));
     return "def Material \"Look\"\n{\n"
            "    token outputs:surface.connect = </Look/Surface.outputs:surface>\n"
            "    def Shader \"Surface\"\n    {\n"
            "        uniform token info:id = \"UsdPreviewSurface\"\n"
-           "        color3f inputs:diffuseColor = (0.05, 0.05, 0.9)\n"
-           "        color3f inputs:diffuseColor.connect = </Look/Colours.outputs:colour>\n"
-           "        float inputs:roughness = 0.7\n"
+           "        " + input + " = " + authored + "\n"
+           "        " + input + ".connect = </Look/Primvars.outputs:value>\n"
            "        token outputs:surface\n    }\n"
-           "    def NodeGraph \"Colours\"\n    {\n"
-           "        color3f outputs:colour.connect = </Look/Colours/Reader.outputs:result>\n"
+           "    def NodeGraph \"Primvars\"\n    {\n"
+           "        " + type + " outputs:value.connect = </Look/Primvars/Reader.outputs:result>\n"
            "        def Shader \"Reader\"\n        {\n"
-           "            uniform token info:id = \"UsdPrimvarReader_float3\"\n"
+           "            uniform token info:id = \"" + readerId + "\"\n"
            "            string inputs:varname = \"" + varname + "\"\n" + fallback +
-           "            float3 outputs:result\n        }\n    }\n}\n";
+           "            " + type + " outputs:result\n        }\n    }\n}\n";
+}
+
+// diffuseColor (authored blue) read from `varname`.
+std::string readerMaterial(const std::string& varname, const std::string& fallback = "") {
+    return readerLook("color3f inputs:diffuseColor", "(0.05, 0.05, 0.9)", "UsdPrimvarReader_float3", varname, fallback);
+}
+
+// opacity (authored 0.9) read from `varname`; the diffuse colour is the default grey.
+std::string opacityReaderMaterial(const std::string& varname, const std::string& fallback = "") {
+    return readerLook("float inputs:opacity", "0.9", "UsdPrimvarReader_float", varname, fallback);
 }
 
 // A quad bound to the material, centred at x (in the delegate tests' view, [-1.05, 1.05]^2 at
@@ -48,6 +62,18 @@ std::string quad(const std::string& name, double x, const std::string& primvars)
            "    rel material:binding = </Look>\n}\n";
 }
 
+// Two instances of a quad bound to `material` (at x = -0.5 and 0.5), with the instancer's and the
+// quad's primvar lines.
+std::string instancedQuads(const std::string& material, const std::string& instancePrimvars,
+                           const std::string& quadPrimvars) {
+    return material +
+           "def PointInstancer \"Instancer\"\n{\n"
+           "    rel prototypes = [</Instancer/Prototypes/Quad>]\n"
+           "    int[] protoIndices = [0, 0]\n"
+           "    point3f[] positions = [(-0.5, 0, 0), (0.5, 0, 0)]\n" +
+           instancePrimvars + "    def Scope \"Prototypes\"\n    {\n" + quad("Quad", 0.0, quadPrimvars) + "    }\n}\n";
+}
+
 // The albedo at a pixel of the 64x64 view (render_fixture.h).
 Rgb albedoAt(const std::vector<float>& albedo, int x, int y) {
     const size_t i = (size_t(y) * kWidth + size_t(x)) * 3;
@@ -58,15 +84,18 @@ void expectColour(const Rgb& seen, const Rgb& expected, const std::string& where
     for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(seen[c], expected[c], 0.02f) << where << ", channel " << c;
 }
 
+// A stage of `body` (a material, quads) under the delegate tests' camera.
+std::variant<std::unique_ptr<usda::Stage>, usda::Error> stageOf(const std::string& body) {
+    return usda::Stage::openFromString("#usda 1.0\n" + usdaCamera() + body, "reader.usda");
+}
+
 // Quads at x = -0.5 and 0.5: pixel columns 16 and 48 of row 32.
 constexpr int kLeft = 16, kRight = 48, kRow = 32;
 
 TEST(PrimvarReaderStage, DiffuseColorReadsEachPrimsDisplayColor) {
-    HostedStage scene(usda::Stage::openFromString(
-        "#usda 1.0\n" + usdaCamera() + readerMaterial("displayColor") +
+    HostedStage scene(stageOf(readerMaterial("displayColor") +
             quad("Red", -0.5, "    color3f[] primvars:displayColor = [(0.8, 0.05, 0.05)]\n") +
-            quad("Green", 0.5, "    color3f[] primvars:displayColor = [(0.05, 0.7, 0.1)]\n"),
-        "reader.usda"));
+            quad("Green", 0.5, "    color3f[] primvars:displayColor = [(0.05, 0.7, 0.1)]\n")));
     std::vector<float> albedo = scene.renderAlbedo();
     expectColour(albedoAt(albedo, kLeft, kRow), {0.8f, 0.05f, 0.05f}, "red quad");
     expectColour(albedoAt(albedo, kRight, kRow), {0.05f, 0.7f, 0.1f}, "green quad");
@@ -77,13 +106,11 @@ TEST(PrimvarReaderStage, DiffuseColorReadsEachPrimsDisplayColor) {
 // Vertex colours of another name (Houdini's Cd), interpolated across the face: the quad's left
 // edge red, its right edge green, so its centre is their mean.
 TEST(PrimvarReaderStage, AnyPrimvarNameAndInterpolation) {
-    HostedStage scene(usda::Stage::openFromString(
-        "#usda 1.0\n" + usdaCamera() + readerMaterial("Cd") +
+    HostedStage scene(stageOf(readerMaterial("Cd") +
             quad("Ramp", -0.5,
                  "    color3f[] primvars:displayColor = [(0.9, 0.9, 0.9)]\n"
                  "    color3f[] primvars:Cd = [(0.8, 0, 0), (0, 0.8, 0), (0, 0.8, 0), (0.8, 0, 0)] (\n"
-                 "        interpolation = \"vertex\"\n    )\n"),
-        "reader.usda"));
+                 "        interpolation = \"vertex\"\n    )\n")));
     std::vector<float> albedo = scene.renderAlbedo();
     expectColour(albedoAt(albedo, kLeft, kRow), {0.4f, 0.4f, 0.0f}, "centre of the ramp");
     const Rgb nearLeft = albedoAt(albedo, kLeft - 10, kRow), nearRight = albedoAt(albedo, kLeft + 10, kRow);
@@ -96,32 +123,23 @@ TEST(PrimvarReaderStage, AnyPrimvarNameAndInterpolation) {
 // A prim without the primvar takes the reader's fallback; without one authored, the reader's
 // default, zero: never the material's authored diffuseColor, which the connection replaces.
 TEST(PrimvarReaderStage, WithoutThePrimvarTheReadersFallback) {
-    HostedStage withFallback(usda::Stage::openFromString(
-        "#usda 1.0\n" + usdaCamera() + readerMaterial("Cd", "            float3 inputs:fallback = (0.1, 0.6, 0.3)\n") +
-            quad("Plain", -0.5, "") + quad("Coloured", 0.5, "    color3f[] primvars:Cd = [(0.7, 0.2, 0.5)]\n"),
-        "reader.usda"));
+    HostedStage withFallback(stageOf(readerMaterial("Cd", "            float3 inputs:fallback = (0.1, 0.6, 0.3)\n") +
+            quad("Plain", -0.5, "") + quad("Coloured", 0.5, "    color3f[] primvars:Cd = [(0.7, 0.2, 0.5)]\n")));
     std::vector<float> albedo = withFallback.renderAlbedo();
     expectColour(albedoAt(albedo, kLeft, kRow), {0.1f, 0.6f, 0.3f}, "fallback");
     expectColour(albedoAt(albedo, kRight, kRow), {0.7f, 0.2f, 0.5f}, "primvar");
 
-    HostedStage withoutFallback(usda::Stage::openFromString(
-        "#usda 1.0\n" + usdaCamera() + readerMaterial("Cd") + quad("Plain", -0.5, ""), "reader.usda"));
+    HostedStage withoutFallback(stageOf(readerMaterial("Cd") + quad("Plain", -0.5, "")));
     expectColour(albedoAt(withoutFallback.renderAlbedo(), kLeft, kRow), {0.0f, 0.0f, 0.0f}, "the reader's default");
 }
 
 // Hydra's instance primvars reach a material that reads displayColor: each instance its own.
 TEST(PrimvarReaderStage, InstancesColourThroughTheReader) {
-    const std::string text =
-        "#usda 1.0\n" + usdaCamera() + readerMaterial("displayColor") +
-        "def PointInstancer \"Instancer\"\n{\n"
-        "    rel prototypes = [</Instancer/Prototypes/Quad>]\n"
-        "    int[] protoIndices = [0, 0]\n"
-        "    point3f[] positions = [(-0.5, 0, 0), (0.5, 0, 0)]\n"
-        "    color3f[] primvars:displayColor = [(0.05, 0.8, 0.05), (0.05, 0.05, 0.8)] (\n"
-        "        interpolation = \"vertex\"\n    )\n"
-        "    def Scope \"Prototypes\"\n    {\n" +
-        quad("Quad", 0.0, "    color3f[] primvars:displayColor = [(0.8, 0.05, 0.05)]\n") + "    }\n}\n";
-    HostedStage scene(usda::Stage::openFromString(text, "reader.usda"));
+    HostedStage scene(stageOf(
+        instancedQuads(readerMaterial("displayColor"),
+                       "    color3f[] primvars:displayColor = [(0.05, 0.8, 0.05), (0.05, 0.05, 0.8)] (\n"
+                       "        interpolation = \"vertex\"\n    )\n",
+                       "    color3f[] primvars:displayColor = [(0.8, 0.05, 0.05)]\n")));
     std::vector<float> albedo = scene.renderAlbedo();
     expectColour(albedoAt(albedo, kLeft, kRow), {0.05f, 0.8f, 0.05f}, "first instance");
     expectColour(albedoAt(albedo, kRight, kRow), {0.05f, 0.05f, 0.8f}, "second instance");
@@ -132,40 +150,20 @@ TEST(PrimvarReaderStage, InstancesColourThroughTheReader) {
 TEST(PrimvarReaderStage, EditingTheReaderRecoloursTheBoundPrims) {
     const std::string primvars =
         "    color3f[] primvars:displayColor = [(0.8, 0.05, 0.05)]\n    color3f[] primvars:Cd = [(0.05, 0.05, 0.8)]\n";
-    HostedStage scene(usda::Stage::openFromString(
-        "#usda 1.0\n" + usdaCamera() + readerMaterial("displayColor") + quad("Quad", -0.5, primvars), "reader.usda"));
+    HostedStage scene(stageOf(readerMaterial("displayColor") + quad("Quad", -0.5, primvars)));
     expectColour(albedoAt(scene.renderAlbedo(), kLeft, kRow), {0.8f, 0.05f, 0.05f}, "displayColor");
-    EXPECT_EQ(scene.adopt(usda::Stage::openFromString(
-                  "#usda 1.0\n" + usdaCamera() + readerMaterial("Cd") + quad("Quad", -0.5, primvars), "reader.usda")),
+    EXPECT_EQ(scene.adopt(stageOf(readerMaterial("Cd") + quad("Quad", -0.5, primvars))),
               2u);
     expectColour(albedoAt(scene.renderAlbedo(), kLeft, kRow), {0.05f, 0.05f, 0.8f}, "Cd after the edit");
-}
-
-// A material whose opacity reads a primvar (its own authored 0.9 replaced), red and matte.
-std::string opacityReaderMaterial(const std::string& varname, const std::string& fallback = "") {
-    return "def Material \"Look\"\n{\n"
-           "    token outputs:surface.connect = </Look/Surface.outputs:surface>\n"
-           "    def Shader \"Surface\"\n    {\n"
-           "        uniform token info:id = \"UsdPreviewSurface\"\n"
-           "        color3f inputs:diffuseColor = (0.8, 0.05, 0.05)\n"
-           "        float inputs:opacity = 0.9\n"
-           "        float inputs:opacity.connect = </Look/Alpha.outputs:result>\n"
-           "        token outputs:surface\n    }\n"
-           "    def Shader \"Alpha\"\n    {\n"
-           "        uniform token info:id = \"UsdPrimvarReader_float\"\n"
-           "        string inputs:varname = \"" + varname + "\"\n" + fallback +
-           "        float outputs:result\n    }\n}\n";
 }
 
 // The colour AOV's alpha at a pixel: the opacity of a transparent surface over nothing.
 float alphaAt(const std::vector<float>& color, int x, int y) { return color.at((size_t(y) * kWidth + size_t(x)) * 4 + 3); }
 
 TEST(PrimvarReaderStage, OpacityReadsEachPrimsDisplayOpacity) {
-    HostedStage scene(usda::Stage::openFromString(
-        "#usda 1.0\n" + usdaCamera() + opacityReaderMaterial("displayOpacity") +
+    HostedStage scene(stageOf(opacityReaderMaterial("displayOpacity") +
             quad("Half", -0.5, "    float[] primvars:displayOpacity = [0.5]\n") +
-            quad("Whole", 0.5, "    float[] primvars:displayOpacity = [1]\n"),
-        "reader.usda"));
+            quad("Whole", 0.5, "    float[] primvars:displayOpacity = [1]\n")));
     std::vector<float> color = scene.renderAov("color", 4);
     EXPECT_NEAR(alphaAt(color, kLeft, kRow), 0.5f, 1.0f / 255.0f);
     EXPECT_NEAR(alphaAt(color, kRight, kRow), 1.0f, 1.0f / 255.0f);
@@ -175,37 +173,27 @@ TEST(PrimvarReaderStage, OpacityReadsEachPrimsDisplayOpacity) {
 // Opacity of another name, varying over the quad (0.2 at its left edge, 1 at its right), and the
 // reader's fallback (unauthored: zero) on a quad without it.
 TEST(PrimvarReaderStage, OpacityOfAnyPrimvarOrTheFallback) {
-    HostedStage scene(usda::Stage::openFromString(
-        "#usda 1.0\n" + usdaCamera() + opacityReaderMaterial("alpha") +
+    HostedStage scene(stageOf(opacityReaderMaterial("alpha") +
             quad("Ramp", -0.5,
                  "    float[] primvars:alpha = [0.2, 1, 1, 0.2] (\n        interpolation = \"vertex\"\n    )\n") +
-            quad("Without", 0.5, ""),
-        "reader.usda"));
+            quad("Without", 0.5, "")));
     std::vector<float> color = scene.renderAov("color", 4);
     EXPECT_NEAR(alphaAt(color, kLeft, kRow), 0.6f, 0.02f);
     EXPECT_LT(alphaAt(color, kLeft - 10, kRow), 0.4f);
     EXPECT_GT(alphaAt(color, kLeft + 10, kRow), 0.8f);
     EXPECT_NEAR(alphaAt(color, kRight, kRow), 0.0f, 1.0f / 255.0f);
 
-    HostedStage withFallback(usda::Stage::openFromString(
-        "#usda 1.0\n" + usdaCamera() + opacityReaderMaterial("alpha", "            float inputs:fallback = 0.3\n") +
-            quad("Without", 0.5, ""),
-        "reader.usda"));
+    HostedStage withFallback(stageOf(opacityReaderMaterial("alpha", "            float inputs:fallback = 0.3\n") +
+            quad("Without", 0.5, "")));
     EXPECT_NEAR(alphaAt(withFallback.renderAov("color", 4), kRight, kRow), 0.3f, 1.0f / 255.0f);
 }
 
 // Hydra's instance primvars reach a material whose opacity reads displayOpacity.
 TEST(PrimvarReaderStage, InstanceOpacityThroughTheReader) {
-    const std::string text =
-        "#usda 1.0\n" + usdaCamera() + opacityReaderMaterial("displayOpacity") +
-        "def PointInstancer \"Instancer\"\n{\n"
-        "    rel prototypes = [</Instancer/Prototypes/Quad>]\n"
-        "    int[] protoIndices = [0, 0]\n"
-        "    point3f[] positions = [(-0.5, 0, 0), (0.5, 0, 0)]\n"
-        "    float[] primvars:displayOpacity = [0.25, 1] (\n        interpolation = \"vertex\"\n    )\n"
-        "    def Scope \"Prototypes\"\n    {\n" +
-        quad("Quad", 0.0, "    float[] primvars:displayOpacity = [0.6]\n") + "    }\n}\n";
-    HostedStage scene(usda::Stage::openFromString(text, "reader.usda"));
+    HostedStage scene(stageOf(
+        instancedQuads(opacityReaderMaterial("displayOpacity"),
+                       "    float[] primvars:displayOpacity = [0.25, 1] (\n        interpolation = \"vertex\"\n    )\n",
+                       "    float[] primvars:displayOpacity = [0.6]\n")));
     std::vector<float> color = scene.renderAov("color", 4);
     EXPECT_NEAR(alphaAt(color, kLeft, kRow), 0.25f, 1.0f / 255.0f);
     EXPECT_NEAR(alphaAt(color, kRight, kRow), 1.0f, 1.0f / 255.0f);
@@ -220,9 +208,7 @@ TEST(PrimvarReaderStage, WithoutAReaderTheMaterialsColour) {
         "        uniform token info:id = \"UsdPreviewSurface\"\n"
         "        color3f inputs:diffuseColor = (0.05, 0.05, 0.9)\n"
         "        token outputs:surface\n    }\n}\n";
-    HostedStage scene(usda::Stage::openFromString(
-        "#usda 1.0\n" + usdaCamera() + material + quad("Quad", -0.5, "    color3f[] primvars:displayColor = [(0.8, 0.05, 0.05)]\n"),
-        "reader.usda"));
+    HostedStage scene(stageOf(material + quad("Quad", -0.5, "    color3f[] primvars:displayColor = [(0.8, 0.05, 0.05)]\n")));
     expectColour(albedoAt(scene.renderAlbedo(), kLeft, kRow), {0.05f, 0.05f, 0.9f}, "material");
 }
 
