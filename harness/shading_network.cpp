@@ -244,8 +244,8 @@ std::optional<PrimvarRead> primvarRead(const usda::Stage& stage, const usda::Pri
     static const std::set<std::string, std::less<>> kColorReaders = {
         "UsdPrimvarReader_float3", "UsdPrimvarReader_normal", "UsdPrimvarReader_point", "UsdPrimvarReader_vector"};
     static const std::set<std::string, std::less<>> kScalarReaders = {"UsdPrimvarReader_float"};
-    const auto& readers = input == "inputs:diffuseColor" ? kColorReaders : kScalarReaders;
     if (input != "inputs:diffuseColor" && input != "inputs:opacity") return std::nullopt;
+    const auto& readers = input == "inputs:diffuseColor" ? kColorReaders : kScalarReaders;
     const usda::Attribute* connected = surface.attribute(input);
     const usda::Prim* reader = connected ? connectedShader(stage, *connected) : nullptr;
     if (!reader || !readers.count(shaderId(*reader))) return std::nullopt;

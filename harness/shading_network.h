@@ -84,7 +84,7 @@ std::string resolveAssetPath(const std::string& asset, const usda::Attribute& at
 // feeds the first textured input's inputs:st, directly or through UsdTransform2d), or "st".
 std::string texturePrimvar(const usda::Stage& stage, const usda::Prim& surface);
 
-// A UsdPrimvarReader connected to a colour input of a UsdPreviewSurface (UsdPreviewSurface spec,
+// A UsdPrimvarReader connected to an input of a UsdPreviewSurface (UsdPreviewSurface spec,
 // "Primvar Reading"): the prim's primvar named by inputs:varname is the input's value, and where
 // the prim has none, the reader's inputs:fallback (unauthored: zero).
 struct PrimvarRead {

@@ -110,8 +110,9 @@ bool isInstancedGeometry(const usda::Prim& prim) {
 // The dirty bit that makes the plugin read attribute `name` of a prim of plugin type `type` again:
 // the schema's (schemas/*.json), under the names this host serves it by: a light input also by
 // its name before UsdLux 21.02 (no "inputs:"), and a primvar the schema does not name may be the
-// one the material's textures read, served as primvars:st, or the one its diffuseColor reads,
-// served as primvars:displayColor. 0: the plugin does not read it.
+// one the material's textures read, served as primvars:st, or one its diffuseColor or opacity
+// reads, served as primvars:displayColor or displayOpacity (one dirty bit). 0: the plugin does not
+// read it.
 ObscuraDirtyBits dirtyBitFor(const std::string& type, const std::string& name) {
     const schema::PrimSchema* prim = schema::findPrimSchema(type);
     if (!prim) return 0;
@@ -453,7 +454,7 @@ ObscuraDirtyBits UsdSceneHost::changes(const std::string& type, const usda::Prim
     if ((purpose == nullptr) != (purposeBefore == nullptr) || (purpose && !sameAttribute(*purpose, *purposeBefore)))
         bits |= dirtyBitFor(type, "purpose");
     if (boundMaterial(prim) != previous.boundMaterial(before)) bits |= OBSCURA_DIRTY_MATERIAL_ID;
-    // The primvar served as displayColor follows the bound material's reader.
+    // The primvars served as displayColor and displayOpacity follow the bound material's readers.
     for (const auto& [served, read] : kServedReads)
         if (!sameRead(boundPrimvarRead(prim, read.input), previous.boundPrimvarRead(before, read.input)))
             bits |= dirtyBitFor(type, served);
@@ -837,8 +838,8 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     }
     auto surface = surfaces_.find(path);
     if (surface != surfaces_.end() && (attribute == "obscura:diffuseColor:primvar" || attribute == "obscura:opacity:primvar")) {
-        // "obscura:<input>:primvar"
-        auto read = primvarRead(stage_, *surface->second, "inputs:" + attribute.substr(8, attribute.size() - 16));
+        const std::string input = attribute == "obscura:opacity:primvar" ? "inputs:opacity" : "inputs:diffuseColor";
+        auto read = primvarRead(stage_, *surface->second, input);
         if (!read) return OBSCURA_ERROR_NOT_FOUND;
         usda::Value name;
         name.typeName = "token";

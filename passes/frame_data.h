@@ -80,7 +80,8 @@ static_assert(offsetof(CameraData, pad) == shader_layout::CameraData::pad0);
 // kInstanceEdgeAa: hybrid AA (seed 004) chose edge AA over temporal AA for this instance: it is
 // drawn without the jitter, its pixels keep no history and the edge AA passes smooth its edges.
 // kInstanceDisplayColor, kInstanceDisplayOpacity: its PointInstancer gives the instance its own
-// displayColor, displayOpacity (InstanceData::displayColor), in place of its mesh's.
+// displayColor, displayOpacity (InstanceData::displayColor), in place of its mesh's; the opacity
+// also carries a mesh's constant displayOpacity that a material's primvar reader reads.
 // kInstanceVertexColor: Hydra's fallback material (no material bound): the vertex colour is the
 // base colour, its alpha the opacity. kInstanceVertexAlbedo: the bound material's diffuseColor
 // reads a primvar, served as the vertex colour: its rgb is the base colour. kInstanceVertexOpacity:
