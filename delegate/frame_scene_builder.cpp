@@ -230,7 +230,9 @@ private:
             if (auto* m = dynamic_cast<const Material*>(prim.get())) {
                 materialIndex_[path] = static_cast<uint32_t>(materials_.size());
                 if (!m->diffusePrimvar().empty() || !m->opacityPrimvar().empty())
-                    primvarReaders_[uint32_t(materials_.size())] = m;
+                    primvarReads_[uint32_t(materials_.size())] = {
+                        !m->diffusePrimvar().empty(), !m->opacityPrimvar().empty(),
+                        m->diffusePrimvar() == "displayColor", m->opacityPrimvar() == "displayOpacity"};
                 materials_.push_back(m->data());
                 passes::MaterialTextures textures = white;
                 for (uint32_t slot = 0; slot < passes::kMaterialTextureSlots; ++slot)
@@ -290,16 +292,14 @@ private:
     }
     // What a bound material reads from primvars the host serves as displayColor and
     // displayOpacity (Material::diffusePrimvar, opacityPrimvar), and whether it reads those
-    // primvars themselves, which a PointInstancer may give each instance.
+    // primvars themselves, which a PointInstancer may give each instance; found once per
+    // material as the frame packs them, looked up per instance record.
     struct PrimvarReads {
         bool color = false, opacity = false, displayColor = false, displayOpacity = false;
     };
     PrimvarReads primvarReads(std::optional<uint32_t> bound) const {
-        const auto it = bound ? primvarReaders_.find(*bound) : primvarReaders_.end();
-        if (it == primvarReaders_.end()) return {};
-        const Material& m = *it->second;
-        return {!m.diffusePrimvar().empty(), !m.opacityPrimvar().empty(), m.diffusePrimvar() == "displayColor",
-                m.opacityPrimvar() == "displayOpacity"};
+        const auto it = bound ? primvarReads_.find(*bound) : primvarReads_.end();
+        return it == primvarReads_.end() ? PrimvarReads{} : it->second;
     }
     // Cut-outs (opacityThreshold) discard texels in the G-buffer and the shadow maps alike.
     bool hasCutout(const Mesh& mesh, const MaterialPart& part) {
@@ -892,7 +892,7 @@ private:
     std::vector<passes::MaterialData> materials_;
     std::map<std::string, uint32_t> texturesOfMaterial_;
     std::map<std::string, uint32_t> materialIndex_;
-    std::map<uint32_t, const Material*> primvarReaders_;  // material records whose inputs read primvars
+    std::map<uint32_t, PrimvarReads> primvarReads_;  // by material record, those whose inputs read primvars
     std::map<float, uint32_t> fallbackMaterials_{{1.0f, 0u}};
     std::vector<passes::LightData> lights_;
     std::vector<bool> lightCastsShadows_;
