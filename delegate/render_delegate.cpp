@@ -122,6 +122,7 @@ void RenderDelegate::insertPrim(const std::string& type, const std::string& path
     else if (type == "sphereLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Sphere);
     else if (type == "rectLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Rect);
     else if (type == "diskLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Disk);
+    else if (type == "cylinderLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Cylinder);
     else if (type == "domeLight") prim = std::make_unique<Light>(path, *schema, passes::LightType::Dome);
     else if (type == "material") prim = std::make_unique<Material>(path, *schema);
     else if (type == "renderBuffer") prim = std::make_unique<RenderBuffer>(path, *schema);

@@ -105,7 +105,7 @@ ShadowAtlasBuild buildShadowAtlas(const ShadowInputs& in, std::vector<passes::Li
                 lightViews.push_back({cascade.viewProjection, cascade.texelWorldSize, splits[c + 1], {cascade.depthSpan, 0.0}});
             }
         } else if (type == passes::LightType::Sphere || type == passes::LightType::Rect ||
-                   type == passes::LightType::Disk) {
+                   type == passes::LightType::Disk || type == passes::LightType::Cylinder) {
             Vec3d position = {light.positionType[0], light.positionType[1], light.positionType[2]};
             double far = 0.0;
             for (const Vec3d& corner : scene.corners()) {
@@ -118,7 +118,7 @@ ShadowAtlasBuild buildShadowAtlas(const ShadowInputs& in, std::vector<passes::Li
             // Depth precision of a perspective map falls with near/far; the emitter's size is a
             // natural near plane (occluders closer to the light's centre than that are beside or
             // inside the emitter, and cast no sensible point-light shadow).
-            double emitterSize = type == passes::LightType::Sphere
+            double emitterSize = type == passes::LightType::Sphere || type == passes::LightType::Cylinder
                                      ? double(light.radiance[3])
                                      : std::min(std::hypot(light.axisX[0], light.axisX[1], light.axisX[2]),
                                                 std::hypot(light.axisY[0], light.axisY[1], light.axisY[2]));

@@ -28,6 +28,7 @@ const std::map<std::string, std::string> kPrimTypes = {
     {"SphereLight", "sphereLight"},
     {"RectLight", "rectLight"},
     {"DiskLight", "diskLight"},
+    {"CylinderLight", "cylinderLight"},
     {"DomeLight", "domeLight"},
     {"Material", "material"},
     {"PointInstancer", "instancer"},

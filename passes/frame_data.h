@@ -227,13 +227,13 @@ OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, clearcoat);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, anisotropy);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, textures);
 
-enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4 };
+enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4, Cylinder = 5 };
 
 struct alignas(16) LightData {
     std::array<float, 4> positionType;
     std::array<float, 4> directionAngle;
     std::array<float, 4> radiance;
-    std::array<float, 4> factors;  // z treatAsPoint (sphere) or textured (dome), w influence range
+    std::array<float, 4> factors;  // z treatAsPoint (sphere), treatAsLine (cylinder) or textured (dome), w influence range
     std::array<float, 4> axisX;
     std::array<float, 4> axisY;
     std::array<float, 4> shaping;

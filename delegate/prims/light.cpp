@@ -70,6 +70,12 @@ void Light::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
             shape.halfX = s.getDouble("inputs:radius");
             if (shape.halfX <= 0) throw PrimDataError(s.path() + ": inputs:radius must be positive");
             shape.factors[2] = s.getBool("treatAsPoint") ? 1.0f : 0.0f;
+        } else if (type_ == passes::LightType::Cylinder) {
+            shape.halfX = 0.5 * s.getDouble("inputs:length");
+            shape.halfY = s.getDouble("inputs:radius");
+            if (shape.halfX <= 0 || shape.halfY <= 0)
+                throw PrimDataError(s.path() + ": inputs:length and inputs:radius must be positive");
+            shape.factors[2] = s.getBool("treatAsLine") ? 1.0f : 0.0f;
         } else if (type_ == passes::LightType::Rect) {
             shape.halfX = 0.5 * s.getDouble("inputs:width");
             shape.halfY = 0.5 * s.getDouble("inputs:height");
@@ -79,11 +85,15 @@ void Light::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
             shape.halfX = shape.halfY = s.getDouble("inputs:radius");
             if (shape.halfX <= 0) throw PrimDataError(s.path() + ": inputs:radius must be positive");
         }
-        // ShapingAPI: the fade starts at lerp(softness, cutoff, 0) (UsdLuxShapingAPI).
-        double cone = std::clamp(double(s.getFloat("inputs:shaping:cone:angle")), 0.0, 180.0) * pi / 180.0;
-        double softness = std::clamp(double(s.getFloat("inputs:shaping:cone:softness")), 0.0, 1.0);
-        double focus = std::max(0.0, double(s.getFloat("inputs:shaping:focus")));
-        shape.shaping = {float(cone), float(cone * (1.0 - softness)), float(focus), 0.0f};
+        // ShapingAPI: the fade starts at lerp(softness, cutoff, 0) (UsdLuxShapingAPI). A cylinder
+        // has no shaping inputs (its schema): it emits all around its axis, unshaped.
+        shape.shaping = {float(pi), float(pi), 0.0f, 0.0f};
+        if (type_ != passes::LightType::Cylinder) {
+            double cone = std::clamp(double(s.getFloat("inputs:shaping:cone:angle")), 0.0, 180.0) * pi / 180.0;
+            double softness = std::clamp(double(s.getFloat("inputs:shaping:cone:softness")), 0.0, 1.0);
+            double focus = std::max(0.0, double(s.getFloat("inputs:shaping:focus")));
+            shape.shaping = {float(cone), float(cone * (1.0 - softness)), float(focus), 0.0f};
+        }
     }
     shape_ = shape;
     data_ = placed(transform_);
@@ -123,6 +133,13 @@ passes::LightData Light::placed(const Matrix4d& transform) const {
             double radius = shape_.halfX * axisScale;
             area = 4.0 * pi * radius * radius;
             d.radiance[3] = float(radius);
+        } else if (type_ == passes::LightType::Cylinder) {
+            // Along local X; the radius scales with the larger of the two scales across it.
+            Vec3d halfLength = {localX[0] * shape_.halfX, localX[1] * shape_.halfX, localX[2] * shape_.halfX};
+            double radius = shape_.halfY * std::max(length(localY), length(transformDirection({0, 0, 1}, transform)));
+            area = 2.0 * pi * radius * 2.0 * length(halfLength);
+            d.radiance[3] = float(radius);
+            d.axisX = {float(halfLength[0]), float(halfLength[1]), float(halfLength[2]), 0.0f};
         } else {
             // The disk's (or rectangle's) half extents along its local X and Y, in world space.
             double lengths = length(localX) * length(localY);
@@ -146,13 +163,18 @@ passes::LightData withInfluenceRange(passes::LightData light, double exposureSca
     if (type == passes::LightType::Distant || type == passes::LightType::Dome) return light;
     // Beyond this distance the light's irradiance, pre-exposed, is below 2^-12 (a quarter of an
     // 8-bit sRGB step just above black): E <= L * A_projected / d^2, with A_projected = pi r^2
-    // for a sphere and the area for a rectangle or disk.
+    // for a sphere, the area for a rectangle or disk, length x diameter for a cylinder.
     const double threshold = 1.0 / 4096.0;
     double radiance = std::max({light.radiance[0], light.radiance[1], light.radiance[2]}) * exposureScale;
     double size = 0.0, projectedArea = 0.0;
     if (type == passes::LightType::Sphere) {
         size = light.radiance[3];
         projectedArea = std::numbers::pi * size * size;
+    } else if (type == passes::LightType::Cylinder) {
+        // Seen across its axis: its length by its diameter.
+        double halfLength = std::hypot(light.axisX[0], light.axisX[1], light.axisX[2]);
+        size = std::hypot(halfLength, double(light.radiance[3]));
+        projectedArea = 4.0 * halfLength * light.radiance[3];
     } else {
         Vec3d x{light.axisX[0], light.axisX[1], light.axisX[2]}, y{light.axisY[0], light.axisY[1], light.axisY[2]};
         size = std::hypot(length(x), length(y));
@@ -180,7 +202,7 @@ passes::LightData emitterSample(const passes::LightData& light, std::array<doubl
         sample.directionAngle = {float(d[0]), float(d[1]), float(d[2]), 0.0f};
         return sample;
     }
-    // XXX: sphere, rect and disk lights stay whole (the lighting pass's closed forms, hard shadows
+    // XXX: sphere, rect, disk and cylinder lights stay whole (the lighting pass's closed forms, hard shadows
     // from their centre): a point of the surface per sub-frame, weighted by its cosine towards the
     // receiver, left a moving bulb's 128-sub-frame mean 3-8% off its closed form
     // (ReferenceShutter.MovingLightIsAveragedOverItsPath asks for 1%).

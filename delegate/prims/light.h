@@ -1,9 +1,10 @@
-// DistantLight, SphereLight, RectLight, DiskLight and DomeLight sprims (UsdLux). Radiometric
+// DistantLight, SphereLight, RectLight, DiskLight, CylinderLight and DomeLight sprims (UsdLux). Radiometric
 // conventions (docs/ARCHITECTURE.md): inputs:intensity * 2^inputs:exposure * inputs:color is the
 // emitted radiance; a distant light's irradiance at normal incidence is that radiance times the
 // solid angle of its disc (2 pi (1 - cos(angle / 2))), or the intensity itself when
-// inputs:normalize is on; normalized sphere, rectangle and disk lights divide their radiance by
-// their surface area; rectangles and disks emit from their front (-Z) face only; a dome is
+// inputs:normalize is on; normalized sphere, rectangle, disk and cylinder lights divide their
+// radiance by their surface area; rectangles and disks emit from their front (-Z) face only,
+// cylinders (along local X) from their side, not their caps; a dome is
 // constant radiance all around, or its latlong texture's texels times that scale (the texture
 // oriented by the transform). ShapingAPI's cone, softness and focus shape the local lights.
 #pragma once

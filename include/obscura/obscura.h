@@ -140,9 +140,11 @@ typedef enum ObscuraInterpolation {
 /* ---------------------------------------------------------------------------------------------
  * Prim types and dirty bits
  *
- * Prim type names (tokens): "mesh", "instancer" (rprims); "camera", "distantLight",
- * "sphereLight", "rectLight", "diskLight", "domeLight", "material" (sprims); "renderBuffer" (bprim). The schema reference (docs/schemas.md) lists
- * every attribute, its type, default, unit and whether it may be time-sampled.
+ * Prim type names (tokens): "mesh", "cube", "sphere", "cylinder", "cylinder1", "cone", "capsule",
+ * "capsule1", "plane", "basisCurves", "nurbsPatch", "points", "instancer" (rprims); "camera",
+ * "distantLight", "sphereLight", "rectLight", "diskLight", "cylinderLight", "domeLight", "material"
+ * (sprims); "renderBuffer" (bprim). The schema reference (docs/schemas.md) lists every attribute,
+ * its type, default, unit and whether it may be time-sampled.
  * ------------------------------------------------------------------------------------------- */
 typedef uint32_t ObscuraDirtyBits;
 #define OBSCURA_DIRTY_CLEAN        0x0000u

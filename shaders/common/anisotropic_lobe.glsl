@@ -98,6 +98,7 @@ void principalLobe(inout vec3 N, inout float roughness, vec4 tangent, vec2 aniso
     for (uint i = 0u; i < lightCount; ++i) {
         LightData light = lights[i];
         if (!lightReaches(light, P)) continue;
+        if (uint(light.positionType.w) == LIGHT_CYLINDER) light = cylinderSeenFrom(light, P);
         float specular = light.factors.y;
         uint type = uint(light.positionType.w);
         if (type == LIGHT_DISTANT || type == LIGHT_SPHERE) {

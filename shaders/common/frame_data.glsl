@@ -119,14 +119,17 @@ const uint LIGHT_SPHERE = 1u;
 const uint LIGHT_DOME = 2u;
 const uint LIGHT_RECT = 3u;
 const uint LIGHT_DISK = 4u;
+const uint LIGHT_CYLINDER = 5u;
 
 struct LightData {
-    vec4 positionType;      // xyz world position (sphere, rect and disk centre), w type
+    vec4 positionType;      // xyz world position (sphere, rect, disk and cylinder centre), w type
     vec4 directionAngle;    // xyz emission axis: the light's local -Z in world space; w half-angle in radians (distant)
-    vec4 radiance;          // rgb emitted radiance incl. intensity, exposure, colour, normalize; a radius (sphere)
-    vec4 factors;           // x diffuse, y specular multipliers; z sphere: 1 for treatAsPoint, dome: 1 when it lights
+    vec4 radiance;          // rgb emitted radiance incl. intensity, exposure, colour, normalize; a radius (sphere, cylinder)
+    vec4 factors;           // x diffuse, y specular multipliers; z sphere: 1 for treatAsPoint, cylinder: 1 for
+                            // treatAsLine, dome: 1 when it lights
                             // through the environment maps (the textured dome); w influence range (local lights)
-    vec4 axisX;             // xyz rect: half the width along local X; disk: the radius along local X (world space)
+    vec4 axisX;             // xyz rect: half the width along local X; disk: the radius along local X; cylinder:
+                            // half its length along local X (world space)
     vec4 axisY;             // xyz rect: half the height along local Y; disk: the radius along local Y
     vec4 shaping;           // ShapingAPI: x cone angle, y angle where the soft fade starts (radians), z focus; w unused
     uvec4 shadow;           // x first ShadowViewData record, y their count (0: casts no shadow), z SHADOW_*;

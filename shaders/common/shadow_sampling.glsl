@@ -250,14 +250,16 @@ ShadowLookup spotLookup(uvec4 shadow, vec3 position, vec3 lightPosition, vec3 ax
 }
 
 // The size the penumbra grows with: a distant light's tan(half angle); a sphere's radius (none
-// with treatAsPoint); a rect's or disk's radius of the disc of its area (XXX: a long rectangle's
-// penumbra is as wide along both its axes).
+// with treatAsPoint); a rect's or disk's radius of the disc of its area, a cylinder's of its
+// length times its diameter (none with treatAsLine) (XXX: a long rectangle's or tube's penumbra is
+// as wide along both its axes).
 float shadowLightSize(LightData light) {
     uint type = uint(light.positionType.w);
     if (type == LIGHT_DISTANT) return tan(light.directionAngle.w);
     if (type == LIGHT_SPHERE) return light.factors.z > 0.0 ? 0.0 : light.radiance.a;
     if (type == LIGHT_RECT) return sqrt(4.0 / PI * length(cross(light.axisX.xyz, light.axisY.xyz)));
     if (type == LIGHT_DISK) return sqrt(length(cross(light.axisX.xyz, light.axisY.xyz)));
+    if (type == LIGHT_CYLINDER) return light.factors.z > 0.0 ? 0.0 : sqrt(4.0 / PI * light.radiance.a * length(light.axisX.xyz));
     return 0.0;
 }
 

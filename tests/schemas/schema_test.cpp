@@ -38,7 +38,7 @@ TEST(SchemaTables, EveryPrimTypeIsFound) {
         {"mesh", "rprim"},     {"camera", "sprim"},   {"distantLight", "sprim"},
         {"sphereLight", "sprim"}, {"material", "sprim"}, {"renderBuffer", "bprim"},
         {"instancer", "rprim"},   {"domeLight", "sprim"},  {"rectLight", "sprim"},
-        {"diskLight", "sprim"},   {"cube", "rprim"},       {"sphere", "rprim"},
+        {"diskLight", "sprim"},   {"cylinderLight", "sprim"}, {"cube", "rprim"},       {"sphere", "rprim"},
         {"cylinder", "rprim"},    {"cylinder1", "rprim"},  {"cone", "rprim"},
         {"capsule", "rprim"},     {"capsule1", "rprim"},   {"plane", "rprim"},
         {"basisCurves", "rprim"}, {"points", "rprim"},     {"nurbsPatch", "rprim"}};
