@@ -24,15 +24,18 @@ struct Texture {
     std::string channel = "rgb";
 };
 
-// A folded input: a constant (`offset`), or a texture's texel times `scale` plus `offset`, per
-// component.
+// A folded input: a constant (`offset`), or a texture's texel or the prim's primvar (an
+// ND_geompropvalue: a PrimvarRead, its fallback the node's inputs:default) times `scale` plus
+// `offset`, per component.
 struct Signal {
     Numbers offset;
     Numbers scale;
     std::optional<Texture> texture;
+    std::optional<PrimvarRead> primvar;
+    bool varies() const { return texture || primvar; }
 };
 
-Signal constant(Numbers value) { return Signal{std::move(value), {}, std::nullopt}; }
+Signal constant(Numbers value) { return Signal{std::move(value), {}, std::nullopt, std::nullopt}; }
 
 Numbers broadcast(const Numbers& v, size_t width) {
     if (v.size() == width || v.empty()) return v.empty() ? Numbers(width, 0.0) : v;
@@ -57,22 +60,22 @@ Numbers plus(const Numbers& a, const Numbers& b) {
     return x;
 }
 
-// a * k for a constant k: a texture's scale and offset both scale.
+// a * k for a constant k: a texture's (primvar's) scale and offset both scale.
 Signal scaled(Signal a, const Numbers& k) {
-    if (a.texture) a.scale = times(a.scale, k);
+    if (a.varies()) a.scale = times(a.scale, k);
     a.offset = times(a.offset, k);
     return a;
 }
 
 std::optional<Signal> multiply(const Signal& a, const Signal& b) {
-    if (a.texture && b.texture) return std::nullopt;  // a product of two textures is no texture
-    if (b.texture) return scaled(b, a.offset);
+    if (a.varies() && b.varies()) return std::nullopt;  // a product of two textures (primvars) is neither
+    if (b.varies()) return scaled(b, a.offset);
     return scaled(a, b.offset);
 }
 
 std::optional<Signal> add(const Signal& a, const Signal& b) {
-    if (a.texture && b.texture) return std::nullopt;
-    Signal out = a.texture ? a : b;
+    if (a.varies() && b.varies()) return std::nullopt;
+    Signal out = a.varies() ? a : b;
     out.offset = plus(a.offset, b.offset);
     return out;
 }
@@ -138,6 +141,7 @@ private:
         }
         auto in = [&](const char* name, const Numbers& fallback) { return input(node, name, fallback, depth); };
         if (startsWith(id, "ND_image_") || startsWith(id, "ND_tiledimage_")) return image(node, id, depth);
+        if (startsWith(id, "ND_geompropvalue_")) return geomprop(node, id);
         if (startsWith(id, "ND_constant_")) return in("value", {0.0});
         if (startsWith(id, "ND_dot_") || startsWith(id, "ND_convert_")) return in("in", {0.0});
         if (startsWith(id, "ND_multiply_") || startsWith(id, "ND_add_") || startsWith(id, "ND_subtract_")) {
@@ -152,7 +156,7 @@ private:
         if (startsWith(id, "ND_mix_")) {
             auto fg = in("fg", {0.0}), bg = in("bg", {0.0}), weight = in("mix", {0.0});
             if (!fg || !bg || !weight) return std::nullopt;
-            if (weight->texture) return unmappable(node, id);
+            if (weight->varies()) return unmappable(node, id);
             auto out = add(scaled(*fg, weight->offset), scaled(*bg, plus(scaled(*weight, {-1.0}).offset, {1.0})));
             return out ? out : unmappable(node, id);
         }
@@ -160,7 +164,7 @@ private:
             // Tangent-space normals are stored as n * 0.5 + 0.5.
             auto encoded = in("in", {0.5, 0.5, 1.0});
             auto strength = in("scale", {1.0});
-            if (strength && (strength->texture || broadcast(strength->offset, 1)[0] != 1.0))
+            if (strength && (strength->varies() || broadcast(strength->offset, 1)[0] != 1.0))
                 problem(node.where, node.path + " (" + id + "): inputs:scale other than 1 is not applied");
             if (!encoded) return std::nullopt;
             Signal out = scaled(*encoded, {2.0});
@@ -170,7 +174,7 @@ private:
         if (startsWith(id, "ND_extract_")) {
             auto from = in("in", {0.0});
             auto index = in("index", {0.0});
-            if (!from || !index || index->texture) return from ? unmappable(node, id) : std::nullopt;
+            if (!from || !index || index->varies() || from->primvar) return from ? unmappable(node, id) : std::nullopt;
             const size_t i = size_t(std::clamp(broadcast(index->offset, 1)[0], 0.0, 3.0));
             Signal out = *from;
             out.offset = {broadcast(from->offset, 4)[i]};
@@ -236,7 +240,25 @@ private:
         texture.st = texcoordPrimvar(node);
         const size_t width = id.ends_with("_float") ? 1 : 3;
         texture.channel = width == 1 ? "r" : "rgb";
-        return Signal{Numbers(width, 0.0), Numbers(width, 1.0), texture};
+        return Signal{Numbers(width, 0.0), Numbers(width, 1.0), texture, std::nullopt};
+    }
+
+    // The prim's primvar `inputs:geomprop` names, as a vertex colour (float: its first component),
+    // or the node's inputs:default where the prim has none.
+    std::optional<Signal> geomprop(const usda::Prim& node, const std::string& id) {
+        const size_t width = id == "ND_geompropvalue_float" ? 1
+                           : id == "ND_geompropvalue_color3" || id == "ND_geompropvalue_vector3" ? 3 : 0;
+        if (width == 0) return unmappable(node, id);
+        const usda::Attribute* property = node.attribute("inputs:geomprop");
+        const usda::Attribute* holder = property ? valueProducingAttribute(stage_, *property) : nullptr;
+        auto name = holder ? holder->evaluate(time_) : std::nullopt;
+        if (!name || name->strings.empty() || name->strings[0].empty()) {
+            problem(node.where, node.path + " (" + id + ") names no inputs:geomprop");
+            return std::nullopt;
+        }
+        const usda::Attribute* fallback = node.attribute("inputs:default");
+        if (fallback) fallback = valueProducingAttribute(stage_, *fallback);
+        return Signal{Numbers(width, 0.0), Numbers(width, 1.0), std::nullopt, PrimvarRead{name->strings[0], fallback}};
     }
 
     // ND_tiledimage's placement of the image; the identity, reported, where an input is textured
@@ -248,7 +270,7 @@ private:
         for (size_t i = 0; i < inputs.size(); ++i) {
             auto signal = input(node, inputs[i].first, {inputs[i].second, inputs[i].second}, depth);
             if (!signal) return {};
-            if (signal->texture) {
+            if (signal->varies()) {
                 problem(node.where, node.path + " (" + id + "): a textured inputs:" + inputs[i].first + " is not applied");
                 return {};
             }
@@ -349,8 +371,33 @@ bool isColorInput(const std::string& usdInput) {
     return usdInput == "diffuseColor" || usdInput == "emissiveColor" || usdInput == "specularColor" || usdInput == "normal";
 }
 
+// A primvar read as diffuseColor (times a constant: the vertex colour's scale, Standard Surface's
+// base) or as opacity; anything else is reported and left at its default.
+void storePrimvarRead(MaterialXMapping& out, Folder& folder, const usda::Prim& surface, const std::string& usdInput,
+                      const std::string& from, const Signal& signal) {
+    const size_t width = isColorInput(usdInput) ? 3 : 1;
+    const Numbers scale = broadcast(signal.scale, width), offset = broadcast(signal.offset, width);
+    const bool unscaled = std::all_of(scale.begin(), scale.end(), [](double s) { return s == 1.0; });
+    const bool noOffset = std::all_of(offset.begin(), offset.end(), [](double o) { return o == 0.0; });
+    const std::string what = surface.path + ".inputs:" + from + " reads primvar " + signal.primvar->primvar;
+    if (usdInput != "diffuseColor" && usdInput != "opacity") {
+        folder.problem(surface.where, what + ", and Obscura's material model reads primvars on diffuseColor and opacity " +
+                                          "only; its default is used");
+        return;
+    }
+    if (!noOffset || (usdInput == "opacity" && !unscaled)) {
+        folder.problem(surface.where, what + (usdInput == "opacity" ? " scaled or offset" : " offset") +
+                                          ", which Obscura's material model does not apply; its default is used");
+        return;
+    }
+    out.values["obscura:" + usdInput + ":primvar"] = token(signal.primvar->primvar);
+    if (usdInput == "diffuseColor") out.values["inputs:diffuseColor"] = numbers("float3", scale);
+    out.primvarReads["inputs:" + usdInput] = *signal.primvar;
+}
+
 void store(MaterialXMapping& out, Folder& folder, const usda::Prim& surface, const std::string& usdInput,
            const std::string& from, Signal signal) {
+    if (signal.primvar) return storePrimvarRead(out, folder, surface, usdInput, from, signal);
     const size_t width = isColorInput(usdInput) ? 3 : 1;
     if (signal.texture && !isTexturableInput("inputs:" + usdInput)) {
         folder.problem(surface.where, surface.path + ".inputs:" + from + " is textured, and Obscura's material model " +
@@ -417,7 +464,7 @@ MaterialXMapping mapMaterialXSurface(const usda::Stage& stage, const usda::Prim&
         if (!signal) signal = constant(entry.fallback);  // reported; the model's default
         if (entry.weight) {
             auto weight = folder.input(surface, entry.weight, {entry.weightFallback});
-            if (!weight || weight->texture) {
+            if (!weight || weight->varies()) {
                 if (weight) folder.problem(weightAuthored->where, surface.path + ".inputs:" + entry.weight +
                                                                       " is textured; its constant default is used");
                 weight = constant({entry.weightFallback});
@@ -430,7 +477,7 @@ MaterialXMapping mapMaterialXSurface(const usda::Stage& stage, const usda::Prim&
     // glTF's alpha mode: opaque ignores alpha, mask cuts out at alphaCutoff, blend is transparent.
     if (startsWith(id, "ND_gltf_pbr_")) {
         auto mode = folder.input(surface, "alpha_mode", {0});
-        const double alphaMode = mode && !mode->texture ? broadcast(mode->offset, 1)[0] : 0.0;
+        const double alphaMode = mode && !mode->varies() ? broadcast(mode->offset, 1)[0] : 0.0;
         if (alphaMode != 0) {
             if (auto alpha = folder.input(surface, "alpha", {1})) store(out, folder, surface, "opacity", "alpha", *alpha);
             if (alphaMode == 1)

@@ -5,7 +5,8 @@
 // feeding an input are folded where the model can hold them: ND_image_* (and ND_tiledimage_*,
 // its uvtiling and uvoffset an affine map of the texture coordinates)
 // become the input's texture (file, colour space, address modes, ND_texcoord/ND_geompropvalue
-// primvar), ND_normalmap a normal map (scale 2, bias -1, as UsdPreviewSurface's normal maps),
+// primvar), ND_geompropvalue_color3/_vector3/_float on the base colour (times a constant) or on the
+// opacity a primvar read (obscura:diffuseColor:primvar, obscura:opacity:primvar), ND_normalmap a normal map (scale 2, bias -1, as UsdPreviewSurface's normal maps),
 // ND_multiply/ND_add/ND_subtract/ND_mix with constants a texture's scale and bias or a constant
 // folded, ND_extract a channel, ND_constant/ND_dot/ND_convert pass through. What cannot map is
 // reported (one problem per node) and its input keeps the model's default; a surface of another
@@ -27,6 +28,10 @@ struct MaterialXMapping {
     // an attribute left out takes the schema default.
     std::map<std::string, usda::Value> values;
     std::string stPrimvar = "st";  // the primvar the textures read
+    // ND_geompropvalue on the base colour or opacity, by the input read ("inputs:diffuseColor",
+    // "inputs:opacity"): the host serves the primvar as the bound prims' displayColor
+    // (displayOpacity), as for a UsdPrimvarReader.
+    std::map<std::string, PrimvarRead> primvarReads;
     std::vector<MaterialProblem> problems;
 };
 

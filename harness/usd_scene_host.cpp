@@ -847,6 +847,15 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         name.strings = std::vector<std::string>{read->primvar};
         return fill(name, out);
     }
+    // The primvar a reader reads replaces diffuseColor: it scales the vertex colour by 1.
+    if (surface != surfaces_.end() && attribute == "inputs:diffuseColor" &&
+        primvarRead(stage_, *surface->second, attribute)) {
+        usda::Value one;
+        one.typeName = "float3";
+        one.tupleSize = 3;
+        one.numbers = std::vector<double>{1.0, 1.0, 1.0};
+        return fill(one, out);
+    }
     if (surface != surfaces_.end() && startsWith(attribute, "obscura:")) {
         std::optional<MaterialProblem> problem;
         auto texture = flattenedTextureAttribute(stage_, *surface->second, attribute, time, &problem);
@@ -1107,7 +1116,13 @@ ObscuraStatus UsdSceneHost::computedPurpose(const usda::Prim& prim, ObscuraValue
 
 std::optional<PrimvarRead> UsdSceneHost::boundPrimvarRead(const usda::Prim& prim, const std::string& input) const {
     auto material = boundMaterial(prim);
-    auto surface = material ? surfaces_.find(*material) : surfaces_.end();
+    if (!material) return std::nullopt;
+    if (auto mapped = mappedSurfaces_.find(*material); mapped != mappedSurfaces_.end()) {
+        const auto& reads = mapped->second.mapping.primvarReads;
+        auto read = reads.find(input);
+        return read == reads.end() ? std::nullopt : std::optional<PrimvarRead>(read->second);
+    }
+    auto surface = surfaces_.find(*material);
     if (surface == surfaces_.end()) return std::nullopt;
     return primvarRead(stage_, *surface->second, input);
 }

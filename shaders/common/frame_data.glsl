@@ -192,4 +192,12 @@ bool albedoFromDisplayColor(InstanceData inst) {
     return (inst.flags & (INSTANCE_VERTEX_COLOR | INSTANCE_VERTEX_ALBEDO)) != 0u;
 }
 
+// The base colour where albedoFromDisplayColor: a material that reads a primvar scales it by its
+// diffuseColor (schemas/material.json obscura:diffuseColor:primvar: 1 for a UsdPrimvarReader, a
+// MaterialX surface's weight such as Standard Surface's base); without one it is as it is.
+vec3 displayAlbedo(InstanceData inst, vec4 vertexColor, vec3 diffuseColor) {
+    vec3 color = displayColorOf(inst, vertexColor).rgb;
+    return (inst.flags & INSTANCE_VERTEX_ALBEDO) != 0u ? color * diffuseColor : color;
+}
+
 #endif

@@ -149,7 +149,7 @@ void writeSurface() {
     if ((inst.flags & INSTANCE_DOUBLE_SIDED) != 0u && backFacing) n = -n;
     n = perturbedNormal(n, tangent, mat.textures[TEXTURE_NORMAL], normalTexture, inUv);
     vec3 albedo = albedoFromDisplayColor(inst)
-                      ? displayColorOf(inst, inColor).rgb
+                      ? displayAlbedo(inst, inColor, mat.diffuseRoughness.rgb)
                       : colorInput(mat.diffuseRoughness.rgb, mat.textures[TEXTURE_DIFFUSE], diffuseTexture, inUv);
     float roughness = scalarInput(mat.diffuseRoughness.a, mat.textures[TEXTURE_ROUGHNESS], roughnessTexture, inUv);
     float metallic = scalarInput(mat.emissiveMetallic.a, mat.textures[TEXTURE_METALLIC], metallicTexture, inUv);

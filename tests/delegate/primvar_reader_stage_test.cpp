@@ -2,7 +2,8 @@
 // Reading"), through the harness from USD text: a UsdPrimvarReader_float3 on diffuseColor (a
 // UsdPrimvarReader_float on opacity) gives each prim bound to the material the primvar it names
 // (vertex colours and alphas, as DCCs export them), the reader's fallback where a prim has none,
-// and a PointInstancer's displayColor (displayOpacity) per instance.
+// and a PointInstancer's displayColor (displayOpacity) per instance; a MaterialX ND_geompropvalue
+// on a surface's base colour (times its constant factors) or opacity reads the same way.
 #include "tests/delegate/hosted_stage.h"
 #include "tests/delegate/render_fixture.h"
 
@@ -197,6 +198,65 @@ TEST(PrimvarReaderStage, InstanceOpacityThroughTheReader) {
     std::vector<float> color = scene.renderAov("color", 4);
     EXPECT_NEAR(alphaAt(color, kLeft, kRow), 0.25f, 1.0f / 255.0f);
     EXPECT_NEAR(alphaAt(color, kRight, kRow), 1.0f, 1.0f / 255.0f);
+}
+
+// A MaterialX Standard Surface whose `input` (a declaration, "color3f inputs:base_color") is fed
+// through a NodeGraph output by an ND_geompropvalue `nodeId` of `geomprop`, with the node's
+// `extra` lines (its default) and the surface's `surfaceLines`.
+std::string geompropLook(const std::string& input, const std::string& nodeId, const std::string& geomprop,
+                         const std::string& extra, const std::string& surfaceLines = "") {
+    const std::string type = input.substr(0, input.find(' '));
+    return "def Material \"Look\"\n{\n"
+           "    token outputs:mtlx:surface.connect = </Look/Surface.outputs:surface>\n"
+           "    def Shader \"Surface\"\n    {\n"
+           "        uniform token info:id = \"ND_standard_surface_surfaceshader\"\n" + surfaceLines +
+           "        " + input + ".connect = </Look/Primvars.outputs:value>\n"
+           "        token outputs:surface\n    }\n"
+           "    def NodeGraph \"Primvars\"\n    {\n"
+           "        " + type + " outputs:value.connect = </Look/Primvars/Node.outputs:out>\n"
+           "        def Shader \"Node\"\n        {\n"
+           "            uniform token info:id = \"" + nodeId + "\"\n"
+           "            string inputs:geomprop = \"" + geomprop + "\"\n" + extra +
+           "            " + type + " outputs:out\n        }\n    }\n}\n";
+}
+
+// Houdini's vertex colours as Solaris writes them: base_color reads Cd, scaled by Standard
+// Surface's base (its default 0.8); a prim without Cd takes the node's default.
+TEST(PrimvarReaderStage, MaterialXBaseColourReadsAGeomprop) {
+    HostedStage scene(stageOf(
+        geompropLook("color3f inputs:base_color", "ND_geompropvalue_color3", "Cd",
+                     "            color3f inputs:default = (0.1, 0.6, 0.3)\n") +
+        quad("Red", -0.5, "    color3f[] primvars:Cd = [(0.8, 0.05, 0.05)]\n") + quad("Plain", 0.5, "")));
+    std::vector<float> albedo = scene.renderAlbedo();
+    expectColour(albedoAt(albedo, kLeft, kRow), {0.64f, 0.04f, 0.04f}, "base 0.8 times Cd");
+    expectColour(albedoAt(albedo, kRight, kRow), {0.08f, 0.48f, 0.24f}, "base 0.8 times the node's default");
+    EXPECT_FALSE(scene.warned("cannot be folded"));
+    EXPECT_TRUE(scene.host->messages().empty()) << scene.host->messages().front().text;
+
+    // An authored base of 0.5: the factor the vertex colour is scaled by.
+    HostedStage half(stageOf(geompropLook("color3f inputs:base_color", "ND_geompropvalue_color3", "Cd", "",
+                                          "        float inputs:base = 0.5\n") +
+                             quad("Red", -0.5, "    color3f[] primvars:Cd = [(0.8, 0.4, 0.2)]\n")));
+    expectColour(albedoAt(half.renderAlbedo(), kLeft, kRow), {0.4f, 0.2f, 0.1f}, "base 0.5 times Cd");
+}
+
+TEST(PrimvarReaderStage, MaterialXOpacityReadsAGeomprop) {
+    HostedStage scene(stageOf(geompropLook("float inputs:opacity", "ND_geompropvalue_float", "alpha", "") +
+                              quad("Half", -0.5, "    float[] primvars:alpha = [0.5]\n") +
+                              quad("Whole", 0.5, "    float[] primvars:alpha = [1]\n")));
+    std::vector<float> color = scene.renderAov("color", 4);
+    EXPECT_NEAR(alphaAt(color, kLeft, kRow), 0.5f, 1.0f / 255.0f);
+    EXPECT_NEAR(alphaAt(color, kRight, kRow), 1.0f, 1.0f / 255.0f);
+}
+
+// Obscura's material model reads primvars into the base colour and the opacity only: a geomprop on
+// the roughness is reported, naming the surface and the primvar, and the input keeps its default.
+TEST(PrimvarReaderStage, MaterialXGeompropElsewhereIsReported) {
+    HostedStage scene(stageOf(geompropLook("float inputs:specular_roughness", "ND_geompropvalue_float", "rough", "") +
+                              quad("Quad", -0.5, "    float[] primvars:rough = [0.9]\n")));
+    scene.renderAlbedo();
+    EXPECT_TRUE(scene.warned("/Look/Surface.inputs:specular_roughness reads primvar rough, and Obscura's material "
+                             "model reads primvars on diffuseColor and opacity only; its default is used"));
 }
 
 // Without a reader, the material's diffuseColor wins over displayColor, as before.
