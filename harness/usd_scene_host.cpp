@@ -87,9 +87,12 @@ bool isConvertedCurves(const std::string& type) { return type == "NurbsCurves" |
 // UsdSkel's prims pose the prims they skin (usda/skinning.h).
 // GeomSubsets of the materialBind family are served as part of their mesh (material_bind_subsets.h).
 // A Skeleton is served as its bones' guide mesh (addSkeletonGuide).
+// A PortalLight "guides sampling of a dome light" (UsdLux): a sampler's hint, and the dome's
+// prefiltered light (environment_map.glsl) is the integral it would converge to.
 const std::set<std::string> kStructuralTypes = {"",          "Xform",         "Scope",          "Shader",
                                                 "NodeGraph", "GeomSubset",    "RenderSettings", "RenderProduct",
-                                                "RenderVar", "SkelRoot",      "SkelAnimation",  "BlendShape"};
+                                                "RenderVar", "SkelRoot",      "SkelAnimation",  "BlendShape",
+                                                "PortalLight"};
 
 bool isPointBased(const std::string& type) {
     return type == "Mesh" || type == "BasisCurves" || type == "Points" || type == "NurbsPatch" || isConvertedCurves(type) ||
