@@ -11,15 +11,16 @@ std::string tokenOf(const usda::Prim& prim, const char* name, const char* fallba
 
 }  // namespace
 
-MaterialBindSubsets materialBindSubsets(const usda::Prim& mesh, double time) {
+MaterialBindSubsets materialBindSubsets(const usda::Prim& mesh, double time,
+                                        const std::function<std::optional<std::string>(const usda::Prim&)>& ownBinding) {
     MaterialBindSubsets subsets;
     for (const auto& child : mesh.children) {
         if (child->typeName != "GeomSubset" || !child->active) continue;
         if (tokenOf(*child, "familyName", "", time) != "materialBind" ||
             tokenOf(*child, "elementType", "face", time) != "face")
             continue;
-        const usda::Relationship* binding = child->relationship("material:binding");
-        if (!binding || binding->targets.empty()) continue;
+        const std::optional<std::string> material = ownBinding(*child);
+        if (!material) continue;
         const usda::Attribute* indices = child->attribute("indices");
         auto values = indices ? indices->evaluate(time) : std::nullopt;
         subsets.faceCounts.push_back(values ? int32_t(values->numbers.size()) : 0);
@@ -28,7 +29,7 @@ MaterialBindSubsets materialBindSubsets(const usda::Prim& mesh, double time) {
         if (values)
             for (double index : values->numbers)
                 subsets.faceIndices.push_back(index >= -2147483648.0 && index <= 2147483647.0 ? int32_t(index) : -1);
-        subsets.materials.push_back(binding->targets.front());
+        subsets.materials.push_back(*material);
         subsets.paths.push_back(child->path);
         subsets.animated = subsets.animated || (indices && indices->isAnimated());
     }

@@ -6,6 +6,8 @@
 #include "harness/usda/stage.h"
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,8 +25,10 @@ struct MaterialBindSubsets {
 };
 
 // The subsets of `mesh` at `time`: active GeomSubset children with familyName materialBind,
-// elementType face (the schema's fallback) and a material:binding of their own. A subset without
-// one binds what its mesh resolves to, so it changes nothing and is left out.
-MaterialBindSubsets materialBindSubsets(const usda::Prim& mesh, double time);
+// elementType face (the schema's fallback) and a binding of their own (`ownBinding`: the material
+// its own bindings resolve, material_binding.h). A subset without one binds what its mesh
+// resolves to, so it changes nothing and is left out.
+MaterialBindSubsets materialBindSubsets(const usda::Prim& mesh, double time,
+                                        const std::function<std::optional<std::string>(const usda::Prim&)>& ownBinding);
 
 }  // namespace obscura::harness

@@ -464,8 +464,8 @@ ObscuraDirtyBits UsdSceneHost::changes(const std::string& type, const usda::Prim
             bits |= dirtyBitFor(type, served);
     // A mesh's material subsets are its children: their faces are its topology, their bindings its own.
     if (prim.typeName == "Mesh" || before.typeName == "Mesh") {
-        const MaterialBindSubsets subsets = materialBindSubsets(prim, time);
-        const MaterialBindSubsets subsetsBefore = materialBindSubsets(before, time);
+        const MaterialBindSubsets subsets = bindSubsets(prim, time);
+        const MaterialBindSubsets subsetsBefore = previous.bindSubsets(before, time);
         if (subsets.faceCounts != subsetsBefore.faceCounts || subsets.faceIndices != subsetsBefore.faceIndices ||
             subsets.paths != subsetsBefore.paths)
             bits |= dirtyBitFor(type, "materialSubsets:faceIndices");
@@ -561,7 +561,7 @@ ObscuraStatus UsdSceneHost::markTimeVarying(const ObscuraApiV1& api, ObscuraDele
                                                      usda::isSkinningAnimated(stage_, guide->second))
             bits |= dirtyBitFor(type, "points");
         bits |= animatedValueBits(path, type, *prim);
-        if (prim->typeName == "Mesh" && materialBindSubsets(*prim, 0.0).animated)
+        if (prim->typeName == "Mesh" && bindSubsets(*prim, 0.0).animated)
             bits |= dirtyBitFor(type, "materialSubsets:faceIndices");
         if (bits) {
             ObscuraStatus s = api.markDirty(delegate, path.c_str(), bits);
@@ -814,7 +814,7 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
         return OBSCURA_OK;
     }
     if (startsWith(attribute, "materialSubsets:") && prim->typeName == "Mesh") {
-        const MaterialBindSubsets subsets = materialBindSubsets(*prim, time);
+        const MaterialBindSubsets subsets = bindSubsets(*prim, time);
         if (subsets.empty()) return OBSCURA_ERROR_NOT_FOUND;
         if (attribute == "materialSubsets:faceCounts" || attribute == "materialSubsets:faceIndices") {
             ints_ = attribute == "materialSubsets:faceCounts" ? subsets.faceCounts : subsets.faceIndices;
@@ -1131,12 +1131,23 @@ std::optional<PrimvarRead> UsdSceneHost::boundPrimvarRead(const usda::Prim& prim
 }
 
 std::optional<std::string> UsdSceneHost::boundMaterial(const usda::Prim& prim) const {
-    // Bindings are inherited down the namespace: the nearest ancestor's binding applies.
-    for (const usda::Prim* p = &prim; p; p = p->parent) {
-        const usda::Relationship* rel = p->relationship("material:binding");
-        if (rel && !rel->targets.empty()) return rel->targets.front();
-    }
-    return std::nullopt;
+    return resolveBoundMaterial(stage_, prim, drawableMaterial());
+}
+
+MaterialBindSubsets UsdSceneHost::bindSubsets(const usda::Prim& mesh, double time) const {
+    return materialBindSubsets(mesh, time, [this](const usda::Prim& subset) {
+        return resolveBoundMaterial(stage_, subset, drawableMaterial(), false);
+    });
+}
+
+DrawableMaterial UsdSceneHost::drawableMaterial() const {
+    // A surface Obscura draws: UsdPreviewSurface or a MaterialX node definition (scan()).
+    return [this](const std::string& path) {
+        const usda::Prim* material = stage_.find(path);
+        std::string problem;
+        const usda::Prim* shader = material ? surfaceShader(*material, problem) : nullptr;
+        return shader && (shaderId(*shader) == "UsdPreviewSurface" || isMaterialXShader(shaderId(*shader)));
+    };
 }
 
 const usda::Prim* UsdSceneHost::pointInstancerSpace(const usda::Prim& prim) const {

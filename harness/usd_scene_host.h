@@ -4,6 +4,8 @@
 #pragma once
 
 #include "harness/delegate_message.h"
+#include "harness/material_bind_subsets.h"
+#include "harness/material_binding.h"
 #include "harness/materialx_surface.h"
 #include "harness/native_instancing.h"
 #include "harness/shading_network.h"
@@ -181,7 +183,9 @@ private:
     ObscuraStatus getNativeInstancerValue(const NativeInstancer& instancer, const std::string& attribute, double time,
                                           ObscuraValue* out);
     // The material bound to a prim or its nearest ancestor with a binding.
-    std::optional<std::string> boundMaterial(const usda::Prim& prim) const;
+    std::optional<std::string> boundMaterial(const usda::Prim& prim) const;  // material_binding.h
+    MaterialBindSubsets bindSubsets(const usda::Prim& mesh, double time) const;
+    DrawableMaterial drawableMaterial() const;
     // The UsdPrimvarReader on `input` (inputs:diffuseColor, inputs:opacity) of the UsdPreviewSurface
     // bound to a prim; its primvar is served as the prim's primvars:displayColor, displayOpacity
     // (resolveAttribute).

@@ -79,8 +79,12 @@ Attribute composeAttribute(const std::string& name, const std::vector<SpecOpinio
 
 Relationship composeRelationship(const std::string& name, const std::vector<SpecOpinion<RelationshipSpec>>& specs) {
     std::vector<std::pair<const ListOp<std::string>*, const IndexNode*>> targets;
-    for (const auto& [spec, node, time] : specs) targets.emplace_back(&spec->targets, node);
-    return Relationship{name, composeMappedPaths(targets), specs.front().spec->where};
+    std::map<std::string, Value> metadata;
+    for (const auto& [spec, node, time] : specs) {
+        targets.emplace_back(&spec->targets, node);
+        mergeMetadata(metadata, spec->metadata);
+    }
+    return Relationship{name, composeMappedPaths(targets), specs.front().spec->where, std::move(metadata)};
 }
 
 void readStageMetadata(const Layer& layer, StageMetadata& out) {

@@ -71,6 +71,7 @@ struct Relationship {
     std::string name;
     std::vector<std::string> targets;  // absolute prim (or property) paths
     SourceLocation where;              // the strongest spec
+    std::map<std::string, Value> metadata;  // bindMaterialAs, ...
 };
 
 enum class Specifier { Def, Over, Class };
