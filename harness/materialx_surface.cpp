@@ -15,14 +15,7 @@ using Numbers = std::vector<double>;
 // Connections through node graphs are followed this far (a cycle is an authoring error).
 constexpr int kMaxFoldDepth = 32;
 
-struct Texture {
-    std::string file;
-    std::string colorSpace = "raw";
-    std::string wrapS = "repeat", wrapT = "repeat";
-    std::string st = "st";
-    StTransform transform;  // ND_tiledimage's uvtiling, uvoffset and real-world sizes
-    std::string channel = "rgb";
-};
+using Texture = MappedTexture;  // ND_tiledimage's placement in its transform
 
 // A folded input: a constant (`offset`), or a texture's texel or the prim's primvar (an
 // ND_geompropvalue: a PrimvarRead, its fallback the node's inputs:default) times `scale` plus
@@ -411,29 +404,18 @@ void store(MaterialXMapping& out, Folder& folder, const usda::Prim& surface, con
                     broadcast(signal.offset, width));
         return;
     }
-    const std::string prefix = "obscura:" + usdInput + ":";
-    const Texture& t = *signal.texture;
-    out.values[prefix + "file"] = token(t.file);
-    out.values[prefix + "channel"] = token(width == 1 && t.channel == "rgb" ? "r" : t.channel);
-    out.values[prefix + "st"] = token(t.st);
-    out.values[prefix + "transformS"] = numbers("float3", Numbers(t.transform.s.begin(), t.transform.s.end()));
-    out.values[prefix + "transformT"] = numbers("float3", Numbers(t.transform.t.begin(), t.transform.t.end()));
-    out.values[prefix + "wrapS"] = token(t.wrapS);
-    out.values[prefix + "wrapT"] = token(t.wrapT);
-    out.values[prefix + "sourceColorSpace"] = token(t.colorSpace);
-    Numbers scale = broadcast(signal.scale, 3), offset = broadcast(signal.offset, 3);
-    scale.push_back(1.0);
-    offset.push_back(0.0);
-    out.values[prefix + "scale"] = numbers("float4", scale);
-    out.values[prefix + "bias"] = numbers("float4", offset);
-    if (out.stPrimvar == "st") out.stPrimvar = t.st;
+    Texture t = *signal.texture;
+    if (width == 1 && t.channel == "rgb") t.channel = "r";
+    storeTexture(out, usdInput, t, signal.scale, signal.offset);
 }
 
 // A surface of a kind this mapping does not know: its base colour, under the names surfaces use.
 void mapFallback(MaterialXMapping& out, Folder& folder, const usda::Prim& surface, const std::string& id) {
     folder.problem(surface.where, surface.path + " (" + id +
                                       ") is not a surface Obscura's material model maps; drawn with its base colour");
-    for (const char* name : {"base_color", "diffuseColor", "diffuse_color", "color", "albedo", "base_colour"}) {
+    // MDL's OmniPBR-like and OmniSurface names last.
+    for (const char* name : {"base_color", "diffuseColor", "diffuse_color", "color", "albedo", "base_colour",
+                             "diffuse_color_constant", "diffuse_reflection_color"}) {
         if (!surface.attribute(std::string("inputs:") + name)) continue;
         if (auto signal = folder.input(surface, name, {0.18, 0.18, 0.18}))
             store(out, folder, surface, "diffuseColor", name, *signal);
@@ -443,12 +425,35 @@ void mapFallback(MaterialXMapping& out, Folder& folder, const usda::Prim& surfac
 
 }  // namespace
 
+void storeTexture(MaterialXMapping& out, const std::string& usdInput, const MappedTexture& t, std::vector<double> scale,
+                  std::vector<double> bias) {
+    const std::string prefix = "obscura:" + usdInput + ":";
+    out.values[prefix + "file"] = token(t.file);
+    out.values[prefix + "channel"] = token(t.channel);
+    out.values[prefix + "st"] = token(t.st);
+    out.values[prefix + "transformS"] = numbers("float3", Numbers(t.transform.s.begin(), t.transform.s.end()));
+    out.values[prefix + "transformT"] = numbers("float3", Numbers(t.transform.t.begin(), t.transform.t.end()));
+    out.values[prefix + "wrapS"] = token(t.wrapS);
+    out.values[prefix + "wrapT"] = token(t.wrapT);
+    out.values[prefix + "sourceColorSpace"] = token(t.colorSpace);
+    scale = broadcast(scale, 3);
+    bias = broadcast(bias, 3);
+    scale.push_back(1.0);
+    bias.push_back(0.0);
+    out.values[prefix + "scale"] = numbers("float4", std::move(scale));
+    out.values[prefix + "bias"] = numbers("float4", std::move(bias));
+    if (out.stPrimvar == "st") out.stPrimvar = t.st;
+}
+
 bool isMaterialXShader(const std::string& shaderId) { return startsWith(shaderId, "ND_"); }
 
 MaterialXMapping mapMaterialXSurface(const usda::Stage& stage, const usda::Prim& surface, double time) {
     MaterialXMapping out;
     Folder folder(stage, time, out.problems);
-    const std::string id = shaderId(surface);
+    // An MDL shader has no info:id: its module's material names it.
+    std::string id = shaderId(surface);
+    if (const usda::Attribute* mdl = id.empty() ? surface.attribute("info:mdl:sourceAsset:subIdentifier") : nullptr)
+        if (auto name = mdl->evaluate(time); name && !name->strings.empty()) id = "MDL " + name->strings[0];
     const auto model = std::find_if(surfaceModels().begin(), surfaceModels().end(),
                                     [&](const SurfaceModel& m) { return startsWith(id, m.idPrefix); });
     if (model == surfaceModels().end()) {

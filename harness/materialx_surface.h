@@ -15,6 +15,7 @@
 #pragma once
 
 #include "harness/shading_network.h"
+#include "harness/texture_coordinates.h"
 #include "harness/usda/stage.h"
 
 #include <map>
@@ -22,6 +23,16 @@
 #include <vector>
 
 namespace obscura::harness {
+
+// A texture on one of the material model's inputs, as a mapping serves it (obscura:<input>:*).
+struct MappedTexture {
+    std::string file;                       // resolved
+    std::string colorSpace = "raw";         // "sRGB" or "raw"
+    std::string wrapS = "repeat", wrapT = "repeat";
+    std::string st = "st";                  // the primvar it reads
+    StTransform transform;                  // of the texture coordinates
+    std::string channel = "rgb";
+};
 
 struct MaterialXMapping {
     // Values by the delegate's attribute names: "inputs:diffuseColor", "obscura:normal:file", ...;
@@ -34,6 +45,11 @@ struct MaterialXMapping {
     std::map<std::string, PrimvarRead> primvarReads;
     std::vector<MaterialProblem> problems;
 };
+
+// `texture` times `scale` plus `bias` (three components, alpha 1 and 0 added) as the values of
+// `usdInput` ("diffuseColor"); the first texture's primvar becomes the mapping's stPrimvar.
+void storeTexture(MaterialXMapping& out, const std::string& usdInput, const MappedTexture& texture,
+                  std::vector<double> scale, std::vector<double> bias);
 
 // Whether a shader id names a MaterialX node definition this mapping reads as a surface.
 bool isMaterialXShader(const std::string& shaderId);

@@ -2,6 +2,7 @@
 
 #include "harness/material_bind_subsets.h"
 #include "harness/materialx_surface.h"
+#include "harness/omni_pbr_surface.h"
 #include "harness/shading_network.h"
 #include "harness/usda/hermite_curves.h"
 #include "harness/usda/matrix4.h"
@@ -222,9 +223,11 @@ std::string int32RangeProblem(const usda::Value& value) {
 
 const usda::Prim* UsdSceneHost::surfaceShader(const usda::Prim& material, std::string& problem) const {
     // UsdShadeMaterial::ComputeSurfaceSource: the universal render context's outputs:surface, else
-    // MaterialX's outputs:mtlx:surface (what usdMtlx and MaterialX-authoring tools write).
+    // MaterialX's outputs:mtlx:surface (what usdMtlx and MaterialX-authoring tools write), else
+    // MDL's outputs:mdl:surface (Omniverse's OmniPBR, omni_pbr_surface.h).
     const usda::Attribute* surface = material.attribute("outputs:surface");
     if (!surface || !surface->connection) surface = material.attribute("outputs:mtlx:surface");
+    if (!surface || !surface->connection) surface = material.attribute("outputs:mdl:surface");
     if (!surface || !surface->connection) {
         problem = "outputs:surface is not connected";
         return nullptr;
@@ -935,7 +938,8 @@ const MaterialXMapping* UsdSceneHost::mappedSurface(const std::string& material,
     if (it == mappedSurfaces_.end()) return nullptr;
     MappedSurface& mapped = it->second;
     if (mapped.time != time) {
-        mapped.mapping = mapMaterialXSurface(stage_, *mapped.shader, time);
+        mapped.mapping = isOmniPbrShader(*mapped.shader) ? mapOmniPbrSurface(stage_, *mapped.shader, time)
+                                                          : mapMaterialXSurface(stage_, *mapped.shader, time);
         mapped.time = time;
         for (const MaterialProblem& problem : mapped.mapping.problems)
             // Once per node as authored: materials that share a document share its nodes.
@@ -1141,12 +1145,13 @@ MaterialBindSubsets UsdSceneHost::bindSubsets(const usda::Prim& mesh, double tim
 }
 
 DrawableMaterial UsdSceneHost::drawableMaterial() const {
-    // A surface Obscura draws: UsdPreviewSurface or a MaterialX node definition (scan()).
+    // A surface Obscura draws: UsdPreviewSurface, a MaterialX node definition or OmniPBR (scan()).
     return [this](const std::string& path) {
         const usda::Prim* material = stage_.find(path);
         std::string problem;
         const usda::Prim* shader = material ? surfaceShader(*material, problem) : nullptr;
-        return shader && (shaderId(*shader) == "UsdPreviewSurface" || isMaterialXShader(shaderId(*shader)));
+        return shader && (shaderId(*shader) == "UsdPreviewSurface" || isMaterialXShader(shaderId(*shader)) ||
+                          isOmniPbrShader(*shader));
     };
 }
 

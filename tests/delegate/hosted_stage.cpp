@@ -98,10 +98,41 @@ void HostedStage::setBool(const std::string& name, bool on) {
     EXPECT_EQ(api().setRenderSetting(delegate, name.c_str(), &value), OBSCURA_OK) << api().lastError(delegate);
 }
 
-bool HostedStage::warned(const std::string& fragment) const {
-    for (const auto& m : host->messages())
-        if (m.text.find(fragment) != std::string::npos) return true;
-    return false;
+size_t HostedStage::messagesWith(const std::string& fragment) const {
+    size_t count = 0;
+    for (const auto& m : host->messages()) count += m.text.find(fragment) != std::string::npos;
+    return count;
+}
+
+std::vector<float> HostedStage::floats(const std::string& path, const std::string& attribute) const {
+    const ObscuraSceneDelegate& sd = host->sceneDelegate();
+    ObscuraValue value{};
+    if (sd.getValue(sd.userData, path.c_str(), attribute.c_str(), 0.0, &value) != OBSCURA_OK) {
+        ADD_FAILURE() << "no value for " << path << " " << attribute;
+        return {};
+    }
+    const size_t width = value.type == OBSCURA_VALUE_FLOAT4   ? 4
+                         : value.type == OBSCURA_VALUE_FLOAT3 ? 3
+                         : value.type == OBSCURA_VALUE_FLOAT2 ? 2
+                                                              : 1;
+    const auto* data = static_cast<const float*>(value.data);
+    return std::vector<float>(data, data + width * value.count);
+}
+
+std::string HostedStage::token(const std::string& path, const std::string& attribute) const {
+    const ObscuraSceneDelegate& sd = host->sceneDelegate();
+    ObscuraValue value{};
+    if (sd.getValue(sd.userData, path.c_str(), attribute.c_str(), 0.0, &value) != OBSCURA_OK || value.count != 1) {
+        ADD_FAILURE() << "no token for " << path << " " << attribute;
+        return {};
+    }
+    return static_cast<const char* const*>(value.data)[0];
+}
+
+bool HostedStage::served(const std::string& path, const std::string& attribute) const {
+    const ObscuraSceneDelegate& sd = host->sceneDelegate();
+    ObscuraValue value{};
+    return sd.getValue(sd.userData, path.c_str(), attribute.c_str(), 0.0, &value) == OBSCURA_OK;
 }
 
 }  // namespace obscura::test

@@ -48,8 +48,15 @@ struct HostedStage {
     // A render setting that is one token.
     void setToken(const std::string& name, const std::string& token);
     void setBool(const std::string& name, bool on);
-    // Whether the host reported a message containing `fragment`.
-    bool warned(const std::string& fragment) const;
+    // Whether the host reported a message containing `fragment`, and how many such it reported.
+    bool warned(const std::string& fragment) const { return messagesWith(fragment) > 0; }
+    size_t messagesWith(const std::string& fragment) const;
+    // What the host serves the plugin for `attribute` of the prim at `path` at time 0: numbers
+    // (float-typed values), one token; a missing value fails the test. `served`: whether it
+    // serves one at all.
+    std::vector<float> floats(const std::string& path, const std::string& attribute) const;
+    std::string token(const std::string& path, const std::string& attribute) const;
+    bool served(const std::string& path, const std::string& attribute) const;
     // A logged error containing `fragment` is one this test provokes; any other fails it.
     void expectError(std::string fragment) { expected_.add(std::move(fragment)); }
 

@@ -169,46 +169,11 @@ def Mesh "Quad"
 }
 )";
 
-// A stage through the scene host, with readers of the values it serves.
-struct Networks {
-    HostedStage scene;
+// The networks above through the scene host.
+struct Networks : HostedStage {
     explicit Networks(std::variant<std::unique_ptr<usda::Stage>, usda::Error> opened =
                           usda::Stage::openFromString(kNetworks, OBSCURA_TEST_DATA_DIR "/networks.usda"))
-        : scene(std::move(opened)) {}
-
-    std::vector<float> floats(const std::string& path, const std::string& attribute) {
-        const ObscuraSceneDelegate& sd = scene.host->sceneDelegate();
-        ObscuraValue value{};
-        if (sd.getValue(sd.userData, path.c_str(), attribute.c_str(), 0.0, &value) != OBSCURA_OK) {
-            ADD_FAILURE() << "no value for " << path << " " << attribute;
-            return {};
-        }
-        const size_t width = value.type == OBSCURA_VALUE_FLOAT4   ? 4
-                             : value.type == OBSCURA_VALUE_FLOAT3 ? 3
-                             : value.type == OBSCURA_VALUE_FLOAT2 ? 2
-                                                                  : 1;
-        const auto* data = static_cast<const float*>(value.data);
-        return std::vector<float>(data, data + width * value.count);
-    }
-    std::string token(const std::string& path, const std::string& attribute) {
-        const ObscuraSceneDelegate& sd = scene.host->sceneDelegate();
-        ObscuraValue value{};
-        if (sd.getValue(sd.userData, path.c_str(), attribute.c_str(), 0.0, &value) != OBSCURA_OK || value.count != 1) {
-            ADD_FAILURE() << "no token for " << path << " " << attribute;
-            return {};
-        }
-        return static_cast<const char* const*>(value.data)[0];
-    }
-    bool found(const std::string& path, const std::string& attribute) {
-        const ObscuraSceneDelegate& sd = scene.host->sceneDelegate();
-        ObscuraValue value{};
-        return sd.getValue(sd.userData, path.c_str(), attribute.c_str(), 0.0, &value) == OBSCURA_OK;
-    }
-    size_t messagesWith(const std::string& fragment) {
-        size_t count = 0;
-        for (const auto& m : scene.host->messages()) count += m.text.find(fragment) != std::string::npos;
-        return count;
-    }
+        : HostedStage(std::move(opened)) {}
 };
 
 void expectFloats(const std::vector<float>& actual, const std::vector<float>& expected, const char* what) {
@@ -261,7 +226,7 @@ TEST(MaterialXSurface, WhatCannotMapIsReportedOnceAndFallsBack) {
     // A product of two textures is no texture: one message naming the node; the input falls
     // back to the model's default (base 0.8 of white).
     EXPECT_EQ(n.messagesWith("/Unfoldable/Product (ND_multiply_color3) cannot be folded"), 1u);
-    EXPECT_FALSE(n.found("/Unfoldable", "obscura:diffuseColor:file"));
+    EXPECT_FALSE(n.served("/Unfoldable", "obscura:diffuseColor:file"));
     expectFloats(n.floats("/Unfoldable", "inputs:diffuseColor"), {0.8f, 0.8f, 0.8f}, "fallback");
     // A surface of no known kind is drawn with its base colour.
     EXPECT_EQ(n.messagesWith("/Foreign/Surface (PxrSurface) is not a surface Obscura's material model maps; drawn "
@@ -293,7 +258,7 @@ TEST(MaterialXSurface, TheChessSetsPiecesAreTextured) {
     expectFloats(n.floats(material, "obscura:normal:bias"), {-1, -1, -1, 0}, "normal map decoding");
     // Standard Surface's base of 0.8 scales the base colour texture.
     expectFloats(n.floats(material, "obscura:diffuseColor:scale"), {0.8f, 0.8f, 0.8f, 1}, "base");
-    EXPECT_TRUE(n.scene.errors.empty()) << n.scene.errors.front();
+    EXPECT_TRUE(n.errors.empty()) << n.errors.front();
 }
 
 // An animated MaterialX network re-syncs: the colour reaches the surface's base_color directly, or
