@@ -73,13 +73,7 @@ std::optional<Signal> add(const Signal& a, const Signal& b) {
     return out;
 }
 
-usda::Value numbers(const char* type, Numbers n) {
-    usda::Value v;
-    v.typeName = type;
-    v.tupleSize = int(n.size());
-    v.numbers = std::move(n);
-    return v;
-}
+usda::Value numbers(const char* type, Numbers n) { return numbersValue(type, std::move(n)); }
 
 usda::Value token(std::string text) {
     usda::Value v;
@@ -424,6 +418,14 @@ void mapFallback(MaterialXMapping& out, Folder& folder, const usda::Prim& surfac
 }
 
 }  // namespace
+
+usda::Value numbersValue(const char* type, std::vector<double> n) {
+    usda::Value v;
+    v.typeName = type;
+    v.tupleSize = int(n.size());
+    v.numbers = std::move(n);
+    return v;
+}
 
 void storeTexture(MaterialXMapping& out, const std::string& usdInput, const MappedTexture& t, std::vector<double> scale,
                   std::vector<double> bias) {

@@ -46,6 +46,9 @@ struct MaterialXMapping {
     std::vector<MaterialProblem> problems;
 };
 
+// One value of `type` ("float3") holding `n`, as a mapping serves a constant.
+usda::Value numbersValue(const char* type, std::vector<double> n);
+
 // `texture` times `scale` plus `bias` (three components, alpha 1 and 0 added) as the values of
 // `usdInput` ("diffuseColor"); the first texture's primvar becomes the mapping's stPrimvar.
 void storeTexture(MaterialXMapping& out, const std::string& usdInput, const MappedTexture& texture,

@@ -12,13 +12,7 @@ bool endsWith(const std::string& s, const std::string& suffix) {
     return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-usda::Value numbers(const char* type, Numbers n) {
-    usda::Value v;
-    v.typeName = type;
-    v.tupleSize = int(n.size());
-    v.numbers = std::move(n);
-    return v;
-}
+usda::Value numbers(const char* type, Numbers n) { return numbersValue(type, std::move(n)); }
 
 // Reads one shader's inputs, recording what cannot map.
 class Inputs {
