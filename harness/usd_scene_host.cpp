@@ -31,6 +31,7 @@ const std::map<std::string, std::string> kPrimTypes = {
     {"DiskLight", "diskLight"},
     {"CylinderLight", "cylinderLight"},
     {"DomeLight", "domeLight"},
+    {"DomeLight_1", "domeLight"},  // turned to its poleAxis (domePoleTurn)
     {"Material", "material"},
     {"PointInstancer", "instancer"},
     {"Cube", "cube"},
@@ -61,6 +62,7 @@ const std::map<std::pair<std::string, std::string>, std::string> kConvertedInput
     {{"HermiteCurves", "tangents"}, "points"},
     {{"TetMesh", "tetVertexIndices"}, "faceVertexIndices"},
     {{"TetMesh", "surfaceFaceVertexIndices"}, "faceVertexIndices"},
+    {{"DomeLight_1", "poleAxis"}, "transform"},
 };
 
 // The primvars a prim is served from the UsdPrimvarReader on an input of its material, by the name
@@ -94,6 +96,19 @@ const std::set<std::string> kStructuralTypes = {"",          "Xform",         "S
                                                 "NodeGraph", "GeomSubset",    "RenderSettings", "RenderProduct",
                                                 "RenderVar", "SkelRoot",      "SkelAnimation",  "BlendShape",
                                                 "PortalLight"};
+
+// UsdLuxDomeLight_1's `poleAxis`: its dome's top pole along the stage's up axis ("scene", the
+// fallback), +Y or +Z. The plugin's dome has its pole along local +Y, as UsdLuxDomeLight's; a +Z
+// pole is that dome turned +90 degrees about X before its own transform (as
+// UsdLuxDomeLight::OrientToStageUpAxis turns one), for the dome alone: its children do not inherit it.
+usda::Matrix4 domePoleTurn(const usda::Stage& stage, const usda::Prim& prim) {
+    if (prim.typeName != "DomeLight_1") return usda::matrix4::identity();
+    std::string pole = "scene";
+    if (const usda::Attribute* a = prim.attribute("poleAxis"))
+        if (auto v = a->evaluate(0.0); v && !v->strings.empty()) pole = v->strings[0];
+    if (pole == "scene") pole = stage.metadata().upAxis;
+    return pole == "Z" ? usda::matrix4::rotation(0, 90.0) : usda::matrix4::identity();
+}
 
 bool isPointBased(const std::string& type) {
     return type == "Mesh" || type == "BasisCurves" || type == "Points" || type == "NurbsPatch" || isConvertedCurves(type) ||
@@ -1235,9 +1250,10 @@ ObscuraStatus UsdSceneHost::sampleTransformThunk(void* user, const char* path, d
     }
     // Prototype meshes are placed relative to their prototype's space; instances do the rest.
     const usda::Prim* space = self->prototypeSpace(*prim);
+    const usda::Matrix4 poleTurn = domePoleTurn(self->stage_, *prim);
     for (size_t i = 0; i < sampleTimes.size(); ++i) {
         times[i] = sampleTimes[i];
-        auto m = self->stage_.worldTransform(*prim, sampleTimes[i]);
+        auto m = usda::matrix4::multiply(poleTurn, self->stage_.worldTransform(*prim, sampleTimes[i]));
         if (space) m = usda::matrix4::multiply(m, usda::matrix4::inverse(self->stage_.worldTransform(*space, sampleTimes[i])));
         std::copy(m.begin(), m.end(), matrices + 16 * i);
     }
