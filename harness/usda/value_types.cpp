@@ -17,6 +17,10 @@ constexpr std::array kTypes = {
     ValueType{"double", K::Real, 1, 0, false},     ValueType{"timecode", K::Real, 1, 0, false},
     ValueType{"string", K::String, 1, 0, false},   ValueType{"token", K::Token, 1, 0, false},
     ValueType{"asset", K::Asset, 1, 0, false},
+    // A path expression (UsdCollectionAPI's membershipExpression) is written as a string.
+    ValueType{"pathExpression", K::String, 1, 0, false},
+    // An opaque attribute (and a group, which is one) holds no value: it is declared and connected.
+    ValueType{"opaque", K::Token, 1, 0, false},     ValueType{"group", K::Token, 1, 0, false},
     ValueType{"int2", K::Integer, 2, 0, false},    ValueType{"int3", K::Integer, 3, 0, false},
     ValueType{"int4", K::Integer, 4, 0, false},
     ValueType{"half2", K::Real, 2, 0, false},      ValueType{"half3", K::Real, 3, 0, false},

@@ -255,6 +255,25 @@ def Material "Mat"
     EXPECT_FALSE(mat.attribute("inputs:none")->connection);
 }
 
+// Opaque attributes (and groups, which are opaque) hold no value: they are declared and connected,
+// as UsdShade writes a shader's struct-like outputs.
+TEST(ParserSyntax, OpaqueAttributesAreDeclaredAndConnected) {
+    const auto stage = open(R"(#usda 1.0
+def Shader "S"
+{
+    opaque outputs:out
+    opaque inputs:in.connect = </S.outputs:out>
+    group inputs:options
+}
+)");
+    ASSERT_TRUE(stage);
+    const Prim& s = *stage->find("/S");
+    ASSERT_NE(s.attribute("outputs:out"), nullptr);
+    EXPECT_FALSE(s.attribute("outputs:out")->defaultValue);
+    EXPECT_EQ(s.attribute("inputs:in")->connection, "/S.outputs:out");
+    ASSERT_NE(s.attribute("inputs:options"), nullptr);
+}
+
 TEST(ParserSyntax, Relationships) {
     const auto stage = open(R"(#usda 1.0
 def "P"

@@ -33,6 +33,7 @@ const std::vector<TypeCase>& typeCases() {
         {"string", R"("a\tb")", 1, {}, {"a\tb"}},
         {"token", "\"tok\"", 1, {}, {"tok"}},
         {"asset", "@textures/wood.png@", 1, {}, {"textures/wood.png"}},
+        {"pathExpression", R"("/World/Red*// - /World/Red*/Proxy")", 1, {}, {"/World/Red*// - /World/Red*/Proxy"}},
         {"int2", "(1, 2)", 2, {1, 2}, {}},
         {"int3", "(1, 2, 3)", 3, {1, 2, 3}, {}},
         {"int4", "(1, 2, 3, 4)", 4, {1, 2, 3, 4}, {}},
