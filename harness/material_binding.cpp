@@ -1,5 +1,7 @@
 #include "harness/material_binding.h"
 
+#include "harness/usda/path_expression.h"
+
 namespace obscura::harness {
 namespace {
 
@@ -68,21 +70,51 @@ std::optional<std::string> boundForPurpose(const usda::Stage& stage, const usda:
     return boundFor(stage, prim, "", ancestors);
 }
 
+std::string uniformToken(const usda::Prim& prim, const std::string& name, const char* fallback) {
+    const usda::Attribute* a = prim.attribute(name);
+    auto v = a ? a->evaluate(0.0) : std::nullopt;
+    return v && !v->strings.empty() ? v->strings[0] : std::string(fallback);
+}
+
+// The membershipExpression of collection `name` on `owner`, parsed; nullopt where none is authored
+// or it does not parse (the stage reported it when it opened).
+std::optional<usda::PathExpression> membershipExpression(const usda::Prim& owner, const std::string& name) {
+    const std::string expression = uniformToken(owner, "collection:" + name + ":membershipExpression", "");
+    if (expression.empty()) return std::nullopt;
+    auto parsed = usda::PathExpression::parse(expression, owner.path);
+    if (auto* e = std::get_if<usda::PathExpression>(&parsed)) return std::move(*e);
+    return std::nullopt;
+}
+
 bool includes(const usda::Stage& stage, const std::string& collectionPath, const std::string& primPath, int depth) {
     const size_t dot = collectionPath.find(kCollectionPath);
     if (dot == std::string::npos || depth > kMaxCollectionNesting) return false;
     const usda::Prim* owner = stage.find(collectionPath.substr(0, dot));
     if (!owner) return false;
-    const std::string base = "collection:" + collectionPath.substr(dot + kCollectionPath.size()) + ":";
-    auto token = [&](const char* name, const char* fallback) {
-        const usda::Attribute* a = owner->attribute(base + name);
-        auto v = a ? a->evaluate(0.0) : std::nullopt;
-        return v && !v->strings.empty() ? v->strings[0] : std::string(fallback);
-    };
-    const bool explicitOnly = token("expansionRule", "expandPrims") == "explicitOnly";
+    const std::string name = collectionPath.substr(dot + kCollectionPath.size());
+    const std::string base = "collection:" + name + ":";
+    const bool explicitOnly = uniformToken(*owner, base + "expansionRule", "expandPrims") == "explicitOnly";
     const usda::Attribute* includeRootAttribute = owner->attribute(base + "includeRoot");
     auto includeRootValue = includeRootAttribute ? includeRootAttribute->evaluate(0.0) : std::nullopt;
     const bool includeRoot = includeRootValue && !includeRootValue->numbers.empty() && includeRootValue->numbers[0] != 0;
+
+    // The membership mode ("Collections and Patterns"): "automatic", the fallback, takes the
+    // expression where no include, exclude or includeRoot says otherwise.
+    auto hasTargets = [&](const char* list) {
+        const usda::Relationship* r = owner->relationship(base + list);
+        return r && !r->targets.empty();
+    };
+    const std::string mode = uniformToken(*owner, base + "mode", "automatic");
+    if (mode == "expression" ||
+        (mode == "automatic" && !hasTargets("includes") && !hasTargets("excludes") && !includeRoot)) {
+        const std::optional<usda::PathExpression> expression = membershipExpression(*owner, name);
+        const usda::Prim* prim = stage.find(primPath);
+        auto lookup = [&](const std::string& path, const std::string& referenced) -> std::optional<usda::PathExpression> {
+            const usda::Prim* other = stage.find(path);
+            return other ? membershipExpression(*other, referenced) : std::nullopt;
+        };
+        return expression && prim && expression->matches(*prim, lookup);
+    }
 
     // The most specific include or exclude path at or above the prim decides (an exclude wins a tie).
     std::optional<bool> decided;

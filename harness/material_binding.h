@@ -34,8 +34,9 @@ std::optional<std::string> resolveBoundMaterial(const usda::Stage& stage, const 
 // ("/Owner.collection:name"): of its includes and excludes, the most specific path at or above
 // the prim decides (expansionRule expandPrims and expandPrimsAndProperties; explicitOnly: only
 // the paths themselves); an included collection contributes its members; includeRoot includes
-// every prim no path decides. XXX: membershipExpression (path expressions) is not evaluated: a
-// collection that has one includes nothing more than its paths say.
+// every prim no path decides. A collection in expression mode (its `mode` "expression", or
+// "automatic", the fallback, with no includes, excludes or includeRoot) holds the prims its
+// membershipExpression matches (usda/path_expression.h).
 bool collectionIncludes(const usda::Stage& stage, const std::string& collectionPath, const std::string& primPath);
 
 }  // namespace obscura::harness

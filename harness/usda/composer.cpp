@@ -4,6 +4,7 @@
 #include <map>
 #include <set>
 
+#include "harness/usda/path_expression.h"
 #include "harness/usda/sdf_path.h"
 
 namespace obscura::usda {
@@ -218,7 +219,22 @@ std::unique_ptr<Prim> Composer::composePrim(const std::string& path, const std::
         prim->active = it->second.numbers.front() != 0.0;
     for (const auto& [name, specs] : attributes) prim->attributes.emplace(name, composeAttribute(name, specs));
     for (const auto& [name, specs] : relationships) prim->relationships.emplace(name, composeRelationship(name, specs));
+    reportBadMembershipExpressions(*prim);
     return prim;
+}
+
+// A collection's membershipExpression that does not parse makes it empty (as in USD): reported
+// with where it is written.
+void Composer::reportBadMembershipExpressions(const Prim& prim) {
+    for (const auto& [name, attribute] : prim.attributes) {
+        if (name.rfind("collection:", 0) != 0 || !name.ends_with(":membershipExpression")) continue;
+        const std::optional<Value> value = attribute.evaluate(0.0);
+        if (!value || value->strings.empty()) continue;
+        auto parsed = PathExpression::parse(value->strings[0], prim.path);
+        if (const auto* problem = std::get_if<std::string>(&parsed))
+            diagnostics_.warn("membershipExpression:" + prim.path + "." + name, attribute.where,
+                              prim.path + "." + name + ": " + *problem + "; the collection holds nothing");
+    }
 }
 
 }  // namespace obscura::usda

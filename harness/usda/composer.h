@@ -37,6 +37,7 @@ private:
     // `parentIndex`: the parent's prim index, whose relocates move children away and in.
     void composeChildren(Stage& stage, Prim& parent, const IndexNode& parentIndex, const std::vector<ChildName>& authored);
     std::unique_ptr<Prim> composePrim(const std::string& path, const std::vector<Opinion>& opinions, Prim& parent);
+    void reportBadMembershipExpressions(const Prim& prim);
 
     DiagnosticSink diagnostics_;
     CompositionBudget budget_;

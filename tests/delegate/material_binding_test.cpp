@@ -208,6 +208,61 @@ def Xform "Set" (
     EXPECT_FALSE(in("/Nowhere.collection:props", "/Set/Walls"));
 }
 
+// Pattern-based collections (expression mode): the prims the membershipExpression matches, under
+// `mode` "expression" or the fallback "automatic" where no include, exclude or includeRoot is
+// authored; "relationship" mode, or an include, ignores the expression. A relationship-mode
+// collection may include an expression-mode one.
+TEST(MaterialBinding, ExpressionCollectionsHoldWhatTheirExpressionMatches) {
+    auto stage = open(R"(
+def Xform "Set" (
+    prepend apiSchemas = ["CollectionAPI:red", "CollectionAPI:spheres", "CollectionAPI:ruled", "CollectionAPI:mixed", "CollectionAPI:both"]
+)
+{
+    uniform pathExpression collection:red:membershipExpression = "Props/Red*//"
+    uniform pathExpression collection:spheres:membershipExpression = "//*{isa:Sphere} - %:red"
+    uniform token collection:spheres:mode = "expression"
+    uniform pathExpression collection:ruled:membershipExpression = "//"
+    uniform token collection:ruled:mode = "relationship"
+    rel collection:ruled:includes = [</Set/Props/BlueBall>]
+    uniform pathExpression collection:mixed:membershipExpression = "//"
+    rel collection:mixed:includes = [</Set/Props/BlueBall>]
+    rel collection:both:includes = [</Set.collection:red>, </Set/Props/BlueBall>]
+    rel material:binding:collection:spheres = [</Set.collection:spheres>, </Looks/Sphere>]
+    rel material:binding:collection:red = [</Set.collection:red>, </Looks/Red>]
+    def Xform "Props"
+    {
+        def Mesh "RedCup"
+        {
+            def Mesh "Handle"
+            {
+            }
+        }
+        def Sphere "RedBall"
+        {
+        }
+        def Sphere "BlueBall"
+        {
+        }
+    }
+}
+)");
+    ASSERT_TRUE(stage);
+    EXPECT_TRUE(stage->warnings().empty()) << stage->warnings().front().message;
+    auto in = [&](const char* collection, const char* path) { return harness::collectionIncludes(*stage, collection, path); };
+    EXPECT_TRUE(in("/Set.collection:red", "/Set/Props/RedCup/Handle"));
+    EXPECT_FALSE(in("/Set.collection:red", "/Set/Props/BlueBall"));
+    EXPECT_TRUE(in("/Set.collection:spheres", "/Set/Props/BlueBall"));
+    EXPECT_FALSE(in("/Set.collection:spheres", "/Set/Props/RedBall"));  // the referenced collection's
+    EXPECT_FALSE(in("/Set.collection:ruled", "/Set/Props/RedCup"));
+    EXPECT_TRUE(in("/Set.collection:ruled", "/Set/Props/BlueBall"));
+    EXPECT_FALSE(in("/Set.collection:mixed", "/Set/Props/RedCup"));  // automatic: the include decides
+    EXPECT_TRUE(in("/Set.collection:both", "/Set/Props/RedCup"));
+    // The first collection binding in property order whose collection holds the prim.
+    EXPECT_EQ(boundTo(*stage, "/Set/Props/BlueBall"), "/Looks/Sphere");
+    EXPECT_EQ(boundTo(*stage, "/Set/Props/RedBall"), "/Looks/Red");
+    EXPECT_EQ(boundTo(*stage, "/Set/Props/RedCup/Handle"), "/Looks/Red");
+}
+
 // Collections that include each other end at a fixed depth, not in a crash.
 TEST(MaterialBinding, CollectionsThatIncludeEachOtherEnd) {
     auto stage = open(R"(
