@@ -45,13 +45,6 @@ std::array<double, 2> pixelBoxJitter(uint32_t index, uint32_t count, uint32_t sa
     return {(radicalInverse(index, 2) + 0.5 / count - 0.5) / samples, (index + 0.5) / count - 0.5};
 }
 
-std::array<double, 2> stillPixelJitter(uint32_t index, uint32_t count) {
-    if (count == 0) return {0.0, 0.0};
-    index %= count;
-    auto turned = [](double unit) { return unit + 0.5 - std::floor(unit + 0.5) - 0.5; };
-    return {turned(radicalInverse(index, 2)), turned(double(index) / count)};
-}
-
 uint32_t shutterStratum(uint32_t index, uint32_t count) {
     return count > 0 ? uint32_t(uint64_t(index) * latticeMultiplier(count, kGoldenRatio) % count) : 0;
 }

@@ -45,24 +45,15 @@ uint32_t shutterStratum(uint32_t index, uint32_t count);
 // for 16 frames of 4 samples), where the plain jitter left the pattern's own gaps and clumps.
 std::array<double, 2> pixelBoxJitter(uint32_t index, uint32_t count, uint32_t samples);
 
-// The sub-pixel jitter (pixels, in [-0.5, 0.5)) of frame `index` of the `count` a still's mean
-// counts (TemporalAccumulation; with strata of the lens and shutter or without): the Hammersley set (x the base-2 radical inverse, y index / count) turned by
-// half a pixel in both axes, so that frame 0, the first after a reset, looks through the pixel
-// centre. Every row 1/count of the pixel tall holds one point, and for count = 2^m every column
-// too (a (0, m, 2)-net: the turn by a half maps dyadic cells onto dyadic cells), so a
-// near-horizontal or near-vertical edge's coverage errs by one stratum at most; the real-time
-// Halton points' y, base 3, leaves rows of the pixel empty and others doubled.
-std::array<double, 2> stillPixelJitter(uint32_t index, uint32_t count);
-
 // The cells of the aperture `count` accumulated frames of a still look through: count / 2 for an
 // even count, each looked through by two frames, frames 2c and 2c + 1, whose pixel jitters are
-// apart (stillPixelJitter: the base-2 radical inverses of 2c and 2c + 1 differ by half a pixel).
-// A point smaller than a pixel is seen by one pixel centre per frame, and each frame carries what
-// it saw into its own cell alone: two coverage samples per cell lower the variance of the cell's
-// share (bright-point bokeh, DepthOfFieldConvergence tests at 160x90, against the 1024-sub-frame
-// reference: 36.9 -> 37.5 dB round, 36.8 -> 37.3 dB with 6 blades), at the cost of cells twice as
-// large for the post-process to span (planes 45.0 -> 42.7 and 44.6 -> 42.8 dB). The bokeh is the
-// nearer to its bar. An odd count has a cell per frame.
+// far apart (the base-2 radical inverses of 2c and 2c + 1 differ by half a pixel, the base-3 ones
+// by about a third). A point smaller than a pixel is seen by one pixel centre per frame, and each
+// frame carries what it saw into its own cell alone: two coverage samples per cell halve the
+// variance of the cell's share (bright-point bokeh, DepthOfFieldConvergence tests at 160x90:
+// 36.5 -> 38.3 dB round, 36.7 -> 37.9 dB with 6 blades, against the 1024-sub-frame reference),
+// at the cost of cells twice as large for the post-process to span (planes 44.0 -> 43.1 and
+// 43.7 -> 42.5 dB; four frames per cell: bokeh 37.8, planes 40.8). An odd count has a cell per frame.
 uint32_t stillLensCells(uint32_t count);
 
 // The part of the aperture a still's accumulated frame `index` of `count` looks through

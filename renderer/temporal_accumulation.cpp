@@ -39,11 +39,6 @@ TemporalAaStep TemporalAccumulation::next(const TemporalAaKey& key, uint64_t sce
         step.jitter = passes::temporalAaJitter(mode, step.noiseFrame, framesToConverge);
         if (step.stillSample) {
             PixelFilterWarp warp(sampling.filter);
-            // The mean's frames take the Hammersley points (stillPixelJitter), with strata of the
-            // lens or shutter or without (a pixel the blur does not reach stays the sharp still's,
-            // bit for bit): every row and column 1/taa:frames of the pixel wide holds one sample,
-            // where the real-time Halton points' base-3 rows leave some empty and others doubled.
-            step.jitter = stillPixelJitter(step.noiseFrame, framesToConverge);
             step.jitter = {warp.offset(step.jitter[0]), warp.offset(step.jitter[1])};
             if (sampling.pixelBoxSamples > 0)
                 step.jitter = pixelBoxJitter(step.noiseFrame, framesToConverge, sampling.pixelBoxSamples);

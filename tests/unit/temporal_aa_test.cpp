@@ -2,7 +2,6 @@
 // spread, the first at the centre), the history's resets and the converged flag, and the
 // reprojection matrix (an unchanged camera maps each pixel onto itself whatever the jitter; a
 // moved camera maps a point to where last frame saw it).
-#include "renderer/reference_frames.h"
 #include "renderer/temporal_accumulation.h"
 
 #include <gtest/gtest.h>
@@ -97,25 +96,6 @@ std::array<double, 4> transformRow(const Matrix4d& m, std::array<double, 4> v) {
     return out;
 }
 
-// The still's jitter: frame 0 is the pixel centre; each row 1/N of the pixel tall holds one of the
-// N points, and for N a power of two each column too.
-TEST(TemporalAccumulation, StillJitterStratifiesRowsAndColumns) {
-    EXPECT_EQ(stillPixelJitter(0, 16), (std::array<double, 2>{0.0, 0.0}));
-    for (uint32_t n : {12u, 16u, 64u}) {
-        std::set<int> rows, columns;
-        for (uint32_t k = 0; k < n; ++k) {
-            auto [x, y] = stillPixelJitter(k, n);
-            ASSERT_GE(x, -0.5);
-            ASSERT_LT(x, 0.5);
-            // The points lie on their strata's lower edges: rounded, not floored.
-            rows.insert(int(std::lround((y + 0.5) * n)) % int(n));
-            columns.insert(int(std::lround((x + 0.5) * n)) % int(n));
-        }
-        EXPECT_EQ(rows.size(), n);
-        if ((n & (n - 1)) == 0) EXPECT_EQ(columns.size(), n);
-    }
-}
-
 TEST(TemporalAccumulation, ResetsAndConvergence) {
     TemporalAccumulation taa;
     uint64_t scene = 0;  // the delegate's scene version
@@ -131,7 +111,7 @@ TEST(TemporalAccumulation, ResetsAndConvergence) {
         EXPECT_TRUE(step.pass.historyValid);
         EXPECT_EQ(step.pass.heldFrames, held);
         EXPECT_TRUE(step.pass.unchanged);
-        EXPECT_EQ(step.jitter, stillPixelJitter(held, 4));
+        EXPECT_EQ(step.jitter, passes::temporalAaJitter(TemporalAaMode::Smaa1tx, held, 4));
         EXPECT_FALSE(step.converged);
     }
     // The mean is complete: one frame through the pixel centres, and it says so.
@@ -193,7 +173,7 @@ TEST(TemporalAccumulation, StillSamplesTheShutterInStrata) {
         TemporalAaStep step = taa.next(key, scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, {.shutter = true});
         EXPECT_EQ(step.pass.heldFrames, held);
         EXPECT_TRUE(step.pass.unchanged);
-        EXPECT_EQ(step.jitter, stillPixelJitter(held, kFrames));
+        EXPECT_EQ(step.jitter, passes::temporalAaJitter(TemporalAaMode::Smaa1tx, held, kFrames));
         ASSERT_TRUE(step.shutterStratum.has_value());
         auto [start, end] = *step.shutterStratum;
         EXPECT_NEAR(end - start, 1.0 / kFrames, 1e-12);
@@ -239,7 +219,7 @@ TEST(TemporalAccumulation, StillSamplesTheLensInStrata) {
         for (uint32_t held = 0; held < kFrames; ++held) {
             TemporalAaStep step = taa.next(key, scene, TemporalAaMode::Smaa1tx, kFrames, view, kProjection, {.shutter = shutter, .lens = true});
             EXPECT_EQ(step.pass.heldFrames, held);
-            EXPECT_EQ(step.jitter, stillPixelJitter(held, kFrames));
+            EXPECT_EQ(step.jitter, passes::temporalAaJitter(TemporalAaMode::Smaa1tx, held, kFrames));
             ASSERT_TRUE(step.lensStratum.has_value());
             ASSERT_LT(*step.lensStratum, kFrames);
             ++covered[*step.lensStratum];
