@@ -161,7 +161,7 @@ Token Lexer::scan() {
     if (c == '<') return scanPathRef();
     const size_t begin = pos_;
     const int col = column();
-    static constexpr std::string_view kPunct = "=,:;.[](){}";
+    static constexpr std::string_view kPunct = "=,:;.[](){}&";  // '&' joins a spline knot's two values
     if (kPunct.find(c) != std::string_view::npos) {
         ++pos_;
         return make(TokenKind::Punct, begin, line_, col);

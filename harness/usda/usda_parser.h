@@ -59,6 +59,9 @@ private:
     [[noreturn]] void fail(const Token& at, const std::string& message) const;
     SourceLocation where(const Token& token) const;
     void warn(const std::string& kind, const Token& at, const std::string& message);
+    // Reads past a `{ ... }` block whose content is not read (nested braces, brackets and parentheses
+    // balanced), naming `what` where it does not close.
+    void skipBraceBlock(const std::string& what);
     std::string primPathText() const { return "<" + primPath_ + ">"; }
 
     // Layer, prims and properties (usda_parser.cpp)

@@ -64,8 +64,16 @@ void Parser::parseAttribute(PrimSpec& prim, const std::optional<Token>& listOpTo
             std::vector<std::string> targets;
             parseListOf("connections", op == ListOpKind::Explicit, [&] { targets.push_back(parsePath("connections")); });
             attr.connections.set(op, std::move(targets));
+        } else if (field.isWord("spline")) {
+            // OpenUSD 25.05's spline-valued attributes (TsSpline): the block is read past, and the
+            // attribute keeps its default and time samples.
+            expect('=', "after '" + name + ".spline'");
+            skipBraceBlock("spline");
+            warn("spline", field,
+                 "attribute '" + name + "' of " + primPathText() +
+                     " has a spline (its curve is not evaluated; its default and time samples are used)");
         } else {
-            fail(field, "expected 'timeSamples' or 'connect' after '" + name + ".', found " + describe(field));
+            fail(field, "expected 'timeSamples', 'connect' or 'spline' after '" + name + ".', found " + describe(field));
         }
         return;
     }
@@ -73,7 +81,10 @@ void Parser::parseAttribute(PrimSpec& prim, const std::optional<Token>& listOpTo
         fail(*listOpToken, "'" + std::string(listOpToken->text) +
                                "' applies only to relationships and attribute connections ('.connect')");
     if (accept('=')) {
-        attr.defaultValue = acceptWord("None") ? blockedValue(*type, isArray) : parseTypedValue(*type, isArray);
+        // AnimationBlock (OpenUSD 25.05) blocks weaker layers' time samples and splines: here it
+        // authors no default. XXX: the weaker time samples are not blocked.
+        if (!acceptWord("AnimationBlock"))
+            attr.defaultValue = acceptWord("None") ? blockedValue(*type, isArray) : parseTypedValue(*type, isArray);
     } else if (!peek().isPunct('(') && !atStatementEnd()) {
         fail(peek(), "expected '=' or '(' after attribute name '" + name + "', found " + describe(peek()));
     }

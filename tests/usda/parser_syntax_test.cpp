@@ -255,6 +255,36 @@ def Material "Mat"
     EXPECT_FALSE(mat.attribute("inputs:none")->connection);
 }
 
+// OpenUSD 25.05's splines and AnimationBlock: a spline block is read past with one warning naming
+// it (the attribute keeps its default and time samples), and AnimationBlock authors no default.
+TEST(ParserSyntax, SplinesAreReadPastAndAnimationBlockAuthorsNoDefault) {
+    const auto stage = open(R"(#usda 1.0
+def Xform "A"
+{
+    double x = 2
+    double x.spline = {
+        bezier,
+        pre: held,
+        post: linear,
+        loop: (15, 25, 0, 2, 11.7),
+        7: 5.5 & 7.21; pre (0, 0); post curve (2.5, 1.5),
+        15: 8.18; post held; { string comment: "climb!" },
+    }
+    float y = AnimationBlock
+    float z = 3
+}
+)");
+    ASSERT_TRUE(stage);
+    const Prim& a = *stage->find("/A");
+    EXPECT_EQ(defaultOf(*stage, "/A", "x").numbers.at(0), 2.0);
+    EXPECT_FALSE(a.attribute("y")->defaultValue);
+    EXPECT_EQ(defaultOf(*stage, "/A", "z").numbers.at(0), 3.0);
+    ASSERT_EQ(stage->warnings().size(), 1u);
+    EXPECT_EQ(stage->warnings()[0].where.line, 5);
+    EXPECT_NE(stage->warnings()[0].message.find("'x' of </A> has a spline"), std::string::npos)
+        << stage->warnings()[0].message;
+}
+
 // Opaque attributes (and groups, which are opaque) hold no value: they are declared and connected,
 // as UsdShade writes a shader's struct-like outputs.
 TEST(ParserSyntax, OpaqueAttributesAreDeclaredAndConnected) {
