@@ -230,9 +230,8 @@ private:
             if (auto* m = dynamic_cast<const Material*>(prim.get())) {
                 materialIndex_[path] = static_cast<uint32_t>(materials_.size());
                 if (!m->diffusePrimvar().empty() || !m->opacityPrimvar().empty())
-                    primvarReads_[uint32_t(materials_.size())] = {
-                        !m->diffusePrimvar().empty(), !m->opacityPrimvar().empty(),
-                        m->diffusePrimvar() == "displayColor", m->opacityPrimvar() == "displayOpacity"};
+                    primvarReads_[uint32_t(materials_.size())] = {!m->diffusePrimvar().empty(),
+                                                                  !m->opacityPrimvar().empty()};
                 materials_.push_back(m->data());
                 passes::MaterialTextures textures = white;
                 for (uint32_t slot = 0; slot < passes::kMaterialTextureSlots; ++slot)
@@ -290,12 +289,11 @@ private:
         auto it = texturesOfMaterial_.find(*part.material);
         return it == texturesOfMaterial_.end() ? 0 : it->second;
     }
-    // What a bound material reads from primvars the host serves as displayColor and
-    // displayOpacity (Material::diffusePrimvar, opacityPrimvar), and whether it reads those
-    // primvars themselves, which a PointInstancer may give each instance; found once per
-    // material as the frame packs them, looked up per instance record.
+    // Whether a bound material reads primvars the host serves as displayColor and displayOpacity
+    // (Material::diffusePrimvar, opacityPrimvar), which a PointInstancer may give each instance;
+    // found once per material as the frame packs them, looked up per instance record.
     struct PrimvarReads {
-        bool color = false, opacity = false, displayColor = false, displayOpacity = false;
+        bool color = false, opacity = false;
     };
     PrimvarReads primvarReads(std::optional<uint32_t> bound) const {
         const auto it = bound ? primvarReads_.find(*bound) : primvarReads_.end();
@@ -369,15 +367,15 @@ private:
         // UsdPreviewSurface wins over displayColor; without a material, displayColor is the
         // surface colour (as Hydra's fallback material). A material whose diffuseColor (opacity)
         // reads a primvar takes the vertex colour (alpha) the host served it as, and the
-        // instance's displayColor (displayOpacity) where that is the primvar read (Hydra's
-        // instance primvars).
+        // instance's displayColor (displayOpacity), which the host serves from the instancer's
+        // primvar of the name read (Hydra's instance primvars).
         const std::optional<uint32_t> bound = boundMaterial(part);
         const PrimvarReads reads = primvarReads(bound);
         if (!bound) inst.flags |= passes::kInstanceVertexColor;
         if (reads.color) inst.flags |= passes::kInstanceVertexAlbedo;
         if (reads.opacity) inst.flags |= passes::kInstanceVertexOpacity;
-        const bool instanceColor = display.color && (!bound || reads.displayColor);
-        std::optional<float> opacity = display.opacity && (!bound || reads.displayOpacity) ? display.opacity : std::nullopt;
+        const bool instanceColor = display.color && (!bound || reads.color);
+        std::optional<float> opacity = display.opacity && (!bound || reads.opacity) ? display.opacity : std::nullopt;
         // A constant displayOpacity the reader is served stays out of the mesh's vertices.
         if (!opacity && reads.opacity && mesh.displayOpacity() < 1.0f) opacity = mesh.displayOpacity();
         if (instanceColor || opacity) {
@@ -601,7 +599,7 @@ private:
                 for (const MaterialPart& part : mesh->materialParts()) {
                     scene_.draws.push_back(partDraw(*mesh, part, count, meshMotion.has_value() || placementsMove));
                     // Instances the instancers make translucent take the transparent pass, the draw whole.
-                    if ((!boundMaterial(part) || primvarReads(boundMaterial(part)).displayOpacity) && translucent)
+                    if ((!boundMaterial(part) || primvarReads(boundMaterial(part)).opacity) && translucent)
                         scene_.draws.back().transparent = true;
                     startImpostorNotes();
                     Aabb bounds;

@@ -710,6 +710,8 @@ const usda::Attribute* UsdSceneHost::resolveAttribute(const std::string& path, c
     if (const auto served = kServedReads.find(attribute); served != kServedReads.end())
         if (auto read = boundPrimvarRead(*prim, served->second.input)) {
             const usda::Attribute* primvar = stage_.primvar(*prim, "primvars:" + read->primvar);
+            // An instancer without the primvar leaves its prototypes their own.
+            if (prim->typeName == "PointInstancer") return primvar;
             return primvar ? primvar : read->fallback ? read->fallback : &served->second.zero;
         }
     // UsdGeomPointBased: primvars:normals, when authored, takes precedence over normals.
@@ -1137,6 +1139,7 @@ ObscuraStatus UsdSceneHost::computedPurpose(const usda::Prim& prim, ObscuraValue
 }
 
 std::optional<PrimvarRead> UsdSceneHost::boundPrimvarRead(const usda::Prim& prim, const std::string& input) const {
+    if (prim.typeName == "PointInstancer") return prototypesPrimvarRead(prim, input);
     auto material = boundMaterial(prim);
     if (!material) return std::nullopt;
     if (auto mapped = mappedSurfaces_.find(*material); mapped != mappedSurfaces_.end()) {
@@ -1147,6 +1150,25 @@ std::optional<PrimvarRead> UsdSceneHost::boundPrimvarRead(const usda::Prim& prim
     auto surface = surfaces_.find(*material);
     if (surface == surfaces_.end()) return std::nullopt;
     return primvarRead(stage_, *surface->second, input);
+}
+
+// Hydra's instance primvars: an instancer's primvar reaches its prototypes' materials by name, so
+// the read of its first prototype prim whose material reads `input` is the instancer's too (a
+// nested instancer's prototypes are its own).
+std::optional<PrimvarRead> UsdSceneHost::prototypesPrimvarRead(const usda::Prim& instancer, const std::string& input) const {
+    const usda::Relationship* prototypes = instancer.relationship("prototypes");
+    if (!prototypes) return std::nullopt;
+    std::vector<const usda::Prim*> pending;
+    for (const std::string& target : prototypes->targets)
+        if (const usda::Prim* p = stage_.find(target)) pending.push_back(p);
+    while (!pending.empty()) {
+        const usda::Prim* p = pending.back();
+        pending.pop_back();
+        if (p->typeName == "PointInstancer" || p->typeName == "Material") continue;
+        if (auto read = boundPrimvarRead(*p, input)) return read;
+        for (auto it = p->children.rbegin(); it != p->children.rend(); ++it) pending.push_back(it->get());
+    }
+    return std::nullopt;
 }
 
 std::optional<std::string> UsdSceneHost::boundMaterial(const usda::Prim& prim) const {

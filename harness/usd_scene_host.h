@@ -190,6 +190,7 @@ private:
     // bound to a prim; its primvar is served as the prim's primvars:displayColor, displayOpacity
     // (resolveAttribute).
     std::optional<PrimvarRead> boundPrimvarRead(const usda::Prim& prim, const std::string& input) const;
+    std::optional<PrimvarRead> prototypesPrimvarRead(const usda::Prim& instancer, const std::string& input) const;
     struct RenderBufferDesc {
         int width, height;
         std::string format;

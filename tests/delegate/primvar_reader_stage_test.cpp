@@ -2,7 +2,7 @@
 // Reading"), through the harness from USD text: a UsdPrimvarReader_float3 on diffuseColor (a
 // UsdPrimvarReader_float on opacity) gives each prim bound to the material the primvar it names
 // (vertex colours and alphas, as DCCs export them), the reader's fallback where a prim has none,
-// and a PointInstancer's displayColor (displayOpacity) per instance; a MaterialX ND_geompropvalue
+// and a PointInstancer's primvar of that name per instance; a MaterialX ND_geompropvalue
 // on a surface's base colour (times its constant factors) or opacity reads the same way.
 #include "tests/delegate/hosted_stage.h"
 #include "tests/delegate/render_fixture.h"
@@ -146,6 +146,29 @@ TEST(PrimvarReaderStage, InstancesColourThroughTheReader) {
     expectColour(albedoAt(albedo, kRight, kRow), {0.05f, 0.05f, 0.8f}, "second instance");
 }
 
+// Instance primvars of any name, as Houdini writes Cd on its instancers: the prototypes' material
+// reads Cd, and the instancer's per-instance Cd colours each instance; an instancer without it
+// leaves the prototype its own.
+TEST(PrimvarReaderStage, InstancesColourThroughAReaderOfAnyName) {
+    const std::string quadCd = "    color3f[] primvars:Cd = [(0.8, 0.05, 0.05)]\n";
+    HostedStage scene(stageOf(
+        instancedQuads(readerMaterial("Cd"),
+                       "    color3f[] primvars:Cd = [(0.05, 0.8, 0.05), (0.05, 0.05, 0.8)] (\n"
+                       "        interpolation = \"vertex\"\n    )\n"
+                       "    color3f[] primvars:displayColor = [(0.9, 0.9, 0.9), (0.9, 0.9, 0.9)] (\n"
+                       "        interpolation = \"vertex\"\n    )\n",
+                       quadCd)));
+    std::vector<float> albedo = scene.renderAlbedo();
+    expectColour(albedoAt(albedo, kLeft, kRow), {0.05f, 0.8f, 0.05f}, "first instance");
+    expectColour(albedoAt(albedo, kRight, kRow), {0.05f, 0.05f, 0.8f}, "second instance");
+    EXPECT_EQ(scene.lastStatus, OBSCURA_OK);
+
+    HostedStage plain(stageOf(instancedQuads(readerMaterial("Cd"), "", quadCd)));
+    std::vector<float> own = plain.renderAlbedo();
+    expectColour(albedoAt(own, kLeft, kRow), {0.8f, 0.05f, 0.05f}, "first instance, the quad's own");
+    expectColour(albedoAt(own, kRight, kRow), {0.8f, 0.05f, 0.05f}, "second instance, the quad's own");
+}
+
 // An edit of the reader (another primvar) reaches the prims bound to the material: the host marks
 // the material and the quad, whose displayColor it serves from another primvar now.
 TEST(PrimvarReaderStage, EditingTheReaderRecoloursTheBoundPrims) {
@@ -195,6 +218,17 @@ TEST(PrimvarReaderStage, InstanceOpacityThroughTheReader) {
         instancedQuads(opacityReaderMaterial("displayOpacity"),
                        "    float[] primvars:displayOpacity = [0.25, 1] (\n        interpolation = \"vertex\"\n    )\n",
                        "    float[] primvars:displayOpacity = [0.6]\n")));
+    std::vector<float> color = scene.renderAov("color", 4);
+    EXPECT_NEAR(alphaAt(color, kLeft, kRow), 0.25f, 1.0f / 255.0f);
+    EXPECT_NEAR(alphaAt(color, kRight, kRow), 1.0f, 1.0f / 255.0f);
+}
+
+// The same for opacity read from an instance primvar of another name.
+TEST(PrimvarReaderStage, InstanceOpacityThroughAReaderOfAnyName) {
+    HostedStage scene(stageOf(
+        instancedQuads(opacityReaderMaterial("alpha"),
+                       "    float[] primvars:alpha = [0.25, 1] (\n        interpolation = \"vertex\"\n    )\n",
+                       "    float[] primvars:alpha = [0.6]\n")));
     std::vector<float> color = scene.renderAov("color", 4);
     EXPECT_NEAR(alphaAt(color, kLeft, kRow), 0.25f, 1.0f / 255.0f);
     EXPECT_NEAR(alphaAt(color, kRight, kRow), 1.0f, 1.0f / 255.0f);
