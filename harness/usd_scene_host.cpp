@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <variant>
 
 namespace obscura::harness {
@@ -101,11 +102,19 @@ const std::set<std::string> kStructuralTypes = {"",          "Xform",         "S
 // fallback), +Y or +Z. The plugin's dome has its pole along local +Y, as UsdLuxDomeLight's; a +Z
 // pole is that dome turned +90 degrees about X before its own transform (as
 // UsdLuxDomeLight::OrientToStageUpAxis turns one), for the dome alone: its children do not inherit it.
-usda::Matrix4 domePoleTurn(const usda::Stage& stage, const usda::Prim& prim) {
+// A token outside the allowed ones is reported through `bad` and taken as "scene".
+usda::Matrix4 domePoleTurn(const usda::Stage& stage, const usda::Prim& prim,
+                           const std::function<void(const usda::Attribute&, const std::string&)>& bad) {
     if (prim.typeName != "DomeLight_1") return usda::matrix4::identity();
     std::string pole = "scene";
     if (const usda::Attribute* a = prim.attribute("poleAxis"))
-        if (auto v = a->evaluate(0.0); v && !v->strings.empty()) pole = v->strings[0];
+        if (auto v = a->evaluate(0.0); v && !v->strings.empty()) {
+            pole = v->strings[0];
+            if (pole != "scene" && pole != "Y" && pole != "Z") {
+                bad(*a, pole);
+                pole = "scene";
+            }
+        }
     if (pole == "scene") pole = stage.metadata().upAxis;
     return pole == "Z" ? usda::matrix4::rotation(0, 90.0) : usda::matrix4::identity();
 }
@@ -1272,7 +1281,10 @@ ObscuraStatus UsdSceneHost::sampleTransformThunk(void* user, const char* path, d
     }
     // Prototype meshes are placed relative to their prototype's space; instances do the rest.
     const usda::Prim* space = self->prototypeSpace(*prim);
-    const usda::Matrix4 poleTurn = domePoleTurn(self->stage_, *prim);
+    const usda::Matrix4 poleTurn = domePoleTurn(self->stage_, *prim, [&](const usda::Attribute& a, const std::string& token) {
+        self->warnOnce("poleAxis:" + prim->path,
+                       prim->path + ": poleAxis '" + token + "' is not scene, Y or Z; the stage's up axis is taken", a.where);
+    });
     for (size_t i = 0; i < sampleTimes.size(); ++i) {
         times[i] = sampleTimes[i];
         auto m = usda::matrix4::multiply(poleTurn, self->stage_.worldTransform(*prim, sampleTimes[i]));

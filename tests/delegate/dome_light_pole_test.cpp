@@ -45,8 +45,10 @@ protected:
     ~DomeLightPole() override { std::filesystem::remove_all(dir_); }
 
     // The centre pixel's red channel: a plane facing +Z (the camera) under the dome `domeType`
-    // with `poleAxis` (none authored when empty) on a stage whose up axis is `upAxis`.
-    float planeUnder(const std::string& upAxis, const std::string& domeType, const std::string& poleAxis) {
+    // with `poleAxis` (none authored when empty) on a stage whose up axis is `upAxis`; `warned`
+    // counts the host's messages about the poleAxis.
+    float planeUnder(const std::string& upAxis, const std::string& domeType, const std::string& poleAxis,
+                     size_t* warned = nullptr) {
         std::string text = "#usda 1.0\n(\n    upAxis = \"" + upAxis + "\"\n)\n" + usdaCamera() + R"(
 def Mesh "Ground"
 {
@@ -63,6 +65,7 @@ def )" + domeType + R"( "Sky"
         std::vector<float> color = hosted.renderAov("color", 4);
         EXPECT_EQ(hosted.lastStatus, OBSCURA_OK);
         EXPECT_EQ(hosted.messagesWith("not supported"), 0u);
+        if (warned) *warned = hosted.messagesWith("poleAxis");
         return color[(size_t(kHeight / 2) * kWidth + kWidth / 2) * 4];
     }
 
@@ -80,6 +83,13 @@ TEST_F(DomeLightPole, AZPoleLightsAnUpwardPlaneTwiceAsMuchAsTheYPole) {
 TEST_F(DomeLightPole, TheFallbackFollowsTheStageUpAxis) {
     EXPECT_EQ(planeUnder("Z", "DomeLight_1", ""), planeUnder("Y", "DomeLight_1", "Z"));
     EXPECT_EQ(planeUnder("Y", "DomeLight_1", ""), planeUnder("Z", "DomeLight_1", "Y"));
+}
+
+// A token outside scene, Y and Z is reported with the prim and taken as "scene".
+TEST_F(DomeLightPole, AnUnknownPoleAxisIsReportedAndTheStageUpAxisTaken) {
+    size_t warned = 0;
+    EXPECT_EQ(planeUnder("Z", "DomeLight_1", "X", &warned), planeUnder("Z", "DomeLight_1", "Z"));
+    EXPECT_EQ(warned, 1u);
 }
 
 TEST_F(DomeLightPole, TheOriginalDomeLightKeepsItsPoleAlongY) {
