@@ -33,7 +33,22 @@ std::optional<std::string> readFile(const std::string& path) {
 }  // namespace
 
 const Layer& LayerRegistry::addRoot(std::string_view bytes, const std::string& identifier) {
-    return add(bytes, identifier, SourceLocation{identifier, 0, 0});
+    const Layer& root = add(bytes, identifier, SourceLocation{identifier, 0, 0});
+    rootVariables_ = expressionVariablesOf(root.metadata);
+    return root;
+}
+
+std::string LayerRegistry::expand(const Layer* anchor, const std::string& text, const SourceLocation& at) {
+    if (!isVariableExpression(text)) return text;
+    // Pcp's expression variables: the referencing (root) layer stack's over the anchor's own.
+    ExpressionVariables variables = rootVariables_;
+    if (anchor) variables.merge(expressionVariablesOf(anchor->metadata));
+    auto value = evaluateVariableExpression(text, variables);
+    if (auto* problem = std::get_if<ExpressionProblem>(&value)) {
+        diagnostics_.warn("expression:" + text, at, problem->message + "; taken as written");
+        return text;
+    }
+    return std::get<std::string>(value);
 }
 
 const UsdzPackage& LayerRegistry::package(const std::string& archivePath, const SourceLocation& at) {
@@ -72,7 +87,8 @@ const Layer& LayerRegistry::keep(std::unique_ptr<Layer> layer, const std::string
     return result;
 }
 
-std::string LayerRegistry::resolve(const Layer& anchor, const std::string& assetPath) const {
+std::string LayerRegistry::resolve(const Layer& anchor, const std::string& written, const SourceLocation& at) {
+    const std::string assetPath = expand(&anchor, written, at);
     // "other.usdz[inner.usda]": the archive resolves like any file, the part inside as written.
     if (auto packaged = splitPackagePath(assetPath))
         return joinPackagePath(resolve(anchor, packaged->first), fs::path(packaged->second).lexically_normal().string());
@@ -129,7 +145,7 @@ void LayerRegistry::collect(const Layer& layer, const LayerOffset& toRoot, Layer
     stack.layers.push_back(&layer);
     stack.offsets.push_back(toRoot);
     for (const Reference& sublayer : layer.subLayers) {
-        const Layer& child = open(resolve(layer, sublayer.assetPath), sublayer.assetPath, sublayer.where);
+        const Layer& child = open(resolve(layer, sublayer.assetPath, sublayer.where), sublayer.assetPath, sublayer.where);
         if (std::find(including.begin(), including.end(), &child) != including.end())
             throw CompositionFailure{
                 Error{sublayer.where, "sublayer cycle: '" + sublayer.assetPath + "' includes the layer that names it"}};

@@ -10,6 +10,7 @@
 #include "harness/usda/diagnostics.h"
 #include "harness/usda/layer.h"
 #include "harness/usda/usdz_package.h"
+#include "harness/usda/variable_expression.h"
 
 namespace obscura::usda {
 
@@ -35,9 +36,14 @@ public:
 
     // The root layer, from its bytes already in memory (text, crate or a USDZ package).
     const Layer& addRoot(std::string_view bytes, const std::string& identifier);
-    // Where an asset path written in `anchor` points: relative paths are relative to anchor's
-    // folder, and inside a package ("a.usdz[b.usda]") to the folder in the package.
-    std::string resolve(const Layer& anchor, const std::string& assetPath) const;
+    // Where an asset path written in `anchor` (at `at`) points: relative paths are relative to
+    // anchor's folder, and inside a package ("a.usdz[b.usda]") to the folder in the package. A
+    // variable expression (`...`) is evaluated first (expand).
+    std::string resolve(const Layer& anchor, const std::string& written, const SourceLocation& at = {});
+    // `text` itself, or what it evaluates to where it is a variable expression (variable_expression.h):
+    // over the expressionVariables of the root layer, then those of `anchor` (the layer that writes
+    // it; nullptr: the root's alone). One that cannot be evaluated is reported at `at` and taken as written.
+    std::string expand(const Layer* anchor, const std::string& text, const SourceLocation& at);
     // The layer at a resolved path; `assetPath` and `at` say who asked, for the error if it is missing.
     const Layer& open(const std::string& resolvedPath, const std::string& assetPath, const SourceLocation& at);
     const LayerStack& stackOf(const Layer& root);
@@ -51,6 +57,7 @@ private:
     void collect(const Layer& layer, const LayerOffset& toRoot, LayerStack& stack, std::vector<const Layer*>& including);
 
     DiagnosticSink& diagnostics_;
+    ExpressionVariables rootVariables_;  // the root layer's expressionVariables
     std::map<std::string, std::unique_ptr<Layer>> layers_;  // by normalized absolute path
     std::map<const Layer*, std::unique_ptr<LayerStack>> stacks_;
     std::map<std::string, std::unique_ptr<UsdzPackage>> packages_;  // by normalized archive path

@@ -353,7 +353,7 @@ std::vector<PrimIndexer::Arc> PrimIndexer::arcsAuthoredAt(const IndexNode& node)
     std::vector<const ListOp<Reference>*> inherits, specializes;
     forEachSpec(node, [&](const PrimSpec& spec, const Layer& layer) {
         auto resolveIn = [&](const Reference& ref) {
-            return ResolvedReference{ref.assetPath.empty() ? "" : layers_.resolve(layer, ref.assetPath), ref.assetPath,
+            return ResolvedReference{ref.assetPath.empty() ? "" : layers_.resolve(layer, ref.assetPath, ref.where), ref.assetPath,
                                      ref.primPath, ref.where, ref.layerOffset, &layer};
         };
         references.push_back(spec.references.transformed(resolveIn));
@@ -437,7 +437,7 @@ bool PrimIndexer::selectOneVariant(const IndexNode& root, IndexNode& node, std::
         for (const Opinion& opinion : opinionsOf(root)) {
             const auto it = opinion.spec->variantSelections.find(set);
             if (it != opinion.spec->variantSelections.end()) {
-                selection = it->second;
+                selection = layers_.expand(nullptr, it->second, opinion.spec->where);
                 break;
             }
         }
