@@ -6,6 +6,7 @@
 
 #include "harness/usda/path_expression.h"
 #include "harness/usda/sdf_path.h"
+#include "harness/usda/variable_expression.h"
 
 namespace obscura::usda {
 
@@ -217,10 +218,26 @@ std::unique_ptr<Prim> Composer::composePrim(const std::string& path, const std::
         prim->kind = it->second.strings.front();
     if (const auto it = prim->metadata.find("active"); it != prim->metadata.end() && !it->second.numbers.empty())
         prim->active = it->second.numbers.front() != 0.0;
-    for (const auto& [name, specs] : attributes) prim->attributes.emplace(name, composeAttribute(name, specs));
+    for (const auto& [name, specs] : attributes) {
+        Attribute attribute = composeAttribute(name, specs);
+        expandAssetExpressions(attribute);
+        prim->attributes.emplace(name, std::move(attribute));
+    }
     for (const auto& [name, specs] : relationships) prim->relationships.emplace(name, composeRelationship(name, specs));
     reportBadMembershipExpressions(*prim);
     return prim;
+}
+
+// Asset-valued attributes written as variable expressions hold what they evaluate to, over the
+// root layer's expressionVariables (as UsdAttribute::Get evaluates them).
+void Composer::expandAssetExpressions(Attribute& attribute) {
+    if (attribute.typeName.find("asset") == std::string::npos) return;
+    auto expand = [&](Value& value) {
+        if (std::none_of(value.strings.begin(), value.strings.end(), isVariableExpression)) return;
+        for (std::string& s : value.strings.edit()) s = layers_.expand(nullptr, s, attribute.where);
+    };
+    if (attribute.defaultValue) expand(*attribute.defaultValue);
+    for (auto& [time, value] : attribute.timeSamples) expand(value);
 }
 
 // A collection's membershipExpression that does not parse makes it empty (as in USD): reported

@@ -38,6 +38,7 @@ private:
     void composeChildren(Stage& stage, Prim& parent, const IndexNode& parentIndex, const std::vector<ChildName>& authored);
     std::unique_ptr<Prim> composePrim(const std::string& path, const std::vector<Opinion>& opinions, Prim& parent);
     void reportBadMembershipExpressions(const Prim& prim);
+    void expandAssetExpressions(Attribute& attribute);
 
     DiagnosticSink diagnostics_;
     CompositionBudget budget_;

@@ -1,5 +1,5 @@
-// SdfVariableExpression (OpenUSD "Variable Expressions"): an asset path of an arc or sublayer, or a
-// variant selection, written between backticks is an expression over the layer stack's
+// SdfVariableExpression (OpenUSD "Variable Expressions"): an asset path of an arc, a sublayer or an
+// asset-valued attribute, or a variant selection, written between backticks is an expression over the layer stack's
 // `expressionVariables` (layer metadata): a string with `${NAME}` substitutions (`"./a_${SHOT}.usd"`),
 // a variable alone (`${SHOT}`), the literals None, true/false, integers and lists, and the functions
 // if(cond, a[, b]), and(...), or(...), not(a), eq/neq/lt/leq/gt/geq(a, b), contains(list or

@@ -73,8 +73,9 @@ TEST_F(VariableExpressionTest, BadExpressionsSayWhatIsWrong) {
     EXPECT_NE(value("`" + std::string(1000, '[') + "`").find("nested more than 64 deep"), std::string::npos);
 }
 
-// The root layer's expressionVariables choose a referenced layer, a sublayer and a variant; an
-// expression that reads an undefined variable only where defined() says it may falls back.
+// The root layer's expressionVariables choose a referenced layer, a sublayer, a variant and
+// asset values; an expression that reads an undefined variable only where defined() says it may
+// falls back.
 TEST(VariableExpressionStage, ArcsSublayersAndVariantSelectionsEvaluate) {
     const auto stage = openFile(kDataDir + "/expressions/root.usda");
     ASSERT_TRUE(stage);
@@ -83,6 +84,11 @@ TEST(VariableExpressionStage, ArcsSublayersAndVariantSelectionsEvaluate) {
     EXPECT_NE(stage->find("/Lights"), nullptr);                                   // lighting_b.usda
     EXPECT_EQ(test::defaultOf(*stage, "/Set", "wetness").numbers.at(0), 1.0);   // the "wet" variant
     EXPECT_EQ(test::defaultOf(*stage, "/Fallback", "size").numbers.at(0), 1.0);  // shot_a.usda
+    // Asset-valued attributes hold what their expressions evaluate to, defaults and samples alike.
+    EXPECT_EQ(test::defaultOf(*stage, "/Texture", "inputs:file").strings.at(0), "./textures/b_albedo.png");
+    const Attribute* animated = stage->find("/Texture")->attribute("inputs:animated");
+    ASSERT_NE(animated, nullptr);
+    EXPECT_EQ(animated->timeSamples.at(1.0).strings.at(0), "./seq_b.0001.png");
 }
 
 // An expression that cannot be evaluated is reported where it is written and taken as written.
