@@ -93,10 +93,35 @@ bool isConvertedCurves(const std::string& type) { return type == "NurbsCurves" |
 // A Skeleton is served as its bones' guide mesh (addSkeletonGuide).
 // A PortalLight "guides sampling of a dome light" (UsdLux): a sampler's hint, and the dome's
 // prefiltered light (environment_map.glsl) is the integral it would converge to.
-const std::set<std::string> kStructuralTypes = {"",          "Xform",         "Scope",          "Shader",
-                                                "NodeGraph", "GeomSubset",    "RenderSettings", "RenderProduct",
-                                                "RenderVar", "SkelRoot",      "SkelAnimation",  "BlendShape",
-                                                "PortalLight"};
+// Schemas no viewport draws: UsdPhysics' scene, joints and collision groups (simulation data, as
+// Omniverse assets carry), UsdMedia's SpatialAudio, UsdUI's Backdrop, and UsdVol's field assets,
+// which are a Volume's inputs (the Volume is reported).
+const std::set<std::string> kStructuralTypes = {"",
+                                                "Xform",
+                                                "Scope",
+                                                "Shader",
+                                                "NodeGraph",
+                                                "GeomSubset",
+                                                "RenderSettings",
+                                                "RenderProduct",
+                                                "RenderVar",
+                                                "RenderPass",
+                                                "SkelRoot",
+                                                "SkelAnimation",
+                                                "BlendShape",
+                                                "PortalLight",
+                                                "PhysicsScene",
+                                                "PhysicsCollisionGroup",
+                                                "PhysicsJoint",
+                                                "PhysicsFixedJoint",
+                                                "PhysicsRevoluteJoint",
+                                                "PhysicsPrismaticJoint",
+                                                "PhysicsSphericalJoint",
+                                                "PhysicsDistanceJoint",
+                                                "SpatialAudio",
+                                                "Backdrop",
+                                                "OpenVDBAsset",
+                                                "Field3DAsset"};
 
 // UsdLuxDomeLight_1's `poleAxis`: its dome's top pole along the stage's up axis ("scene", the
 // fallback), +Y or +Z. The plugin's dome has its pole along local +Y, as UsdLuxDomeLight's; a +Z
