@@ -23,6 +23,7 @@ struct DofConstants {
     std::array<float, 2> cellCentre;
     std::array<float, 2> cellHalfSize;
     std::array<float, 2> jitter;
+    float pixelsPerTexel;
 };
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, cocScale);
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, cocBias);
@@ -35,17 +36,18 @@ OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, tileNeighbourhood);
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, cellCentre);
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, cellHalfSize);
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, jitter);
+OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, pixelsPerTexel);
 
-// Tile side in half-resolution texels (DOF_TILE_SIZE in dof_common.glsl).
+// Tile side in field texels (DOF_TILE_SIZE in dof_common.glsl).
 constexpr uint32_t kTileSize = 8;
 
-// Half-resolution fields premultiplied by their CoC, and the CoC itself (seed 000 "A plausible and
+// Fields premultiplied by their CoC, and the CoC itself (seed 000 "A plausible and
 // efficient DOF reconstruction filter": R11G11B10F downscaled HDR scene, R8G8 CoC).
 constexpr VkFormat kFieldInputFormat = VK_FORMAT_B10G11R11_UFLOAT_PACK32;
 constexpr VkFormat kCocFormat = VK_FORMAT_R8G8_UNORM;
-// The half-resolution CoC pair, and the share of each texel's four pixels that belong to each field
-// (a small bright point is a quarter of its texel, not all of it).
-constexpr VkFormat kHalfCocFormat = VK_FORMAT_R8G8B8A8_UNORM;
+// The field CoC pair, and the share of each texel's pixels that belong to each field (a small bright
+// point is a quarter of a half-resolution texel, not all of it).
+constexpr VkFormat kFieldCocFormat = VK_FORMAT_R8G8B8A8_UNORM;
 // The gathered fields carry their coverage in alpha, which R11G11B10F has no room for.
 constexpr VkFormat kFieldFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
@@ -67,6 +69,7 @@ gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, const FrameScene&
     double maxRadius = maxDofRadiusPixels(settings.tapsPerSide) / cell.share();
     // A near CoC reaches as far as the cell does from its centre's point, at most.
     double reach = maxRadius * apertureCellReach(cell, settings.aperture);
+    const uint32_t pixelsPerTexel = settings.resolution == FieldResolution::Half ? 2 : 1;
     DofConstants constants{float(settings.coc.scale),
                            float(settings.coc.bias),
                            float(maxRadius),
@@ -74,15 +77,17 @@ gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, const FrameScene&
                            float(settings.aperture.rotation),
                            settings.aperture.blades,
                            settings.tapsPerSide,
-                           int32_t(std::ceil(0.5 * reach / kTileSize)),
+                           int32_t(std::ceil(reach / pixelsPerTexel / kTileSize)),
                            {float(cell.centre[0]), float(cell.centre[1])},
                            {float(cell.halfSize[0]), float(cell.halfSize[1])},
-                           {float(settings.jitter[0]), float(settings.jitter[1])}};
+                           {float(settings.jitter[0]), float(settings.jitter[1])},
+                           float(pixelsPerTexel)};
 
-    uint32_t halfWidth = (scene.width + 1) / 2, halfHeight = (scene.height + 1) / 2;
-    uint32_t tilesWide = (halfWidth + kTileSize - 1) / kTileSize, tilesHigh = (halfHeight + kTileSize - 1) / kTileSize;
-    auto half = [&](const char* name, VkFormat format) {
-        return graph.createImage(name, imageDesc2D(format, halfWidth, halfHeight));
+    uint32_t fieldWidth = (scene.width + pixelsPerTexel - 1) / pixelsPerTexel;
+    uint32_t fieldHeight = (scene.height + pixelsPerTexel - 1) / pixelsPerTexel;
+    uint32_t tilesWide = (fieldWidth + kTileSize - 1) / kTileSize, tilesHigh = (fieldHeight + kTileSize - 1) / kTileSize;
+    auto field = [&](const char* name, VkFormat format) {
+        return graph.createImage(name, imageDesc2D(format, fieldWidth, fieldHeight));
     };
     auto tiles = [&](const char* name) {
         return graph.createImage(name, imageDesc2D(kCocFormat, tilesWide, tilesHigh));
@@ -95,32 +100,32 @@ gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, const FrameScene&
     const VkFormat layerFormat = hdrFormat == kFieldFormat ? kFieldFormat : kFieldInputFormat;
     std::vector<gpu::ImageHandle> layers = addDofPass(
         graph, "dof_downsample",
-        {sampled(hdrColor), sampled(gbuffer.depth), storageWrite(half("dofNearLayer", layerFormat)),
-         storageWrite(half("dofFarLayer", layerFormat)), storageWrite(half("dofHalfCoc", kHalfCocFormat))},
+        {sampled(hdrColor), sampled(gbuffer.depth), storageWrite(field("dofNearLayer", layerFormat)),
+         storageWrite(field("dofFarLayer", layerFormat)), storageWrite(field("dofFieldCoc", kFieldCocFormat))},
         constants);
-    const gpu::ImageHandle nearLayer = layers[0], farLayer = layers[1], halfCoc = layers[2];
+    const gpu::ImageHandle nearLayer = layers[0], farLayer = layers[1], fieldCoc = layers[2];
 
     gpu::ImageHandle tileCoc =
-        addDofPass(graph, "dof_tile_min_max", {sampled(halfCoc), storageWrite(tiles("dofTileCoc"))}, constants)[0];
+        addDofPass(graph, "dof_tile_min_max", {sampled(fieldCoc), storageWrite(tiles("dofTileCoc"))}, constants)[0];
     gpu::ImageHandle neighbourhood = addDofPass(
         graph, "dof_tile_neighbourhood", {sampled(tileCoc), storageWrite(tiles("dofTileNeighbourhood"))}, constants)[0];
 
     std::vector<gpu::ImageHandle> gathered = addDofPass(
         graph, "dof_gather",
-        {sampled(nearLayer, linear), sampled(farLayer, linear), sampled(halfCoc, linear), sampled(neighbourhood),
-         storageWrite(half("dofNearGathered", kFieldFormat)), storageWrite(half("dofFarGathered", kFieldFormat))},
+        {sampled(nearLayer, linear), sampled(farLayer, linear), sampled(fieldCoc, linear), sampled(neighbourhood),
+         storageWrite(field("dofNearGathered", kFieldFormat)), storageWrite(field("dofFarGathered", kFieldFormat))},
         constants);
 
     std::vector<gpu::ImageHandle> fields = addDofPass(
         graph, "dof_flood_fill",
-        {sampled(gathered[0], linear), sampled(gathered[1], linear), sampled(halfCoc), sampled(neighbourhood),
-         storageWrite(half("dofNearField", kFieldFormat)), storageWrite(half("dofFarField", kFieldFormat))},
+        {sampled(gathered[0], linear), sampled(gathered[1], linear), sampled(fieldCoc), sampled(neighbourhood),
+         storageWrite(field("dofNearField", kFieldFormat)), storageWrite(field("dofFarField", kFieldFormat))},
         constants);
 
     gpu::ImageHandle output = graph.createImage("dofColor", imageDesc2D(hdrFormat, scene.width, scene.height));
     return addDofPass(graph, "dof_composite",
                       {sampled(hdrColor), sampled(gbuffer.depth), sampled(fields[0], linear),
-                       sampled(fields[1], linear), sampled(halfCoc, linear), sampled(neighbourhood),
+                       sampled(fields[1], linear), sampled(fieldCoc, linear), sampled(neighbourhood),
                        storageWrite(output)},
                       constants)[0];
 }

@@ -220,7 +220,11 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
         auto depthOfField = [&](const passes::ApertureCell& cell, std::array<double, 2> jitter) {
             passes::CocFromDepth coc =
                 passes::cocFromDepth(lens, camera.clippingRange[0], camera.clippingRange[1], double(width));
-            return passes::DepthOfFieldSettings{coc, camera.aperture, cell, jitter, settings.depthOfFieldTaps};
+            // A still's sample spreads over its own cell alone: at full resolution (FieldResolution).
+            passes::FieldResolution resolution = cell.share() < 1.0 ? passes::FieldResolution::Full
+                                                                     : passes::FieldResolution::Half;
+            return passes::DepthOfFieldSettings{coc, camera.aperture, cell, jitter, settings.depthOfFieldTaps,
+                                                resolution};
         };
         if (stratumBlur || lensSample) {
             hdr = passes::addTemporalAaSamplePass(graph, scene, gbuffer, hdr, transparentCoverage);

@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Depth of field, step 1 (seed 000 "Far + near field processing"): each half-resolution texel
-// takes its 2x2 pixels' colour and circle of confusion (one multiply-add on depth, "Lens review
+// Depth of field, step 1 (seed 000 "Far + near field processing"): each field texel takes its
+// pixels' (2x2 at half resolution, one at full) colour and circle of confusion (one multiply-add on depth, "Lens review
 // (2)") and splits them into the two fields. The downscale is bilateral, not bilinear ("careful:
 // downscale is source of error"): each field averages only the pixels that belong to it, weighted
 // by their CoC, so a sharp pixel never leaks into a blurred field. The far field's CoC is that
@@ -18,7 +18,7 @@ layout(set = 0, binding = 1) uniform sampler2D depthTexture;
 layout(set = 0, binding = 2) uniform writeonly image2D nearLayer;
 layout(set = 0, binding = 3) uniform writeonly image2D farLayer;
 // Near and far CoC (fractions of the largest), and each field's share of the texel's pixels.
-layout(set = 0, binding = 4, rgba8) uniform writeonly image2D halfCoc;
+layout(set = 0, binding = 4, rgba8) uniform writeonly image2D fieldCoc;
 
 // The R8G8 value a CoC radius (full-resolution pixels) is stored as, so that the premultiplied
 // colour uses exactly the CoC the gather will read back.
@@ -26,17 +26,18 @@ float quantisedCocFraction(float radius) { return round(clamp(radius / dof.maxRa
 
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(texel, imageSize(halfCoc)))) return;
+    if (any(greaterThanEqual(texel, imageSize(fieldCoc)))) return;
     // Odd sizes: the last texel's missing pixels repeat the image's edge.
     ivec2 lastPixel = textureSize(depthTexture, 0) - 1;
+    const int side = int(dof.pixelsPerTexel), pixels = side * side;
     vec3 mean = vec3(0.0), nearSum = vec3(0.0), farSum = vec3(0.0);
     float nearWeight = 0.0, farWeight = 0.0, farCocSum = 0.0, nearMax = 0.0;
-    for (int i = 0; i < 4; ++i) {
-        ivec2 pixel = min(texel * 2 + ivec2(i & 1, i >> 1), lastPixel);
+    for (int i = 0; i < pixels; ++i) {
+        ivec2 pixel = min(texel * side + ivec2(i % side, i / side), lastPixel);
         vec3 colour = texelFetch(lightAccumulation, pixel, 0).rgb;
         float coc = signedCocRadius(texelFetch(depthTexture, pixel, 0).r);
         float near = max(coc, 0.0), far = max(-coc, 0.0);
-        mean += 0.25 * colour;
+        mean += colour / float(pixels);
         nearSum += near * colour;
         nearWeight += near;
         nearMax = max(nearMax, near);
@@ -52,8 +53,8 @@ void main() {
     imageStore(farLayer, texel, vec4(farColour * farFraction, 0.0));
     // Each field's share of the texel: its pixels weighted by their CoC against the field's, so that
     // a point smaller than the texel spreads only its own light.
-    float nearShare = nearMax > 0.0 ? nearWeight / (4.0 * nearMax) : 0.0;
+    float nearShare = nearMax > 0.0 ? nearWeight / (float(pixels) * nearMax) : 0.0;
     float farCoc = farWeight > 0.0 ? farCocSum / farWeight : 0.0;
-    float farShare = farCoc > 0.0 ? farWeight / (4.0 * farCoc) : 0.0;
-    imageStore(halfCoc, texel, vec4(nearFraction, farFraction, nearShare, farShare));
+    float farShare = farCoc > 0.0 ? farWeight / (float(pixels) * farCoc) : 0.0;
+    imageStore(fieldCoc, texel, vec4(nearFraction, farFraction, nearShare, farShare));
 }

@@ -15,7 +15,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 0) uniform sampler2D nearGathered;
 layout(set = 0, binding = 1) uniform sampler2D farGathered;
-layout(set = 0, binding = 2) uniform sampler2D halfCoc;
+layout(set = 0, binding = 2) uniform sampler2D fieldCoc;
 layout(set = 0, binding = 3) uniform sampler2D neighbourhoodCoc;
 layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D nearField;
 layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D farField;
@@ -43,14 +43,14 @@ void main() {
     if (any(greaterThanEqual(texel, size))) return;
     vec2 inverseSize = 1.0 / vec2(size);
     vec2 centre = vec2(texel) + 0.5;
-    float maxRadius = halfResolutionMaxRadius();
-    float farRadius = texelFetch(halfCoc, texel, 0).y * maxRadius;
+    float maxRadius = fieldMaxRadius();
+    float farRadius = texelFetch(fieldCoc, texel, 0).y * maxRadius;
     float nearRadius = texelFetch(neighbourhoodCoc, texel / DOF_TILE_SIZE, 0).x * maxRadius;
 
-    vec4 far = blursAtHalfResolution(farRadius)
+    vec4 far = blursInField(farRadius)
                    ? meanOfTaps(farGathered, centre, inverseSize, kernelRadius(farRadius), -1.0)
                    : texelFetch(farGathered, texel, 0);
-    vec4 near = blursAtHalfResolution(nearRadius)
+    vec4 near = blursInField(nearRadius)
                     ? meanOfTaps(nearGathered, centre, inverseSize, kernelRadius(nearRadius), 1.0)
                     : texelFetch(nearGathered, texel, 0);
     imageStore(nearField, texel, near);

@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Depth of field, step 4: the first pass of the separable flexible filter (seed 000 "A plausible
 // and efficient DOF reconstruction filter"), tapsPerSide^2 taps (7x7) of a square kernel mapped to
-// the aperture ("Sampling"), at half resolution, near and far fields in the same pass ("Tile
+// the aperture ("Sampling"), in the field texels, near and far fields in the same pass ("Tile
 // min/max CoC"), each branching out where it has nothing to blur: the near field on its tile
 // neighbourhood's CoC, the far field on the texel's own. The taps are built once per workgroup.
 //
@@ -29,7 +29,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 0) uniform sampler2D nearLayer;
 layout(set = 0, binding = 1) uniform sampler2D farLayer;
-layout(set = 0, binding = 2) uniform sampler2D halfCoc;
+layout(set = 0, binding = 2) uniform sampler2D fieldCoc;
 layout(set = 0, binding = 3) uniform sampler2D neighbourhoodCoc;
 layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D nearField;
 layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D farField;
@@ -47,18 +47,18 @@ void main() {
     if (any(greaterThanEqual(texel, size))) return;
     vec2 inverseSize = 1.0 / vec2(size);
     vec2 centre = vec2(texel) + 0.5;
-    float maxRadius = halfResolutionMaxRadius();
+    float maxRadius = fieldMaxRadius();
     vec2 tile = texelFetch(neighbourhoodCoc, texel / DOF_TILE_SIZE, 0).xy * maxRadius;
-    vec2 coc = texelFetch(halfCoc, texel, 0).xy * maxRadius;
+    vec2 coc = texelFetch(fieldCoc, texel, 0).xy * maxRadius;
 
     vec4 far = vec4(texelFetch(farLayer, texel, 0).rgb, coc.y / maxRadius);
-    if (blursAtHalfResolution(coc.y)) {
+    if (blursInField(coc.y)) {
         vec4 sum = vec4(0.0);
         float kernel = kernelRadius(coc.y);
         for (int i = 0; i < tapCount; ++i) {
             vec2 offset = taps[i].xy * kernel;
             vec2 uv = (centre - apertureToTexels(offset)) * inverseSize;
-            vec4 cocAndShares = textureLod(halfCoc, uv, 0.0);
+            vec4 cocAndShares = textureLod(fieldCoc, uv, 0.0);
             float fraction = cocAndShares.y;
             if (fraction <= 0.0) continue;
             float radius = fraction * maxRadius;
@@ -70,7 +70,7 @@ void main() {
     }
 
     vec4 near = vec4(0.0);
-    if (blursAtHalfResolution(tile.x)) {
+    if (blursInField(tile.x)) {
         float kernel = kernelRadius(tile.x);
         for (int i = 0; i < tapCount; ++i) {
             vec2 offset = taps[i].xy * kernel;
@@ -85,7 +85,7 @@ void main() {
                 ivec2 t = ivec2(k & 1, k >> 1);
                 float bilinear = (t.x == 1 ? f.x : 1.0 - f.x) * (t.y == 1 ? f.y : 1.0 - f.y);
                 ivec2 under = clamp(base + t, ivec2(0), size - 1);
-                vec4 cocAndShares = texelFetch(halfCoc, under, 0);
+                vec4 cocAndShares = texelFetch(fieldCoc, under, 0);
                 float radius = cocAndShares.x * maxRadius;
                 float isNear = nearFieldShare(2.0 * radius);
                 if (isNear * bilinear == 0.0) continue;

@@ -18,16 +18,18 @@ layout(push_constant) uniform DofConstants {
     vec2 cellCentre;      // the part of the aperture the kernel spans: a cell of the square before
     vec2 cellHalfSize;    // the mapping (pass_support/thin_lens.h ApertureCell); (0, 0), (1, 1): all
     vec2 jitter;          // pixels the image lies shifted by (x right, y down), taken off the fields
+    float pixelsPerTexel; // full-resolution pixels per field texel along each axis: 2 (half resolution) or 1
 } dof;
 
 const float DOF_PI = 3.14159265358979;
 
-// Half-resolution CoC and tile values are stored as fractions of dof.maxRadius in R8G8 (seed 000
-// "A plausible and efficient DOF reconstruction filter": R8G8 CoC); the passes work with radii in
-// half-resolution texels.
-float halfResolutionMaxRadius() { return 0.5 * dof.maxRadius; }
+// The fields lie at half resolution (seed 000 "A plausible and efficient DOF reconstruction
+// filter"), or at full resolution for a still's samples (passes/depth_of_field.h FieldResolution).
+// Their CoC and tile values are stored as fractions of dof.maxRadius in R8G8 (the seed's R8G8
+// CoC); the passes work with radii in field texels.
+float fieldMaxRadius() { return dof.maxRadius / dof.pixelsPerTexel; }
 
-// Tiles of the min/max CoC, in half-resolution texels (seed 000 "Tile min/max CoC").
+// Tiles of the min/max CoC, in field texels (seed 000 "Tile min/max CoC").
 const int DOF_TILE_SIZE = 8;
 
 // Below this CoC radius (in full-resolution pixels: a CoC diameter of one pixel) a pixel is sharp.
@@ -35,22 +37,23 @@ const float DOF_SHARP_RADIUS = 0.5;
 
 // How much of a pixel of CoC radius `radiusPixels` (full resolution) the half-resolution field
 // replaces: none where the kernel (the cell's share of the CoC) spans less than DOF_SHARP_RADIUS,
-// all from one half-resolution texel on. Not linear: a linear ramp over the whole CoC range mixes
+// all from one field texel on. Not linear: a linear ramp over the whole CoC range mixes
 // sharp and blurred copies of one surface ("signal frequency soup", seed 000 "Final composite");
 // smoothstep keeps the mix short and soft-edged.
-const float DOF_FIELD_RADIUS = 2.0;
 float fieldBlend(float radiusPixels) {
-    return smoothstep(DOF_SHARP_RADIUS, DOF_FIELD_RADIUS, radiusPixels * dof.cellShare);
+    return smoothstep(DOF_SHARP_RADIUS, max(dof.pixelsPerTexel, 2.0 * DOF_SHARP_RADIUS), radiusPixels * dof.cellShare);
 }
 // How much a pixel of near CoC radius `radiusPixels` belongs to the near field: by the whole CoC,
 // whatever part of the aperture the kernel spans. A near surface is seen through the near field
 // alone (what it hides shows where that field thins), so its share in the field must not depend
 // on how far one frame's cell spreads it: a still's small cells would leave it half transparent.
-float nearFieldShare(float radiusPixels) { return smoothstep(DOF_SHARP_RADIUS, DOF_FIELD_RADIUS, radiusPixels); }
+const float DOF_NEAR_RADIUS = 2.0;
+float nearFieldShare(float radiusPixels) { return smoothstep(DOF_SHARP_RADIUS, DOF_NEAR_RADIUS, radiusPixels); }
 
-// Whether a CoC radius in half-resolution texels blurs at all: its kernel reaches beyond the
-// texel's sharp half-radius.
-bool blursAtHalfResolution(float radiusTexels) { return radiusTexels * dof.cellShare > 0.5 * DOF_SHARP_RADIUS; }
+// Whether a CoC radius in field texels blurs at all: its kernel reaches beyond the sharp radius.
+bool blursInField(float radiusTexels) {
+    return radiusTexels * dof.pixelsPerTexel * dof.cellShare > DOF_SHARP_RADIUS;
+}
 
 // Signed CoC radius in full-resolution pixels of a device depth: positive in front of the focus
 // plane (near field), negative behind it (far field), limited to dof.maxRadius.
@@ -58,15 +61,16 @@ float signedCocRadius(float depth) {
     return clamp(depth * dof.cocScale + dof.cocBias, -dof.maxRadius, dof.maxRadius);
 }
 
-// The radius the gather spreads its taps over for a CoC radius, both in half-resolution texels.
-// The half-resolution chain blurs by itself: the 2x2 downscale, the bilinear taps and the bicubic
-// B-spline upscale add a variance of 1/12 + 1/6 + 1/3 texel^2 per axis (7/12). A disc of radius R
-// has R^2 / 4, so the whole aperture's kernel shrinks to keep the CoC's second moment. A cell's
-// kernel does not: the frame is seen from the cell's own point of the lens, which no kernel moves,
-// and the cells' kernels must meet where they join.
-const float DOF_CHAIN_VARIANCE = 7.0 / 12.0;
+// The radius the gather spreads its taps over for a CoC radius, both in field texels. The chain
+// blurs by itself: at half resolution the 2x2 downscale, the bilinear taps and the bicubic B-spline
+// upscale add a variance of 1/12 + 1/6 + 1/3 texel^2 per axis (7/12); at full resolution the
+// bilinear taps and the bilinear read of the jitter-shifted field, 1/6 + 1/6 on average. A disc of
+// radius R has R^2 / 4, so the whole aperture's kernel shrinks to keep the CoC's second moment. A
+// cell's kernel does not: the frame is seen from the cell's own point of the lens, which no kernel
+// moves, and the cells' kernels must meet where they join.
 float kernelRadius(float cocRadius) {
-    return dof.cellShare < 1.0 ? cocRadius : sqrt(max(cocRadius * cocRadius - 4.0 * DOF_CHAIN_VARIANCE, 0.0));
+    float chainVariance = dof.pixelsPerTexel > 1.0 ? 7.0 / 12.0 : 1.0 / 3.0;
+    return dof.cellShare < 1.0 ? cocRadius : sqrt(max(cocRadius * cocRadius - 4.0 * chainVariance, 0.0));
 }
 
 // A gathered sample of CoC r seen from a kernel of radius R stands for (R / r)^2 of its own blur

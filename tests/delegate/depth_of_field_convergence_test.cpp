@@ -113,11 +113,10 @@ TEST(DepthOfFieldConvergence, PlanesThroughSixBladesMatchTheReference) {
 // Strong defocus: rows of small bright emitters (a pixel and a half across, 40 times the
 // backdrop's radiance) behind the focus plane and in front of it, over a chequered wall; their
 // bokeh are the diaphragm's shape at the CoC.
-// XXX: the bar for the still is 40 dB; measured 38.3 dB (round) and 37.9 dB (6 blades).
-// Points smaller than two pixels are sampled by one pixel centre per frame: each of the still's 16
-// frames rasterises 1 to 4 pixels of one, and each cell of the aperture carries what its two
-// frames saw (renderer/reference_frames.h stillLensCells); and the 1024-sub-frame reference is
-// itself only 41.1 dB from 4096 sub-frames here, against which the round still is 40.4 dB.
+// XXX: the bar for the still is 40 dB; measured 39.1 dB (round) and 38.9 dB (6 blades).
+// The 1024-sub-frame reference is itself only 41.1 and 41.7 dB from 4096 sub-frames here: each of
+// its pinhole sub-frames sees a point smaller than two pixels through one to four pixel centres.
+// Against 4096 sub-frames the stills are 41.8 and 41.0 dB.
 void addEmitterRows(LensScene& s, double distance, double y, int count, const std::string& prefix) {
     const double pixel = pinholeUnitsPerPixel(distance, kWidth);
     addMaterial(s.host, prefix + "Look", {0, 0, 0}, 1.0f, 0.0f, {40.0f, 36.0f, 30.0f});
