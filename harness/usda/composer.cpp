@@ -59,15 +59,23 @@ Attribute composeAttribute(const std::string& name, const std::vector<SpecOpinio
     attr.isUniform = strongest.isUniform;
     attr.isCustom = strongest.isCustom;
     attr.where = strongest.where;
+    // Value resolution (UsdResolveInfo): at a time, the strongest opinion with a value gives it,
+    // its time samples before its default, so time samples weaker than a default are not kept;
+    // the default (what UsdTimeCode::Default() reads) is the strongest one. A default of None
+    // blocks every weaker opinion; one of AnimationBlock only the weaker time samples, so that a
+    // weaker default shows through.
+    bool animationBlocked = false, samplesSettled = false, defaultSettled = false;
     for (const auto& [spec, node, time] : specs) {
-        if (!spec->defaultValue) continue;
-        if (!spec->defaultValue->blocked) attr.defaultValue = *spec->defaultValue;
-        break;
-    }
-    for (const auto& [spec, node, time] : specs) {
-        if (!spec->timeSamples) continue;
-        attr.timeSamples = samplesAtStageTimes(*spec->timeSamples, time);
-        break;
+        if (!samplesSettled && !animationBlocked && spec->timeSamples) {
+            attr.timeSamples = samplesAtStageTimes(*spec->timeSamples, time);
+            samplesSettled = true;
+        }
+        if (!defaultSettled && spec->defaultValue) {
+            if (!spec->defaultValue->blocked) attr.defaultValue = *spec->defaultValue;
+            defaultSettled = samplesSettled = true;
+        }
+        animationBlocked = animationBlocked || spec->animationBlock;
+        if (samplesSettled && defaultSettled) break;
     }
     std::vector<std::pair<const ListOp<std::string>*, const IndexNode*>> connections;
     for (const auto& [spec, node, time] : specs) {

@@ -59,7 +59,7 @@ enum class Type : uint8_t {
     Specifier = 42, Permission = 43, Variability = 44, VariantSelectionMap = 45, TimeSamples = 46,
     Payload = 47, DoubleVector = 48, LayerOffsetVector = 49, StringVector = 50, ValueBlock = 51,
     Value = 52, UnregisteredValue = 53, UnregisteredValueListOp = 54, PayloadListOp = 55,
-    TimeCode = 56, PathExpression = 57,
+    TimeCode = 56, PathExpression = 57, Relocates = 58, Spline = 59, AnimationBlock = 60,
 };
 
 // A field's value: a type, three flags and a 48-bit payload (the value itself when inlined,

@@ -225,7 +225,8 @@ private:
                 auto value = values_.value(field.rep);
                 attr.isCustom = value && !value->numbers.empty() && value->numbers[0] != 0.0;
             } else if (name == "default") {
-                attr.defaultValue = values_.value(field.rep);
+                attr.animationBlock = field.rep.type() == Type::AnimationBlock;
+                if (!attr.animationBlock) attr.defaultValue = values_.value(field.rep);
             } else if (name == "timeSamples") {
                 attr.timeSamples = values_.timeSamples(field.rep);
             } else if (name == "connectionPaths") {

@@ -46,6 +46,9 @@ struct AttributeSpec {
     bool isUniform = false;
     bool isCustom = false;
     std::optional<Value> defaultValue;  // a blocked Value for "= None"
+    // "= AnimationBlock" (OpenUSD 25.05): weaker opinions' time samples are blocked, their defaults
+    // still show (Composer's value resolution).
+    bool animationBlock = false;
     std::optional<std::map<double, Value>> timeSamples;
     ListOp<std::string> connections;
     std::map<std::string, Value> metadata;

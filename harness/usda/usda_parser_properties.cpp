@@ -81,9 +81,10 @@ void Parser::parseAttribute(PrimSpec& prim, const std::optional<Token>& listOpTo
         fail(*listOpToken, "'" + std::string(listOpToken->text) +
                                "' applies only to relationships and attribute connections ('.connect')");
     if (accept('=')) {
-        // AnimationBlock (OpenUSD 25.05) blocks weaker layers' time samples and splines: here it
-        // authors no default. XXX: the weaker time samples are not blocked.
-        if (!acceptWord("AnimationBlock"))
+        attr.animationBlock = acceptWord("AnimationBlock");
+        if (attr.animationBlock)
+            attr.defaultValue.reset();
+        else
             attr.defaultValue = acceptWord("None") ? blockedValue(*type, isArray) : parseTypedValue(*type, isArray);
     } else if (!peek().isPunct('(') && !atStatementEnd()) {
         fail(peek(), "expected '=' or '(' after attribute name '" + name + "', found " + describe(peek()));

@@ -1,6 +1,7 @@
 // Stage composition: sublayers, overs, references, payloads, inherits, variants, list editing,
 // path remapping, and the errors composition can raise.
 #include <algorithm>
+#include <optional>
 
 #include "tests/usda/usda_test_util.h"
 
@@ -345,6 +346,54 @@ over "World"
     ASSERT_TRUE(blocked);
     ASSERT_TRUE(blocked->find("/World/Ball")->attribute("radius"));
     EXPECT_FALSE(blocked->find("/World/Ball")->attribute("radius")->defaultValue);
+}
+
+// Value resolution takes the strongest opinion that has a value, its time samples before its
+// default: a stronger default hides weaker time samples, None hides everything weaker, and
+// AnimationBlock (OpenUSD 25.05) hides only the weaker time samples, so the weaker default shows.
+TEST(Composition, StrongestOpinionWithAValueWinsAndAnimationBlockHidesOnlyWeakerSamples) {
+    const auto stage = open(R"(#usda 1.0
+def Xform "Weak"
+{
+    double blockedAnimation = 1
+    double blockedAnimation.timeSamples = { 0: 10, 10: 20 }
+    double strongerDefault = 2
+    double strongerDefault.timeSamples = { 0: 10, 10: 20 }
+    double blocked = 3
+    double blocked.timeSamples = { 0: 10, 10: 20 }
+    double samplesOnly.timeSamples = { 0: 10, 10: 20 }
+    double strongerSamples = AnimationBlock
+}
+def Xform "Strong" (
+    references = </Weak>
+)
+{
+    double blockedAnimation = AnimationBlock
+    double strongerDefault = 5
+    double blocked = None
+    double samplesOnly = AnimationBlock
+    double samplesOnly.timeSamples = { 0: 7, 10: 9 }
+    double strongerSamples.timeSamples = { 0: 4 }
+}
+)");
+    ASSERT_TRUE(stage);
+    const Prim& prim = *stage->find("/Strong");
+    auto at = [&](const char* name, double time) -> std::optional<double> {
+        const Attribute* attr = prim.attribute(name);
+        if (!attr) return std::nullopt;
+        std::optional<Value> value = attr->evaluate(time);
+        if (!value || value->blocked || value->numbers.empty()) return std::nullopt;
+        return value->numbers[0];
+    };
+    EXPECT_EQ(at("blockedAnimation", 5.0), 1.0);
+    EXPECT_EQ(at("strongerDefault", 5.0), 5.0);
+    EXPECT_EQ(at("blocked", 5.0), std::nullopt);
+    // In one opinion its time samples win over its AnimationBlock.
+    EXPECT_EQ(at("samplesOnly", 5.0), 8.0);
+    EXPECT_EQ(at("strongerSamples", 5.0), 4.0);
+    // And the weaker layer's own samples still animate where no stronger opinion speaks.
+    const Prim& weak = *stage->find("/Weak");
+    EXPECT_EQ(weak.attribute("blockedAnimation")->evaluate(5.0)->numbers.at(0), 15.0);
 }
 
 TEST(Composition, VariantSelectionComposesTheSelectedVariant) {
