@@ -1,5 +1,7 @@
 #include "delegate/nurbs_tessellation.h"
 
+#include "delegate/nurbs_basis.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,55 +15,6 @@ Vec3 cross(const Vec3& a, const Vec3& b) {
     return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 double norm(const Vec3& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
-
-using Functions = std::array<double, kMaxNurbsOrder>;
-
-// The order non-zero basis functions N_{first + k} (k = 0..degree) of one direction at t within
-// knot span `span` (knots[span] <= t <= knots[span + 1]), and their first and second derivatives.
-struct SpanBasis {
-    int first = 0;
-    Functions value{}, derivative{}, second{};
-};
-
-double ratio(double num, double den) { return den > 0.0 ? num / den : 0.0; }  // 0/0 of coincident knots: 0
-
-// d/dt of the degree-`degree` functions of `span` from (the derivatives of) the degree - 1 ones
-// (The NURBS Book, eq. 2.7; linear in them, so applied to first derivatives it gives second ones).
-Functions derivativeOf(const Functions& lower, int degree, int span, const std::vector<double>& U) {
-    Functions out{};
-    for (int k = 0; degree >= 1 && k <= degree; ++k) {
-        const int i = span - degree + k;
-        if (k >= 1) out[size_t(k)] += ratio(degree * lower[size_t(k - 1)], U[size_t(i + degree)] - U[size_t(i)]);
-        if (k < degree) out[size_t(k)] -= ratio(degree * lower[size_t(k)], U[size_t(i + degree + 1)] - U[size_t(i + 1)]);
-    }
-    return out;
-}
-
-// Cox-de Boor (The NURBS Book, eq. 2.5), degree by degree.
-SpanBasis basisAt(const NurbsDirection& d, int span, double t) {
-    const int p = d.order - 1;
-    const std::vector<double>& U = d.knots;
-    Functions N{}, degreeLess1{}, degreeLess2{};
-    N[0] = 1.0;
-    for (int degree = 1; degree <= p; ++degree) {
-        degreeLess2 = degreeLess1;
-        degreeLess1 = N;
-        Functions next{};
-        for (int k = 0; k <= degree; ++k) {
-            const int i = span - degree + k;
-            if (k >= 1) next[size_t(k)] += ratio(t - U[size_t(i)], U[size_t(i + degree)] - U[size_t(i)]) * N[size_t(k - 1)];
-            if (k < degree)
-                next[size_t(k)] += ratio(U[size_t(i + degree + 1)] - t, U[size_t(i + degree + 1)] - U[size_t(i + 1)]) * N[size_t(k)];
-        }
-        N = next;
-    }
-    SpanBasis b;
-    b.first = span - p;
-    b.value = N;
-    b.derivative = derivativeOf(degreeLess1, p, span, U);
-    if (p >= 2) b.second = derivativeOf(derivativeOf(degreeLess2, p - 1, span, U), p, span, U);
-    return b;
-}
 
 // A parameter value the grid is evaluated at: its knot span, that span's drawn part [lo, hi].
 struct Sample {
@@ -178,40 +131,100 @@ public:
         MeshInput& mesh = out.mesh;
         mesh.leftHanded = patch_.leftHanded;
         mesh.normals = MeshPrimvar{{}, OBSCURA_INTERPOLATION_VERTEX, 3};
-        auto color = checked(patch_.displayColor, "primvars:displayColor", out.warnings);
-        auto opacity = checked(patch_.displayOpacity, "primvars:displayOpacity", out.warnings);
-        auto st = checked(patch_.st, "primvars:st", out.warnings);
-        if (color) mesh.displayColor = startOutput(*color);
-        if (opacity) mesh.displayOpacity = startOutput(*opacity);
-        mesh.st = st ? startOutput(*st) : MeshPrimvar{{}, OBSCURA_INTERPOLATION_VERTEX, 2};
-        const std::array<double, 2> rangeU = patch_.u.drawnRange(), rangeV = patch_.v.drawnRange();
+        color_ = checked(patch_.displayColor, "primvars:displayColor", out.warnings);
+        opacity_ = checked(patch_.displayOpacity, "primvars:displayOpacity", out.warnings);
+        st_ = checked(patch_.st, "primvars:st", out.warnings);
+        if (color_) mesh.displayColor = startOutput(*color_);
+        if (opacity_) mesh.displayOpacity = startOutput(*opacity_);
+        mesh.st = st_ ? startOutput(*st_) : MeshPrimvar{{}, OBSCURA_INTERPOLATION_VERTEX, 2};
         for (const Sample& v : vs_.at)
-            for (const Sample& u : us_.at) {
-                const PatchBasis b = patchBasis(patch_, basisAt(patch_.u, u.span, u.t), basisAt(patch_.v, v.span, v.t));
-                for (double x : combinePoints(b, b.r, patch_)) mesh.points.push_back(float(x));
-                for (double n : normalAt(b, u, v)) mesh.normals->values.push_back(float(n));
-                if (st) appendVertex(*mesh.st, *st, b, u, v);
-                else
-                    mesh.st->values.insert(mesh.st->values.end(), {float((u.t - rangeU[0]) / (rangeU[1] - rangeU[0])),
-                                                                   float((v.t - rangeV[0]) / (rangeV[1] - rangeV[0]))});
-                if (color) appendVertex(*mesh.displayColor, *color, b, u, v);
-                if (opacity) appendVertex(*mesh.displayOpacity, *opacity, b, u, v);
-            }
-        const int32_t row = int32_t(us_.at.size());
-        for (size_t j = 0; j < vs_.intervalSpan.size(); ++j)
-            for (size_t i = 0; i < us_.intervalSpan.size(); ++i) {
-                // Counter-clockwise in (u, v): (i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1).
-                const int32_t corner = int32_t(j) * row + int32_t(i);
-                mesh.faceVertexCounts.push_back(4);
-                mesh.faceVertexIndices.insert(mesh.faceVertexIndices.end(), {corner, corner + 1, corner + row + 1, corner + row});
-                for (auto [input, output] : {std::pair{&color, &mesh.displayColor}, std::pair{&opacity, &mesh.displayOpacity},
-                                             std::pair{&st, &mesh.st}})
-                    if (*input && (*input)->interpolation == OBSCURA_INTERPOLATION_UNIFORM) appendFace(**output, **input, i, j);
-            }
+            for (const Sample& u : us_.at) appendVertex(mesh, u, v);
+        if (patch_.trimCurves.empty()) {
+            const int32_t row = int32_t(us_.at.size());
+            for (size_t j = 0; j < vs_.intervalSpan.size(); ++j)
+                for (size_t i = 0; i < us_.intervalSpan.size(); ++i) {
+                    // Counter-clockwise in (u, v): (i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1).
+                    const int32_t corner = int32_t(j) * row + int32_t(i);
+                    appendFace(mesh, {corner, corner + 1, corner + row + 1, corner + row}, i, j);
+                }
+        } else {
+            writeTrimmedFaces(mesh);
+        }
         return out;
     }
 
 private:
+    // The surface's point, normal and primvars at one parameter pair (`u` and `v` carry their knot
+    // spans).
+    void appendVertex(MeshInput& mesh, const Sample& u, const Sample& v) const {
+        const PatchBasis b = patchBasis(patch_, basisAt(patch_.u, u.span, u.t), basisAt(patch_.v, v.span, v.t));
+        for (double x : combinePoints(b, b.r, patch_)) mesh.points.push_back(float(x));
+        for (double n : normalAt(b, u, v)) mesh.normals->values.push_back(float(n));
+        if (st_) {
+            appendVertex(*mesh.st, *st_, b, u, v);
+        } else {
+            const std::array<double, 2> rangeU = patch_.u.drawnRange(), rangeV = patch_.v.drawnRange();
+            mesh.st->values.insert(mesh.st->values.end(), {float((u.t - rangeU[0]) / (rangeU[1] - rangeU[0])),
+                                                           float((v.t - rangeV[0]) / (rangeV[1] - rangeV[0]))});
+        }
+        if (color_) appendVertex(*mesh.displayColor, *color_, b, u, v);
+        if (opacity_) appendVertex(*mesh.displayOpacity, *opacity_, b, u, v);
+    }
+
+    // A face of cell (i, j) through `corners`, with the cell's uniform primvars.
+    void appendFace(MeshInput& mesh, const std::vector<int32_t>& corners, size_t i, size_t j) const {
+        mesh.faceVertexCounts.push_back(int32_t(corners.size()));
+        mesh.faceVertexIndices.insert(mesh.faceVertexIndices.end(), corners.begin(), corners.end());
+        for (auto [input, output] : {std::pair{&color_, &mesh.displayColor}, std::pair{&opacity_, &mesh.displayOpacity},
+                                     std::pair{&st_, &mesh.st}})
+            if (*input && (*input)->interpolation == OBSCURA_INTERPOLATION_UNIFORM) appendUniform(**output, **input, i, j);
+    }
+
+    // The grid's cells cut by the trim curves (marching squares): each cell keeps its corners on
+    // the kept side and, where an edge's ends differ, the point where the trim boundary crosses
+    // that edge (exact, from the boundary's polyline), evaluated on the surface; within a cell the
+    // boundary runs straight between its crossings.
+    void writeTrimmedFaces(MeshInput& mesh) const {
+        const NurbsTrimRegion region(patch_.trimCurves);
+        std::vector<double> us, vs;
+        for (const Sample& u : us_.at) us.push_back(u.t);
+        for (const Sample& v : vs_.at) vs.push_back(v.t);
+        std::vector<NurbsTrimLine> rows, columns;
+        for (double v : vs) rows.push_back(region.line(0, v, us));
+        for (double u : us) columns.push_back(region.line(1, u, vs));
+        const int32_t row = int32_t(us.size());
+        // The crossing vertex of each row interval (i, j) and column interval (i, j), made once.
+        std::vector<int32_t> rowCrossing(rows.size() * (us.size() - 1), -1), columnCrossing(columns.size() * (vs.size() - 1), -1);
+        auto crossingVertex = [&](bool alongU, size_t i, size_t j) {
+            int32_t& index = alongU ? rowCrossing[j * (us.size() - 1) + i] : columnCrossing[i * (vs.size() - 1) + j];
+            if (index < 0) {
+                index = int32_t(mesh.points.size() / 3);
+                Sample u = alongU ? us_.at[i + 1] : us_.at[i], v = alongU ? vs_.at[j] : vs_.at[j + 1];
+                const double t = alongU ? rows[j].crossing[i] : columns[i].crossing[j];
+                // A column that ties with a row at a corner may see no change where the row does.
+                const double lo = alongU ? us[i] : vs[j], hi = alongU ? us[i + 1] : vs[j + 1];
+                (alongU ? u : v).t = std::isnan(t) ? 0.5 * (lo + hi) : t;
+                appendVertex(mesh, u, v);
+            }
+            return index;
+        };
+        for (size_t j = 0; j + 1 < vs.size(); ++j)
+            for (size_t i = 0; i + 1 < us.size(); ++i) {
+                // Counter-clockwise in (u, v); the edge after each corner: bottom (row j), right
+                // (column i + 1), top (row j + 1), left (column i).
+                const std::array<std::array<size_t, 2>, 4> corner{{{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}}};
+                auto kept = [&](size_t k) { return rows[corner[k][1]].kept[corner[k][0]] != 0; };
+                std::vector<int32_t> face;
+                for (size_t k = 0; k < 4; ++k) {
+                    if (kept(k)) face.push_back(int32_t(corner[k][1]) * row + int32_t(corner[k][0]));
+                    if (kept(k) == kept((k + 1) % 4)) continue;
+                    if (k == 0 || k == 2) face.push_back(crossingVertex(true, i, k == 0 ? j : j + 1));
+                    else face.push_back(crossingVertex(false, k == 1 ? i + 1 : i, j));
+                }
+                if (face.size() >= 3) appendFace(mesh, face, i, j);
+            }
+    }
+
     // The primvar when its count fits its interpolation, else nullopt and a warning.
     std::optional<MeshPrimvar> checked(const std::optional<MeshPrimvar>& primvar, const char* name,
                                        std::vector<std::string>& warnings) const {
@@ -250,7 +263,7 @@ private:
         }
     }
 
-    void appendFace(MeshPrimvar& out, const MeshPrimvar& in, size_t i, size_t j) const {
+    void appendUniform(MeshPrimvar& out, const MeshPrimvar& in, size_t i, size_t j) const {
         const size_t su = size_t(us_.intervalSpan[i] - (patch_.u.order - 1));
         const size_t sv = size_t(vs_.intervalSpan[j] - (patch_.v.order - 1));
         const size_t element = sv * size_t(patch_.u.spanCount()) + su;
@@ -303,42 +316,15 @@ private:
 
     const NurbsPatchInput& patch_;
     Samples us_, vs_;
+    std::optional<MeshPrimvar> color_, opacity_, st_;  // the patch's, where their counts fit
     mutable double scale_ = -1.0;
 };
 
-std::string directionProblem(const NurbsDirection& d, char name) {
-    const std::string n(1, name);
-    if (d.order < 2 || d.order > kMaxNurbsOrder)
-        return n + "Order is " + std::to_string(d.order) + "; it must be 2 to " + std::to_string(kMaxNurbsOrder);
-    if (d.vertexCount < d.order)
-        return n + "VertexCount is " + std::to_string(d.vertexCount) + "; it must be at least " + n + "Order (" +
-               std::to_string(d.order) + ")";
-    if (d.knots.size() != size_t(d.vertexCount + d.order))
-        return n + "Knots has " + std::to_string(d.knots.size()) + " values but " + n + "VertexCount + " + n + "Order is " +
-               std::to_string(d.vertexCount + d.order);
-    for (size_t i = 1; i < d.knots.size(); ++i)
-        if (d.knots[i] < d.knots[i - 1]) return n + "Knots decrease at [" + std::to_string(i) + "]";
-    const double lo = d.knots[size_t(d.order - 1)], hi = d.knots[size_t(d.vertexCount)];
-    if (!(hi > lo))
-        return n + "Knots give an empty parameter range (" + n + "Knots[" + std::to_string(d.order - 1) + "] = " + n +
-               "Knots[" + std::to_string(d.vertexCount) + "])";
-    const bool authored = d.range[0] != 0.0 || d.range[1] != 0.0;
-    if (authored && !(d.range[0] >= lo && d.range[1] <= hi && d.range[0] < d.range[1]))
-        return n + "Range (" + std::to_string(d.range[0]) + ", " + std::to_string(d.range[1]) +
-               ") is not an increasing interval within the knots' range (" + std::to_string(lo) + ", " + std::to_string(hi) + ")";
-    return {};
-}
-
 }  // namespace
 
-std::array<double, 2> NurbsDirection::drawnRange() const {
-    if (range[0] != 0.0 || range[1] != 0.0) return range;
-    return {knots[size_t(order - 1)], knots[size_t(vertexCount)]};
-}
-
 std::string nurbsPatchProblem(const NurbsPatchInput& patch) {
-    if (std::string problem = directionProblem(patch.u, 'u'); !problem.empty()) return problem;
-    if (std::string problem = directionProblem(patch.v, 'v'); !problem.empty()) return problem;
+    if (std::string problem = nurbsDirectionProblem(patch.u, {"uOrder", "uVertexCount", "uKnots", "uRange"}); !problem.empty()) return problem;
+    if (std::string problem = nurbsDirectionProblem(patch.v, {"vOrder", "vVertexCount", "vKnots", "vRange"}); !problem.empty()) return problem;
     const size_t points = size_t(patch.u.vertexCount) * size_t(patch.v.vertexCount);
     if (patch.points.size() != points * 3)
         return "points has " + std::to_string(patch.points.size() / 3) + " values but uVertexCount x vVertexCount is " +
@@ -350,7 +336,65 @@ std::string nurbsPatchProblem(const NurbsPatchInput& patch) {
         if (!(patch.pointWeights[i] > 0.0f))
             return "pointWeights[" + std::to_string(i) + "] is " + std::to_string(patch.pointWeights[i]) +
                    "; weights must be positive";
-    return {};
+    return nurbsTrimProblem(patch.trimCurves);
+}
+
+namespace {
+
+// The widest drawn knot span of a direction, in parameter.
+double widestSpan(const NurbsDirection& d) {
+    const Samples spans = samplesOf(d, 1);
+    double widest = 0.0;
+    for (size_t i = 0; i + 1 < spans.at.size(); ++i) widest = std::max(widest, spans.at[i + 1].t - spans.at[i].t);
+    return widest;
+}
+
+// Object units per unit of parameter along u (0) or v (1): the control net's rows (or columns),
+// their mean length over the knots' valid range.
+double unitsPerParameter(const NurbsPatchInput& patch, size_t k) {
+    const NurbsDirection& along = k == 0 ? patch.u : patch.v;
+    const int lines = k == 0 ? patch.v.vertexCount : patch.u.vertexCount;
+    double length = 0.0;
+    for (int line = 0; line < lines; ++line)
+        for (int i = 0; i + 1 < along.vertexCount; ++i) {
+            auto point = [&](int at) {
+                const size_t index = k == 0 ? size_t(line) * size_t(patch.u.vertexCount) + size_t(at)
+                                            : size_t(at) * size_t(patch.u.vertexCount) + size_t(line);
+                return Vec3{patch.points[3 * index], patch.points[3 * index + 1], patch.points[3 * index + 2]};
+            };
+            const Vec3 a = point(i), b = point(i + 1);
+            length += norm({b[0] - a[0], b[1] - a[1], b[2] - a[2]});
+        }
+    const double range = along.knots[size_t(along.vertexCount)] - along.knots[size_t(along.order - 1)];
+    return length / std::max(lines, 1) / range;
+}
+
+}  // namespace
+
+std::array<int, 2> nurbsTrimSteps(const NurbsPatchInput& patch) {
+    if (patch.trimCurves.empty()) return {1, 1};
+    const std::array<double, 2> smallest = NurbsTrimRegion(patch.trimCurves).smallestLoop();
+    std::array<int, 2> steps{1, 1};
+    for (size_t k = 0; k < 2; ++k) {
+        const double widest = widestSpan(k == 0 ? patch.u : patch.v);
+        if (smallest[k] > 0.0 && std::isfinite(smallest[k]))
+            steps[k] = int(std::clamp(std::ceil(kTrimCellsPerLoop * widest / smallest[k]), 1.0, double(kMaxTrimStepsPerSpan)));
+    }
+    return steps;
+}
+
+std::array<double, 2> nurbsTrimBend(const NurbsPatchInput& patch) {
+    if (patch.trimCurves.empty()) return {0.0, 0.0};
+    const std::array<double, 2> smallest = NurbsTrimRegion(patch.trimCurves).smallestLoop();
+    const std::array<double, 2> units{unitsPerParameter(patch, 0), unitsPerParameter(patch, 1)};
+    const double radius = 0.5 * std::min(smallest[0] * units[0], smallest[1] * units[1]);
+    if (!(radius > 0.0) || !std::isfinite(radius)) return {0.0, 0.0};
+    std::array<double, 2> bend{};
+    for (size_t k = 0; k < 2; ++k) {
+        const double span = widestSpan(k == 0 ? patch.u : patch.v) * units[k];
+        bend[k] = span * span / radius;
+    }
+    return bend;
 }
 
 std::array<int, 2> nurbsDrawnSpans(const NurbsPatchInput& patch) {

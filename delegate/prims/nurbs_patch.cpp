@@ -26,6 +26,35 @@ NurbsDirection pullDirection(SceneAccess& s, const char* vertexCount, const char
 // Steps per span at a level: 2^level.
 int stepsAt(int level) { return 1 << std::max(0, level); }
 
+// The level whose steps are at least `steps`.
+int levelFor(int steps) {
+    int level = 0;
+    while (stepsAt(level) < steps) ++level;
+    return level;
+}
+
+// Groups of `n` floats as arrays of doubles.
+template <size_t N>
+std::vector<std::array<double, N>> tuples(const std::vector<float>& flat) {
+    std::vector<std::array<double, N>> out(flat.size() / N);
+    for (size_t i = 0; i < out.size(); ++i)
+        for (size_t k = 0; k < N; ++k) out[i][k] = flat[i * N + k];
+    return out;
+}
+
+NurbsTrimCurves pullTrimCurves(SceneAccess& s) {
+    NurbsTrimCurves c;
+    c.counts = s.getIntArray("trimCurve:counts").value_or(std::vector<int32_t>{});
+    if (c.counts.empty()) return c;
+    c.orders = s.getIntArray("trimCurve:orders").value_or(std::vector<int32_t>{});
+    c.vertexCounts = s.getIntArray("trimCurve:vertexCounts").value_or(std::vector<int32_t>{});
+    const std::vector<float> knots = s.getFloatArray("trimCurve:knots").value_or(std::vector<float>{});
+    c.knots.assign(knots.begin(), knots.end());
+    c.ranges = tuples<2>(s.getFloatArray("trimCurve:ranges").value_or(std::vector<float>{}));
+    c.points = tuples<3>(s.getFloatArray("trimCurve:points").value_or(std::vector<float>{}));
+    return c;
+}
+
 }  // namespace
 
 std::vector<DetailSphere> NurbsPatch::detailSpheres() const {
@@ -48,7 +77,8 @@ std::vector<DetailSphere> NurbsPatch::detailSpheres() const {
 bool NurbsPatch::chooseDetail(double pixelsPerUnit) {
     std::array<int, 2> levels = levels_;
     for (size_t k = 0; k < 2; ++k)
-        levels[k] = chooseImplicitLevel(wantedStepLevel(bend_[k] * pixelsPerUnit, kMaxChordErrorPixels), levels_[k]);
+        levels[k] = std::max(chooseImplicitLevel(wantedStepLevel(bend_[k] * pixelsPerUnit, kMaxChordErrorPixels), levels_[k]),
+                             levelFor(trimSteps_[k]));
     if (levels == levels_) return false;
     levels_ = levels;
     markDirty(kDirtyTessellation);
@@ -69,13 +99,16 @@ void NurbsPatch::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         in.displayColor = pullPrimvar(s, "primvars:displayColor", 3);
         in.displayOpacity = varyingOpacity_;  // a constant one is the gprim's (pullGprim)
         in.st = pullPrimvar(s, "primvars:st", 2);
-        trimmed_ = !s.getIntArray("trimCurve:counts").value_or(std::vector<int32_t>{}).empty();
+        in.trimCurves = pullTrimCurves(s);
         // Only a valid patch is kept: a later change of view tessellates what is kept.
         input_ = {};
         if (in.points.empty()) return dropGeometry(ctx);  // nothing to draw, nothing kept from before
         if (std::string problem = nurbsPatchProblem(in); !problem.empty()) throw PrimDataError(s.path() + ": " + problem);
         input_ = std::move(in);
-        bend_ = nurbsBendMagnitude(input_);
+        // The trim boundary bends like the surface: its chords keep the same bound.
+        const std::array<double, 2> shape = nurbsBendMagnitude(input_), trim = nurbsTrimBend(input_);
+        bend_ = {std::max(shape[0], trim[0]), std::max(shape[1], trim[1])};
+        trimSteps_ = nurbsTrimSteps(input_);
         shutterPoints_ = pullShutterPoints(s, input_.points, ctx);
     }
     if (input_.points.empty() || levels_[0] < 0) return;  // tessellated once the view is known (chooseViewDependentDetail)
@@ -97,8 +130,6 @@ void NurbsPatch::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     };
     MeshGeometry geometry = build(input_);
     if (!capped.warning.empty()) geometry.warnings.push_back(capped.warning);
-    // XXX: trim curves are not applied (neither by Storm); the whole surface is drawn.
-    if (trimmed_) geometry.warnings.push_back("trim curves are not applied; the untrimmed surface is drawn");
     setGeometry(geometry, ctx, s.path());
     setShutterPositions(shutterEnds(shutterPoints_, input_, build), geometry.vertices.size(), ctx, s.path());
 }

@@ -14,7 +14,8 @@ public:
     using ViewDependentMesh::ViewDependentMesh;
     // A sphere around each knot span's control points (the span lies in their convex hull).
     std::vector<DetailSphere> detailSpheres() const override;
-    // Steps per span, each way, keep the surface within kMaxChordErrorPixels of its polygons.
+    // Steps per span, each way, keep the surface within kMaxChordErrorPixels of its polygons and
+    // resolve its trim loops.
     bool chooseDetail(double pixelsPerUnit) override;
     // Steps per drawn knot span (u, v) of the last tessellation.
     std::array<int, 2> steps() const { return steps_; }
@@ -26,7 +27,7 @@ private:
     std::optional<std::array<std::vector<float>, 2>> shutterPoints_;
     std::array<int, 2> levels_{-1, -1};  // -1: not chosen yet
     std::array<int, 2> steps_{0, 0};
-    bool trimmed_ = false;
+    std::array<int, 2> trimSteps_{1, 1};  // nurbsTrimSteps of input_: the fewest steps per span
 };
 
 }  // namespace obscura::delegate

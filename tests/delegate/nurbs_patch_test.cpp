@@ -1,6 +1,7 @@
 // NurbsPatch prims from USD text through the harness's scene host and the plugin: a rational
 // sphere's silhouette is the cone of half-angle asin(r / d) seen from the camera and its normals
-// are the sphere's, the polygons follow the size on screen, and bad data skips only its prim.
+// are the sphere's, the polygons follow the size on screen, trim curves cut their holes, and bad
+// data skips only its prim.
 #include "tests/delegate/hosted_stage.h"
 #include "tests/delegate/render_fixture.h"
 
@@ -157,12 +158,50 @@ TEST(NurbsPatch, InstancedThroughAPointInstancer) {
     EXPECT_TRUE(scene.errors.empty()) << scene.errors.front();
 }
 
-TEST(NurbsPatch, TrimCurvesAreNamedAsNotApplied) {
-    HostedStage scene(usda::Stage::openFromString(
-        "#usda 1.0\n" + usdaCamera() + nurbsSphere("Trimmed", 0.5, "    int[] trimCurve:counts = [1]\n"), "trimmed.usda"));
-    scene.renderAov("primId", 1);
-    ASSERT_EQ(scene.warnings.size(), 1u);
-    EXPECT_NE(scene.warnings[0].find("/Trimmed: trim curves are not applied"), std::string::npos) << scene.warnings[0];
+// A square 1 unit across facing the camera, its (u, v) its (x, y) from its lower left corner, with
+// a round hole of radius 0.25 in its middle cut by a clockwise trim circle (homogeneous points).
+std::string squareWithHole(const std::string& name, const std::string& trimExtra = "") {
+    const double h = std::sqrt(0.5);
+    const double p[9][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}, {1, 0}};
+    std::ostringstream points;
+    for (int i = 0; i < 9; ++i) {
+        const double w = i % 2 == 0 ? 1.0 : h;
+        points << "(" << (0.5 + 0.25 * p[i][0]) * w << ", " << (0.5 - 0.25 * p[i][1]) * w << ", " << w << "), ";
+    }
+    return "def NurbsPatch \"" + name + "\"\n{\n    int uVertexCount = 2\n    int vVertexCount = 2\n    int uOrder = 2\n"
+           "    int vOrder = 2\n    double[] uKnots = [0, 0, 1, 1]\n    double[] vKnots = [0, 0, 1, 1]\n"
+           "    point3f[] points = [(-0.5, -0.5, 0), (0.5, -0.5, 0), (-0.5, 0.5, 0), (0.5, 0.5, 0)]\n"
+           "    int[] trimCurve:counts = [1]\n    int[] trimCurve:orders = [3]\n    int[] trimCurve:vertexCounts = [9]\n"
+           "    double[] trimCurve:knots = [0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4]\n    double2[] trimCurve:ranges = [(0, 4)]\n"
+           "    double3[] trimCurve:points = [" + points.str() + "]\n" + trimExtra + "}\n";
+}
+
+TEST(NurbsPatch, TrimCurvesCutTheirHole) {
+    HostedStage scene(usda::Stage::openFromString("#usda 1.0\n" + usdaCamera() + squareWithHole("Holed"), "holed.usda"));
+    scene.setBool("taa", false);
+    const std::vector<float> ids = scene.renderAov("primId", 1);
+    // Pixels across the middle row at x units from the centre (usdaCamera's 1.04775 units half-width).
+    auto idAt = [&](double x) { return ids[size_t(kHeight / 2 * kWidth + int((x / 1.04775 + 1.0) * kWidth / 2))]; };
+    EXPECT_LT(idAt(0.0), 0.0f);    // the hole
+    EXPECT_LT(idAt(0.2), 0.0f);
+    EXPECT_LT(idAt(-0.2), 0.0f);
+    EXPECT_GE(idAt(0.32), 0.0f);   // the square around it
+    EXPECT_GE(idAt(-0.32), 0.0f);
+    EXPECT_LT(idAt(0.6), 0.0f);    // beyond the square
+    EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
+    EXPECT_TRUE(scene.errors.empty()) << scene.errors.front();
+}
+
+TEST(NurbsPatch, MalformedTrimCurvesSkipOnlyThatPrimAndNameIt) {
+    HostedStage scene(usda::Stage::openFromString("#usda 1.0\n" + usdaCamera() +
+                                                      squareWithHole("Bad", "    int[] trimCurve:counts = [2]\n") +
+                                                      nurbsSphere("Good", 0.1),
+                                                  "badtrim.usda"));
+    scene.expectError("/Bad: trimCurve:orders has 1 values but trimCurve:counts adds up to 2 curves");
+    const std::vector<float> ids = scene.renderAov("primId", 1);
+    ASSERT_EQ(scene.errors.size(), 1u);
+    EXPECT_GE(ids[size_t(kHeight / 2 * kWidth + kWidth / 2)], 0.0f);  // the good sphere
+    EXPECT_LT(ids[size_t(kHeight / 2 * kWidth + kWidth * 7 / 10)], 0.0f);  // the bad square is not drawn
 }
 
 }  // namespace
