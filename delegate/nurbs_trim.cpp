@@ -109,20 +109,21 @@ NurbsTrimRegion::NurbsTrimRegion(const NurbsTrimCurves& c) {
                         const std::array<double, 3>& p = c.points[firstPoint + size_t(b.first + i)];
                         u += b.value[size_t(i)] * p[0], v += b.value[size_t(i)] * p[1], w += b.value[size_t(i)] * p[2];
                     }
-                    loop.push_back({u / w, v / w});
+                    // A weight so small that the point leaves the doubles adds nothing a loop can bound.
+                    if (std::isfinite(u / w) && std::isfinite(v / w)) loop.push_back({u / w, v / w});
                 }
             }
             firstPoint += size_t(d.vertexCount);
         }
         if (loop.size() >= 3) loops_.push_back(std::move(loop));
     }
-    // Loops that are all holes keep the patch's boundary as the outer one.
+    // Loops that are all holes keep the patch's boundary as the outer one (as does no loop at all).
     double largest = 0.0, orientation = 1.0;
     for (const std::vector<Point>& loop : loops_) {
         const double area = signedArea(loop);
         if (std::abs(area) > largest) largest = std::abs(area), orientation = area;
     }
-    outsideWinding_ = orientation < 0.0 ? 1 : 0;
+    outsideWinding_ = loops_.empty() || orientation < 0.0 ? 1 : 0;
 }
 
 NurbsTrimLine NurbsTrimRegion::line(int direction, double at, const std::vector<double>& along) const {

@@ -142,6 +142,15 @@ TEST(NurbsTrim, TheBoundaryBendsLikeACurveOfItsRadius) {
     EXPECT_EQ(nurbsTrimBend(square()), (std::array<double, 2>{0.0, 0.0}));
 }
 
+// Weights so small that the points leave the doubles (valid data, being positive): they bound
+// nothing, and the patch is drawn whole rather than the tessellation failing.
+TEST(NurbsTrim, PointsBeyondTheDoublesBoundNothing) {
+    NurbsPatchInput patch = square();
+    addCircle(patch.trimCurves, 0.5, 0.5, 0.25, true);
+    for (auto& point : patch.trimCurves.points) point[2] = 1e-320;
+    EXPECT_NEAR(area(trimmed(patch).mesh), 1.0, 1e-6);
+}
+
 TEST(NurbsTrim, UntrimmedPatchIsTheWholeGrid) {
     const NurbsTessellation t = tessellateNurbsPatch(square(), nurbsTrimSteps(square()));
     EXPECT_EQ(t.mesh.faceVertexCounts, std::vector<int32_t>{4});
