@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
 """Writes scenes/nurbs.usda: 100 rational NURBS spheres (UsdGeomNurbsPatch, 9 x 5 control points,
-the quadratic circle swept along a half circle) on a 10 x 10 grid over a NURBS ground patch: the
-delegate evaluates each surface with steps per knot span chosen from its size on screen. Used for
-the NurbsPatch cost in bench/RESULTS.md."""
+the quadratic circle swept along a half circle) on a 10 x 10 grid over a NURBS ground patch, and
+behind them a wall patch with a row of round windows cut by trim curves: the delegate evaluates
+each surface with steps per knot span chosen from its size on screen. Used for the NurbsPatch cost
+in bench/RESULTS.md."""
 import math
 import pathlib
 
-from usda_pieces import SUN_AND_SKY, fmt, world_header
+from usda_pieces import SUN_AND_SKY, fmt, ints, world_header
 
 H = math.sqrt(0.5)
 CIRCLE = [(1, 0, 1), (1, 1, H), (0, 1, 1), (-1, 1, H), (-1, 0, 1), (-1, -1, H), (0, -1, 1), (1, -1, H), (1, 0, 1)]
@@ -44,6 +45,31 @@ def sphere(name, radius, centre, colour):
                  colour, extra)
 
 
+WALL = (-600.0, 600.0, 0.0, 400.0, -600.0)  # x from, x to, y from, y to, z
+WALL_WINDOWS = [(-400 + 200 * k, 220, 60) for k in range(5)]  # centre x, centre y, radius
+
+
+def wall(windows):
+    """A bilinear wall patch facing +Z whose (u, v) runs over its width and height, each window a
+    clockwise trim circle (a hole): the quadratic circle's points, homogeneous (u w, v w, w)."""
+    x0, x1, y0, y1, z = WALL
+    counts, orders, vertex_counts, knots, ranges, points = [], [], [], [], [], []
+    for cx, cy, r in windows:
+        counts.append(1), orders.append(3), vertex_counts.append(9), ranges.append((0, 4))
+        knots += [0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4]
+        for x, y, w in CIRCLE:  # CIRCLE's second coordinate negated: clockwise
+            u, v = (cx + r * x - x0) / (x1 - x0), (cy - r * y - y0) / (y1 - y0)
+            points.append((u * w, v * w, w))
+    extra = (f"        int[] trimCurve:counts = {ints(counts)}\n"
+             f"        int[] trimCurve:orders = {ints(orders)}\n"
+             f"        int[] trimCurve:vertexCounts = {ints(vertex_counts)}\n"
+             f"        double[] trimCurve:knots = {ints(knots)}\n"
+             f"        double2[] trimCurve:ranges = [{', '.join('(%g, %g)' % r for r in ranges)}]\n"
+             f"        double3[] trimCurve:points = {fmt(points)}\n")
+    return patch("Wall", (2, 2, "[0, 0, 1, 1]"), (2, 2, "[0, 0, 1, 1]"),
+                 [(x0, y0, z), (x1, y0, z), (x0, y1, z), (x1, y1, z)], (0.6, 0.55, 0.5), extra)
+
+
 def main():
     text = world_header("100 rational NURBS spheres over a NURBS ground patch")
     text += '''    def Camera "Camera"
@@ -60,6 +86,7 @@ def main():
 ''' + SUN_AND_SKY + "\n"
     text += patch("Ground", (2, 2, "[0, 0, 1, 1]"), (2, 2, "[0, 0, 1, 1]"),
                   [(-700, 0, 700), (700, 0, 700), (-700, 0, -700), (700, 0, -700)], (0.5, 0.5, 0.5))
+    text += wall(WALL_WINDOWS)
     for i in range(10):
         for j in range(10):
             hue = (i * 10 + j) / 100.0
