@@ -51,6 +51,24 @@ std::map<double, Value> samplesAtStageTimes(const std::map<double, Value>& sampl
     return out;
 }
 
+// The path expression of opinion `at` with each `%_` (the weaker expression) replaced by the next
+// weaker opinion's, itself composed (SdfPathExpression::ComposeOver, as value resolution applies
+// it); where no weaker opinion has one, `%_` stays and matches nothing.
+std::string composedPathExpression(const std::vector<SpecOpinion<AttributeSpec>>& specs, size_t at) {
+    std::string text = specs[at].spec->defaultValue->strings.empty() ? "" : specs[at].spec->defaultValue->strings[0];
+    if (text.find("%_") == std::string::npos) return text;
+    for (size_t weaker = at + 1; weaker < specs.size(); ++weaker) {
+        const std::optional<Value>& value = specs[weaker].spec->defaultValue;
+        if (!value) continue;
+        if (value->blocked) return text;
+        const std::string replacement = "(" + composedPathExpression(specs, weaker) + ")";
+        for (size_t found = text.find("%_"); found != std::string::npos; found = text.find("%_", found + replacement.size()))
+            text.replace(found, 2, replacement);
+        return text;
+    }
+    return text;
+}
+
 Attribute composeAttribute(const std::string& name, const std::vector<SpecOpinion<AttributeSpec>>& specs) {
     const AttributeSpec& strongest = *specs.front().spec;
     Attribute attr;
@@ -65,13 +83,16 @@ Attribute composeAttribute(const std::string& name, const std::vector<SpecOpinio
     // blocks every weaker opinion; one of AnimationBlock only the weaker time samples, so that a
     // weaker default shows through.
     bool animationBlocked = false, samplesSettled = false, defaultSettled = false;
-    for (const auto& [spec, node, time] : specs) {
+    for (size_t k = 0; k < specs.size(); ++k) {
+        const auto& [spec, node, time] = specs[k];
         if (!samplesSettled && !animationBlocked && spec->timeSamples) {
             attr.timeSamples = samplesAtStageTimes(*spec->timeSamples, time);
             samplesSettled = true;
         }
         if (!defaultSettled && spec->defaultValue) {
             if (!spec->defaultValue->blocked) attr.defaultValue = *spec->defaultValue;
+            if (attr.defaultValue && spec->type && spec->type->name == "pathExpression" && !attr.defaultValue->strings.empty())
+                attr.defaultValue->strings.edit()[0] = composedPathExpression(specs, k);
             defaultSettled = samplesSettled = true;
         }
         animationBlocked = animationBlocked || spec->animationBlock;

@@ -11,8 +11,9 @@
 // - operators, tightest first: `~` complement, implied union (white space), `+` union, `&`
 //   intersection, `-` difference, left to right, and parentheses;
 // - references to other collections' expressions: `%/Prim:name`, `%:name` (a collection of the
-//   same prim); `%_` (the weaker opinion of this attribute) matches nothing, as USD does where no
-//   weaker opinion resolves.
+//   same prim); `%_` (the weaker opinion of this attribute) is replaced by it when the stage
+//   composes (composer.cpp composedPathExpression); one left, where no weaker opinion resolves,
+//   matches nothing, as in USD.
 // A pattern naming a property (`/Prim.attr`) matches no prim. The `variant` predicate is refused
 // at parse time (a composed prim does not keep its variant selections here).
 #pragma once

@@ -263,6 +263,46 @@ def Xform "Set" (
     EXPECT_EQ(boundTo(*stage, "/Set/Props/RedCup/Handle"), "/Looks/Red");
 }
 
+// `%_` in a membershipExpression stands for the weaker opinion's expression (SdfPathExpression's
+// ComposeOver): a referencing layer adds to the referenced asset's collection; where no weaker
+// opinion resolves, it matches nothing.
+TEST(MaterialBinding, WeakerExpressionReferencesComposeOver) {
+    auto stage = open(R"(
+def Xform "Asset" (
+    prepend apiSchemas = ["CollectionAPI:set"]
+)
+{
+    uniform pathExpression collection:set:membershipExpression = "Props/Cup"
+    def Xform "Props"
+    {
+        def Mesh "Cup"
+        {
+        }
+        def Mesh "Plate"
+        {
+        }
+        def Mesh "Bowl"
+        {
+        }
+    }
+}
+def Xform "Shot" (
+    references = </Asset>
+)
+{
+    uniform pathExpression collection:set:membershipExpression = "%_ + Props/Plate"
+}
+)");
+    ASSERT_TRUE(stage);
+    EXPECT_TRUE(stage->warnings().empty()) << stage->warnings().front().message;
+    auto in = [&](const char* collection, const char* path) { return harness::collectionIncludes(*stage, collection, path); };
+    EXPECT_TRUE(in("/Shot.collection:set", "/Shot/Props/Cup"));
+    EXPECT_TRUE(in("/Shot.collection:set", "/Shot/Props/Plate"));
+    EXPECT_FALSE(in("/Shot.collection:set", "/Shot/Props/Bowl"));
+    EXPECT_TRUE(in("/Asset.collection:set", "/Asset/Props/Cup"));
+    EXPECT_FALSE(in("/Asset.collection:set", "/Asset/Props/Plate"));
+}
+
 // Collections that include each other end at a fixed depth, not in a crash.
 TEST(MaterialBinding, CollectionsThatIncludeEachOtherEnd) {
     auto stage = open(R"(
