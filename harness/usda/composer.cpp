@@ -51,11 +51,56 @@ std::map<double, Value> samplesAtStageTimes(const std::map<double, Value>& sampl
     return out;
 }
 
+// A path expression authored in `node`'s layer stack with its absolute paths in the indexed
+// prim's namespace, as value resolution maps path expressions through arcs (relative patterns are
+// anchored where they are used and need no mapping). Each absolute pattern's literal prefix (up to
+// a `//` or an element with a wildcard) is mapped; braces (predicate arguments) and quotes are
+// left alone.
+std::string mappedPathExpression(const std::string& text, const IndexNode& node) {
+    if (node.toRoot.empty()) return text;
+    std::string out;
+    int braces = 0;
+    char quote = 0;
+    for (size_t i = 0; i < text.size();) {
+        const char c = text[i];
+        if (quote) {
+            quote = c == quote ? 0 : quote;
+        } else if (c == '"' || c == '\'') {
+            quote = c;
+        } else if (c == '{' || c == '}') {
+            braces += c == '{' ? 1 : -1;
+        } else if (c == '/' && braces == 0 && (i == 0 || std::string_view(" \t\n(+&-~%").find(text[i - 1]) != std::string_view::npos)) {
+            size_t end = i;
+            // A path ends where an operator, a parenthesis, a predicate or a collection name begins
+            // (USD's prim names hold none of these characters).
+            while (end < text.size() && std::string_view(" \t\n()+&-~{:").find(text[end]) == std::string_view::npos) ++end;
+            // The literal prefix: elements before an empty one (`//`) or one with a wildcard.
+            size_t literal = i + 1;
+            for (size_t element = i + 1; element < end;) {
+                const size_t next = std::min(text.find('/', element), end);
+                if (next == element || text.find_first_of("*?[", element) < next) break;
+                literal = next;
+                element = next + 1;
+            }
+            if (literal > i + 1) {
+                out += mapToRoot(node, text.substr(i, literal - i));
+                i = literal;
+                continue;
+            }
+        }
+        out += c;
+        ++i;
+    }
+    return out;
+}
+
 // The path expression of opinion `at` with each `%_` (the weaker expression) replaced by the next
 // weaker opinion's, itself composed (SdfPathExpression::ComposeOver, as value resolution applies
 // it); where no weaker opinion has one, `%_` stays and matches nothing.
 std::string composedPathExpression(const std::vector<SpecOpinion<AttributeSpec>>& specs, size_t at) {
-    std::string text = specs[at].spec->defaultValue->strings.empty() ? "" : specs[at].spec->defaultValue->strings[0];
+    std::string text = specs[at].spec->defaultValue->strings.empty()
+                           ? ""
+                           : mappedPathExpression(specs[at].spec->defaultValue->strings[0], *specs[at].node);
     if (text.find("%_") == std::string::npos) return text;
     for (size_t weaker = at + 1; weaker < specs.size(); ++weaker) {
         const std::optional<Value>& value = specs[weaker].spec->defaultValue;

@@ -303,6 +303,43 @@ def Xform "Shot" (
     EXPECT_FALSE(in("/Asset.collection:set", "/Asset/Props/Plate"));
 }
 
+// Absolute paths in a referenced asset's expressions (patterns and collection references) are
+// mapped through the arc, as relationship targets are: the asset's collections hold the
+// referencing prim's descendants.
+TEST(MaterialBinding, AbsolutePathsInReferencedExpressionsFollowTheArc) {
+    auto stage = open(R"(
+def Xform "Asset" (
+    prepend apiSchemas = ["CollectionAPI:cups", "CollectionAPI:table"]
+)
+{
+    uniform pathExpression collection:cups:membershipExpression = "/Asset/Props/Cup*"
+    uniform pathExpression collection:table:membershipExpression = "/Asset/Props// - %/Asset:cups"
+    def Xform "Props"
+    {
+        def Mesh "CupA"
+        {
+        }
+        def Mesh "Plate"
+        {
+        }
+    }
+}
+def Xform "Shot" (
+    references = </Asset>
+)
+{
+}
+)");
+    ASSERT_TRUE(stage);
+    EXPECT_TRUE(stage->warnings().empty()) << stage->warnings().front().message;
+    auto in = [&](const char* collection, const char* path) { return harness::collectionIncludes(*stage, collection, path); };
+    EXPECT_TRUE(in("/Shot.collection:cups", "/Shot/Props/CupA"));
+    EXPECT_FALSE(in("/Shot.collection:cups", "/Shot/Props/Plate"));
+    EXPECT_TRUE(in("/Shot.collection:table", "/Shot/Props/Plate"));
+    EXPECT_FALSE(in("/Shot.collection:table", "/Shot/Props/CupA"));
+    EXPECT_TRUE(in("/Asset.collection:cups", "/Asset/Props/CupA"));
+}
+
 // Collections that include each other end at a fixed depth, not in a crash.
 TEST(MaterialBinding, CollectionsThatIncludeEachOtherEnd) {
     auto stage = open(R"(
