@@ -87,13 +87,15 @@ vec3 unproject(mat4 inverseMatrix, vec2 ndc, float depth) {
     return p.xyz / p.w;
 }
 
-// Sphere against the tile's view-space box (tighter than the four side planes for thin tiles).
+// The light's influence sphere (light_evaluation.glsl influenceSphere) against the tile's
+// view-space box (tighter than the four side planes for thin tiles).
 bool touchesTile(LightData light) {
     if (!isLocalLight(light)) return true;
-    vec3 centre = (camera.view * vec4(light.positionType.xyz, 1.0)).xyz;
+    vec4 sphere = influenceSphere(light);
+    vec3 centre = (camera.view * vec4(sphere.xyz, 1.0)).xyz;
     vec3 nearest = clamp(centre, tileBoxMin, tileBoxMax);
     vec3 d = centre - nearest;
-    return dot(d, d) <= light.factors.w * light.factors.w;
+    return dot(d, d) <= sphere.w * sphere.w;
 }
 
 // The slice of the tile's depth range holding view distance `distance`; monotonic, so a light
@@ -107,9 +109,10 @@ uint depthSliceBit(float distance) { return 1u << depthSlice(distance); }
 // The slices a light's influence sphere reaches (all of them for distant lights and domes).
 uint lightSlices(LightData light) {
     if (!isLocalLight(light)) return ~0u;
-    float distance = -(camera.view * vec4(light.positionType.xyz, 1.0)).z;
-    uint first = depthSlice(distance - light.factors.w);
-    uint last = depthSlice(distance + light.factors.w);
+    vec4 sphere = influenceSphere(light);
+    float distance = -(camera.view * vec4(sphere.xyz, 1.0)).z;
+    uint first = depthSlice(distance - sphere.w);
+    uint last = depthSlice(distance + sphere.w);
     uint upToLast = last + 1u >= DEPTH_SLICES ? ~0u : (1u << (last + 1u)) - 1u;
     return upToLast & ~((1u << first) - 1u);
 }
@@ -139,6 +142,7 @@ vec3 shadeSurface(uint instanceTarget, float depth, vec4 normalRoughness, vec4 a
     for (uint i = 0u; i < count; ++i) {
         if ((tileLightSlices[i] & slice) == 0u) continue;
         LightData light = lights[tileLights[i]];
+        if (!lightReaches(light, s.P)) continue;
         // A clipped light reaches only surfaces inside its volume (seed 004 "clip volumes").
         if (light.shadow.w != 0u && (insideClipVolumes & light.shadow.w) == 0u) continue;
         radiance += reflectShadowedLight(s, light, viewDistance);

@@ -152,11 +152,12 @@ vec3 areaLightCorner(LightData light, vec3 centre, int i) {
     return centre + areaScale * (cos(phi) * light.axisX.xyz + sin(phi) * light.axisY.xyz);
 }
 
-// The vector form factor sum_i theta_i gamma_i of the light's polygon (x: whole; y: clipped to
-// the horizon of normal N, Sutherland-Hodgman one edge at a time: the polygons are convex, so the
-// clipped one leaves the horizon once and comes back once, closed by a segment along it). Corners
-// are made on the fly: no arrays, which CPU Vulkan drivers would keep in memory.
-void areaLightFormFactors(LightData light, vec3 centre, vec3 N, out vec3 whole, out vec3 clipped) {
+// The vector form factor sum_i theta_i gamma_i of the light's polygon (whole: the polygon's;
+// clipped: its part above the horizon of normal N, Sutherland-Hodgman one edge at a time: the
+// polygons are convex, so the clipped one leaves the horizon once and comes back once, closed by a
+// segment along it), both oriented towards the light (a mirroring transform reverses the corners'
+// order). Corners are made on the fly: no arrays, which CPU Vulkan drivers would keep in memory.
+void polygonFormFactors(LightData light, vec3 centre, vec3 N, out vec3 whole, out vec3 clipped) {
     whole = vec3(0.0);
     clipped = vec3(0.0);
     int count = areaLightCorners(light);
@@ -183,6 +184,50 @@ void areaLightFormFactors(LightData light, vec3 centre, vec3 N, out vec3 whole, 
         a = b;
     }
     if (crossed) clipped += edgeIntegral(exitPoint, entryPoint);
+    // A polygon wholly below the horizon sums to zero when clipped.
+    float winding = dot(whole, light.directionAngle.xyz) > 0.0 ? -1.0 : 1.0;
+    whole *= winding;
+    clipped *= winding;
+}
+
+// The same for a round disk, in closed form: a uniform disk of radius rho whose plane lies h
+// below the point and whose axis passes a from it has the vector form factor
+// 2 pi rho^2 / Q ((1 - 2 a^2 / (S + Q)) n' + 2 h / (S + Q) r'), S = h^2 + a^2 + rho^2,
+// Q = sqrt(S^2 - 4 a^2 rho^2), along n' (towards the disk's plane) and r' (towards its axis, of
+// length a): the configuration factors of a differential area parallel and perpendicular to a
+// disk (Howell's catalogue of configuration factors), in a form without the division by a. Exact,
+// and one square root where the 16-gon costs 16 arc tangents (disks were the dearest lights of the
+// many-lights benchmark). Returns false where the disk crosses the horizon of N: the polygon clips it.
+bool diskFormFactors(LightData light, vec3 centre, vec3 N, out vec3 whole, out vec3 clipped) {
+    vec3 axis = light.directionAngle.xyz;
+    float rho = length(light.axisX.xyz);
+    // The disk's extent along N either side of its centre: rho sin(angle between N and its axis).
+    float reach = rho * sqrt(max(1.0 - dot(N, axis) * dot(N, axis), 0.0));
+    float above = dot(N, centre);
+    if (abs(above) < reach) return false;
+    vec3 toPoint = -centre;
+    float h = dot(toPoint, axis);
+    vec3 offAxis = toPoint - h * axis;
+    float a2 = dot(offAxis, offAxis), rho2 = rho * rho;
+    float S = h * h + a2 + rho2;
+    float Q = sqrt(max(S * S - 4.0 * a2 * rho2, 1e-30));
+    whole = -(2.0 * PI * rho2 / Q) * ((1.0 - 2.0 * a2 / (S + Q)) * axis + (2.0 * h / (S + Q)) * offAxis);
+    clipped = above > 0.0 ? whole : vec3(0.0);
+    return true;
+}
+
+// Whether the light's disk is round: a UsdLuxDiskLight under a uniform scale (a non-uniform one
+// makes an ellipse, which the polygon integrates).
+bool isRoundDisk(LightData light) {
+    if (uint(light.positionType.w) != LIGHT_DISK) return false;
+    float x2 = dot(light.axisX.xyz, light.axisX.xyz), y2 = dot(light.axisY.xyz, light.axisY.xyz);
+    float xy = dot(light.axisX.xyz, light.axisY.xyz);
+    return abs(x2 - y2) <= 1e-4 * x2 && xy * xy <= 1e-8 * x2 * y2;
+}
+
+void areaLightFormFactors(LightData light, vec3 centre, vec3 N, out vec3 whole, out vec3 clipped) {
+    if (isRoundDisk(light) && diskFormFactors(light, centre, N, whole, clipped)) return;
+    polygonFormFactors(light, centre, N, whole, clipped);
 }
 
 vec3 reflectFromAreaLight(SurfacePoint s, LightData light) {
@@ -191,11 +236,7 @@ vec3 reflectFromAreaLight(SurfacePoint s, LightData light) {
     if (dot(toPoint, axis) <= 0.0) return vec3(0.0);  // behind the emitting face
     vec3 formFactor, clippedFormFactor;
     areaLightFormFactors(light, light.positionType.xyz - s.P, s.N, formFactor, clippedFormFactor);
-    // The edge sum points towards the light for one winding; orient it so (a mirroring transform
-    // reverses the corners' order). A polygon wholly below the horizon sums to zero when clipped.
-    float winding = dot(formFactor, axis) > 0.0 ? -1.0 : 1.0;
-    formFactor *= winding;
-    float diffuseIrradiance = 0.5 * max(dot(s.N, winding * clippedFormFactor), 0.0);
+    float diffuseIrradiance = 0.5 * max(dot(s.N, clippedFormFactor), 0.0);
     float shaping = shapingAttenuation(light, normalize(toPoint));
     vec3 radiance = light.radiance.rgb * shaping;
     vec3 result = diffuseBrdf(s) * clearcoatTransmission(s) * light.factors.x * radiance * diffuseIrradiance;
@@ -256,12 +297,54 @@ bool isLocalLight(LightData light) {
     return type != LIGHT_DISTANT && type != LIGHT_DOME;
 }
 
-// A local light's influence sphere (delegate/prims/light.cpp): beyond it the light is below what
-// the accumulation shows, and the lighting pass's tiles do not list it.
+// Whether a local light's light reaches P at all: its irradiance bound is above the threshold that
+// set its influence range R (delegate/prims/light.cpp: L A / d^2 >= T, R^2 = L A / T), and P lies
+// inside its ShapingAPI cone. A rect or disk is a Lambert emitter: a point whose distance from the
+// light's plane is z receives at most L A z / (d - s)^3 from it (every emitter point is at least
+// d - s away, s the half diagonal, and sees P at the cosine z / its distance), so it reaches no
+// farther than (d - s)^3 <= R^2 z: about a third of the sphere's volume. The tests are exact
+// against the evaluation (the cone is taken from the light's centre there too), so no pixel's
+// light depends on its tile.
 bool lightReaches(LightData light, vec3 P) {
     if (!isLocalLight(light)) return true;
     vec3 d = P - light.positionType.xyz;
-    return dot(d, d) <= light.factors.w * light.factors.w;
+    float d2 = dot(d, d), range = light.factors.w;
+    if (d2 > range * range) return false;
+    float distance = sqrt(d2), along = dot(d, light.directionAngle.xyz);
+    if (light.shaping.x < 0.5 * PI && along < cos(light.shaping.x) * distance) return false;
+    uint type = uint(light.positionType.w);
+    if (type == LIGHT_RECT || type == LIGHT_DISK) {
+        if (along <= 0.0) return false;
+        float beyond = distance - length(vec2(length(light.axisX.xyz), length(light.axisY.xyz)));
+        if (beyond > 0.0 && beyond * beyond * beyond > range * range * along) return false;
+    }
+    return true;
+}
+
+// The smallest of the spheres known to hold every point lightReaches accepts (xyz the centre, w the
+// radius), for the lighting pass's tiles and depth slices. The influence sphere itself; for a rect
+// or disk the sphere around its Lambert lobe (d - s)^3 <= R^2 z: centre R/3 along the axis, radius
+// 2R/3 for a point emitter (the lobe's farthest point from there is its tip, on the axis at R), and
+// 2R/3 + 2.25 s with the half diagonal s; for a cone of half angle c its
+// sector's bounding sphere (centre R / (2 cos c) along the axis and that radius below 45 degrees,
+// else centre R cos c, radius R sin c).
+vec4 influenceSphere(LightData light) {
+    vec3 centre = light.positionType.xyz, axis = light.directionAngle.xyz;
+    float range = light.factors.w;
+    vec4 sphere = vec4(centre, range);
+    uint type = uint(light.positionType.w);
+    if (type == LIGHT_RECT || type == LIGHT_DISK) {
+        float halfDiagonal = length(vec2(length(light.axisX.xyz), length(light.axisY.xyz)));
+        float radius = 2.0 / 3.0 * range + 2.25 * halfDiagonal;
+        if (radius < sphere.w) sphere = vec4(centre + axis * (range / 3.0), radius);
+    }
+    float cone = light.shaping.x;
+    if (cone < 0.5 * PI) {
+        vec4 sector = cone > 0.25 * PI ? vec4(centre + axis * (range * cos(cone)), range * sin(cone))
+                                       : vec4(centre + axis * (0.5 * range / cos(cone)), 0.5 * range / cos(cone));
+        if (sector.w < sphere.w) sphere = sector;
+    }
+    return sphere;
 }
 
 // A distant or sphere light as the point P sees it: the unit direction to it, the irradiance it

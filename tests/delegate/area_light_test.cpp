@@ -1,7 +1,8 @@
 // UsdLux area and shaped lights on a Lambert plane against closed-form irradiance: a rectangle
 // and a disk parallel to the plane (configuration factors of a differential area to a parallel
-// rectangle and disk, e.g. Howell's catalogue, cases B-3 and B-4), the ShapingAPI cone and its
-// softness, one-sided emission, normalize.
+// rectangle and disk, e.g. Howell's catalogue, cases B-3 and B-4), a tilted and an upright disk
+// against the quadrature of their irradiance integral, the ShapingAPI cone and its softness,
+// one-sided emission, normalize.
 #include "tests/delegate/render_fixture.h"
 
 
@@ -25,12 +26,6 @@ double rectIrradiance(double radiance, double halfWidth, double halfHeight, doub
     for (double sx : {-1.0, 1.0})
         for (double sy : {-1.0, 1.0}) f += cornerFactor(halfWidth + sx * p[0], halfHeight + sy * p[1], h);
     return kPi * radiance * f;
-}
-
-// Irradiance from a parallel disk of radius r at height h, the point at radial offset rho.
-double diskIrradiance(double radiance, double r, double h, double rho) {
-    double z = h * h + rho * rho + r * r;
-    return kPi * radiance * 0.5 * (1 - (h * h + rho * rho - r * r) / std::sqrt(z * z - 4 * r * r * rho * rho));
 }
 
 // A sphere light straight above the plane's origin at `height`, seen from the plane point under
@@ -100,6 +95,58 @@ TEST(AreaLight, DiskMatchesTheParallelDiskFactor) {
         double l = kLitPlaneAlbedo / kPi * diskIrradiance(radiance, radius, height, std::hypot(p[0], p[1]));
         expectRadiance(color, x, y, {l, l * 0.5, l * 0.25});
     }
+}
+
+// Irradiance at plane point p (normal +Z) from a uniform disk of radiance L, centre `centre`,
+// radius r, spanned by the unit axes u and v and emitting along `axis`: E = L * integral of
+// cos(emitter) cos(receiver) / d^2 over the disk's area (the part above p's horizon), by the
+// midpoint rule on a fine polar grid.
+double diskIrradianceByQuadrature(double radiance, std::array<double, 3> centre, double r, std::array<double, 3> u,
+                                  std::array<double, 3> v, std::array<double, 3> axis, std::array<double, 3> p) {
+    const int rings = 400, sectors = 800;
+    double sum = 0;
+    for (int i = 0; i < rings; ++i) {
+        double rho = (i + 0.5) / rings * r, ring = rho * (r / rings) * (2 * kPi / sectors);
+        for (int j = 0; j < sectors; ++j) {
+            double phi = (j + 0.5) / sectors * 2 * kPi, c = std::cos(phi) * rho, s = std::sin(phi) * rho;
+            std::array<double, 3> d;
+            for (int k = 0; k < 3; ++k) d[size_t(k)] = p[size_t(k)] - (centre[size_t(k)] + c * u[size_t(k)] + s * v[size_t(k)]);
+            double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], len = std::sqrt(d2);
+            double cosEmitter = (d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2]) / len, cosReceiver = -d[2] / len;
+            if (cosEmitter > 0 && cosReceiver > 0) sum += cosEmitter * cosReceiver / d2 * ring;
+        }
+    }
+    return radiance * sum;
+}
+
+// A disk light along `direction` at `centre` against the quadrature of its exact circle.
+void expectDiskAlong(std::array<double, 3> direction, std::array<double, 3> centre, double radius) {
+    LitPlaneScene s;
+    const double radiance = 2.0;
+    Matrix m = lightPointingAlong(direction);
+    m[12] = centre[0], m[13] = centre[1], m[14] = centre[2];
+    s.host.addPrim("diskLight", "/Disk",
+                   {{"inputs:intensity", HostValue::floatValue(float(radiance))},
+                    {"inputs:radius", HostValue::floatValue(float(radius))},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   m);
+    auto color = s.renderColor();
+    std::array<double, 3> u{m[0], m[1], m[2]}, v{m[4], m[5], m[6]}, axis{-m[8], -m[9], -m[10]};
+    for (auto [x, y] : kPixels) {
+        auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
+        double l = kLitPlaneAlbedo / kPi * diskIrradianceByQuadrature(radiance, centre, radius, u, v, axis, p);
+        expectRadiance(color, x, y, {l, l, l});
+    }
+}
+
+TEST(AreaLight, TiltedDiskMatchesItsIrradianceIntegral) {
+    // Tilted 37 degrees off the vertical, wholly above the plane: the closed form's oblique case.
+    expectDiskAlong({0.6, 0.0, -0.8}, {-0.3, 0.2, 0.9}, 0.5);
+}
+
+TEST(AreaLight, UprightDiskIsClippedAtTheHorizon) {
+    // Standing across the plane, its lower part below the ground: the clipped polygon's case.
+    expectDiskAlong({0.0, -1.0, 0.0}, {0.1, 0.7, 0.3}, 0.6);
 }
 
 TEST(AreaLight, EmitsFromItsFrontFaceOnly) {

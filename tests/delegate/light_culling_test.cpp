@@ -2,7 +2,8 @@
 // only where it cannot reach: many small lights sum as every light at every pixel, and a tile that
 // spans a card two units from the camera and a floor five hundred units behind it lights each
 // surface with its own light, at the analytic radiance, though neither light's influence range
-// reaches the other surface's depth.
+// reaches the other surface's depth. Disks and spots are culled to their Lambert lobes and cones
+// (light_evaluation.glsl lightReaches), and many of each still sum like every light at every pixel.
 #include "tests/delegate/render_fixture.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <random>
 #include <vector>
 
@@ -109,6 +111,74 @@ TEST(TiledLightCulling, ManySmallLightsSumLikeEveryLightAtEveryPixel) {
     EXPECT_GT(largest, 1e-3);
     std::printf("tiled culling: %d pixels checked, %.0f%% of light-pixel pairs out of range, peak radiance %.4f\n",
                 checked, 100.0 * droppable / pairs, largest);
+}
+
+TEST(TiledLightCulling, DisksAndSpotsAreCulledToTheirLobesAndConesOnly) {
+    // 150 small disks facing the plane and 150 spot bulbs (cones of 20-60 degrees, hard-edged)
+    // close above it. A disk may be dropped only where the bound of its Lambert lobe,
+    // L A z / (d - s)^3 (s its half diagonal, z its height), or of its sphere, L A / d^2, is
+    // below the threshold; a spot only outside its cone (or beyond its range). Every pixel must
+    // equal the analytic sum, less at most what those lights give it.
+    LitPlaneScene s;
+    const double threshold = 1.0 / 4096.0;
+    struct Emitter { bool disk; double x, y, h, r, radiance, cone; };
+    std::vector<Emitter> emitters;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> across(-1.2, 1.2), height(0.04, 0.2), level(0.05, 0.15), cone(20, 60);
+    for (int i = 0; i < 300; ++i) {
+        Emitter e{i % 2 == 0, across(rng), across(rng), height(rng), 0.02, level(rng), cone(rng)};
+        emitters.push_back(e);
+        std::map<std::string, HostValue> inputs = {
+            {"inputs:intensity", HostValue::floatValue(float(e.radiance))},
+            {"inputs:radius", HostValue::floatValue(float(e.r))},
+            {"inputs:specular", HostValue::floatValue(0.0f)}};
+        if (!e.disk) inputs.emplace("inputs:shaping:cone:angle", HostValue::floatValue(float(e.cone)));
+        s.host.addPrim(e.disk ? "diskLight" : "sphereLight", "/Lights/l" + std::to_string(i), inputs,
+                       translation(e.x, e.y, e.h));
+    }
+    auto color = s.renderColor();
+    int checked = 0, pairs = 0, droppedByShape = 0;
+    double largest = 0;
+    for (int y = 0; y < kHeight; y += 3)
+        for (int x = 0; x < kWidth; x += 3) {
+            auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
+            double irradiance = 0, mayDrop = 0;
+            for (const Emitter& e : emitters) {
+                double dx = p[0] - e.x, dy = p[1] - e.y, d = std::sqrt(dx * dx + dy * dy + e.h * e.h);
+                double area = kPi * e.r * e.r, range2 = e.radiance * area / threshold;
+                double contribution = 0;
+                bool droppable = d * d > range2;
+                bool shapeDrops = false;
+                if (e.disk) {
+                    contribution = diskIrradiance(e.radiance, e.r, e.h, std::hypot(dx, dy));
+                    double beyond = d - std::sqrt(2.0) * e.r;
+                    shapeDrops = beyond > 0 && beyond * beyond * beyond > range2 * e.h;
+                } else {
+                    double offAxis = std::acos(e.h / d) * 180 / kPi;
+                    if (offAxis < e.cone) contribution = kPi * e.radiance * e.r * e.r / (d * d) * (e.h / d);
+                    // At the cone's edge either side is right within rounding.
+                    shapeDrops = offAxis > e.cone - 1e-3;
+                }
+                if (shapeDrops && !droppable) ++droppedByShape;
+                if (droppable || shapeDrops) mayDrop += contribution;
+                irradiance += contribution;
+                ++pairs;
+            }
+            double l = kLitPlaneAlbedo / kPi * irradiance;
+            largest = std::max(largest, l);
+            float got = color[(size_t(y) * kWidth + x) * 4];
+            ASSERT_LE(got, l + 0.01 * l + smallFloatStep(float(l), 6)) << "pixel " << x << ", " << y;
+            ASSERT_GE(got, l - 0.01 * l - smallFloatStep(float(l), 6) - kLitPlaneAlbedo / kPi * mayDrop)
+                << "pixel " << x << ", " << y;
+            ++checked;
+        }
+    EXPECT_GT(checked, 400);
+    // The scene exercises the shapes: many pairs the spheres keep lie outside a lobe or cone.
+    EXPECT_GT(droppedByShape, pairs / 8);
+    EXPECT_GT(largest, 1e-3);
+    std::printf("disks and spots: %d pixels checked, %.0f%% of light-pixel pairs culled by lobe or cone only, "
+                "peak radiance %.4f\n",
+                checked, 100.0 * droppedByShape / pairs, largest);
 }
 
 }  // namespace

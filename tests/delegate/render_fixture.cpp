@@ -63,6 +63,11 @@ void addMaterial(TestHost& host, const std::string& path, std::array<float, 3> d
                   {"inputs:emissiveColor", HostValue::float3(emissive[0], emissive[1], emissive[2])}});
 }
 
+double diskIrradiance(double radiance, double r, double h, double rho) {
+    double z = h * h + rho * rho + r * r;
+    return kPi * radiance * 0.5 * (1 - (h * h + rho * rho - r * r) / std::sqrt(z * z - 4 * r * r * rho * rho));
+}
+
 float smallFloatStep(float v, int mantissaBits) {
     if (v <= 0.0f) return 0.0f;
     int exponent = 0;

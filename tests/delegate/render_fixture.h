@@ -61,6 +61,11 @@ constexpr float kLitPlaneFocalLength = 50.0f, kLitPlaneAperture = 20.955f;
 constexpr double kLitPlaneTanHalfFov = (kLitPlaneAperture / 2.0) / kLitPlaneFocalLength;
 extern const float kLitPlaneAlbedo;
 
+// Irradiance from a uniform disk of radiance L and radius r parallel to the receiver, its plane h
+// above it and its axis rho to the side (the configuration factor of a differential area to a
+// parallel disk, Howell's catalogue B-4).
+double diskIrradiance(double radiance, double r, double h, double rho);
+
 struct LitPlaneScene {
     TestHost host;
     LitPlaneScene();
