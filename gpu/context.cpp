@@ -1,5 +1,7 @@
 #include "gpu/context.h"
 
+#include "gpu/pipeline_statistics.h"
+
 #include "gpu/vk_check.h"
 
 #include <dlfcn.h>
@@ -275,6 +277,14 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     // Normal maps are BC5-compressed where the device samples it.
     features.features.textureCompressionBC = supported.textureCompressionBC;
     ctx->enabledFeatures_ = features.features;
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executableInfo{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+    const bool statistics = pipelineStatisticsRequested() &&
+                            hasExtension(ctx->physical_, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+    if (statistics) {
+        executableInfo.pipelineExecutableInfo = VK_TRUE;
+        f13.pNext = &executableInfo;
+    }
 
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
     dci.queueCreateInfoCount = 1;
@@ -282,6 +292,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     std::vector<const char*> deviceExtensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     if (ctx->externalHandles_.memoryFd) deviceExtensions.push_back(VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
     if (ctx->externalHandles_.semaphoreFd) deviceExtensions.push_back(VK_KHR_EXTERNAL_SEMAPHORE_FD_EXTENSION_NAME);
+    if (statistics) deviceExtensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
     dci.enabledExtensionCount = static_cast<uint32_t>(deviceExtensions.size());
     dci.ppEnabledExtensionNames = deviceExtensions.data();
     r = vkCreateDevice(ctx->physical_, &dci, nullptr, &ctx->device_);
@@ -290,6 +301,12 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     vkGetDeviceQueue(ctx->device_, ctx->queueFamily_, 0, &ctx->queue_);
     ctx->cmdPushDescriptorSet_ = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
         vkGetDeviceProcAddr(ctx->device_, "vkCmdPushDescriptorSetKHR"));
+    if (statistics) {
+        ctx->pipelineExecutables_.properties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+            vkGetDeviceProcAddr(ctx->device_, "vkGetPipelineExecutablePropertiesKHR"));
+        ctx->pipelineExecutables_.statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+            vkGetDeviceProcAddr(ctx->device_, "vkGetPipelineExecutableStatisticsKHR"));
+    }
 
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;

@@ -32,6 +32,13 @@ struct ExternalHandleSupport {
     uint8_t driverUUID[VK_UUID_SIZE] = {};
 };
 
+// VK_KHR_pipeline_executable_properties' queries, where the context captures pipeline statistics
+// (gpu/pipeline_statistics.h); null otherwise.
+struct PipelineExecutableFunctions {
+    PFN_vkGetPipelineExecutablePropertiesKHR properties = nullptr;
+    PFN_vkGetPipelineExecutableStatisticsKHR statistics = nullptr;
+};
+
 struct PhysicalDeviceSummary {
     std::string name;
     std::string driver;
@@ -61,6 +68,7 @@ public:
     const VkPhysicalDeviceFeatures& enabledFeatures() const { return enabledFeatures_; }
     // VK_KHR_push_descriptor, which every device Obscura picks has.
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet() const { return cmdPushDescriptorSet_; }
+    const PipelineExecutableFunctions& pipelineExecutableFunctions() const { return pipelineExecutables_; }
     const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
     const PhysicalDeviceSummary& summary() const { return summary_; }
     bool validationEnabled() const { return messenger_ != VK_NULL_HANDLE; }
@@ -99,6 +107,7 @@ private:
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceFeatures enabledFeatures_{};
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet_ = nullptr;
+    PipelineExecutableFunctions pipelineExecutables_;
     VkPhysicalDeviceMemoryProperties memoryProperties_{};
     PhysicalDeviceSummary summary_;
     ExternalHandleSupport externalHandles_;

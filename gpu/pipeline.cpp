@@ -1,6 +1,7 @@
 #include "gpu/pipeline.h"
 
 #include "gpu/context.h"
+#include "gpu/pipeline_statistics.h"
 #include "gpu/shader_registry.h"
 #include "gpu/vk_check.h"
 
@@ -23,6 +24,11 @@ struct DeviceTraits {
 };
 
 }  // namespace
+
+VkPipelineCreateFlags Pipeline::captureFlags() const {
+    return device_.context().pipelineExecutableFunctions().statistics ? VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR
+                                                                      : 0;
+}
 
 VkShaderModule Pipeline::loadModule(const std::string& name) {
     auto words = findShader(name);
@@ -76,9 +82,11 @@ Pipeline::Pipeline(Device& device, const ComputePipelineDesc& desc) : device_(de
     ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT,
                 module, "main", &traits.info};
     ci.layout = layout_;
+    ci.flags = captureFlags();
     VkResult r = vkCreateComputePipelines(device_.vk(), device_.pipelineCache(), 1, &ci, nullptr, &pipeline_);
     vkDestroyShaderModule(device_.vk(), module, nullptr);
     vkCheck(r, "vkCreateComputePipelines");
+    logPipelineStatistics(device_.context(), pipeline_, desc.shader);
 }
 
 Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(device) {
@@ -164,10 +172,12 @@ Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(d
     ci.pColorBlendState = &cb;
     ci.pDynamicState = &dyn;
     ci.layout = layout_;
+    ci.flags = captureFlags();
     VkResult r = vkCreateGraphicsPipelines(device_.vk(), device_.pipelineCache(), 1, &ci, nullptr, &pipeline_);
     vkDestroyShaderModule(device_.vk(), vs, nullptr);
     if (fs) vkDestroyShaderModule(device_.vk(), fs, nullptr);
     vkCheck(r, "vkCreateGraphicsPipelines");
+    logPipelineStatistics(device_.context(), pipeline_, desc.vertexShader + " + " + desc.fragmentShader);
 }
 
 Pipeline::~Pipeline() {

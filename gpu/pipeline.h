@@ -81,6 +81,9 @@ private:
     void createLayout(const std::vector<BindingDesc>& bindings, uint32_t pushConstantSize, VkShaderStageFlags stages,
                       uint32_t pushedSamplers = 0);
     VkShaderModule loadModule(const std::string& name);
+    // VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR where the context captures them
+    // (gpu/pipeline_statistics.h).
+    VkPipelineCreateFlags captureFlags() const;
 
     Device& device_;
     VkPipeline pipeline_ = VK_NULL_HANDLE;
