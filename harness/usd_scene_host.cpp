@@ -227,8 +227,8 @@ std::string flattenIndexed(usda::Value& value, const usda::Value& indices) {
     return {};
 }
 
-// An attribute's values (its default and time samples) as text, for instances to compare what
-// their roots hand down; exact, as the values the plugin would be served.
+// An attribute's values (its default, time samples and spline) as text, for instances to compare
+// what their roots hand down; exact, as the values the plugin would be served.
 void appendValuesText(const usda::Attribute& attribute, std::string& text) {
     auto appendNumber = [&](double n) {
         char number[32];
@@ -246,6 +246,22 @@ void appendValuesText(const usda::Attribute& attribute, std::string& text) {
         text += '@';
         appendNumber(time);
         append(value);
+    }
+    if (!attribute.spline) return;
+    const usda::Spline& spline = *attribute.spline;
+    text += "spline" + std::to_string(spline.hermite) + std::to_string(int(spline.pre.mode)) +
+            std::to_string(int(spline.post.mode)) + ',';
+    appendNumber(spline.pre.slope);
+    appendNumber(spline.post.slope);
+    if (spline.loop)
+        for (double n : {spline.loop->protoStart, spline.loop->protoEnd, double(spline.loop->numPreLoops),
+                         double(spline.loop->numPostLoops), spline.loop->valueOffset})
+            appendNumber(n);
+    for (const usda::SplineKnot& knot : spline.knots) {
+        text += "knot" + std::to_string(int(knot.next)) + ',';
+        for (double n : {knot.time, knot.value, knot.valueBefore(), knot.preWidth, knot.preSlope, knot.postWidth,
+                         knot.postSlope})
+            appendNumber(n);
     }
 }
 
@@ -444,7 +460,9 @@ bool sameValues(const Map& a, const Map& b) {
 bool sameAttribute(const usda::Attribute& a, const usda::Attribute& b) {
     const bool defaults = a.defaultValue.has_value() == b.defaultValue.has_value() &&
                           (!a.defaultValue || sameValue(*a.defaultValue, *b.defaultValue));
-    return defaults && a.typeName == b.typeName && a.connection == b.connection && sameValues(a.timeSamples, b.timeSamples) &&
+    const bool splines = a.spline == b.spline || (a.spline && b.spline && *a.spline == *b.spline);
+    return defaults && splines && a.typeName == b.typeName && a.connection == b.connection &&
+           sameValues(a.timeSamples, b.timeSamples) &&
            sameValues(a.metadata, b.metadata);
 }
 
@@ -1298,7 +1316,7 @@ ObscuraStatus UsdSceneHost::sampleTransformThunk(void* user, const char* path, d
     if (!prim || maxSamples == 0) return OBSCURA_ERROR_NOT_FOUND;
     // The interval's ends and every authored sample time strictly inside it.
     std::vector<double> sampleTimes = {t0};
-    for (double t : self->stage_.transformSampleTimes(*prim))
+    for (double t : self->stage_.transformSampleTimes(*prim, t0, t1))
         if (t > t0 && t < t1) sampleTimes.push_back(t);
     if (t1 > t0) sampleTimes.push_back(t1);
     if (sampleTimes.size() > maxSamples) {

@@ -65,6 +65,14 @@ std::optional<Value> unlessBlocked(const Value& value) {
 }  // namespace
 
 std::optional<Value> Attribute::evaluate(double time) const {
+    if (timeSamples.empty() && spline) {
+        const std::optional<double> number = spline->evaluate(time);
+        if (!number) return std::nullopt;
+        Value value;
+        value.typeName = spline->valueType;
+        value.numbers.edit().push_back(*number);
+        return value;
+    }
     if (timeSamples.empty()) return defaultValue;
     const auto upper = timeSamples.lower_bound(time);
     if (upper == timeSamples.end()) return unlessBlocked(timeSamples.rbegin()->second);

@@ -123,15 +123,22 @@ Attribute composeAttribute(const std::string& name, const std::vector<SpecOpinio
     attr.isCustom = strongest.isCustom;
     attr.where = strongest.where;
     // Value resolution (UsdResolveInfo): at a time, the strongest opinion with a value gives it,
-    // its time samples before its default, so time samples weaker than a default are not kept;
-    // the default (what UsdTimeCode::Default() reads) is the strongest one. A default of None
-    // blocks every weaker opinion; one of AnimationBlock only the weaker time samples, so that a
-    // weaker default shows through.
+    // its time samples before its spline before its default (OpenUSD's spline proposal: "if both
+    // are present on the same attribute, time samples will take precedence"), so time samples and
+    // splines weaker than a default are not kept; the default (what UsdTimeCode::Default() reads)
+    // is the strongest one. A default of None blocks every weaker opinion; one of AnimationBlock
+    // only the weaker time samples and splines, so that a weaker default shows through, while
+    // those of its own layer still win (testUsdAttributeBlocking).
     bool animationBlocked = false, samplesSettled = false, defaultSettled = false;
     for (size_t k = 0; k < specs.size(); ++k) {
         const auto& [spec, node, time] = specs[k];
         if (!samplesSettled && !animationBlocked && spec->timeSamples) {
             attr.timeSamples = samplesAtStageTimes(*spec->timeSamples, time);
+            samplesSettled = true;
+        }
+        if (!samplesSettled && !animationBlocked && spec->spline) {
+            attr.spline = time.isIdentity() ? spec->spline
+                                            : std::make_shared<const Spline>(spec->spline->retimed(time.offset, time.scale));
             samplesSettled = true;
         }
         if (!defaultSettled && spec->defaultValue) {

@@ -44,6 +44,9 @@ size_t heldBytes(const Attribute& attribute, std::unordered_set<const void*>& co
     for (const auto& [key, value] : attribute.metadata)
         bytes += kMapNodeOverhead + sizeof(key) + heapOf(key) + sizeof(value) + heapOf(value, counted);
     if (attribute.connection) bytes += heapOf(*attribute.connection);
+    // A spline is shared with its layer unless composition retimed it.
+    if (attribute.spline && counted.insert(attribute.spline.get()).second)
+        bytes += sizeof(Spline) + attribute.spline->knots.capacity() * sizeof(SplineKnot);
     return bytes;
 }
 

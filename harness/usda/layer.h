@@ -50,6 +50,7 @@ struct AttributeSpec {
     // still show (Composer's value resolution).
     bool animationBlock = false;
     std::optional<std::map<double, Value>> timeSamples;
+    std::shared_ptr<const Spline> spline;  // ".spline = { ... }" on a scalar floating-point attribute
     ListOp<std::string> connections;
     std::map<std::string, Value> metadata;
     SourceLocation where;

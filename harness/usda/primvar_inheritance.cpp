@@ -17,7 +17,7 @@ bool isPrimvar(const std::string& name) {
 
 // Fallback values are not inherited, nor blocked ones (composition leaves those valueless).
 bool hasAuthoredValue(const Attribute& attribute) {
-    return attribute.defaultValue.has_value() || !attribute.timeSamples.empty();
+    return attribute.defaultValue.has_value() || !attribute.timeSamples.empty() || attribute.spline;
 }
 
 // A primvar without interpolation metadata is constant (UsdGeomPrimvar::GetInterpolation).

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "harness/usda/shared_array.h"
+#include "harness/usda/spline.h"
 
 namespace obscura::usda {
 
@@ -57,13 +59,16 @@ struct Attribute {
     bool isCustom = false;
     std::optional<Value> defaultValue;
     std::map<double, Value> timeSamples;
+    std::shared_ptr<const Spline> spline;  // in stage time; set only where no time samples are
     std::optional<std::string> connection;        // target path of `.connect`, e.g. "/M/S.outputs:rgb"
     std::map<std::string, Value> metadata;        // interpolation, elementSize, ...
     SourceLocation where;
 
-    bool isAnimated() const { return timeSamples.size() > 1; }
-    // The value at a time code: time samples win over the default; linear interpolation for
-    // numeric types, slerp for quaternions, held (the earlier sample) for everything else.
+    bool isAnimated() const { return timeSamples.size() > 1 || (spline && spline->varies()); }
+    // The value at a time code: time samples or the spline win over the default; linear
+    // interpolation for numeric types, slerp for quaternions, held (the earlier sample) for
+    // everything else. A spline without a value there (a segment or extrapolation of mode none)
+    // gives none.
     std::optional<Value> evaluate(double time) const;
 };
 
@@ -165,8 +170,11 @@ public:
     std::array<double, 16> localTransform(const Prim& prim, double time, bool* resetsXformStack = nullptr) const;
     // Product of local transforms up to the root (honouring resetXformStack).
     std::array<double, 16> worldTransform(const Prim& prim, double time) const;
-    // The time codes at which any xformOp of the prim or its ancestors is sampled (sorted).
-    std::vector<double> transformSampleTimes(const Prim& prim) const;
+    // The time codes in [from, to] at which any xformOp of the prim or its ancestors is sampled
+    // (sorted): its time samples, or where a spline's shape changes and steps along its curves
+    // (Spline::sampleTimes; looping extrapolation repeats only within a finite interval).
+    std::vector<double> transformSampleTimes(const Prim& prim, double from = -std::numeric_limits<double>::infinity(),
+                                             double to = std::numeric_limits<double>::infinity()) const;
     // Computed visibility: "invisible" on the prim or any ancestor at `time`.
     bool isVisible(const Prim& prim, double time) const;
     // Whether the computed visibility can change over time: the prim's or an ancestor's

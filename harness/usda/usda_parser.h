@@ -59,9 +59,6 @@ private:
     [[noreturn]] void fail(const Token& at, const std::string& message) const;
     SourceLocation where(const Token& token) const;
     void warn(const std::string& kind, const Token& at, const std::string& message);
-    // Reads past a `{ ... }` block whose content is not read (nested braces, brackets and parentheses
-    // balanced), naming `what` where it does not close.
-    void skipBraceBlock(const std::string& what);
     std::string primPathText() const { return "<" + primPath_ + ">"; }
 
     // Layer, prims and properties (usda_parser.cpp)
@@ -97,6 +94,14 @@ private:
     double parseTimeCode();
     double toNumber(const Token& token) const;
     std::map<double, Value> parseTimeSamples(const ValueType& type, bool isArray);
+    // Splines (usda_parser_spline.cpp)
+    std::shared_ptr<const Spline> parseSpline(const ValueType& type);
+    double parseSplineNumber(const std::string& what);
+    SplineExtrapolation parseSplineExtrapolation(const Token& mode);
+    SplineLoop parseSplineLoop();
+    // A knot's tangent `form(numbers)` on its pre or post side; a Hermite's Maya height waits in
+    // `hermiteHeight` for the knot's neighbours.
+    void parseSplineKnotTangent(bool isPre, bool hermite, SplineKnot& knot, std::optional<double>& hermiteHeight);
     Value parseInferredValue();
 
     Lexer lexer_;

@@ -65,13 +65,19 @@ void Parser::parseAttribute(PrimSpec& prim, const std::optional<Token>& listOpTo
             parseListOf("connections", op == ListOpKind::Explicit, [&] { targets.push_back(parsePath("connections")); });
             attr.connections.set(op, std::move(targets));
         } else if (field.isWord("spline")) {
-            // OpenUSD 25.05's spline-valued attributes (TsSpline): the block is read past, and the
-            // attribute keeps its default and time samples.
+            if (listOpToken) fail(*listOpToken, "splines cannot be list-edited");
             expect('=', "after '" + name + ".spline'");
-            skipBraceBlock("spline");
-            warn("spline", field,
-                 "attribute '" + name + "' of " + primPathText() +
-                     " has a spline (its curve is not evaluated; its default and time samples are used)");
+            std::shared_ptr<const Spline> spline = parseSpline(*type);
+            // TsSpline's value types, and timecode, which UsdAttribute::SetSpline also takes.
+            const bool scalar = !isArray && (type->name == "double" || type->name == "float" ||
+                                             type->name == "half" || type->name == "timecode");
+            if (scalar)
+                attr.spline = std::move(spline);
+            else
+                warn("spline", field,
+                     "attribute '" + name + "' of " + primPathText() + " is a " + typeName +
+                         ", which no spline animates (double, float, half and timecode do); its default and time "
+                         "samples are used");
         } else {
             fail(field, "expected 'timeSamples', 'connect' or 'spline' after '" + name + ".', found " + describe(field));
         }

@@ -94,7 +94,7 @@ std::array<double, 16> Stage::worldTransform(const Prim& prim, double time) cons
     return world;
 }
 
-std::vector<double> Stage::transformSampleTimes(const Prim& prim) const {
+std::vector<double> Stage::transformSampleTimes(const Prim& prim, double from, double to) const {
     std::set<double> times;
     for (const Prim* p = &prim; p; p = p->parent) {
         // xformOpOrder is uniform, so its default names the ops.
@@ -105,8 +105,12 @@ std::vector<double> Stage::transformSampleTimes(const Prim& prim) const {
                 continue;
             }
             if (entry.starts_with(kInvertPrefix)) entry.remove_prefix(kInvertPrefix.size());
-            if (const Attribute* attr = p->attribute(std::string(entry)))
-                for (const auto& sample : attr->timeSamples) times.insert(sample.first);
+            if (const Attribute* attr = p->attribute(std::string(entry))) {
+                for (const auto& sample : attr->timeSamples)
+                    if (sample.first >= from && sample.first <= to) times.insert(sample.first);
+                if (attr->spline && attr->timeSamples.empty())
+                    for (double t : attr->spline->sampleTimes(from, to)) times.insert(t);
+            }
         }
         if (reset) break;
     }

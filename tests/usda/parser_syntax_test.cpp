@@ -255,21 +255,25 @@ def Material "Mat"
     EXPECT_FALSE(mat.attribute("inputs:none")->connection);
 }
 
-// OpenUSD 25.05's splines and AnimationBlock: a spline block is read past with one warning naming
-// it (the attribute keeps its default and time samples), and AnimationBlock authors no default.
-TEST(ParserSyntax, SplinesAreReadPastAndAnimationBlockAuthorsNoDefault) {
+// OpenUSD 25.05's splines and AnimationBlock: a spline as Sdf_FileIOUtility::WriteSpline writes
+// it is read whole (custom data included); one on a type no spline animates warns, naming the
+// attribute, which keeps its default; AnimationBlock authors no default.
+TEST(ParserSyntax, SplinesAreReadAndAnimationBlockAuthorsNoDefault) {
     const auto stage = open(R"(#usda 1.0
 def Xform "A"
 {
     double x = 2
-    double x.spline = {
+    varying double x.spline = {
         bezier,
-        pre: held,
-        post: linear,
+        pre: linear,
+        post: sloped(0.57),
         loop: (15, 25, 0, 2, 11.7),
-        7: 5.5 & 7.21; pre (0, 0); post curve (2.5, 1.5),
-        15: 8.18; post held; { string comment: "climb!" },
+        7: 5.5 & 7.21; post held,
+        15: 8.18; post curve ws(2.49, 1.17); { string comment = "climb!" },
+        20: 14.72; pre ws(3.77, -1.4); post curve ws(1.1, -1.4),
     }
+    float3 v = (1, 2, 3)
+    float3 v.spline = { 1: 2 }
     float y = AnimationBlock
     float z = 3
 }
@@ -277,12 +281,27 @@ def Xform "A"
     ASSERT_TRUE(stage);
     const Prim& a = *stage->find("/A");
     EXPECT_EQ(defaultOf(*stage, "/A", "x").numbers.at(0), 2.0);
+    const Spline& x = *a.attribute("x")->spline;
+    EXPECT_EQ(x.valueType, "double");
+    EXPECT_EQ(x.pre.mode, SplineExtrapolationMode::Linear);
+    EXPECT_EQ(x.post.mode, SplineExtrapolationMode::Sloped);
+    EXPECT_EQ(x.post.slope, 0.57);
+    EXPECT_EQ(x.loop, (SplineLoop{15, 25, 0, 2, 11.7}));
+    ASSERT_EQ(x.knots.size(), 3u);
+    EXPECT_EQ(x.knots[0].preValue, 5.5);
+    EXPECT_EQ(x.knots[0].value, 7.21);
+    EXPECT_EQ(x.knots[1].next, SplineInterpolation::Curve);
+    EXPECT_EQ(x.knots[1].postWidth, 2.49);
+    EXPECT_EQ(x.knots[2].preSlope, -1.4);
+    EXPECT_FALSE(a.attribute("v")->spline);
+    EXPECT_EQ(defaultOf(*stage, "/A", "v").numbers.at(2), 3.0);
     EXPECT_FALSE(a.attribute("y")->defaultValue);
     EXPECT_EQ(defaultOf(*stage, "/A", "z").numbers.at(0), 3.0);
     ASSERT_EQ(stage->warnings().size(), 1u);
-    EXPECT_EQ(stage->warnings()[0].where.line, 5);
-    EXPECT_NE(stage->warnings()[0].message.find("'x' of </A> has a spline"), std::string::npos)
-        << stage->warnings()[0].message;
+    EXPECT_EQ(stage->warnings()[0].where.line, 15);
+    EXPECT_EQ(stage->warnings()[0].message,
+              "attribute 'v' of </A> is a float3, which no spline animates (double, float, half and timecode do); its "
+              "default and time samples are used");
 }
 
 // Opaque attributes (and groups, which are opaque) hold no value: they are declared and connected,
