@@ -157,7 +157,7 @@ vec3 areaLightCorner(LightData light, vec3 centre, int i) {
 // polygons are convex, so the clipped one leaves the horizon once and comes back once, closed by a
 // segment along it), both oriented towards the light (a mirroring transform reverses the corners'
 // order). Corners are made on the fly: no arrays, which CPU Vulkan drivers would keep in memory.
-void polygonFormFactors(LightData light, vec3 centre, vec3 N, out vec3 whole, out vec3 clipped) {
+void areaLightFormFactors(LightData light, vec3 centre, vec3 N, out vec3 whole, out vec3 clipped) {
     whole = vec3(0.0);
     clipped = vec3(0.0);
     int count = areaLightCorners(light);
@@ -188,46 +188,6 @@ void polygonFormFactors(LightData light, vec3 centre, vec3 N, out vec3 whole, ou
     float winding = dot(whole, light.directionAngle.xyz) > 0.0 ? -1.0 : 1.0;
     whole *= winding;
     clipped *= winding;
-}
-
-// The same for a round disk, in closed form: a uniform disk of radius rho whose plane lies h
-// below the point and whose axis passes a from it has the vector form factor
-// 2 pi rho^2 / Q ((1 - 2 a^2 / (S + Q)) n' + 2 h / (S + Q) r'), S = h^2 + a^2 + rho^2,
-// Q = sqrt(S^2 - 4 a^2 rho^2), along n' (towards the disk's plane) and r' (towards its axis, of
-// length a): the configuration factors of a differential area parallel and perpendicular to a
-// disk (Howell's catalogue of configuration factors), in a form without the division by a. Exact,
-// and one square root where the 16-gon costs 16 arc tangents (disks were the dearest lights of the
-// many-lights benchmark). Returns false where the disk crosses the horizon of N: the polygon clips it.
-bool diskFormFactors(LightData light, vec3 centre, vec3 N, out vec3 whole, out vec3 clipped) {
-    vec3 axis = light.directionAngle.xyz;
-    float rho = length(light.axisX.xyz);
-    // The disk's extent along N either side of its centre: rho sin(angle between N and its axis).
-    float reach = rho * sqrt(max(1.0 - dot(N, axis) * dot(N, axis), 0.0));
-    float above = dot(N, centre);
-    if (abs(above) < reach) return false;
-    vec3 toPoint = -centre;
-    float h = dot(toPoint, axis);
-    vec3 offAxis = toPoint - h * axis;
-    float a2 = dot(offAxis, offAxis), rho2 = rho * rho;
-    float S = h * h + a2 + rho2;
-    float Q = sqrt(max(S * S - 4.0 * a2 * rho2, 1e-30));
-    whole = -(2.0 * PI * rho2 / Q) * ((1.0 - 2.0 * a2 / (S + Q)) * axis + (2.0 * h / (S + Q)) * offAxis);
-    clipped = above > 0.0 ? whole : vec3(0.0);
-    return true;
-}
-
-// Whether the light's disk is round: a UsdLuxDiskLight under a uniform scale (a non-uniform one
-// makes an ellipse, which the polygon integrates).
-bool isRoundDisk(LightData light) {
-    if (uint(light.positionType.w) != LIGHT_DISK) return false;
-    float x2 = dot(light.axisX.xyz, light.axisX.xyz), y2 = dot(light.axisY.xyz, light.axisY.xyz);
-    float xy = dot(light.axisX.xyz, light.axisY.xyz);
-    return abs(x2 - y2) <= 1e-4 * x2 && xy * xy <= 1e-8 * x2 * y2;
-}
-
-void areaLightFormFactors(LightData light, vec3 centre, vec3 N, out vec3 whole, out vec3 clipped) {
-    if (isRoundDisk(light) && diskFormFactors(light, centre, N, whole, clipped)) return;
-    polygonFormFactors(light, centre, N, whole, clipped);
 }
 
 vec3 reflectFromAreaLight(SurfacePoint s, LightData light) {
