@@ -196,6 +196,14 @@ std::string authoredInterpolation(const usda::Attribute& attribute) {
     return authored == attribute.metadata.end() || authored->second.strings.empty() ? "" : authored->second.strings.front();
 }
 
+// UsdGeomPrimvar's elementSize as authored on `attribute` (1 when it is not).
+size_t elementSizeOf(const usda::Attribute& attribute) {
+    const auto authored = attribute.metadata.find("elementSize");
+    return authored == attribute.metadata.end() || authored->second.numbers.empty()
+               ? 1
+               : size_t(std::max(1.0, authored->second.numbers.front()));
+}
+
 // The interpolation of a converted curves' attribute: as authored, else the plugin schema's fallback
 // for the attribute it is served as (widths and normals vertex, displayColor constant), else
 // UsdGeomPrimvar's (constant) for other primvars and vertex for point data (velocities).
@@ -340,7 +348,8 @@ std::optional<usda::SourceLocation> UsdSceneHost::locate(const PrimMessage& mess
 std::string UsdSceneHost::primvarCountProblem(const usda::Prim& prim, const usda::Attribute& attribute,
                                               const usda::Value& value, double time) const {
     const auto interpolation = attribute.metadata.find("interpolation");
-    // A TetMesh is served as a mesh of its points (its uniform and faceVarying primvars are not served).
+    // A TetMesh is served as a mesh of its points; its uniform and faceVarying primvars are checked
+    // against its surface (convertedValue).
     const bool mesh = prim.typeName == "Mesh" || prim.typeName == "TetMesh";
     if (!mesh || interpolation == attribute.metadata.end() || interpolation->second.strings.empty())
         return {};
@@ -352,14 +361,13 @@ std::string UsdSceneHost::primvarCountProblem(const usda::Prim& prim, const usda
     };
     size_t expected = 0;
     std::string per;
+    if (prim.typeName == "TetMesh" && (mode == "uniform" || mode == "faceVarying")) return {};
     if (mode == "constant") expected = 1, per = "constant";
     else if (mode == "uniform") expected = countOf("faceVertexCounts"), per = "uniform (one per face)";
     else if (mode == "vertex" || mode == "varying") expected = countOf("points"), per = mode + " (one per point)";
     else if (mode == "faceVarying") expected = countOf("faceVertexIndices"), per = "faceVarying (one per face-vertex)";
     else return {};
-    size_t elementSize = 1;
-    if (const auto it = attribute.metadata.find("elementSize"); it != attribute.metadata.end() && !it->second.numbers.empty())
-        elementSize = size_t(std::max(1.0, it->second.numbers.front()));
+    const size_t elementSize = elementSizeOf(attribute);
     if (value.size() == expected * elementSize) return {};
     return attribute.name + " has " + std::to_string(value.size()) + " values but " + per + " interpolation needs " +
            std::to_string(expected * elementSize) + "; ignored";
@@ -1110,11 +1118,19 @@ std::optional<ObscuraStatus> UsdSceneHost::convertedValue(const usda::Prim& prim
     if (const auto* faces = std::get_if<std::vector<int>>(&converted.form)) {
         if (attribute == "faceVertexCounts") return ints(std::vector<int32_t>(faces->size() / 3, 3));
         if (attribute == "faceVertexIndices") return ints(*faces);
-        // XXX: a TetMesh's uniform and faceVarying primvars (per tet, per tet face) are not served.
         const usda::Attribute* a = resolveAttribute(prim.path, attribute);
         const std::string interpolation = a ? authoredInterpolation(*a) : "";
-        if (interpolation == "uniform" || interpolation == "faceVarying") return OBSCURA_ERROR_NOT_FOUND;
-        return std::nullopt;  // the points and vertex primvars are the tets' own
+        // The points, constant and vertex primvars are the tets' own.
+        if (interpolation != "uniform" && interpolation != "faceVarying") return std::nullopt;
+        usda::Value value;
+        if (ObscuraStatus status = authoredValue(prim, attribute, time, value); status != OBSCURA_OK) return status;
+        if (std::string problem = usda::tetSurfacePrimvarProblem(faces->size() / 3, value.size(), interpolation,
+                                                                 elementSizeOf(*a));
+            !problem.empty()) {
+            warnOnce("count:" + prim.path + a->name, prim.path + ": " + a->name + " has " + problem + "; ignored", a->where);
+            return OBSCURA_ERROR_NOT_FOUND;
+        }
+        return fill(value, out);
     }
     const usda::BezierCurves& bezier = std::get<usda::BezierCurves>(converted.form);
     if (attribute == "curveVertexCounts") return ints(std::vector<int32_t>(bezier.curveVertexCounts.begin(), bezier.curveVertexCounts.end()));
@@ -1125,10 +1141,7 @@ std::optional<ObscuraStatus> UsdSceneHost::convertedValue(const usda::Prim& prim
         return fill(value, out);
     }
     const usda::Attribute* a = resolveAttribute(prim.path, attribute);
-    const auto elementSize = a->metadata.find("elementSize");
-    auto served = usda::convertCurvesPrimvar(
-        bezier, value, curvesInterpolation(*a, attribute),
-        elementSize == a->metadata.end() || elementSize->second.numbers.empty() ? 1 : size_t(std::max(1.0, elementSize->second.numbers.front())));
+    auto served = usda::convertCurvesPrimvar(bezier, value, curvesInterpolation(*a, attribute), elementSizeOf(*a));
     if (auto* problem = std::get_if<std::string>(&served)) {
         warnOnce("count:" + prim.path + a->name, prim.path + ": " + a->name + " has " + *problem + "; ignored", a->where);
         return OBSCURA_ERROR_NOT_FOUND;

@@ -44,9 +44,10 @@ struct Version {
 };
 
 // The oldest and newest versions read: 0.4.0 compressed the structural sections (older files
-// are rare and laid out differently); 0.10.0 added path expressions, the last type read here.
+// are rare and laid out differently); 0.11.0 added relocates and 0.12.0 splines, the last type
+// read here.
 constexpr Version kOldestVersion{0, 4, 0};
-constexpr Version kNewestVersion{0, 10, 0};
+constexpr Version kNewestVersion{0, 12, 0};
 
 // Value types of a ValueRep (pxr/usd/sdf/crateDataTypes.h).
 enum class Type : uint8_t {

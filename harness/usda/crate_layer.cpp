@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <set>
 
+#include "harness/usda/crate_spline.h"
 #include "harness/usda/crate_values.h"
 
 namespace obscura::usda {
@@ -152,6 +153,8 @@ private:
                 subLayerOffsets = values_.layerOffsets(field.rep);
             } else if (field.name == "primChildren") {
                 childOrder_[&layer_->pseudoRoot] = values_.names(field.rep);
+            } else if (field.name == "layerRelocates") {
+                if (auto value = values_.value(field.rep)) layer_->metadata["relocates"] = std::move(*value);
             } else if (!kStructuralFields.count(field.name)) {
                 addMetadata(layer_->metadata, field);
             }
@@ -215,6 +218,7 @@ private:
         AttributeSpec attr;
         attr.where = where_;
         std::string declared;
+        std::optional<ValueRep> spline;
         for (const FieldValue& field : fieldsOf(spec)) {
             const std::string& name = field.name;
             if (name == "typeName") {
@@ -229,6 +233,8 @@ private:
                 if (!attr.animationBlock) attr.defaultValue = values_.value(field.rep);
             } else if (name == "timeSamples") {
                 attr.timeSamples = values_.timeSamples(field.rep);
+            } else if (name == "spline") {
+                spline = field.rep;
             } else if (name == "connectionPaths") {
                 attr.connections = values_.nameListOp(field.rep);
             } else if (!kStructuralFields.count(name)) {
@@ -261,7 +267,34 @@ private:
                 shape(shaped);
                 sample = std::move(*shaped);
             }
+        if (spline) addSpline(attr, *spline, node);
         owner.attributes[node.name] = std::move(attr);
+    }
+
+    // A malformed spline loses the attribute only its spline, as a spline on a type no spline
+    // animates does in text.
+    void addSpline(AttributeSpec& attr, ValueRep rep, const PathNode& node) {
+        if (!splineAnimates(attr.type->name, attr.isArray)) {
+            warn("spline:" + node.text, "<" + node.text + ">: a spline on a " + attr.typeName +
+                               ", which no spline animates (double, float, half and timecode do); its default and "
+                               "time samples are used");
+            return;
+        }
+        const std::string valueType(attr.type->name);
+        if (rep.isInlined() && rep.type() == Type::Spline) {  // a spline without knots
+            auto empty = std::make_shared<Spline>();
+            empty->valueType = valueType;
+            attr.spline = std::move(empty);
+            return;
+        }
+        try {
+            if (rep.type() != Type::Spline)
+                throw Failure{rep.payload(), "a value of type " + std::to_string(int(rep.type())) + ", not a spline"};
+            attr.spline = crate::decodeSpline(file_.bytes(), rep.payload(), valueType);
+        } catch (const Failure& failure) {
+            warn("spline:" + node.text, "<" + node.text + ">: byte " + std::to_string(failure.offset) + ": malformed spline (" +
+                               failure.message + "); the attribute's spline is skipped");
+        }
     }
 
     void addRelationship(const crate::Spec& spec, const PathNode& node) {

@@ -76,20 +76,6 @@ size_t componentBytes(Component component) {
     }
 }
 
-// IEEE 754 binary16 to double.
-double halfToDouble(uint16_t bits) {
-    const int sign = bits >> 15, exponent = (bits >> 10) & 0x1F, mantissa = bits & 0x3FF;
-    double magnitude;
-    if (exponent == 0) {
-        magnitude = std::ldexp(mantissa, -24);
-    } else if (exponent == 31) {
-        magnitude = mantissa ? std::nan("") : INFINITY;
-    } else {
-        magnitude = std::ldexp(mantissa + 1024, exponent - 25);
-    }
-    return sign ? -magnitude : magnitude;
-}
-
 template <class T>
 T load(const char* p) {
     T value;
@@ -141,6 +127,19 @@ void appendElements(Value& out, const TypeInfo& info, std::span<const char> byte
 
 }  // namespace
 
+double halfToDouble(uint16_t bits) {
+    const int sign = bits >> 15, exponent = (bits >> 10) & 0x1F, mantissa = bits & 0x3FF;
+    double magnitude;
+    if (exponent == 0) {
+        magnitude = std::ldexp(mantissa, -24);
+    } else if (exponent == 31) {
+        magnitude = mantissa ? std::nan("") : INFINITY;
+    } else {
+        magnitude = std::ldexp(mantissa + 1024, exponent - 25);
+    }
+    return sign ? -magnitude : magnitude;
+}
+
 void ValueReader::spend(uint64_t elements, uint64_t at) {
     decoded_ += elements;
     if (decoded_ > kMaxDecodedElements)
@@ -163,6 +162,18 @@ std::optional<Value> ValueReader::value(ValueRep rep, int depth) {
         value.typeName = rep.type() == Type::PathVector ? "path" : rep.type() == Type::TokenVector ? "token" : "string";
         value.isArray = true;
         value.strings = names(rep);
+        return value;
+    }
+    if (rep.type() == Type::Relocates) {
+        // Source and target path indexes in pairs, as the text reader keeps relocates.
+        ByteReader reader(file_.bytes(), at);
+        const uint64_t count = reader.read<uint64_t>();
+        if (count > reader.size() / 8) throw Failure{at, "relocates of " + std::to_string(count) + " pairs"};
+        spend(count, at);
+        Value value;
+        value.typeName = "relocates";
+        std::vector<std::string>& paths = value.strings.edit();
+        for (uint64_t i = 0; i < 2 * count; ++i) paths.push_back(file_.pathText(reader.read<uint32_t>(), at));
         return value;
     }
     if (rep.type() == Type::DoubleVector) {

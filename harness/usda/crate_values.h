@@ -14,6 +14,9 @@
 
 namespace obscura::usda::crate {
 
+// IEEE 754 binary16 to double.
+double halfToDouble(uint16_t bits);
+
 class ValueReader {
 public:
     explicit ValueReader(const File& file) : file_(file) {}

@@ -268,4 +268,13 @@ Spline Spline::retimed(double offset, double scale) const {
     return out;
 }
 
+bool splineAnimates(std::string_view typeName, bool isArray) {
+    return !isArray && (typeName == "double" || typeName == "float" || typeName == "half" || typeName == "timecode");
+}
+
+double slopeOfMayaTangent(bool isPre, double height, double mayaWidth) {
+    if (!(mayaWidth > 0.0)) return 0.0;
+    return (isPre ? -height : height) / mayaWidth;
+}
+
 }  // namespace obscura::usda

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace obscura::usda {
@@ -63,5 +64,14 @@ struct Spline {
     // This spline with its times mapped by t -> offset + scale * t (a layer offset; scale > 0).
     Spline retimed(double offset, double scale) const;
 };
+
+// Whether a spline animates an attribute of this type: TsSpline's value types, and timecode,
+// which UsdAttribute::SetSpline also takes.
+bool splineAnimates(std::string_view typeName, bool isArray);
+
+// A tangent's slope from Maya's form (ts/tangentConversions.cpp, eval.cpp's _GetCurveKnotSlope):
+// its height over its Maya width (three times Ts's; a Hermite's is its segment's length), a
+// pre-tangent's height negated; 0 without a width.
+double slopeOfMayaTangent(bool isPre, double height, double mayaWidth);
 
 }  // namespace obscura::usda

@@ -70,4 +70,13 @@ std::variant<std::vector<int>, AttributeProblem> tetMeshSurface(const Prim& prim
     return tetSurfaceFaces(std::vector<int>(tets.begin(), tets.end()));
 }
 
+std::string tetSurfacePrimvarProblem(size_t surfaceFaces, size_t count, const std::string& interpolation,
+                                     size_t elementSize) {
+    const bool uniform = interpolation == "uniform";
+    const size_t expected = (uniform ? surfaceFaces : 3 * surfaceFaces) * elementSize;
+    if (count == expected) return {};
+    return std::to_string(count) + " values but " + interpolation + " interpolation needs " +
+           std::to_string(expected) + (uniform ? " (one per surface face)" : " (one per surface face corner)");
+}
+
 }  // namespace obscura::usda

@@ -68,10 +68,7 @@ void Parser::parseAttribute(PrimSpec& prim, const std::optional<Token>& listOpTo
             if (listOpToken) fail(*listOpToken, "splines cannot be list-edited");
             expect('=', "after '" + name + ".spline'");
             std::shared_ptr<const Spline> spline = parseSpline(*type);
-            // TsSpline's value types, and timecode, which UsdAttribute::SetSpline also takes.
-            const bool scalar = !isArray && (type->name == "double" || type->name == "float" ||
-                                             type->name == "half" || type->name == "timecode");
-            if (scalar)
+            if (splineAnimates(type->name, isArray))
                 attr.spline = std::move(spline);
             else
                 warn("spline", field,

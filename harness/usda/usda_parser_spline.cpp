@@ -145,9 +145,9 @@ std::shared_ptr<const Spline> Parser::parseSpline(const ValueType& type) {
     for (auto it = knots.begin(); it != knots.end(); ++it) {
         SplineKnot& knot = it->second.knot;
         if (it->second.preHeight && it != knots.begin())
-            knot.preSlope = -*it->second.preHeight / (knot.time - std::prev(it)->first);
+            knot.preSlope = slopeOfMayaTangent(true, *it->second.preHeight, knot.time - std::prev(it)->first);
         if (it->second.postHeight && std::next(it) != knots.end())
-            knot.postSlope = *it->second.postHeight / (std::next(it)->first - knot.time);
+            knot.postSlope = slopeOfMayaTangent(false, *it->second.postHeight, std::next(it)->first - knot.time);
         spline->knots.push_back(knot);
     }
     return spline;
@@ -169,7 +169,6 @@ void Parser::parseSplineKnotTangent(bool isPre, bool hermite, SplineKnot& knot, 
         fail(form, "the tangent form '" + std::string(form.text) + "' takes " + (withWidth ? "two numbers" : "one number"));
     double& width = isPre ? knot.preWidth : knot.postWidth;
     double& slope = isPre ? knot.preSlope : knot.postSlope;
-    const double sign = isPre ? -1.0 : 1.0;
     if (form.isWord("ws")) {
         width = hermite ? width : first;
         slope = *second;
@@ -177,12 +176,12 @@ void Parser::parseSplineKnotTangent(bool isPre, bool hermite, SplineKnot& knot, 
         slope = first;
     } else if (form.isWord("wh")) {
         width = hermite ? width : first / 3.0;
-        slope = first > 0.0 ? sign * *second / first : 0.0;
+        slope = slopeOfMayaTangent(isPre, *second, first);
     } else if (hermite) {
         hermiteHeight = first;
     } else {
         // A Bezier's Maya height without a width: over its (standard) width, as Ts divides.
-        slope = width > 0.0 ? sign * first / (3.0 * width) : 0.0;
+        slope = slopeOfMayaTangent(isPre, first, 3.0 * width);
     }
 }
 

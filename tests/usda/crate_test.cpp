@@ -234,7 +234,7 @@ TEST(CrateErrors, UnknownVersionIsNamed) {
     REQUIRE_CORPUS();
     std::string bytes = rookBytes();
     bytes[9] = 42;  // minor version
-    EXPECT_EQ(crateError(bytes), "bad.usdc: byte 8: crate version 0.42.0 is not supported (reads 0.4.0 to 0.10.0)");
+    EXPECT_EQ(crateError(bytes), "bad.usdc: byte 8: crate version 0.42.0 is not supported (reads 0.4.0 to 0.12.0)");
     bytes[9] = 3;
     EXPECT_NE(crateError(bytes).find("crate version 0.3.0 is not supported"), std::string::npos);
 }

@@ -85,5 +85,42 @@ def TetMesh "Tets"
     EXPECT_EQ(std::get<AttributeProblem>(faces).attribute, "tetVertexIndices");
 }
 
+// Hydra keeps a TetMesh's primvars as authored on the mesh of its surface, so uniform ones hold one
+// element per surface face and faceVarying ones one per surface face corner; per-tet counts (two
+// tets, eight tet corners) do not fit and are named.
+TEST(TetMesh, UniformAndFaceVaryingPrimvarsFitTheSurface) {
+    auto stage = open(tetStage(R"(    color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 0), (0, 1, 1), (1, 0, 1)] (
+        interpolation = "uniform"
+    )
+    float2[] primvars:st = [(0, 0), (1, 0), (0, 1), (0, 0), (1, 0), (0, 1), (0, 0), (1, 0), (0, 1),
+                            (0, 0), (1, 0), (0, 1), (0, 0), (1, 0), (0, 1), (0, 0), (1, 0), (0, 1)] (
+        interpolation = "faceVarying"
+    )
+    float[] primvars:perTet = [1, 2] (
+        interpolation = "uniform"
+    )
+    float[] primvars:perTetCorner = [1, 2, 3, 4, 5, 6, 7, 8] (
+        interpolation = "faceVarying"
+    )
+)"));
+    ASSERT_TRUE(stage);
+    const Prim& prim = *stage->find("/Tets");
+    const auto surface = tetMeshSurface(prim, 0.0);
+    ASSERT_TRUE(std::holds_alternative<std::vector<int>>(surface));
+    const size_t faces = std::get<std::vector<int>>(surface).size() / 3;
+    ASSERT_EQ(faces, 6u);
+    auto problem = [&](const char* name, const char* interpolation, size_t elementSize = 1) {
+        return tetSurfacePrimvarProblem(faces, prim.attribute(name)->evaluate(0.0)->size(), interpolation, elementSize);
+    };
+    EXPECT_EQ(problem("primvars:displayColor", "uniform"), "");
+    EXPECT_EQ(problem("primvars:st", "faceVarying"), "");
+    EXPECT_EQ(problem("primvars:perTet", "uniform"), "2 values but uniform interpolation needs 6 (one per surface face)");
+    EXPECT_EQ(problem("primvars:perTetCorner", "faceVarying"),
+              "8 values but faceVarying interpolation needs 18 (one per surface face corner)");
+    // Two values to an element: twelve for the six faces.
+    EXPECT_EQ(problem("primvars:displayColor", "uniform", 2),
+              "6 values but uniform interpolation needs 12 (one per surface face)");
+}
+
 }  // namespace
 }  // namespace obscura::usda::test
