@@ -165,6 +165,37 @@ TEST(ConvertedPrims, TetMeshIsItsSurfaceFacingOut) {
     EXPECT_TRUE(scene.host->messages().empty()) << scene.host->messages().front().text;
 }
 
+TEST(ConvertedPrims, TetMeshUniformPrimvarsShadeItsSurfaceFaces) {
+    // As Hydra draws a TetMesh (its surface faces' topology, its primvars as authored): a uniform
+    // displayColor has one value per surface face, twelve triangles here. One per tet (six) does
+    // not fit, is reported where authored and left out, and the prim is still drawn.
+    std::string colours;
+    for (int face = 0; face < 12; ++face) colours += std::string(face ? ", " : "") + "(0.2, 0.6, 0.9)";
+    std::string cube = kTetCube;
+    cube.insert(cube.rfind('}'), "    color3f[] primvars:displayColor = [" + colours + "] (interpolation = \"uniform\")\n");
+    const std::string perTet = R"(def TetMesh "PerTet"
+{
+    point3f[] points = [(-2, -2, 0), (-1.5, -2, 0), (-2, -1.5, 0), (-2, -2, 0.5)]
+    int4[] tetVertexIndices = [(0, 1, 2, 3)]
+    color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0)] (interpolation = "uniform")
+}
+)";
+    const std::string text = "#usda 1.0\n" + usdaCamera() + cube + perTet;
+    HostedStage scene(usda::Stage::openFromString(text, "tets.usda"));
+    const auto albedo = scene.renderAov("albedo", 3, 0.0);
+    const float* centre = &albedo[(size_t(kHeight / 2) * kWidth + kWidth / 2) * 3];
+    EXPECT_NEAR(centre[0], 0.2f, 0.01f);
+    EXPECT_NEAR(centre[1], 0.6f, 0.01f);
+    EXPECT_NEAR(centre[2], 0.9f, 0.01f);
+    ASSERT_EQ(scene.host->messages().size(), 1u);
+    const auto& message = scene.host->messages().front();
+    EXPECT_NE(message.text.find("/PerTet"), std::string::npos) << message.text;
+    EXPECT_NE(message.text.find("primvars:displayColor has 2 values but uniform interpolation needs 4"), std::string::npos)
+        << message.text;
+    EXPECT_EQ(message.where.line, int(std::count(text.begin(), text.begin() + long(text.find("color3f[] primvars:displayColor = [(1, 0")), '\n')) + 1);
+    EXPECT_TRUE(scene.errors.empty()) << scene.errors.front();
+}
+
 TEST(ConvertedPrims, BadDataSkipsOnlyItsPrimReportedWhereAuthored) {
     const std::string text = "#usda 1.0\n" + usdaCamera() + kTetCube + R"(def NurbsCurves "BadKnots"
 {
