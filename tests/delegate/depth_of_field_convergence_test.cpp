@@ -55,7 +55,7 @@ struct LensScene : BlurScene {
 
 struct Convergence {
     double still;
-    image::Image frame, reference;
+    image::Image stillImage, frame, reference;
 };
 
 // The still, the single frame and the still without depth of field against the reference; the
@@ -75,7 +75,7 @@ Convergence expectStillConverges(LensScene& s, const std::string& what) {
     report(what + ", single frame vs reference", framePsnr);
     report(what + ", still without depth of field vs reference", mappedPsnr(s.sharpStill(), reference));
     EXPECT_GT(stillPsnr, framePsnr) << what;
-    return {stillPsnr, frame, reference};
+    return {stillPsnr, still, frame, reference};
 }
 
 // The planes' still meets the 40 dB. One real-time frame is the seed's post-process over
@@ -113,10 +113,11 @@ TEST(DepthOfFieldConvergence, PlanesThroughSixBladesMatchTheReference) {
 // Strong defocus: rows of small bright emitters (a pixel and a half across, 40 times the
 // backdrop's radiance) behind the focus plane and in front of it, over a chequered wall; their
 // bokeh are the diaphragm's shape at the CoC.
-// XXX: the bar for the still is 40 dB; measured 39.1 dB (round) and 38.9 dB (6 blades).
-// The 1024-sub-frame reference is itself only 41.1 and 41.7 dB from 4096 sub-frames here: each of
-// its pinhole sub-frames sees a point smaller than two pixels through one to four pixel centres.
-// Against 4096 sub-frames the stills are 41.8 and 41.0 dB.
+// XXX: the bar for the still is 40 dB against the 1024-sub-frame reference; measured 39.1
+// dB (round) and 38.9 dB (6 blades), missed. That reference is itself only 41.1 and 41.7 dB from
+// 4096 sub-frames here: each of its pinhole sub-frames sees a point smaller than two pixels through
+// one to four pixel centres, so its own error is of the bar's size. The tests hold the still to
+// the bar against 4096 sub-frames (41.8 and 41.0 dB when this was written) and print both.
 void addEmitterRows(LensScene& s, double distance, double y, int count, const std::string& prefix) {
     const double pixel = pinholeUnitsPerPixel(distance, kWidth);
     addMaterial(s.host, prefix + "Look", {0, 0, 0}, 1.0f, 0.0f, {40.0f, 36.0f, 30.0f});
@@ -134,16 +135,25 @@ void addBokehScene(LensScene& s) {
     addChequerCard(s.host, "/InFocus", {0, 0, -20.0}, 0.3, 6, 3, kDark, kLight);
 }
 
+// The still against the 1024-sub-frame reference (printed) and held to the 40 dB against
+// 4096 sub-frames, nearer the truth (see the XXX above).
+void expectBokehConverges(LensScene& s, const std::string& what) {
+    Convergence c = expectStillConverges(s, what);
+    const double converged = mappedPsnr(c.stillImage, s.renderReference(4 * kReferenceSubFrames));
+    report(what + ", still vs the 4096-sub-frame reference", converged);
+    EXPECT_GE(converged, 40.0) << what;
+}
+
 TEST(DepthOfFieldConvergence, BokehOfBrightPointsMatchesTheReference) {
     LensScene s(wideOpenLens(0));
     addBokehScene(s);
-    expectStillConverges(s, "bokeh, round aperture");
+    expectBokehConverges(s, "bokeh, round aperture");
 }
 
 TEST(DepthOfFieldConvergence, HexagonalBokehOfBrightPointsMatchesTheReference) {
     LensScene s(wideOpenLens(6));
     addBokehScene(s);
-    expectStillConverges(s, "bokeh, 6 blades");
+    expectBokehConverges(s, "bokeh, 6 blades");
 }
 
 }  // namespace
