@@ -290,7 +290,13 @@ private:
         try {
             if (rep.type() != Type::Spline)
                 throw Failure{rep.payload(), "a value of type " + std::to_string(int(rep.type())) + ", not a spline"};
-            attr.spline = crate::decodeSpline(file_.bytes(), rep.payload(), valueType);
+            std::shared_ptr<const Spline> spline = crate::decodeSpline(file_.bytes(), rep.payload(), valueType);
+            if (std::string problem = spline->innerLoopProblem(); !problem.empty()) {
+                warn("spline:" + node.text,
+                     "<" + node.text + ">: a spline that is left out: " + problem + "; its default and time samples are used");
+                return;
+            }
+            attr.spline = std::move(spline);
         } catch (const Failure& failure) {
             warn("spline:" + node.text, "<" + node.text + ">: byte " + std::to_string(failure.offset) + ": malformed spline (" +
                                failure.message + "); the attribute's spline is skipped");

@@ -18,8 +18,24 @@ constexpr int kCurveSteps = 4;  // samples per curved segment offered to rendere
 // interval other than the prototype's are shadowed, the prototype [protoStart, protoEnd) repeats
 // with its value offset, and a copy of its start knot closes the last iteration. A loop without
 // a knot at protoStart, an empty prototype or no iterations does nothing (Ts_SplineData::HasInnerLoops).
+// The knots of the inner loop's prototype, [protoStart, protoEnd).
+size_t prototypeKnots(const Spline& spline) {
+    const SplineLoop& loop = *spline.loop;
+    return size_t(std::count_if(spline.knots.begin(), spline.knots.end(), [&](const SplineKnot& k) {
+        return k.time >= loop.protoStart && k.time < loop.protoEnd;
+    }));
+}
+
+// How many knots the inner loop adds when unrolled.
+double unrolledLoopKnots(const Spline& spline) {
+    const SplineLoop& loop = *spline.loop;
+    return double(prototypeKnots(spline)) *
+           (double(std::max(loop.numPreLoops, 0)) + double(std::max(loop.numPostLoops, 0)) + 1.0);
+}
+
 std::vector<SplineKnot> unrolledKnots(const Spline& spline) {
-    if (!spline.loop) return spline.knots;
+    // The readers leave out splines whose loop would unroll further (innerLoopProblem).
+    if (!spline.loop || unrolledLoopKnots(spline) > kMaxUnrolledSplineKnots) return spline.knots;
     const SplineLoop& loop = *spline.loop;
     const int preLoops = std::max(loop.numPreLoops, 0), postLoops = std::max(loop.numPostLoops, 0);
     const auto start = std::find_if(spline.knots.begin(), spline.knots.end(),
@@ -240,13 +256,27 @@ std::vector<double> Spline::sampleTimes(double from, double to) const {
     const double first = unrolled.front().time, last = unrolled.back().time, span = last - first;
     const bool loopsBefore = pre.isLooping() && span > 0.0 && std::isfinite(from) && from < first;
     const bool loopsAfter = post.isLooping() && span > 0.0 && std::isfinite(to) && to > last;
-    const long lowest = loopsBefore ? -static_cast<long>(std::ceil((first - from) / span)) : 0;
-    const long highest = loopsAfter ? static_cast<long>(std::ceil((to - last) / span)) : 0;
-    for (long iteration = lowest; iteration <= highest; ++iteration)
-        for (double t : pass) keep(t + static_cast<double>(iteration) * span);
+    const double lowest = loopsBefore ? -std::ceil((first - from) / span) : 0.0;
+    const double highest = loopsAfter ? std::ceil((to - last) / span) : 0.0;
+    if ((highest - lowest + 1.0) * double(pass.size()) > double(kMaxSplineSampleTimes)) {
+        // More repetitions than samples: the interval evenly (its ends are finite where it loops).
+        const double lo = loopsBefore ? from : std::max(from, first), hi = loopsAfter ? to : std::min(to, last);
+        for (size_t k = 0; k < kMaxSplineSampleTimes; ++k)
+            keep(lo + (hi - lo) * double(k) / double(kMaxSplineSampleTimes - 1));
+    } else {
+        for (double iteration = lowest; iteration <= highest; iteration += 1.0)
+            for (double t : pass) keep(t + iteration * span);
+    }
     std::sort(times.begin(), times.end());
     times.erase(std::unique(times.begin(), times.end()), times.end());
     return times;
+}
+
+std::string Spline::innerLoopProblem() const {
+    if (!loop || unrolledLoopKnots(*this) <= kMaxUnrolledSplineKnots) return {};
+    const long long times = (long long)std::max(loop->numPreLoops, 0) + std::max(loop->numPostLoops, 0) + 1;
+    return "its inner loop repeats " + std::to_string(prototypeKnots(*this)) + " knots " + std::to_string(times) +
+           " times, more than the " + std::to_string(int(kMaxUnrolledSplineKnots)) + " knots a spline may unroll";
 }
 
 Spline Spline::retimed(double offset, double scale) const {

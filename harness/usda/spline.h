@@ -43,6 +43,13 @@ struct SplineKnot {
     bool operator==(const SplineKnot&) const = default;
 };
 
+// What a spline may cost to evaluate and to sample, whatever a file authors: its inner loop unrolls
+// at most this many knots (the readers report a spline beyond it and leave it out), and a sampled
+// interval holding more repetitions of a looping extrapolation than this many sample times is
+// sampled evenly at that many instead.
+constexpr double kMaxUnrolledSplineKnots = 10000;
+constexpr size_t kMaxSplineSampleTimes = 4096;
+
 struct Spline {
     std::string valueType;  // the attribute's scalar type: "double", "float", "half", "timecode"
     bool hermite = false;   // curve segments are Hermite (tangent widths fixed at a third)
@@ -63,6 +70,9 @@ struct Spline {
     std::vector<double> sampleTimes(double from, double to) const;
     // This spline with its times mapped by t -> offset + scale * t (a layer offset; scale > 0).
     Spline retimed(double offset, double scale) const;
+    // Why the readers leave this spline out (its inner loop unrolls more than
+    // kMaxUnrolledSplineKnots knots), or empty.
+    std::string innerLoopProblem() const;
 };
 
 // Whether a spline animates an attribute of this type: TsSpline's value types, and timecode,

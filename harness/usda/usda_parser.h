@@ -97,6 +97,7 @@ private:
     // Splines (usda_parser_spline.cpp)
     std::shared_ptr<const Spline> parseSpline(const ValueType& type);
     double parseSplineNumber(const std::string& what);
+    int parseSplineLoopCount(const std::string& what);
     SplineExtrapolation parseSplineExtrapolation(const Token& mode);
     SplineLoop parseSplineLoop();
     // A knot's tangent `form(numbers)` on its pre or post side; a Hermite's Maya height waits in

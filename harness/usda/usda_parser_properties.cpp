@@ -68,7 +68,11 @@ void Parser::parseAttribute(PrimSpec& prim, const std::optional<Token>& listOpTo
             if (listOpToken) fail(*listOpToken, "splines cannot be list-edited");
             expect('=', "after '" + name + ".spline'");
             std::shared_ptr<const Spline> spline = parseSpline(*type);
-            if (splineAnimates(type->name, isArray))
+            if (std::string problem = spline->innerLoopProblem(); !problem.empty())
+                warn("spline", field,
+                     "attribute '" + name + "' of " + primPathText() + " has a spline that is left out: " + problem +
+                         "; its default and time samples are used");
+            else if (splineAnimates(type->name, isArray))
                 attr.spline = std::move(spline);
             else
                 warn("spline", field,

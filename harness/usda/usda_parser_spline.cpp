@@ -10,9 +10,11 @@
 // Tangents: ws(width, slope) and s(slope) in Ts's standard form, wh(width, height) and h(height)
 // in Maya's (width three times Ts's, height = slope * width, a pre-tangent's height negated:
 // ts/tangentConversions.cpp, eval.cpp's _GetCurveKnotSlope); a Hermite's Maya width is its segment.
-#include <map>
-
 #include "harness/usda/usda_parser.h"
+
+#include <cmath>
+#include <limits>
+#include <map>
 
 namespace obscura::usda {
 
@@ -31,6 +33,15 @@ double Parser::parseSplineNumber(const std::string& what) {
     if (token.kind != TokenKind::Number && !token.isWord("inf") && !token.isWord("nan"))
         fail(token, "expected a number for " + what + " in the spline, found " + describe(token));
     return toNumber(token);
+}
+
+int Parser::parseSplineLoopCount(const std::string& what) {
+    const Token token = take();
+    const double count = token.kind == TokenKind::Number ? toNumber(token) : 0.5;
+    if (!(count >= std::numeric_limits<int>::min() && count <= std::numeric_limits<int>::max()) ||
+        count != std::floor(count))
+        fail(token, "expected a whole number for " + what + " in the spline, found " + describe(token));
+    return static_cast<int>(count);
 }
 
 SplineExtrapolation Parser::parseSplineExtrapolation(const Token& mode) {
@@ -62,9 +73,9 @@ SplineLoop Parser::parseSplineLoop() {
     expect(',', "after the loop's prototype start");
     loop.protoEnd = parseSplineNumber("the loop's prototype end");
     expect(',', "after the loop's prototype end");
-    loop.numPreLoops = static_cast<int>(parseSplineNumber("the loop's count before"));
+    loop.numPreLoops = parseSplineLoopCount("the loop's count before");
     expect(',', "after the loop's count before");
-    loop.numPostLoops = static_cast<int>(parseSplineNumber("the loop's count after"));
+    loop.numPostLoops = parseSplineLoopCount("the loop's count after");
     expect(',', "after the loop's count after");
     loop.valueOffset = parseSplineNumber("the loop's value offset");
     expect(')', "after the loop's value offset");

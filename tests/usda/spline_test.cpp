@@ -145,6 +145,28 @@ TEST(Splines, InnerLoopRepeatsThePrototype) {
     EXPECT_DOUBLE_EQ(valueAt(spline, 25), 250.0);   // from the closing copy to the authored knot
 }
 
+// What a file cannot make a spline cost: an inner loop that would unroll past
+// kMaxUnrolledSplineKnots is reported where authored and left out (the default shows), and an
+// interval holding millions of repetitions of a looping extrapolation is sampled evenly.
+TEST(Splines, UnboundedLoopsAreBounded) {
+    const auto stage = open("#usda 1.0\ndef \"A\"\n{\n    double x = 7\n    double x.spline = {\n"
+                            "        loop: (0, 10, 0, 2000000000, 1),\n        0: 0; post linear,\n        5: 1\n    }\n}\n");
+    ASSERT_TRUE(stage);
+    const Attribute* x = stage->find("/A")->attribute("x");
+    EXPECT_FALSE(x->spline);
+    EXPECT_DOUBLE_EQ(x->evaluate(3.0)->numbers[0], 7.0);
+    ASSERT_EQ(stage->warnings().size(), 1u);
+    EXPECT_EQ(stage->warnings()[0].where.line, 5);
+    EXPECT_NE(stage->warnings()[0].message.find("repeats 2 knots 2000000001 times"), std::string::npos)
+        << stage->warnings()[0].message;
+
+    const Spline tiny = splineOf("post: loop repeat,\n0: 0; post linear,\n0.000001: 1");
+    const std::vector<double> times = tiny.sampleTimes(0.0, 1000.0);
+    EXPECT_EQ(times.size(), kMaxSplineSampleTimes);
+    EXPECT_DOUBLE_EQ(times.front(), 0.0);
+    EXPECT_DOUBLE_EQ(times.back(), 1000.0);
+}
+
 // Value resolution (UsdResolveInfo): the strongest opinion with a value wins, within one its
 // time samples, then its spline, then its default; AnimationBlock hides weaker splines but not
 // its own layer's. A reference (with its layer offset) carries the weaker opinions.
