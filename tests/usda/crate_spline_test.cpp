@@ -378,6 +378,29 @@ TEST(CrateSplines, AMalformedSplineSkipsOnlyThatSpline) {
         << ::testing::PrintToString(messages);
 }
 
+// An inner loop of two billion iterations would unroll past kMaxUnrolledSplineKnots: reported and
+// left out, as in text, the default kept.
+TEST(CrateSplines, AnUnboundedInnerLoopIsLeftOut) {
+    TsBinary binary(TsBinary::Double, false);
+    binary.header(TsBinary::Held, TsBinary::Held, true)
+        .loop(0, 10, 0, 2000000000, 1)
+        .knotCount(2)
+        .knot({.time = 0, .value = 0, .next = TsBinary::LinearSegment})
+        .knot({.time = 5, .value = 1});
+    CrateWriter writer;
+    const uint64_t spline = writer.stored(crate::Type::Spline, binary.sized());
+    const uint64_t type = CrateWriter::inlined(crate::Type::Token, writer.token("double"));
+    const std::string bytes =
+        writer.write({{"x", {{"typeName", type}, {"default", CrateWriter::inlined(crate::Type::Double, 0)}, {"spline", spline}}}});
+    const auto stage = test::open(bytes, "splines.usdc");
+    ASSERT_TRUE(stage);
+    EXPECT_FALSE(stage->find("/A")->attribute("x")->spline);
+    ASSERT_EQ(stage->warnings().size(), 1u);
+    EXPECT_EQ(stage->warnings()[0].message,
+              "</A.x>: a spline that is left out: its inner loop repeats 2 knots 2000000001 times, more than the 10000 "
+              "knots a spline may unroll; its default and time samples are used");
+}
+
 // Layer relocates (crate 0.11.0): a count, then source and target path indexes in pairs, read as
 // the text reader keeps `relocates` layer metadata.
 TEST(CrateRelocates, LayerRelocatesReadAsTheTextReaderKeepsThem) {
