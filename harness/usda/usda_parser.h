@@ -96,6 +96,8 @@ private:
     std::map<double, Value> parseTimeSamples(const ValueType& type, bool isArray);
     // Splines (usda_parser_spline.cpp)
     std::shared_ptr<const Spline> parseSpline(const ValueType& type);
+    // Reads past a balanced { ... } block (a spline this reader cannot read).
+    void skipBraceBlock(const std::string& what);
     double parseSplineNumber(const std::string& what);
     int parseSplineLoopCount(const std::string& what);
     SplineExtrapolation parseSplineExtrapolation(const Token& mode);

@@ -67,7 +67,21 @@ void Parser::parseAttribute(PrimSpec& prim, const std::optional<Token>& listOpTo
         } else if (field.isWord("spline")) {
             if (listOpToken) fail(*listOpToken, "splines cannot be list-edited");
             expect('=', "after '" + name + ".spline'");
-            std::shared_ptr<const Spline> spline = parseSpline(*type);
+            // A spline this reader cannot read (malformed, or of a form newer than its grammar) loses
+            // the attribute only its spline, as bad prim data loses only that prim: the balanced
+            // block is read past, and the problem reported where it lies.
+            const Lexer atSpline = lexer_;
+            std::shared_ptr<const Spline> spline;
+            try {
+                spline = parseSpline(*type);
+            } catch (const ParseFailure& failure) {
+                lexer_ = atSpline;
+                skipBraceBlock("spline");
+                warn("spline", field,
+                     "attribute '" + name + "' of " + primPathText() + " has a spline that cannot be read (" +
+                         failure.error.str() + "); its default and time samples are used");
+                return;
+            }
             if (std::string problem = spline->innerLoopProblem(); !problem.empty())
                 warn("spline", field,
                      "attribute '" + name + "' of " + primPathText() + " has a spline that is left out: " + problem +

@@ -28,6 +28,22 @@ struct ParsedKnot {
 
 }  // namespace
 
+void Parser::skipBraceBlock(const std::string& what) {
+    const Token open = expect('{', "to open the " + what);
+    std::string closers = "}";
+    while (!closers.empty()) {
+        const Token token = take();
+        if (token.kind == TokenKind::EndOfFile) fail(open, "the " + what + " opened here is not closed");
+        if (token.isPunct('{')) closers.push_back('}');
+        else if (token.isPunct('[')) closers.push_back(']');
+        else if (token.isPunct('(')) closers.push_back(')');
+        else if (token.kind == TokenKind::Punct && (token.isPunct('}') || token.isPunct(']') || token.isPunct(')'))) {
+            if (!token.isPunct(closers.back())) fail(token, "unbalanced '" + std::string(token.text) + "' in the " + what);
+            closers.pop_back();
+        }
+    }
+}
+
 double Parser::parseSplineNumber(const std::string& what) {
     const Token token = take();
     if (token.kind != TokenKind::Number && !token.isWord("inf") && !token.isWord("nan"))

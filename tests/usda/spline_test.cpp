@@ -145,6 +145,36 @@ TEST(Splines, InnerLoopRepeatsThePrototype) {
     EXPECT_DOUBLE_EQ(valueAt(spline, 25), 250.0);   // from the closing copy to the authored knot
 }
 
+// A spline this reader cannot read, in a balanced block, loses its attribute only the spline: the
+// file opens, the default shows, and one warning at the spline names where the problem lies.
+TEST(Splines, UnreadableSplinesAreLeftOutWhereTheyLie) {
+    const struct {
+        const char* body;
+        const char* problem;
+    } cases[] = {
+        {"        pre: bouncy,\n        1: 2",
+         "test.usda:5:14: expected an extrapolation (none, held, linear, sloped(slope) or loop repeat|reset|oscillate), "
+         "found 'bouncy'"},
+        {"        1: 2; post linear\n        3: 4", "test.usda:6:9: expected ',' or '}' after a spline item, found '3'"},
+        {"        loop: (0, 10, 1, 2.5, 0),\n        0: 1",
+         "test.usda:5:26: expected a whole number for the loop's count after in the spline, found '2.5'"},
+        {"        loop: (0, 10, 1e12, 2, 0),\n        0: 1",
+         "test.usda:5:23: expected a whole number for the loop's count before in the spline, found '1e12'"},
+    };
+    for (const auto& [body, problem] : cases) {
+        const auto stage = open(std::string("#usda 1.0\ndef \"A\"\n{\n    double x.spline = {\n") + body +
+                                "\n    }\n    double x = 7\n}\n");
+        ASSERT_TRUE(stage) << problem;
+        const Attribute* x = stage->find("/A")->attribute("x");
+        EXPECT_FALSE(x->spline) << problem;
+        EXPECT_DOUBLE_EQ(x->evaluate(3.0)->numbers[0], 7.0) << problem;
+        ASSERT_EQ(stage->warnings().size(), 1u) << problem;
+        EXPECT_EQ(stage->warnings()[0].where.line, 4) << problem;
+        EXPECT_EQ(stage->warnings()[0].message, std::string("attribute 'x' of </A> has a spline that cannot be read (") +
+                                                    problem + "); its default and time samples are used");
+    }
+}
+
 // What a file cannot make a spline cost: an inner loop that would unroll past
 // kMaxUnrolledSplineKnots is reported where authored and left out (the default shows), and an
 // interval holding millions of repetitions of a looping extrapolation is sampled evenly.
