@@ -120,8 +120,8 @@ public:
         : device_(device), in_(in), shortfalls_(shortfalls) {}
 
     passes::FrameScene pack() {
-        scene_.width = in_.width;
-        scene_.height = in_.height;
+        scene_.width = in_.width + 2 * in_.guardPixels;
+        scene_.height = in_.height + 2 * in_.guardPixels;
         packCamera();
         packMaterialsAndLights();
         uploadCamera();
@@ -146,7 +146,11 @@ private:
         auto [view, unjitteredProjection] = frameView(in_);
         view_ = view;
         unjitteredProjection_ = unjitteredProjection;
-        Matrix4d projection = multiply(unjitteredProjection, in_.clipJitter);
+        // The guard band widens the view by its pixels on every side, keeping the pixels' size.
+        Matrix4d guardWidening = kIdentity;
+        guardWidening[0] = double(in_.width) / scene_.width;
+        guardWidening[5] = double(in_.height) / scene_.height;
+        Matrix4d projection = multiply(multiply(unjitteredProjection, guardWidening), in_.clipJitter);
         Matrix4d cameraToWorld = kIdentity;
         invert(view, cameraToWorld);
         // When the frame is seen: a sub-frame's time, the centre of the shutter's part it blurs
@@ -174,7 +178,7 @@ private:
                          : cam.params().clippingRange[0] * std::hypot(1.0, (1.0 + std::abs(p[8])) / std::abs(p[0]),
                                                                       (1.0 + std::abs(p[9])) / std::abs(p[5]));
         cd.position = {float(eye_[0]), float(eye_[1]), float(eye_[2]), 1.0f};
-        cd.resolution = {float(in_.width), float(in_.height)};
+        cd.resolution = {float(scene_.width), float(scene_.height)};
         cd.exposureScale = float(cam.linearExposureScale() * std::exp2(in_.exposureStops));
         cd.shutterOpenViewProjection = cd.shutterCloseViewProjection =
             toFloats<passes::Mat4>(multiply(view, unjitteredProjection));

@@ -10,15 +10,17 @@ namespace {
 struct AccumulatePush {
     float weight;
     uint32_t first;
+    uint32_t guardPixels;
 };
 OBSCURA_SHADER_OFFSET(AccumulatePush, accumulate_comp::Push, weight);
 OBSCURA_SHADER_OFFSET(AccumulatePush, accumulate_comp::Push, first);
+OBSCURA_SHADER_OFFSET(AccumulatePush, accumulate_comp::Push, guardPixels);
 
 }  // namespace
 
 void addAccumulatePass(gpu::FrameGraph& graph, gpu::ImageHandle hdrColor, gpu::ImageHandle accumulation, float weight,
-                       bool first) {
-    AccumulatePush push{weight, first ? 1u : 0u};
+                       bool first, uint32_t guardPixels) {
+    AccumulatePush push{weight, first ? 1u : 0u, guardPixels};
     // The first sub-frame overwrites what the sum held.
     addComputePass(graph, {"accumulate",
                            {sampled(hdrColor), first ? storageWrite(accumulation) : storageReadWrite(accumulation)},

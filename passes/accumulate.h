@@ -13,9 +13,10 @@ constexpr VkFormat kAccumulationFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 // accumulation = (first ? 0 : accumulation) + weight * (hdrColor, 1). `accumulation` is a persistent
 // image of kAccumulationFormat, the size of the frame (FrameGraph::importPersistent), which the
-// next sub-frame's graph reads; alpha sums the weights.
+// next sub-frame's graph reads; alpha sums the weights. `hdrColor` may hold a border of
+// `guardPixels` around the frame (renderer::FrameViewpoint::guardPixels), which is left out.
 void addAccumulatePass(gpu::FrameGraph& graph, gpu::ImageHandle hdrColor, gpu::ImageHandle accumulation, float weight,
-                       bool first);
+                       bool first, uint32_t guardPixels = 0);
 
 // The weighted mean, accumulation.rgb / accumulation.a, into a new image of `format` (the light
 // accumulation's).

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <tuple>
 
 namespace obscura::renderer {
 namespace {
@@ -157,7 +158,8 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
     // from the pinhole camera.
     // With msaa > 1 the G-buffer is multisampled and the custom resolve hands the single-sample
     // one to everything after it; the lighting pass alone reads the samples (seed 000 "Deferred
-    // MSAA"). Reference mode's sub-frames carry their own pixel jitter, so it renders one sample.
+    // MSAA"). Reference mode's sub-frames (accumulateReference) jitter on their own; its frame
+    // here renders one sample.
     gpu::FrameGraph graph;
     passes::importSceneBuffers(graph, scene);
     gpu::ImageHandle shadowAtlas;
@@ -173,17 +175,7 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
             ? gpuOcclusion_.addGBuffer(graph, scene, versions, bestFitNormals, samples, settings.msaaAlphaToCoverage)
             : passes::addGBufferPass(graph, scene, bestFitNormals, samples, settings.msaaAlphaToCoverage);
     std::optional<MsaaFrame> msaa;
-    if (samples != VK_SAMPLE_COUNT_1_BIT) {
-        if (!msaaTaggedPixels_)
-            msaaTaggedPixels_ = backend_.createBuffer(sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                                      gpu::MemoryUsage::Readback, "msaa tagged pixels");
-        *static_cast<uint32_t*>(msaaTaggedPixels_->mapped()) = 0;
-        passes::PerSampleLighting perSample{gbuffer, graph.importBuffer("msaaTaggedPixels", msaaTaggedPixels_)};
-        graph.markOutput(perSample.taggedPixelCount);
-        passes::MsaaResolve resolve = passes::addMsaaResolvePass(graph, scene, gbuffer);
-        gbuffer = resolve.resolved;
-        msaa = MsaaFrame{perSample, resolve.maxDepth};
-    }
+    if (samples != VK_SAMPLE_COUNT_1_BIT) msaa = addMsaaResolve(graph, scene, gbuffer);
     // The next frame's coverage buffer, from the opaque depth (with MSAA the farthest sample's).
     // Where an instance moves within the shutter, a still's frames see it at other times; hybrid
     // AA's instances are drawn without the jitter the reprojection assumes: such depth would not
@@ -283,6 +275,19 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
     }
 }
 
+FrameRenderer::MsaaFrame FrameRenderer::addMsaaResolve(gpu::FrameGraph& graph, const passes::FrameScene& scene,
+                                                       passes::GBuffer& gbuffer) {
+    if (!msaaTaggedPixels_)
+        msaaTaggedPixels_ = backend_.createBuffer(sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                  gpu::MemoryUsage::Readback, "msaa tagged pixels");
+    *static_cast<uint32_t*>(msaaTaggedPixels_->mapped()) = 0;
+    passes::PerSampleLighting perSample{gbuffer, graph.importBuffer("msaaTaggedPixels", msaaTaggedPixels_)};
+    graph.markOutput(perSample.taggedPixelCount);
+    passes::MsaaResolve resolve = passes::addMsaaResolvePass(graph, scene, gbuffer);
+    gbuffer = resolve.resolved;
+    return {perSample, resolve.maxDepth};
+}
+
 gpu::ImageHandle FrameRenderer::addLighting(gpu::FrameGraph& graph, const passes::FrameScene& scene,
                                             passes::GBuffer& gbuffer, gpu::ImageHandle shadowAtlas,
                                             const FrameView& seen, const FrameRequest& request,
@@ -340,32 +345,57 @@ void FrameRenderer::executeFrame(gpu::FrameGraph& graph) {
 void FrameRenderer::accumulateReference(FrameSceneSource& source, const FrameRequest& request,
                                         const FrameSettings& settings, const passes::ThinLens& lens,
                                         const std::array<double, 2>& shutter) {
-    const gpu::ImageDesc sumDesc = accumulationDesc(request.camera.width, request.camera.height);
+    const uint32_t width = request.camera.width, height = request.camera.height;
+    const gpu::ImageDesc sumDesc = accumulationDesc(width, height);
     // Without depth of field the lens is a pinhole: every sub-frame looks from its centre.
     bool lensBlur = passes::hasDepthOfField(lens);
     double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
     const auto [open, close] = shutter;
-    std::vector<ReferenceSubFrame> subFrames = referenceSubFrames(
-        settings.referenceSubFrames, lensBlur ? request.camera.aperture : passes::ApertureShape{}, settings.pixelFilter);
-    for (size_t k = 0; k < subFrames.size(); ++k) {
-        const ReferenceSubFrame& sub = subFrames[k];
+    const passes::ApertureShape aperture = lensBlur ? request.camera.aperture : passes::ApertureShape{};
+    uint32_t samples = referenceSamples(settings.pixelFilter);
+    std::vector<ReferenceSubFrame> subFrames =
+        referenceSubFrames(settings.referenceSubFrames, aperture, settings.pixelFilter, samples);
+    auto sceneOf = [&](const ReferenceSubFrame& sub) {
         FrameViewpoint viewpoint;
         if (close > open) viewpoint.shutter = shutter;
+        std::array<double, 2> jitter = sub.pixelJitter;
+        if (samples > 1) {
+            // The samples resolve over the pixel's box (as a still's do), which the lighting pass
+            // finds through the frame's clip-space jitter; an edge pixel's box takes samples from
+            // the guard pixels beyond it.
+            viewpoint.guardPixels = 1;
+            viewpoint.clipJitter[12] = 2.0 * jitter[0] / (width + 2);
+            viewpoint.clipJitter[13] = 2.0 * jitter[1] / (height + 2);
+            viewpoint.sampleResolve = passes::SampleResolve::PixelBox;
+            jitter = {0.0, 0.0};
+        }
         viewpoint.sample = FrameSample{open + sub.shutter * (close - open),
                                        {sub.aperture[0] * apertureRadius, sub.aperture[1] * apertureRadius},
-                                       sub.pixelJitter, sub.emitter};
-        passes::FrameScene scene = source.scene(viewpoint);
+                                       jitter, sub.emitter};
+        return std::pair{viewpoint, source.scene(viewpoint)};
+    };
+    for (size_t k = 0; k < subFrames.size(); ++k) {
+        auto [viewpoint, scene] = sceneOf(subFrames[k]);
+        // Transparent surfaces blend at pixel frequency over the farthest of a pixel's samples
+        // (passes/transparent.h), which is exact with one sample alone.
+        if (k == 0 && samples > 1 && !scene.transparentDraws.empty()) {
+            samples = 1;
+            subFrames = referenceSubFrames(settings.referenceSubFrames, aperture, settings.pixelFilter, samples);
+            std::tie(viewpoint, scene) = sceneOf(subFrames[k]);
+        }
         gpu::FrameGraph graph;
         passes::importSceneBuffers(graph, scene);
         gpu::ImageHandle shadowAtlas = passes::addShadowMapPass(graph, scene);
-        passes::GBuffer gbuffer =
-            passes::addGBufferPass(graph, scene, graph.importTexture("bestFitNormals", bestFitNormals_));
+        passes::GBuffer gbuffer = passes::addGBufferPass(graph, scene, graph.importTexture("bestFitNormals", bestFitNormals_),
+                                                         VkSampleCountFlagBits(samples));
+        std::optional<MsaaFrame> msaa;
+        if (samples > 1) msaa = addMsaaResolve(graph, scene, gbuffer);
         // Each sub-frame blends its transparent surfaces into its lighting; their coverage is not kept.
         gpu::ImageHandle transparentCoverage;
         gpu::ImageHandle hdr = addLighting(graph, scene, gbuffer, shadowAtlas, source.view(viewpoint), request,
-                                           settings, kIntegralAccumulation, transparentCoverage);
+                                           settings, kIntegralAccumulation, transparentCoverage, msaa ? &*msaa : nullptr);
         gpu::ImageHandle sum = graph.importPersistent("referenceAccumulation", accumulation_, sumDesc);
-        passes::addAccumulatePass(graph, hdr, sum, 1.0f, k == 0);
+        passes::addAccumulatePass(graph, hdr, sum, 1.0f, k == 0, viewpoint.guardPixels);
         executeFrame(graph);
     }
 }

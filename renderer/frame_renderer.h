@@ -56,8 +56,13 @@ struct FrameViewpoint {
     // Temporal AA's sub-pixel shift, applied after the projection FrameSceneSource::view() gives
     // for everything that rasterises or reads the G-buffer (CameraData); the view and the shadow
     // cascades keep the unjittered frustum, so SSAO's history check and the cascades' texel grids
-    // do not move with the jitter. Identity for reference sub-frames, which jitter through `sample`.
+    // do not move with the jitter. Identity for reference sub-frames that jitter through `sample`.
     Matrix4d clipJitter = kIdentity;
+    // A border this many pixels wide that the frame renders around the image: the scene is that
+    // much larger, its projection widened so that the image's pixels stay where they were. A
+    // reference sub-frame's samples resolved over the pixel's box take some of an edge pixel's
+    // samples from beyond the edge.
+    uint32_t guardPixels = 0;
     // Temporal AA's place in its jitter cycle (CameraData::noiseFrame): the shadow filter's turn.
     uint32_t noiseFrame = 0;
     // Hybrid AA (seed 004, render setting taa:hybridDistance in scene units): instances whose world
@@ -180,6 +185,9 @@ private:
         passes::PerSampleLighting perSample;
         gpu::ImageHandle maxDepth;
     };
+    // The custom resolve of the multisampled `gbuffer` (replaced by the resolved one), with the
+    // per-sample mask the lighting reads and the count of the pixels it tags.
+    MsaaFrame addMsaaResolve(gpu::FrameGraph& graph, const passes::FrameScene& scene, passes::GBuffer& gbuffer);
     // Clip volumes (into `gbuffer`'s stencil), SSAO, the environment, deferred lighting and the
     // transparent surfaces of `scene`, seen through `seen`, into the light accumulation of format
     // `accumulation`.

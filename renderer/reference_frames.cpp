@@ -49,8 +49,12 @@ uint32_t shutterStratum(uint32_t index, uint32_t count) {
     return count > 0 ? uint32_t(uint64_t(index) * latticeMultiplier(count, kGoldenRatio) % count) : 0;
 }
 
+uint32_t referenceSamples(const PixelFilter& filter) {
+    return filter.kind == PixelFilterKind::Box && filter.width == 1.0 ? 4u : 1u;
+}
+
 std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::ApertureShape& aperture,
-                                                  const PixelFilter& filter) {
+                                                  const PixelFilter& filter, uint32_t samples) {
     PixelFilterWarp warp(filter);
     std::vector<ReferenceSubFrame> frames;
     frames.reserve(count);
@@ -58,9 +62,9 @@ std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::
         std::array<double, 2> lens = passes::sampleAperture(hammersleyPoint(k, count), aperture);
         double shutter = (double(shutterStratum(k, count)) + 0.5) / count;
         std::array<double, 2> emitter{radicalInverse(k, 7), radicalInverse(k, 11)};
-        frames.push_back(
-            {lens, shutter,
-             {warp.offset(radicalInverse(k, 3) - 0.5), warp.offset(radicalInverse(k, 5) - 0.5)}, emitter});
+        std::array<double, 2> jitter{warp.offset(radicalInverse(k, 3) - 0.5), warp.offset(radicalInverse(k, 5) - 0.5)};
+        if (samples > 1) jitter[0] = (radicalInverse(k, 3) - 0.5) / samples;
+        frames.push_back({lens, shutter, jitter, emitter});
     }
     return frames;
 }

@@ -13,20 +13,31 @@
 namespace obscura::renderer {
 
 struct ReferenceSubFrame {
-    std::array<double, 2> aperture;     // on the unit aperture (x right, y up), passes::sampleAperture
-    double shutter;                     // fraction of the shutter interval, [0, 1)
-    std::array<double, 2> pixelJitter;  // pixels: [-0.5, 0.5)^2 for the box of width 1, else distributed as the filter
-    std::array<double, 2> emitter;      // [0, 1)^2: the point of each light's emitter (emitterSample)
+    std::array<double, 2> aperture;  // on the unit aperture (x right, y up), passes::sampleAperture
+    double shutter;                  // fraction of the shutter interval, [0, 1)
+    // Pixels: [-0.5, 0.5)^2 for the box of width 1, else distributed as the filter; with several
+    // samples a pixel, x within a strip 1/samples wide (pixelBoxJitter).
+    std::array<double, 2> pixelJitter;
+    std::array<double, 2> emitter;  // [0, 1)^2: the point of each light's emitter (emitterSample)
 };
+
+// How many MSAA samples each reference sub-frame takes in a pixel under `filter`: four under the
+// box of width 1, resolved over the pixel's box (passes::SampleResolve::PixelBox), where a
+// sub-frame of one sample sees a point smaller than a pixel through at most a few pixel centres
+// and the reference's own noise is of the size of the fidelity bars it measures (a 1.5-pixel
+// emitter's bokeh: 41 dB between 1024 and 4096 one-sample sub-frames); one under any other
+// filter, whose jitter is warped to the filter's distribution.
+uint32_t referenceSamples(const PixelFilter& filter);
 
 // `count` deterministic, stratified sub-frames: the aperture from a Hammersley set ((k + 0.5) / N
 // and the base-2 radical inverse) over the square, mapped with the same concentric + n-gon mapping
 // as the depth-of-field taps; the shutter from a golden-ratio rank-1 lattice (each 1/N of the
 // interval once); the jitter from the radical inverses in bases 3 and 5, the lights' emitters from
 // those in bases 7 and 11 (Halton), so no dimension repeats another's pattern; the jitter then
-// warped to the pixel filter (PixelFilterWarp).
+// warped to the pixel filter (PixelFilterWarp), or with `samples` > 1 (the box filter only) its x
+// narrowed to the strip each sample sweeps its own column of the pixel in (pixelBoxJitter).
 std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::ApertureShape& aperture,
-                                                  const PixelFilter& filter = {});
+                                                  const PixelFilter& filter = {}, uint32_t samples = 1);
 
 // The stratum of the shutter sample `index` of `count` takes, in [0, count): the golden-ratio
 // rank-1 lattice above, shared by the reference's sub-frames and a still's accumulated frames

@@ -273,6 +273,31 @@ TEST(PixelBoxJitter, SixteenFramesOfFourSamplesFillAnEightByEightGrid) {
     for (int n : cells) EXPECT_EQ(n, 1);
 }
 
+// The reference's sub-frames take four samples a pixel under the box filter of width 1 (one under
+// any other), each jittered within its own column of the pixel: the standard 4-sample locations,
+// shifted by 1024 sub-frames' jitters and wrapped around the box, fall evenly over a 16 x 16 grid
+// of the pixel (each cell about its share: Halton points in bases 3 and 5 are stratified exactly
+// only at powers of those bases).
+TEST(ReferenceSubFrames, FourSamplesSweepThePixelEvenlyUnderTheBox) {
+    EXPECT_EQ(referenceSamples({}), 4u);
+    EXPECT_EQ(referenceSamples({PixelFilterKind::Box, 2.0}), 1u);
+    EXPECT_EQ(referenceSamples({PixelFilterKind::Gaussian, 1.0}), 1u);
+    const double locations[4][2] = {{0.375, 0.125}, {0.875, 0.375}, {0.125, 0.625}, {0.625, 0.875}};
+    constexpr uint32_t kCount = 1024;
+    std::vector<int> cells(256, 0);
+    for (const ReferenceSubFrame& f : referenceSubFrames(kCount, {}, {}, 4)) {
+        EXPECT_LT(std::fabs(f.pixelJitter[0]), 0.125 + 1e-12) << "within a strip a quarter of the pixel wide";
+        EXPECT_LT(std::fabs(f.pixelJitter[1]), 0.5 + 1e-12);
+        for (const auto& l : locations) {
+            double x = l[0] - f.pixelJitter[0], y = l[1] - f.pixelJitter[1];
+            x -= std::floor(x);
+            y -= std::floor(y);
+            ++cells[size_t(int(y * 16.0) * 16 + int(x * 16.0))];
+        }
+    }
+    for (int n : cells) EXPECT_NEAR(n, 16, 5);
+}
+
 // A kernel over a cell reaches as far as the cell's farthest point from its centre's: the unit
 // circle's radius for the whole aperture; for a quarter of the square, its mapped quarter disc.
 TEST(StillLensSamples, CellReach) {
