@@ -27,7 +27,7 @@ GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkS
         desc.samples = samples;
         return graph.createImage(prefix + "." + name, desc);
     };
-    GBuffer gb{image("depth", kDepthFormat), image("normalRoughness", kNormalRoughnessFormat),
+    GBuffer gb{image("depth", gbufferDepthFormat(samples)), image("normalRoughness", kNormalRoughnessFormat),
                image("albedoMetallic", kAlbedoMetallicFormat), image("instance", kInstanceFormat), {}};
     if (scene.motionBlur) gb.velocity = image("velocity", kVelocityFormat);
     return gb;

@@ -106,7 +106,7 @@ gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, Surface surfa
         d.colorFormats.push_back(kVelocityFormat);
     // Seed 000 "An improved reconstruction filter (3)": static geometry does not export velocity.
     if (variant == Variant::StaticWithVelocityTarget) d.untouchedColorAttachments = 1u << 3;
-    d.depthFormat = kDepthFormat;
+    d.depthFormat = gbufferDepthFormat(samples);
     d.samples = samples;
     return d;
 }
