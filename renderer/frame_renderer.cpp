@@ -350,7 +350,7 @@ void FrameRenderer::accumulateReference(FrameSceneSource& source, const FrameReq
     // Without depth of field the lens is a pinhole: every sub-frame looks from its centre.
     bool lensBlur = passes::hasDepthOfField(lens);
     double apertureRadius = 0.5 * passes::accumulationApertureDiameter(lens);
-    const auto [open, close] = shutter;
+    const double open = shutter[0], close = shutter[1];
     const passes::ApertureShape aperture = lensBlur ? request.camera.aperture : passes::ApertureShape{};
     uint32_t samples = referenceSamples(settings.pixelFilter);
     std::vector<ReferenceSubFrame> subFrames =
