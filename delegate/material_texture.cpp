@@ -1,6 +1,7 @@
 #include "delegate/material_texture.h"
 
 #include "delegate/normal_map_image.h"
+#include "delegate/udim_tiles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -45,7 +46,7 @@ std::optional<BoundTexture> readBoundTexture(SceneAccess& scene, TextureCache& c
     const auto channel = parseChannel(scene.getToken(attribute("channel").c_str()));
     const TextureRole role = input == "normal" && channel == passes::TextureChannel::Rgb &&
                                      colorSpace == SourceColorSpace::Raw && readsUnitNormals(scale, bias) &&
-                                     isIntegerImageFile(file)
+                                     (isUdimPattern(file) || isIntegerImageFile(file))
                                  ? TextureRole::Normal
                                  : TextureRole::Material;
     auto loaded = cache.get(file, colorSpace, role);
@@ -55,8 +56,15 @@ std::optional<BoundTexture> readBoundTexture(SceneAccess& scene, TextureCache& c
     }
     BoundTexture bound;
     bound.texture = std::get<TexturePtr>(loaded);
-    bound.sampler = cache.sampler(parseWrapMode(scene.getToken(attribute("wrapS").c_str())),
-                                  parseWrapMode(scene.getToken(attribute("wrapT").c_str())));
+    for (const std::string& tile : bound.texture->leftOutTiles)
+        warnings.push_back("inputs:" + input + ": UDIM tile " + tile + "; its square reads as missing");
+    // A UDIM atlas is read within its squares (wrap modes do not apply) and without anisotropy.
+    // XXX: lavapipe's anisotropic filter mixes in the lookups of a pixel's quad neighbours, which
+    // differ across a tile seam (the clamp into each square), so the seam would bleed there.
+    const bool udim = bound.texture->udimGrid[2] > 0.0f;
+    bound.sampler = udim ? cache.sampler(WrapMode::Clamp, WrapMode::Clamp, false)
+                         : cache.sampler(parseWrapMode(scene.getToken(attribute("wrapS").c_str())),
+                                         parseWrapMode(scene.getToken(attribute("wrapT").c_str())));
     // A renormalised texture's map back to its values goes before the UsdUVTexture's own scale and
     // bias; both are affine per channel, so they fold into one (the talk's "two more constants per
     // texture" cost nothing more): (t * rs + rb) * s + b = t * (rs * s) + (rb * s + b).
@@ -67,6 +75,7 @@ std::optional<BoundTexture> readBoundTexture(SceneAccess& scene, TextureCache& c
     bound.params.channel = uint32_t(channel);
     bound.params.reconstructZ = bound.texture->twoChannelNormal ? 1 : 0;
     bound.params.sampled = 1;
+    bound.params.udimGrid = bound.texture->udimGrid;
     bound.stPrimvar = scene.getToken(attribute("st").c_str());
     readTransformRow(scene, attribute("transformS"), bound.params.transformS);
     readTransformRow(scene, attribute("transformT"), bound.params.transformT);

@@ -2,6 +2,7 @@
 
 #include "delegate/colour_block_compression.h"
 #include "delegate/normal_map_image.h"
+#include "delegate/udim_tiles.h"
 #include "gpu/texture_upload.h"
 #include "gpu/vk_check.h"
 
@@ -67,11 +68,36 @@ std::variant<TexturePtr, std::string> TextureCache::get(const std::string& file,
 
 std::variant<TexturePtr, std::string> TextureCache::make(const std::string& file, SourceColorSpace colorSpace,
                                                          TextureRole role) {
+    if (isUdimPattern(file)) return makeUdim(file, colorSpace, role);
     if (role == TextureRole::Normal)
         if (auto normalMap = makeNormalMap(file)) return *normalMap;
     auto decoded = decodeTextureFile(file, colorSpace, role);
     if (auto* problem = std::get_if<std::string>(&decoded)) return *problem;
-    TextureImage& image = std::get<TextureImage>(decoded);
+    return makeFromImage(file, {file}, "", std::move(std::get<TextureImage>(decoded)), role, Texture{});
+}
+
+std::variant<TexturePtr, std::string> TextureCache::makeUdim(const std::string& pattern, SourceColorSpace colorSpace,
+                                                             TextureRole role) {
+    const std::vector<UdimTile> tiles = findUdimTiles(pattern);
+    if (tiles.empty()) return std::string("no UDIM tile exists (1001 to 1999)");
+    const uint32_t maxDimension = device_.context().properties().limits.maxImageDimension2D;
+    auto assembled = assembleUdimAtlas(tiles, colorSpace, maxDimension);
+    if (auto* problem = std::get_if<std::string>(&assembled)) return *problem;
+    UdimAtlas& atlas = std::get<UdimAtlas>(assembled);
+    Texture texture;
+    texture.udimGrid = atlas.grid;
+    texture.leftOutTiles = std::move(atlas.leftOut);
+    std::string layout = "udim-1";
+    for (float g : atlas.grid) layout += "-" + std::to_string(int(g));
+    layout += "-" + std::to_string(atlas.image.level0.width) + "x" + std::to_string(atlas.image.level0.height) + "-";
+    // A normal map's set keeps its own z in RGBA (the two-channel route reads single files).
+    return makeFromImage(pattern, atlas.tileFiles, layout, std::move(atlas.image),
+                         role == TextureRole::Normal ? TextureRole::Plain : role, std::move(texture));
+}
+
+TexturePtr TextureCache::makeFromImage(const std::string& file, const std::vector<std::string>& sources,
+                                       const std::string& sourceEncoding, TextureImage image, TextureRole role,
+                                       Texture texture) {
     Made made;
     made.desc.format = image.format;
     made.desc.width = image.level0.width;
@@ -94,13 +120,14 @@ std::variant<TexturePtr, std::string> TextureCache::make(const std::string& file
     if (compress) {
         const std::vector<gpu::MipLevel> chain = std::move(made.levels);
         bool cached = false;
-        made.levels = blockLevels(file, "squish-1-" + std::to_string(blockFormat) + "-from-" + std::to_string(image.format),
+        made.levels = blockLevels(sources,
+                                  sourceEncoding + "squish-1-" + std::to_string(blockFormat) + "-from-" +
+                                      std::to_string(image.format),
                                   chain, blockFormat, [&](size_t i) { return compressColourLevel(chain[i], blockFormat); },
                                   cached);
         made.desc.format = blockFormat;
         made.how += cached ? ", compressed (from the disk cache)" : ", compressed on the CPU";
     }
-    Texture texture;
     texture.average = image.average;
     texture.renormScale = image.renormScale;
     texture.renormBias = image.renormBias;
@@ -130,7 +157,7 @@ std::optional<std::variant<TexturePtr, std::string>> TextureCache::makeNormalMap
     } else {
         std::vector<gpu::MipLevel> extents;
         for (const NormalImage& level : chain) extents.push_back({level.width, level.height, {}});
-        made.levels = blockLevels(file, "bc5-normal-aware-1", extents, made.desc.format,
+        made.levels = blockLevels({file}, "bc5-normal-aware-1", extents, made.desc.format,
                                   [&](size_t i) {
                                       return gpu::MipLevel{chain[i].width, chain[i].height,
                                                            encodeBc5(chain[i], Bc5Encoder::NormalAware)};
@@ -155,7 +182,7 @@ bool TextureCache::canSampleCompressed(VkFormat format) const {
     return (properties.optimalTilingFeatures & needed) == needed;
 }
 
-std::vector<gpu::MipLevel> TextureCache::blockLevels(const std::string& file, const std::string& encoding,
+std::vector<gpu::MipLevel> TextureCache::blockLevels(const std::vector<std::string>& sources, const std::string& encoding,
                                                      const std::vector<gpu::MipLevel>& extents, VkFormat format,
                                                      const std::function<gpu::MipLevel(size_t)>& encode,
                                                      bool& cached) const {
@@ -165,7 +192,7 @@ std::vector<gpu::MipLevel> TextureCache::blockLevels(const std::string& file, co
     };
     size_t total = 0;
     for (const gpu::MipLevel& level : extents) total += sizeOf(level);
-    const std::string key = TextureDiskCache::key(file, encoding);
+    const std::string key = TextureDiskCache::key(sources, encoding);
     std::optional<std::vector<std::byte>> blocks = diskCache_.read(key);
     cached = blocks && blocks->size() == total;
     std::vector<gpu::MipLevel> levels;
@@ -198,8 +225,8 @@ TexturePtr TextureCache::upload(const std::string& file, Made made, Texture text
     return std::make_shared<const Texture>(std::move(texture));
 }
 
-VkSampler TextureCache::sampler(WrapMode s, WrapMode t) {
-    VkSampler& sampler = samplers_[{s, t}];
+VkSampler TextureCache::sampler(WrapMode s, WrapMode t, bool anisotropic) {
+    VkSampler& sampler = samplers_[{s, t, anisotropic}];
     if (sampler) return sampler;
     const gpu::Context& context = device_.context();
     VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
@@ -209,7 +236,7 @@ VkSampler TextureCache::sampler(WrapMode s, WrapMode t) {
     si.addressModeV = addressMode(t);
     si.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     si.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;
-    si.anisotropyEnable = context.enabledFeatures().samplerAnisotropy;
+    si.anisotropyEnable = anisotropic && context.enabledFeatures().samplerAnisotropy;
     si.maxAnisotropy = std::min(16.0f, context.properties().limits.maxSamplerAnisotropy);
     si.maxLod = VK_LOD_CLAMP_NONE;
     gpu::vkCheck(vkCreateSampler(device_.vk(), &si, nullptr, &sampler), "vkCreateSampler");

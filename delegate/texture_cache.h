@@ -2,7 +2,8 @@
 // once, with its full mip chain, and shared by every material naming it for as long as one holds
 // it. With compression on, where the device samples the format, 8-bit normal maps are
 // BC5-compressed (bc5_encoder.h) and 8-bit colour BC1 or BC3 (colour_block_compression.h), their
-// blocks kept in a TextureDiskCache. Also the samplers of the UsdUVTexture wrap modes and the white texture that fills the
+// blocks kept in a TextureDiskCache. A UDIM set (udim_tiles.h) is one atlas texture of its tiles,
+// stored as any other. Also the samplers of the UsdUVTexture wrap modes and the white texture that fills the
 // descriptor elements no material uses.
 #pragma once
 
@@ -20,6 +21,7 @@
 #include <tuple>
 #include <utility>
 #include <variant>
+#include <vector>
 
 namespace obscura::delegate {
 
@@ -34,6 +36,8 @@ struct Texture {
     std::array<float, 4> renormScale{1.0f, 1.0f, 1.0f, 1.0f};  // TextureImage::renormScale
     std::array<float, 4> renormBias{};                          // TextureImage::renormBias
     bool twoChannelNormal = false;  // x and y of a normal map; the shader reconstructs z
+    std::array<float, 4> udimGrid{};       // UdimAtlas::grid; zero columns when not a UDIM set
+    std::vector<std::string> leftOutTiles;  // UdimAtlas::leftOut
 };
 using TexturePtr = std::shared_ptr<const Texture>;
 
@@ -44,12 +48,13 @@ public:
     TextureCache(const TextureCache&) = delete;
     TextureCache& operator=(const TextureCache&) = delete;
 
-    // The texture of an absolute file path, read on first use (logged at info level as
+    // The texture of an absolute file path (or UDIM pattern: its tiles' atlas), read on first use (logged at info level as
     // "loaded texture <file> (size format, mips, device memory)"), else the reason it cannot be read. Failures are not remembered:
     // the next sync of a material tries again.
     std::variant<TexturePtr, std::string> get(const std::string& file, SourceColorSpace colorSpace, TextureRole role);
-    // Trilinear, anisotropic where the device allows; black is a transparent black border.
-    VkSampler sampler(WrapMode s, WrapMode t);
+    // Trilinear, anisotropic where the device allows and `anisotropic` asks; black is a transparent
+    // black border.
+    VkSampler sampler(WrapMode s, WrapMode t, bool anisotropic = true);
     const gpu::ImagePtr& white() const { return white_; }
     // The textures:compression render setting: textures loaded from now on.
     void setCompression(bool on) { compression_ = on; }
@@ -61,13 +66,19 @@ private:
         std::string how;                    // for the log: how the levels were made
     };
     std::variant<TexturePtr, std::string> make(const std::string& file, SourceColorSpace colorSpace, TextureRole role);
+    std::variant<TexturePtr, std::string> makeUdim(const std::string& pattern, SourceColorSpace colorSpace,
+                                                   TextureRole role);
+    // A decoded image with its mips, block-compressed where it may be. `sources` are the files its
+    // texels come from and `sourceEncoding` how they were combined, for the disk cache's key.
+    TexturePtr makeFromImage(const std::string& file, const std::vector<std::string>& sources,
+                             const std::string& sourceEncoding, TextureImage image, TextureRole role, Texture texture);
     // nullopt: the file is stored as a Material texture instead.
     std::optional<std::variant<TexturePtr, std::string>> makeNormalMap(const std::string& file);
     TexturePtr upload(const std::string& file, Made made, Texture texture);
     bool canSampleCompressed(VkFormat format) const;
     // Block-compressed levels of the extents' sizes, `encode(i)` making level i, read from the disk
     // cache under (file content, encoding) when it holds them (`cached`), else encoded and stored.
-    std::vector<gpu::MipLevel> blockLevels(const std::string& file, const std::string& encoding,
+    std::vector<gpu::MipLevel> blockLevels(const std::vector<std::string>& sources, const std::string& encoding,
                                            const std::vector<gpu::MipLevel>& extents, VkFormat format,
                                            const std::function<gpu::MipLevel(size_t)>& encode, bool& cached) const;
 
@@ -76,7 +87,7 @@ private:
     TextureDiskCache diskCache_;
     bool compression_ = true;
     std::map<std::tuple<std::string, SourceColorSpace, TextureRole, bool>, std::weak_ptr<const Texture>> textures_;
-    std::map<std::pair<WrapMode, WrapMode>, VkSampler> samplers_;
+    std::map<std::tuple<WrapMode, WrapMode, bool>, VkSampler> samplers_;
     gpu::ImagePtr white_;
 };
 

@@ -19,6 +19,8 @@ public:
     // The key of `file`'s content encoded as `encoding` (a name that changes with the encoder);
     // empty when the file cannot be read.
     static std::string key(const std::string& file, const std::string& encoding);
+    // The key of several files' contents in this order (a UDIM set's tiles); for one file, its key.
+    static std::string key(const std::vector<std::string>& files, const std::string& encoding);
     std::optional<std::vector<std::byte>> read(const std::string& key) const;
     // Written to a temporary name and renamed, so a reader never sees half a file; failures to
     // write are ignored (the cache only saves time).

@@ -35,8 +35,6 @@ const std::array<float, 256>& srgbTable() {
     return table;
 }
 
-size_t bytesPerTexel(VkFormat format) { return format == VK_FORMAT_R16G16B16A16_SFLOAT ? 8 : 4; }
-
 // Texel channel as a sampler returns it (alpha is linear in sRGB formats).
 float readChannel(const std::byte* texel, VkFormat format, size_t channel) {
     if (format == VK_FORMAT_R16G16B16A16_SFLOAT) {
@@ -165,6 +163,8 @@ std::string stbFailureReason() {
     return reason ? reason : "unknown error";
 }
 
+size_t bytesPerTexel(VkFormat format) { return format == VK_FORMAT_R16G16B16A16_SFLOAT ? 8 : 4; }
+
 SourceColorSpace parseSourceColorSpace(const std::string& token) {
     if (token == "sRGB") return SourceColorSpace::Srgb;
     if (token == "raw") return SourceColorSpace::Raw;
@@ -196,6 +196,32 @@ gpu::MipLevel downsample(const gpu::MipLevel& level, VkFormat format) {
                             readChannel(texel(2 * x + 1, 2 * y + 1), format, c);
                 writeChannel(&out.bytes[(size_t(y) * out.width + x) * stride], format, c, 0.25f * sum);
             }
+    return out;
+}
+
+gpu::MipLevel resample(const gpu::MipLevel& level, VkFormat format, uint32_t width, uint32_t height) {
+    if (level.width == width && level.height == height) return level;
+    if (level.width >= 2 * width && level.height >= 2 * height)
+        return resample(downsample(level, format), format, width, height);
+    const size_t stride = bytesPerTexel(format);
+    gpu::MipLevel out{width, height, std::vector<std::byte>(size_t(width) * height * stride)};
+    auto read = [&](int64_t x, int64_t y, size_t c) {
+        x = std::clamp<int64_t>(x, 0, level.width - 1);
+        y = std::clamp<int64_t>(y, 0, level.height - 1);
+        return readChannel(&level.bytes[(size_t(y) * level.width + size_t(x)) * stride], format, c);
+    };
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            const float sx = (float(x) + 0.5f) * float(level.width) / float(width) - 0.5f;
+            const float sy = (float(y) + 0.5f) * float(level.height) / float(height) - 0.5f;
+            const auto x0 = int64_t(std::floor(sx)), y0 = int64_t(std::floor(sy));
+            const float fx = sx - float(x0), fy = sy - float(y0);
+            for (size_t c = 0; c < 4; ++c) {
+                const float top = read(x0, y0, c) * (1 - fx) + read(x0 + 1, y0, c) * fx;
+                const float bottom = read(x0, y0 + 1, c) * (1 - fx) + read(x0 + 1, y0 + 1, c) * fx;
+                writeChannel(&out.bytes[(size_t(y) * width + x) * stride], format, c, top * (1 - fy) + bottom * fy);
+            }
+        }
     return out;
 }
 

@@ -55,4 +55,11 @@ std::variant<TextureImage, std::string> decodeTextureFile(const std::string& pat
 // column is dropped, a side of 1 stays 1).
 gpu::MipLevel downsample(const gpu::MipLevel& level, VkFormat format);
 
+// `level` at width x height (in linear space for sRGB formats): halved by `downsample` while it is
+// at least twice as large, then filtered bilinearly, texel centres to texel centres.
+gpu::MipLevel resample(const gpu::MipLevel& level, VkFormat format, uint32_t width, uint32_t height);
+
+// Bytes of one texel of an uncompressed format TextureImage holds.
+size_t bytesPerTexel(VkFormat format);
+
 }  // namespace obscura::delegate

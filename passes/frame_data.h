@@ -185,8 +185,11 @@ struct alignas(16) MaterialTexture {
     // t' likewise; w unused. The identity unless UsdTransform2d or MaterialX tiling moved them.
     std::array<float, 4> transformS{1.0f, 0.0f, 0.0f, 0.0f};
     std::array<float, 4> transformT{0.0f, 1.0f, 0.0f, 0.0f};
+    // A UDIM set's atlas (delegate/udim_tiles.h): st of its lower-left tile square (x, y) and its
+    // columns and rows of squares (z, w); z is 0 for a single image.
+    std::array<float, 4> udimGrid{};
 };
-static_assert(sizeof(MaterialTexture) == 80);
+static_assert(sizeof(MaterialTexture) == 96);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, scale);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, bias);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, sampled);
@@ -195,6 +198,7 @@ OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, reconstructZ);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, transformed);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, transformS);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, transformT);
+OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, udimGrid);
 
 // The inputs the G-buffer pass samples, each from its own binding of descriptor set 1; textured
 // emission is constant per material (its texture's average): the lighting pass has no texture
@@ -218,7 +222,7 @@ struct alignas(16) MaterialData {
     std::array<float, 4> anisotropy{};  // x obscura:anisotropy, y obscura:anisotropyRotation in radians
     std::array<MaterialTexture, kMaterialTextureSlots> textures;
 };
-static_assert(sizeof(MaterialData) == 96 + 6 * 80);
+static_assert(sizeof(MaterialData) == 96 + 6 * 96);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, diffuseRoughness);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, emissiveMetallic);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, opacity);

@@ -94,6 +94,7 @@ struct MaterialTexture {
     uint transformed;       // 1: transformS and transformT are not the identity
     vec4 transformS;        // xyz: s' = dot(transformS.xyz, vec3(s, t, 1)) (UsdTransform2d, MaterialX tiling)
     vec4 transformT;        // xyz: t' likewise
+    vec4 udimGrid;          // a UDIM atlas: st of its lower-left tile square (xy), columns and rows (zw); z 0: one image
 };
 
 const uint TEXTURE_DIFFUSE = 0u;

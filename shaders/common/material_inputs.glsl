@@ -10,12 +10,41 @@ vec2 textureCoordinates(MaterialTexture t, vec2 uv) {
     return vec2(dot(t.transformS.xyz, st), 1.0 - dot(t.transformT.xyz, st));
 }
 
+// A UDIM set's atlas (delegate/udim_tiles.h) holds tile 1001 + u + 10 v's square where st has it,
+// so the atlas coordinate is an affine map of st, continuous across tiles. The mip comes from those
+// continuous derivatives (textureGrad), so a seam does not jump to a coarse mip, kept fine enough
+// that a square still spans a 4x4 block; the lookup is clamped within its square by half a texel
+// of the coarser mip trilinear filtering reads (the atlas's sampler is not anisotropic:
+// delegate/material_texture.cpp), so no neighbouring tile bleeds in. Squares with no tile read transparent black, Storm's fallback.
+vec4 sampleUdim(MaterialTexture t, sampler2D tex, vec2 uv) {
+    vec2 grid = t.udimGrid.zw;
+    vec2 st = vec2(uv.x, 1.0 - uv.y) - t.udimGrid.xy;  // from the grid's lower-left corner
+    vec2 squareTexels = vec2(textureSize(tex, 0)) / grid;
+    vec2 dx = dFdx(st), dy = dFdy(st);
+    float lod = log2(max(max(length(dx * squareTexels), length(dy * squareTexels)), 1e-20));
+    float coarsest = max(log2(min(squareTexels.x, squareTexels.y)) - 2.0, 0.0);
+    if (!(lod <= coarsest)) {  // also where the derivatives are not finite
+        float shrink = isinf(lod) || isnan(lod) ? 0.0 : exp2(coarsest - lod);
+        dx *= shrink;
+        dy *= shrink;
+        lod = coarsest;
+    }
+    vec2 square = floor(st);
+    vec2 margin = min(0.5 * exp2(max(ceil(lod), 0.0)) / squareTexels, vec2(0.5));
+    vec2 inSquare = clamp(st, square + margin, square + 1.0 - margin);
+    vec2 toAtlas = vec2(1.0, -1.0) / grid;  // image rows run down from the top row of squares
+    vec4 texel = textureGrad(tex, vec2(0.0, 1.0) + inSquare * toAtlas, dx * toAtlas, dy * toAtlas);
+    bool outside = any(lessThan(square, vec2(0.0))) || any(greaterThanEqual(square, grid));
+    return outside ? vec4(0.0) : texel;
+}
+
 // UsdUVTexture (UsdPreviewSurface spec): texel * scale + bias. Untransformed textures look up uv
 // itself. XXX: on lavapipe, a one-pixel line along the edge two triangles share misreads the
 // transform (the texture there is untransformed or at its coarsest mip); not yet understood.
 vec4 sampleTexture(MaterialTexture t, sampler2D tex, vec2 uv) {
     vec2 at = t.transformed != 0u ? textureCoordinates(t, uv) : uv;
-    return texture(tex, at) * t.scale + t.bias;
+    vec4 texel = t.udimGrid.z > 0.0 ? sampleUdim(t, tex, at) : texture(tex, at);
+    return texel * t.scale + t.bias;
 }
 
 vec3 colorInput(vec3 constant, MaterialTexture t, sampler2D tex, vec2 uv) {
