@@ -90,9 +90,11 @@ class UdimUsdzTest : public ::testing::Test {
 protected:
     UdimUsdzTest() {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("obscura_udim_usdz_" + std::string(info->name()) + "_" + std::to_string(getpid()));
+        dir_ = fs::temp_directory_path() /
+               ("obscura_udim_usdz_" + std::string(info->name()) + "_" + std::to_string(getpid()));
         fs::create_directories(dir_);
-        for (const auto& [number, colour] : kTiles) tiles_["tex/body." + std::to_string(number) + ".png"] = tilePng(dir_, colour);
+        for (const auto& [number, colour] : kTiles)
+            tiles_["tex/body." + std::to_string(number) + ".png"] = tilePng(dir_, colour);
     }
     ~UdimUsdzTest() override { fs::remove_all(dir_); }
 
@@ -168,9 +170,11 @@ TEST_F(UdimUsdzTest, APatternRelativeToALayerInAPackageReadsTheTilesInIt) {
     const fs::path pattern = scene.token("/M", "obscura:diffuseColor:file");
     EXPECT_EQ(pattern.filename(), "body.<UDIM>.png");
     std::vector<std::string> extracted;
-    for (const auto& entry : fs::directory_iterator(pattern.parent_path())) extracted.push_back(entry.path().filename());
+    for (const auto& entry : fs::directory_iterator(pattern.parent_path()))
+        extracted.push_back(entry.path().filename());
     std::sort(extracted.begin(), extracted.end());
-    EXPECT_EQ(extracted, (std::vector<std::string>{"body.1001.png", "body.1002.png", "body.1011.png", "body.1012.png"}));
+    EXPECT_EQ(extracted,
+              (std::vector<std::string>{"body.1001.png", "body.1002.png", "body.1011.png", "body.1012.png"}));
 }
 
 TEST_F(UdimUsdzTest, APatternNamingAPackagesEntryReadsTheTilesInIt) {
