@@ -8,29 +8,19 @@
 namespace obscura::delegate {
 namespace {
 
-constexpr std::string_view kUdimToken = "<UDIM>";
-constexpr int kFirstTile = 1001, kLastTile = 1999;
 constexpr uint32_t kMinCellSide = 4;  // a block-compression block
 
-int tileU(int number) { return (number - kFirstTile) % 10; }
-int tileV(int number) { return (number - kFirstTile) / 10; }
-
-std::string tilePath(const std::string& pattern, int number) {
-    std::string path = pattern;
-    path.replace(path.find(kUdimToken), kUdimToken.size(), std::to_string(number));
-    return path;
-}
+int tileU(int number) { return (number - schema::kFirstUdimTile) % 10; }
+int tileV(int number) { return (number - schema::kFirstUdimTile) / 10; }
 
 uint32_t cellSide(uint32_t largestTile) { return std::bit_ceil(std::max(largestTile, kMinCellSide)); }
 
 }  // namespace
 
-bool isUdimPattern(const std::string& path) { return path.find(kUdimToken) != std::string::npos; }
-
 std::vector<UdimTile> findUdimTiles(const std::string& pattern) {
     std::vector<UdimTile> tiles;
-    for (int number = kFirstTile; number <= kLastTile; ++number) {
-        std::string file = tilePath(pattern, number);
+    for (int number = schema::kFirstUdimTile; number <= schema::kLastUdimTile; ++number) {
+        std::string file = schema::udimTilePath(pattern, number);
         std::error_code ec;
         if (std::filesystem::is_regular_file(file, ec)) tiles.push_back({number, std::move(file)});
     }

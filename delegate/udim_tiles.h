@@ -1,11 +1,11 @@
-// UDIM texture sets (the Mari convention OpenUSD's UsdUVTexture, Storm and MaterialX follow): a
-// file path holding <UDIM> names the tiles 1001 + u + 10 v, tile 1001 + u + 10 v covering the st
-// square [u, u + 1) x [v, v + 1). Pure CPU code: finding a set's tiles and assembling them into
-// one atlas texture, laid out like the squares they cover, that the shaders sample
-// (shaders/common/material_inputs.glsl, sampleUdim).
+// UDIM texture sets (schemas/udim_pattern.h: a <UDIM> file path names tiles 1001 + u + 10 v, each
+// covering the st square [u, u + 1) x [v, v + 1)). Pure CPU code: finding a set's tiles and
+// assembling them into one atlas texture, laid out like the squares they cover, that the shaders
+// sample (shaders/common/material_inputs.glsl, sampleUdim).
 #pragma once
 
 #include "delegate/texture_image.h"
+#include "schemas/udim_pattern.h"
 
 #include <array>
 #include <string>
@@ -14,7 +14,7 @@
 
 namespace obscura::delegate {
 
-bool isUdimPattern(const std::string& path);
+using schema::isUdimPattern;
 
 struct UdimTile {
     int number = 0;  // 1001 + u + 10 v

@@ -73,6 +73,24 @@ std::optional<std::vector<double>> transformInput(const usda::Stage& stage, cons
     return std::nullopt;
 }
 
+// The package path an asset names: a file of the package that holds the layer, written relative
+// to it, or "other.usdz[entry]" written in a layer on disk (the archive anchored like any file).
+std::optional<std::string> packagedAsset(const std::string& asset, const std::string& layer) {
+    const auto package = usda::splitPackagePath(layer);
+    if (const auto named = usda::splitPackagePath(asset)) {
+        std::filesystem::path archive = named->first;
+        if (archive.is_relative()) {
+            if (package) return std::nullopt;  // a package inside a package is not read
+            archive = std::filesystem::path(layer).parent_path() / archive;
+        }
+        return usda::joinPackagePath(std::filesystem::absolute(archive).lexically_normal().string(),
+                                     std::filesystem::path(named->second).lexically_normal().string());
+    }
+    if (!package || asset.empty() || asset[0] == '/') return std::nullopt;
+    return usda::joinPackagePath(
+        package->first, (std::filesystem::path(package->second).parent_path() / asset).lexically_normal().string());
+}
+
 }  // namespace
 
 TextureCoordinates textureCoordinates(const usda::Stage& stage, const usda::Prim& texture, double time) {
@@ -219,12 +237,12 @@ std::optional<usda::Value> flattenedTextureAttribute(const usda::Stage& stage, c
 }
 
 std::string resolveAssetPath(const std::string& asset, const usda::Attribute& attribute) {
-    // Inside a USDZ package, relative assets are files in the package, handed on extracted.
-    if (const auto package = usda::splitPackagePath(attribute.where.file); package && !asset.empty() && asset[0] != '/') {
-        const auto entry = (std::filesystem::path(package->second).parent_path() / asset).lexically_normal().string();
+    if (const auto packaged = packagedAsset(asset, attribute.where.file)) {
+        // What the package cannot give is handed on as its package path, which no file reader
+        // opens: the plugin's warning about the missing texture then names where it was looked for.
         std::string problem;
-        if (std::string file = usda::extractPackagedFile(usda::joinPackagePath(package->first, entry), &problem); !file.empty())
-            return file;
+        const std::string file = usda::extractPackagedFile(*packaged, &problem);
+        return file.empty() ? *packaged : file;
     }
     std::filesystem::path path = asset;
     if (path.is_relative()) path = std::filesystem::path(attribute.where.file).parent_path() / path;

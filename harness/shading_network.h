@@ -77,7 +77,8 @@ std::optional<usda::Value> flattenedTextureAttribute(const usda::Stage& stage, c
 
 // An asset path as an absolute file path: relative paths are anchored to the folder of the layer
 // that authored `attribute` (USD's ArDefaultResolver); in a USDZ package, to its folder in the
-// package, the file extracted to a temporary one (usda::extractPackagedFile).
+// package, and a file of a package ("a.usdz[tex/b.png]", a UDIM set too) is extracted to a
+// temporary one (usda::extractPackagedFile), or left as that package path when it cannot be.
 std::string resolveAssetPath(const std::string& asset, const usda::Attribute& attribute);
 
 // The primvar the shader's textures look up (inputs:varname of the UsdPrimvarReader_float2 that

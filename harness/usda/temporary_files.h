@@ -20,6 +20,14 @@ std::string temporaryFile(const std::string& key, const std::string& fileName,
                           const std::function<std::optional<std::string>(std::string* error)>& bytes,
                           std::string* error);
 
+// Files that must lie side by side (the tiles of a UDIM set), named `fileName`, as `files`: a
+// folder of their own, written once under `key`, holding each by its name. The path of `fileName`
+// in that folder (a pattern may name no one file); "" (and `error` set) on failure.
+using NamedFiles = std::map<std::string, std::string>;  // file name -> contents
+std::string temporaryFolder(const std::string& key, const std::string& fileName,
+                            const std::function<std::optional<NamedFiles>(std::string* error)>& files,
+                            std::string* error);
+
 // Every file written or adopted so far, by key.
 std::map<std::string, std::string> temporaryFilesByKey();
 

@@ -1,6 +1,7 @@
 #include "harness/usda/usdz_package.h"
 
 #include "harness/usda/temporary_files.h"
+#include "schemas/udim_pattern.h"
 
 #include <zip.h>
 
@@ -18,6 +19,26 @@ constexpr zip_uint64_t kMaxEntryBytes = zip_uint64_t(1) << 31;
 bool isLayerFile(std::string name) {
     std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return name.ends_with(".usd") || name.ends_with(".usda") || name.ends_with(".usdc");
+}
+
+std::string extractPackagedUdimSet(const std::string& packagePattern, const std::string& archive,
+                                   const std::string& pattern, std::string* error) {
+    return temporaryFolder(packagePattern, pattern, [&](std::string* problem) -> std::optional<NamedFiles> {
+        auto package = UsdzPackage::openFile(archive, problem);
+        if (!package) return std::nullopt;
+        NamedFiles tiles;
+        for (const std::string& entry : package->entries()) {
+            if (!schema::udimTileNumber(pattern, entry)) continue;
+            auto bytes = package->read(entry, problem);
+            if (!bytes) return std::nullopt;
+            tiles.emplace(entry, std::move(*bytes));
+        }
+        if (tiles.empty()) {
+            *problem = "no UDIM tile of '" + pattern + "' in the package";
+            return std::nullopt;
+        }
+        return tiles;
+    }, error);
 }
 
 }  // namespace
@@ -38,18 +59,23 @@ std::string extractPackagedFile(const std::string& packagePath, std::string* err
         *error = "'" + packagePath + "' names no file in a package";
         return "";
     }
+    if (schema::isUdimPattern(parts->second)) return extractPackagedUdimSet(packagePath, parts->first, parts->second, error);
     return temporaryFile(packagePath, parts->second, [&](std::string* problem) -> std::optional<std::string> {
-        std::ifstream in(parts->first, std::ios::binary);
-        std::ostringstream archiveBytes;
-        archiveBytes << in.rdbuf();
-        if (!in) {
-            *problem = "cannot open package '" + parts->first + "'";
-            return std::nullopt;
-        }
-        auto package = UsdzPackage::open(archiveBytes.str(), problem);
+        auto package = UsdzPackage::openFile(parts->first, problem);
         if (!package) return std::nullopt;
         return package->read(parts->second, problem);
     }, error);
+}
+
+std::unique_ptr<UsdzPackage> UsdzPackage::openFile(const std::string& path, std::string* error) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    if (!in) {
+        *error = "cannot open package '" + path + "'";
+        return nullptr;
+    }
+    return open(bytes.str(), error);
 }
 
 std::unique_ptr<UsdzPackage> UsdzPackage::open(std::string bytes, std::string* error) {
@@ -105,6 +131,14 @@ std::optional<std::string> UsdzPackage::read(const std::string& entry, std::stri
         return std::nullopt;
     }
     return bytes;
+}
+
+std::vector<std::string> UsdzPackage::entries() const {
+    std::vector<std::string> names;
+    const zip_int64_t count = zip_get_num_entries(archive_, 0);
+    for (zip_int64_t i = 0; i < count; ++i)
+        if (const char* name = zip_get_name(archive_, static_cast<zip_uint64_t>(i), 0)) names.emplace_back(name);
+    return names;
 }
 
 }  // namespace obscura::usda
