@@ -101,8 +101,7 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
         FrameView seen = source.view(viewpoint);
         // A still's sample resolves linearly; with MSAA under the box filter of width 1, over the
         // pixel's box.
-        const bool pixelBox = settings.msaaSamples > 1 && settings.pixelFilter.kind == PixelFilterKind::Box &&
-                              settings.pixelFilter.width == 1.0;
+        const bool pixelBox = settings.msaaSamples > 1 && isPixelBox(settings.pixelFilter);
         temporalAa = temporalAccumulation_.next({camera.key, width, height, request.settingsVersion},
                                                 request.sceneVersion, temporalAaSettings.mode,
                                                 settings.temporalAaFrames, seen.view, seen.projection,

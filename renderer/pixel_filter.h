@@ -17,6 +17,10 @@ struct PixelFilter {
     double width = 1.0;  // the filter's support, pixels (Cycles' filter_width)
 };
 
+// Whether `filter` is the pixel's own square (the box of width 1): MSAA samples then resolve over
+// the pixel's box (passes::SampleResolve::PixelBox), in a still's frames and the reference's.
+inline bool isPixelBox(const PixelFilter& filter) { return filter.kind == PixelFilterKind::Box && filter.width == 1.0; }
+
 // The render setting's token ("box", "gaussian", "blackman-harris"); box for anything else.
 PixelFilterKind pixelFilterKind(std::string_view token);
 

@@ -50,7 +50,7 @@ uint32_t shutterStratum(uint32_t index, uint32_t count) {
 }
 
 uint32_t referenceSamples(const PixelFilter& filter) {
-    return filter.kind == PixelFilterKind::Box && filter.width == 1.0 ? 4u : 1u;
+    return isPixelBox(filter) ? 4u : 1u;
 }
 
 std::vector<ReferenceSubFrame> referenceSubFrames(uint32_t count, const passes::ApertureShape& aperture,
