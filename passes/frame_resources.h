@@ -68,8 +68,7 @@ constexpr VkFormat kSsaoAccessibilityFormat = VK_FORMAT_R8_UNORM;
 // Both images are ceil(width / 2) x ceil(height / 2): half-resolution texel (x, y) covers
 // full-resolution pixels (2x..2x+1, 2y..2y+1).
 struct SsaoResult {
-    // The accumulated accessibility in the first channel (ssao.h), kSsaoAccessibilityFormat once
-    // blurred (bilateral_blur.h).
+    // The accumulated accessibility, blurred (ssao.h), kSsaoAccessibilityFormat.
     gpu::ImageHandle accessibility;
     gpu::ImageHandle halfDepth;      // kSsaoDepthFormat, the depths the accessibility belongs to
 };

@@ -1,7 +1,8 @@
-// Screen-space ambient occlusion (seed 004 "SSAO improvements"): volumetric obscurance (Loos &
-// Sloan 2010) with 4 samples per pixel at half resolution, accumulated over frames with
-// reprojection; the bilateral blur (bilateral_blur.h) then smooths it keeping depth edges, and the
-// lighting pass upsamples that with sampleAmbientAccess() (shaders/common/ssao_upsample.glsl).
+// Screen-space ambient occlusion (seed 004 "SSAO improvements"), two passes: volumetric obscurance
+// (Loos & Sloan 2010) with 4 samples per pixel at half resolution, taking its half-resolution
+// geometry from the G-buffer itself; then the accumulation over frames with reprojection and the
+// bilateral blur that smooths it keeping depth edges, in one pass. The lighting pass upsamples the
+// result with sampleAmbientAccess() (shaders/common/ssao_upsample.glsl).
 #pragma once
 
 #include "gpu/history_images.h"

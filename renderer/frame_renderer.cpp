@@ -1,14 +1,12 @@
 #include "renderer/frame_renderer.h"
 
 #include "passes/accumulate.h"
-#include "passes/bilateral_blur.h"
 #include "pass_support/best_fit_normals.h"
 #include "passes/clip_volumes.h"
 #include "passes/depth_of_field.h"
 #include "passes/edge_aa.h"
 #include "passes/motion_blur.h"
 #include "passes/msaa_resolve.h"
-#include "passes/tonemap.h"
 #include "passes/transparent.h"
 #include "renderer/reference_frames.h"
 
@@ -249,14 +247,12 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
     // field keeps a sample's coverage where it runs before the mean, and writes none after it.
     passes::HdrAlpha hdrAlpha = passes::HdrAlpha::None;
     if (temporalAa && !dofAfterTemporalAa) hdrAlpha = passes::HdrAlpha::Coverage;
-    gpu::ImageHandle display = passes::addTonemapPass(graph, scene, hdr, hdrAlpha, gbuffer.instance,
-                                                      transparentCoverage, grading_);
     gpu::ImageHandle velocity =
         gbuffer.velocity.valid()
             ? gbuffer.velocity
             : graph.importTexture("velocity.still", stillVelocity_);
-    passes::addAovReadbackPass(graph, scene, gbuffer, hdr, hdrAlpha, transparentCoverage, display,
-                               velocity, request.aovs);
+    passes::addAovReadbackPass(graph, scene, gbuffer, hdr, hdrAlpha, transparentCoverage, grading_, velocity,
+                               request.aovs);
     executeFrame(graph);
     occlusion_.frameDone();
     if (scene.gpuCulledDraws > 0) {
@@ -307,7 +303,6 @@ gpu::ImageHandle FrameRenderer::addLighting(gpu::FrameGraph& graph, const passes
         invert(seen.view, inverseView);
         ssaoHistory_.viewToPreviousView = toFloats<passes::Mat4>(multiply(inverseView, last.view));
         ambient = passes::addSsaoPasses(graph, scene, gbuffer, ssao, ssaoHistory_);
-        ambient.accessibility = passes::addBilateralBlurPass(graph, ambient);
     } else {
         ambient = {graph.importTexture("ssao.off", unoccluded_.accessibility),
                    graph.importTexture("ssao.off.depth", unoccluded_.halfDepth)};

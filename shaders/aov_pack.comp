@@ -1,13 +1,16 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// AOV readback: converts one frame resource into the host's render buffer layout (Hydra's AOV
-// conventions, see include/obscura/obscura.h), written straight into host-visible memory.
+// AOV readback (frame steps 12 and 13): converts one frame resource into the host's render buffer layout
+// (Hydra's AOV conventions, see include/obscura/obscura.h). The display AOV is the HDR colour
+// through the display/view transform, applied here: tone mapping is folded into the frame's last
+// pass (one read of the HDR colour, one write, no display image between).
 #extension GL_EXT_scalar_block_layout : require
 #include "common/frame_data.glsl"
 #include "common/best_fit_normals.glsl"
 #include "common/motion_velocity.glsl"
 #include "common/instance_target.glsl"
 #include "common/coverage.glsl"
+#include "common/display_transform.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -27,7 +30,7 @@ layout(set = 0, binding = 3) uniform sampler2D normalRoughnessTexture;
 layout(set = 0, binding = 4) uniform sampler2D albedoMetallicTexture;
 layout(set = 0, binding = 5) uniform usampler2D instanceTexture;
 layout(set = 0, binding = 6) uniform sampler2D hdrColor;  // any float format: light accumulation or TAA
-layout(set = 0, binding = 7, rgba8) uniform readonly image2D displayColor;
+layout(set = 0, binding = 7) uniform sampler3D displayLut;  // pass_support/color_grading_lut.h
 layout(set = 0, binding = 8, scalar) writeonly buffer Floats { float floats[]; };
 layout(set = 0, binding = 9, scalar) writeonly buffer Words { uint words[]; };
 layout(set = 0, binding = 10) uniform sampler2D transparentCoverage;  // passes/transparent.h
@@ -39,6 +42,7 @@ layout(push_constant) uniform Push {
     uint width;
     uint height;
     uint alphaIsCoverage;  // passes/hdr_color.h
+    DisplayShaper shaper;
 } push;
 
 void main() {
@@ -47,16 +51,19 @@ void main() {
     uint index = uint(pixel.y) * push.width + uint(pixel.x);
     uint instanceId = instanceIdFromTarget(texelFetch(instanceTexture, pixel, 0).r);
     bool covered = instanceId != 0u;
-    if (push.aov == AOV_COLOR) {
+    if (push.aov == AOV_COLOR || push.aov == AOV_DISPLAY) {
         vec4 hdr = texelFetch(hdrColor, pixel, 0);
-        vec3 c = hdr.rgb;
         // Premultiplied alpha: the opaque coverage with the transparent surfaces' over it.
         float a = push.alphaIsCoverage != 0u
                       ? hdr.a
                       : compositeCoverage(max(covered ? 1.0 : 0.0, camera.backdropCoverage),
                                           texelFetch(transparentCoverage, pixel, 0).r);
-        for (uint i = 0u; i < 3u; ++i) floats[index * 4u + i] = c[i];
-        floats[index * 4u + 3u] = a;
+        if (push.aov == AOV_DISPLAY) {
+            words[index] = packUnorm4x8(vec4(displayTransform(hdr.rgb, displayLut, push.shaper), a));
+        } else {
+            for (uint i = 0u; i < 3u; ++i) floats[index * 4u + i] = hdr[i];
+            floats[index * 4u + 3u] = a;
+        }
     } else if (push.aov == AOV_DEPTH) {
         floats[index] = texelFetch(depthTexture, pixel, 0).r;
     } else if (push.aov == AOV_NORMAL) {
@@ -70,8 +77,6 @@ void main() {
         words[index] = uint(covered ? instances[instanceId - 1u].primId : -1);
     } else if (push.aov == AOV_INSTANCE_ID) {
         words[index] = uint(covered ? instances[instanceId - 1u].instanceId : -1);
-    } else if (push.aov == AOV_DISPLAY) {
-        words[index] = packUnorm4x8(imageLoad(displayColor, pixel));
     } else if (push.aov == AOV_MOTION) {
         vec2 stored = texelFetch(velocityTexture, min(pixel, textureSize(velocityTexture, 0) - 1), 0).xy;
         // The whole shutter's displacement, also in a still's sample whose velocities span one

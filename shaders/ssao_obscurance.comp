@@ -1,7 +1,12 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// SSAO step 2: volumetric obscurance (Loos & Sloan 2010) with the 4 samples of seed 004 "SSAO
-// improvements", at half resolution. Obscurance is the fraction of a sphere of radius R around the
+// SSAO step 1: volumetric obscurance (Loos & Sloan 2010) with the 4 samples of seed 004 "SSAO
+// improvements", at half resolution. The half-resolution geometry is taken from the G-buffer here
+// (heldPixel, ssao_common.glsl), for the texel and for each sample alike, and the texel's is
+// written for the steps after: one pass where a downsample pass and its barrier came first.
+// Depth is stored linear so that the obscurance works in view space; the normal is the G-buffer's
+// best-fit normal of the same pixel, copied as it is, with which pixel of the 2x2 it was in alpha
+// (index / 3) so that the later steps put the point exactly where it was seen. Obscurance is the fraction of a sphere of radius R around the
 // surface point that lies behind the depth buffer, estimated with line integrals: each sample is
 // the sphere's chord along the view ray of one texel, split where the visible surface crosses it.
 // With the G-buffer normal (Loos & Sloan discuss bringing the normal in), only the part of the
@@ -10,7 +15,7 @@
 // The samples are two point-symmetric pairs of offsets in the plane through the centre
 // perpendicular to the view axis, turning from pixel to pixel over 4x4 blocks
 // (pass_support/ssao_pattern.cpp); the blur averages the turns back out, and the whole pattern turns from
-// frame to frame so that the temporal accumulation (ssao_temporal.comp) gathers new directions.
+// frame to frame so that the temporal accumulation (ssao_temporal_blur.comp) gathers new directions.
 #include "common/frame_data.glsl"
 #include "common/best_fit_normals.glsl"
 #include "common/ssao_common.glsl"
@@ -18,9 +23,11 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 CAMERA_BLOCK(0);
-layout(set = 0, binding = 1) uniform sampler2D halfDepthTexture;
-layout(set = 0, binding = 2) uniform sampler2D halfNormalTexture;  // a: which pixel of the 2x2, index / 3
-layout(set = 0, binding = 3, r8) uniform writeonly image2D accessibilityImage;
+layout(set = 0, binding = 1) uniform sampler2D depthTexture;  // the G-buffer's, full resolution
+layout(set = 0, binding = 2) uniform sampler2D normalRoughnessTexture;
+layout(set = 0, binding = 3, r32f) uniform writeonly image2D halfDepth;
+layout(set = 0, binding = 4, rgba8) uniform writeonly image2D halfNormal;  // a: which pixel of the 2x2, index / 3
+layout(set = 0, binding = 5, r8) uniform writeonly image2D accessibilityImage;
 
 layout(push_constant) uniform Push {
     uint pattern[16];  // packSnorm4x8(inner pair, outer pair) per pixel of a 4x4 block, in units of R
@@ -47,8 +54,9 @@ struct Centre {
 // halo around every silhouette). The price: solid hidden behind a surface that reaches the sphere
 // is dropped too, so at grazing views the wall side of a floor-wall crease reads lighter.
 vec2 chordAboveTangentPlane(Centre centre, ivec2 texel) {
-    float depth = texelFetch(halfDepthTexture, texel, 0).r;
-    vec2 ndc = heldPixelNdc(texel, texelFetch(halfNormalTexture, texel, 0).a, camera.resolution);
+    HeldPixel held = heldPixel(depthTexture, texel);
+    float depth = linearDepthFromDevice(camera.projection, held.deviceDepth);
+    vec2 ndc = heldPixelNdc(texel, held.index, camera.resolution);
     vec3 origin = viewPositionFromLinearDepth(camera.projection, ndc, 0.0);
     vec3 surface = viewPositionFromLinearDepth(camera.projection, ndc, depth);
     float hit = distance(surface, origin);
@@ -76,14 +84,20 @@ void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(accessibilityImage);
     if (any(greaterThanEqual(texel, size))) return;
-    float depth = texelFetch(halfDepthTexture, texel, 0).r;
+    HeldPixel held = heldPixel(depthTexture, texel);
+    float depth = linearDepthFromDevice(camera.projection, held.deviceDepth);
+    ivec2 lastPixel = textureSize(depthTexture, 0) - 1;
+    vec4 normalTexel = vec4(
+        texelFetch(normalRoughnessTexture, min(texel * 2 + ivec2(held.index & 1, held.index >> 1), lastPixel), 0).rgb,
+        float(held.index) / 3.0);
+    imageStore(halfDepth, texel, vec4(depth));
+    imageStore(halfNormal, texel, normalTexel);
     // Nothing was drawn where the depth is the far plane's (the G-buffer clears depth to 1).
     if (depth >= 0.999 * linearDepthFromDevice(camera.projection, 1.0)) {
         imageStore(accessibilityImage, texel, vec4(1.0));
         return;
     }
-    vec4 normalTexel = texelFetch(halfNormalTexture, texel, 0);
-    vec2 ndc = heldPixelNdc(texel, normalTexel.a, camera.resolution);
+    vec2 ndc = heldPixelNdc(texel, held.index, camera.resolution);
     Centre centre;
     centre.position = viewPositionFromLinearDepth(camera.projection, ndc, depth);
     vec3 normal = normalize(mat3(camera.view) * decodeBestFitNormal(normalTexel.rgb));

@@ -132,7 +132,7 @@ bool runs(const Frame& frame, const std::string& pass) {
     return std::find(names.begin(), names.end(), pass) != names.end();
 }
 
-const std::vector<std::string> kSsao{"ssao_downsample", "ssao_obscurance", "ssao_temporal", "bilateral_blur"};
+const std::vector<std::string> kSsao{"ssao_obscurance", "ssao_temporal_blur"};
 const std::vector<std::string> kDepthOfField{"dof_downsample", "dof_tile_min_max", "dof_tile_neighbourhood",
                                              "dof_gather",     "dof_flood_fill",   "dof_composite"};
 const std::vector<std::string> kMotionBlur{"motion_blur_tile_max", "motion_blur_neighbour_max",
@@ -150,7 +150,7 @@ void TheDefaultFrameRunsEveryStepOnce() {
     const Frame& frame = w.render();
     EXPECT_EQ(running(frame), concat({{"shadow_maps", "gbuffer"},
                                       kSsao,
-                                      {"lighting", "transparent", "temporal_aa", "tonemap", "aov_readback"}}));
+                                      {"lighting", "transparent", "temporal_aa", "aov_readback"}}));
     EXPECT_TRUE(passesThat(frame, true).empty());
 }
 
@@ -163,7 +163,7 @@ void TheGBufferIsReadAfterItsWritesInReadOnlyLayouts() {
                                                   VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
     ASSERT_NE(write, nullptr);
     const gpu::PlannedBarrier* read =
-        transition(frame, "ssao_downsample", "gbuffer.depth", VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+        transition(frame, "ssao_obscurance", "gbuffer.depth", VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
                    VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
     ASSERT_NE(read, nullptr);
     EXPECT_TRUE(read->srcAccess & VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
@@ -177,7 +177,7 @@ void TheGBufferIsReadAfterItsWritesInReadOnlyLayouts() {
     EXPECT_TRUE(blend->srcAccess & VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     // Textures are read where their upload left them: no barrier.
     EXPECT_EQ(barrier(frame, "gbuffer", "bestFitNormals"), nullptr);
-    EXPECT_EQ(barrier(frame, "tonemap", "displayLut"), nullptr);
+    EXPECT_EQ(barrier(frame, "aov_readback", "displayLut"), nullptr);
 }
 
 // Temporal AA's second frame reads the history the first wrote and writes the image the first
@@ -202,7 +202,7 @@ void TemporalAaReadsLastFramesHistory() {
                                                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
     ASSERT_NE(current, nullptr);
     // SSAO's history depth is read by nothing but the next frame: it stays as its pass wrote it.
-    const gpu::PlannedBarrier* ssao = barrier(second, "ssao_temporal", "ssaoHistoryDepth.previous");
+    const gpu::PlannedBarrier* ssao = barrier(second, "ssao_temporal_blur", "ssaoHistoryDepth.previous");
     ASSERT_NE(ssao, nullptr);
     EXPECT_EQ(ssao->oldLayout, VK_IMAGE_LAYOUT_GENERAL);
     // The shadow atlas is kept: an unchanged scene renders no shadow map.
@@ -218,7 +218,7 @@ void MsaaResolvesBeforeThePerPixelPassesAndLightsPerSample() {
     const Frame& frame = w.render();
     EXPECT_EQ(running(frame), concat({{"shadow_maps", "gbuffer", "msaa_resolve", "msaa_resolve_depth"},
                                       kSsao,
-                                      {"lighting", "transparent", "temporal_aa", "tonemap", "aov_readback"}}));
+                                      {"lighting", "transparent", "temporal_aa", "aov_readback"}}));
     // The resolve reads the multisampled targets in a compute shader, after their writes; the
     // sRGB albedo, which no storage image can hold, in the fragment shader of its raster half.
     for (const char* target : {"gbuffer.normalRoughness", "gbuffer.instance"}) {
@@ -239,10 +239,10 @@ void MsaaResolvesBeforeThePerPixelPassesAndLightsPerSample() {
             for (const auto& attachment : pass.attachments)
                 EXPECT_NE(attachment.load, VK_ATTACHMENT_LOAD_OP_LOAD);
     // SSAO works on the resolved G-buffer, after the resolve wrote it.
-    const gpu::PlannedBarrier* resolved = barrier(frame, "ssao_downsample", "resolved.depth");
+    const gpu::PlannedBarrier* resolved = barrier(frame, "ssao_obscurance", "resolved.depth");
     ASSERT_NE(resolved, nullptr);
     EXPECT_EQ(resolved->oldLayout, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
-    EXPECT_EQ(barrier(frame, "ssao_downsample", "gbuffer.depth"), nullptr);
+    EXPECT_EQ(barrier(frame, "ssao_obscurance", "gbuffer.depth"), nullptr);
 }
 
 void WithoutSsaoTheLightingReadsOneUnoccludedTexel() {
@@ -254,12 +254,12 @@ void WithoutSsaoTheLightingReadsOneUnoccludedTexel() {
     EXPECT_TRUE(runs(frame, "lighting"));
 }
 
-void WithoutTemporalAaToneMappingReadsTheLightAccumulation() {
+void WithoutTemporalAaTheReadbackReadsTheLightAccumulation() {
     Wiring w;
     w.settings.temporalAa = false;
     const Frame& frame = w.render();
     EXPECT_FALSE(runs(frame, "temporal_aa"));
-    const gpu::PlannedBarrier* read = barrier(frame, "tonemap", "lightAccumulation");
+    const gpu::PlannedBarrier* read = barrier(frame, "aov_readback", "lightAccumulation");
     ASSERT_NE(read, nullptr);
     EXPECT_EQ(read->oldLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);  // the transparents blended into it
     EXPECT_EQ(read->newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
@@ -277,7 +277,7 @@ void DepthOfFieldAndMotionBlurFollowTemporalAa() {
                                          {"lighting", "transparent", "temporal_aa"},
                                          kDepthOfField,
                                          kMotionBlur,
-                                         {"tonemap", "aov_readback"}}));
+                                         {"aov_readback"}}));
     // The moving draw writes velocities into a target of their own.
     EXPECT_NE(barrier(realTime, "gbuffer", "gbuffer.velocity"), nullptr);
     const Frame& sample = w.render();
@@ -286,7 +286,7 @@ void DepthOfFieldAndMotionBlurFollowTemporalAa() {
                                        {"lighting", "transparent", "temporal_aa_sample"},
                                        kDepthOfField,
                                        kMotionBlur,
-                                       {"temporal_aa_still", "tonemap", "aov_readback"}}));
+                                       {"temporal_aa_still", "aov_readback"}}));
 }
 
 // The passes of the depth-of-field chain live a pass or two each: their images share memory.
@@ -315,19 +315,21 @@ void ReferenceSubFramesAccumulateAndTheFrameResolvesTheMean() {
     }
     const Frame& resolve = w.backend.frames[4];
     EXPECT_EQ(running(resolve),
-              (std::vector<std::string>{"gbuffer", "accumulate_resolve", "transparent", "tonemap", "aov_readback"}));
+              (std::vector<std::string>{"gbuffer", "accumulate_resolve", "transparent", "aov_readback"}));
 }
 
-// Culling: with no AOV bound, nothing reads the display image and tone mapping is culled; what
-// writes a history still runs, since the next frame reads it.
+// Culling: with no AOV bound and no temporal AA history to write, nothing reads the light
+// accumulation, and the lighting and what feeds it alone are culled; what writes a history still
+// runs, since the next frame reads it.
 void APassWhoseResultsNobodyReadsIsCulled() {
     Wiring w;
     w.request.aovs.clear();
+    w.settings.temporalAa = false;
     const Frame& frame = w.render();
-    EXPECT_EQ(passesThat(frame, true), std::vector<std::string>{"tonemap"});
-    EXPECT_TRUE(runs(frame, "temporal_aa"));
-    EXPECT_TRUE(runs(frame, "ssao_temporal"));
+    EXPECT_EQ(passesThat(frame, true), (std::vector<std::string>{"lighting", "transparent"}));
+    EXPECT_TRUE(runs(frame, "ssao_temporal_blur"));
     EXPECT_TRUE(runs(frame, "shadow_maps"));
+    EXPECT_TRUE(runs(frame, "gbuffer"));
 }
 
 // Hybrid AA (seed 004): while the scene changes, near instances are edge-anti-aliased after
@@ -339,7 +341,7 @@ void HybridAaAddsEdgeAaWhileTheSceneChanges() {
     EXPECT_EQ(running(changing), concat({{"shadow_maps", "gbuffer"},
                                          kSsao,
                                          {"lighting", "transparent", "temporal_aa", "edge_aa_edges",
-                                          "edge_aa_weights", "edge_aa_blend", "tonemap", "aov_readback"}}));
+                                          "edge_aa_weights", "edge_aa_blend", "aov_readback"}}));
     const Frame& still = w.render();
     EXPECT_FALSE(runs(still, "edge_aa_edges"));
 }
@@ -433,8 +435,8 @@ TEST(FrameWiring, SettingsChooseThePasses) {
         WithoutSsaoTheLightingReadsOneUnoccludedTexel();
     }
     {
-        SCOPED_TRACE("WithoutTemporalAaToneMappingReadsTheLightAccumulation");
-        WithoutTemporalAaToneMappingReadsTheLightAccumulation();
+        SCOPED_TRACE("WithoutTemporalAaTheReadbackReadsTheLightAccumulation");
+        WithoutTemporalAaTheReadbackReadsTheLightAccumulation();
     }
     {
         SCOPED_TRACE("HybridAaAddsEdgeAaWhileTheSceneChanges");
