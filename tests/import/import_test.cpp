@@ -320,6 +320,28 @@ TEST(GltfImport, EmbeddedTexturesAreWrittenOutAndBound) {
     EXPECT_FALSE(gltf.warned("material 'Embedded'"));
 }
 
+// A binary glTF keeps its images in buffer views of its binary chunk: written out and bound as a
+// data: URI's are (tests/import/data/make_scene_gltf.py writes embedded.glb).
+TEST(GltfImport, GlbImagesInBufferViewsAreWrittenOutAndBound) {
+    const Imported glb("embedded.glb");
+    ASSERT_TRUE(glb.stage);
+    const std::string material = kLooks + "/Packed";
+    const std::string texture = material + "/BaseColorTexture";
+    glb.prim(texture, "Shader");
+    EXPECT_EQ(glb.connection(material + "/Surface", "inputs:diffuseColor"), texture + ".outputs:rgb");
+    const std::string file = glb.token(texture, "inputs:file");
+    EXPECT_TRUE(file.ends_with(".png")) << file;
+    auto image = image::readStbImage(file);
+    ASSERT_FALSE(image::isError(image)) << image::errorOf(image);
+    const auto& pixels = std::get<image::Image>(image);
+    ASSERT_EQ(pixels.width, 1);
+    ASSERT_EQ(pixels.height, 1);
+    EXPECT_FLOAT_EQ(pixels.pixels[0], 0.0f);
+    EXPECT_FLOAT_EQ(pixels.pixels[1], 64.0f / 255.0f);
+    EXPECT_FLOAT_EQ(pixels.pixels[2], 1.0f);
+    EXPECT_FALSE(glb.warned("material 'Packed'"));
+}
+
 TEST(GltfImport, PerspectiveCameraKeepsTheFieldOfView) {
     const Imported gltf("scene.gltf");
     ASSERT_TRUE(gltf.stage);

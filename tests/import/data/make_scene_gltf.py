@@ -2,7 +2,7 @@
 """Writes the glTF 2.0 test scenes of tests/import, their buffers embedded as base64:
 scene.gltf, a small scene using every feature the importer maps, nonfinite.gltf, whose binary
 data holds NaN and infinity where the importer must drop them, and skinned.gltf, a two-joint arm
-whose elbow bends.
+whose elbow bends; and embedded.glb, a binary glTF whose texture is a PNG in a buffer view.
 
 Run from this folder: python3 make_scene_gltf.py. The values here are the ones import_test.cpp expects.
 """
@@ -21,15 +21,18 @@ class Buffer:
         self.data = bytearray()
         self.views, self.accessors = [], []
 
-    def add(self, fmt, values, component, kind, count, target=None, bounds=False):
+    def view(self, raw, target=None):
         while len(self.data) % 4:
             self.data.append(0)
-        raw = struct.pack("<" + fmt * len(values), *values)
         view = {"buffer": 0, "byteOffset": len(self.data), "byteLength": len(raw)}
         if target:
             view["target"] = target
         self.views.append(view)
         self.data += raw
+        return len(self.views) - 1
+
+    def add(self, fmt, values, component, kind, count, target=None, bounds=False):
+        self.view(struct.pack("<" + fmt * len(values), *values), target)
         accessor = {"bufferView": len(self.views) - 1, "componentType": component, "count": count, "type": kind}
         if bounds:
             width = len(values) // count
@@ -190,3 +193,39 @@ skinned = {
 }
 embed(skinned, arm)
 write("skinned.gltf", skinned)
+
+# The quad of scene.gltf as a binary glTF (GLB): its image is a PNG stored in a buffer view of the
+# file's binary chunk, which the importer writes out as it does a data: URI.
+glb = Buffer()
+glb_positions = glb.add("f", positions, FLOAT, "VEC3", 4, 34962, bounds=True)
+glb_uvs = glb.add("f", uvs, FLOAT, "VEC2", 4, 34962)
+glb_indices = glb.add("H", [0, 1, 2, 0, 2, 3], USHORT, "SCALAR", 6, 34963)
+glb_image = glb.view(png_1x1([0, 64, 255]))
+binary = {
+    "asset": {"version": "2.0", "generator": "Obscura tests/import/data/make_scene_gltf.py"},
+    "scene": 0,
+    "scenes": [{"nodes": [0]}],
+    "nodes": [{"name": "Card", "mesh": 0}],
+    "meshes": [{"name": "Card", "primitives": [
+        {"attributes": {"POSITION": glb_positions, "TEXCOORD_0": glb_uvs}, "indices": glb_indices, "material": 0}]}],
+    "materials": [{"name": "Packed", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+    "textures": [{"source": 0}],
+    "images": [{"bufferView": glb_image, "mimeType": "image/png"}],
+    "accessors": glb.accessors,
+    "bufferViews": glb.views,
+    "buffers": [{"byteLength": len(glb.data)}],
+}
+
+
+def write_glb(path, gltf, data):
+    # GLB 2.0: a 12-byte header, then a JSON chunk padded with spaces and a BIN chunk padded with
+    # zeros, each 4-byte aligned.
+    text = json.dumps(gltf, separators=(",", ":")).encode()
+    text += b" " * (-len(text) % 4)
+    data = bytes(data) + b"\0" * (-len(data) % 4)
+    chunks = struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(data), 0x004E4942) + data
+    with open(path, "wb") as out:
+        out.write(struct.pack("<III", 0x46546C67, 2, 12 + len(chunks)) + chunks)
+
+
+write_glb("embedded.glb", binary, glb.data)
