@@ -45,7 +45,6 @@ TransparentResult addTransparentPass(gpu::FrameGraph& graph, const FrameScene& s
     desc.width = scene.width;
     desc.height = scene.height;
     TransparentResult result{hdr, graph.createImage("transparentCoverage", desc)};
-    const bool anyDraws = !draws.empty();
     const VkFormat hdrFormat = graph.imageDesc(hdr).format;
     const SceneBuffers& buffers = scene.buffers;
     std::vector<ShaderBinding> bindings{bufferRead(buffers.camera),
@@ -62,13 +61,12 @@ TransparentResult addTransparentPass(gpu::FrameGraph& graph, const FrameScene& s
     graph.addPass(
         "transparent", gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {
-            // Attachments in the pipeline's order; without draws only the coverage is cleared.
-            if (anyDraws) result.hdr = pass.colorAttachment(hdr);
+            // Attachments in the pipeline's order.
+            result.hdr = pass.colorAttachment(hdr);
             result.coverage = pass.colorAttachment(result.coverage, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
-            if (anyDraws) declareBindings(pass, bindings, ShaderStage::Graphics);
+            declareBindings(pass, bindings, ShaderStage::Graphics);
         },
-        [&scene, draws, bindings, settings, anyDraws, hdrFormat](VkCommandBuffer cmd, const gpu::PassResources& res) {
-            if (!anyDraws) return;
+        [&scene, draws, bindings, settings, hdrFormat](VkCommandBuffer cmd, const gpu::PassResources& res) {
             gpu::Device& device = res.device();
             const gpu::Pipeline* bound = nullptr;
             const MaterialTextures* pushed = nullptr;

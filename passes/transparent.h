@@ -23,8 +23,8 @@ struct TransparentSettings {
 // `opaqueDepth` is the depth transparents are tested against and fade with (sampled, no depth
 // attachment): the G-buffer's depth, or with a multisampled G-buffer the max of its samples (seed
 // 000 "Deferred MSAA \ performance shortcuts (2)"). `hdr` is the light accumulation, blended
-// into in place. Returns the transparent coverage (kTransparentCoverageFormat; all 0 when there
-// are no draws: then the pass only clears it).
+// into in place. `draws` is not empty: a frame without transparent surfaces runs no pass, and its
+// coverage is one texel of 0 (transparentCoverageAt, shaders/common/coverage.glsl).
 // The frame's colour with the transparent surfaces over it, and their coverage.
 struct TransparentResult {
     gpu::ImageHandle hdr;

@@ -62,6 +62,9 @@ FrameRenderer::FrameRenderer(std::unique_ptr<gpu::FrameBackend> owned, gpu::Fram
     static_assert(passes::kStaticVelocity == -65504.0f);
     one.format = passes::kVelocityFormat;
     stillVelocity_ = backend_.createTexture(one, still, sizeof(still), "still velocity");
+    const uint8_t uncovered = 0;
+    one.format = passes::kTransparentCoverageFormat;
+    noTransparentCoverage_ = backend_.createTexture(one, &uncovered, sizeof(uncovered), "no transparent coverage");
     environment_ = std::make_unique<EnvironmentCache>(backend_, environmentSampler);
 }
 
@@ -189,11 +192,9 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
             graph.importPersistent("referenceAccumulation", accumulation_, accumulationDesc(width, height));
         hdr = passes::addAccumulationResolvePass(graph, sum, VK_FORMAT_R16G16B16A16_SFLOAT);
         // The sub-frames blended the transparent surfaces into the accumulation. XXX: the alpha of
-        // the reference's colour is the pinhole G-buffer's coverage alone (this clears the
-        // transparent coverage): transparents over the background are not in it.
-        passes::TransparentResult transparent = passes::addTransparentPass(graph, scene, {}, gbuffer.depth, hdr, {}, {}, {});
-        hdr = transparent.hdr;
-        transparentCoverage = transparent.coverage;
+        // the reference's colour is the pinhole G-buffer's coverage alone (no transparent
+        // coverage): transparents over the background are not in it.
+        transparentCoverage = graph.importTexture("transparentCoverage.none", noTransparentCoverage_);
     } else {
         // Any frame of SMAA 1TX may start or join a still's mean (and a frame of change must match
         // the still it interrupts where nothing changed).
@@ -312,6 +313,10 @@ gpu::ImageHandle FrameRenderer::addLighting(gpu::FrameGraph& graph, const passes
     gpu::ImageHandle hdr = passes::addLightingPass(graph, scene, gbuffer, ambient, shadowAtlas, environment,
                                                    accumulation, msaa ? &msaa->perSample : nullptr);
     // Transparent surfaces over the lit opaque ones, before temporal AA (DESIGN.md "The frame").
+    if (scene.transparentDraws.empty()) {
+        transparentCoverage = graph.importTexture("transparentCoverage.none", noTransparentCoverage_);
+        return hdr;
+    }
     // The fade distance is authored in metres, like the SSAO radius.
     passes::TransparentSettings transparents{float(settings.transparentFadeMetres / settings.metersPerUnit)};
     passes::TransparentResult transparent =

@@ -212,6 +212,8 @@ private:
     } unoccluded_;
     // A frame without a velocity target reads this one texel of kStaticVelocity (the motion AOV).
     gpu::ImagePtr stillVelocity_;
+    // A frame without transparent surfaces reads this one texel of coverage 0.
+    gpu::ImagePtr noTransparentCoverage_;
     OcclusionHistory occlusion_;
     GpuOcclusionCulling gpuOcclusion_;
     InstanceModels lastModels_;  // the last frame's instance models, for temporal AA's object motion

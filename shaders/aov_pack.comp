@@ -57,7 +57,7 @@ void main() {
         float a = push.alphaIsCoverage != 0u
                       ? hdr.a
                       : compositeCoverage(max(covered ? 1.0 : 0.0, camera.backdropCoverage),
-                                          texelFetch(transparentCoverage, pixel, 0).r);
+                                          transparentCoverageAt(transparentCoverage, pixel));
         if (push.aov == AOV_DISPLAY) {
             words[index] = packUnorm4x8(vec4(displayTransform(hdr.rgb, displayLut, push.shaper), a));
         } else {

@@ -18,6 +18,6 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, imageSize(sampleColor)))) return;
     float coverage = pixelCoverage(texelFetch(depthTexture, pixel, 0).r, camera.backdropCoverage,
-                                   texelFetch(transparentCoverage, pixel, 0).r);
+                                   transparentCoverageAt(transparentCoverage, pixel));
     imageStore(sampleColor, pixel, vec4(texelFetch(hdrColor, pixel, 0).rgb, coverage));
 }

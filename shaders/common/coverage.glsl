@@ -7,6 +7,12 @@
 
 float compositeCoverage(float opaque, float transparent) { return 1.0 - (1.0 - opaque) * (1.0 - transparent); }
 
+// The transparent surfaces' coverage at `pixel` (passes/transparent.h). A frame without any reads
+// one texel of 0 instead of a cleared full-size target: clamped to the image.
+float transparentCoverageAt(sampler2D coverage, ivec2 pixel) {
+    return texelFetch(coverage, min(pixel, textureSize(coverage, 0) - 1), 0).r;
+}
+
 // A pixel's coverage in a frame: a G-buffer surface (the device depth short of the far plane the
 // G-buffer clears to) or a dome the camera sees (CameraData::backdropCoverage), with the
 // transparent surfaces over it.

@@ -81,7 +81,7 @@ CrossDepths loadCrossDepths(ivec2 pixel, ivec2 size) {
 vec4 currentSample(ivec2 pixel, float deviceDepth) {
     vec4 colour = texelFetch(currentColor, pixel, 0);
     if ((taa.frames.w & TAA_FLAG_COLOR_HAS_COVERAGE) != 0u) return colour;
-    return vec4(colour.rgb, pixelCoverage(deviceDepth, camera.backdropCoverage, texelFetch(transparentCoverage, pixel, 0).r));
+    return vec4(colour.rgb, pixelCoverage(deviceDepth, camera.backdropCoverage, transparentCoverageAt(transparentCoverage, pixel)));
 }
 
 // A history depth may differ from the one expected by this much (relative) and still hold the

@@ -17,8 +17,9 @@ using Frame = test::MockFrameBackend::Frame;
 
 constexpr uint32_t kWidth = 64, kHeight = 36;
 
-// One opaque and one transparent draw; with motion blur the opaque one moves. Records are empty
-// host buffers: nothing is drawn, but every pass that reads them declares them.
+// One opaque and one transparent draw (unless `glass` is off); with motion blur the opaque one
+// moves. Records are empty host buffers: nothing is drawn, but every pass that reads them declares
+// them.
 class SceneOfTwoDraws final : public FrameSceneSource {
 public:
     explicit SceneOfTwoDraws(gpu::FrameBackend& backend) : backend_(backend) {}
@@ -52,6 +53,7 @@ public:
         glass.transparent = true;
         glass.instanceIndex = 1;
         s.draws = {opaque, glass};
+        if (!withGlass) s.draws.pop_back();
         s.cameraDraws = {opaque};
         // Occlusion culling on the GPU: the still opaque draw's one instance is a candidate.
         if (viewpoint.gpuOcclusionCulling && !opaque.moving) {
@@ -60,11 +62,13 @@ public:
             s.occlusionCandidates = records("occlusion candidates");
             s.occlusionCandidateCount = 1;
         }
-        s.transparentDraws = {1};
-        s.instanceCount = 2;
+        if (withGlass) s.transparentDraws = {1};
+        s.instanceCount = uint32_t(s.draws.size());
         s.edgeAa = viewpoint.edgeAaDistance > 0.0;
         return s;
     }
+
+    bool withGlass = true;
 
 private:
     gpu::FrameBackend& backend_;
@@ -152,6 +156,17 @@ void TheDefaultFrameRunsEveryStepOnce() {
                                       kSsao,
                                       {"lighting", "transparent", "temporal_aa", "aov_readback"}}));
     EXPECT_TRUE(passesThat(frame, true).empty());
+}
+
+// A frame without transparent surfaces runs no pass for them: the readback reads one texel of
+// coverage 0.
+void WithoutTransparentSurfacesNoPassRunsForThem() {
+    Wiring w;
+    w.source.withGlass = false;
+    const Frame& frame = w.render();
+    EXPECT_EQ(running(frame), concat({{"shadow_maps", "gbuffer"}, kSsao, {"lighting", "temporal_aa", "aov_readback"}}));
+    EXPECT_TRUE(passesThat(frame, true).empty());
+    EXPECT_EQ(barrier(frame, "aov_readback", "transparentCoverage.none"), nullptr);
 }
 
 // What the frame graph derives from the declarations, for the G-buffer's depth: written as an
@@ -315,7 +330,7 @@ void ReferenceSubFramesAccumulateAndTheFrameResolvesTheMean() {
     }
     const Frame& resolve = w.backend.frames[4];
     EXPECT_EQ(running(resolve),
-              (std::vector<std::string>{"gbuffer", "accumulate_resolve", "transparent", "aov_readback"}));
+              (std::vector<std::string>{"gbuffer", "accumulate_resolve", "aov_readback"}));
 }
 
 // Culling: with no AOV bound and no temporal AA history to write, nothing reads the light
@@ -410,6 +425,10 @@ TEST(FrameWiring, TheDefaultFrame) {
     {
         SCOPED_TRACE("TheDefaultFrameRunsEveryStepOnce");
         TheDefaultFrameRunsEveryStepOnce();
+    }
+    {
+        SCOPED_TRACE("WithoutTransparentSurfacesNoPassRunsForThem");
+        WithoutTransparentSurfacesNoPassRunsForThem();
     }
     {
         SCOPED_TRACE("TheGBufferIsReadAfterItsWritesInReadOnlyLayouts");
