@@ -49,9 +49,13 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (pixel.x >= int(push.width) || pixel.y >= int(push.height)) return;
     uint index = uint(pixel.y) * push.width + uint(pixel.x);
-    uint instanceId = instanceIdFromTarget(texelFetch(instanceTexture, pixel, 0).r);
+    // Read by the AOVs that need it only: the colour's alpha comes from the colour itself where it
+    // holds coverage (temporal AA's), and the display AOV of such a frame reads nothing else.
+    bool colour = push.aov == AOV_COLOR || push.aov == AOV_DISPLAY;
+    bool needsInstance = colour ? push.alphaIsCoverage == 0u : push.aov != AOV_DEPTH && push.aov != AOV_MOTION;
+    uint instanceId = needsInstance ? instanceIdFromTarget(texelFetch(instanceTexture, pixel, 0).r) : 0u;
     bool covered = instanceId != 0u;
-    if (push.aov == AOV_COLOR || push.aov == AOV_DISPLAY) {
+    if (colour) {
         vec4 hdr = texelFetch(hdrColor, pixel, 0);
         // Premultiplied alpha: the opaque coverage with the transparent surfaces' over it.
         float a = push.alphaIsCoverage != 0u
