@@ -1,8 +1,5 @@
 #include "delegate/material_texture.h"
 
-#include "delegate/normal_map_image.h"
-#include "delegate/udim_tiles.h"
-
 #include <algorithm>
 #include <cmath>
 
@@ -44,9 +41,9 @@ std::optional<BoundTexture> readBoundTexture(SceneAccess& scene, TextureCache& c
     const std::array<float, 4> scale = scene.getFloat4(attribute("scale").c_str());
     const std::array<float, 4> bias = scene.getFloat4(attribute("bias").c_str());
     const auto channel = parseChannel(scene.getToken(attribute("channel").c_str()));
+    // The cache decides whether the file can be stored as a normal map (not a float image).
     const TextureRole role = input == "normal" && channel == passes::TextureChannel::Rgb &&
-                                     colorSpace == SourceColorSpace::Raw && readsUnitNormals(scale, bias) &&
-                                     (isUdimPattern(file) || isIntegerImageFile(file))
+                                     colorSpace == SourceColorSpace::Raw && readsUnitNormals(scale, bias)
                                  ? TextureRole::Normal
                                  : TextureRole::Material;
     auto loaded = cache.get(file, colorSpace, role);

@@ -2,7 +2,6 @@
 
 #include "delegate/texture_image.h"
 
-#include <OpenEXR/ImfTestFile.h>
 #include <stb_image.h>
 
 #include <algorithm>
@@ -36,20 +35,25 @@ NormalImage toNormals(const T* rgb, int width, int height, float maxCode) {
 
 }  // namespace
 
-bool isIntegerImageFile(const std::string& path) {
-    return !Imf::isOpenExrFile(path.c_str()) && !stbi_is_hdr(path.c_str());
+bool isIntegerImage(std::string_view bytes) {
+    const auto stb = StbBytes::of(bytes);
+    return stb && !isOpenExr(bytes) && !stbi_is_hdr_from_memory(stb->data, stb->size);
 }
 
-std::variant<NormalMapSource, std::string> decodeNormalMap(const std::string& path) {
+std::variant<NormalMapSource, std::string> decodeNormalMap(std::string_view bytes) {
+    const auto stb = StbBytes::of(bytes);
+    if (!stb) return std::string(StbBytes::kTooLarge);
     int width = 0, height = 0, channels = 0;
     NormalMapSource source;
-    source.sixteenBit = stbi_is_16_bit(path.c_str());
+    source.sixteenBit = stbi_is_16_bit_from_memory(stb->data, stb->size);
     if (source.sixteenBit) {
-        std::unique_ptr<stbi_us, StbFree> data(stbi_load_16(path.c_str(), &width, &height, &channels, 3));
+        std::unique_ptr<stbi_us, StbFree> data(
+            stbi_load_16_from_memory(stb->data, stb->size, &width, &height, &channels, 3));
         if (!data) return "cannot read image: " + stbFailureReason();
         source.normals = toNormals(data.get(), width, height, 65535.0f);
     } else {
-        std::unique_ptr<stbi_uc, StbFree> data(stbi_load(path.c_str(), &width, &height, &channels, 3));
+        std::unique_ptr<stbi_uc, StbFree> data(
+            stbi_load_from_memory(stb->data, stb->size, &width, &height, &channels, 3));
         if (!data) return "cannot read image: " + stbFailureReason();
         source.normals = toNormals(data.get(), width, height, 255.0f);
     }

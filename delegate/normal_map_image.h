@@ -7,6 +7,7 @@
 #include "gpu/texture_upload.h"
 
 #include <string>
+#include <string_view>
 #include <variant>
 
 namespace obscura::delegate {
@@ -16,10 +17,11 @@ struct NormalMapSource {
     bool sixteenBit = false;
 };
 
-// Whether stb_image reads the file as 8 or 16 bits per channel (not a float format).
-bool isIntegerImageFile(const std::string& path);
+// Whether stb_image reads the file's bytes as 8 or 16 bits per channel (not a float format).
+bool isIntegerImage(std::string_view bytes);
 
-std::variant<NormalMapSource, std::string> decodeNormalMap(const std::string& path);
+// A file's bytes decoded; the reason when they cannot be.
+std::variant<NormalMapSource, std::string> decodeNormalMap(std::string_view bytes);
 
 // The next mip level: each texel the normalised mean of a 2x2 box (as downsample() crops).
 NormalImage downsampleNormals(const NormalImage& level);

@@ -68,20 +68,29 @@ std::variant<TexturePtr, std::string> TextureCache::get(const std::string& file,
 
 std::variant<TexturePtr, std::string> TextureCache::make(const std::string& file, SourceColorSpace colorSpace,
                                                          TextureRole role) {
-    if (isUdimPattern(file)) return makeUdim(file, colorSpace, role);
+    // A reader of this load's own: a UDIM set's tiles in one package share one opening of it,
+    // and a package changed on disk is read anew by the next load.
+    assets::AssetReader assets;
+    if (isUdimPattern(file)) return makeUdim(assets, file, colorSpace, role);
+    std::string problem;
+    const std::optional<std::string> bytes = assets.read(file, &problem);
+    if (!bytes) return problem;
     if (role == TextureRole::Normal)
-        if (auto normalMap = makeNormalMap(file)) return *normalMap;
-    auto decoded = decodeTextureFile(file, colorSpace, role);
-    if (auto* problem = std::get_if<std::string>(&decoded)) return *problem;
-    return makeFromImage(file, {file}, "", std::move(std::get<TextureImage>(decoded)), role, Texture{});
+        if (auto normalMap = makeNormalMap(file, *bytes)) return *normalMap;
+    auto decoded = decodeTextureImage(*bytes, colorSpace, role);
+    if (auto* undecodable = std::get_if<std::string>(&decoded)) return *undecodable;
+    return makeFromImage(file, {TextureDiskCache::contentHash(*bytes)}, "", std::move(std::get<TextureImage>(decoded)),
+                         role, Texture{});
 }
 
-std::variant<TexturePtr, std::string> TextureCache::makeUdim(const std::string& pattern, SourceColorSpace colorSpace,
-                                                             TextureRole role) {
-    const std::vector<UdimTile> tiles = findUdimTiles(pattern);
+std::variant<TexturePtr, std::string> TextureCache::makeUdim(assets::AssetReader& assets, const std::string& pattern,
+                                                             SourceColorSpace colorSpace, TextureRole role) {
+    auto found = findUdimTiles(assets, pattern);
+    if (auto* problem = std::get_if<std::string>(&found)) return *problem;
+    const std::vector<UdimTile>& tiles = std::get<std::vector<UdimTile>>(found);
     if (tiles.empty()) return std::string("no UDIM tile exists (1001 to 1999)");
     const uint32_t maxDimension = device_.context().properties().limits.maxImageDimension2D;
-    auto assembled = assembleUdimAtlas(tiles, colorSpace, maxDimension);
+    auto assembled = assembleUdimAtlas(tiles, assets, colorSpace, maxDimension);
     if (auto* problem = std::get_if<std::string>(&assembled)) return *problem;
     UdimAtlas& atlas = std::get<UdimAtlas>(assembled);
     Texture texture;
@@ -91,11 +100,11 @@ std::variant<TexturePtr, std::string> TextureCache::makeUdim(const std::string& 
     for (float g : atlas.grid) layout += "-" + std::to_string(int(g));
     layout += "-" + std::to_string(atlas.image.level0.width) + "x" + std::to_string(atlas.image.level0.height) + "-";
     // A normal map's set keeps its own z in RGBA (the two-channel route reads single files).
-    return makeFromImage(pattern, atlas.tileFiles, layout, std::move(atlas.image),
+    return makeFromImage(pattern, atlas.tileHashes, layout, std::move(atlas.image),
                          role == TextureRole::Normal ? TextureRole::Plain : role, std::move(texture));
 }
 
-TexturePtr TextureCache::makeFromImage(const std::string& file, const std::vector<std::string>& sources,
+TexturePtr TextureCache::makeFromImage(const std::string& file, const std::vector<std::string>& sourceHashes,
                                        const std::string& sourceEncoding, TextureImage image, TextureRole role,
                                        Texture texture) {
     Made made;
@@ -120,7 +129,7 @@ TexturePtr TextureCache::makeFromImage(const std::string& file, const std::vecto
     if (compress) {
         const std::vector<gpu::MipLevel> chain = std::move(made.levels);
         bool cached = false;
-        made.levels = blockLevels(sources,
+        made.levels = blockLevels(sourceHashes,
                                   sourceEncoding + "squish-1-" + std::to_string(blockFormat) + "-from-" +
                                       std::to_string(image.format),
                                   chain, blockFormat, [&](size_t i) { return compressColourLevel(chain[i], blockFormat); },
@@ -134,8 +143,11 @@ TexturePtr TextureCache::makeFromImage(const std::string& file, const std::vecto
     return upload(file, std::move(made), std::move(texture));
 }
 
-std::optional<std::variant<TexturePtr, std::string>> TextureCache::makeNormalMap(const std::string& file) {
-    auto decoded = decodeNormalMap(file);
+std::optional<std::variant<TexturePtr, std::string>> TextureCache::makeNormalMap(const std::string& file,
+                                                                                 std::string_view bytes) {
+    // A float file keeps its values: it is stored as the texture it is.
+    if (!isIntegerImage(bytes)) return std::nullopt;
+    auto decoded = decodeNormalMap(bytes);
     if (auto* problem = std::get_if<std::string>(&decoded)) return *problem;
     NormalMapSource& source = std::get<NormalMapSource>(decoded);
     // 16-bit files keep their precision (the talk's "Normal maps precision"); 8-bit ones are
@@ -157,7 +169,8 @@ std::optional<std::variant<TexturePtr, std::string>> TextureCache::makeNormalMap
     } else {
         std::vector<gpu::MipLevel> extents;
         for (const NormalImage& level : chain) extents.push_back({level.width, level.height, {}});
-        made.levels = blockLevels({file}, "bc5-normal-aware-1", extents, made.desc.format,
+        made.levels = blockLevels({TextureDiskCache::contentHash(bytes)}, "bc5-normal-aware-1", extents,
+                                  made.desc.format,
                                   [&](size_t i) {
                                       return gpu::MipLevel{chain[i].width, chain[i].height,
                                                            encodeBc5(chain[i], Bc5Encoder::NormalAware)};
@@ -182,7 +195,8 @@ bool TextureCache::canSampleCompressed(VkFormat format) const {
     return (properties.optimalTilingFeatures & needed) == needed;
 }
 
-std::vector<gpu::MipLevel> TextureCache::blockLevels(const std::vector<std::string>& sources, const std::string& encoding,
+std::vector<gpu::MipLevel> TextureCache::blockLevels(const std::vector<std::string>& sourceHashes,
+                                                     const std::string& encoding,
                                                      const std::vector<gpu::MipLevel>& extents, VkFormat format,
                                                      const std::function<gpu::MipLevel(size_t)>& encode,
                                                      bool& cached) const {
@@ -192,7 +206,7 @@ std::vector<gpu::MipLevel> TextureCache::blockLevels(const std::vector<std::stri
     };
     size_t total = 0;
     for (const gpu::MipLevel& level : extents) total += sizeOf(level);
-    const std::string key = TextureDiskCache::key(sources, encoding);
+    const std::string key = TextureDiskCache::key(sourceHashes, encoding);
     std::optional<std::vector<std::byte>> blocks = diskCache_.read(key);
     cached = blocks && blocks->size() == total;
     std::vector<gpu::MipLevel> levels;

@@ -1,12 +1,14 @@
-// The delegate's material textures: each distinct (file, sourceColorSpace, role) is read and uploaded
-// once, with its full mip chain, and shared by every material naming it for as long as one holds
-// it. With compression on, where the device samples the format, 8-bit normal maps are
-// BC5-compressed (bc5_encoder.h) and 8-bit colour BC1 or BC3 (colour_block_compression.h), their
-// blocks kept in a TextureDiskCache. A UDIM set (udim_tiles.h) is one atlas texture of its tiles,
-// stored as any other. Also the samplers of the UsdUVTexture wrap modes and the white texture that fills the
-// descriptor elements no material uses.
+// The delegate's material textures: each distinct (file, sourceColorSpace, role) is read (from a
+// file, or from a USDZ package in memory: assets/asset_reader.h) and uploaded once, with its full
+// mip chain, and shared by every material naming it for as long as one holds it. With compression
+// on, where the device samples the format, 8-bit normal maps are BC5-compressed (bc5_encoder.h) and
+// 8-bit colour BC1 or BC3 (colour_block_compression.h), their blocks kept in a TextureDiskCache. A
+// UDIM set (udim_tiles.h) is one atlas texture of its tiles, stored as any other. Also the
+// samplers of the UsdUVTexture wrap modes and the white texture that fills the descriptor elements
+// no material uses.
 #pragma once
 
+#include "assets/asset_reader.h"
 #include "delegate/texture_disk_cache.h"
 #include "delegate/texture_image.h"
 #include "gpu/device.h"
@@ -18,6 +20,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <utility>
 #include <variant>
@@ -48,9 +51,11 @@ public:
     TextureCache(const TextureCache&) = delete;
     TextureCache& operator=(const TextureCache&) = delete;
 
-    // The texture of an absolute file path (or UDIM pattern: its tiles' atlas), read on first use (logged at info level as
-    // "loaded texture <file> (size format, mips, device memory)"), else the reason it cannot be read. Failures are not remembered:
-    // the next sync of a material tries again.
+    // The texture of an absolute file path or package path ("/dir/a.usdz[tex/b.png]", read from the
+    // archive in memory; assets/asset_reader.h), or of a UDIM pattern (its tiles' atlas), read on
+    // first use (logged at info level as "loaded texture <file> (size format, mips, device
+    // memory)"), else the reason it cannot be read. Failures are not remembered: the next sync of
+    // a material tries again.
     std::variant<TexturePtr, std::string> get(const std::string& file, SourceColorSpace colorSpace, TextureRole role);
     // Trilinear, anisotropic where the device allows and `anisotropic` asks; black is a transparent
     // black border.
@@ -66,19 +71,20 @@ private:
         std::string how;                    // for the log: how the levels were made
     };
     std::variant<TexturePtr, std::string> make(const std::string& file, SourceColorSpace colorSpace, TextureRole role);
-    std::variant<TexturePtr, std::string> makeUdim(const std::string& pattern, SourceColorSpace colorSpace,
-                                                   TextureRole role);
-    // A decoded image with its mips, block-compressed where it may be. `sources` are the files its
-    // texels come from and `sourceEncoding` how they were combined, for the disk cache's key.
-    TexturePtr makeFromImage(const std::string& file, const std::vector<std::string>& sources,
+    std::variant<TexturePtr, std::string> makeUdim(assets::AssetReader& assets, const std::string& pattern,
+                                                   SourceColorSpace colorSpace, TextureRole role);
+    // A decoded image with its mips, block-compressed where it may be. `sourceHashes` are the
+    // TextureDiskCache::contentHash of the files its texels come from and `sourceEncoding` how they
+    // were combined, for the disk cache's key.
+    TexturePtr makeFromImage(const std::string& file, const std::vector<std::string>& sourceHashes,
                              const std::string& sourceEncoding, TextureImage image, TextureRole role, Texture texture);
-    // nullopt: the file is stored as a Material texture instead.
-    std::optional<std::variant<TexturePtr, std::string>> makeNormalMap(const std::string& file);
+    // `bytes` (of `file`) as a two-channel normal map; nullopt: stored as the texture it is instead.
+    std::optional<std::variant<TexturePtr, std::string>> makeNormalMap(const std::string& file, std::string_view bytes);
     TexturePtr upload(const std::string& file, Made made, Texture texture);
     bool canSampleCompressed(VkFormat format) const;
     // Block-compressed levels of the extents' sizes, `encode(i)` making level i, read from the disk
-    // cache under (file content, encoding) when it holds them (`cached`), else encoded and stored.
-    std::vector<gpu::MipLevel> blockLevels(const std::vector<std::string>& sources, const std::string& encoding,
+    // cache under (source contents, encoding) when it holds them (`cached`), else encoded and stored.
+    std::vector<gpu::MipLevel> blockLevels(const std::vector<std::string>& sourceHashes, const std::string& encoding,
                                            const std::vector<gpu::MipLevel>& extents, VkFormat format,
                                            const std::function<gpu::MipLevel(size_t)>& encode, bool& cached) const;
 

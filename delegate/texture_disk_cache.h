@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace obscura::delegate {
@@ -16,11 +17,11 @@ class TextureDiskCache {
 public:
     explicit TextureDiskCache(std::optional<std::filesystem::path> folder) : folder_(std::move(folder)) {}
 
-    // The key of `file`'s content encoded as `encoding` (a name that changes with the encoder);
-    // empty when the file cannot be read.
-    static std::string key(const std::string& file, const std::string& encoding);
-    // The key of several files' contents in this order (a UDIM set's tiles); for one file, its key.
-    static std::string key(const std::vector<std::string>& files, const std::string& encoding);
+    // The hash of a source file's bytes, which names what is encoded from them.
+    static std::string contentHash(std::string_view bytes);
+    // The key of sources, by their contentHash, encoded as `encoding` (a name that changes with the
+    // encoder): one file's hash, or several files' in this order (a UDIM set's tiles) hashed again.
+    static std::string key(const std::vector<std::string>& contentHashes, const std::string& encoding);
     std::optional<std::vector<std::byte>> read(const std::string& key) const;
     // Written to a temporary name and renamed, so a reader never sees half a file; failures to
     // write are ignored (the cache only saves time).

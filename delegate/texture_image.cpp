@@ -5,7 +5,8 @@
 #include <Imath/half.h>
 #include <OpenEXR/ImfArray.h>
 #include <OpenEXR/ImfRgbaFile.h>
-#include <OpenEXR/ImfTestFile.h>
+#include <OpenEXR/ImfStdIO.h>
+#include <OpenEXR/ImfVersion.h>
 #include <stb_image.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <cstddef>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <memory>
 
 namespace obscura::delegate {
@@ -78,10 +80,12 @@ gpu::MipLevel halfLevel(uint32_t width, uint32_t height, const Imath::half* rgba
     return level;
 }
 
-std::variant<TextureImage, std::string> decodeExr(const std::string& path) {
+std::variant<TextureImage, std::string> decodeExr(std::string_view bytes) {
     try {
+        Imf::StdISStream stream;
+        stream.str(std::string(bytes));
         // RgbaInputFile fills channels the file lacks (alpha 1, luminance-only files as grey).
-        Imf::RgbaInputFile file(path.c_str());
+        Imf::RgbaInputFile file(stream);
         const Imath::Box2i window = file.dataWindow();
         const auto width = static_cast<uint32_t>(window.max.x - window.min.x + 1);
         const auto height = static_cast<uint32_t>(window.max.y - window.min.y + 1);
@@ -104,9 +108,9 @@ std::variant<TextureImage, std::string> decodeExr(const std::string& path) {
     }
 }
 
-std::variant<TextureImage, std::string> decodeHdr(const std::string& path) {
+std::variant<TextureImage, std::string> decodeHdr(StbBytes bytes) {
     int width = 0, height = 0, channels = 0;
-    std::unique_ptr<float, StbFree> data(stbi_loadf(path.c_str(), &width, &height, &channels, 4));
+    std::unique_ptr<float, StbFree> data(stbi_loadf_from_memory(bytes.data, bytes.size, &width, &height, &channels, 4));
     if (!data) return "cannot read image: " + stbFailureReason();
     std::vector<Imath::half> rgba(size_t(width) * size_t(height) * 4);
     std::transform(data.get(), data.get() + rgba.size(), rgba.begin(), toHalf);
@@ -120,9 +124,10 @@ bool decodesSrgb(SourceColorSpace colorSpace, int fileChannels) {
            (colorSpace == SourceColorSpace::Auto && (fileChannels == 3 || fileChannels == 4));
 }
 
-std::variant<TextureImage, std::string> decode8Bit(const std::string& path, SourceColorSpace colorSpace) {
+std::variant<TextureImage, std::string> decode8Bit(StbBytes bytes, SourceColorSpace colorSpace) {
     int width = 0, height = 0, fileChannels = 0;
-    std::unique_ptr<stbi_uc, StbFree> data(stbi_load(path.c_str(), &width, &height, &fileChannels, 4));
+    std::unique_ptr<stbi_uc, StbFree> data(
+        stbi_load_from_memory(bytes.data, bytes.size, &width, &height, &fileChannels, 4));
     if (!data) return "cannot read image: " + stbFailureReason();
     const bool srgb = decodesSrgb(colorSpace, fileChannels);
     TextureImage image;
@@ -135,9 +140,10 @@ std::variant<TextureImage, std::string> decode8Bit(const std::string& path, Sour
 
 // A 16-bit PNG: decoded to linear values at full precision and renormalised, or (when that would
 // be coarser than 8-bit sRGB somewhere) read again as 8 bits.
-std::variant<TextureImage, std::string> decode16Bit(const std::string& path, SourceColorSpace colorSpace) {
+std::variant<TextureImage, std::string> decode16Bit(StbBytes bytes, SourceColorSpace colorSpace) {
     int width = 0, height = 0, fileChannels = 0;
-    std::unique_ptr<stbi_us, StbFree> data(stbi_load_16(path.c_str(), &width, &height, &fileChannels, 4));
+    std::unique_ptr<stbi_us, StbFree> data(
+        stbi_load_16_from_memory(bytes.data, bytes.size, &width, &height, &fileChannels, 4));
     if (!data) return "cannot read image: " + stbFailureReason();
     const bool srgb = decodesSrgb(colorSpace, fileChannels);
     std::vector<float> linear(size_t(width) * size_t(height) * 4);
@@ -146,7 +152,7 @@ std::variant<TextureImage, std::string> decode16Bit(const std::string& path, Sou
         linear[i] = srgb && i % 4 < 3 ? srgbToLinear(v) : v;
     }
     auto stretched = renormalize(uint32_t(width), uint32_t(height), linear, srgb);
-    if (!stretched) return decode8Bit(path, colorSpace);
+    if (!stretched) return decode8Bit(bytes, colorSpace);
     TextureImage image;
     image.format = VK_FORMAT_R8G8B8A8_UNORM;
     image.level0 = std::move(stretched->level);
@@ -171,12 +177,22 @@ SourceColorSpace parseSourceColorSpace(const std::string& token) {
     return SourceColorSpace::Auto;
 }
 
-std::variant<TextureImage, std::string> decodeTextureFile(const std::string& path, SourceColorSpace colorSpace,
-                                                          TextureRole role) {
-    if (Imf::isOpenExrFile(path.c_str())) return decodeExr(path);
-    if (stbi_is_hdr(path.c_str())) return decodeHdr(path);
-    if (role == TextureRole::Material && stbi_is_16_bit(path.c_str())) return decode16Bit(path, colorSpace);
-    return decode8Bit(path, colorSpace);
+std::optional<StbBytes> StbBytes::of(std::string_view bytes) {
+    if (bytes.size() > size_t(std::numeric_limits<int>::max())) return std::nullopt;
+    return StbBytes{reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size())};
+}
+
+bool isOpenExr(std::string_view bytes) { return bytes.size() >= 4 && Imf::isImfMagic(bytes.data()); }
+
+std::variant<TextureImage, std::string> decodeTextureImage(std::string_view bytes, SourceColorSpace colorSpace,
+                                                           TextureRole role) {
+    if (isOpenExr(bytes)) return decodeExr(bytes);
+    const auto stb = StbBytes::of(bytes);
+    if (!stb) return std::string(StbBytes::kTooLarge);
+    if (stbi_is_hdr_from_memory(stb->data, stb->size)) return decodeHdr(*stb);
+    if (role == TextureRole::Material && stbi_is_16_bit_from_memory(stb->data, stb->size))
+        return decode16Bit(*stb, colorSpace);
+    return decode8Bit(*stb, colorSpace);
 }
 
 gpu::MipLevel downsample(const gpu::MipLevel& level, VkFormat format) {

@@ -1,14 +1,16 @@
-// Texture files decoded for the GPU, pure CPU code: 8-bit images (PNG, JPEG, TGA, BMP, ...
-// through stb_image) become RGBA8, sRGB-encoded or linear; 16-bit PNGs of material inputs keep
-// their precision through histogram renormalisation (texture_renormalization.h); float images
-// (Radiance HDR through stb_image, OpenEXR) become RGBA16F. Also the CPU mip filter for formats
-// the GPU cannot blit.
+// Texture files decoded for the GPU from their bytes in memory, pure CPU code: 8-bit images (PNG,
+// JPEG, TGA, BMP, ... through stb_image) become RGBA8, sRGB-encoded or linear; 16-bit PNGs of
+// material inputs keep their precision through histogram renormalisation
+// (texture_renormalization.h); float images (Radiance HDR through stb_image, OpenEXR) become
+// RGBA16F. Also the CPU mip filter for formats the GPU cannot blit.
 #pragma once
 
 #include "gpu/texture_upload.h"
 
 #include <array>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 
 namespace obscura::delegate {
@@ -20,13 +22,24 @@ SourceColorSpace parseSourceColorSpace(const std::string& token);
 // The reason stb_image gave for its last failure on this thread.
 std::string stbFailureReason();
 
+// A file's bytes as stb_image's readers take them, with an int length: nullopt from 2 GiB on.
+struct StbBytes {
+    const unsigned char* data = nullptr;
+    int size = 0;
+    static std::optional<StbBytes> of(std::string_view bytes);
+    static constexpr const char* kTooLarge = "the file is too large to decode (2 GiB or more)";
+};
+
+// Whether `bytes` are an OpenEXR file (its magic number).
+bool isOpenExr(std::string_view bytes);
+
 // What a texture feeds, which decides how it may be stored.
 enum class TextureRole {
     Plain,     // sampled as it is (dome lights): texels keep their values
     Material,  // a UsdUVTexture output, whose scale and bias can absorb a renormalisation
     // A tangent-space normal map read as +-(2 texel - 1) per channel: stored in two channels with
-    // z reconstructed (normal_map_image.h) where the file is 16-bit or BC5 can hold it, else as
-    // Material.
+    // z reconstructed (normal_map_image.h) where the file is 16-bit or BC5 can hold it, else (a
+    // float file too) as its RGBA texels.
     Normal,
 };
 
@@ -43,13 +56,13 @@ struct TextureImage {
     bool renormalised() const { return renormScale != TextureImage{}.renormScale || renormBias != TextureImage{}.renormBias; }
 };
 
-// Reads an image file. sRGB decoding applies to 8-bit files only: Srgb always, Auto for files of
-// 3 or 4 channels (grey and grey+alpha stay linear, as OpenUSD's HioImage decides for "auto");
-// float files are linear whatever is asked. 16-bit PNGs of the Material role are renormalised where
-// that is at least as precise as 8-bit storage; other 16-bit PNGs are reduced to 8 bits. Returns
-// the reason when the file cannot be read.
-std::variant<TextureImage, std::string> decodeTextureFile(const std::string& path, SourceColorSpace colorSpace,
-                                                          TextureRole role);
+// Decodes an image file's bytes. sRGB decoding applies to 8-bit files only: Srgb always, Auto for
+// files of 3 or 4 channels (grey and grey+alpha stay linear, as OpenUSD's HioImage decides for
+// "auto"); float files are linear whatever is asked. 16-bit PNGs of the Material role are
+// renormalised where that is at least as precise as 8-bit storage; other 16-bit PNGs are reduced to
+// 8 bits. Returns the reason when the bytes cannot be decoded.
+std::variant<TextureImage, std::string> decodeTextureImage(std::string_view bytes, SourceColorSpace colorSpace,
+                                                           TextureRole role);
 
 // The next mip level of `level` (a 2x2 box, in linear space for sRGB formats; an odd last row or
 // column is dropped, a side of 1 stays 1).

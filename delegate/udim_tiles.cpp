@@ -1,5 +1,8 @@
 #include "delegate/udim_tiles.h"
 
+#include "assets/package_path.h"
+#include "delegate/texture_disk_cache.h"
+
 #include <algorithm>
 #include <bit>
 #include <cstring>
@@ -17,8 +20,20 @@ uint32_t cellSide(uint32_t largestTile) { return std::bit_ceil(std::max(largestT
 
 }  // namespace
 
-std::vector<UdimTile> findUdimTiles(const std::string& pattern) {
+std::variant<std::vector<UdimTile>, std::string> findUdimTiles(assets::AssetReader& assets,
+                                                               const std::string& pattern) {
     std::vector<UdimTile> tiles;
+    if (const auto packaged = assets::splitPackagePath(pattern)) {
+        std::string problem;
+        const assets::UsdzPackage* package = assets.package(packaged->package, &problem);
+        if (!package) return problem;
+        for (const std::string& entry : package->entries())
+            if (const auto number = schema::udimTileNumber(packaged->entry, entry))
+                tiles.push_back({*number, assets::joinPackagePath(packaged->package, entry)});
+        std::sort(tiles.begin(), tiles.end(),
+                  [](const UdimTile& a, const UdimTile& b) { return a.number < b.number; });
+        return tiles;
+    }
     for (int number = schema::kFirstUdimTile; number <= schema::kLastUdimTile; ++number) {
         std::string file = schema::udimTilePath(pattern, number);
         std::error_code ec;
@@ -28,7 +43,8 @@ std::vector<UdimTile> findUdimTiles(const std::string& pattern) {
 }
 
 std::variant<UdimAtlas, std::string> assembleUdimAtlas(const std::vector<UdimTile>& tiles,
-                                                       SourceColorSpace colorSpace, uint32_t maxDimension) {
+                                                       assets::AssetReader& assets, SourceColorSpace colorSpace,
+                                                       uint32_t maxDimension) {
     UdimAtlas atlas;
     struct Placed {
         int number;
@@ -36,7 +52,13 @@ std::variant<UdimAtlas, std::string> assembleUdimAtlas(const std::vector<UdimTil
     };
     std::vector<Placed> placed;
     for (const UdimTile& tile : tiles) {
-        auto decoded = decodeTextureFile(tile.file, colorSpace, TextureRole::Plain);
+        std::string unreadable;
+        const std::optional<std::string> bytes = assets.read(tile.file, &unreadable);
+        if (!bytes) {
+            atlas.leftOut.push_back(tile.file + ": " + unreadable);
+            continue;
+        }
+        auto decoded = decodeTextureImage(*bytes, colorSpace, TextureRole::Plain);
         if (auto* problem = std::get_if<std::string>(&decoded)) {
             atlas.leftOut.push_back(tile.file + ": " + *problem);
             continue;
@@ -47,7 +69,7 @@ std::variant<UdimAtlas, std::string> assembleUdimAtlas(const std::vector<UdimTil
             continue;
         }
         placed.push_back({tile.number, std::move(image)});
-        atlas.tileFiles.push_back(tile.file);
+        atlas.tileHashes.push_back(TextureDiskCache::contentHash(*bytes));
     }
     if (placed.empty()) return "no UDIM tile could be read";
 

@@ -1,11 +1,10 @@
 #include "harness/shading_network.h"
 
-#include "harness/usda/usdz_package.h"
+#include "assets/package_path.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <filesystem>
 #include <set>
 #include <string_view>
 #include <utility>
@@ -71,24 +70,6 @@ std::optional<std::vector<double>> transformInput(const usda::Stage& stage, cons
                                       " finite number" + (fallback.size() > 1 ? "s" : "") + "; the transform is ignored",
                                   from->where};
     return std::nullopt;
-}
-
-// The package path an asset names: a file of the package that holds the layer, written relative
-// to it, or "other.usdz[entry]" written in a layer on disk (the archive anchored like any file).
-std::optional<std::string> packagedAsset(const std::string& asset, const std::string& layer) {
-    const auto package = usda::splitPackagePath(layer);
-    if (const auto named = usda::splitPackagePath(asset)) {
-        std::filesystem::path archive = named->first;
-        if (archive.is_relative()) {
-            if (package) return std::nullopt;  // a package inside a package is not read
-            archive = std::filesystem::path(layer).parent_path() / archive;
-        }
-        return usda::joinPackagePath(std::filesystem::absolute(archive).lexically_normal().string(),
-                                     std::filesystem::path(named->second).lexically_normal().string());
-    }
-    if (!package || asset.empty() || asset[0] == '/') return std::nullopt;
-    return usda::joinPackagePath(
-        package->first, (std::filesystem::path(package->second).parent_path() / asset).lexically_normal().string());
 }
 
 }  // namespace
@@ -237,16 +218,7 @@ std::optional<usda::Value> flattenedTextureAttribute(const usda::Stage& stage, c
 }
 
 std::string resolveAssetPath(const std::string& asset, const usda::Attribute& attribute) {
-    if (const auto packaged = packagedAsset(asset, attribute.where.file)) {
-        // What the package cannot give is handed on as its package path, which no file reader
-        // opens: the plugin's warning about the missing texture then names where it was looked for.
-        std::string problem;
-        const std::string file = usda::extractPackagedFile(*packaged, &problem);
-        return file.empty() ? *packaged : file;
-    }
-    std::filesystem::path path = asset;
-    if (path.is_relative()) path = std::filesystem::path(attribute.where.file).parent_path() / path;
-    return std::filesystem::absolute(path).lexically_normal().string();
+    return assets::absoluteAssetPath(assets::anchorAssetPath(asset, attribute.where.file));
 }
 
 std::string texturePrimvar(const usda::Stage& stage, const usda::Prim& surface) {

@@ -75,10 +75,10 @@ std::optional<usda::Value> flattenedTextureAttribute(const usda::Stage& stage, c
                                                      const std::string& attribute, double time,
                                                      std::optional<MaterialProblem>* problem = nullptr);
 
-// An asset path as an absolute file path: relative paths are anchored to the folder of the layer
-// that authored `attribute` (USD's ArDefaultResolver); in a USDZ package, to its folder in the
-// package, and a file of a package ("a.usdz[tex/b.png]", a UDIM set too) is extracted to a
-// temporary one (usda::extractPackagedFile), or left as that package path when it cannot be.
+// An asset path as an absolute path the plugin opens: relative paths are anchored to the folder of
+// the layer that authored `attribute` (USD's ArDefaultResolver); in a USDZ package, to its folder
+// in the package, giving a package path ("/dir/a.usdz[tex/b.png]", a UDIM set too) that the
+// plugin reads from the archive in memory (assets/package_path.h).
 std::string resolveAssetPath(const std::string& asset, const usda::Attribute& attribute);
 
 // The primvar the shader's textures look up (inputs:varname of the UsdPrimvarReader_float2 that

@@ -1,7 +1,7 @@
 // The UDIM naming convention (Mari's, as OpenUSD's UsdUVTexture, Storm and MaterialX follow it): a
 // file path holding <UDIM> names a set of tiles, the token standing for the tile number
-// 1001 + u + 10 v of the st square [u, u + 1) x [v, v + 1). The delegate reads a set's tiles from
-// files; a host that keeps files elsewhere (the harness's USDZ packages) finds them by name.
+// 1001 + u + 10 v of the st square [u, u + 1) x [v, v + 1). The delegate finds a set's tiles among
+// files on disk by their paths, and among a USDZ package's files by their names.
 #pragma once
 
 #include <optional>

@@ -1,11 +1,9 @@
 #include "harness/usda/layer_registry.h"
 
 #include <algorithm>
-#include <filesystem>
-#include <fstream>
 #include <optional>
-#include <sstream>
 
+#include "assets/package_path.h"
 #include "harness/usda/layer_reader.h"
 #include "harness/usda/materialx_layer.h"
 
@@ -13,22 +11,8 @@ namespace obscura::usda {
 
 namespace {
 
-namespace fs = std::filesystem;
-
-std::string cacheKey(const std::string& identifier) {
-    std::error_code ec;
-    const fs::path absolute = fs::absolute(fs::path(identifier), ec);
-    return (ec ? fs::path(identifier) : absolute).lexically_normal().string();
-}
-
-std::optional<std::string> readFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::error_code ec;
-    if (!in || fs::is_directory(path, ec)) return std::nullopt;
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    return bytes.str();
-}
+// Layers and packages are kept by their absolute paths, however an arc spells them.
+std::string cacheKey(const std::string& identifier) { return assets::absoluteAssetPath(identifier); }
 
 }  // namespace
 
@@ -51,25 +35,16 @@ std::string LayerRegistry::expand(const Layer* anchor, const std::string& text, 
     return std::get<std::string>(value);
 }
 
-const UsdzPackage& LayerRegistry::package(const std::string& archivePath, const SourceLocation& at) {
-    const std::string key = cacheKey(archivePath);
-    if (const auto it = packages_.find(key); it != packages_.end()) return *it->second;
-    std::optional<std::string> bytes = readFile(archivePath);
-    if (!bytes) throw CompositionFailure{Error{at, "cannot open package '" + archivePath + "'"}};
-    std::string problem;
-    auto opened = UsdzPackage::open(std::move(*bytes), &problem);
-    if (!opened) throw CompositionFailure{Error{SourceLocation{archivePath, 0, 0}, problem}};
-    return *(packages_[key] = std::move(opened));
-}
-
 const Layer& LayerRegistry::add(std::string_view bytes, const std::string& identifier, const SourceLocation& at) {
     if (isZipData(bytes)) {
         // A package opened as a layer: its root layer, named inside the package so that its
         // relative asset paths resolve there.
-        const UsdzPackage& archive = package(identifier, at);
-        if (archive.rootLayer().empty())
+        std::string problem;
+        const assets::UsdzPackage* archive = assets_.package(cacheKey(identifier), &problem);
+        if (!archive) throw CompositionFailure{Error{at, problem}};
+        if (archive->rootLayer().empty())
             throw CompositionFailure{Error{SourceLocation{identifier, 0, 0}, "the package holds no .usd, .usda or .usdc layer"}};
-        const std::string inner = joinPackagePath(identifier, archive.rootLayer());
+        const std::string inner = assets::joinPackagePath(identifier, archive->rootLayer());
         const Layer& root = open(inner, inner, at);
         packageRoots_[cacheKey(identifier)] = &root;
         return root;
@@ -88,29 +63,15 @@ const Layer& LayerRegistry::keep(std::unique_ptr<Layer> layer, const std::string
 }
 
 std::string LayerRegistry::resolve(const Layer& anchor, const std::string& written, const SourceLocation& at) {
-    const std::string assetPath = expand(&anchor, written, at);
-    // "other.usdz[inner.usda]": the archive resolves like any file, the part inside as written.
-    if (auto packaged = splitPackagePath(assetPath))
-        return joinPackagePath(resolve(anchor, packaged->first), fs::path(packaged->second).lexically_normal().string());
-    const fs::path asset(assetPath);
-    if (asset.is_absolute()) return asset.lexically_normal().string();
-    if (auto inPackage = splitPackagePath(anchor.identifier))
-        return joinPackagePath(inPackage->first,
-                               (fs::path(inPackage->second).parent_path() / asset).lexically_normal().string());
-    return (fs::path(anchor.identifier).parent_path() / asset).lexically_normal().string();
+    return assets::anchorAssetPath(expand(&anchor, written, at), anchor.identifier);
 }
 
 const Layer& LayerRegistry::open(const std::string& resolvedPath, const std::string& assetPath, const SourceLocation& at) {
     const std::string key = cacheKey(resolvedPath);
     if (const auto it = layers_.find(key); it != layers_.end()) return *it->second;
     if (const auto it = packageRoots_.find(key); it != packageRoots_.end()) return *it->second;
-    std::optional<std::string> bytes;
     std::string problem;
-    if (auto packaged = splitPackagePath(resolvedPath)) {
-        bytes = package(packaged->first, at).read(packaged->second, &problem);
-    } else {
-        bytes = readFile(resolvedPath);
-    }
+    const std::optional<std::string> bytes = assets_.read(key, &problem);
     if (isMaterialXDocument(resolvedPath)) {
         // As usdMtlx: a document that cannot be read is warned about and the arc to it adds nothing.
         auto parsed = bytes ? readMaterialXLayer(*bytes, resolvedPath)

@@ -7,9 +7,9 @@
 #include <string_view>
 #include <vector>
 
+#include "assets/asset_reader.h"
 #include "harness/usda/diagnostics.h"
 #include "harness/usda/layer.h"
-#include "harness/usda/usdz_package.h"
 #include "harness/usda/variable_expression.h"
 
 namespace obscura::usda {
@@ -53,15 +53,14 @@ private:
     const Layer& add(std::string_view bytes, const std::string& identifier, const SourceLocation& at);
     // Registers a layer read under `key`, passing on its diagnostics.
     const Layer& keep(std::unique_ptr<Layer> layer, const std::string& key);
-    const UsdzPackage& package(const std::string& archivePath, const SourceLocation& at);
     void collect(const Layer& layer, const LayerOffset& toRoot, LayerStack& stack, std::vector<const Layer*>& including);
 
     DiagnosticSink& diagnostics_;
     ExpressionVariables rootVariables_;  // the root layer's expressionVariables
     std::map<std::string, std::unique_ptr<Layer>> layers_;  // by normalized absolute path
     std::map<const Layer*, std::unique_ptr<LayerStack>> stacks_;
-    std::map<std::string, std::unique_ptr<UsdzPackage>> packages_;  // by normalized archive path
-    std::map<std::string, const Layer*> packageRoots_;                // a package's path -> its root layer
+    assets::AssetReader assets_;  // the layers' files and packages, by absolute path
+    std::map<std::string, const Layer*> packageRoots_;  // a package's path -> its root layer
 };
 
 }  // namespace obscura::usda

@@ -20,26 +20,24 @@ public:
         if (::getpid() == kFolderOwner) std::filesystem::remove_all(folder(), ec);
     }
 
-    std::string folderOf(const std::string& key, const std::string& fileName,
-                         const std::function<std::optional<NamedFiles>(std::string*)>& files, std::string* error) {
+    std::string fileOf(const std::string& key, const std::string& fileName,
+                       const std::function<std::optional<std::string>(std::string*)>& bytes, std::string* error) {
         std::lock_guard lock(mutex_);
         if (const auto it = files_.find(key); it != files_.end()) return it->second;
-        auto contents = files(error);
+        auto contents = bytes(error);
         if (!contents) return "";
-        // A folder per key keeps its files' names; the writer's pid keeps a child's apart from its parent's.
+        // A folder per key keeps the file's name; the writer's pid keeps a child's apart from its parent's.
         std::error_code ec;
         const auto dir = folder() / (std::to_string(::getpid()) + "-" + std::to_string(written_++));
         std::filesystem::create_directories(dir, ec);
-        for (const auto& [name, bytes] : *contents) {
-            const auto path = dir / std::filesystem::path(name).filename();
-            std::ofstream out(path, std::ios::binary);
-            out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-            if (!out) {
-                *error = "cannot write '" + path.string() + "'";
-                return "";
-            }
+        const auto path = dir / std::filesystem::path(fileName).filename();
+        std::ofstream out(path, std::ios::binary);
+        out.write(contents->data(), static_cast<std::streamsize>(contents->size()));
+        if (!out) {
+            *error = "cannot write '" + path.string() + "'";
+            return "";
         }
-        return files_[key] = (dir / std::filesystem::path(fileName).filename()).string();
+        return files_[key] = path.string();
     }
 
     std::map<std::string, std::string> byKey() {
@@ -72,17 +70,7 @@ TemporaryFiles gFiles;
 std::string temporaryFile(const std::string& key, const std::string& fileName,
                           const std::function<std::optional<std::string>(std::string* error)>& bytes,
                           std::string* error) {
-    return temporaryFolder(key, fileName, [&](std::string* problem) -> std::optional<NamedFiles> {
-        auto contents = bytes(problem);
-        if (!contents) return std::nullopt;
-        return NamedFiles{{fileName, std::move(*contents)}};
-    }, error);
-}
-
-std::string temporaryFolder(const std::string& key, const std::string& fileName,
-                            const std::function<std::optional<NamedFiles>(std::string* error)>& files,
-                            std::string* error) {
-    return gFiles.folderOf(key, fileName, files, error);
+    return gFiles.fileOf(key, fileName, bytes, error);
 }
 
 std::map<std::string, std::string> temporaryFilesByKey() { return gFiles.byKey(); }

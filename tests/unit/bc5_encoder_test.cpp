@@ -5,6 +5,7 @@
 #include "delegate/cache_folder.h"
 #include "delegate/normal_map_image.h"
 #include "delegate/texture_disk_cache.h"
+#include "tests/support/usdz_files.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -49,7 +50,7 @@ TEST(Bc5Encoder, NormalAwareNeverErrsMoreThanPerChannelOnTheCorpus) {
     ASSERT_FALSE(files.empty());
     std::printf("| normal map | size | per-channel mean / max | normal-aware mean / max | encode time |\n");
     for (const auto& file : files) {
-        auto decoded = decodeNormalMap(file.string());
+        auto decoded = decodeNormalMap(test::fileBytes(file));
         ASSERT_TRUE(std::holds_alternative<NormalMapSource>(decoded)) << file;
         const NormalImage& reference = std::get<NormalMapSource>(decoded).normals;
         const auto common = angularError(
@@ -69,27 +70,25 @@ TEST(Bc5Encoder, NormalAwareNeverErrsMoreThanPerChannelOnTheCorpus) {
 TEST(TextureDiskCache, KeysFollowTheContentAndOffWritesNothing) {
     const auto dir = std::filesystem::temp_directory_path() / ("obscura_texture_cache_" + std::to_string(getpid()));
     std::filesystem::create_directories(dir);
-    auto writeFile = [&](const char* name, const char* text) {
-        std::FILE* f = std::fopen((dir / name).c_str(), "wb");
-        std::fputs(text, f);
-        std::fclose(f);
-        return (dir / name).string();
-    };
-    const std::string a = writeFile("a.png", "one"), b = writeFile("b.png", "one"), c = writeFile("c.png", "two");
-    EXPECT_EQ(TextureDiskCache::key(a, "bc5"), TextureDiskCache::key(b, "bc5"));  // same content, other name
-    EXPECT_NE(TextureDiskCache::key(a, "bc5"), TextureDiskCache::key(c, "bc5"));
-    EXPECT_NE(TextureDiskCache::key(a, "bc5"), TextureDiskCache::key(a, "bc5-2"));
-    EXPECT_EQ(TextureDiskCache::key((dir / "missing.png").string(), "bc5"), "");
+    // Two files of one content (wherever they lie: on disk, in a package) and one of another.
+    const std::string a = TextureDiskCache::contentHash("one"), b = TextureDiskCache::contentHash("one"),
+                      c = TextureDiskCache::contentHash("two");
+    EXPECT_EQ(TextureDiskCache::key({a}, "bc5"), TextureDiskCache::key({b}, "bc5"));
+    EXPECT_NE(TextureDiskCache::key({a}, "bc5"), TextureDiskCache::key({c}, "bc5"));
+    EXPECT_NE(TextureDiskCache::key({a}, "bc5"), TextureDiskCache::key({a}, "bc5-2"));
+    // Several files (a UDIM set's tiles): each file's content and their order.
+    EXPECT_NE(TextureDiskCache::key({a, c}, "bc5"), TextureDiskCache::key({c, a}, "bc5"));
+    EXPECT_NE(TextureDiskCache::key({a, c}, "bc5"), TextureDiskCache::key({a}, "bc5"));
 
     const std::vector<std::byte> bytes = {std::byte{1}, std::byte{0}, std::byte{255}};
     TextureDiskCache cache(dir / "cache");
-    EXPECT_FALSE(cache.read(TextureDiskCache::key(a, "bc5")));
-    cache.write(TextureDiskCache::key(a, "bc5"), bytes);
-    EXPECT_EQ(cache.read(TextureDiskCache::key(b, "bc5")), bytes);
+    EXPECT_FALSE(cache.read(TextureDiskCache::key({a}, "bc5")));
+    cache.write(TextureDiskCache::key({a}, "bc5"), bytes);
+    EXPECT_EQ(cache.read(TextureDiskCache::key({b}, "bc5")), bytes);
     TextureDiskCache off(std::nullopt);
-    off.write(TextureDiskCache::key(c, "bc5"), bytes);
-    EXPECT_FALSE(off.read(TextureDiskCache::key(c, "bc5")));
-    EXPECT_FALSE(cache.read(TextureDiskCache::key(c, "bc5")));
+    off.write(TextureDiskCache::key({c}, "bc5"), bytes);
+    EXPECT_FALSE(off.read(TextureDiskCache::key({c}, "bc5")));
+    EXPECT_FALSE(cache.read(TextureDiskCache::key({c}, "bc5")));
 
     setenv("OBSCURA_TEXTURE_CACHE", "off", 1);
     EXPECT_FALSE(cacheFolderFromEnvironment("OBSCURA_TEXTURE_CACHE"));

@@ -3,6 +3,7 @@
 #include "delegate/texture_image.h"
 #include "delegate/texture_renormalization.h"
 #include "harness/image/png_io.h"
+#include "tests/support/usdz_files.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -65,7 +66,7 @@ protected:
         std::filesystem::create_directories(dir_);
     }
     ~RenormalizedFile() override { std::filesystem::remove_all(dir_); }
-    // A 16-bit RGB PNG of a horizontal gradient of sRGB codes lo..hi in every channel.
+    // The bytes of a 16-bit RGB PNG of a horizontal gradient of sRGB codes lo..hi in every channel.
     std::string writeGradient(const std::string& name, float lo, float hi, int width) {
         std::vector<uint16_t> rgb;
         for (int x = 0; x < width; ++x) {
@@ -75,7 +76,7 @@ protected:
         std::string path = (dir_ / name).string();
         EXPECT_FALSE(image::isError(image::writePng16(path, width, 1, rgb.data())));
         codes_ = rgb;
-        return path;
+        return test::fileBytes(path);
     }
     std::filesystem::path dir_;
     std::vector<uint16_t> codes_;
@@ -86,8 +87,8 @@ TEST_F(RenormalizedFile, SrgbSixteenBitFileIsStretchedInLinearLight) {
     // of (0.178 - 0.133) / 255, where 8-bit sRGB storage errs by up to half its step, about
     // 0.70 / 255 at code 0.40 (the curve's slope there).
     constexpr int kWidth = 4096;
-    std::string file = writeGradient("low_contrast.png", 0.40f, 0.46f, kWidth);
-    auto decoded = decodeTextureFile(file, SourceColorSpace::Auto, TextureRole::Material);
+    const std::string file = writeGradient("low_contrast.png", 0.40f, 0.46f, kWidth);
+    auto decoded = decodeTextureImage(file, SourceColorSpace::Auto, TextureRole::Material);
     ASSERT_TRUE(std::holds_alternative<TextureImage>(decoded)) << std::get<std::string>(decoded);
     const TextureImage& image = std::get<TextureImage>(decoded);
     EXPECT_EQ(image.format, VK_FORMAT_R8G8B8A8_UNORM);
@@ -105,13 +106,13 @@ TEST_F(RenormalizedFile, SrgbSixteenBitFileIsStretchedInLinearLight) {
 }
 
 TEST_F(RenormalizedFile, DomeTexturesAndWideRangesKeepEightBitSrgb) {
-    std::string narrow = writeGradient("narrow.png", 0.40f, 0.46f, 64);
-    auto plain = decodeTextureFile(narrow, SourceColorSpace::Auto, TextureRole::Plain);
+    const std::string narrow = writeGradient("narrow.png", 0.40f, 0.46f, 64);
+    auto plain = decodeTextureImage(narrow, SourceColorSpace::Auto, TextureRole::Plain);
     ASSERT_TRUE(std::holds_alternative<TextureImage>(plain));
     EXPECT_FALSE(std::get<TextureImage>(plain).renormalised());
     EXPECT_EQ(std::get<TextureImage>(plain).format, VK_FORMAT_R8G8B8A8_SRGB);
-    std::string wide = writeGradient("wide.png", 0.0f, 1.0f, 64);
-    auto material = decodeTextureFile(wide, SourceColorSpace::Auto, TextureRole::Material);
+    const std::string wide = writeGradient("wide.png", 0.0f, 1.0f, 64);
+    auto material = decodeTextureImage(wide, SourceColorSpace::Auto, TextureRole::Material);
     ASSERT_TRUE(std::holds_alternative<TextureImage>(material));
     EXPECT_FALSE(std::get<TextureImage>(material).renormalised());
     EXPECT_EQ(std::get<TextureImage>(material).format, VK_FORMAT_R8G8B8A8_SRGB);

@@ -14,8 +14,10 @@
 #include <set>
 #include <sstream>
 
+#include "assets/asset_reader.h"
+#include "assets/package_path.h"
 #include "harness/usda/crate_compression.h"
-#include "harness/usda/usdz_package.h"
+#include "tests/support/usdz_files.h"
 #include "usda_test_util.h"
 
 namespace obscura::usda::test {
@@ -265,7 +267,7 @@ TEST(CrateErrors, BadOffsetsAreNamed) {
 TEST(CrateErrors, CorruptBytesNeverCrash) {
     REQUIRE_CORPUS();
     std::string problem;
-    auto package = UsdzPackage::open(bytesOf(kRigged), &problem);
+    auto package = assets::UsdzPackage::open(bytesOf(kRigged), &problem);
     ASSERT_TRUE(package) << problem;
     const std::string original = *package->read(package->rootLayer(), &problem);
     uint64_t state = 12345;
@@ -353,19 +355,39 @@ TEST(Package, ArcsIntoAPackageByItsPathOrAnEntry) {
     EXPECT_NE(missing.message.find("no file 'nothing.usda' in the package"), std::string::npos) << missing.str();
 }
 
-// Textures in a package reach file readers as extracted files: the packaged normal map is the one
-// shipped beside the package.
-TEST(Package, PackagedFilesAreExtractedForFileReaders) {
+// Files in a package are read from the archive in memory, as the plugin reads textures: the
+// packaged normal map is the one shipped beside the package.
+TEST(Package, PackagedFilesAreReadFromTheArchive) {
     REQUIRE_CORPUS();
     const std::string archive = (kNormals / "NormalsTextureBiasAndScale.usdz").string();
+    assets::AssetReader assets;
     std::string problem;
-    const std::string file = extractPackagedFile(joinPackagePath(archive, "r_normal_map.png"), &problem);
-    ASSERT_FALSE(file.empty()) << problem;
-    EXPECT_EQ(fs::path(file).filename(), "r_normal_map.png");
-    EXPECT_EQ(bytesOf(file), bytesOf(kNormals / "r_normal_map.png"));
-    EXPECT_EQ(extractPackagedFile(joinPackagePath(archive, "r_normal_map.png"), &problem), file);  // once
-    EXPECT_TRUE(extractPackagedFile(joinPackagePath(archive, "missing.png"), &problem).empty());
+    const auto bytes = assets.read(assets::joinPackagePath(archive, "r_normal_map.png"), &problem);
+    ASSERT_TRUE(bytes) << problem;
+    EXPECT_EQ(*bytes, bytesOf(kNormals / "r_normal_map.png"));
+    EXPECT_FALSE(assets.read(assets::joinPackagePath(archive, "missing.png"), &problem));
     EXPECT_EQ(problem, "no file 'missing.png' in the package");
+}
+
+// A package inside a package (written here): its layers compose, arcs into it by a nested package
+// path and relative to a layer in the outer package alike.
+TEST(Package, LayersOfAPackageInsideAPackageCompose) {
+    using obscura::test::fileBytes;
+    using obscura::test::writeUsdz;
+    const fs::path dir = fs::temp_directory_path() / ("obscura_nested_package_" + std::to_string(::getpid()));
+    const std::string inner = "#usda 1.0\ndef \"Inside\" {\n    def \"Child\" {}\n}\n";
+    const std::string scene = "#usda 1.0\ndef \"Relative\" (references = @inner.usdz[inner.usda]@</Inside>) {}\n";
+    ASSERT_EQ(writeUsdz(dir / "inner.usdz", {{"inner.usda", inner}}), "");
+    ASSERT_EQ(writeUsdz(dir / "outer.usdz", {{"scene.usda", scene}, {"inner.usdz", fileBytes(dir / "inner.usdz")}}),
+              "");
+    fs::remove(dir / "inner.usdz");
+    auto packaged = openFile((dir / "outer.usdz").string());
+    const std::string nested = (dir / "outer.usdz").string() + "[inner.usdz[inner.usda]]";
+    auto referencing = open("#usda 1.0\ndef \"Absolute\" (references = @" + nested + "@</Inside>) {}\n");
+    fs::remove_all(dir);
+    ASSERT_TRUE(packaged && referencing);
+    EXPECT_TRUE(packaged->find("/Relative/Child"));
+    EXPECT_TRUE(referencing->find("/Absolute/Child"));
 }
 
 TEST(Package, AMissingMaterialXDocumentWarnsAndAddsNothing) {

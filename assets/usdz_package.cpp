@@ -1,15 +1,10 @@
-#include "harness/usda/usdz_package.h"
-
-#include "harness/usda/temporary_files.h"
-#include "schemas/udim_pattern.h"
+#include "assets/usdz_package.h"
 
 #include <zip.h>
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 
-namespace obscura::usda {
+namespace obscura::assets {
 
 namespace {
 
@@ -21,65 +16,27 @@ bool isLayerFile(std::string name) {
     return name.ends_with(".usd") || name.ends_with(".usda") || name.ends_with(".usdc");
 }
 
-std::string extractPackagedUdimSet(const std::string& packagePattern, const std::string& archive,
-                                   const std::string& pattern, std::string* error) {
-    return temporaryFolder(packagePattern, pattern, [&](std::string* problem) -> std::optional<NamedFiles> {
-        auto package = UsdzPackage::openFile(archive, problem);
-        if (!package) return std::nullopt;
-        NamedFiles tiles;
-        for (const std::string& entry : package->entries()) {
-            if (!schema::udimTileNumber(pattern, entry)) continue;
-            auto bytes = package->read(entry, problem);
-            if (!bytes) return std::nullopt;
-            tiles.emplace(entry, std::move(*bytes));
-        }
-        if (tiles.empty()) {
-            *problem = "no UDIM tile of '" + pattern + "' in the package";
-            return std::nullopt;
-        }
-        return tiles;
-    }, error);
-}
-
 }  // namespace
 
-std::optional<std::pair<std::string, std::string>> splitPackagePath(std::string_view path) {
-    if (!path.ends_with(']')) return std::nullopt;
-    // The innermost package is the outermost bracket's content; nested packages are not read.
-    const size_t open = path.find('[');
-    if (open == std::string_view::npos || open == 0) return std::nullopt;
-    return std::pair{std::string(path.substr(0, open)), std::string(path.substr(open + 1, path.size() - open - 2))};
-}
-
-std::string joinPackagePath(const std::string& archive, const std::string& entry) { return archive + "[" + entry + "]"; }
-
-std::string extractPackagedFile(const std::string& packagePath, std::string* error) {
-    const auto parts = splitPackagePath(packagePath);
-    if (!parts) {
-        *error = "'" + packagePath + "' names no file in a package";
-        return "";
-    }
-    if (schema::isUdimPattern(parts->second)) return extractPackagedUdimSet(packagePath, parts->first, parts->second, error);
-    return temporaryFile(packagePath, parts->second, [&](std::string* problem) -> std::optional<std::string> {
-        auto package = UsdzPackage::openFile(parts->first, problem);
-        if (!package) return std::nullopt;
-        return package->read(parts->second, problem);
-    }, error);
-}
-
 std::unique_ptr<UsdzPackage> UsdzPackage::openFile(const std::string& path, std::string* error) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    if (!in) {
-        *error = "cannot open package '" + path + "'";
+    int code = ZIP_ER_OK;
+    ::zip* archive = zip_open(path.c_str(), ZIP_RDONLY, &code);
+    if (!archive) {
+        zip_error_t zipError;
+        zip_error_init_with_code(&zipError, code);
+        *error = "cannot open package '" + path + "': " + zip_error_strerror(&zipError);
+        zip_error_fini(&zipError);
         return nullptr;
     }
-    return open(bytes.str(), error);
+    std::unique_ptr<UsdzPackage> package(new UsdzPackage());
+    package->archive_ = archive;
+    package->findRootLayer();
+    return package;
 }
 
 std::unique_ptr<UsdzPackage> UsdzPackage::open(std::string bytes, std::string* error) {
     std::unique_ptr<UsdzPackage> package(new UsdzPackage());
+    // libzip reads the bytes where they lie: in the package, which outlives the archive.
     package->bytes_ = std::move(bytes);
     zip_error_t zipError;
     zip_error_init(&zipError);
@@ -92,15 +49,19 @@ std::unique_ptr<UsdzPackage> UsdzPackage::open(std::string bytes, std::string* e
         return nullptr;
     }
     zip_error_fini(&zipError);
-    const zip_int64_t count = zip_get_num_entries(package->archive_, 0);
+    package->findRootLayer();
+    return package;
+}
+
+void UsdzPackage::findRootLayer() {
+    const zip_int64_t count = zip_get_num_entries(archive_, 0);
     for (zip_int64_t i = 0; i < count; ++i) {
-        const char* name = zip_get_name(package->archive_, static_cast<zip_uint64_t>(i), 0);
+        const char* name = zip_get_name(archive_, static_cast<zip_uint64_t>(i), 0);
         if (name && isLayerFile(name)) {
-            package->rootLayer_ = name;
-            break;
+            rootLayer_ = name;
+            return;
         }
     }
-    return package;
 }
 
 UsdzPackage::~UsdzPackage() {
@@ -141,4 +102,4 @@ std::vector<std::string> UsdzPackage::entries() const {
     return names;
 }
 
-}  // namespace obscura::usda
+}  // namespace obscura::assets
