@@ -21,10 +21,12 @@ std::string cacheKey(const std::string& identifier) {
     return (ec ? fs::path(identifier) : absolute).lexically_normal().string();
 }
 
-std::optional<std::string> readFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
+// A file's bytes, or why there are none.
+std::variant<std::string, Error> readFile(const std::string& path) {
     std::error_code ec;
-    if (!in || fs::is_directory(path, ec)) return std::nullopt;
+    if (!fs::exists(path, ec)) return Error{SourceLocation{path, 0, 0}, "no such file"};
+    std::ifstream in(path, std::ios::binary);
+    if (!in || fs::is_directory(path, ec)) return Error{SourceLocation{path, 0, 0}, "cannot be read"};
     std::ostringstream bytes;
     bytes << in.rdbuf();
     return bytes.str();
@@ -33,9 +35,11 @@ std::optional<std::string> readFile(const std::string& path) {
 }  // namespace
 
 const Layer& LayerRegistry::addRoot(std::string_view bytes, const std::string& identifier) {
-    const Layer& root = add(bytes, identifier, SourceLocation{identifier, 0, 0});
-    rootVariables_ = expressionVariablesOf(root.metadata);
-    return root;
+    // The root layer is the stage: without it there is nothing to compose.
+    Loaded root = add(bytes, identifier);
+    if (Error* error = std::get_if<Error>(&root)) throw CompositionFailure{std::move(*error)};
+    rootVariables_ = expressionVariablesOf(std::get<const Layer*>(root)->metadata);
+    return *std::get<const Layer*>(root);
 }
 
 std::string LayerRegistry::expand(const Layer* anchor, const std::string& text, const SourceLocation& at) {
@@ -51,32 +55,33 @@ std::string LayerRegistry::expand(const Layer* anchor, const std::string& text, 
     return std::get<std::string>(value);
 }
 
-const UsdzPackage& LayerRegistry::package(const std::string& archivePath, const SourceLocation& at) {
+std::variant<const UsdzPackage*, Error> LayerRegistry::package(const std::string& archivePath) {
     const std::string key = cacheKey(archivePath);
-    if (const auto it = packages_.find(key); it != packages_.end()) return *it->second;
-    std::optional<std::string> bytes = readFile(archivePath);
-    if (!bytes) throw CompositionFailure{Error{at, "cannot open package '" + archivePath + "'"}};
+    if (const auto it = packages_.find(key); it != packages_.end()) return it->second.get();
+    auto bytes = readFile(archivePath);
+    if (Error* error = std::get_if<Error>(&bytes)) return std::move(*error);
     std::string problem;
-    auto opened = UsdzPackage::open(std::move(*bytes), &problem);
-    if (!opened) throw CompositionFailure{Error{SourceLocation{archivePath, 0, 0}, problem}};
-    return *(packages_[key] = std::move(opened));
+    auto opened = UsdzPackage::open(std::move(std::get<std::string>(bytes)), &problem);
+    if (!opened) return Error{SourceLocation{archivePath, 0, 0}, problem};
+    return (packages_[key] = std::move(opened)).get();
 }
 
-const Layer& LayerRegistry::add(std::string_view bytes, const std::string& identifier, const SourceLocation& at) {
+LayerRegistry::Loaded LayerRegistry::add(std::string_view bytes, const std::string& identifier) {
     if (isZipData(bytes)) {
         // A package opened as a layer: its root layer, named inside the package so that its
         // relative asset paths resolve there.
-        const UsdzPackage& archive = package(identifier, at);
-        if (archive.rootLayer().empty())
-            throw CompositionFailure{Error{SourceLocation{identifier, 0, 0}, "the package holds no .usd, .usda or .usdc layer"}};
-        const std::string inner = joinPackagePath(identifier, archive.rootLayer());
-        const Layer& root = open(inner, inner, at);
-        packageRoots_[cacheKey(identifier)] = &root;
+        auto archive = package(identifier);
+        if (Error* error = std::get_if<Error>(&archive)) return std::move(*error);
+        const std::string& inner = std::get<const UsdzPackage*>(archive)->rootLayer();
+        if (inner.empty())
+            return Error{SourceLocation{identifier, 0, 0}, "the package holds no .usd, .usda or .usdc layer"};
+        Loaded root = load(joinPackagePath(identifier, inner));
+        if (const Layer* const* layer = std::get_if<const Layer*>(&root)) packageRoots_[cacheKey(identifier)] = *layer;
         return root;
     }
     auto parsed = readLayer(bytes, identifier);
-    if (auto* error = std::get_if<Error>(&parsed)) throw CompositionFailure{std::move(*error)};
-    return keep(std::move(std::get<std::unique_ptr<Layer>>(parsed)), cacheKey(identifier));
+    if (Error* error = std::get_if<Error>(&parsed)) return std::move(*error);
+    return &keep(std::move(std::get<std::unique_ptr<Layer>>(parsed)), cacheKey(identifier));
 }
 
 const Layer& LayerRegistry::keep(std::unique_ptr<Layer> layer, const std::string& key) {
@@ -100,35 +105,49 @@ std::string LayerRegistry::resolve(const Layer& anchor, const std::string& writt
     return (fs::path(anchor.identifier).parent_path() / asset).lexically_normal().string();
 }
 
-const Layer& LayerRegistry::open(const std::string& resolvedPath, const std::string& assetPath, const SourceLocation& at) {
+const Layer* LayerRegistry::open(const std::string& resolvedPath, const Request& request) {
+    Loaded loaded = load(resolvedPath);
+    if (const Layer* const* layer = std::get_if<const Layer*>(&loaded)) return *layer;
+    // As Pcp reports an asset it cannot open or read (PcpErrorInvalidSublayerPath,
+    // PcpErrorInvalidAssetPath: "Could not open asset @x@ for reference introduced by @layer@<path>")
+    // and composes the stage without the arc.
+    const SourceLocation& at = request.where;
+    const std::string site(request.site);
+    const std::string arc = std::string(request.arc) + (site.empty() ? "" : " of <" + site + "> to");
+    diagnostics_.warn(kindAt("unreadableLayer:<" + site + ">" + resolvedPath, at), at,
+                      arc + " @" + std::string(request.assetPath) + "@ ignored: " + std::get<Error>(loaded).str());
+    return nullptr;
+}
+
+LayerRegistry::Loaded LayerRegistry::load(const std::string& resolvedPath) {
     const std::string key = cacheKey(resolvedPath);
-    if (const auto it = layers_.find(key); it != layers_.end()) return *it->second;
-    if (const auto it = packageRoots_.find(key); it != packageRoots_.end()) return *it->second;
-    std::optional<std::string> bytes;
-    std::string problem;
+    if (const auto it = layers_.find(key); it != layers_.end()) return it->second.get();
+    if (const auto it = packageRoots_.find(key); it != packageRoots_.end()) return it->second;
+    if (const auto it = unreadable_.find(key); it != unreadable_.end()) return it->second;
+    Loaded loaded = read(resolvedPath, key);
+    if (const Error* error = std::get_if<Error>(&loaded)) unreadable_.emplace(key, *error);
+    return loaded;
+}
+
+LayerRegistry::Loaded LayerRegistry::read(const std::string& resolvedPath, const std::string& key) {
+    std::variant<std::string, Error> bytes;
     if (auto packaged = splitPackagePath(resolvedPath)) {
-        bytes = package(packaged->first, at).read(packaged->second, &problem);
+        auto archive = package(packaged->first);
+        if (Error* error = std::get_if<Error>(&archive)) return std::move(*error);
+        std::string problem;
+        std::optional<std::string> entry = std::get<const UsdzPackage*>(archive)->read(packaged->second, &problem);
+        if (!entry) return Error{SourceLocation{packaged->first, 0, 0}, problem};
+        bytes = std::move(*entry);
     } else {
         bytes = readFile(resolvedPath);
     }
+    if (Error* error = std::get_if<Error>(&bytes)) return std::move(*error);
     if (isMaterialXDocument(resolvedPath)) {
-        // As usdMtlx: a document that cannot be read is warned about and the arc to it adds nothing.
-        auto parsed = bytes ? readMaterialXLayer(*bytes, resolvedPath)
-                            : std::variant<std::unique_ptr<Layer>, Error>(Error{at, "cannot open it"});
-        if (auto* error = std::get_if<Error>(&parsed)) {
-            diagnostics_.warn("mtlx", error->where, "MaterialX document '" + assetPath + "': " + error->message +
-                                                        "; the arc to it adds nothing");
-            auto empty = std::make_unique<Layer>();
-            empty->identifier = resolvedPath;
-            empty->placeholder = true;
-            return *(layers_[key] = std::move(empty));
-        }
-        return keep(std::move(std::get<std::unique_ptr<Layer>>(parsed)), key);
+        auto parsed = readMaterialXLayer(std::get<std::string>(bytes), resolvedPath);
+        if (Error* error = std::get_if<Error>(&parsed)) return std::move(*error);
+        return &keep(std::move(std::get<std::unique_ptr<Layer>>(parsed)), key);
     }
-    if (!bytes)
-        throw CompositionFailure{Error{at, "cannot open layer '" + assetPath + "' (resolved to '" + resolvedPath + "')" +
-                                               (problem.empty() ? "" : ": " + problem)}};
-    return add(*bytes, resolvedPath, at);
+    return add(std::get<std::string>(bytes), resolvedPath);
 }
 
 const LayerStack& LayerRegistry::stackOf(const Layer& root) {
@@ -145,11 +164,13 @@ void LayerRegistry::collect(const Layer& layer, const LayerOffset& toRoot, Layer
     stack.layers.push_back(&layer);
     stack.offsets.push_back(toRoot);
     for (const Reference& sublayer : layer.subLayers) {
-        const Layer& child = open(resolve(layer, sublayer.assetPath, sublayer.where), sublayer.assetPath, sublayer.where);
-        if (std::find(including.begin(), including.end(), &child) != including.end())
+        const Layer* child = open(resolve(layer, sublayer.assetPath, sublayer.where),
+                                  Request{"sublayer", sublayer.assetPath, sublayer.where, ""});
+        if (!child) continue;
+        if (std::find(including.begin(), including.end(), child) != including.end())
             throw CompositionFailure{
                 Error{sublayer.where, "sublayer cycle: '" + sublayer.assetPath + "' includes the layer that names it"}};
-        collect(child, toRoot.after(arcTimeOffset(layer, sublayer.layerOffset, child)), stack, including);
+        collect(*child, toRoot.after(arcTimeOffset(layer, sublayer.layerOffset, *child)), stack, including);
     }
     including.pop_back();
 }

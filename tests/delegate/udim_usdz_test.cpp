@@ -1,14 +1,14 @@
 // UDIM texture sets through the harness's scene host and the plugin, from a layer on disk and from
 // USDZ packages: a UsdUVTexture whose file is a <UDIM> pattern, four solid-colour tiles written
 // here as PNGs, and a plane whose st spans two by two tile squares, each quarter of the view
-// showing its tile. The packages are zip archives written here with libzip, entries stored.
+// showing its tile. The packages are written here (tests/support/usdz_writer.h).
 #include "harness/image/png_io.h"
 #include "tests/delegate/hosted_stage.h"
 #include "tests/delegate/render_fixture.h"
+#include "tests/support/usdz_writer.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
-#include <zip.h>
 
 #include <algorithm>
 #include <array>
@@ -98,23 +98,9 @@ protected:
     }
     ~UdimUsdzTest() override { fs::remove_all(dir_); }
 
-    // `files` (name, contents) as an uncompressed zip at `archive`, in this order.
-    void writePackage(const fs::path& archive, const std::vector<std::pair<std::string, std::string>>& files) {
-        fs::create_directories(archive.parent_path());
-        int error = 0;
-        zip_t* zip = zip_open(archive.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
-        ASSERT_TRUE(zip) << "zip_open: " << error;
-        for (const auto& [name, bytes] : files) {
-            zip_source_t* source = zip_source_buffer(zip, bytes.data(), bytes.size(), 0);
-            const zip_int64_t index = zip_file_add(zip, name.c_str(), source, ZIP_FL_OVERWRITE);
-            ASSERT_GE(index, 0) << zip_strerror(zip);
-            ASSERT_EQ(zip_set_file_compression(zip, zip_uint64_t(index), ZIP_CM_STORE, 0), 0);
-        }
-        ASSERT_EQ(zip_close(zip), 0) << zip_strerror(zip);
-    }
     // The tiles and, beside them, files of no set (not a tile number, another name).
-    std::vector<std::pair<std::string, std::string>> tileEntries() const {
-        std::vector<std::pair<std::string, std::string>> entries(tiles_.begin(), tiles_.end());
+    PackageEntries tileEntries() const {
+        PackageEntries entries(tiles_.begin(), tiles_.end());
         entries.emplace_back("tex/body.0999.png", tiles_.begin()->second);
         entries.emplace_back("tex/other.png", tiles_.begin()->second);
         return entries;
@@ -162,7 +148,7 @@ TEST_F(UdimUsdzTest, APatternRelativeToALayerOnDiskReadsEachTile) {
 TEST_F(UdimUsdzTest, APatternRelativeToALayerInAPackageReadsTheTilesInIt) {
     auto entries = tileEntries();
     entries.insert(entries.begin(), {"scene.usda", planeScene("tex/body.<UDIM>.png")});  // the root layer comes first
-    writePackage(dir_ / "package/scene.usdz", entries);
+    ASSERT_EQ(writePackage(dir_ / "package/scene.usdz", entries), "");
     HostedStage scene(usda::Stage::open(dir_ / "package/scene.usdz"));
     expectQuarters(render(scene), "layer in a package");
     expectClean(scene);
@@ -178,7 +164,7 @@ TEST_F(UdimUsdzTest, APatternRelativeToALayerInAPackageReadsTheTilesInIt) {
 }
 
 TEST_F(UdimUsdzTest, APatternNamingAPackagesEntryReadsTheTilesInIt) {
-    writePackage(dir_ / "tiles.usdz", tileEntries());
+    ASSERT_EQ(writePackage(dir_ / "tiles.usdz", tileEntries()), "");
     std::ofstream(dir_ / "scene.usda") << planeScene("tiles.usdz[tex/body.<UDIM>.png]");
     HostedStage scene(usda::Stage::open(dir_ / "scene.usda"));
     expectQuarters(render(scene), "package entry");
@@ -199,7 +185,7 @@ TEST_F(UdimUsdzTest, APatternWithNoTileInThePackageWarnsOnceAndTheRestRenders) {
 )";
     auto entries = tileEntries();
     entries.insert(entries.begin(), {"scene.usda", text});
-    writePackage(dir_ / "scene.usdz", entries);
+    ASSERT_EQ(writePackage(dir_ / "scene.usdz", entries), "");
     HostedStage scene(usda::Stage::open(dir_ / "scene.usdz"));
     const std::vector<float> albedo = render(scene);
     ASSERT_EQ(albedo.size(), size_t(kWidth) * kHeight * 3);
