@@ -9,11 +9,17 @@
 namespace obscura::assets {
 namespace {
 
-std::optional<std::string> readFile(const std::string& path) {
+std::optional<std::string> readFile(const std::string& path, std::string* error) {
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) return std::nullopt;
+    if (!std::filesystem::exists(path, ec)) {
+        *error = "no such file";
+        return std::nullopt;
+    }
     std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
+    if (!in || std::filesystem::is_directory(path, ec)) {
+        *error = "cannot be read";
+        return std::nullopt;
+    }
     std::ostringstream bytes;
     bytes << in.rdbuf();
     return bytes.str();
@@ -26,9 +32,7 @@ std::optional<std::string> AssetReader::read(const std::string& path, std::strin
         const UsdzPackage* archive = package(packaged->package, error);
         return archive ? archive->read(packaged->entry, error) : std::nullopt;
     }
-    auto bytes = readFile(path);
-    if (!bytes) *error = "cannot read the file";
-    return bytes;
+    return readFile(path, error);
 }
 
 const UsdzPackage* AssetReader::package(const std::string& path, std::string* error) {

@@ -24,7 +24,9 @@ std::unique_ptr<UsdzPackage> UsdzPackage::openFile(const std::string& path, std:
     if (!archive) {
         zip_error_t zipError;
         zip_error_init_with_code(&zipError, code);
-        *error = "cannot open package '" + path + "': " + zip_error_strerror(&zipError);
+        // Worded as open() and a plain file's read word theirs: the caller names the path.
+        *error = code == ZIP_ER_NOENT ? std::string("no such file")
+                                      : std::string("not a readable zip archive: ") + zip_error_strerror(&zipError);
         zip_error_fini(&zipError);
         return nullptr;
     }

@@ -103,6 +103,7 @@ struct Sample {
     V3 position, tangent, normal;  // normal: authored (ribbons) only
     double radius;
     std::array<double, 3> color;
+    double opacity;
     double u;
 };
 
@@ -134,7 +135,8 @@ const MeshPrimvar* usable(const std::optional<MeshPrimvar>& pv, size_t expected,
     return &*pv;
 }
 
-passes::Vertex vertexAt(V3 position, V3 normal, V3 tangent, const std::array<double, 3>& color, double u, double v) {
+passes::Vertex vertexAt(V3 position, V3 normal, V3 tangent, const std::array<double, 3>& color, double opacity,
+                        double u, double v) {
     passes::Vertex out{};
     for (int k = 0; k < 3; ++k) {
         out.position[k] = float(position[size_t(k)]);
@@ -143,7 +145,7 @@ passes::Vertex vertexAt(V3 position, V3 normal, V3 tangent, const std::array<dou
         out.tangent[k] = float(tangent[size_t(k)]);
     }
     out.tangent[3] = 1.0f;
-    out.color[3] = 1.0f;  // opaque: displayOpacity is not read for curves and points
+    out.color[3] = std::clamp(float(opacity), 0.0f, 1.0f);
     out.uv[0] = float(u);
     out.uv[1] = float(v);
     return out;
@@ -198,7 +200,7 @@ std::vector<V3> transportedNormals(const std::vector<Sample>& s, bool periodic) 
 // Samples along one curve: `steps` per segment (1 for linear curves), plus the end of a nonperiodic one.
 std::vector<Sample> samplesOf(const CurvesInput& c, const CurveOffsets& o, size_t curve, int steps,
                               const PrimvarEvaluator* widths, const PrimvarEvaluator* normals,
-                              const PrimvarEvaluator* colors) {
+                              const PrimvarEvaluator* colors, const PrimvarEvaluator* opacities) {
     const int n = c.curveVertexCounts[curve], segments = o.segments[curve];
     const bool periodic = c.wrap == CurveWrap::Periodic;
     if (c.basis == CurveBasis::Linear) steps = 1;
@@ -227,6 +229,7 @@ std::vector<Sample> samplesOf(const CurvesInput& c, const CurveOffsets& o, size_
         s.radius = widths ? std::max(0.0, 0.5 * widths->at(curve, segment, t)[0]) : 0.5 * kDefaultWidth;
         if (normals) s.normal = normals->at(curve, segment, t);
         s.color = colors ? colors->at(curve, segment, t) : std::array<double, 3>{kGrey, kGrey, kGrey};
+        s.opacity = opacities ? opacities->at(curve, segment, t)[0] : 1.0;
         s.u = (segment + t) / segments;
         out.push_back(s);
     }
@@ -254,8 +257,8 @@ void writeTube(MeshGeometry& out, const std::vector<Sample>& samples, int sides,
         for (int k = 0; k < sides; ++k) {
             double phi = 2.0 * std::numbers::pi * k / sides;
             V3 radial = add(scale(u, std::cos(phi)), scale(v, std::sin(phi)));
-            out.vertices.push_back(vertexAt(add(s.position, scale(radial, s.radius)), radial, s.tangent, s.color, s.u,
-                                            double(k) / sides));
+            out.vertices.push_back(vertexAt(add(s.position, scale(radial, s.radius)), radial, s.tangent, s.color,
+                                            s.opacity, s.u, double(k) / sides));
         }
     }
     // Quads (ring i, side k) -> (i, k+1) -> (i+1, k+1) -> (i+1, k): around then along, the
@@ -297,8 +300,8 @@ void writeRibbon(MeshGeometry& out, const std::vector<Sample>& samples, bool per
         V3 across = cross(s.tangent, n);
         V3 left = sub(s.position, scale(across, s.radius)), right = add(s.position, scale(across, s.radius));
         for (double side : {1.0, -1.0}) {
-            out.vertices.push_back(vertexAt(left, scale(n, side), s.tangent, s.color, s.u, 0.0));
-            out.vertices.push_back(vertexAt(right, scale(n, side), s.tangent, s.color, s.u, 1.0));
+            out.vertices.push_back(vertexAt(left, scale(n, side), s.tangent, s.color, s.opacity, s.u, 0.0));
+            out.vertices.push_back(vertexAt(right, scale(n, side), s.tangent, s.color, s.opacity, s.u, 1.0));
         }
     }
     // Across x along = normal: (left, right, right', left') winds counter-clockwise seen from the
@@ -451,18 +454,22 @@ MeshGeometry tessellateCurves(const CurvesInput& c, const CurveDetail& detail) {
     const MeshPrimvar* normals = usable(c.normals, curvePrimvarElementCount(c, c.normals ? c.normals->interpolation
                                                                                       : OBSCURA_INTERPOLATION_VERTEX),
                                         "normals", out.warnings);
-    const MeshPrimvar* colors =
-        usable(c.displayColor,
-               curvePrimvarElementCount(c, c.displayColor ? c.displayColor->interpolation : OBSCURA_INTERPOLATION_CONSTANT),
-               "primvars:displayColor", out.warnings);
-    std::optional<PrimvarEvaluator> widthAt, normalAt, colorAt;
+    auto display = [&](const std::optional<MeshPrimvar>& pv, const char* name) {
+        return usable(pv, curvePrimvarElementCount(c, pv ? pv->interpolation : OBSCURA_INTERPOLATION_CONSTANT), name,
+                      out.warnings);
+    };
+    const MeshPrimvar* colors = display(c.displayColor, "primvars:displayColor");
+    const MeshPrimvar* opacities = display(c.displayOpacity, "primvars:displayOpacity");
+    std::optional<PrimvarEvaluator> widthAt, normalAt, colorAt, opacityAt;
     if (c.widths) widthAt.emplace(c, o, *c.widths);
     if (normals) normalAt.emplace(c, o, *normals);
     if (colors) colorAt.emplace(c, o, *colors);
+    if (opacities) opacityAt.emplace(c, o, *opacities);
     const bool periodic = c.wrap == CurveWrap::Periodic;
     for (size_t curve = 0; curve < c.curveVertexCounts.size(); ++curve) {
-        std::vector<Sample> samples = samplesOf(c, o, curve, detail.steps, widthAt ? &*widthAt : nullptr,
-                                                normalAt ? &*normalAt : nullptr, colorAt ? &*colorAt : nullptr);
+        std::vector<Sample> samples =
+            samplesOf(c, o, curve, detail.steps, widthAt ? &*widthAt : nullptr, normalAt ? &*normalAt : nullptr,
+                      colorAt ? &*colorAt : nullptr, opacityAt ? &*opacityAt : nullptr);
         if (normals) writeRibbon(out, samples, periodic);
         else writeTube(out, samples, detail.sides, periodic);
     }
@@ -511,9 +518,9 @@ MeshGeometry pointImpostorBoxes(const PointsInput& p) {
         for (uint32_t c = 0; c < 8; ++c) {
             const V3 corner{c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0};
             const V3 offset = scale(corner, radius);
-            passes::Vertex v = vertexAt(add(centre, offset), scale(corner, 1.0 / std::sqrt(3.0)), offset, color, 0.5, 0.5);
+            passes::Vertex v = vertexAt(add(centre, offset), scale(corner, 1.0 / std::sqrt(3.0)), offset, color,
+                                        opacities ? opacities->values[i] : 1.0, 0.5, 0.5);
             v.tangent[3] = float(radius);
-            if (opacities) v.color[3] = std::clamp(opacities->values[i], 0.0f, 1.0f);
             out.vertices.push_back(v);
         }
         for (uint32_t corner : kFaces) out.indices.push_back(first + corner);

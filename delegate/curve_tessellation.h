@@ -27,6 +27,7 @@ struct CurvesInput {
     std::optional<MeshPrimvar> widths;        // 1 component; not authored: 1 scene unit (Hydra's fallback)
     std::optional<MeshPrimvar> normals;       // authored: ribbons facing them, else tubes
     std::optional<MeshPrimvar> displayColor;  // 3 components
+    std::optional<MeshPrimvar> displayOpacity;  // non-constant (a constant one is the gprim's)
 };
 
 // Segments of one curve of `vertexCount` control points (USD's segment indexing), or -1 where the
@@ -39,7 +40,8 @@ size_t curvePrimvarElementCount(const CurvesInput& curves, ObscuraInterpolation 
 
 // Why the curves cannot be drawn ("curveVertexCounts sum to 7 but there are 8 points",
 // "widths[3] is -0.5; widths must not be negative", a widths count the interpolation does not
-// allow...), or "". Normals and displayColor of the wrong size are dropped with a warning instead.
+// allow...), or "". Normals, displayColor and displayOpacity of the wrong size are dropped with a
+// warning instead.
 std::string curvesProblem(const CurvesInput& curves);
 
 // Weights of the control points (indices within the curve, phantom points folded into the real
@@ -70,8 +72,8 @@ double curveBendMagnitude(const CurvesInput& curves);
 double curveMaxRadius(const CurvesInput& curves);
 
 // Tubes (closed with flat caps unless periodic) or two-sided ribbons of the validated curves,
-// indexed; vertices carry normals, displayColor (else 0.18 grey), tangents along the curve and uv
-// (u along the curve, v around it). Warnings for dropped primvars.
+// indexed; vertices carry normals, displayColor (else 0.18 grey) and displayOpacity (else 1),
+// tangents along the curve and uv (u along the curve, v around it). Warnings for dropped primvars.
 MeshGeometry tessellateCurves(const CurvesInput& curves, const CurveDetail& detail);
 
 // UsdGeomPoints: spheres of diameter `widths` (constant, or one per point; not authored: 1)

@@ -407,22 +407,27 @@ private:
                0.0;
     }
 
-    // Notes an instance of the last draw, placed by `model` within world `bounds`, for back-face
-    // culling of sphere impostors: a view may cull a cube's back faces where its near faces answer
-    // for every pixel (shaders/common/sphere_impostor.glsl): the placement keeps the winding and the
-    // cube lies wholly beyond the view's near plane — for the camera, clear of the eye by more than
-    // the near plane reaches.
-    void noteImpostorInstance(const Matrix4d& model, const Aabb& bounds) {
+    // Notes an instance of the last draw, of `mesh` placed by `model` within world `bounds`, for
+    // back-face culling: where the placement keeps the winding and the back faces draw what is not
+    // wanted or what other faces draw. Not wanted: Mesh::backFacesUnwanted, a single-sided surface's
+    // back (UsdGeomGprim's doubleSided off lets renderers "perform backface culling"). Drawn by
+    // others: a sphere impostor's cube's, whose near faces answer for every pixel
+    // (shaders/common/sphere_impostor.glsl) where it lies wholly beyond the view's near plane — for
+    // the camera, clear of the eye by more than the near plane reaches; shadow views cull those alone.
+    // XXX: a single-sided surface placed mirrored draws both sides (with the normals it has).
+    void noteInstance(const Mesh& mesh, const Matrix4d& model, const Aabb& bounds) {
         passes::Draw& draw = scene_.draws.back();
-        const bool winding = draw.sphereImpostors && keepsWinding(model);
+        const bool winding = keepsWinding(model);
         impostorWinding_.back() = impostorWinding_.back() && winding;
-        draw.cullBackFaces = draw.cullBackFaces && winding && distanceTo(bounds, eye_) > nearReach_;
+        const bool backCullable =
+            draw.sphereImpostors ? distanceTo(bounds, eye_) > nearReach_ : mesh.backFacesUnwanted();
+        draw.cullBackFaces = draw.cullBackFaces && winding && backCullable;
     }
 
     // Starts the notes of a new draw (the last one).
-    void startImpostorNotes() {
+    void startInstanceNotes() {
         passes::Draw& draw = scene_.draws.back();
-        draw.cullBackFaces = draw.sphereImpostors;
+        draw.cullBackFaces = true;
         impostorWinding_.push_back(draw.sphereImpostors);
     }
 
@@ -474,13 +479,13 @@ private:
         for (const auto& batch : batches) {
             const auto [first, firstPart] = batch.front();
             scene_.draws.push_back(partDraw(*first, *firstPart, batch.size(), motionOf(*first).has_value()));
-            startImpostorNotes();
+            startInstanceNotes();
             Aabb bounds;
             for (const auto& [mesh, part] : batch) {
                 record(*mesh, *part, transformOf(*mesh), motionOf(*mesh));
                 instanceBounds_.push_back(transformAabb(mesh->localBounds(), transformOf(*mesh)));
                 bounds.merge(instanceBounds_.back());
-                noteImpostorInstance(transformOf(*mesh), instanceBounds_.back());
+                noteInstance(*mesh, transformOf(*mesh), instanceBounds_.back());
             }
             drawBounds_.push_back(bounds);
         }
@@ -605,7 +610,7 @@ private:
                     // Instances the instancers make translucent take the transparent pass, the draw whole.
                     if ((!boundMaterial(part) || primvarReads(boundMaterial(part)).opacity) && translucent)
                         scene_.draws.back().transparent = true;
-                    startImpostorNotes();
+                    startInstanceNotes();
                     Aabb bounds;
                     for (size_t number = 0; number < count; ++number) {
                         const std::vector<size_t> picks = chainInstances(chain, number);
@@ -626,7 +631,7 @@ private:
                                chainDisplay(chain, picks));
                         instanceBounds_.push_back(transformAabb(mesh->localBounds(), model));
                         bounds.merge(instanceBounds_.back());
-                        noteImpostorInstance(model, instanceBounds_.back());
+                        noteInstance(*mesh, model, instanceBounds_.back());
                     }
                     drawBounds_.push_back(bounds);
                 }

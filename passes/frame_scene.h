@@ -27,8 +27,9 @@ struct Draw {
     // Its triangles are cubes bounding spheres (UsdGeomPoints): the passes draw the spheres they
     // bound, ray-cast per pixel (shaders/common/sphere_impostor.glsl).
     bool sphereImpostors = false;
-    // The G-buffer may cull back faces: sphere impostors whose cubes keep their winding and lie
-    // clear of the eye and the near plane, so only their near faces answer.
+    // The G-buffer and the transparent pass may cull back faces, where every instance keeps its
+    // winding: single-sided surfaces, and sphere impostors whose cubes lie clear of the eye and the
+    // near plane, so only their near faces answer.
     bool cullBackFaces = false;
     // Where the draw's indexCount indices start in `indices`: a mesh whose faces bind several
     // materials (GeomSubsets) draws each material's range of one index buffer.

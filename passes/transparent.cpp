@@ -17,10 +17,12 @@ struct TransparentPush {
 OBSCURA_SHADER_OFFSET(TransparentPush, transparent_frag::Push, instanceIndex);
 OBSCURA_SHADER_OFFSET(TransparentPush, transparent_frag::Push, fadeDistance);
 
-// `spheres`: the draws are sphere impostors (the shader's SPHERE_IMPOSTOR variant).
-gpu::GraphicsPipelineDesc describeTransparentPipeline(VkFormat hdrFormat, bool spheres,
+// `spheres`: the draws are sphere impostors (the shader's SPHERE_IMPOSTOR variant);
+// `cullBackFaces`: as the G-buffer does (Draw::cullBackFaces).
+gpu::GraphicsPipelineDesc describeTransparentPipeline(VkFormat hdrFormat, bool spheres, bool cullBackFaces,
                                                       const std::vector<ShaderBinding>& bindings) {
     gpu::GraphicsPipelineDesc d;
+    if (cullBackFaces) d.cullMode = VK_CULL_MODE_BACK_BIT;
     setSceneVertexInput(d);
     d.fragmentShader = spheres ? "transparent_spheres.frag" : "transparent.frag";
     d.bindings = bindingLayout(bindings);
@@ -75,8 +77,11 @@ TransparentResult addTransparentPass(gpu::FrameGraph& graph, const FrameScene& s
                 const Draw& draw = scene.draws[index];
                 const gpu::Pipeline& pipeline = res.pipelines().get<gpu::GraphicsPipelineDesc>(
                     std::string(hdrFormat == VK_FORMAT_R16G16B16A16_SFLOAT ? "transparent.halfFloat" : "transparent") +
-                        (draw.sphereImpostors ? ".spheres" : ""),
-                    [&] { return describeTransparentPipeline(hdrFormat, draw.sphereImpostors, bindings); });
+                        (draw.sphereImpostors ? ".spheres" : "") + (draw.cullBackFaces ? ".backFacesCulled" : ""),
+                    [&] {
+                        return describeTransparentPipeline(hdrFormat, draw.sphereImpostors, draw.cullBackFaces,
+                                                           bindings);
+                    });
                 if (&pipeline != bound) {
                     bindBindings(cmd, pipeline, bindings, res);
                     bound = &pipeline;

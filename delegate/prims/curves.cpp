@@ -77,6 +77,7 @@ void Curves::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         input_.displayColor = pullPrimvar(s, "primvars:displayColor", 3);
         if (!s.getFloatArray("widths")) input_.widths = pullWidths(s);
     }
+    input_.displayOpacity = varyingOpacity_;  // a constant one is the gprim's (pullGprim)
     if (std::string problem = curvesProblem(input_); !problem.empty()) throw PrimDataError(s.path() + ": " + problem);
     if (input_.points.empty()) return dropGeometry(ctx);  // nothing to draw, nothing kept from before
     if (sidesLevel_ < 0) return;                        // tessellated once the view is known (chooseViewDependentDetail)

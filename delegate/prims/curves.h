@@ -20,6 +20,8 @@ public:
     // along a cubic segment keep the segment within it of its chords.
     bool chooseDetail(double pixelsPerUnit) override;
     const CurveDetail& detail() const { return detail_; }
+    // Tubes are closed and ribbons draw each side as faces of its own, doubleSided or not.
+    bool backFacesUnwanted() const override { return true; }
 
 private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;

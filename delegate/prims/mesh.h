@@ -49,6 +49,8 @@ public:
     // (passes::ShutterPositions), else null.
     const gpu::BufferPtr& shutterPositions() const { return shutterPositions_; }
     bool doubleSided() const { return doubleSided_; }
+    // Its back faces draw nothing wanted: a single-sided surface's (UsdGeomGprim's doubleSided off).
+    virtual bool backFacesUnwanted() const { return !doubleSided_; }
     const std::optional<std::string>& materialPath() const { return material_; }
     // What draws with which material: one part for a mesh without material subsets; parts
     // without triangles left out. Together they are every index of indices().

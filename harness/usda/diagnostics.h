@@ -21,7 +21,13 @@ private:
     std::vector<Warning> warnings_;
 };
 
-// Thrown while composing and caught by Stage::open: a missing layer, a syntax error in one, or a cycle.
+// A kind of warning given once for each place it concerns: `kind` at `where`.
+inline std::string kindAt(const std::string& kind, const SourceLocation& where) {
+    return kind + "@" + where.file + ":" + std::to_string(where.line) + ":" + std::to_string(where.column);
+}
+
+// Thrown while composing and caught by Stage::open: a root layer that cannot be read, a cycle, or a
+// composition limit passed.
 struct CompositionFailure {
     Error error;
 };

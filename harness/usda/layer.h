@@ -103,9 +103,6 @@ struct Layer {
     std::vector<Reference> subLayers;  // assetPath set
     PrimSpec pseudoRoot;               // its children are the root prims
     std::vector<Diagnostic> diagnostics;
-    // Stands in for a file that is no USD layer (a MaterialX document): arcs to it add nothing,
-    // with the one warning given when it was opened.
-    bool placeholder = false;
 
     // The spec at a site path such as "/A{lod=hi}/B", or nullptr.
     const PrimSpec* find(std::string_view sitePath) const;

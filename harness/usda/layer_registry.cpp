@@ -17,9 +17,11 @@ std::string cacheKey(const std::string& identifier) { return assets::absoluteAss
 }  // namespace
 
 const Layer& LayerRegistry::addRoot(std::string_view bytes, const std::string& identifier) {
-    const Layer& root = add(bytes, identifier, SourceLocation{identifier, 0, 0});
-    rootVariables_ = expressionVariablesOf(root.metadata);
-    return root;
+    // The root layer is the stage: without it there is nothing to compose.
+    Loaded root = add(bytes, identifier);
+    if (Error* error = std::get_if<Error>(&root)) throw CompositionFailure{std::move(*error)};
+    rootVariables_ = expressionVariablesOf(std::get<const Layer*>(root)->metadata);
+    return *std::get<const Layer*>(root);
 }
 
 std::string LayerRegistry::expand(const Layer* anchor, const std::string& text, const SourceLocation& at) {
@@ -35,23 +37,22 @@ std::string LayerRegistry::expand(const Layer* anchor, const std::string& text, 
     return std::get<std::string>(value);
 }
 
-const Layer& LayerRegistry::add(std::string_view bytes, const std::string& identifier, const SourceLocation& at) {
+LayerRegistry::Loaded LayerRegistry::add(std::string_view bytes, const std::string& identifier) {
     if (isZipData(bytes)) {
         // A package opened as a layer: its root layer, named inside the package so that its
         // relative asset paths resolve there.
         std::string problem;
         const assets::UsdzPackage* archive = assets_.package(cacheKey(identifier), &problem);
-        if (!archive) throw CompositionFailure{Error{at, problem}};
+        if (!archive) return Error{SourceLocation{identifier, 0, 0}, problem};
         if (archive->rootLayer().empty())
-            throw CompositionFailure{Error{SourceLocation{identifier, 0, 0}, "the package holds no .usd, .usda or .usdc layer"}};
-        const std::string inner = assets::joinPackagePath(identifier, archive->rootLayer());
-        const Layer& root = open(inner, inner, at);
-        packageRoots_[cacheKey(identifier)] = &root;
+            return Error{SourceLocation{identifier, 0, 0}, "the package holds no .usd, .usda or .usdc layer"};
+        Loaded root = load(assets::joinPackagePath(identifier, archive->rootLayer()));
+        if (const Layer* const* layer = std::get_if<const Layer*>(&root)) packageRoots_[cacheKey(identifier)] = *layer;
         return root;
     }
     auto parsed = readLayer(bytes, identifier);
-    if (auto* error = std::get_if<Error>(&parsed)) throw CompositionFailure{std::move(*error)};
-    return keep(std::move(std::get<std::unique_ptr<Layer>>(parsed)), cacheKey(identifier));
+    if (Error* error = std::get_if<Error>(&parsed)) return std::move(*error);
+    return &keep(std::move(std::get<std::unique_ptr<Layer>>(parsed)), cacheKey(identifier));
 }
 
 const Layer& LayerRegistry::keep(std::unique_ptr<Layer> layer, const std::string& key) {
@@ -66,30 +67,44 @@ std::string LayerRegistry::resolve(const Layer& anchor, const std::string& writt
     return assets::anchorAssetPath(expand(&anchor, written, at), anchor.identifier);
 }
 
-const Layer& LayerRegistry::open(const std::string& resolvedPath, const std::string& assetPath, const SourceLocation& at) {
+const Layer* LayerRegistry::open(const std::string& resolvedPath, const Request& request) {
+    Loaded loaded = load(resolvedPath);
+    if (const Layer* const* layer = std::get_if<const Layer*>(&loaded)) return *layer;
+    // As Pcp reports an asset it cannot open or read (PcpErrorInvalidSublayerPath,
+    // PcpErrorInvalidAssetPath: "Could not open asset @x@ for reference introduced by @layer@<path>")
+    // and composes the stage without the arc.
+    const SourceLocation& at = request.where;
+    const std::string site(request.site);
+    const std::string arc = std::string(request.arc) + (site.empty() ? "" : " of <" + site + "> to");
+    diagnostics_.warn(kindAt("unreadableLayer:<" + site + ">" + resolvedPath, at), at,
+                      arc + " @" + std::string(request.assetPath) + "@ ignored: " + std::get<Error>(loaded).str());
+    return nullptr;
+}
+
+LayerRegistry::Loaded LayerRegistry::load(const std::string& resolvedPath) {
     const std::string key = cacheKey(resolvedPath);
-    if (const auto it = layers_.find(key); it != layers_.end()) return *it->second;
-    if (const auto it = packageRoots_.find(key); it != packageRoots_.end()) return *it->second;
+    if (const auto it = layers_.find(key); it != layers_.end()) return it->second.get();
+    if (const auto it = packageRoots_.find(key); it != packageRoots_.end()) return it->second;
+    if (const auto it = unreadable_.find(key); it != unreadable_.end()) return it->second;
+    Loaded loaded = read(resolvedPath, key);
+    if (const Error* error = std::get_if<Error>(&loaded)) unreadable_.emplace(key, *error);
+    return loaded;
+}
+
+LayerRegistry::Loaded LayerRegistry::read(const std::string& resolvedPath, const std::string& key) {
     std::string problem;
-    const std::optional<std::string> bytes = assets_.read(key, &problem);
-    if (isMaterialXDocument(resolvedPath)) {
-        // As usdMtlx: a document that cannot be read is warned about and the arc to it adds nothing.
-        auto parsed = bytes ? readMaterialXLayer(*bytes, resolvedPath)
-                            : std::variant<std::unique_ptr<Layer>, Error>(Error{at, "cannot open it"});
-        if (auto* error = std::get_if<Error>(&parsed)) {
-            diagnostics_.warn("mtlx", error->where, "MaterialX document '" + assetPath + "': " + error->message +
-                                                        "; the arc to it adds nothing");
-            auto empty = std::make_unique<Layer>();
-            empty->identifier = resolvedPath;
-            empty->placeholder = true;
-            return *(layers_[key] = std::move(empty));
-        }
-        return keep(std::move(std::get<std::unique_ptr<Layer>>(parsed)), key);
+    std::optional<std::string> bytes = assets_.read(key, &problem);
+    if (!bytes) {
+        // A file in a package is blamed on the package, as a missing file is on itself.
+        const auto packaged = assets::splitPackagePath(resolvedPath);
+        return Error{SourceLocation{packaged ? packaged->package : resolvedPath, 0, 0}, problem};
     }
-    if (!bytes)
-        throw CompositionFailure{Error{at, "cannot open layer '" + assetPath + "' (resolved to '" + resolvedPath + "')" +
-                                               (problem.empty() ? "" : ": " + problem)}};
-    return add(*bytes, resolvedPath, at);
+    if (isMaterialXDocument(resolvedPath)) {
+        auto parsed = readMaterialXLayer(*bytes, resolvedPath);
+        if (Error* error = std::get_if<Error>(&parsed)) return std::move(*error);
+        return &keep(std::move(std::get<std::unique_ptr<Layer>>(parsed)), key);
+    }
+    return add(*bytes, resolvedPath);
 }
 
 const LayerStack& LayerRegistry::stackOf(const Layer& root) {
@@ -106,11 +121,13 @@ void LayerRegistry::collect(const Layer& layer, const LayerOffset& toRoot, Layer
     stack.layers.push_back(&layer);
     stack.offsets.push_back(toRoot);
     for (const Reference& sublayer : layer.subLayers) {
-        const Layer& child = open(resolve(layer, sublayer.assetPath, sublayer.where), sublayer.assetPath, sublayer.where);
-        if (std::find(including.begin(), including.end(), &child) != including.end())
+        const Layer* child = open(resolve(layer, sublayer.assetPath, sublayer.where),
+                                  Request{"sublayer", sublayer.assetPath, sublayer.where, ""});
+        if (!child) continue;
+        if (std::find(including.begin(), including.end(), child) != including.end())
             throw CompositionFailure{
                 Error{sublayer.where, "sublayer cycle: '" + sublayer.assetPath + "' includes the layer that names it"}};
-        collect(child, toRoot.after(arcTimeOffset(layer, sublayer.layerOffset, child)), stack, including);
+        collect(*child, toRoot.after(arcTimeOffset(layer, sublayer.layerOffset, *child)), stack, including);
     }
     including.pop_back();
 }

@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "assets/asset_reader.h"
@@ -44,13 +45,26 @@ public:
     // over the expressionVariables of the root layer, then those of `anchor` (the layer that writes
     // it; nullptr: the root's alone). One that cannot be evaluated is reported at `at` and taken as written.
     std::string expand(const Layer* anchor, const std::string& text, const SourceLocation& at);
-    // The layer at a resolved path; `assetPath` and `at` say who asked, for the error if it is missing.
-    const Layer& open(const std::string& resolvedPath, const std::string& assetPath, const SourceLocation& at);
+    // Who asks for a layer: the arc ("sublayer", "reference", "payload"), the asset path as written,
+    // where the arc is authored, and the prim it is authored on ("" for a sublayer).
+    struct Request {
+        std::string_view arc;
+        std::string_view assetPath;
+        const SourceLocation& where;
+        std::string_view site;
+    };
+    // The layer at a resolved path, or null where it is missing or cannot be read (its syntax, a
+    // package's): then the arc adds nothing, with a warning where it is authored that names the asset
+    // and why (with the error's own file, line and column), once for each arc and asset.
+    const Layer* open(const std::string& resolvedPath, const Request& request);
     const LayerStack& stackOf(const Layer& root);
 
 private:
-    // `at` blames the arc that asked for the layer when its package is unreadable.
-    const Layer& add(std::string_view bytes, const std::string& identifier, const SourceLocation& at);
+    using Loaded = std::variant<const Layer*, Error>;
+    // A layer once read, or why it cannot be, each remembered by path.
+    Loaded load(const std::string& resolvedPath);
+    Loaded read(const std::string& resolvedPath, const std::string& key);
+    Loaded add(std::string_view bytes, const std::string& identifier);
     // Registers a layer read under `key`, passing on its diagnostics.
     const Layer& keep(std::unique_ptr<Layer> layer, const std::string& key);
     void collect(const Layer& layer, const LayerOffset& toRoot, LayerStack& stack, std::vector<const Layer*>& including);
@@ -58,6 +72,7 @@ private:
     DiagnosticSink& diagnostics_;
     ExpressionVariables rootVariables_;  // the root layer's expressionVariables
     std::map<std::string, std::unique_ptr<Layer>> layers_;  // by normalized absolute path
+    std::map<std::string, Error> unreadable_;                // by normalized absolute path: why
     std::map<const Layer*, std::unique_ptr<LayerStack>> stacks_;
     assets::AssetReader assets_;  // the layers' files and packages, by absolute path
     std::map<std::string, const Layer*> packageRoots_;  // a package's path -> its root layer

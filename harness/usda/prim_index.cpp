@@ -194,7 +194,7 @@ void PrimIndexer::expandArcs(IndexNode& node, std::vector<const IndexNode*>& cha
         checkCycle(arc, chain);
         const IndexNode& target = index(*arc.stack, arc.path, arc.where);
         if (!subtreeHasSpec(target)) {
-            diagnostics_.warn("unresolvedArc", arc.where,
+            diagnostics_.warn(kindAt("unresolvedArc:" + arc.path, arc.where), arc.where,
                               "<" + arc.path + "> not found in '" + arc.stack->root().identifier + "'; arc ignored");
             continue;
         }
@@ -370,7 +370,7 @@ std::vector<PrimIndexer::Arc> PrimIndexer::arcsAuthoredAt(const IndexNode& node)
     std::vector<Arc> arcs;
     for (const Reference& ref : composeListOps(inherits))
         arcs.push_back(Arc{ArcType::Inherit, node.stack, ref.primPath, ref.where});
-    auto addReferences = [&](ArcType type, const std::vector<ListOp<ResolvedReference>>& ops) {
+    auto addReferences = [&](ArcType type, std::string_view name, const std::vector<ListOp<ResolvedReference>>& ops) {
         for (const ResolvedReference& ref : composeListOps(pointers(ops))) {
             // The offset as the authoring layer writes it, then that layer's place in its stack.
             const LayerOffset inStack = node.stack->offsetOf(*ref.authoredIn);
@@ -378,27 +378,34 @@ std::vector<PrimIndexer::Arc> PrimIndexer::arcsAuthoredAt(const IndexNode& node)
                 arcs.push_back(Arc{type, node.stack, ref.primPath, ref.where, inStack.after(ref.authored)});
                 continue;
             }
-            const Layer& layer = layers_.open(ref.layerPath, ref.written, ref.where);
-            if (layer.placeholder) continue;
-            const std::string path = ref.primPath.empty() ? defaultPrimOf(layer, ref.where) : ref.primPath;
-            arcs.push_back(Arc{type, &layers_.stackOf(layer), path, ref.where,
-                               inStack.after(arcTimeOffset(*ref.authoredIn, ref.authored, layer))});
+            const Layer* layer =
+                layers_.open(ref.layerPath, LayerRegistry::Request{name, ref.written, ref.where, node.site});
+            if (!layer) continue;
+            const std::optional<std::string> path =
+                ref.primPath.empty() ? defaultPrimOf(*layer, ref.where) : ref.primPath;
+            if (!path) continue;
+            arcs.push_back(Arc{type, &layers_.stackOf(*layer), *path, ref.where,
+                               inStack.after(arcTimeOffset(*ref.authoredIn, ref.authored, *layer))});
         }
     };
-    addReferences(ArcType::Reference, references);
-    addReferences(ArcType::Payload, payloads);
+    addReferences(ArcType::Reference, "reference", references);
+    addReferences(ArcType::Payload, "payload", payloads);
     for (const Reference& ref : composeListOps(specializes))
         arcs.push_back(Arc{ArcType::Specialize, node.stack, ref.primPath, ref.where});
     return arcs;
 }
 
-std::string PrimIndexer::defaultPrimOf(const Layer& layer, const SourceLocation& at) {
+std::optional<std::string> PrimIndexer::defaultPrimOf(const Layer& layer, const SourceLocation& at) {
     if (const auto it = layer.metadata.find("defaultPrim"); it != layer.metadata.end() && !it->second.strings.empty()) {
         const std::string& name = it->second.strings.front();
         return name.starts_with("/") ? name : "/" + name;
     }
-    if (layer.pseudoRoot.children.empty())
-        throw CompositionFailure{Error{at, "layer '" + layer.identifier + "' has no prim to reference"}};
+    if (layer.pseudoRoot.children.empty()) {
+        // Pcp's PcpErrorUnresolvedPrimPath: the arc is ignored and the rest composed.
+        diagnostics_.warn(kindAt("noPrimToReference:" + layer.identifier, at), at,
+                          "layer '" + layer.identifier + "' has no prim to reference; arc ignored");
+        return std::nullopt;
+    }
     const std::string first = "/" + layer.pseudoRoot.children.front()->name;
     diagnostics_.warn("noDefaultPrim", at,
                       "layer '" + layer.identifier + "' has no defaultPrim; referencing its first root prim <" + first + ">");

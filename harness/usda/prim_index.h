@@ -124,7 +124,9 @@ private:
     // relocation arcs); the source's own opinions in the stack are not moved, as Pcp ignores them.
     void addRelocatedArcs(IndexNode& node);
     std::vector<Arc> arcsAuthoredAt(const IndexNode& node);
-    std::string defaultPrimOf(const Layer& layer, const SourceLocation& at);
+    // The prim a reference or payload without a prim path targets; nullopt (and a warning at `at`)
+    // when the layer has none.
+    std::optional<std::string> defaultPrimOf(const Layer& layer, const SourceLocation& at);
     void expandArcs(IndexNode& node, std::vector<const IndexNode*>& chain);
     // `target`'s index as a child of `node`, reached through `arc`.
     void graft(IndexNode& node, const IndexNode& target, const Arc& arc);

@@ -4,7 +4,7 @@
 // a normalized distant light with no specular, so a pixel's radiance is Lambert's
 // displayColor / pi * E; colours are values 8-bit sRGB (the albedo G-buffer target) holds exactly.
 // A PointInstancer's displayColor and displayOpacity primvars colour each instance in place of its
-// prototype's (Hydra's instance primvars).
+// prototype's (Hydra's instance primvars); curves and points take them as meshes do.
 #include "tests/delegate/render_fixture.h"
 
 #include <gtest/gtest.h>
@@ -89,17 +89,17 @@ TEST(DisplayColor, FaceVaryingColoursEachCornerApartFromItsNeighbours) {
     for (auto [x, y] : {std::pair{32, 8}, {60, 40}}) expectRadiance(color, x, y, lambert(kRed));
 }
 
-TEST(DisplayColor, VertexColoursInterpolateBetweenPoints) {
-    // Red on the left column, blue on the right, their mean in the middle: the colour is affine in
-    // x, which both triangles of each face reproduce exactly. The G-buffer keeps the interpolated
-    // albedo to one 8-bit sRGB step, so that is added to the tolerance.
-    DisplayColorScene s;
-    Rgb middle{};
-    for (size_t c = 0; c < 3; ++c) middle[c] = 0.5f * (kRed[c] + kBlue[c]);
-    s.addHalves({kRed, middle, kBlue, kRed, middle, kBlue}, OBSCURA_INTERPOLATION_VERTEX);
-    auto color = s.render();
+// Where along x in [-kHalf, kHalf] pixel column x sees the plane z = 0, from 0 to 1.
+double acrossAt(int x) {
+    return (planePointAtPixel(x, 32, kLitPlaneCameraDistance, kLitPlaneTanHalfFov)[0] + kHalf) / (2.0 * kHalf);
+}
+
+// Red on the left edge, blue on the right: the colour is affine in x, which the triangles
+// reproduce exactly. The G-buffer keeps the interpolated albedo to one 8-bit sRGB step, so that is
+// added to the tolerance.
+void expectRedToBlue(const std::vector<float>& color) {
     for (int x : {2, 20, 32, 45, 61}) {
-        double u = (planePointAtPixel(x, 32, kLitPlaneCameraDistance, kLitPlaneTanHalfFov)[0] + kHalf) / (2.0 * kHalf);
+        const double u = acrossAt(x);
         const float* p = &color[(size_t(32) * kWidth + size_t(x)) * 4];
         for (size_t c = 0; c < 3; ++c) {
             double albedo = kRed[c] + (kBlue[c] - kRed[c]) * u;
@@ -112,6 +112,15 @@ TEST(DisplayColor, VertexColoursInterpolateBetweenPoints) {
             EXPECT_NEAR(p[c], expected, tolerance) << "pixel x " << x << " channel " << c;
         }
     }
+}
+
+TEST(DisplayColor, VertexColoursInterpolateBetweenPoints) {
+    // Red on the left column, blue on the right, their mean in the middle.
+    DisplayColorScene s;
+    Rgb middle{};
+    for (size_t c = 0; c < 3; ++c) middle[c] = 0.5f * (kRed[c] + kBlue[c]);
+    s.addHalves({kRed, middle, kBlue, kRed, middle, kBlue}, OBSCURA_INTERPOLATION_VERTEX);
+    expectRedToBlue(s.render());
 }
 
 TEST(DisplayColor, ConstantOpacityBelowOneIsTransparent) {
@@ -179,10 +188,7 @@ TEST(DisplayColor, VertexOpacityInterpolatesBetweenPoints) {
     s.host.setInterpolation("/Halves", "primvars:displayOpacity", OBSCURA_INTERPOLATION_VERTEX);
     s.host.api().markDirty(s.host.delegate(), "/Halves", OBSCURA_DIRTY_PRIMVAR);
     auto color = s.render();
-    for (int x : {4, 20, 40, 56}) {
-        double u = (planePointAtPixel(x, 32, kLitPlaneCameraDistance, kLitPlaneTanHalfFov)[0] + kHalf) / (2.0 * kHalf);
-        expectOver(color, x, 32, kGreen, 0.2 + 0.8 * u);
-    }
+    for (int x : {4, 20, 40, 56}) expectOver(color, x, 32, kGreen, 0.2 + 0.8 * acrossAt(x));
 }
 
 // The halves (red) as the prototype of two instances, each squeezed to a panel of one side of the
@@ -286,6 +292,45 @@ TEST(DisplayColor, PerPointOpacityMakesThosePointsTranslucent) {
     auto color = s.render();
     expectDot(color, 0, 0.25);
     expectDot(color, 1, 1.0);
+}
+
+// BasisCurves take displayColor and displayOpacity as meshes do: a ribbon across the view (a
+// linear curve along x, as wide as the view is tall, its normals facing the camera) is lit as the
+// halves are, coloured along its length.
+void addRibbon(DisplayColorScene& s, const std::vector<Rgb>& colours, ObscuraInterpolation interpolation) {
+    s.host.addPrim("basisCurves", "/Ribbon",
+                   {{"points", HostValue::points({{-kHalf, 0, 0}, {kHalf, 0, 0}})},
+                    {"curveVertexCounts", HostValue::intArray({2})},
+                    {"type", HostValue::token("linear")},
+                    {"widths", floats({2 * kHalf})},
+                    {"normals", HostValue::points({{0, 0, 1}})},
+                    {"primvars:displayColor", HostValue::points(colours)}});
+    s.host.setInterpolation("/Ribbon", "widths", OBSCURA_INTERPOLATION_CONSTANT);
+    s.host.setInterpolation("/Ribbon", "normals", OBSCURA_INTERPOLATION_CONSTANT);
+    s.host.setInterpolation("/Ribbon", "primvars:displayColor", interpolation);
+}
+
+TEST(DisplayColor, ConstantColoursACurve) {
+    DisplayColorScene s;
+    addRibbon(s, {kRed}, OBSCURA_INTERPOLATION_CONSTANT);
+    auto color = s.render();
+    for (auto [x, y] : {std::pair{8, 8}, {32, 32}, {56, 60}}) expectRadiance(color, x, y, lambert(kRed));
+}
+
+TEST(DisplayColor, VertexColoursInterpolateAlongACurve) {
+    DisplayColorScene s;
+    addRibbon(s, {kRed, kBlue}, OBSCURA_INTERPOLATION_VERTEX);
+    expectRedToBlue(s.render());
+}
+
+TEST(DisplayColor, VertexOpacityInterpolatesAlongACurve) {
+    DisplayColorScene s;
+    addRibbon(s, {kGreen}, OBSCURA_INTERPOLATION_CONSTANT);
+    s.host.set("/Ribbon", "primvars:displayOpacity", floats({0.2f, 1.0f}));
+    s.host.setInterpolation("/Ribbon", "primvars:displayOpacity", OBSCURA_INTERPOLATION_VERTEX);
+    s.host.api().markDirty(s.host.delegate(), "/Ribbon", OBSCURA_DIRTY_PRIMVAR);
+    auto color = s.render();
+    for (int x : {4, 20, 40, 56}) expectOver(color, x, 32, kGreen, 0.2 + 0.8 * acrossAt(x));
 }
 
 }  // namespace

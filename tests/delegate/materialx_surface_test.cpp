@@ -124,6 +124,20 @@ def Material "OpenPbr"
         token outputs:surface
     }
 }
+def Material "Preview"
+{
+    token outputs:surface.connect = </Preview/Surface.outputs:surface>
+    def Shader "Surface"
+    {
+        uniform token info:id = "ND_UsdPreviewSurface_surfaceshader"
+        color3f inputs:diffuseColor = (0.1, 0.2, 0.3)
+        float inputs:roughness = 0.7
+        float inputs:metallic = 0.4
+        color3f inputs:emissiveColor = (0.5, 0.25, 0.125)
+        float inputs:opacity = 0.6
+        token outputs:surface
+    }
+}
 def Material "Unfoldable"
 {
     token outputs:surface.connect = </Unfoldable/Surface.outputs:surface>
@@ -219,6 +233,20 @@ TEST(MaterialXSurface, GltfAndOpenPbrSurfacesMapWithTheirDefaults) {
     expectFloats(n.floats("/Gltf", "inputs:opacityThreshold"), {0.6f}, "alpha_cutoff");
     expectFloats(n.floats("/OpenPbr", "inputs:diffuseColor"), {0.5f, 0.5f, 0}, "base_weight * base_color");
     expectFloats(n.floats("/OpenPbr", "inputs:roughness"), {0.3f}, "OpenPBR specular_roughness default");
+}
+
+// MaterialX's own UsdPreviewSurface node: each input lands on the UsdPreviewSurface input of its
+// name (the values differ, so no two may trade places), and what it leaves out takes
+// UsdPreviewSurface's defaults rather than another model's.
+TEST(MaterialXSurface, UsdPreviewSurfaceNodeMapsEachInputToItsNamesake) {
+    Networks n;
+    expectFloats(n.floats("/Preview", "inputs:diffuseColor"), {0.1f, 0.2f, 0.3f}, "diffuseColor");
+    expectFloats(n.floats("/Preview", "inputs:roughness"), {0.7f}, "roughness");
+    expectFloats(n.floats("/Preview", "inputs:metallic"), {0.4f}, "metallic");
+    expectFloats(n.floats("/Preview", "inputs:emissiveColor"), {0.5f, 0.25f, 0.125f}, "emissiveColor");
+    expectFloats(n.floats("/Preview", "inputs:opacity"), {0.6f}, "opacity");
+    expectFloats(n.floats("/Preview", "inputs:clearcoatRoughness"), {0.01f}, "UsdPreviewSurface's clearcoatRoughness");
+    EXPECT_EQ(n.messagesWith("/Preview"), 0u);
 }
 
 TEST(MaterialXSurface, WhatCannotMapIsReportedOnceAndFallsBack) {

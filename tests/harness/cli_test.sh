@@ -105,6 +105,27 @@ check "an invalid UTF-8 byte in a prim name" 3 $? "$tmp/out" 'utf8\.usda:5:11: p
 "$obscura" render "$src/tests/import/data/bad_base64.gltf" -o "$tmp/x.png" >"$tmp/out" 2>&1
 check "a glTF buffer with corrupt base64" 3 $? "$tmp/out" "bad_base64\.gltf:11:25: buffers\[0\]\.uri: base64 data has '!' at offset 20"
 
+# Arcs to layers that are missing or do not parse are each reported where they are authored and
+# add nothing: the scene renders, exit 0, as it does with those arcs taken out.
+scene="$src/tests/harness/data/missing_arcs.usda"
+"$obscura" render "$scene" -o "$tmp/arcs.png" --width 32 --height 32 >"$tmp/out" 2>&1
+check "arcs to missing layers are warnings" 0 $?
+arc() {  # arc NAME PATTERN: one warning of the last output
+    check "$1" 0 0 "$tmp/out" "warning: .*missing_arcs\.usda:$2"
+}
+arc "a missing sublayer" '5:9: sublayer @gone_sublayer\.usda@ ignored: .*/gone_sublayer\.usda: no such file'
+arc "a missing reference" '13:22: reference of </World/Local> to @gone\.usda@ ignored: .*/gone\.usda: no such file'
+arc "a reference to a layer that does not parse" \
+    "24:13: reference of </World/Referenced> to @malformed\.usda@ ignored: .*/malformed\.usda:7:[0-9]+: "
+arc "a missing payload" '27:19: payload of </World/Referenced> to @gone_payload\.usda@ ignored'
+sed -e '/@gone\|@malformed/d' -e "s|@bad_prims|@$(cd "$src" && pwd)/tests/harness/data/bad_prims|" "$scene" \
+    >"$tmp/without_arcs.usda"
+"$obscura" render "$tmp/without_arcs.usda" -o "$tmp/without_arcs.png" --width 32 --height 32 >"$tmp/out" 2>&1
+check "render without the broken arcs" 0 $?
+! grep -q "ignored" "$tmp/out"; check "no broken arc is left" 0 $?
+"$obscura" compare "$tmp/arcs.png" "$tmp/without_arcs.png" --psnr-min 60 >"$tmp/out" 2>&1
+check "the rest renders as if the broken arcs were not written" 0 $?
+
 # GeomSubsets of the materialBind family bind materials per face: the same image as the faces drawn
 # as meshes of their own (ignored subsets would leave every tile blue); a bad index is located on
 # its subset and ignored.

@@ -68,13 +68,12 @@ TEST_F(AssetReaderTest, ReadsFilesInAPackageInsideAPackage) {
 TEST_F(AssetReaderTest, SaysWhyWhatCannotBeRead) {
     ASSERT_EQ(writeUsdz(dir_ / "a.usdz", {{"b.png", "packaged"}}), "");
     std::ofstream(dir_ / "broken.usdz") << "not a zip archive";
-    EXPECT_EQ(problemReading(path("missing.png")), "cannot read the file");
-    EXPECT_EQ(problemReading(dir_.string()), "cannot read the file");  // a folder
+    EXPECT_EQ(problemReading(path("missing.png")), "no such file");
+    EXPECT_EQ(problemReading(dir_.string()), "cannot be read");  // a folder
     EXPECT_EQ(problemReading(joinPackagePath(path("a.usdz"), "c.png")), "no file 'c.png' in the package");
-    const std::string missing = problemReading(joinPackagePath(path("missing.usdz"), "b.png"));
-    EXPECT_EQ(missing.rfind("cannot open package '" + path("missing.usdz") + "': ", 0), 0u) << missing;
+    EXPECT_EQ(problemReading(joinPackagePath(path("missing.usdz"), "b.png")), "no such file");
     const std::string broken = problemReading(joinPackagePath(path("broken.usdz"), "b.png"));
-    EXPECT_EQ(broken.rfind("cannot open package '" + path("broken.usdz") + "': ", 0), 0u) << broken;
+    EXPECT_EQ(broken.rfind("not a readable zip archive: ", 0), 0u) << broken;
     // A package that could not be opened is tried again.
     fs::rename(dir_ / "a.usdz", dir_ / "missing.usdz");
     EXPECT_EQ(read(joinPackagePath(path("missing.usdz"), "b.png")), "packaged");

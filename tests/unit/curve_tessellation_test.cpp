@@ -195,6 +195,29 @@ TEST(CurveTessellation, TubeRingsLieAtTheirRadiusAroundTheCurve) {
     EXPECT_EQ(tessellateCurves(c, {8, 16}).indices.size(), g.indices.size());
 }
 
+// Non-constant displayOpacity reaches the vertices as displayColor does: vertex opacity follows the
+// curve's parameter, uniform opacity is one per curve; one of the wrong count is dropped with a
+// warning and the curves stay opaque.
+TEST(CurveTessellation, DisplayOpacityFollowsItsInterpolation) {
+    CurvesInput c;
+    c.basis = CurveBasis::Linear;
+    c.points = {0, 0, 0, 0, 0, 4, 3, 0, 0, 3, 0, 4};  // along z at x = 0 and x = 3
+    c.curveVertexCounts = {2, 2};
+    c.displayOpacity = MeshPrimvar{{0.2f, 1.0f, 0.5f, 0.5f}, OBSCURA_INTERPOLATION_VERTEX, 1};
+    MeshGeometry g = tessellateCurves(c, {8, 1});
+    EXPECT_TRUE(g.warnings.empty());
+    for (const passes::Vertex& v : g.vertices)
+        EXPECT_NEAR(v.color[3], v.position[0] < 1.5f ? 0.2 + 0.8 * v.position[2] / 4.0 : 0.5, 1e-6);
+    c.displayOpacity = MeshPrimvar{{0.25f, 0.75f}, OBSCURA_INTERPOLATION_UNIFORM, 1};
+    for (const passes::Vertex& v : tessellateCurves(c, {8, 1}).vertices)
+        EXPECT_EQ(v.color[3], v.position[0] < 1.5f ? 0.25f : 0.75f);
+    c.displayOpacity = MeshPrimvar{{0.5f, 0.5f, 0.5f}, OBSCURA_INTERPOLATION_VERTEX, 1};
+    MeshGeometry dropped = tessellateCurves(c, {8, 1});
+    EXPECT_EQ(dropped.warnings, std::vector<std::string>{"primvars:displayOpacity has 3 elements but its interpolation "
+                                                         "needs 4; ignored"});
+    for (const passes::Vertex& v : dropped.vertices) EXPECT_EQ(v.color[3], 1.0f);
+}
+
 TEST(CurveTessellation, BadCurvesAreNamed) {
     CurvesInput c = twoCurves(CurveBasis::Bspline, CurveWrap::Nonperiodic);
     c.curveVertexCounts = {6, 5};

@@ -495,35 +495,6 @@ TEST(Composition, SublayerCycleIsAnError) {
     EXPECT_NE(std::get<Error>(result).message.find("sublayer cycle"), std::string::npos);
 }
 
-TEST(Composition, MissingReferencedFileNamesTheFileAndTheReference) {
-    const Error error = openError(R"(#usda 1.0
-def "A" (
-    references = @does_not_exist.usda@</X>
-)
-{
-}
-)",
-                                  kDataDir + "/refs/scene.usda");
-    EXPECT_EQ(error.where.file, kDataDir + "/refs/scene.usda");
-    EXPECT_EQ(error.where.line, 3);
-    EXPECT_EQ(error.where.column, 18);
-    EXPECT_NE(error.message.find("does_not_exist.usda"), std::string::npos) << error.str();
-}
-
-TEST(Composition, MissingSublayerIsAnError) {
-    const Error error = openError(R"(#usda 1.0
-(
-    subLayers = [
-        @gone.usda@
-    ]
-)
-)",
-                                  kDataDir + "/scene.usda");
-    EXPECT_EQ(error.where.line, 4);
-    EXPECT_EQ(error.where.column, 9);
-    EXPECT_NE(error.message.find("gone.usda"), std::string::npos);
-}
-
 TEST(Composition, UnresolvedInternalReferenceWarns) {
     const auto stage = open(R"(#usda 1.0
 def "A" (

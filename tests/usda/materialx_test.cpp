@@ -100,11 +100,14 @@ TEST(MaterialX, AMalformedDocumentWarnsWhereAndAddsNothing) {
     ASSERT_TRUE(stage);
     ASSERT_EQ(stage->warnings().size(), 1u);
     const Warning& warning = stage->warnings().front();
-    EXPECT_NE(warning.message.find("MaterialX document 'broken.mtlx': not well-formed XML"),
-              std::string::npos)
+    // At the arc, with where the document goes wrong.
+    EXPECT_EQ(warning.message.find("reference of </Looks> to @broken.mtlx@ ignored: " + (dir / "broken.mtlx").string() +
+                                   ":4:"),
+              0u)
         << warning.message;
-    EXPECT_EQ(fs::path(warning.where.file).filename(), "broken.mtlx");
-    EXPECT_EQ(warning.where.line, 4);
+    EXPECT_NE(warning.message.find("not well-formed XML"), std::string::npos) << warning.message;
+    EXPECT_EQ(fs::path(warning.where.file).filename(), "scene.usda");
+    EXPECT_EQ(warning.where.line, 2);
     fs::remove_all(dir);
 }
 

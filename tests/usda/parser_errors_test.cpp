@@ -145,14 +145,19 @@ TEST(ParserErrors, MissingRootFile) {
     EXPECT_EQ(error.message, "cannot open file");
 }
 
+// The stage opens without the layer (tests/usda/missing_layers_test.cpp); the warning at the
+// reference carries the error where it is in that layer.
 TEST(ParserErrors, SyntaxErrorInAReferencedLayerPointsIntoThatLayer) {
     auto result = Stage::open(kDataDir + "/errors/bad_syntax_ref.usda");
-    ASSERT_TRUE(std::holds_alternative<Error>(result));
-    const Error& error = std::get<Error>(result);
-    EXPECT_EQ(error.where.file, kDataDir + "/errors/broken.usda");
-    EXPECT_EQ(error.where.line, 5);
-    EXPECT_EQ(error.where.column, 15);
-    EXPECT_EQ(error.message, "expected a number for float, found end of line");
+    ASSERT_TRUE(std::holds_alternative<std::unique_ptr<Stage>>(result));
+    const auto& stage = std::get<std::unique_ptr<Stage>>(result);
+    ASSERT_EQ(stage->warnings().size(), 1u);
+    const Warning& warning = stage->warnings().front();
+    EXPECT_EQ(warning.where.file, kDataDir + "/errors/bad_syntax_ref.usda");
+    EXPECT_EQ(warning.where.line, 4);
+    EXPECT_EQ(warning.message, "reference of </Root> to @broken.usda@ ignored: " + kDataDir +
+                                   "/errors/broken.usda:5:15: expected a number for float, found end of line");
+    EXPECT_TRUE(stage->find("/Root"));
 }
 
 }  // namespace

@@ -50,8 +50,10 @@ public:
     }
     ~LayerFiles() { std::filesystem::remove_all(dir_); }
     std::unique_ptr<Stage> open(const StageOptions& options = {}) const {
-        return openFile((dir_ / "root.usda").string(), options);
+        return openFile(path("root.usda"), options);
     }
+    // Where the file `name` is (or would be) written.
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
 private:
     static inline int counter_ = 0;
