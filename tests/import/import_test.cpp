@@ -297,26 +297,32 @@ TEST(GltfImport, BaseColorTextureIsScaledByTheBaseColorFactor) {
 
 // The Embedded material's base colour is a 1x1 PNG of (255, 128, 0) in a data: URI
 // (make_scene_gltf.py): written out as a file the delegate reads like any texture.
+// The material's base colour texture is an image written out of the file, bound to its surface's
+// diffuseColor, one texel of `rgb`; returns the file.
+std::string expectWrittenTexture(const Imported& imported, const std::string& material, std::array<float, 3> rgb) {
+    const std::string texture = material + "/BaseColorTexture";
+    imported.prim(texture, "Shader");
+    EXPECT_EQ(imported.connection(material + "/Surface", "inputs:diffuseColor"), texture + ".outputs:rgb");
+    const std::string file = imported.token(texture, "inputs:file");
+    EXPECT_TRUE(file.ends_with(".png")) << file;
+    auto image = image::readStbImage(file);
+    EXPECT_FALSE(image::isError(image)) << image::errorOf(image);
+    if (image::isError(image)) return file;
+    const auto& pixels = std::get<image::Image>(image);
+    EXPECT_EQ(pixels.width, 1);
+    EXPECT_EQ(pixels.height, 1);
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(pixels.pixels.at(size_t(c)), rgb[size_t(c)]) << "channel " << c;
+    return file;
+}
+
 TEST(GltfImport, EmbeddedTexturesAreWrittenOutAndBound) {
     const Imported gltf("scene.gltf");
     ASSERT_TRUE(gltf.stage);
     const std::string material = kLooks + "/Embedded";
-    const std::string texture = material + "/BaseColorTexture";
-    gltf.prim(texture, "Shader");
-    EXPECT_EQ(gltf.connection(material + "/Surface", "inputs:diffuseColor"), texture + ".outputs:rgb");
-    const std::string file = gltf.token(texture, "inputs:file");
-    EXPECT_TRUE(file.ends_with(".png")) << file;
-    auto image = image::readStbImage(file);
-    ASSERT_FALSE(image::isError(image)) << image::errorOf(image);
-    const auto& pixels = std::get<image::Image>(image);
-    ASSERT_EQ(pixels.width, 1);
-    ASSERT_EQ(pixels.height, 1);
-    EXPECT_FLOAT_EQ(pixels.pixels[0], 1.0f);
-    EXPECT_FLOAT_EQ(pixels.pixels[1], 128.0f / 255.0f);
-    EXPECT_FLOAT_EQ(pixels.pixels[2], 0.0f);
+    const std::string file = expectWrittenTexture(gltf, material, {1.0f, 128.0f / 255.0f, 0.0f});
     // A second import of the same file reuses the file written.
     const Imported again("scene.gltf");
-    EXPECT_EQ(again.token(texture, "inputs:file"), file);
+    EXPECT_EQ(again.token(material + "/BaseColorTexture", "inputs:file"), file);
     EXPECT_FALSE(gltf.warned("material 'Embedded'"));
 }
 
@@ -325,20 +331,7 @@ TEST(GltfImport, EmbeddedTexturesAreWrittenOutAndBound) {
 TEST(GltfImport, GlbImagesInBufferViewsAreWrittenOutAndBound) {
     const Imported glb("embedded.glb");
     ASSERT_TRUE(glb.stage);
-    const std::string material = kLooks + "/Packed";
-    const std::string texture = material + "/BaseColorTexture";
-    glb.prim(texture, "Shader");
-    EXPECT_EQ(glb.connection(material + "/Surface", "inputs:diffuseColor"), texture + ".outputs:rgb");
-    const std::string file = glb.token(texture, "inputs:file");
-    EXPECT_TRUE(file.ends_with(".png")) << file;
-    auto image = image::readStbImage(file);
-    ASSERT_FALSE(image::isError(image)) << image::errorOf(image);
-    const auto& pixels = std::get<image::Image>(image);
-    ASSERT_EQ(pixels.width, 1);
-    ASSERT_EQ(pixels.height, 1);
-    EXPECT_FLOAT_EQ(pixels.pixels[0], 0.0f);
-    EXPECT_FLOAT_EQ(pixels.pixels[1], 64.0f / 255.0f);
-    EXPECT_FLOAT_EQ(pixels.pixels[2], 1.0f);
+    expectWrittenTexture(glb, kLooks + "/Packed", {0.0f, 64.0f / 255.0f, 1.0f});
     EXPECT_FALSE(glb.warned("material 'Packed'"));
 }
 
