@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -120,6 +121,70 @@ TEST(ImplicitTessellation, PlaneFacesItsAxisAndSpansWidthAndLength) {
         EXPECT_NEAR(b.max[widthAxis] - b.min[widthAxis], 4.0, 1e-6);
         EXPECT_NEAR(b.max[lengthAxis] - b.min[lengthAxis], 6.0, 1e-6);
         EXPECT_NEAR(b.max[size_t(axis)] - b.min[size_t(axis)], 0.0, 1e-6);
+    }
+}
+
+// st: a surface of revolution's s is its longitude's fraction of a turn from +x (1 at the seam's
+// far side) and t its height's fraction of the shape's; a flat cap's st the square around the
+// disc; a cube's faces and a plane each span the unit square, linearly in position.
+std::array<double, 2> stAt(const MeshInput& mesh, size_t corner) {
+    return {mesh.st->values[2 * corner], mesh.st->values[2 * corner + 1]};
+}
+
+void expectRevolvedSt(const MeshInput& mesh, double zMin, double zMax, double capRadius) {
+    ASSERT_TRUE(mesh.st.has_value());
+    ASSERT_EQ(mesh.st->values.size(), 2 * mesh.points.size() / 3);
+    for (size_t i = 0; i < mesh.points.size() / 3; ++i) {
+        V3 p = at(mesh.points, i), n = at(mesh.normals->values, i);
+        std::array<double, 2> st = stAt(mesh, i);
+        if (std::abs(n[2]) > 1.0 - 1e-6 && capRadius > 0.0) {  // a flat cap
+            EXPECT_NEAR(st[0], 0.5 + 0.5 * p[0] / capRadius, 1e-5) << "corner " << i;
+            EXPECT_NEAR(st[1], 0.5 + 0.5 * p[1] / capRadius, 1e-5) << "corner " << i;
+            continue;
+        }
+        EXPECT_NEAR(st[1], (p[2] - zMin) / (zMax - zMin), 1e-5) << "corner " << i;
+        if (std::hypot(p[0], p[1]) < 1e-6) continue;  // a pole: every longitude
+        double turn = std::atan2(p[1], p[0]) / (2.0 * std::numbers::pi);
+        if (turn < 0.0) turn += 1.0;
+        if (st[0] > 0.5 && turn < 1e-6) turn = 1.0;  // the seam, from its far side
+        EXPECT_NEAR(st[0], turn, 1e-5) << "corner " << i;
+    }
+}
+
+TEST(ImplicitTessellation, StFollowsLongitudeAndHeightAndSpansFlatFaces) {
+    ImplicitShape sphere;
+    sphere.kind = ImplicitKind::Sphere;
+    sphere.radiusBottom = 1.5;
+    expectRevolvedSt(tessellateImplicitShape(sphere, 16, false), -1.5, 1.5, 0.0);
+    ImplicitShape cylinder;
+    cylinder.kind = ImplicitKind::Frustum;
+    cylinder.height = 3.0;
+    expectRevolvedSt(tessellateImplicitShape(cylinder, 16, false), -1.5, 1.5, 1.0);
+
+    ImplicitShape cube;
+    cube.kind = ImplicitKind::Cube;
+    MeshInput box = tessellateImplicitShape(cube, 8, false);
+    ASSERT_TRUE(box.st.has_value());
+    for (size_t face = 0; face < 6; ++face) {
+        std::array<std::array<double, 2>, 4> st;
+        std::array<V3, 4> p;
+        for (size_t k = 0; k < 4; ++k) st[k] = stAt(box, 4 * face + k), p[k] = at(box.points, 4 * face + k);
+        // The unit square's corners, in order round the face, and st linear in position.
+        const std::array<std::array<double, 2>, 4> square{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+        EXPECT_EQ(st, square) << "face " << face;
+        V3 across = sub(sub(p[2], p[1]), sub(p[3], p[0]));
+        EXPECT_NEAR(dot(across, across), 0.0, 1e-10) << "face " << face;
+    }
+
+    ImplicitShape plane;
+    plane.kind = ImplicitKind::Plane;
+    plane.width = 4.0, plane.length = 6.0;
+    MeshInput quad = tessellateImplicitShape(plane, 8, false);
+    ASSERT_TRUE(quad.st.has_value());
+    for (size_t i = 0; i < quad.points.size() / 3; ++i) {
+        V3 p = at(quad.points, i);
+        EXPECT_NEAR(stAt(quad, i)[0], p[0] / 4.0 + 0.5, 1e-6);
+        EXPECT_NEAR(stAt(quad, i)[1], p[1] / 6.0 + 0.5, 1e-6);
     }
 }
 
