@@ -22,13 +22,7 @@ constexpr float kHalf = 1.2f;  // beyond the view's half-size at z = 0 (1.04775)
 struct DisplayColorScene {
     TestHost host;
     DisplayColorScene() {
-        host.addCamera("/Camera", translation(0, 0, kLitPlaneCameraDistance), kLitPlaneFocalLength, kLitPlaneAperture);
-        host.addPrim("distantLight", "/Sun",
-                     {{"inputs:intensity", HostValue::floatValue(float(kIrradiance))},
-                      {"inputs:normalize", HostValue::boolean(true)},
-                      {"inputs:specular", HostValue::floatValue(0.0f)}},
-                     lightPointingAlong({0.0, 0.0, -1.0}));
-        host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+        addLitPlaneViewAndSun(host, kIrradiance);
     }
     // Points: bottom row left to right (0, 1, 2), top row (3, 4, 5); faces: left, right.
     void addHalves(const std::vector<Rgb>& colours, ObscuraInterpolation interpolation,

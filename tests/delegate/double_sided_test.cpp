@@ -22,13 +22,7 @@ const Matrix kTurnedAround{-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1};
 struct BackViewScene {
     TestHost host;
     BackViewScene() {
-        host.addCamera("/Camera", translation(0, 0, kLitPlaneCameraDistance), kLitPlaneFocalLength, kLitPlaneAperture);
-        host.addPrim("distantLight", "/Sun",
-                     {{"inputs:intensity", HostValue::floatValue(float(kIrradiance))},
-                      {"inputs:normalize", HostValue::boolean(true)},
-                      {"inputs:specular", HostValue::floatValue(0.0f)}},
-                     lightPointingAlong({0.0, 0.0, -1.0}));
-        host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+        addLitPlaneViewAndSun(host, kIrradiance);
     }
     // A red square at z = 0, its front facing the camera or away from it: a mesh wound
     // counter-clockwise or clockwise seen from the camera.

@@ -102,6 +102,16 @@ LitPlaneScene::LitPlaneScene() {
     host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
 }
 
+void addLitPlaneViewAndSun(TestHost& host, double irradiance) {
+    host.addCamera("/Camera", translation(0, 0, kLitPlaneCameraDistance), kLitPlaneFocalLength, kLitPlaneAperture);
+    host.addPrim("distantLight", "/Sun",
+                 {{"inputs:intensity", HostValue::floatValue(float(irradiance))},
+                  {"inputs:normalize", HostValue::boolean(true)},
+                  {"inputs:specular", HostValue::floatValue(0.0f)}},
+                 lightPointingAlong({0.0, 0.0, -1.0}));
+    host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+}
+
 std::vector<float> LitPlaneScene::renderColor() {
     EXPECT_EQ(host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_OK) << host.lastError();
     EXPECT_TRUE(host.loggedErrors().empty()) << host.loggedErrors().front();

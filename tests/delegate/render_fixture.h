@@ -72,6 +72,10 @@ struct LitPlaneScene {
     std::vector<float> renderColor();
 };
 
+// The lit plane's camera and colour buffer, and a sun of `irradiance` shining straight down -Z
+// without a specular response: for tests that bring their own surfaces at z = 0.
+void addLitPlaneViewAndSun(TestHost& host, double irradiance);
+
 // The pixel's radiance equals `expected` within 1% plus one step of the B10G11R11 accumulation
 // format (mantissa 6, 6, 5 bits: 1.6% for R and G, 3.1% for B).
 void expectRadiance(const std::vector<float>& color, int x, int y, std::array<double, 3> expected);
