@@ -368,6 +368,7 @@ private:
         inst.normalMatrix = toFloats<passes::Mat4>(normalMatrix(model));
         inst.primId = mesh.primId();
         inst.materialIndex = materialOf(mesh, part);
+        scene_.draws.back().materialFeatures |= passes::materialFeatures(materials_[inst.materialIndex]);
         // UsdPreviewSurface wins over displayColor; without a material, displayColor is the
         // surface colour (as Hydra's fallback material). A material whose diffuseColor (opacity)
         // reads a primvar takes the vertex colour (alpha) the host served it as, and the
@@ -440,6 +441,7 @@ private:
                           moving, shutterPositionsOf(mesh)};
         draw.firstIndex = part.indices.first;
         draw.sphereImpostors = mesh.drawsSphereImpostors();
+        draw.materialFeatures = 0;  // its instances' materials add theirs (record)
         return draw;
     }
 
@@ -849,18 +851,38 @@ private:
 
     void uploadBuffers() {
         scene_.instanceCount = static_cast<uint32_t>(std::min<size_t>(instances_.size(), UINT32_MAX));
-        passes::LightBufferHeader header{static_cast<uint32_t>(lights_.size()), {0, 0, 0}};
         constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
         scene_.instances = upload(nullptr, 0, instances_, storage, "instances");
         scene_.instanceMotions = upload(nullptr, 0, motions_, storage, "instance motions");
         scene_.instanceReprojections = upload(nullptr, 0, reprojections_, storage, "instance reprojections");
         scene_.motionBlur = in_.shutter && !in_.sample && (cameraMoves_ || !motions_.empty());
         scene_.materials = upload(nullptr, 0, materials_, storage, "materials");
-        scene_.lights = upload(&header, sizeof(header), lights_, storage, "lights");
+        uploadLights();
         if (!candidates_.empty()) {
             scene_.occlusionCandidateCount = static_cast<uint32_t>(candidates_.size());
             scene_.occlusionCandidates = upload(nullptr, 0, candidates_, storage, "occlusion candidates");
         }
+    }
+
+    // The light buffer: the distant lights, then the domes, then the local lights, each kind in the
+    // stage's order (the lighting pass loops over each kind apart: shaders/lighting.comp).
+    void uploadLights() {
+        const auto typeOf = [](const passes::LightData& light) { return passes::LightType(uint32_t(light.positionType[3])); };
+        std::vector<passes::LightData> sorted;
+        for (passes::LightType type : {passes::LightType::Distant, passes::LightType::Dome})
+            for (const passes::LightData& light : lights_)
+                if (typeOf(light) == type) sorted.push_back(light);
+        const size_t distantAndDome = sorted.size();
+        for (const passes::LightData& light : lights_)
+            if (typeOf(light) != passes::LightType::Distant && typeOf(light) != passes::LightType::Dome)
+                sorted.push_back(light);
+        const auto distantCount = uint32_t(std::count_if(lights_.begin(), lights_.end(), [&](const passes::LightData& l) {
+            return typeOf(l) == passes::LightType::Distant;
+        }));
+        passes::LightBufferHeader header{uint32_t(sorted.size()), distantCount, uint32_t(distantAndDome) - distantCount, 0};
+        scene_.lights = upload(&header, sizeof(header), sorted, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights");
+        scene_.lightKinds = 0;
+        for (const passes::LightData& light : sorted) scene_.lightKinds |= passes::lightKind(light);
     }
 
     // The dome's frame, and the domes the camera sees: each one's radiance, the textured one's

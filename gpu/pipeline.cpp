@@ -6,24 +6,43 @@
 #include "gpu/vk_check.h"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace obscura::gpu {
 namespace {
 
-// The specialization constants every shader stage gets (shaders/common/device_traits.glsl), built
-// in place: the info points at its own members.
-struct DeviceTraits {
-    explicit DeviceTraits(Device& device)
-        : compactCode(device.context().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) {}
-    DeviceTraits(const DeviceTraits&) = delete;
-    DeviceTraits& operator=(const DeviceTraits&) = delete;
+// The specialization constants every shader stage gets: the device traits
+// (shaders/common/device_traits.glsl, constant 0) and the pipeline's own, built in place: the info
+// points at its own members.
+struct Specialization {
+    Specialization(Device& device, const std::vector<SpecializationConstant>& constants) {
+        values.push_back(device.context().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);  // COMPACT_CODE
+        entries.push_back({0, 0, sizeof(uint32_t)});
+        for (const SpecializationConstant& c : constants) {
+            entries.push_back({c.id, uint32_t(values.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+            values.push_back(c.value);
+        }
+        info = {uint32_t(entries.size()), entries.data(), values.size() * sizeof(uint32_t), values.data()};
+    }
+    Specialization(const Specialization&) = delete;
+    Specialization& operator=(const Specialization&) = delete;
 
-    VkBool32 compactCode;  // constant 0, COMPACT_CODE: a CPU device
-    VkSpecializationMapEntry entry{0, 0, sizeof(VkBool32)};
-    VkSpecializationInfo info{1, &entry, sizeof(VkBool32), &compactCode};
+    std::vector<uint32_t> values;  // VkBool32 and uint constants alike are 32 bits
+    std::vector<VkSpecializationMapEntry> entries;
+    VkSpecializationInfo info{};
 };
 
 }  // namespace
+
+std::string specializationSuffix(const std::vector<SpecializationConstant>& constants) {
+    std::string suffix;
+    char text[32];
+    for (const SpecializationConstant& c : constants) {
+        std::snprintf(text, sizeof(text), ".c%u=%x", c.id, c.value);
+        suffix += text;
+    }
+    return suffix;
+}
 
 VkPipelineCreateFlags Pipeline::captureFlags() const {
     return device_.context().pipelineExecutableFunctions().statistics ? VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR
@@ -77,10 +96,10 @@ Pipeline::Pipeline(Device& device, const ComputePipelineDesc& desc) : device_(de
     bindPoint_ = VK_PIPELINE_BIND_POINT_COMPUTE;
     createLayout(desc.bindings, desc.pushConstantSize, VK_SHADER_STAGE_COMPUTE_BIT);
     VkShaderModule module = loadModule(desc.shader);
-    const DeviceTraits traits(device_);
+    const Specialization specialization(device_, desc.specialization);
     VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT,
-                module, "main", &traits.info};
+                module, "main", &specialization.info};
     ci.layout = layout_;
     ci.flags = captureFlags();
     VkResult r = vkCreateComputePipelines(device_.vk(), device_.pipelineCache(), 1, &ci, nullptr, &pipeline_);
@@ -95,12 +114,12 @@ Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(d
                  desc.pushedSamplers);
     VkShaderModule vs = loadModule(desc.vertexShader);
     VkShaderModule fs = desc.fragmentShader.empty() ? VK_NULL_HANDLE : loadModule(desc.fragmentShader);
-    const DeviceTraits traits(device_);
+    const Specialization specialization(device_, desc.specialization);
     VkPipelineShaderStageCreateInfo stages[2] = {
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vs, "main",
-         &traits.info},
+         &specialization.info},
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, fs, "main",
-         &traits.info}};
+         &specialization.info}};
 
     std::vector<VkVertexInputBindingDescription> bindings;
     for (uint32_t b = 0; b < desc.vertexStrides.size(); ++b)

@@ -14,6 +14,18 @@ struct BindingDesc {
     VkDescriptorType type;
 };
 
+// A specialization constant beyond the device traits (constant_id 0, shaders/common/
+// device_traits.glsl): a pipeline built for what a frame holds leaves out the code of what it
+// lacks. A shader that declares no constant of the id ignores it.
+struct SpecializationConstant {
+    uint32_t id;
+    uint32_t value;
+};
+
+// The constants as part of a pipeline's name in the PipelineCache: "" for none, else
+// ".c<id>=<hex value>" each.
+std::string specializationSuffix(const std::vector<SpecializationConstant>& constants);
+
 struct VertexAttribute {
     uint32_t location;
     VkFormat format;
@@ -54,12 +66,14 @@ struct GraphicsPipelineDesc {
         VkStencilOp passOp = VK_STENCIL_OP_KEEP;
         uint32_t reference = 0;
     } stencil;
+    std::vector<SpecializationConstant> specialization;  // both stages
 };
 
 struct ComputePipelineDesc {
     std::string shader;
     std::vector<BindingDesc> bindings;
     uint32_t pushConstantSize = 0;
+    std::vector<SpecializationConstant> specialization;
 };
 
 class Pipeline {

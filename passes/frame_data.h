@@ -231,6 +231,22 @@ OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, clearcoat);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, anisotropy);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, textures);
 
+// What a draw's materials use, as a specialization constant of the G-buffer's pipelines
+// (shaders/common/material_inputs.glsl MATERIAL_FEATURES): a pipeline leaves out the code of the
+// features its draw's materials lack. A CPU device runs every branch of a shader for all lanes of
+// its SIMD group, taken or not, so an untextured draw otherwise paid for six texture paths.
+enum MaterialFeature : uint32_t {
+    kMaterialTextured = 1u,            // some input reads a texture
+    kMaterialUdim = 2u,                // some texture is a UDIM set
+    kMaterialTransformedTexture = 4u,  // some texture's coordinates are transformed
+    kMaterialNormalMap = 8u,           // the normal input reads a texture
+    kMaterialAnisotropic = 16u,        // obscura:anisotropy above 0
+    kAllMaterialFeatures = 31u,
+};
+constexpr uint32_t kMaterialFeaturesConstant = 1;  // its constant_id
+
+uint32_t materialFeatures(const MaterialData& material);
+
 enum class LightType : uint32_t { Distant = 0, Sphere = 1, Dome = 2, Rect = 3, Disk = 4, Cylinder = 5 };
 
 struct alignas(16) LightData {
@@ -258,6 +274,17 @@ OBSCURA_SHADER_OFFSET(LightData, LightData, shadow);
 // How a light's shadow views cover it: the cascades of a distant light, the six cube faces
 // (+X, -X, +Y, -Y, +Z, -Z) around a local light, or one perspective map along a spot's axis.
 enum class ShadowProjection : uint32_t { Cascades = 0, Cube = 1, Spot = 2 };
+
+// The kinds of light a frame holds, as a specialization constant of the lighting pass
+// (shaders/common/light_evaluation.glsl LIGHT_KINDS): bit (1 << LightType) for each type present,
+// bit (1 << (8 + ShadowProjection)) for each kind of shadow view, and kLightKindShaped where a
+// light has a ShapingAPI cone or focus, kLightKindTexturedDome where a dome lights through its
+// texture (the environment maps). The lighting pipeline leaves out the code of what the
+// frame lacks (see MaterialFeature for why).
+constexpr uint32_t kLightKindShaped = 1u << 12;
+constexpr uint32_t kLightKindTexturedDome = 1u << 13;
+constexpr uint32_t kLightKindsConstant = 2;  // its constant_id
+uint32_t lightKind(const LightData& light);
 
 // One view of the shadow atlas as the lighting pass reads it (passes/frame_scene.h ShadowMapView).
 struct alignas(16) ShadowViewData {
@@ -290,12 +317,17 @@ OBSCURA_SHADER_OFFSET(EnvironmentData, EnvironmentData, params);
 OBSCURA_SHADER_OFFSET(EnvironmentData, EnvironmentData, backdrop);
 OBSCURA_SHADER_OFFSET(EnvironmentData, EnvironmentData, texturedBackdrop);
 
-// Header of the light buffer: the count, padded to the first LightData.
+// Header of the light buffer: the counts, padded to the first LightData. The lights come sorted:
+// the distant lights, then the domes, then the local lights (the lighting pass's loops over each).
 struct alignas(16) LightBufferHeader {
     uint32_t count;
-    uint32_t pad[3];
+    uint32_t distantCount;
+    uint32_t domeCount;
+    uint32_t pad;
 };
 static_assert(offsetof(LightBufferHeader, count) == shader_layout::Lights::lightCount);
+static_assert(offsetof(LightBufferHeader, distantCount) == shader_layout::Lights::distantLightCount);
+static_assert(offsetof(LightBufferHeader, domeCount) == shader_layout::Lights::domeLightCount);
 static_assert(sizeof(LightBufferHeader) == shader_layout::Lights::lights);
 
 // Vertex layout of the G-buffer pass.

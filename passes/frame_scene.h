@@ -42,6 +42,9 @@ struct Draw {
     uint32_t cullSlot = kNotCulledOnGpu;
     uint32_t firstCandidate = 0;
     bool culledOnGpu() const { return cullSlot != kNotCulledOnGpu; }
+    // What its instances' materials use (frame_data.h materialFeatures, or-ed): the G-buffer's
+    // pipeline leaves the rest out.
+    uint32_t materialFeatures = kAllMaterialFeatures;
 };
 
 // The textures a material samples, one per MaterialTextureSlot, white where the input is
@@ -168,6 +171,7 @@ struct FrameScene {
     gpu::BufferPtr instanceReprojections;
     gpu::BufferPtr materials;  // MaterialData[] (storage)
     gpu::BufferPtr lights;     // LightBufferHeader + LightData[] (storage)
+    uint32_t lightKinds = ~0u;  // the kinds `lights` holds (frame_data.h lightKind, or-ed)
     gpu::BufferPtr environment;  // EnvironmentData (uniform)
     std::vector<MaterialTextures> materialTextures;  // never empty: element 0 is all white
     // What `instances` and `materials` hold, on the CPU: for passes that cache their results

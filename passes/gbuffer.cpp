@@ -84,8 +84,10 @@ std::vector<ShaderBinding> gbufferBindings(bool motion, const SceneBuffers& buff
 // records come from GPU occlusion culling's list (a static variant only).
 gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, Surface surface, bool culled, bool cullBackFaces,
                                                   VkSampleCountFlagBits samples,
-                                                  const std::vector<ShaderBinding>& bindings) {
+                                                  const std::vector<ShaderBinding>& bindings,
+                                                  const std::vector<gpu::SpecializationConstant>& specialization) {
     gpu::GraphicsPipelineDesc d;
+    d.specialization = specialization;
     if (cullBackFaces) d.cullMode = VK_CULL_MODE_BACK_BIT;
     d.fragmentShader = std::string(writesVelocity(variant) ? "gbuffer_moving" : "gbuffer") +
                        (surface == Surface::Opaque ? "_opaque.frag" : surface == Surface::Spheres ? "_spheres.frag" : ".frag");
@@ -124,7 +126,8 @@ Variant variantOf(const Draw& draw, bool velocityTarget) {
 
 // The draws of one raster pass, grouped by pipeline. Moving geometry is drawn last (seed 000 "An
 // improved reconstruction filter (3)"), so static surfaces never cover a velocity a moving one
-// wrote. Within a variant, opaque draws come first: what they hide is then never shaded.
+// wrote. Within a variant, opaque draws come first: what they hide is then never shaded; draws
+// whose materials use the same features (the pipeline's specialization) follow each other.
 // Under GPU occlusion culling (`culled`) the early pass draws the static variants (the culled
 // draws' early instances among them) and the late pass the culled draws' late instances, then
 // the moving variants.
@@ -133,7 +136,8 @@ std::vector<Ordered> orderedDraws(const FrameScene& scene, const CulledDraws* cu
     for (Variant variant : {Variant::Static, Variant::StaticWithVelocityTarget, Variant::DeformingWithoutVelocity,
                             Variant::Moving, Variant::Deforming}) {
         const bool lastVariants = variant == Variant::Moving || variant == Variant::Deforming;
-        for (Surface surface : {Surface::Opaque, Surface::Spheres, Surface::Cutout})
+        for (Surface surface : {Surface::Opaque, Surface::Spheres, Surface::Cutout}) {
+            const size_t first = ordered.size();
             for (const Draw& draw : scene.cameraDraws) {
                 // Transparent surfaces are drawn after lighting (passes/transparent.h).
                 if (draw.transparent || surfaceOf(draw) != surface || variantOf(draw, scene.motionBlur) != variant)
@@ -143,6 +147,10 @@ std::vector<Ordered> orderedDraws(const FrameScene& scene, const CulledDraws* cu
                     continue;
                 ordered.push_back({variant, &draw});
             }
+            std::stable_sort(ordered.begin() + std::ptrdiff_t(first), ordered.end(), [](const Ordered& a, const Ordered& b) {
+                return a.draw->materialFeatures < b.draw->materialFeatures;
+            });
+        }
     }
     return ordered;
 }
@@ -191,26 +199,33 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
             Variant boundVariant = Variant::Static;
             Surface boundSurface = Surface::Opaque;
             bool boundCulled = false, boundBackFaces = false;
+            uint32_t boundFeatures = 0;
             const MaterialTextures* pushed = nullptr;
             for (const Ordered& o : ordered) {
                 // Draws come grouped by variant: the pipeline changes only between groups.
                 const Surface surface = surfaceOf(*o.draw);
                 const bool culledDraw = culledDraws && o.draw->culledOnGpu();
                 const bool backFaces = o.draw->cullBackFaces;
+                const uint32_t features = o.draw->materialFeatures;
                 if (!bound || o.variant != boundVariant || surface != boundSurface || culledDraw != boundCulled ||
-                    backFaces != boundBackFaces) {
+                    backFaces != boundBackFaces || features != boundFeatures) {
                     const std::vector<ShaderBinding> bindings =
                         gbufferBindings(readsMotion(o.variant), scene.buffers, bestFitNormals,
                                         culledDraw ? &*culledDraws : nullptr);
+                    const std::vector<gpu::SpecializationConstant> specialization{{kMaterialFeaturesConstant, features}};
                     bound = &res.pipelines().get<gpu::GraphicsPipelineDesc>(
                         std::string(pipelineName(o.variant)) + "." + surfaceName(surface) +
                             (culledDraw ? "culled." : "") + (backFaces ? "backFacesCulled." : "") +
-                            std::to_string(samples),
-                        [&] { return describeGBufferPipeline(o.variant, surface, culledDraw, backFaces, samples, bindings); });
+                            std::to_string(samples) + gpu::specializationSuffix(specialization),
+                        [&] {
+                            return describeGBufferPipeline(o.variant, surface, culledDraw, backFaces, samples, bindings,
+                                                           specialization);
+                        });
                     boundVariant = o.variant;
                     boundSurface = surface;
                     boundBackFaces = backFaces;
                     boundCulled = culledDraw;
+                    boundFeatures = features;
                     bindBindings(cmd, *bound, bindings, res);
                     pushed = nullptr;  // a new layout: the pushed set starts over
                 }

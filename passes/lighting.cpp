@@ -38,6 +38,8 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, const FrameScene& scene
     // Without shadow views, the build without shadow lookups (lighting.comp UNSHADOWED_LIGHTING).
     pass.shader = std::string(perSample ? "lighting_per_sample" : "lighting") +
                   (scene.shadows.views.empty() ? "_unshadowed" : "");
+    // Built for the kinds of light the frame holds (frame_data.h lightKind).
+    pass.specialization = {{kLightKindsConstant, scene.lightKinds}};
     pass.texelsPerGroup = {kLightingTileSize, kLightingTileSize};
     pass.label = "lighting";
     return addComputePass(graph, std::move(pass)).images[0];

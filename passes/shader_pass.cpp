@@ -176,10 +176,11 @@ ComputeOutputs addComputeDispatches(gpu::FrameGraph& graph, const std::string& l
         },
         [dispatches](VkCommandBuffer cmd, const gpu::PassResources& res) {
             const ComputePass& first = dispatches.front();
-            const gpu::Pipeline& pipeline = res.pipelines().get<gpu::ComputePipelineDesc>(first.shader, [&] {
-                return gpu::ComputePipelineDesc{first.shader + ".comp", bindingLayout(first.bindings),
-                                                uint32_t(first.constants.size())};
-            });
+            const gpu::Pipeline& pipeline = res.pipelines().get<gpu::ComputePipelineDesc>(
+                first.shader + gpu::specializationSuffix(first.specialization), [&] {
+                    return gpu::ComputePipelineDesc{first.shader + ".comp", bindingLayout(first.bindings),
+                                                    uint32_t(first.constants.size()), first.specialization};
+                });
             for (const ComputePass& d : dispatches) {
                 bindBindings(cmd, pipeline, d.bindings, res);
                 if (!d.constants.empty())

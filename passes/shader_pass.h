@@ -67,6 +67,8 @@ struct ComputePass {
     std::string shader;  // "dof_gather" runs shaders/dof_gather.comp and names its pipeline
     std::vector<ShaderBinding> bindings;
     std::vector<uint8_t> constants;  // push constants, in the shader's layout
+    // Specialization constants: the pipeline is built (and cached) per distinct set.
+    std::vector<gpu::SpecializationConstant> specialization;
     // The texels the dispatch covers: the first written image's size unless set.
     std::optional<std::array<uint32_t, 2>> texels;
     // Texels one workgroup covers (x, y): 8x8 for 8x8 groups of one invocation per texel, 1x1 for

@@ -30,7 +30,7 @@ layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
 CAMERA_BLOCK(0);
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Materials { MaterialData materials[]; };
-layout(set = 0, binding = 3, std430) readonly buffer Lights { uint lightCount; uint pad[3]; LightData lights[]; };
+LIGHTS_BLOCK(3);
 layout(set = 0, binding = 4) uniform sampler2D depthTexture;
 layout(set = 0, binding = 5) uniform sampler2D normalRoughnessTexture;
 layout(set = 0, binding = 6) uniform sampler2D albedoMetallicTexture;
@@ -117,6 +117,13 @@ uint lightSlices(LightData light) {
     return upToLast & ~((1u << first) - 1u);
 }
 
+// `light`'s reflection off s (of the kinds `kinds`), where its clip volume, if it has one, holds
+// the surface: a clipped light reaches only surfaces inside its volume (seed 004 "clip volumes").
+vec3 clippedLight(SurfacePoint s, LightData light, float viewDistance, uint insideClipVolumes, uint kinds) {
+    if (light.shadow.w != 0u && (insideClipVolumes & light.shadow.w) == 0u) return vec3(0.0);
+    return reflectShadowedLight(s, light, viewDistance, kinds);
+}
+
 // Exposed radiance of the G-buffer surface seen through window position `windowPosition` at
 // device depth `depth`, lit by the tile's lights; `instanceTarget` holds the instance (> 0) and the
 // material's occlusion (instance_target.glsl).
@@ -137,15 +144,20 @@ vec3 shadeSurface(uint instanceTarget, float depth, vec4 normalRoughness, vec4 a
     s.shadowTurn = shadowFilterTurn(vec2(pixel), camera.noiseFrame);
 
     vec3 radiance = mat.emissiveMetallic.rgb;
+    // Three loops, each compiled for its own kinds of light alone (light_evaluation.glsl
+    // hasLightType): the distant lights and the domes light every tile, the local lights those of
+    // the tile's list.
+    for (uint i = 0u; i < distantLightCount; ++i)
+        radiance += clippedLight(s, lights[i], viewDistance, insideClipVolumes, LIGHT_KINDS & DISTANT_LIGHT_KINDS);
+    for (uint i = distantLightCount; i < distantLightCount + domeLightCount; ++i)
+        radiance += clippedLight(s, lights[i], viewDistance, insideClipVolumes, LIGHT_KINDS & DOME_LIGHT_KINDS);
     uint count = min(tileLightCount, MAX_TILE_LIGHTS);
     uint slice = depthSliceBit(viewDistance);
     for (uint i = 0u; i < count; ++i) {
         if ((tileLightSlices[i] & slice) == 0u) continue;
         LightData light = lights[tileLights[i]];
         if (!lightReaches(light, s.P)) continue;
-        // A clipped light reaches only surfaces inside its volume (seed 004 "clip volumes").
-        if (light.shadow.w != 0u && (insideClipVolumes & light.shadow.w) == 0u) continue;
-        radiance += reflectShadowedLight(s, light, viewDistance);
+        radiance += clippedLight(s, light, viewDistance, insideClipVolumes, LIGHT_KINDS & LOCAL_LIGHT_KINDS);
     }
     return radiance * camera.exposureScale;
 }
@@ -349,7 +361,9 @@ void main() {
 #endif
     barrier();
     if (tileHasSurface) {
-        for (uint i = gl_LocalInvocationIndex; i < lightCount; i += TILE_SIZE * TILE_SIZE) {
+        // The tile's list holds the local lights (those after the distant lights and domes).
+        for (uint i = distantLightCount + domeLightCount + gl_LocalInvocationIndex; i < lightCount;
+             i += TILE_SIZE * TILE_SIZE) {
             if (!touchesTile(lights[i])) continue;
             uint slices = lightSlices(lights[i]);
             if ((slices & tileSliceMask) == 0u) continue;

@@ -30,7 +30,7 @@ layout(location = 5) in vec4 inTangent;
 CAMERA_BLOCK(0);
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Materials { MaterialData materials[]; };
-layout(set = 0, binding = 3, std430) readonly buffer Lights { uint lightCount; uint pad[3]; LightData lights[]; };
+LIGHTS_BLOCK(3);
 // The depth transparents are tested against and fade with: the G-buffer's (its max over the
 // samples where the G-buffer is multisampled: seed 000 "Deferred MSAA \ performance shortcuts (2)").
 layout(set = 0, binding = 4) uniform sampler2D sceneDepth;
@@ -128,7 +128,7 @@ void main() {
     vec3 radiance = mat.emissiveMetallic.rgb * opacity;
     // Clipped lights light transparents unclipped: their volumes mark opaque pixels in stencil.
     for (uint i = 0u; i < lightCount; ++i)
-        if (lightReaches(lights[i], s.P)) radiance += reflectShadowedLight(s, lights[i], viewDistance);
+        if (lightReaches(lights[i], s.P)) radiance += reflectShadowedLight(s, lights[i], viewDistance, LIGHT_KINDS);
     // The fade thins the whole surface, reflections included, as coverage.
     outRadiance = vec4(radiance * camera.exposureScale * fade, opacity * fade);
     outCoverage = vec4(opacity * fade, 0.0, 0.0, opacity * fade);

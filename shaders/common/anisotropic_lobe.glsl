@@ -102,7 +102,7 @@ void principalLobe(inout vec3 N, inout float roughness, vec4 tangent, vec2 aniso
         float specular = light.factors.y;
         uint type = uint(light.positionType.w);
         if (type == LIGHT_DISTANT || type == LIGHT_SPHERE) {
-            DirectionalSource source = directionalSource(light, P);
+            DirectionalSource source = directionalSource(light, P, LIGHT_KINDS);
             addLightLobe(sum, N, X, Y, V, alpha, source.L, specular * luminance(source.irradiance),
                          source.sinHalfAngle);
         } else if (type == LIGHT_RECT || type == LIGHT_DISK) {

@@ -166,6 +166,16 @@ struct EnvironmentData {
 // until the device is destroyed (issue 13: ~1.3 MB a frame in the lighting pass, ~0.34 MB a frame
 // in temporal AA while a scene is edited). Storage-buffer loads are never inlined.
 #define CAMERA_BLOCK(b) layout(set = 0, binding = b, std140) readonly buffer Camera { CameraData camera; }
+// The frame's lights (passes/frame_data.h LightBufferHeader): the distant lights first, then the
+// domes, then the local lights.
+#define LIGHTS_BLOCK(b)                                                                            \
+    layout(set = 0, binding = b, std430) readonly buffer Lights {                                  \
+        uint lightCount;                                                                           \
+        uint distantLightCount;                                                                    \
+        uint domeLightCount;                                                                       \
+        uint lightPad;                                                                             \
+        LightData lights[];                                                                        \
+    }
 #define ENVIRONMENT_BLOCK(b) layout(set = 0, binding = b, std140) readonly buffer Environment { EnvironmentData environment; }
 
 const uint INSTANCE_DOUBLE_SIDED = 1u;

@@ -42,7 +42,7 @@ layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData in
 layout(set = 0, binding = 2, std430) readonly buffer Materials { MaterialData materials[]; };
 layout(set = 0, binding = 3) uniform sampler2D fittingScale;
 // The frame's lights, for the principal lobe of anisotropic materials (anisotropic_lobe.glsl).
-layout(set = 0, binding = 4, std430) readonly buffer Lights { uint lightCount; uint pad[3]; LightData lights[]; };
+LIGHTS_BLOCK(4);
 #include "anisotropic_lobe.glsl"
 // The draw's material textures, pushed per draw (white where an input is constant).
 layout(set = 1, binding = 0) uniform sampler2D diffuseTexture;
@@ -154,7 +154,7 @@ void writeSurface() {
     float roughness = scalarInput(mat.diffuseRoughness.a, mat.textures[TEXTURE_ROUGHNESS], roughnessTexture, inUv);
     float metallic = scalarInput(mat.emissiveMetallic.a, mat.textures[TEXTURE_METALLIC], metallicTexture, inUv);
     float occlusion = scalarInput(mat.opacity.z, mat.textures[TEXTURE_OCCLUSION], occlusionTexture, inUv);
-    if (mat.anisotropy.x > 0.0)
+    if (drawUses(MATERIAL_ANISOTROPIC) && mat.anisotropy.x > 0.0)
         principalLobe(n, roughness, tangent, mat.anisotropy.xy, worldPosition,
                       normalize(camera.position.xyz - worldPosition));
 #ifndef OPAQUE_SURFACE

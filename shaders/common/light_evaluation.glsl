@@ -7,6 +7,29 @@
 #include "frame_data.glsl"
 #include "brdf.glsl"
 
+// The kinds of light the frame holds (passes/frame_data.h lightKind), a specialization constant:
+// the lighting pass builds its pipeline for them, leaving out the code of the kinds the frame
+// lacks (a CPU device runs every branch for every lane, taken or not: each light's loop iteration
+// paid for every type and shadow projection); other passes keep all of them.
+layout(constant_id = 2) const uint LIGHT_KINDS = 0xffffffffu;
+const uint LIGHT_KIND_SHADOW_CASCADES = 1u << 8u;
+const uint LIGHT_KIND_SHADOW_CUBE = 1u << 9u;
+const uint LIGHT_KIND_SHADOW_SPOT = 1u << 10u;
+const uint LIGHT_KIND_SHAPED = 1u << 12u;
+const uint LIGHT_KIND_TEXTURED_DOME = 1u << 13u;
+
+// The kinds of light sorted into each of the lighting pass's loops (the light buffer holds the
+// distant lights first, then the domes, then the local lights: delegate/frame_scene_builder.cpp).
+const uint DISTANT_LIGHT_KINDS = (1u << LIGHT_DISTANT) | LIGHT_KIND_SHADOW_CASCADES;
+const uint DOME_LIGHT_KINDS = (1u << LIGHT_DOME) | LIGHT_KIND_TEXTURED_DOME;
+const uint LOCAL_LIGHT_KINDS = ~(DISTANT_LIGHT_KINDS | DOME_LIGHT_KINDS);
+
+// Whether `kinds` (LIGHT_KINDS, narrowed by a caller that knows which lights it meets) holds a
+// light of type `type` (LIGHT_*), or the kind bit `kind`. Functions take the kinds their caller
+// may meet, so a loop over the distant lights compiles the distant lights' code alone.
+bool hasLightType(uint kinds, uint type) { return (kinds & (1u << type)) != 0u; }
+bool hasLightKind(uint kinds, uint kind) { return (kinds & kind) != 0u; }
+
 // The textured dome's radiance as this point sees it, before the light's intensity, exposure and
 // colour: irradiance / pi around N (what a white Lambert surface reflects) and the prefiltered
 // radiance along the mirror direction at the base and coat roughness. A constant dome is 1 in all.
@@ -107,6 +130,7 @@ vec3 reflectFromDirection(SurfacePoint s, vec3 L, vec3 irradiance, float sinHalf
 // (https://openusd.org/release/user_guides/schemas/usdLux/ShapingAPI.html). A cone of 90 degrees
 // or more leaves the light unshaped.
 float shapingAttenuation(LightData light, vec3 fromLight) {
+    if (!hasLightKind(LIGHT_KINDS, LIGHT_KIND_SHAPED)) return 1.0;
     float cosOffAxis = dot(light.directionAngle.xyz, fromLight);
     float attenuation = light.shaping.z > 0.0 ? pow(max(cosOffAxis, 0.0), light.shaping.z) : 1.0;
     float cutoff = light.shaping.x;
@@ -271,9 +295,11 @@ bool lightReaches(LightData light, vec3 P) {
     float d2 = dot(d, d), range = light.factors.w;
     if (d2 > range * range) return false;
     float distance = sqrt(d2), along = dot(d, light.directionAngle.xyz);
-    if (light.shaping.x < 0.5 * PI && along < cos(light.shaping.x) * distance) return false;
+    if (hasLightKind(LIGHT_KINDS, LIGHT_KIND_SHAPED) && light.shaping.x < 0.5 * PI && along < cos(light.shaping.x) * distance)
+        return false;
     uint type = uint(light.positionType.w);
-    if (type == LIGHT_RECT || type == LIGHT_DISK) {
+    if ((hasLightType(LIGHT_KINDS, LIGHT_RECT) || hasLightType(LIGHT_KINDS, LIGHT_DISK)) &&
+        (type == LIGHT_RECT || type == LIGHT_DISK)) {
         if (along <= 0.0) return false;
         float beyond = distance - length(vec2(length(light.axisX.xyz), length(light.axisY.xyz)));
         if (beyond > 0.0 && beyond * beyond * beyond > range * range * along) return false;
@@ -315,9 +341,9 @@ struct DirectionalSource {
     float sinHalfAngle;
 };
 
-DirectionalSource directionalSource(LightData light, vec3 P) {
+DirectionalSource directionalSource(LightData light, vec3 P, uint kinds) {
     DirectionalSource source;
-    if (uint(light.positionType.w) == LIGHT_DISTANT) {
+    if (!hasLightType(kinds, LIGHT_SPHERE) || uint(light.positionType.w) == LIGHT_DISTANT) {
         // UsdLux: irradiance = radiance x solid angle of the disc (precomputed on the host).
         source.L = -light.directionAngle.xyz;
         source.irradiance = light.radiance.rgb;
@@ -337,14 +363,19 @@ DirectionalSource directionalSource(LightData light, vec3 P) {
     return source;
 }
 
-vec3 reflectFromLight(SurfacePoint s, LightData light) {
-    if (uint(light.positionType.w) == LIGHT_CYLINDER) light = cylinderSeenFrom(light, s.P);
+vec3 reflectFromLight(SurfacePoint s, LightData light, uint kinds) {
+    if (hasLightType(kinds, LIGHT_CYLINDER) && uint(light.positionType.w) == LIGHT_CYLINDER)
+        light = cylinderSeenFrom(light, s.P);
     uint type = uint(light.positionType.w);
-    if (type == LIGHT_DISTANT || type == LIGHT_SPHERE) {
-        DirectionalSource source = directionalSource(light, s.P);
+    if ((hasLightType(kinds, LIGHT_DISTANT) || hasLightType(kinds, LIGHT_SPHERE)) &&
+        (type == LIGHT_DISTANT || type == LIGHT_SPHERE)) {
+        DirectionalSource source = directionalSource(light, s.P, kinds);
         return reflectFromDirection(s, source.L, source.irradiance, source.sinHalfAngle, light.factors.xy);
     }
-    if (type == LIGHT_RECT || type == LIGHT_DISK) return reflectFromAreaLight(s, light);
+    if ((hasLightType(kinds, LIGHT_RECT) || hasLightType(kinds, LIGHT_DISK) || hasLightType(kinds, LIGHT_CYLINDER)) &&
+        (type == LIGHT_RECT || type == LIGHT_DISK))
+        return reflectFromAreaLight(s, light);
+    if (!hasLightType(kinds, LIGHT_DOME)) return vec3(0.0);
     // LIGHT_DOME: Lambert integrates to albedo x irradiance / pi (albedo x L for a constant
     // dome); GGX is the split sum (Karis 2013): the prefiltered radiance (L for a constant dome)
     // times the pre-integrated response (environmentBrdf), for the base and the coat.

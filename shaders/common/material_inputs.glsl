@@ -3,6 +3,18 @@
 #ifndef OBSCURA_MATERIAL_INPUTS_GLSL
 #define OBSCURA_MATERIAL_INPUTS_GLSL
 
+// What the draw's materials use (passes/frame_data.h MaterialFeature), a specialization constant:
+// the G-buffer builds a pipeline per set, leaving out the code of the features its draws lack (a
+// CPU device runs every branch for every lane, taken or not); other passes keep all of them.
+layout(constant_id = 1) const uint MATERIAL_FEATURES = 0xffffffffu;
+const uint MATERIAL_TEXTURED = 1u;
+const uint MATERIAL_UDIM = 2u;
+const uint MATERIAL_TRANSFORMED_TEXTURE = 4u;
+const uint MATERIAL_NORMAL_MAP = 8u;
+const uint MATERIAL_ANISOTROPIC = 16u;
+
+bool drawUses(uint feature) { return (MATERIAL_FEATURES & feature) != 0u; }
+
 // The texture's own coordinates: the affine map of st (UsdTransform2d, MaterialX uvtiling and
 // uvoffset) applied in st; uv is the image's (s, 1 - t) (common/gbuffer_vertex.glsl).
 vec2 textureCoordinates(MaterialTexture t, vec2 uv) {
@@ -42,20 +54,20 @@ vec4 sampleUdim(MaterialTexture t, sampler2D tex, vec2 uv) {
 // itself. XXX: on lavapipe, a one-pixel line along the edge two triangles share misreads the
 // transform (the texture there is untransformed or at its coarsest mip); not yet understood.
 vec4 sampleTexture(MaterialTexture t, sampler2D tex, vec2 uv) {
-    vec2 at = t.transformed != 0u ? textureCoordinates(t, uv) : uv;
-    vec4 texel = t.udimGrid.z > 0.0 ? sampleUdim(t, tex, at) : texture(tex, at);
+    vec2 at = drawUses(MATERIAL_TRANSFORMED_TEXTURE) && t.transformed != 0u ? textureCoordinates(t, uv) : uv;
+    vec4 texel = drawUses(MATERIAL_UDIM) && t.udimGrid.z > 0.0 ? sampleUdim(t, tex, at) : texture(tex, at);
     return texel * t.scale + t.bias;
 }
 
 vec3 colorInput(vec3 constant, MaterialTexture t, sampler2D tex, vec2 uv) {
-    if (t.sampled == 0u) return constant;
+    if (!drawUses(MATERIAL_TEXTURED) || t.sampled == 0u) return constant;
     vec4 v = sampleTexture(t, tex, uv);
     return t.channel == TEXTURE_CHANNEL_RGB ? v.rgb : vec3(v[t.channel]);
 }
 
 // Float inputs fed from the rgb output read its first component.
 float scalarInput(float constant, MaterialTexture t, sampler2D tex, vec2 uv) {
-    if (t.sampled == 0u) return constant;
+    if (!drawUses(MATERIAL_TEXTURED) || t.sampled == 0u) return constant;
     return clamp(sampleTexture(t, tex, uv)[t.channel == TEXTURE_CHANNEL_RGB ? 0u : t.channel], 0.0, 1.0);
 }
 
@@ -69,7 +81,7 @@ float scalarInput(float constant, MaterialTexture t, sampler2D tex, vec2 uv) {
 // rotated or mirrored texture turns its normals with it. Only their directions are used: a
 // non-uniform scale would also tilt the map's slopes, which is left out.
 vec3 perturbedNormal(vec3 n, vec4 tangent, MaterialTexture t, sampler2D tex, vec2 uv) {
-    if (t.sampled == 0u) return n;
+    if (!drawUses(MATERIAL_NORMAL_MAP) || t.sampled == 0u) return n;
     vec3 local = sampleTexture(t, tex, uv).xyz;
     if (t.reconstructZ != 0u) local.z = sqrt(max(0.0, 1.0 - dot(local.xy, local.xy)));
     vec3 T = tangent.xyz - n * dot(n, tangent.xyz);  // re-orthogonalised after interpolation

@@ -17,7 +17,8 @@
 // The textured dome seen from s: SH irradiance around N, the prefiltered chain along the mirror
 // direction at the lobes' roughness (the split sum's N = V = R lookup), in the dome's frame.
 EnvironmentSample sampleEnvironment(SurfacePoint s) {
-    if (environment.params.x < 0.5) return EnvironmentSample(vec3(1.0), vec3(1.0), vec3(1.0));
+    if (!hasLightKind(LIGHT_KINDS, LIGHT_KIND_TEXTURED_DOME) || environment.params.x < 0.5)
+        return EnvironmentSample(vec3(1.0), vec3(1.0), vec3(1.0));
     mat3 toDome = mat3(environment.worldToDome);
     vec3 N = normalize(toDome * s.N);
     vec3 R = normalize(toDome * reflect(-s.V, s.N));
@@ -36,12 +37,13 @@ EnvironmentSample sampleEnvironment(SurfacePoint s) {
 // shadow lookups only where the light reaches the surface at all. UNSHADOWED_LIGHTING (the
 // lighting pass of a frame whose lights have no shadow views) leaves the lookups out of the
 // shader: lavapipe pays for their code in every light's loop body even where none runs (the
-// lighting pass without them: bench/RESULTS.md).
-vec3 reflectShadowedLight(SurfacePoint s, LightData light, float viewDistance) {
-    vec3 reflected = reflectFromLight(s, light);
+// lighting pass without them: bench/RESULTS.md). `kinds`: the kinds of light the caller may pass
+// (light_evaluation.glsl hasLightType).
+vec3 reflectShadowedLight(SurfacePoint s, LightData light, float viewDistance, uint kinds) {
+    vec3 reflected = reflectFromLight(s, light, kinds);
 #ifndef UNSHADOWED_LIGHTING
     if (light.shadow.y > 0u && any(greaterThan(reflected, vec3(0.0))))
-        reflected *= shadowVisibility(light, s.P, s.N, viewDistance, s.shadowTurn);
+        reflected *= shadowVisibility(light, s.P, s.N, viewDistance, s.shadowTurn, kinds);
 #endif
     return reflected;
 }

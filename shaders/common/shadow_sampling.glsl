@@ -12,6 +12,7 @@
 
 #include "device_traits.glsl"
 #include "interleaved_gradient_noise.glsl"
+#include "light_evaluation.glsl"
 
 // Normal offset (Holbein 2011, "Normal offset shadows"): the receiver moves along its normal by
 // this many texels of its view before the lookup, which removes the acne that depth bias alone
@@ -253,13 +254,14 @@ ShadowLookup spotLookup(uvec4 shadow, vec3 position, vec3 lightPosition, vec3 ax
 // with treatAsPoint); a rect's or disk's radius of the disc of its area, a cylinder's of its
 // length times its diameter (none with treatAsLine) (XXX: a long rectangle's or tube's penumbra is
 // as wide along both its axes).
-float shadowLightSize(LightData light) {
+float shadowLightSize(LightData light, uint kinds) {
     uint type = uint(light.positionType.w);
-    if (type == LIGHT_DISTANT) return tan(light.directionAngle.w);
-    if (type == LIGHT_SPHERE) return light.factors.z > 0.0 ? 0.0 : light.radiance.a;
-    if (type == LIGHT_RECT) return sqrt(4.0 / PI * length(cross(light.axisX.xyz, light.axisY.xyz)));
-    if (type == LIGHT_DISK) return sqrt(length(cross(light.axisX.xyz, light.axisY.xyz)));
-    if (type == LIGHT_CYLINDER) return light.factors.z > 0.0 ? 0.0 : sqrt(4.0 / PI * light.radiance.a * length(light.axisX.xyz));
+    if (hasLightType(kinds, LIGHT_DISTANT) && type == LIGHT_DISTANT) return tan(light.directionAngle.w);
+    if (hasLightType(kinds, LIGHT_SPHERE) && type == LIGHT_SPHERE) return light.factors.z > 0.0 ? 0.0 : light.radiance.a;
+    if (hasLightType(kinds, LIGHT_RECT) && type == LIGHT_RECT)
+        return sqrt(4.0 / PI * length(cross(light.axisX.xyz, light.axisY.xyz)));
+    if (hasLightType(kinds, LIGHT_DISK) && type == LIGHT_DISK) return sqrt(length(cross(light.axisX.xyz, light.axisY.xyz)));
+    if (hasLightType(kinds, LIGHT_CYLINDER) && type == LIGHT_CYLINDER) return light.factors.z > 0.0 ? 0.0 : sqrt(4.0 / PI * light.radiance.a * length(light.axisX.xyz));
     return 0.0;
 }
 
@@ -270,18 +272,22 @@ float shadowFilterTurn(vec2 pixel, uint noiseFrame) {
 }
 
 // Fraction of `light` reaching a surface point (world position and unit normal, view distance
-// along the camera's axis, the soft-shadow taps' turn); 1 for lights without shadow views.
-float shadowVisibility(LightData light, vec3 position, vec3 normal, float viewDistance, float turn) {
+// along the camera's axis, the soft-shadow taps' turn); 1 for lights without shadow views. `kinds`:
+// the kinds of light the caller may pass (light_evaluation.glsl hasLightType).
+float shadowVisibility(LightData light, vec3 position, vec3 normal, float viewDistance, float turn, uint kinds) {
     uvec4 shadow = light.shadow;
     if (shadow.y == 0u) return 1.0;
-    float size = shadowLightSize(light);
+    float size = shadowLightSize(light, kinds);
+    // Only the projections `kinds` holds (light_evaluation.glsl LIGHT_KINDS).
     ShadowLookup lookup;
-    if (shadow.z == SHADOW_CASCADES) {
+    if (hasLightKind(kinds, LIGHT_KIND_SHADOW_CASCADES) && shadow.z == SHADOW_CASCADES) {
         if (!cascadeLookup(shadow, viewDistance, lookup)) return 1.0;
-    } else if (shadow.z == SHADOW_CUBE) {
+    } else if (hasLightKind(kinds, LIGHT_KIND_SHADOW_CUBE) && shadow.z == SHADOW_CUBE) {
         lookup = cubeLookup(shadow, position, light.positionType.xyz);
-    } else {
+    } else if (hasLightKind(kinds, LIGHT_KIND_SHADOW_SPOT)) {
         lookup = spotLookup(shadow, position, light.positionType.xyz, light.directionAngle.xyz);
+    } else {
+        return 1.0;
     }
     // On a CPU device one filter call site for every kind of view: lavapipe compiles each inlined
     // copy of the soft-shadow filter into every light's loop body, and three copies cost it more
