@@ -20,8 +20,10 @@ OBSCURA_SHADER_OFFSET(TransparentPush, transparent_frag::Push, fadeDistance);
 // `spheres`: the draws are sphere impostors (the shader's SPHERE_IMPOSTOR variant);
 // `cullBackFaces`: as the G-buffer does (Draw::cullBackFaces).
 gpu::GraphicsPipelineDesc describeTransparentPipeline(VkFormat hdrFormat, bool spheres, bool cullBackFaces,
-                                                      const std::vector<ShaderBinding>& bindings) {
+                                                      const std::vector<ShaderBinding>& bindings,
+                                                      const std::vector<gpu::SpecializationConstant>& specialization) {
     gpu::GraphicsPipelineDesc d;
+    d.specialization = specialization;
     if (cullBackFaces) d.cullMode = VK_CULL_MODE_BACK_BIT;
     setSceneVertexInput(d);
     d.fragmentShader = spheres ? "transparent_spheres.frag" : "transparent.frag";
@@ -72,15 +74,20 @@ TransparentResult addTransparentPass(gpu::FrameGraph& graph, const FrameScene& s
             gpu::Device& device = res.device();
             const gpu::Pipeline* bound = nullptr;
             const MaterialTextures* pushed = nullptr;
-            // Back to front: the pipeline changes where sphere impostors and other draws alternate.
+            // Back to front: the pipeline changes where sphere impostors and other draws, or draws of other
+            // material features, alternate.
             for (uint32_t index : draws) {
                 const Draw& draw = scene.draws[index];
+                // Built for the draw's material features and the frame's kinds of light.
+                const std::vector<gpu::SpecializationConstant> specialization{
+                    {kMaterialFeaturesConstant, draw.materialFeatures}, {kLightKindsConstant, scene.lightKinds}};
                 const gpu::Pipeline& pipeline = res.pipelines().get<gpu::GraphicsPipelineDesc>(
                     std::string(hdrFormat == VK_FORMAT_R16G16B16A16_SFLOAT ? "transparent.halfFloat" : "transparent") +
-                        (draw.sphereImpostors ? ".spheres" : "") + (draw.cullBackFaces ? ".backFacesCulled" : ""),
+                        (draw.sphereImpostors ? ".spheres" : "") + (draw.cullBackFaces ? ".backFacesCulled" : "") +
+                        gpu::specializationSuffix(specialization),
                     [&] {
                         return describeTransparentPipeline(hdrFormat, draw.sphereImpostors, draw.cullBackFaces,
-                                                           bindings);
+                                                           bindings, specialization);
                     });
                 if (&pipeline != bound) {
                     bindBindings(cmd, pipeline, bindings, res);

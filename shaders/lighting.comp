@@ -117,13 +117,6 @@ uint lightSlices(LightData light) {
     return upToLast & ~((1u << first) - 1u);
 }
 
-// `light`'s reflection off s (of the kinds `kinds`), where its clip volume, if it has one, holds
-// the surface: a clipped light reaches only surfaces inside its volume (seed 004 "clip volumes").
-vec3 clippedLight(SurfacePoint s, LightData light, float viewDistance, uint insideClipVolumes, uint kinds) {
-    if (light.shadow.w != 0u && (insideClipVolumes & light.shadow.w) == 0u) return vec3(0.0);
-    return reflectShadowedLight(s, light, viewDistance, kinds);
-}
-
 // Exposed radiance of the G-buffer surface seen through window position `windowPosition` at
 // device depth `depth`, lit by the tile's lights; `instanceTarget` holds the instance (> 0) and the
 // material's occlusion (instance_target.glsl).
@@ -143,14 +136,10 @@ vec3 shadeSurface(uint instanceTarget, float depth, vec4 normalRoughness, vec4 a
     s.environment = sampleEnvironment(s);
     s.shadowTurn = shadowFilterTurn(vec2(pixel), camera.noiseFrame);
 
-    vec3 radiance = mat.emissiveMetallic.rgb;
-    // Three loops, each compiled for its own kinds of light alone (light_evaluation.glsl
-    // hasLightType): the distant lights and the domes light every tile, the local lights those of
-    // the tile's list.
-    for (uint i = 0u; i < distantLightCount; ++i)
-        radiance += clippedLight(s, lights[i], viewDistance, insideClipVolumes, LIGHT_KINDS & DISTANT_LIGHT_KINDS);
-    for (uint i = distantLightCount; i < distantLightCount + domeLightCount; ++i)
-        radiance += clippedLight(s, lights[i], viewDistance, insideClipVolumes, LIGHT_KINDS & DOME_LIGHT_KINDS);
+    // The distant lights and the domes light every tile, the local lights those of the tile's
+    // list; each loop is compiled for its own kinds of light alone (light_evaluation.glsl
+    // hasLightType).
+    vec3 radiance = mat.emissiveMetallic.rgb + reflectDistantLightsAndDomes(s, viewDistance, insideClipVolumes);
     uint count = min(tileLightCount, MAX_TILE_LIGHTS);
     uint slice = depthSliceBit(viewDistance);
     for (uint i = 0u; i < count; ++i) {

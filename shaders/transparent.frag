@@ -125,10 +125,12 @@ void main() {
     // Coverage scales the diffuse layer only (see above): the lights' response is linear in it.
     s.diffuse *= opacity;
     float viewDistance = linearDepthFromDevice(camera.projection, fragmentDepth);
-    vec3 radiance = mat.emissiveMetallic.rgb * opacity;
-    // Clipped lights light transparents unclipped: their volumes mark opaque pixels in stencil.
-    for (uint i = 0u; i < lightCount; ++i)
-        if (lightReaches(lights[i], s.P)) radiance += reflectShadowedLight(s, lights[i], viewDistance, LIGHT_KINDS);
+    // Clipped lights light transparents unclipped (~0u: inside every volume): their volumes mark
+    // opaque pixels in stencil.
+    vec3 radiance = mat.emissiveMetallic.rgb * opacity + reflectDistantLightsAndDomes(s, viewDistance, ~0u);
+    for (uint i = distantLightCount + domeLightCount; i < lightCount; ++i)
+        if (lightReaches(lights[i], s.P))
+            radiance += reflectShadowedLight(s, lights[i], viewDistance, LIGHT_KINDS & LOCAL_LIGHT_KINDS);
     // The fade thins the whole surface, reflections included, as coverage.
     outRadiance = vec4(radiance * camera.exposureScale * fade, opacity * fade);
     outCoverage = vec4(opacity * fade, 0.0, 0.0, opacity * fade);

@@ -7,6 +7,7 @@
 //   vec4 irradianceSh[SH_COEFFICIENTS]   its irradiance coefficients (a storage buffer)
 //   sampler2D prefilteredEnvironment     its prefiltered latlong chain (a 1x1 black image without one)
 //   ShadowViewData shadowViews[], sampler2D shadowAtlas   (shadow_sampling.glsl)
+//   the light buffer                     LIGHTS_BLOCK (frame_data.glsl)
 #ifndef OBSCURA_SCENE_LIGHTING_GLSL
 #define OBSCURA_SCENE_LIGHTING_GLSL
 
@@ -46,6 +47,26 @@ vec3 reflectShadowedLight(SurfacePoint s, LightData light, float viewDistance, u
         reflected *= shadowVisibility(light, s.P, s.N, viewDistance, s.shadowTurn, kinds);
 #endif
     return reflected;
+}
+
+// `light`'s reflection off s (of the kinds `kinds`) where its clip volume, if it has one, holds the
+// surface: a clipped light reaches only surfaces inside its volume (seed 004 "clip volumes").
+// `insideClipVolumes`: the volumes' stencil bits the surface lies in (~0u: every volume).
+vec3 clippedLight(SurfacePoint s, LightData light, float viewDistance, uint insideClipVolumes, uint kinds) {
+    if (light.shadow.w != 0u && (insideClipVolumes & light.shadow.w) == 0u) return vec3(0.0);
+    return reflectShadowedLight(s, light, viewDistance, kinds);
+}
+
+// The reflection of the lights that reach every surface, the distant lights and the domes (the
+// light buffer's first), a loop for each compiled for its own kinds alone (hasLightType); the
+// local lights follow them in the buffer.
+vec3 reflectDistantLightsAndDomes(SurfacePoint s, float viewDistance, uint insideClipVolumes) {
+    vec3 radiance = vec3(0.0);
+    for (uint i = 0u; i < distantLightCount; ++i)
+        radiance += clippedLight(s, lights[i], viewDistance, insideClipVolumes, LIGHT_KINDS & DISTANT_LIGHT_KINDS);
+    for (uint i = distantLightCount; i < distantLightCount + domeLightCount; ++i)
+        radiance += clippedLight(s, lights[i], viewDistance, insideClipVolumes, LIGHT_KINDS & DOME_LIGHT_KINDS);
+    return radiance;
 }
 
 #endif
