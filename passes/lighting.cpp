@@ -35,10 +35,9 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, const FrameScene& scene
                               sampled(samples.albedoMetallic), sampled(samples.instance),
                               bufferWrite(perSample->taggedPixelCount)});
     }
-    // Without shadow views, the build without shadow lookups (lighting.comp UNSHADOWED_LIGHTING).
-    pass.shader = std::string(perSample ? "lighting_per_sample" : "lighting") +
-                  (scene.shadows.views.empty() ? "_unshadowed" : "");
-    // Built for the kinds of light the frame holds (frame_data.h lightKind).
+    pass.shader = perSample ? "lighting_per_sample" : "lighting";
+    // Built for the kinds of light the frame holds (frame_data.h lightKind): without shadow views,
+    // without the shadow lookups.
     pass.specialization = {{kLightKindsConstant, scene.lightKinds}};
     pass.texelsPerGroup = {kLightingTileSize, kLightingTileSize};
     pass.label = "lighting";

@@ -10,11 +10,11 @@
 // slice, so a tile spanning a wall and the floor far behind it no longer lights both with the
 // lights of either (the cost follows the lights near each surface, as clustered shading's does). Accumulates into B10G11R11_UFLOAT, pre-exposed by the camera's exposure
 // (seed 004 "HDR": keep the accumulation in a range the small float format holds).
-// Built four times (cmake/ObscuraShaders.cmake variants): with PER_SAMPLE_LIGHTING (render setting
+// Built twice (cmake/ObscuraShaders.cmake variants): with PER_SAMPLE_LIGHTING (render setting
 // msaa > 1) pixels the custom resolve tagged in the stencil's edge bit are lit once per sample of
-// the multisampled G-buffer and resolved HDR-correctly; the others stay at pixel frequency. With
-// UNSHADOWED_LIGHTING, for frames whose lights have no shadow views, without the shadow lookups
-// (scene_lighting.glsl).
+// the multisampled G-buffer and resolved HDR-correctly; the others stay at pixel frequency. Each
+// pipeline is specialised for the kinds of light the frame holds (light_evaluation.glsl
+// LIGHT_KINDS): a frame without shadow views has no shadow lookups.
 #extension GL_EXT_scalar_block_layout : require
 #include "common/frame_data.glsl"
 #include "common/light_evaluation.glsl"

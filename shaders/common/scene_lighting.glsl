@@ -35,17 +35,14 @@ EnvironmentSample sampleEnvironment(SurfacePoint s) {
 }
 
 // One light's reflection off s towards the eye, scaled by its shadow maps' visibility; the
-// shadow lookups only where the light reaches the surface at all. UNSHADOWED_LIGHTING (the
-// lighting pass of a frame whose lights have no shadow views) leaves the lookups out of the
-// shader: lavapipe pays for their code in every light's loop body even where none runs (the
-// lighting pass without them: bench/RESULTS.md). `kinds`: the kinds of light the caller may pass
-// (light_evaluation.glsl hasLightType).
+// shadow lookups only where the light reaches the surface at all. `kinds`: the kinds of light the
+// caller may pass (light_evaluation.glsl hasLightType); without a shadow projection among them the
+// lookups are left out of the pipeline: lavapipe pays for their code in every light's loop body
+// even where none runs (bench/RESULTS.md).
 vec3 reflectShadowedLight(SurfacePoint s, LightData light, float viewDistance, uint kinds) {
     vec3 reflected = reflectFromLight(s, light, kinds);
-#ifndef UNSHADOWED_LIGHTING
     if (light.shadow.y > 0u && any(greaterThan(reflected, vec3(0.0))))
         reflected *= shadowVisibility(light, s.P, s.N, viewDistance, s.shadowTurn, kinds);
-#endif
     return reflected;
 }
 
