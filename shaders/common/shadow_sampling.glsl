@@ -27,9 +27,8 @@ const float SHADOW_MIN_FILTER_RADIUS_TEXELS = 1.5;
 // Wider penumbrae (a large light far above its receiver, or a fine cascade) are cut to this
 // radius: their edges come out sharper than the light makes them.
 const float SHADOW_MAX_FILTER_RADIUS_TEXELS = 32.0;
-// Taps of the blocker search and of the penumbra filter, each a gather of 2x2 texels.
-const int SHADOW_BLOCKER_TAPS = 16;
-const int SHADOW_FILTER_TAPS = 16;
+// The taps of the blocker search and of the penumbra filter, each a gather of 2x2 texels, are
+// the SHADOW_DISC_TAPS of one spiral (vogelRadius, nextVogelDirection).
 // A receiver's depth slope is trusted up to this tangent of its angle to the light's view (84°).
 const float SHADOW_MAX_RECEIVER_SLOPE = 10.0;
 
@@ -113,11 +112,20 @@ ShadowReceiver shadowReceiver(uint view, vec3 position, vec3 normal, float texel
     return r;
 }
 
-// Tap i of n of a Vogel spiral over the unit disc (equal areas per tap), turned by `turn`.
-vec2 vogelDiscTap(int i, int n, float turn) {
-    const float GOLDEN_ANGLE = 2.39996323;
-    float angle = float(i) * GOLDEN_ANGLE + turn;
-    return sqrt((float(i) + 0.5) / float(n)) * vec2(cos(angle), sin(angle));
+// The taps of a Vogel spiral over the unit disc (equal areas per tap): tap i at radius
+// sqrt((i + 1/2) / n), its direction the last tap's turned by the golden angle (a constant
+// rotation), the first's the pixel's turn. One sine and cosine per light where turning each tap's
+// angle cost two a tap: on a CPU device 64 of its longest instructions per light and pixel (and a
+// table of the taps cost it more: it fetches a uniform array element per lane).
+const float GOLDEN_ANGLE = 2.39996323;
+const int SHADOW_DISC_TAPS = 16;
+
+float vogelRadius(int i) { return sqrt((float(i) + 0.5) / float(SHADOW_DISC_TAPS)); }
+
+// A tap's direction turned on to the next tap's.
+vec2 nextVogelDirection(vec2 direction) {
+    const float c = cos(GOLDEN_ANGLE), s = sin(GOLDEN_ANGLE);
+    return vec2(direction.x * c - direction.y * s, direction.x * s + direction.y * c);
 }
 
 // The 2x2 texels around atlas position q (kept inside the tile): their depths (gather order x, y,
@@ -135,52 +143,54 @@ void gatherAgainstPlane(ShadowReceiver r, vec2 q, out vec4 depths, out vec4 plan
 
 // Visible share of the disc of `radius` texels around the receiver: each tap's 2x2 texels with
 // bilinear weights at the tap's position (so the result moves smoothly with it).
-float discFilter(ShadowReceiver r, float radius, float turn) {
+float discFilter(ShadowReceiver r, float radius, vec2 firstDirection) {
     float lit = 0.0;
-    for (int i = 0; i < SHADOW_FILTER_TAPS; ++i) {
-        vec2 q = r.atlas.xy + radius * vogelDiscTap(i, SHADOW_FILTER_TAPS, turn);
+    vec2 direction = firstDirection;
+    for (int i = 0; i < SHADOW_DISC_TAPS; ++i, direction = nextVogelDirection(direction)) {
+        vec2 q = r.atlas.xy + radius * vogelRadius(i) * direction;
         vec4 depths, plane;
         vec2 f;
         gatherAgainstPlane(r, q, depths, plane, f);
         vec4 weights = vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
         lit += dot(step(plane, depths), weights);
     }
-    return lit / float(SHADOW_FILTER_TAPS);
+    return lit / float(SHADOW_DISC_TAPS);
 }
 
 // How a view's stored depth maps to distance: orthographic (cascades) depth 0..1 spans
 // params.z world units along the light; perspective maps store z/w between params.z (near) and
 // params.w (far), so distance along the axis = near far / (far - depth (far - near)).
-float viewDistanceOfDepth(uint view, bool perspective, float depth) {
-    vec4 p = shadowViews[view].params;
-    return perspective ? p.z * p.w / (p.w - depth * (p.w - p.z)) : depth * p.z;
+// `p`: the view's params; four depths at once (a gather's texels).
+vec4 viewDistancesOfDepths(vec4 p, bool perspective, vec4 depths) {
+    return perspective ? p.z * p.w / (p.w - depths * (p.w - p.z)) : depths * p.z;
 }
 
 // Percentage-closer soft shadows for a light of `lightSize` (the tangent of a distant light's half
 // angle, or a local light's radius, world units): the penumbra filter's radius in texels, or -1
 // where the blocker search finds nothing (fully lit). `texelWorld`: a texel's world size at the
 // receiver.
-float softShadowRadius(uint view, bool perspective, ShadowReceiver r, float lightSize, float texelWorld, float turn) {
-    float receiverDistance = viewDistanceOfDepth(view, perspective, r.atlas.z);
+float softShadowRadius(uint view, bool perspective, ShadowReceiver r, float lightSize, float texelWorld,
+                       vec2 firstDirection) {
+    vec4 params = shadowViews[view].params;
+    float receiverDistance = viewDistancesOfDepths(params, perspective, vec4(r.atlas.z)).x;
     // The region of the map where blockers can hide part of the light: from the receiver the light
     // spans a cone; its section is widest at the map's near end (depth 0, or the near plane).
-    float nearest = perspective ? shadowViews[view].params.z : 0.0;
+    float nearest = perspective ? params.z : 0.0;
     // In texels: a section of world radius s at distance z covers s / (params.x z) texels of a
     // perspective map.
     float searchTexels = perspective ? lightSize * (receiverDistance - nearest) / receiverDistance
-                                         / (shadowViews[view].params.x * nearest)
+                                         / (params.x * nearest)
                                      : lightSize * receiverDistance / texelWorld;
     float searchRadius = clamp(searchTexels, SHADOW_MIN_FILTER_RADIUS_TEXELS, SHADOW_MAX_FILTER_RADIUS_TEXELS);
     float blockerDistance = 0.0, blockers = 0.0;
-    for (int i = 0; i < SHADOW_BLOCKER_TAPS; ++i) {
+    vec2 direction = firstDirection;
+    for (int i = 0; i < SHADOW_DISC_TAPS; ++i, direction = nextVogelDirection(direction)) {
         vec4 depths, plane;
         vec2 unused;
-        gatherAgainstPlane(r, r.atlas.xy + searchRadius * vogelDiscTap(i, SHADOW_BLOCKER_TAPS, turn), depths, plane,
-                           unused);
+        gatherAgainstPlane(r, r.atlas.xy + searchRadius * vogelRadius(i) * direction, depths, plane, unused);
         vec4 blocking = vec4(lessThan(depths, plane));
         blockers += dot(blocking, vec4(1.0));
-        for (int k = 0; k < 4; ++k)
-            blockerDistance += blocking[k] * viewDistanceOfDepth(view, perspective, depths[k]);
+        blockerDistance += dot(blocking, viewDistancesOfDepths(params, perspective, depths));
     }
     if (blockers == 0.0) return -1.0;
     blockerDistance /= blockers;
@@ -199,9 +209,10 @@ float viewVisibility(uint view, bool perspective, vec3 position, vec3 normal, fl
     vec3 atlas;
     if (lightSize > 0.0) {
         ShadowReceiver r = shadowReceiver(view, offsetPosition, normal, texelWorld);
-        float radius = softShadowRadius(view, perspective, r, lightSize, texelWorld, turn);
+        vec2 firstDirection = vec2(cos(turn), sin(turn));
+        float radius = softShadowRadius(view, perspective, r, lightSize, texelWorld, firstDirection);
         if (radius < 0.0) return 1.0;
-        if (radius > SHADOW_MIN_FILTER_RADIUS_TEXELS) return discFilter(r, radius, turn);
+        if (radius > SHADOW_MIN_FILTER_RADIUS_TEXELS) return discFilter(r, radius, firstDirection);
         atlas = r.atlas;
     } else {
         vec4 clip = shadowViews[view].worldToAtlas * vec4(offsetPosition, 1.0);
