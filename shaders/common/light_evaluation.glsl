@@ -8,9 +8,10 @@
 #include "brdf.glsl"
 
 // The kinds of light the frame holds (passes/frame_data.h lightKind), a specialization constant:
-// the lighting pass builds its pipeline for them, leaving out the code of the kinds the frame
-// lacks (a CPU device runs every branch for every lane, taken or not: each light's loop iteration
-// paid for every type and shadow projection); other passes keep all of them.
+// the lighting and transparent passes build their pipelines for them, leaving out the code of the
+// kinds the frame lacks (a CPU device runs every branch for every lane, taken or not: each light's
+// loop iteration paid for every type and shadow projection); the G-buffer's anisotropic lobe keeps
+// all of them.
 layout(constant_id = 2) const uint LIGHT_KINDS = 0xffffffffu;
 const uint LIGHT_KIND_SHADOW_CASCADES = 1u << 8u;
 const uint LIGHT_KIND_SHADOW_CUBE = 1u << 9u;

@@ -4,8 +4,9 @@
 #define OBSCURA_MATERIAL_INPUTS_GLSL
 
 // What the draw's materials use (passes/frame_data.h MaterialFeature), a specialization constant:
-// the G-buffer builds a pipeline per set, leaving out the code of the features its draws lack (a
-// CPU device runs every branch for every lane, taken or not); other passes keep all of them.
+// the G-buffer and the transparent pass build a pipeline per set, leaving out the code of the
+// features their draws lack (a CPU device runs every branch for every lane, taken or not); the
+// shadow maps' cut-outs keep all of them.
 layout(constant_id = 1) const uint MATERIAL_FEATURES = 0xffffffffu;
 const uint MATERIAL_TEXTURED = 1u;
 const uint MATERIAL_UDIM = 2u;
