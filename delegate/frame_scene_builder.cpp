@@ -287,6 +287,13 @@ private:
         }
         return it->second;
     }
+    // passes::materialFeatures of record `index` of materials_, found once a record (fallback
+    // records join materials_ as instances ask for them).
+    uint32_t featuresOfMaterial(uint32_t index) {
+        for (size_t i = materialFeatures_.size(); i < materials_.size(); ++i)
+            materialFeatures_.push_back(passes::materialFeatures(materials_[i]));
+        return materialFeatures_[index];
+    }
     // A draw's instances share its part's material, and so its textures.
     uint32_t texturesOf(const MaterialPart& part) const {
         if (!part.material) return 0;
@@ -368,7 +375,7 @@ private:
         inst.normalMatrix = toFloats<passes::Mat4>(normalMatrix(model));
         inst.primId = mesh.primId();
         inst.materialIndex = materialOf(mesh, part);
-        scene_.draws.back().materialFeatures |= passes::materialFeatures(materials_[inst.materialIndex]);
+        scene_.draws.back().materialFeatures |= featuresOfMaterial(inst.materialIndex);
         // UsdPreviewSurface wins over displayColor; without a material, displayColor is the
         // surface colour (as Hydra's fallback material). A material whose diffuseColor (opacity)
         // reads a primvar takes the vertex colour (alpha) the host served it as, and the
@@ -867,19 +874,14 @@ private:
     // The light buffer: the distant lights, then the domes, then the local lights, each kind in the
     // stage's order (the lighting pass loops over each kind apart: shaders/lighting.comp).
     void uploadLights() {
-        const auto typeOf = [](const passes::LightData& light) { return passes::LightType(uint32_t(light.positionType[3])); };
-        std::vector<passes::LightData> sorted;
-        for (passes::LightType type : {passes::LightType::Distant, passes::LightType::Dome})
-            for (const passes::LightData& light : lights_)
-                if (typeOf(light) == type) sorted.push_back(light);
-        const size_t distantAndDome = sorted.size();
-        for (const passes::LightData& light : lights_)
-            if (typeOf(light) != passes::LightType::Distant && typeOf(light) != passes::LightType::Dome)
-                sorted.push_back(light);
-        const auto distantCount = uint32_t(std::count_if(lights_.begin(), lights_.end(), [&](const passes::LightData& l) {
-            return typeOf(l) == passes::LightType::Distant;
-        }));
-        passes::LightBufferHeader header{uint32_t(sorted.size()), distantCount, uint32_t(distantAndDome) - distantCount, 0};
+        const auto isOf = [](passes::LightType type) {
+            return [type](const passes::LightData& light) { return uint32_t(light.positionType[3]) == uint32_t(type); };
+        };
+        std::vector<passes::LightData> sorted = lights_;
+        const auto domes = std::stable_partition(sorted.begin(), sorted.end(), isOf(passes::LightType::Distant));
+        const auto locals = std::stable_partition(domes, sorted.end(), isOf(passes::LightType::Dome));
+        passes::LightBufferHeader header{uint32_t(sorted.size()), uint32_t(domes - sorted.begin()),
+                                         uint32_t(locals - domes), 0};
         scene_.lights = upload(&header, sizeof(header), sorted, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "lights");
         scene_.lightKinds = 0;
         for (const passes::LightData& light : sorted) scene_.lightKinds |= passes::lightKind(light);
@@ -921,6 +923,7 @@ private:
     std::vector<passes::MaterialData> materials_;
     std::map<std::string, uint32_t> texturesOfMaterial_;
     std::map<std::string, uint32_t> materialIndex_;
+    std::vector<uint32_t> materialFeatures_;  // featuresOfMaterial's, one per record of materials_
     std::map<uint32_t, PrimvarReads> primvarReads_;  // by material record, those whose inputs read primvars
     std::map<float, uint32_t> fallbackMaterials_{{1.0f, 0u}};
     std::vector<passes::LightData> lights_;
