@@ -157,8 +157,21 @@ void Device::recycleFrameBuffers() {
 
 namespace {
 
+// The UNORM format an sRGB storage image is written through; VK_FORMAT_UNDEFINED for the others.
+VkFormat storageAlias(const ImageDesc& desc) {
+    if (!(desc.usage & VK_IMAGE_USAGE_STORAGE_BIT)) return VK_FORMAT_UNDEFINED;
+    switch (desc.format) {
+        case VK_FORMAT_R8G8B8A8_SRGB: return VK_FORMAT_R8G8B8A8_UNORM;
+        case VK_FORMAT_B8G8R8A8_SRGB: return VK_FORMAT_B8G8R8A8_UNORM;
+        default: return VK_FORMAT_UNDEFINED;
+    }
+}
+
 VkImageCreateInfo imageCreateInfo(const ImageDesc& desc) {
     VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    // Storage through another format's view: the usage need only hold for a view that takes it.
+    if (storageAlias(desc) != VK_FORMAT_UNDEFINED)
+        ii.flags = VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT | VK_IMAGE_CREATE_EXTENDED_USAGE_BIT;
     ii.imageType = desc.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
     ii.format = desc.format;
     ii.extent = {desc.width, desc.height, desc.depth};
@@ -228,7 +241,18 @@ ImagePtr Device::createImage(const ImageDesc& desc, const char* debugName, Image
     vi.subresourceRange = {isDepthFormat(desc.format) ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT)
                                                       : VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT),
                            0, desc.mipLevels, 0, 1};
+    const VkFormat alias = storageAlias(desc);
+    // The sRGB view samples and attaches; storage is its alias's.
+    VkImageViewUsageCreateInfo viewUsage{VK_STRUCTURE_TYPE_IMAGE_VIEW_USAGE_CREATE_INFO};
+    viewUsage.usage = desc.usage & ~VkImageUsageFlags(VK_IMAGE_USAGE_STORAGE_BIT);
+    if (alias != VK_FORMAT_UNDEFINED) vi.pNext = &viewUsage;
     vkCheck(vkCreateImageView(vk(), &vi, nullptr, &img->view), "vkCreateImageView");
+    vi.pNext = nullptr;
+    if (alias != VK_FORMAT_UNDEFINED) {
+        vi.format = alias;
+        vkCheck(vkCreateImageView(vk(), &vi, nullptr, &img->storageView), "vkCreateImageView");
+        vi.format = desc.format;
+    }
     if (hasStencil(desc.format)) {
         vi.subresourceRange.aspectMask = VK_IMAGE_ASPECT_STENCIL_BIT;
         vkCheck(vkCreateImageView(vk(), &vi, nullptr, &img->stencilView), "vkCreateImageView");
@@ -244,6 +268,7 @@ ImagePtr Device::createImage(const ImageDesc& desc, const char* debugName, Image
             vkDestroyImageView(vk(), p->view, nullptr);
             for (VkImageView level : p->levelViews) vkDestroyImageView(vk(), level, nullptr);
             if (p->stencilView) vkDestroyImageView(vk(), p->stencilView, nullptr);
+            if (p->storageView) vkDestroyImageView(vk(), p->storageView, nullptr);
             vkDestroyImage(vk(), p->image, nullptr);
             memory_->free(p->allocation);
             delete p;  // the last image placed in a memory frees it

@@ -46,6 +46,9 @@ struct Image {
     VkImage image = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;         // all aspects a shader may read (depth only for D/S)
     VkImageView stencilView = VK_NULL_HANDLE;  // stencil aspect of depth/stencil formats
+    // An sRGB storage image's UNORM alias, for imageStore: no device offers storage on sRGB formats,
+    // so shaders write encoded values through it while samplers decode through `view`.
+    VkImageView storageView = VK_NULL_HANDLE;
     // Storage images with mips: one view per level (a storage descriptor names a single level).
     std::vector<VkImageView> levelViews;
     Allocation allocation;       // its own memory, unless placed in `placedIn`

@@ -122,6 +122,10 @@ VkDeviceSize TransientMemory::unaliasedBytes() const {
 VkImage PassResources::image(ImageHandle h) const { return graph_.images_.at(h.index).image->image; }
 VkImageView PassResources::view(ImageHandle h) const { return graph_.images_.at(h.index).image->view; }
 VkImageView PassResources::stencilView(ImageHandle h) const { return graph_.images_.at(h.index).image->stencilView; }
+VkImageView PassResources::storageView(ImageHandle h) const {
+    const Image& image = *graph_.images_.at(h.index).image;
+    return image.storageView ? image.storageView : image.view;
+}
 VkImageView PassResources::levelView(ImageHandle h, uint32_t level) const {
     return graph_.images_.at(h.index).image->levelViews.at(level);
 }

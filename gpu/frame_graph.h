@@ -112,6 +112,8 @@ public:
     VkImage image(ImageHandle h) const;
     VkImageView view(ImageHandle h) const;
     VkImageView stencilView(ImageHandle h) const;
+    // The view imageStore writes through (Image::storageView where the image has one).
+    VkImageView storageView(ImageHandle h) const;
     // One mip level of a storage image with mips (Image::levelViews).
     VkImageView levelView(ImageHandle h, uint32_t level) const;
     const ImageDesc& desc(ImageHandle h) const;

@@ -14,7 +14,8 @@ namespace obscura::passes {
 
 struct GBuffer {
     gpu::ImageHandle depth;             // gbufferDepthFormat(): D32_SFLOAT_S8_UINT (stencil bit 0x80
-                                        // reserved for MSAA), multisampled D32_SFLOAT
+                                        // reserved for MSAA), multisampled D32_SFLOAT; resolved
+                                        // from MSAA, R32_SFLOAT unless `stencil` is invalid
     gpu::ImageHandle normalRoughness;   // RGBA8 UNORM: best-fit normal + roughness
     gpu::ImageHandle albedoMetallic;    // RGBA8 sRGB: albedo + metallic
     gpu::ImageHandle instance;          // R32 UINT: instance index + 1 (low 24 bits, 0 where nothing drew),
@@ -22,6 +23,9 @@ struct GBuffer {
     // RG16 SFLOAT, with motion blur only (FrameScene::motionBlur): the displacement in pixels from
     // the shutter's open to its close of what moving draws cover, kStaticVelocity elsewhere.
     gpu::ImageHandle velocity;
+    // The stencil bits the lighting reads, where `depth` has no stencil aspect: R8 UINT (the MSAA
+    // resolve's edge bit, in a frame without clip volumes). Invalid: `depth`'s stencil.
+    gpu::ImageHandle stencil;
 };
 
 // The instance target keeps 24 bits for the instance index + 1.

@@ -24,7 +24,8 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, const FrameScene& scene
                       bufferRead(scene.buffers.materials), bufferRead(scene.buffers.lights), sampled(gb.depth),
                       sampled(gb.normalRoughness), sampled(gb.albedoMetallic), sampled(gb.instance),
                       storageWrite(accumulation), sampled(ambient.accessibility), sampled(ambient.halfDepth),
-                      bufferRead(scene.buffers.shadowRecords), sampled(shadowAtlas), sampledStencil(gb.depth),
+                      bufferRead(scene.buffers.shadowRecords), sampled(shadowAtlas),
+                      gb.stencil.valid() ? sampled(gb.stencil) : sampledStencil(gb.depth),
                       bufferRead(scene.buffers.environment), bufferRead(environment.irradiance),
                       sampled(environment.prefiltered, environment.sampler)}};
     // The PER_SAMPLE_LIGHTING build of lighting.comp: the multisampled G-buffer and the tagged count.

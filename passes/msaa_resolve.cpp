@@ -6,24 +6,25 @@
 namespace obscura::passes {
 namespace {
 
-// The depth msaa_resolve.comp chose per pixel, for the raster draw that writes the depth target.
+// The depth msaa_resolve.comp chose per pixel: the resolved G-buffer's depth, unless clip volumes
+// need it in a depth/stencil attachment.
 constexpr VkFormat kCentreDepthFormat = VK_FORMAT_R32_SFLOAT;
-// 1 where the pixel's 2x2 quad holds a pixel whose samples differ.
-constexpr VkFormat kEdgeQuadsFormat = VK_FORMAT_R8_UNORM;
+// The stencil value each pixel starts the lighting with: kMsaaEdgeStencilBit where the pixel's 2x2
+// quad holds a pixel whose samples differ, else 0.
+constexpr VkFormat kEdgeStencilFormat = VK_FORMAT_R8_UINT;
 
-// Both draws of the raster half: the depth target and sample 0 of the sRGB albedo, then the
-// tagged quads' stencil bit.
+// Both draws of the raster half, which only clip volumes need: the depth target, then the tagged
+// quads' stencil bit.
 gpu::GraphicsPipelineDesc describeFullScreenPass(const char* fragmentShader, const std::vector<ShaderBinding>& bindings) {
     gpu::GraphicsPipelineDesc d;
     d.vertexShader = "fullscreen_triangle.vert";
     d.fragmentShader = fragmentShader;
     d.bindings = bindingLayout(bindings);
-    d.colorFormats = {kAlbedoMetallicFormat};
     d.depthFormat = kDepthFormat;
     return d;
 }
 
-// The chosen depth through gl_FragDepth (ALWAYS: every pixel) and the albedo's sample 0.
+// The chosen depth through gl_FragDepth (ALWAYS: every pixel).
 gpu::GraphicsPipelineDesc describeDepthPipeline(const std::vector<ShaderBinding>& bindings) {
     gpu::GraphicsPipelineDesc d = describeFullScreenPass("msaa_resolve_depth.frag", bindings);
     d.depthCompare = VK_COMPARE_OP_ALWAYS;
@@ -31,58 +32,27 @@ gpu::GraphicsPipelineDesc describeDepthPipeline(const std::vector<ShaderBinding>
 }
 
 // The per-sample mask into the stencil's reserved bit alone (REPLACE with the bit as reference,
-// under the write mask the slide gives), colour and depth untouched.
+// under the write mask the slide gives), depth untouched.
 gpu::GraphicsPipelineDesc describeEdgeMaskPipeline(const std::vector<ShaderBinding>& bindings) {
     gpu::GraphicsPipelineDesc d = describeFullScreenPass("msaa_edge_mask.frag", bindings);
-    d.untouchedColorAttachments = 1u;
     d.depthTest = false;
     d.depthWrite = false;
     d.stencil = {true, VK_COMPARE_OP_ALWAYS, VK_STENCIL_OP_REPLACE, kMsaaEdgeStencilBit};
     return d;
 }
 
-}  // namespace
-
-MsaaResolve addMsaaResolvePass(gpu::FrameGraph& graph, const FrameScene& scene, const GBuffer& multisampled) {
-    MsaaResolve out{createGBufferImages(graph, scene, VK_SAMPLE_COUNT_1_BIT, "resolved"),
-                    graph.createImage("resolved.maxDepth", imageDesc2D(kMaxDepthFormat, scene.width, scene.height))};
-    GBuffer& resolved = out.resolved;
-    const bool velocity = multisampled.velocity.valid();
-    gpu::ImageHandle centreDepth =
-        graph.createImage("resolved.centreDepth", imageDesc2D(kCentreDepthFormat, scene.width, scene.height));
-    gpu::ImageHandle edgeQuads =
-        graph.createImage("resolved.edgeQuads", imageDesc2D(kEdgeQuadsFormat, scene.width, scene.height));
-
-    ComputePass copy{velocity ? "msaa_resolve_velocity" : "msaa_resolve",
-                     {sampled(multisampled.depth), sampled(multisampled.normalRoughness),
-                      sampled(multisampled.instance), bufferRead(scene.buffers.camera),
-                      storageWrite(resolved.normalRoughness), storageWrite(resolved.instance),
-                      storageWrite(out.maxDepth), storageWrite(centreDepth), storageWrite(edgeQuads)},
-                     {}};
-    if (velocity) {
-        copy.bindings.push_back(sampled(multisampled.velocity));
-        copy.bindings.push_back(storageWrite(resolved.velocity));
-    }
-    copy.label = "msaa_resolve";
-    std::vector<gpu::ImageHandle> written = addComputePass(graph, std::move(copy)).images;
-    resolved.normalRoughness = written[0];
-    resolved.instance = written[1];
-    out.maxDepth = written[2];
-    centreDepth = written[3];
-    edgeQuads = written[4];
-    if (velocity) resolved.velocity = written[5];
-
-    std::vector<ShaderBinding> bindings{sampled(multisampled.albedoMetallic), sampled(centreDepth),
-                                        sampled(edgeQuads)};
+// The depth/stencil target the clip volumes test and mark: the chosen depths, the stencil cleared
+// with the edge bit set again right after (seed 000: "restore whenever a stencil clear occurs").
+gpu::ImageHandle addDepthStencilPass(gpu::FrameGraph& graph, const FrameScene& scene, gpu::ImageHandle centreDepth,
+                                     gpu::ImageHandle edgeStencil) {
+    gpu::ImageHandle depthStencil =
+        graph.createImage("resolved.depth", imageDesc2D(kDepthFormat, scene.width, scene.height));
+    std::vector<ShaderBinding> bindings{sampled(centreDepth), sampled(edgeStencil)};
     graph.addPass(
         "msaa_resolve_depth", gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {
             declareBindings(pass, bindings, ShaderStage::Graphics);
-            // The stencil clear happens here, so the edge bit is set again right after it (seed 000:
-            // "restore whenever a stencil clear occurs"); clip volumes add their bits later.
-            resolved.depth = pass.depthStencilAttachment(resolved.depth, VkClearDepthStencilValue{1.0f, 0});
-            resolved.albedoMetallic =
-                pass.colorAttachment(resolved.albedoMetallic, gpu::FrameGraph::PassBuilder::Load::Discard);
+            depthStencil = pass.depthStencilAttachment(depthStencil, VkClearDepthStencilValue{1.0f, 0});
         },
         [bindings](VkCommandBuffer cmd, const gpu::PassResources& res) {
             gpu::PipelineCache& pipelines = res.pipelines();
@@ -97,6 +67,50 @@ MsaaResolve addMsaaResolvePass(gpu::FrameGraph& graph, const FrameScene& scene, 
                 vkCmdDraw(cmd, 3, 1, 0, 0);
             }
         });
+    return depthStencil;
+}
+
+}  // namespace
+
+MsaaResolve addMsaaResolvePass(gpu::FrameGraph& graph, const FrameScene& scene, const GBuffer& multisampled) {
+    auto image = [&](const char* name, VkFormat format) {
+        return graph.createImage(std::string("resolved.") + name, imageDesc2D(format, scene.width, scene.height));
+    };
+    MsaaResolve out{{image("centreDepth", kCentreDepthFormat), image("normalRoughness", kNormalRoughnessFormat),
+                     image("albedoMetallic", kAlbedoMetallicFormat), image("instance", kInstanceFormat), {},
+                     image("edgeStencil", kEdgeStencilFormat)},
+                    image("maxDepth", kMaxDepthFormat)};
+    GBuffer& resolved = out.resolved;
+    const bool velocity = multisampled.velocity.valid();
+
+    ComputePass resolve{velocity ? "msaa_resolve_velocity" : "msaa_resolve",
+                        {sampled(multisampled.depth), sampled(multisampled.normalRoughness),
+                         sampled(multisampled.albedoMetallic), sampled(multisampled.instance),
+                         bufferRead(scene.buffers.camera), storageWrite(resolved.normalRoughness),
+                         storageWrite(resolved.albedoMetallic), storageWrite(resolved.instance),
+                         storageWrite(out.maxDepth), storageWrite(resolved.depth), storageWrite(resolved.stencil)},
+                        {}};
+    if (velocity) {
+        resolved.velocity = image("velocity", kVelocityFormat);
+        resolve.bindings.push_back(sampled(multisampled.velocity));
+        resolve.bindings.push_back(storageWrite(resolved.velocity));
+    }
+    resolve.label = "msaa_resolve";
+    std::vector<gpu::ImageHandle> written = addComputePass(graph, std::move(resolve)).images;
+    resolved.normalRoughness = written[0];
+    resolved.albedoMetallic = written[1];
+    resolved.instance = written[2];
+    out.maxDepth = written[3];
+    resolved.depth = written[4];
+    resolved.stencil = written[5];
+    if (velocity) resolved.velocity = written[6];
+
+    // Clip volumes rasterise against the depth and keep their bits beside the edge bit in a
+    // stencil: only then are the depth and the mask copied into a depth/stencil target.
+    if (!scene.clipVolumes.empty()) {
+        resolved.depth = addDepthStencilPass(graph, scene, resolved.depth, resolved.stencil);
+        resolved.stencil = {};
+    }
     return out;
 }
 

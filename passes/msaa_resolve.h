@@ -1,9 +1,10 @@
 // Deferred MSAA custom resolve (frame step 5; seed 000 "Deferred MSAA \ custom resolve &
 // per-sample mask" and "stencil batching"): after a multisampled G-buffer, a compute pass copies
 // sample 0 of every target it can write into a single-sample G-buffer for the pixel-frequency
-// passes, chooses each pixel's depth and finds the 2x2 quads whose samples differ; a raster pass
-// then writes what compute cannot (the depth target and the sRGB albedo) and tags those quads in
-// the reserved stencil bit of that G-buffer's stencil.
+// passes, chooses each pixel's depth and finds the 2x2 quads whose samples differ, tagging them
+// with the reserved stencil bit in an R8 UINT stencil image. Only clip volumes, which rasterise
+// against the depth and mark the stencil, need a depth/stencil target: for them a raster pass
+// copies the depth and the tagged quads into one.
 #pragma once
 
 #include "passes/frame_resources.h"
@@ -16,7 +17,8 @@ constexpr VkFormat kMaxDepthFormat = VK_FORMAT_R32_SFLOAT;
 
 struct MsaaResolve {
     // One sample per pixel: sample 0's values (the centre's depth where the samples agree), the
-    // depth/stencil cleared to 0 with the edge bit set where the lighting must work per sample.
+    // stencil 0 with the edge bit set where the lighting must work per sample: in `stencil` (depth
+    // R32 SFLOAT), or with clip volumes in the depth/stencil target `depth`.
     GBuffer resolved;
     // R32 SFLOAT: the farthest of each pixel's sample depths, for passes that test or fade against
     // the opaque depth without working per sample (seed 000 "Deferred MSAA \ performance shortcuts

@@ -139,7 +139,7 @@ void bindBindings(VkCommandBuffer cmd, const gpu::Pipeline& pipeline, const std:
             case Kind::StorageRead:
             case Kind::StorageWrite:
             case Kind::StorageReadWrite:
-                writer.storageImage(i, b.level ? res.levelView(b.image, *b.level) : res.view(b.image));
+                writer.storageImage(i, b.level ? res.levelView(b.image, *b.level) : res.storageView(b.image));
                 break;
             case Kind::BufferRead:
             case Kind::BufferWrite:

@@ -42,7 +42,8 @@ layout(set = 0, binding = 10) uniform sampler2D ambientHalfDepth;
 layout(set = 0, binding = 11, std430) readonly buffer ShadowViews { ShadowViewData shadowViews[]; };
 layout(set = 0, binding = 12) uniform sampler2D shadowAtlas;
 // The G-buffer's stencil: bits 0x01..0x40 mark surfaces inside the clip volumes (clip_volumes.cpp),
-// 0x80 the pixels the MSAA resolve tagged for per-sample lighting (msaa_edge_mask.frag).
+// 0x80 the pixels the MSAA resolve tagged for per-sample lighting (msaa_resolve.comp). The depth
+// target's stencil aspect, or in a frame with MSAA and no clip volumes the resolve's R8 UINT image.
 layout(set = 0, binding = 13) uniform usampler2D clipStencil;
 const uint CLIP_VOLUME_BITS = 0x7fu;  // per pixel, also for the samples of tagged pixels
 // The textured dome (a 1x1 black image and zero coefficients without one).

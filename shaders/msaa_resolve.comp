@@ -1,13 +1,13 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Deferred MSAA custom resolve (seed 000 "Deferred MSAA \ custom resolve & per-sample mask":
-// "pre-resolves sample 0, for pixel frequency passes"), the part a compute shader can write:
-// sample 0 of the normal, instance and velocity targets into the single-sample G-buffer, the
-// farthest sample depth, the depth the single-sample depth target gets, and the per-sample mask
-// dilated to 2x2 quads. Every SM runs it; as two full-screen raster draws it ran on the few graphics
-// SMs some GPUs lend to raster work (TOOLCHAIN.md), which made it the frame's second largest cost.
-// The depth/stencil target and the sRGB albedo cannot be storage images: msaa_resolve_depth.frag
-// and msaa_edge_mask.frag write them from this pass's results.
+// "pre-resolves sample 0, for pixel frequency passes"), in compute (every SM runs it; as full-screen
+// raster draws it ran on the few graphics SMs some GPUs lend to raster work, TOOLCHAIN.md): sample 0
+// of the normal, albedo, instance and velocity targets into the single-sample G-buffer, the
+// farthest sample depth, the depth the single-sample G-buffer gets, and the per-sample mask dilated
+// to 2x2 quads as the stencil value the lighting reads (MSAA_EDGE_STENCIL_BIT). Only where clip
+// volumes need a depth/stencil attachment does msaa_resolve_depth.frag copy the depth and
+// msaa_edge_mask.frag the mask into one.
 //
 // Averaging would be wrong for ids and normals and would invent depths no surface has. Depth is the
 // exception where the samples agree: the rasteriser interpolates depth at each sample's own location
@@ -26,18 +26,27 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 0) uniform sampler2DMS depthSamples;
 layout(set = 0, binding = 1) uniform sampler2DMS normalRoughnessSamples;
-layout(set = 0, binding = 2) uniform usampler2DMS instanceSamples;
-CAMERA_BLOCK(3);
-layout(set = 0, binding = 4, rgba8) uniform writeonly image2D outNormalRoughness;
-layout(set = 0, binding = 5, r32ui) uniform writeonly uimage2D outInstance;
-layout(set = 0, binding = 6, r32f) uniform writeonly image2D outMaxDepth;
-layout(set = 0, binding = 7, r32f) uniform writeonly image2D outCentreDepth;
-layout(set = 0, binding = 8, r8) uniform writeonly image2D outEdgeQuads;
+layout(set = 0, binding = 2) uniform sampler2DMS albedoMetallicSamples;
+layout(set = 0, binding = 3) uniform usampler2DMS instanceSamples;
+CAMERA_BLOCK(4);
+layout(set = 0, binding = 5, rgba8) uniform writeonly image2D outNormalRoughness;
+// The sRGB albedo target through its UNORM view (gpu/device.h Image::storageView): encoded here.
+layout(set = 0, binding = 6, rgba8) uniform writeonly image2D outAlbedoMetallic;
+layout(set = 0, binding = 7, r32ui) uniform writeonly uimage2D outInstance;
+layout(set = 0, binding = 8, r32f) uniform writeonly image2D outMaxDepth;
+layout(set = 0, binding = 9, r32f) uniform writeonly image2D outCentreDepth;
+layout(set = 0, binding = 10, r8ui) uniform writeonly uimage2D outEdgeStencil;
 // Built twice (cmake variants): with VELOCITY_TARGET for a G-buffer with motion blur's velocity.
 #ifdef VELOCITY_TARGET
-layout(set = 0, binding = 9) uniform sampler2DMS velocitySamples;
-layout(set = 0, binding = 10, rg16f) uniform writeonly image2D outVelocity;
+layout(set = 0, binding = 11) uniform sampler2DMS velocitySamples;
+layout(set = 0, binding = 12, rg16f) uniform writeonly image2D outVelocity;
 #endif
+
+// The sRGB transfer function (IEC 61966-2-1) the albedo target's format applies on writes: the
+// fetch decoded sample 0 and 8-bit values round-trip exactly.
+vec3 srgbEncode(vec3 linear) {
+    return mix(12.92 * linear, 1.055 * pow(linear, vec3(1.0 / 2.4)) - 0.055, greaterThan(linear, vec3(0.0031308)));
+}
 
 shared bool edges[8][8];
 
@@ -48,6 +57,8 @@ void main() {
     if (inside) {
         edge = samplesMismatch(depthSamples, normalRoughnessSamples, instanceSamples, camera.projection, pixel);
         imageStore(outNormalRoughness, pixel, texelFetch(normalRoughnessSamples, pixel, 0));
+        vec4 albedoMetallic = texelFetch(albedoMetallicSamples, pixel, 0);
+        imageStore(outAlbedoMetallic, pixel, vec4(srgbEncode(albedoMetallic.rgb), albedoMetallic.a));
         imageStore(outInstance, pixel, uvec4(texelFetch(instanceSamples, pixel, 0).r));
 #ifdef VELOCITY_TARGET
         imageStore(outVelocity, pixel, vec4(texelFetch(velocitySamples, pixel, 0).rg, 0.0, 0.0));
@@ -72,5 +83,5 @@ void main() {
     uvec2 quad = local & ~1u;
     bool quadEdge = edges[quad.y][quad.x] || edges[quad.y][quad.x + 1u] || edges[quad.y + 1u][quad.x] ||
                     edges[quad.y + 1u][quad.x + 1u];
-    if (inside) imageStore(outEdgeQuads, pixel, vec4(quadEdge ? 1.0 : 0.0));
+    if (inside) imageStore(outEdgeStencil, pixel, uvec4(quadEdge ? MSAA_EDGE_STENCIL_BIT : 0u));
 }

@@ -63,12 +63,14 @@ public:
             s.occlusionCandidateCount = 1;
         }
         if (withGlass) s.transparentDraws = {1};
+        if (withClipVolume) s.clipVolumes = {{opaque, 0x01}};
         s.instanceCount = uint32_t(s.draws.size());
         s.edgeAa = viewpoint.edgeAaDistance > 0.0;
         return s;
     }
 
     bool withGlass = true;
+    bool withClipVolume = false;
 
 private:
     gpu::FrameBackend& backend_;
@@ -231,33 +233,50 @@ void MsaaResolvesBeforeThePerPixelPassesAndLightsPerSample() {
     Wiring w;
     w.settings.msaaSamples = 4;
     const Frame& frame = w.render();
-    EXPECT_EQ(running(frame), concat({{"shadow_maps", "gbuffer", "msaa_resolve", "msaa_resolve_depth"},
+    EXPECT_EQ(running(frame), concat({{"shadow_maps", "gbuffer", "msaa_resolve"},
                                       kSsao,
                                       {"lighting", "transparent", "temporal_aa", "aov_readback"}}));
-    // The resolve reads the multisampled targets in a compute shader, after their writes; the
-    // sRGB albedo, which no storage image can hold, in the fragment shader of its raster half.
-    for (const char* target : {"gbuffer.normalRoughness", "gbuffer.instance"}) {
+    // The resolve reads every multisampled target in a compute shader, after their writes: no
+    // raster pass copies what compute cannot write when no clip volume needs a depth/stencil target.
+    for (const char* target : {"gbuffer.normalRoughness", "gbuffer.albedoMetallic", "gbuffer.instance"}) {
         const gpu::PlannedBarrier* b =
             transition(frame, "msaa_resolve", target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         ASSERT_NE(b, nullptr);
         EXPECT_TRUE(b->dstStage & VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT) << target;
     }
-    const gpu::PlannedBarrier* albedo =
-        transition(frame, "msaa_resolve_depth", "gbuffer.albedoMetallic", VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    ASSERT_NE(albedo, nullptr);
-    EXPECT_TRUE(albedo->dstStage & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
-    // The raster half overwrites its targets whole: nothing is loaded.
+    // SSAO works on the resolved G-buffer's depth as the resolve stored it; the lighting reads the
+    // tagged quads from the resolve's stencil image.
+    transition(frame, "ssao_obscurance", "resolved.centreDepth", VK_IMAGE_LAYOUT_GENERAL,
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(barrier(frame, "ssao_obscurance", "gbuffer.depth"), nullptr);
+    EXPECT_NE(barrier(frame, "lighting", "resolved.edgeStencil"), nullptr);
+}
+
+void MsaaWithClipVolumesCopiesTheDepthAndMaskIntoADepthStencilTarget() {
+    Wiring w;
+    w.source.withClipVolume = true;
+    w.settings.msaaSamples = 4;
+    const Frame& frame = w.render();
+    EXPECT_EQ(running(frame), concat({{"shadow_maps", "gbuffer", "msaa_resolve", "msaa_resolve_depth", "clip_volumes"},
+                                      kSsao,
+                                      {"lighting", "transparent", "temporal_aa", "aov_readback"}}));
+    for (const char* image : {"resolved.centreDepth", "resolved.edgeStencil"}) {
+        const gpu::PlannedBarrier* b = transition(frame, "msaa_resolve_depth", image, VK_IMAGE_LAYOUT_GENERAL,
+                                                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        ASSERT_NE(b, nullptr);
+        EXPECT_TRUE(b->dstStage & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT) << image;
+    }
+    // The raster half overwrites its target whole: nothing is loaded.
     for (const auto& pass : frame.passes)
         if (pass.name == "msaa_resolve_depth")
             for (const auto& attachment : pass.attachments)
                 EXPECT_NE(attachment.load, VK_ATTACHMENT_LOAD_OP_LOAD);
-    // SSAO works on the resolved G-buffer, after the resolve wrote it.
+    // The clip volumes mark the depth/stencil target, which SSAO then reads.
     const gpu::PlannedBarrier* resolved = barrier(frame, "ssao_obscurance", "resolved.depth");
     ASSERT_NE(resolved, nullptr);
     EXPECT_EQ(resolved->oldLayout, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
-    EXPECT_EQ(barrier(frame, "ssao_obscurance", "gbuffer.depth"), nullptr);
+    EXPECT_EQ(barrier(frame, "lighting", "resolved.edgeStencil"), nullptr);
 }
 
 void WithoutSsaoTheLightingReadsOneUnoccludedTexel() {
@@ -448,6 +467,10 @@ TEST(FrameWiring, SettingsChooseThePasses) {
     {
         SCOPED_TRACE("MsaaResolvesBeforeThePerPixelPassesAndLightsPerSample");
         MsaaResolvesBeforeThePerPixelPassesAndLightsPerSample();
+    }
+    {
+        SCOPED_TRACE("MsaaWithClipVolumesCopiesTheDepthAndMaskIntoADepthStencilTarget");
+        MsaaWithClipVolumesCopiesTheDepthAndMaskIntoADepthStencilTarget();
     }
     {
         SCOPED_TRACE("WithoutSsaoTheLightingReadsOneUnoccludedTexel");
