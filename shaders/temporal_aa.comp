@@ -23,11 +23,11 @@ struct Neighbourhood {
     vec4 highFrequency;  // w_k
 };
 
-Neighbourhood crossNeighbourhood(ivec2 pixel, ivec2 size, vec4 centre, CrossDepths depths) {
+Neighbourhood crossNeighbourhood(vec4 centre, CrossDepths depths) {
     Neighbourhood n = Neighbourhood(centre, centre, vec4(0.0));
     vec4 sum = vec4(0.0);
     for (int i = 1; i < CROSS_TAPS; ++i) {
-        vec4 c = depths.edgeAa[i] ? centre : currentSample(crossPixel(pixel, i, size), depths.depth[i]);
+        vec4 c = depths.edgeAa[i] ? centre : crossColour(i);
         n.minimum = min(n.minimum, c);
         n.maximum = max(n.maximum, c);
         sum += c;
@@ -39,17 +39,17 @@ Neighbourhood crossNeighbourhood(ivec2 pixel, ivec2 size, vec4 centre, CrossDept
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(historyColor);
+    loadCrossTile(size, true);
     if (any(greaterThanEqual(pixel, size))) return;
-    float deviceDepth = texelFetch(currentDepth, pixel, 0).r;
-    vec4 current = currentSample(pixel, deviceDepth);
-    imageStore(historyDepth, pixel, vec4(linearDepthFromDevice(camera.projection, deviceDepth)));
+    CrossDepths depths = crossDepths();
+    vec4 current = crossColour(0);
+    imageStore(historyDepth, pixel, vec4(linearDepthFromDevice(camera.projection, depths.depth[0])));
 
     vec4 result = current;
-    if (historyReadable() && !edgeAntiAliased(pixel)) {
-        CrossDepths depths = loadCrossDepths(pixel, size);
+    if (historyReadable() && !depths.edgeAa[0]) {
         Reprojection r = reproject(pixel, size, depths);
         if (r.valid) {
-            Neighbourhood n = crossNeighbourhood(pixel, size, current, depths);
+            Neighbourhood n = crossNeighbourhood(current, depths);
             vec4 accumulated = clamp(sampleHistory(r.position, size), n.minimum, n.maximum);
             // w_k is a difference of pre-exposed radiance, display-referred near 1 like the
             // slide's; clamped so that an HDR edge does not extrapolate past K_hifreq.

@@ -17,8 +17,9 @@ layout(set = 0, binding = 8, rgba16f) uniform writeonly image2D resolvedColor;
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(historyColor);
+    loadCrossTile(size, false);
     if (any(greaterThanEqual(pixel, size))) return;
-    CrossDepths depths = loadCrossDepths(pixel, size);
+    CrossDepths depths = crossDepths();
     vec4 current = currentSample(pixel, depths.depth[0]);
     Reprojection r = reproject(pixel, size, depths);
     // |v_c|: how far the pixel's surface point moved on screen since last frame, in pixels.

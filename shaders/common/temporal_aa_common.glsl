@@ -59,6 +59,41 @@ const ivec2 CROSS[CROSS_TAPS] = ivec2[CROSS_TAPS](ivec2(0, 0), ivec2(-1, -1), iv
 
 ivec2 crossPixel(ivec2 pixel, int tap, ivec2 size) { return clamp(pixel + CROSS[tap], ivec2(0), size - 1); }
 
+// This frame's colour at `pixel`, with coverage in alpha: composited here, or already (a still's
+// sample motion-blurred before the mean, its coverage blurred along).
+vec4 currentSample(ivec2 pixel, float deviceDepth) {
+    vec4 colour = texelFetch(currentColor, pixel, 0);
+    if ((taa.frames.w & TAA_FLAG_COLOR_HAS_COVERAGE) != 0u) return colour;
+    return vec4(colour.rgb, pixelCoverage(deviceDepth, camera.backdropCoverage, transparentCoverageAt(transparentCoverage, pixel)));
+}
+
+// The workgroup's pixels and the cross's one-pixel apron around them, fetched once into shared
+// memory: each pixel's cross reads five texels, so fetching per pixel read every texel five
+// times, and the pass is bound by its fetches. Texels beyond the image are the edge's (as
+// crossPixel clamps).
+const int CROSS_TILE = 8 + 2;
+shared float crossTileDepth[CROSS_TILE][CROSS_TILE];
+shared bool crossTileEdgeAa[CROSS_TILE][CROSS_TILE];
+shared vec4 crossTileColour[CROSS_TILE][CROSS_TILE];
+
+// Every invocation of the workgroup calls it, before any returns (it holds a barrier); `colours`
+// also fetches this frame's colour (a constant per shader, so the other builds skip it).
+void loadCrossTile(ivec2 size, bool colours) {
+    ivec2 origin = ivec2(gl_WorkGroupID.xy) * 8 - 1;
+    for (uint i = gl_LocalInvocationIndex; i < uint(CROSS_TILE * CROSS_TILE); i += 64u) {
+        ivec2 t = ivec2(i % uint(CROSS_TILE), i / uint(CROSS_TILE));
+        ivec2 texel = clamp(origin + t, ivec2(0), size - 1);
+        float depth = texelFetch(currentDepth, texel, 0).r;
+        crossTileDepth[t.y][t.x] = depth;
+        crossTileEdgeAa[t.y][t.x] = edgeAntiAliased(texel);
+        if (colours) crossTileColour[t.y][t.x] = currentSample(texel, depth);
+    }
+    barrier();
+}
+
+// Tap `tap` of the cross around this invocation's pixel, in the tile.
+ivec2 crossTileTexel(int tap) { return ivec2(gl_LocalInvocationID.xy) + 1 + CROSS[tap]; }
+
 // This frame's device depths over the cross (the G-buffer clears to 1, the far plane), and which
 // taps hybrid AA drew on the pixel grid: those never cover a temporal pixel in any frame, so they
 // neither lend it their motion nor widen its clamp (their colour would leak into its history).
@@ -67,21 +102,20 @@ struct CrossDepths {
     bool edgeAa[CROSS_TAPS];
 };
 
-CrossDepths loadCrossDepths(ivec2 pixel, ivec2 size) {
+CrossDepths crossDepths() {
     CrossDepths d;
     for (int i = 0; i < CROSS_TAPS; ++i) {
-        d.depth[i] = texelFetch(currentDepth, crossPixel(pixel, i, size), 0).r;
-        d.edgeAa[i] = edgeAntiAliased(crossPixel(pixel, i, size));
+        ivec2 t = crossTileTexel(i);
+        d.depth[i] = crossTileDepth[t.y][t.x];
+        d.edgeAa[i] = crossTileEdgeAa[t.y][t.x];
     }
     return d;
 }
 
-// This frame's colour at `pixel`, with coverage in alpha: composited here, or already (a still's
-// sample motion-blurred before the mean, its coverage blurred along).
-vec4 currentSample(ivec2 pixel, float deviceDepth) {
-    vec4 colour = texelFetch(currentColor, pixel, 0);
-    if ((taa.frames.w & TAA_FLAG_COLOR_HAS_COVERAGE) != 0u) return colour;
-    return vec4(colour.rgb, pixelCoverage(deviceDepth, camera.backdropCoverage, transparentCoverageAt(transparentCoverage, pixel)));
+// This frame's colour over the cross (loadCrossTile with colours).
+vec4 crossColour(int tap) {
+    ivec2 t = crossTileTexel(tap);
+    return crossTileColour[t.y][t.x];
 }
 
 // A history depth may differ from the one expected by this much (relative) and still hold the
@@ -127,16 +161,20 @@ Reprojection reproject(ivec2 pixel, ivec2 size, CrossDepths depths) {
     r.valid = previousClip.w > 0.0 && all(greaterThanEqual(r.position, vec2(0.0))) && all(lessThan(r.position, vec2(size)));
     if (!r.valid) return r;
     float expected = -previousView.z / previousView.w;
+    // The 3x3 texels around the one the position falls in, as four gathers of 2x2 around its
+    // corners (texels beyond the image are the edge's, the sampler clamping).
     ivec2 centre = ivec2(floor(r.position));
-    float closest = 3.4e38, farthest = 0.0;
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-            float held = texelFetch(previousDepth, clamp(centre + ivec2(dx, dy), ivec2(0), size - 1), 0).r;
+    vec4 closest = vec4(3.4e38), farthest = vec4(0.0);
+    for (int j = 0; j <= 1; ++j)
+        for (int i = 0; i <= 1; ++i) {
+            vec4 held = textureGather(previousDepth, vec2(centre + ivec2(i, j)) / vec2(size), 0);
             closest = min(closest, held);
             farthest = max(farthest, held);
         }
-    r.valid = expected >= closest * (1.0 - TEMPORAL_AA_DEPTH_TOLERANCE) &&
-              expected <= farthest * (1.0 + TEMPORAL_AA_DEPTH_TOLERANCE);
+    float nearestHeld = min(min(closest.x, closest.y), min(closest.z, closest.w));
+    float farthestHeld = max(max(farthest.x, farthest.y), max(farthest.z, farthest.w));
+    r.valid = expected >= nearestHeld * (1.0 - TEMPORAL_AA_DEPTH_TOLERANCE) &&
+              expected <= farthestHeld * (1.0 + TEMPORAL_AA_DEPTH_TOLERANCE);
     return r;
 }
 
