@@ -98,8 +98,8 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, const FrameScene& sce
         graph, {variant,
                 {bufferRead(scene.buffers.camera),
                  bufferRead(graph.createBuffer("temporalAaConstants", bytesOf(constants))), sampled(hdrColor),
-                 sampled(gbuffer.depth), sampled(color.previous), sampled(depth.previous), storageWrite(color.current),
-                 storageWrite(depth.current), resolved, sampled(transparentCoverage), sampled(gbuffer.instance),
+                 sampled(gbuffer.depth), sampled(color.previous, SampledRead::Linear), sampled(depth.previous),
+                 storageWrite(color.current), storageWrite(depth.current), resolved, sampled(transparentCoverage), sampled(gbuffer.instance),
                  bufferRead(scene.buffers.instances), bufferRead(scene.buffers.instanceReprojections)}});
     return written.images[twoFrame ? 2 : 0];
 }

@@ -35,7 +35,7 @@ CAMERA_BLOCK(0);
 layout(set = 0, binding = 1, std140) readonly buffer Constants { TemporalAaConstants taa; };  // a storage buffer: see CAMERA_BLOCK
 layout(set = 0, binding = 2) uniform sampler2D currentColor;   // the light accumulation (nearest)
 layout(set = 0, binding = 3) uniform sampler2D currentDepth;   // the G-buffer's device depth (nearest)
-layout(set = 0, binding = 4) uniform sampler2D previousColor;  // last frame's history colour (texelFetch)
+layout(set = 0, binding = 4) uniform sampler2D previousColor;  // last frame's history colour (linear)
 layout(set = 0, binding = 5) uniform sampler2D previousDepth;  // x: last frame's linear view depth (nearest)
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D historyColor;
 layout(set = 0, binding = 9) uniform sampler2D transparentCoverage;  // passes/transparent.h (nearest)
@@ -181,20 +181,26 @@ Reprojection reproject(ivec2 pixel, ivec2 size, CrossDepths depths) {
 // The history at a reprojected position through a Catmull-Rom filter (4x4 texels): a bilinear fetch
 // blurs by up to half a pixel every frame the camera moves, and the accumulation compounds it;
 // Catmull-Rom interpolates without that loss. Its negative lobes may overshoot at edges, which the
-// neighbourhood clamp (1TX) takes back into range.
+// neighbourhood clamp (1TX) takes back into range. The filter is separable and its two middle
+// weights share a sign, so each middle pair is one bilinear fetch at their weighted position: nine
+// fetches through the linear sampler instead of sixteen (the pass is bound by its fetches);
+// beyond the image the sampler clamps to the edge, as the texels did.
 vec4 sampleHistory(vec2 position, ivec2 size) {
     vec2 centre = position - 0.5;
-    ivec2 base = ivec2(floor(centre));
-    vec2 t = centre - vec2(base);
+    vec2 base = floor(centre);
+    vec2 t = centre - base;
     // Catmull-Rom weights of the texels at -1, 0, 1, 2 from base, for fractions t.
-    vec2 weights[4] = vec2[4](t * (-0.5 + t * (1.0 - 0.5 * t)), 1.0 + t * t * (-2.5 + 1.5 * t),
-                              t * (0.5 + t * (2.0 - 1.5 * t)), t * t * (-0.5 + 0.5 * t));
+    vec2 w0 = t * (-0.5 + t * (1.0 - 0.5 * t)), w1 = 1.0 + t * t * (-2.5 + 1.5 * t);
+    vec2 w2 = t * (0.5 + t * (2.0 - 1.5 * t)), w3 = t * t * (-0.5 + 0.5 * t);
+    vec2 w12 = w1 + w2;  // >= 1 for t in [0, 1]
+    // Texel centres (+0.5) of the outer taps, and the middle pair's weighted position between them.
+    vec2 positions[3] = vec2[3](base - 0.5, base + 0.5 + w2 / w12, base + 2.5);
+    vec2 weights[3] = vec2[3](w0, w12, w3);
     vec4 sum = vec4(0.0);
-    for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 4; ++i) {
-            ivec2 texel = clamp(base + ivec2(i - 1, j - 1), ivec2(0), size - 1);
-            sum += weights[i].x * weights[j].y * texelFetch(previousColor, texel, 0);
-        }
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i)
+            sum += weights[i].x * weights[j].y *
+                   textureLod(previousColor, vec2(positions[i].x, positions[j].y) / vec2(size), 0.0);
     return sum;
 }
 
