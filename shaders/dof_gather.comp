@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Depth of field, step 4: the first pass of the separable flexible filter (seed 000 "A plausible
+// Depth of field, step 3: the first pass of the separable flexible filter (seed 000 "A plausible
 // and efficient DOF reconstruction filter"), tapsPerSide^2 taps (7x7) of a square kernel mapped to
 // the aperture ("Sampling"), in the field texels, near and far fields in the same pass ("Tile
 // min/max CoC"), each branching out where it has nothing to blur: the near field on its tile

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Depth of field, step 3 (seed 000 "Tile min/max CoC": "also used for scatter as gather
+// Depth of field, step 2 (seed 000 "Tile min/max CoC": "also used for scatter as gather
 // approximation for near field"): a near CoC spreads its blur up to its radius beyond its own
 // tile, so a tile's near-field kernel is the largest near CoC of every tile within reach
 // (dof.tileNeighbourhood tiles each side). The far field gathers with each texel's own CoC and
