@@ -38,8 +38,8 @@ OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, cellHalfSize);
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, jitter);
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, pixelsPerTexel);
 
-// Tile side in field texels (DOF_TILE_SIZE in dof_common.glsl): a workgroup of the downsample,
-// which reduces its tile's CoC in shared memory.
+// Tile side in field texels (DOF_TILE_SIZE in dof_common.glsl): a workgroup of the downsample and
+// of the gather, which reduce their tile's values in shared memory.
 constexpr uint32_t kTileSize = 8;
 
 // Fields premultiplied by their CoC, and the CoC itself (seed 000 "A plausible and
@@ -112,15 +112,14 @@ gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, const FrameScene&
         constants, kTileSize);
     const gpu::ImageHandle nearLayer = layers[0], farLayer = layers[1], fieldCoc = layers[2], tileCoc = layers[3];
 
-    gpu::ImageHandle neighbourhood = addDofPass(graph, "dof_tile_neighbourhood",
-                                                {sampled(tileCoc), storageWrite(tiles("dofTileNeighbourhood"))},
-                                                constants, 8)[0];
-
+    // A workgroup a tile: each finds its tile's neighbourhood first and writes it for the composite.
     std::vector<gpu::ImageHandle> gathered = addDofPass(
         graph, "dof_gather",
-        {sampled(nearLayer, linear), sampled(farLayer, linear), sampled(fieldCoc, linear), sampled(neighbourhood),
-         storageWrite(field("dofNearGathered", kFieldFormat)), storageWrite(field("dofFarGathered", kFieldFormat))},
-        constants, 8);
+        {sampled(nearLayer, linear), sampled(farLayer, linear), sampled(fieldCoc, linear), sampled(tileCoc),
+         storageWrite(field("dofNearGathered", kFieldFormat)), storageWrite(field("dofFarGathered", kFieldFormat)),
+         storageWrite(tiles("dofTileNeighbourhood"))},
+        constants, kTileSize);
+    const gpu::ImageHandle neighbourhood = gathered[2];
 
     std::vector<gpu::ImageHandle> fields = addDofPass(
         graph, "dof_flood_fill",

@@ -6,14 +6,14 @@
 //                   near, far); a workgroup a tile, which also writes the tile's CoC: the near
 //                   field's max and the far field's max (the min of the signed CoC, whose far
 //                   field is negative);
-//   dof_tile_neighbourhood the near max over the tiles a near CoC can reach from (scatter as
-//                   gather);
-//   dof_gather      first pass, N^2 taps (7x7) for both fields, branching on the tiles;
+//   dof_gather      a workgroup a tile: the near max over the tiles a near CoC can reach from
+//                   (scatter as gather), written for the composite too; then the first pass, N^2
+//                   taps (7x7) for both fields, branching on the tiles;
 //   dof_flood_fill  second pass, 3x3 taps a third of the first pass's spacing apart, averaged:
 //                   together the two passes sample the kernel on a 3N x 3N grid;
 //   dof_composite   far field upscaled bilaterally, near field freely, both with bicubic weights
 //                   (Sigg & Hadwiger 2005), blended non-linearly over the sharp image.
-// A pass's dispatch and wait cost more than the tile reduction fused into the downsample.
+// A pass's dispatch and wait cost more than the tile steps fused into the downsample and gather.
 #pragma once
 
 #include "passes/frame_resources.h"
