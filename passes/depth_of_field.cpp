@@ -38,7 +38,8 @@ OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, cellHalfSize);
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, jitter);
 OBSCURA_SHADER_OFFSET(DofConstants, DofConstants, pixelsPerTexel);
 
-// Tile side in field texels (DOF_TILE_SIZE in dof_common.glsl).
+// Tile side in field texels (DOF_TILE_SIZE in dof_common.glsl): a workgroup of the downsample and
+// of the gather, which reduce their tile's values in shared memory.
 constexpr uint32_t kTileSize = 8;
 
 // Fields premultiplied by their CoC, and the CoC itself (seed 000 "A plausible and
@@ -51,10 +52,14 @@ constexpr VkFormat kFieldCocFormat = VK_FORMAT_R8G8B8A8_UNORM;
 // The gathered fields carry their coverage in alpha, which R11G11B10F has no room for.
 constexpr VkFormat kFieldFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
-// One pass of the chain, one invocation per texel of its first output; returns what it wrote.
+// One pass of the chain, one invocation per texel of its first output, `texelsPerGroup` of them a
+// workgroup; returns what it wrote.
 std::vector<gpu::ImageHandle> addDofPass(gpu::FrameGraph& graph, const std::string& name,
-                                         std::vector<ShaderBinding> bindings, const DofConstants& constants) {
-    return addComputePass(graph, {name, std::move(bindings), bytesOf(constants)}).images;
+                                         std::vector<ShaderBinding> bindings, const DofConstants& constants,
+                                         uint32_t texelsPerGroup) {
+    ComputePass pass{name, std::move(bindings), bytesOf(constants)};
+    pass.texelsPerGroup = {texelsPerGroup, texelsPerGroup};
+    return addComputePass(graph, std::move(pass)).images;
 }
 
 }  // namespace
@@ -98,36 +103,36 @@ gpu::ImageHandle addDepthOfFieldPasses(gpu::FrameGraph& graph, const FrameScene&
     // precision"); their layers keep it, or the small float format's truncation would bias the mean.
     const VkFormat hdrFormat = graph.imageDesc(hdrColor).format;
     const VkFormat layerFormat = hdrFormat == kFieldFormat ? kFieldFormat : kFieldInputFormat;
+    // A workgroup a tile: each writes its tile's CoC as well.
     std::vector<gpu::ImageHandle> layers = addDofPass(
         graph, "dof_downsample",
         {sampled(hdrColor), sampled(gbuffer.depth), storageWrite(field("dofNearLayer", layerFormat)),
-         storageWrite(field("dofFarLayer", layerFormat)), storageWrite(field("dofFieldCoc", kFieldCocFormat))},
-        constants);
-    const gpu::ImageHandle nearLayer = layers[0], farLayer = layers[1], fieldCoc = layers[2];
+         storageWrite(field("dofFarLayer", layerFormat)), storageWrite(field("dofFieldCoc", kFieldCocFormat)),
+         storageWrite(tiles("dofTileCoc"))},
+        constants, kTileSize);
+    const gpu::ImageHandle nearLayer = layers[0], farLayer = layers[1], fieldCoc = layers[2], tileCoc = layers[3];
 
-    gpu::ImageHandle tileCoc =
-        addDofPass(graph, "dof_tile_min_max", {sampled(fieldCoc), storageWrite(tiles("dofTileCoc"))}, constants)[0];
-    gpu::ImageHandle neighbourhood = addDofPass(
-        graph, "dof_tile_neighbourhood", {sampled(tileCoc), storageWrite(tiles("dofTileNeighbourhood"))}, constants)[0];
-
+    // A workgroup a tile: each finds its tile's neighbourhood first and writes it for the composite.
     std::vector<gpu::ImageHandle> gathered = addDofPass(
         graph, "dof_gather",
-        {sampled(nearLayer, linear), sampled(farLayer, linear), sampled(fieldCoc, linear), sampled(neighbourhood),
-         storageWrite(field("dofNearGathered", kFieldFormat)), storageWrite(field("dofFarGathered", kFieldFormat))},
-        constants);
+        {sampled(nearLayer, linear), sampled(farLayer, linear), sampled(fieldCoc, linear), sampled(tileCoc),
+         storageWrite(field("dofNearGathered", kFieldFormat)), storageWrite(field("dofFarGathered", kFieldFormat)),
+         storageWrite(tiles("dofTileNeighbourhood"))},
+        constants, kTileSize);
+    const gpu::ImageHandle neighbourhood = gathered[2];
 
     std::vector<gpu::ImageHandle> fields = addDofPass(
         graph, "dof_flood_fill",
         {sampled(gathered[0], linear), sampled(gathered[1], linear), sampled(fieldCoc), sampled(neighbourhood),
          storageWrite(field("dofNearField", kFieldFormat)), storageWrite(field("dofFarField", kFieldFormat))},
-        constants);
+        constants, 8);
 
     gpu::ImageHandle output = graph.createImage("dofColor", imageDesc2D(hdrFormat, scene.width, scene.height));
     return addDofPass(graph, "dof_composite",
                       {sampled(hdrColor), sampled(gbuffer.depth), sampled(fields[0], linear),
                        sampled(fields[1], linear), sampled(fieldCoc, linear), sampled(neighbourhood),
                        storageWrite(output)},
-                      constants)[0];
+                      constants, 8)[0];
 }
 
 }  // namespace obscura::passes

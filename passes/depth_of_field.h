@@ -1,17 +1,19 @@
 // Depth of field (frame step 10; seed 000 "Depth of field"): a physically based circle of
 // confusion from the camera's lens, and the separable flexible filter at half resolution (or full,
 // FieldResolution).
-//   dof_downsample        CoC per pixel (one multiply-add), bilateral downscale of the near and
-//                         far fields, each premultiplied by its CoC (R11G11B10F), and the
-//                         fields' CoC (R8G8: near, far);
-//   dof_tile_min_max      the CoC per tile: the near field's max and the far field's max (the min
-//                         of the signed CoC, whose far field is negative);
-//   dof_tile_neighbourhood the near max over the tiles a near CoC can reach from (scatter as gather);
-//   dof_gather            first pass, N^2 taps (7x7) for both fields, branching on the tiles;
-//   dof_flood_fill        second pass, 3x3 taps a third of the first pass's spacing apart,
-//                         averaged: together the two passes sample the kernel on a 3N x 3N grid;
-//   dof_composite         far field upscaled bilaterally, near field freely, both with bicubic
-//                         weights (Sigg & Hadwiger 2005), blended non-linearly over the sharp image.
+//   dof_downsample  CoC per pixel (one multiply-add), bilateral downscale of the near and far
+//                   fields, each premultiplied by its CoC (R11G11B10F), and the fields' CoC (R8G8:
+//                   near, far); a workgroup a tile, which also writes the tile's CoC: the near
+//                   field's max and the far field's max (the min of the signed CoC, whose far
+//                   field is negative);
+//   dof_gather      a workgroup a tile: the near max over the tiles a near CoC can reach from
+//                   (scatter as gather), written for the composite too; then the first pass, N^2
+//                   taps (7x7) for both fields, branching on the tiles;
+//   dof_flood_fill  second pass, 3x3 taps a third of the first pass's spacing apart, averaged:
+//                   together the two passes sample the kernel on a 3N x 3N grid;
+//   dof_composite   far field upscaled bilaterally, near field freely, both with bicubic weights
+//                   (Sigg & Hadwiger 2005), blended non-linearly over the sharp image.
+// A pass's dispatch and wait cost more than the tile steps fused into the downsample and gather.
 #pragma once
 
 #include "passes/frame_resources.h"

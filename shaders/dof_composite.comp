@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Depth of field, step 6 (seed 000 "Final composite"): the fields over the sharp full-resolution
+// Depth of field, step 4 (seed 000 "Final composite"): the fields over the sharp full-resolution
 // image.
 // * Far field: upscaled with a bilateral filter, four bicubic-weighted taps [Sigg05] each
 //   weighted again by how close the field's CoC there is to this pixel's CoC, so a blurred

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Depth of field, step 5: the second pass of the separable flexible filter (seed 000 "Sampling:
+// Depth of field, step 3: the second pass of the separable flexible filter (seed 000 "Sampling:
 // 2nd iteration"): 3x3 taps of the same aperture shape fill the gaps between the first pass's taps.
 // The first pass's taps sit 2/N of the kernel apart (the centres of an N x N grid over the square
 // before the aperture mapping); these lie a third of that apart (the 3x3 cell centres at 2/3

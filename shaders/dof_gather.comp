@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Depth of field, step 4: the first pass of the separable flexible filter (seed 000 "A plausible
+// Depth of field, step 2: the first pass of the separable flexible filter (seed 000 "A plausible
 // and efficient DOF reconstruction filter"), tapsPerSide^2 taps (7x7) of a square kernel mapped to
 // the aperture ("Sampling"), in the field texels, near and far fields in the same pass ("Tile
 // min/max CoC"), each branching out where it has nothing to blur: the near field on its tile
@@ -23,24 +23,54 @@
 // Orientation: gathering at p + o shows each sample's blur as the aperture reflected through its
 // centre. The near field's bokeh is that (a real lens inverts it); the far field gathers at p - o
 // so that its bokeh is upright, as behind a real lens.
+//
+// A workgroup is one tile, and first finds the tile's neighbourhood (seed 000 "Tile min/max CoC":
+// "also used for scatter as gather approximation for near field"): a near CoC spreads its blur up
+// to its radius beyond its own tile, so the tile's near-field kernel is the largest near CoC of
+// every tile within reach (dof.tileNeighbourhood tiles each side), read by all the invocations
+// and reduced in shared memory; the far field gathers with each texel's own CoC and keeps its
+// tile's own value. The composite reads the neighbourhood too: one texel per workgroup.
 #include "common/dof_common.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+#define GROUP_SIZE (DOF_TILE_SIZE * DOF_TILE_SIZE)
+layout(local_size_x = DOF_TILE_SIZE, local_size_y = DOF_TILE_SIZE) in;
 
 layout(set = 0, binding = 0) uniform sampler2D nearLayer;
 layout(set = 0, binding = 1) uniform sampler2D farLayer;
 layout(set = 0, binding = 2) uniform sampler2D fieldCoc;
-layout(set = 0, binding = 3) uniform sampler2D neighbourhoodCoc;
+layout(set = 0, binding = 3) uniform sampler2D tileCoc;
 layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D nearField;
 layout(set = 0, binding = 5, rgba16f) uniform writeonly image2D farField;
+layout(set = 0, binding = 6, rg8) uniform writeonly image2D neighbourhoodCoc;
 
 const int MAX_TAPS = 15 * 15;  // passes/depth_of_field.h kMaxDofTapsPerSide
 shared vec3 taps[MAX_TAPS];
+shared uint neighbourhoodNearMax;  // dof_common.glsl orderedBits
+
+// The largest near CoC fraction of the tiles within reach of this workgroup's tile, every
+// invocation reading its share of them; in uniform control flow (it waits for the whole group).
+float neighbourhoodNear(ivec2 tile) {
+    ivec2 tiles = textureSize(tileCoc, 0);
+    int side = 2 * dof.tileNeighbourhood + 1;
+    float nearMax = 0.0;
+    for (int i = int(gl_LocalInvocationIndex); i < side * side; i += GROUP_SIZE) {
+        ivec2 neighbour = tile + ivec2(i % side, i / side) - dof.tileNeighbourhood;
+        if (all(greaterThanEqual(neighbour, ivec2(0))) && all(lessThan(neighbour, tiles)))
+            nearMax = max(nearMax, texelFetch(tileCoc, neighbour, 0).x);
+    }
+    atomicMax(neighbourhoodNearMax, orderedBits(nearMax));
+    barrier();
+    return uintBitsToFloat(neighbourhoodNearMax);
+}
 
 void main() {
     int tapCount = dof.tapsPerSide * dof.tapsPerSide;
-    for (int i = int(gl_LocalInvocationIndex); i < tapCount; i += 64) taps[i] = cellTap(squareGridCell(i, dof.tapsPerSide));
+    for (int i = int(gl_LocalInvocationIndex); i < tapCount; i += GROUP_SIZE) taps[i] = cellTap(squareGridCell(i, dof.tapsPerSide));
+    if (gl_LocalInvocationIndex == 0) neighbourhoodNearMax = 0u;
     barrier();
+    ivec2 tileIndex = ivec2(gl_WorkGroupID.xy);
+    vec2 tileFractions = vec2(neighbourhoodNear(tileIndex), texelFetch(tileCoc, tileIndex, 0).y);
+    if (gl_LocalInvocationIndex == 0) imageStore(neighbourhoodCoc, tileIndex, vec4(tileFractions, 0.0, 0.0));
 
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(nearField);
@@ -48,7 +78,7 @@ void main() {
     vec2 inverseSize = 1.0 / vec2(size);
     vec2 centre = vec2(texel) + 0.5;
     float maxRadius = fieldMaxRadius();
-    vec2 tile = texelFetch(neighbourhoodCoc, texel / DOF_TILE_SIZE, 0).xy * maxRadius;
+    vec2 tile = tileFractions * maxRadius;
     vec2 coc = texelFetch(fieldCoc, texel, 0).xy * maxRadius;
 
     vec4 far = vec4(texelFetch(farLayer, texel, 0).rgb, coc.y / maxRadius);

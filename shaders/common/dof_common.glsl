@@ -29,8 +29,13 @@ const float DOF_PI = 3.14159265358979;
 // CoC); the passes work with radii in field texels.
 float fieldMaxRadius() { return dof.maxRadius / dof.pixelsPerTexel; }
 
-// Tiles of the min/max CoC, in field texels (seed 000 "Tile min/max CoC").
+// Tiles of the min/max CoC, in field texels (seed 000 "Tile min/max CoC"); the downsample's and
+// the gather's workgroups are one tile each, which reduce the tile's values in shared memory.
 const int DOF_TILE_SIZE = 8;
+
+// The bits of a non-negative float, which order as the floats do (IEEE 754): atomicMax on a shared
+// uint over them finds a workgroup's largest value exactly.
+uint orderedBits(float nonNegative) { return floatBitsToUint(nonNegative); }
 
 // Below this CoC radius (in full-resolution pixels: a CoC diameter of one pixel) a pixel is sharp.
 const float DOF_SHARP_RADIUS = 0.5;

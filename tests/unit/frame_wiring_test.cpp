@@ -139,8 +139,7 @@ bool runs(const Frame& frame, const std::string& pass) {
 }
 
 const std::vector<std::string> kSsao{"ssao_obscurance", "ssao_temporal_blur"};
-const std::vector<std::string> kDepthOfField{"dof_downsample", "dof_tile_min_max", "dof_tile_neighbourhood",
-                                             "dof_gather",     "dof_flood_fill",   "dof_composite"};
+const std::vector<std::string> kDepthOfField{"dof_downsample", "dof_gather", "dof_flood_fill", "dof_composite"};
 const std::vector<std::string> kMotionBlur{"motion_blur_tile_max", "motion_blur_neighbour_max",
                                            "motion_blur_gather_fine", "motion_blur_gather_coarse"};
 
