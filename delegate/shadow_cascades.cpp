@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace obscura::delegate {
 namespace {
@@ -54,7 +55,73 @@ ShadowProjection perspectiveView(const Vec3d& position, const Vec3d& forward, co
     return {multiply(view, perspective), 2.0 * tanHalf / double(resolution)};
 }
 
+// The six half-spaces of Vulkan clip space (w ± x, w ± y, z, w - z not negative), each as a
+// linear function of world position: coefficients of x, y, z and the constant.
+std::array<std::array<double, 4>, 6> clipHalfSpaces(const Matrix4d& viewProjection) {
+    auto column = [&](int j) {
+        return std::array<double, 4>{viewProjection[size_t(j)], viewProjection[size_t(4 + j)],
+                                     viewProjection[size_t(8 + j)], viewProjection[size_t(12 + j)]};
+    };
+    const auto x = column(0), y = column(1), z = column(2), w = column(3);
+    std::array<std::array<double, 4>, 6> planes{};
+    for (size_t k = 0; k < 4; ++k) {
+        planes[0][k] = w[k] + x[k];
+        planes[1][k] = w[k] - x[k];
+        planes[2][k] = w[k] + y[k];
+        planes[3][k] = w[k] - y[k];
+        planes[4][k] = z[k];
+        planes[5][k] = w[k] - z[k];
+    }
+    return planes;
+}
+
+double evaluate(const std::array<double, 4>& plane, const Vec3d& p) {
+    return plane[0] * p[0] + plane[1] * p[1] + plane[2] * p[2] + plane[3];
+}
+
+// Sutherland-Hodgman: the part of the convex polygon on the plane's non-negative side.
+std::vector<Vec3d> clipPolygon(const std::vector<Vec3d>& polygon, const std::array<double, 4>& plane) {
+    std::vector<Vec3d> kept;
+    for (size_t i = 0; i < polygon.size(); ++i) {
+        const Vec3d& a = polygon[i];
+        const Vec3d& b = polygon[(i + 1) % polygon.size()];
+        const double da = evaluate(plane, a), db = evaluate(plane, b);
+        if (da >= 0.0) kept.push_back(a);
+        if ((da >= 0.0) != (db >= 0.0)) kept.push_back(add(a, scale(sub(b, a), da / (da - db))));
+    }
+    return kept;
+}
+
 }  // namespace
+
+double nearestDistanceInView(const Aabb& box, const ShadowedCamera& camera) {
+    double nearest = std::numeric_limits<double>::infinity();
+    if (box.empty()) return nearest;
+    const auto planes = clipHalfSpaces(multiply(camera.view, camera.projection));
+    const auto distance = [&](const Vec3d& p) { return -transformPoint(p, camera.view)[2]; };
+    // Corner indices of Aabb::corners() (bit 0: x, bit 1: y, bit 2: z), face by face.
+    constexpr int kFaces[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+    const std::array<Vec3d, 8> corners = box.corners();
+    for (const auto& face : kFaces) {
+        std::vector<Vec3d> polygon = {corners[size_t(face[0])], corners[size_t(face[1])], corners[size_t(face[2])],
+                                      corners[size_t(face[3])]};
+        for (const auto& plane : planes) {
+            polygon = clipPolygon(polygon, plane);
+            if (polygon.empty()) break;
+        }
+        for (const Vec3d& p : polygon) nearest = std::min(nearest, distance(p));
+    }
+    Matrix4d inverse = kIdentity;
+    invert(multiply(camera.view, camera.projection), inverse);
+    for (double x : {-1.0, 1.0})
+        for (double y : {-1.0, 1.0}) {
+            const Vec3d corner = transformPoint({x, y, 0.0}, inverse);
+            bool inside = true;
+            for (size_t c = 0; c < 3; ++c) inside = inside && corner[c] >= box.min[c] && corner[c] <= box.max[c];
+            if (inside) nearest = std::min(nearest, distance(corner));
+        }
+    return nearest;
+}
 
 std::vector<double> cascadeSplits(double near, double far, uint32_t count, double lambda) {
     std::vector<double> splits(count + 1);

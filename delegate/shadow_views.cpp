@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace obscura::delegate {
@@ -11,7 +12,8 @@ namespace {
 // 0.75 keeps the first cascade a useful size with a near plane close to the camera).
 constexpr double kCascadeSplitLambda = 0.75;
 
-// The minimum filter of the lookup (shadow_sampling.glsl) reads up to 2.5 texels from the sample;
+// The narrowest blocker search of the lookup (shadow_sampling.glsl), 1.5 texels around the sample
+// with a 2x2 gather at each tap, reads up to 2.5 texels from it;
 // cube faces and spot maps extend their field of view by 3 texels so no such lookup inside the
 // face (or the cone) needs texels beyond the map. Wider penumbra filters are clamped to the tile.
 constexpr uint32_t kGuardTexels = 3;
@@ -54,6 +56,19 @@ double cascadeRangeEnd(const ShadowedCamera& camera, double near, double far, co
     return std::min(far, near * std::exp2(steps / 4.0));
 }
 
+// Where the camera's cascades start: the nearest point of the scene the view holds (the depth
+// range of sample distribution shadow maps, Lauritzen et al. 2011, bounded by the draws' boxes
+// where they read it from the depth buffer), with 10% to spare and rounded down to a quarter-octave
+// step from the near plane, as the end is. Cascades that start at the near plane spend their finest
+// slices where nothing lies: a camera two metres above a floor sees none of it within a few metres.
+double cascadeRangeStart(const ShadowedCamera& camera, double near, double end, const std::vector<Aabb>& drawBounds) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Aabb& box : drawBounds) nearest = std::min(nearest, nearestDistanceInView(box, camera));
+    if (!(0.9 * nearest > near)) return near;
+    const double start = near * std::exp2(std::floor(4.0 * std::log2(0.9 * nearest / near)) / 4.0);
+    return start < end ? start : near;
+}
+
 // The order in which shadow-casting lights claim atlas tiles, for when not all fit: distant
 // lights first (they light everything), then local lights by how close their influence sphere
 // comes to the camera.
@@ -90,7 +105,8 @@ ShadowAtlasBuild buildShadowAtlas(const ShadowInputs& in, std::vector<passes::Li
     const double cascadeEnd = cascadeRangeEnd(in.camera, in.cameraNear, in.cameraFar, scene);
     std::vector<double> splits;
     if (cascadeEnd > in.cameraNear)
-        splits = cascadeSplits(in.cameraNear, cascadeEnd, in.settings.cascades, kCascadeSplitLambda);
+        splits = cascadeSplits(cascadeRangeStart(in.camera, in.cameraNear, cascadeEnd, in.drawBounds), cascadeEnd,
+                               in.settings.cascades, kCascadeSplitLambda);
 
     std::vector<PendingView> views;
     for (size_t i : shadowPriority(lights, castsShadows, in.camera)) {

@@ -1,8 +1,8 @@
 // Shadow lookups, per pixel (seed 000 "Deferred MSAA \ performance shortcuts": sun shadows are
 // computed at pixel frequency): choose a light's view in the shadow atlas (a cascade by view
-// distance, a cube face by the major axis, a spot's one map), offset the receiver along its
+// distance, a cube face by the major axis, a spot's one map), offset the receiver's depth along its
 // normal, and filter: a penumbra as wide as the light's size makes it (percentage-closer soft
-// shadows), at least the 3x3-texel minimum filter.
+// shadows), at least one texel's bilinear ramp.
 //
 // The includer declares, before including this file:
 //   ShadowViewData shadowViews[]   the frame's views (a storage buffer, frame_data.glsl)
@@ -14,15 +14,16 @@
 #include "interleaved_gradient_noise.glsl"
 #include "light_evaluation.glsl"
 
-// Normal offset (Holbein 2011, "Normal offset shadows"): the receiver moves along its normal by
-// this many texels of its view before the lookup, which removes the acne that depth bias alone
-// leaves on surfaces at grazing angles to the light; the rasteriser's slope-scaled bias
-// (passes/shadow_maps.cpp) covers the filter's footprint.
+// Normal offset (Holbein 2011, "Normal offset shadows"): the receiver's depth is taken this many
+// texels of its view along its normal, which keeps it off the surface's own depths at grazing
+// angles to the light; the rasteriser's slope-scaled bias (passes/shadow_maps.cpp) covers the
+// filter's footprint. Only the depth: the lookup stays at the receiver, as moving it across the
+// map by the offset (sin of the normal's angle to the light x 1.5 texels) moved the shadow's edges
+// by as much, wider than the physical penumbra of a small light on a coarse cascade.
 const float SHADOW_NORMAL_OFFSET_TEXELS = 1.5;
 
-// The minimum filter's half width (its 3x3-texel box): penumbrae narrower than this come out as
-// wide as it, and a light of no size keeps exactly this filter.
-const float SHADOW_MIN_FILTER_RADIUS_TEXELS = 1.5;
+// The narrowest blocker search, in texels: it reaches the 2x2 texels of a bilinear lookup.
+const float SHADOW_MIN_SEARCH_RADIUS_TEXELS = 1.5;
 // The widest penumbra filter, in texels of the view, and the farthest the blocker search looks.
 // Wider penumbrae (a large light far above its receiver, or a fine cascade) are cut to this
 // radius: their edges come out sharper than the light makes them.
@@ -31,37 +32,6 @@ const float SHADOW_MAX_FILTER_RADIUS_TEXELS = 32.0;
 // the SHADOW_DISC_TAPS of one spiral (vogelRadius, nextVogelDirection).
 // A receiver's depth slope is trusted up to this tangent of its angle to the light's view (84°).
 const float SHADOW_MAX_RECEIVER_SLOPE = 10.0;
-
-// Percentage-closer filtering (Reeves et al. 1987) with a 3x3-texel box that slides with the
-// sample: over the 4x4 texels it touches, the edge texels weigh by how much of them the box
-// covers (bilinear weights), so the result changes smoothly as the receiver moves. The 16 depths
-// arrive in four gathers and are compared in the shader: lavapipe offers no linear filtering of
-// depth formats, so no hardware comparison filtering (and four gathers cost it less than 16
-// fetches). The footprint is kept inside the view's tile.
-// atlasPosition: atlas texel coordinates and the receiver's depth; tileRect: the view's tile.
-float percentageCloserFilter(vec3 atlasPosition, vec4 tileRect) {
-    vec2 position = atlasPosition.xy - 0.5;  // texel centres at whole numbers
-    vec2 base = floor(position);
-    vec2 f = position - base;
-    base = clamp(base, tileRect.xy + 1.0, tileRect.zw - 2.0);
-    vec2 texelSize = 1.0 / vec2(textureSize(shadowAtlas, 0));
-    // Texel offsets -1, 0, 1, 2 from base, along x and y.
-    vec4 weightX = vec4(1.0 - f.x, 1.0, 1.0, f.x);
-    vec4 weightY = vec4(1.0 - f.y, 1.0, 1.0, f.y);
-    float lit = 0.0;
-    for (int j = 0; j < 2; ++j) {
-        for (int i = 0; i < 2; ++i) {
-            // A gather at the corner shared by texels base + (2i - 1 .. 2i, 2j - 1 .. 2j) returns
-            // them as x (left, bottom row), y (right, bottom), z (right, top), w (left, top).
-            vec4 occluders = textureGather(shadowAtlas, (base + vec2(2 * i, 2 * j)) * texelSize);
-            vec4 visible = step(vec4(atlasPosition.z), occluders);
-            vec2 wx = vec2(weightX[2 * i], weightX[2 * i + 1]);
-            vec2 wy = vec2(weightY[2 * j], weightY[2 * j + 1]);
-            lit += dot(visible, vec4(wx.x * wy.y, wx.y * wy.y, wx.y * wy.x, wx.x * wy.x));
-        }
-    }
-    return lit / 9.0;
-}
 
 // --- Percentage-closer soft shadows ---------------------------------------------------------
 // Fernando 2005, "Percentage-closer soft shadows": search the map for blockers over the region
@@ -82,13 +52,15 @@ struct ShadowReceiver {
     vec4 tileRect;    // the view's tile: first and last texel
 };
 
-// The receiver at world position `position` (already normal-offset) with unit normal `normal`,
-// seen through `view`; `texelWorld` is a texel's world size there (the tangents' length).
+// The receiver at world position `position` with unit normal `normal`, seen through `view`, its
+// depth normal-offset; `texelWorld` is a texel's world size there (the tangents' length).
 ShadowReceiver shadowReceiver(uint view, vec3 position, vec3 normal, float texelWorld) {
     mat4 toAtlas = shadowViews[view].worldToAtlas;
     vec4 clip = toAtlas * vec4(position, 1.0);
+    vec3 atlas = clip.xyz / clip.w;
+    vec4 offset = toAtlas * vec4(position + normal * (texelWorld * SHADOW_NORMAL_OFFSET_TEXELS), 1.0);
     ShadowReceiver r;
-    r.atlas = clip.xyz / clip.w;
+    r.atlas = vec3(atlas.xy, offset.z / offset.w);
     r.tileRect = shadowViews[view].tileRect;
     // Two tangents of the receiver's plane, projected: dz = slope . dxy for both gives the slope.
     // Depth over the map is affine on a plane for orthographic and perspective views alike.
@@ -97,10 +69,10 @@ ShadowReceiver shadowReceiver(uint view, vec3 position, vec3 normal, float texel
     vec3 t2 = cross(normal, t1);
     vec4 c1 = toAtlas * vec4(position + t1, 1.0);
     vec4 c2 = toAtlas * vec4(position + t2, 1.0);
-    vec3 d1 = c1.xyz / c1.w - r.atlas, d2 = c2.xyz / c2.w - r.atlas;
+    vec3 d1 = c1.xyz / c1.w - atlas, d2 = c2.xyz / c2.w - atlas;
     mat2 tangentsInMap = mat2(d1.xy, d2.xy);
     float det = determinant(tangentsInMap);
-    // Edge-on to the view (det ~ 0) the plane says nothing: no slope, the minimum filter's case.
+    // Edge-on to the view (det ~ 0) the plane says nothing: no slope, a plain depth comparison.
     r.depthSlope = abs(det) > 1e-8 ? inverse(transpose(tangentsInMap)) * vec2(d1.z, d2.z) : vec2(0.0);
     // Limit the slope where the plane turns edge-on to the view: a plane tilted by a from facing
     // the view changes depth by about tan(a) times what one texel of it along the view's depth
@@ -141,19 +113,24 @@ void gatherAgainstPlane(ShadowReceiver r, vec2 q, out vec4 depths, out vec4 plan
     plane = r.atlas.z + r.depthSlope.x * dx + r.depthSlope.y * dy;
 }
 
-// Visible share of the disc of `radius` texels around the receiver: each tap's 2x2 texels with
-// bilinear weights at the tap's position (so the result moves smoothly with it).
+// Percentage-closer filtering (Reeves et al. 1987) at its smallest footprint: the light's share
+// through the 2x2 texels around atlas position q, each compared with the receiver's plane,
+// weighted bilinearly, so the result moves smoothly with q. A hard shadow's edge is one texel's
+// ramp; lavapipe offers no linear filtering of depth formats, hence the gather.
+float bilinearVisibility(ShadowReceiver r, vec2 q) {
+    vec4 depths, plane;
+    vec2 f;
+    gatherAgainstPlane(r, q, depths, plane, f);
+    vec4 weights = vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
+    return dot(step(plane, depths), weights);
+}
+
+// Visible share of the disc of `radius` texels around the receiver, a bilinear lookup per tap.
 float discFilter(ShadowReceiver r, float radius, vec2 firstDirection) {
     float lit = 0.0;
     vec2 direction = firstDirection;
-    for (int i = 0; i < SHADOW_DISC_TAPS; ++i, direction = nextVogelDirection(direction)) {
-        vec2 q = r.atlas.xy + radius * vogelRadius(i) * direction;
-        vec4 depths, plane;
-        vec2 f;
-        gatherAgainstPlane(r, q, depths, plane, f);
-        vec4 weights = vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
-        lit += dot(step(plane, depths), weights);
-    }
+    for (int i = 0; i < SHADOW_DISC_TAPS; ++i, direction = nextVogelDirection(direction))
+        lit += bilinearVisibility(r, r.atlas.xy + radius * vogelRadius(i) * direction);
     return lit / float(SHADOW_DISC_TAPS);
 }
 
@@ -181,7 +158,7 @@ float softShadowRadius(uint view, bool perspective, ShadowReceiver r, float ligh
     float searchTexels = perspective ? lightSize * (receiverDistance - nearest) / receiverDistance
                                          / (params.x * nearest)
                                      : lightSize * receiverDistance / texelWorld;
-    float searchRadius = clamp(searchTexels, SHADOW_MIN_FILTER_RADIUS_TEXELS, SHADOW_MAX_FILTER_RADIUS_TEXELS);
+    float searchRadius = clamp(searchTexels, SHADOW_MIN_SEARCH_RADIUS_TEXELS, SHADOW_MAX_FILTER_RADIUS_TEXELS);
     float blockerDistance = 0.0, blockers = 0.0;
     vec2 direction = firstDirection;
     for (int i = 0; i < SHADOW_DISC_TAPS; ++i, direction = nextVogelDirection(direction)) {
@@ -199,26 +176,17 @@ float softShadowRadius(uint view, bool perspective, ShadowReceiver r, float ligh
     return clamp(penumbraWorld / texelWorld, 0.0, SHADOW_MAX_FILTER_RADIUS_TEXELS);
 }
 
-// Fraction of the light reaching `position` through view `view`: the receiver moved
-// SHADOW_NORMAL_OFFSET_TEXELS texels (of `texelWorld` world units) along `normal`, then the
-// minimum filter for a light of no size, else the soft shadow's.
+// Fraction of the light reaching `position` through view `view` (a texel of it `texelWorld` world
+// units there): one bilinear lookup for a light of no size, else the soft shadow's disc, whose
+// taps' bilinear footprint adds a texel to its width.
 float viewVisibility(uint view, bool perspective, vec3 position, vec3 normal, float texelWorld, float lightSize,
                      float turn) {
-    vec3 offsetPosition = position + normal * (texelWorld * SHADOW_NORMAL_OFFSET_TEXELS);
-    // One call site of the minimum filter (see shadowVisibility).
-    vec3 atlas;
-    if (lightSize > 0.0) {
-        ShadowReceiver r = shadowReceiver(view, offsetPosition, normal, texelWorld);
-        vec2 firstDirection = vec2(cos(turn), sin(turn));
-        float radius = softShadowRadius(view, perspective, r, lightSize, texelWorld, firstDirection);
-        if (radius < 0.0) return 1.0;
-        if (radius > SHADOW_MIN_FILTER_RADIUS_TEXELS) return discFilter(r, radius, firstDirection);
-        atlas = r.atlas;
-    } else {
-        vec4 clip = shadowViews[view].worldToAtlas * vec4(offsetPosition, 1.0);
-        atlas = clip.xyz / clip.w;
-    }
-    return percentageCloserFilter(atlas, shadowViews[view].tileRect);
+    ShadowReceiver r = shadowReceiver(view, position, normal, texelWorld);
+    if (lightSize <= 0.0) return bilinearVisibility(r, r.atlas.xy);
+    vec2 firstDirection = vec2(cos(turn), sin(turn));
+    float radius = softShadowRadius(view, perspective, r, lightSize, texelWorld, firstDirection);
+    if (radius < 0.0) return 1.0;
+    return discFilter(r, radius, firstDirection);
 }
 
 // The view a shadowed light's maps see `position` through, with how a texel of it measures there.

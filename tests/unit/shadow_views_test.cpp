@@ -95,6 +95,25 @@ TEST(ShadowViews, EachLightTypeGetsItsViews) {
     EXPECT_EQ(b.records[4].params[1], 0.0f);
 }
 
+TEST(ShadowViews, CascadesStartAtTheNearestSceneThePictureHolds) {
+    // The eye 2 above the ground looks along it with a 90-degree view: the ground enters the
+    // picture 2 ahead. The cascades start a quarter-octave step from the near plane at most 10%
+    // plus a step before that, 0.1 x 2^(16/4) = 1.6, and the first one ends where the practical
+    // split of [1.6, end] puts it.
+    Fixture f;
+    std::vector<passes::LightData> lights = {distantLight({0.3, -1, 0.2})};
+    ShadowAtlasBuild b = f.build(lights);
+    ASSERT_EQ(b.records.size(), 4u);
+    const double end = b.records[3].params[1];
+    EXPECT_NEAR(b.records[0].params[1], cascadeSplits(1.6, end, 4, 0.75)[1], 1e-4 * end);
+    // A draw around the eye: the cascades start at the near plane again.
+    f.draws.push_back(box({-1, 1, 9}, {1, 3, 11}));
+    std::vector<passes::LightData> again = {distantLight({0.3, -1, 0.2})};
+    ShadowAtlasBuild near = f.build(again);
+    EXPECT_NEAR(near.records[0].params[1], cascadeSplits(0.1, end, 4, 0.75)[1], 1e-4 * end);
+    EXPECT_LT(near.records[0].params[1], b.records[0].params[1]);
+}
+
 TEST(ShadowViews, TilesPackWithoutOverlapInsideTheAtlas) {
     Fixture f;
     f.settings.resolution = 512;
