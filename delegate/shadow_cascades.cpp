@@ -79,47 +79,59 @@ double evaluate(const std::array<double, 4>& plane, const Vec3d& p) {
     return plane[0] * p[0] + plane[1] * p[1] + plane[2] * p[2] + plane[3];
 }
 
+// A box's face clipped by the frustum: a quad cut by six planes keeps at most 4 + 6 corners.
+struct ClippedFace {
+    std::array<Vec3d, 10> points{};
+    size_t count = 0;
+};
+
 // Sutherland-Hodgman: the part of the convex polygon on the plane's non-negative side.
-std::vector<Vec3d> clipPolygon(const std::vector<Vec3d>& polygon, const std::array<double, 4>& plane) {
-    std::vector<Vec3d> kept;
-    for (size_t i = 0; i < polygon.size(); ++i) {
-        const Vec3d& a = polygon[i];
-        const Vec3d& b = polygon[(i + 1) % polygon.size()];
+ClippedFace clipPolygon(const ClippedFace& polygon, const std::array<double, 4>& plane) {
+    ClippedFace kept;
+    for (size_t i = 0; i < polygon.count; ++i) {
+        const Vec3d& a = polygon.points[i];
+        const Vec3d& b = polygon.points[(i + 1) % polygon.count];
         const double da = evaluate(plane, a), db = evaluate(plane, b);
-        if (da >= 0.0) kept.push_back(a);
-        if ((da >= 0.0) != (db >= 0.0)) kept.push_back(add(a, scale(sub(b, a), da / (da - db))));
+        if (da >= 0.0) kept.points[kept.count++] = a;
+        if ((da >= 0.0) != (db >= 0.0)) kept.points[kept.count++] = add(a, scale(sub(b, a), da / (da - db)));
     }
     return kept;
 }
 
 }  // namespace
 
-double nearestDistanceInView(const Aabb& box, const ShadowedCamera& camera) {
-    double nearest = std::numeric_limits<double>::infinity();
-    if (box.empty()) return nearest;
-    const auto planes = clipHalfSpaces(multiply(camera.view, camera.projection));
+double nearestDistanceInView(const std::vector<Aabb>& boxes, const ShadowedCamera& camera) {
+    const Matrix4d viewProjection = multiply(camera.view, camera.projection);
+    const auto planes = clipHalfSpaces(viewProjection);
+    Matrix4d inverse = kIdentity;
+    invert(viewProjection, inverse);
+    std::array<Vec3d, 4> nearCorners{};
+    for (size_t i = 0; i < 4; ++i) nearCorners[i] = transformPoint({(i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, 0.0}, inverse);
     const auto distance = [&](const Vec3d& p) { return -transformPoint(p, camera.view)[2]; };
     // Corner indices of Aabb::corners() (bit 0: x, bit 1: y, bit 2: z), face by face.
-    constexpr int kFaces[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
-    const std::array<Vec3d, 8> corners = box.corners();
-    for (const auto& face : kFaces) {
-        std::vector<Vec3d> polygon = {corners[size_t(face[0])], corners[size_t(face[1])], corners[size_t(face[2])],
-                                      corners[size_t(face[3])]};
-        for (const auto& plane : planes) {
-            polygon = clipPolygon(polygon, plane);
-            if (polygon.empty()) break;
+    constexpr size_t kFaces[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Aabb& box : boxes) {
+        if (box.empty()) continue;
+        const std::array<Vec3d, 8> corners = box.corners();
+        // Distance is linear: no point of the box, seen or not, is nearer than its nearest corner.
+        double nearestCorner = std::numeric_limits<double>::infinity();
+        for (const Vec3d& c : corners) nearestCorner = std::min(nearestCorner, distance(c));
+        if (nearestCorner >= nearest) continue;
+        for (const auto& face : kFaces) {
+            ClippedFace polygon{{corners[face[0]], corners[face[1]], corners[face[2]], corners[face[3]]}, 4};
+            for (const auto& plane : planes) {
+                polygon = clipPolygon(polygon, plane);
+                if (polygon.count == 0) break;
+            }
+            for (size_t i = 0; i < polygon.count; ++i) nearest = std::min(nearest, distance(polygon.points[i]));
         }
-        for (const Vec3d& p : polygon) nearest = std::min(nearest, distance(p));
-    }
-    Matrix4d inverse = kIdentity;
-    invert(multiply(camera.view, camera.projection), inverse);
-    for (double x : {-1.0, 1.0})
-        for (double y : {-1.0, 1.0}) {
-            const Vec3d corner = transformPoint({x, y, 0.0}, inverse);
+        for (const Vec3d& corner : nearCorners) {
             bool inside = true;
             for (size_t c = 0; c < 3; ++c) inside = inside && corner[c] >= box.min[c] && corner[c] <= box.max[c];
             if (inside) nearest = std::min(nearest, distance(corner));
         }
+    }
     return nearest;
 }
 

@@ -29,11 +29,11 @@ struct ShadowedCamera {
 // near rectangle first, in the order (-x -y, +x -y, -x +y, +x +y) of normalized device coordinates.
 std::array<Vec3d, 8> frustumSliceCorners(const ShadowedCamera& camera, double near, double far);
 
-// The smallest view distance of the part of `box` that lies inside the camera's frustum (its
-// clipping range included), +infinity where none does. The minimum of a linear function over the
-// convex intersection lies on one of its vertices: the box's faces clipped to the frustum's six
-// planes, or a corner of the frustum's near rectangle inside the box.
-double nearestDistanceInView(const Aabb& box, const ShadowedCamera& camera);
+// The smallest view distance of the parts of `boxes` that lie inside the camera's frustum (its
+// clipping range included), +infinity where none does. The minimum of a linear function over a
+// box's convex intersection with the frustum lies on one of its vertices: the box's faces clipped
+// to the frustum's six planes, or a corner of the frustum's near rectangle inside the box.
+double nearestDistanceInView(const std::vector<Aabb>& boxes, const ShadowedCamera& camera);
 
 // World -> light space rotation for a light travelling along `direction`: x and y span the shadow
 // map, z increases along the direction. Depends only on the direction, so a light's shadow-map

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 namespace obscura::delegate {
@@ -62,8 +61,7 @@ double cascadeRangeEnd(const ShadowedCamera& camera, double near, double far, co
 // step from the near plane, as the end is. Cascades that start at the near plane spend their finest
 // slices where nothing lies: a camera two metres above a floor sees none of it within a few metres.
 double cascadeRangeStart(const ShadowedCamera& camera, double near, double end, const std::vector<Aabb>& drawBounds) {
-    double nearest = std::numeric_limits<double>::infinity();
-    for (const Aabb& box : drawBounds) nearest = std::min(nearest, nearestDistanceInView(box, camera));
+    const double nearest = nearestDistanceInView(drawBounds, camera);
     if (!(0.9 * nearest > near)) return near;
     const double start = near * std::exp2(std::floor(4.0 * std::log2(0.9 * nearest / near)) / 4.0);
     return start < end ? start : near;

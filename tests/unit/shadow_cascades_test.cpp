@@ -196,16 +196,16 @@ TEST(ShadowCascades, NearestDistanceInViewIsWhereTheFrustumFirstMeetsTheBox) {
     // Eye 2 above a floor, looking along -Z: the frustum's lower side (tan 12/50 below the axis)
     // meets the floor's top 2 / 0.24 ahead.
     ShadowedCamera cam = camera({0, 2, 0}, 0.0, 0.0);
-    EXPECT_NEAR(nearestDistanceInView(boxOf({-50, -0.1, -50}, {50, 0, 50}), cam), 2.0 / 0.24, 1e-9);
+    EXPECT_NEAR(nearestDistanceInView({boxOf({-50, -0.1, -50}, {50, 0, 50})}, cam), 2.0 / 0.24, 1e-9);
     // A wall across the view whose sides lie beyond it: its face.
-    EXPECT_NEAR(nearestDistanceInView(boxOf({-100, -1, -20}, {100, 5, -10}), cam), 10.0, 1e-9);
+    EXPECT_NEAR(nearestDistanceInView({boxOf({-100, -1, -20}, {100, 5, -10})}, cam), 10.0, 1e-9);
     // A room around the eye: the near plane.
-    EXPECT_NEAR(nearestDistanceInView(boxOf({-5, -5, -5}, {5, 5, 5}), cam), 0.5, 1e-9);
+    EXPECT_NEAR(nearestDistanceInView({boxOf({-5, -5, -5}, {5, 5, 5})}, cam), 0.5, 1e-9);
     // Behind the eye, beside the view, beyond the far plane: none of it is seen.
-    EXPECT_TRUE(std::isinf(nearestDistanceInView(boxOf({-1, 0, 1}, {1, 2, 3}), cam)));
-    EXPECT_TRUE(std::isinf(nearestDistanceInView(boxOf({40, 0, -12}, {42, 2, -10}), cam)));
-    EXPECT_TRUE(std::isinf(nearestDistanceInView(boxOf({-1, 0, -700}, {1, 2, -600}), cam)));
-    EXPECT_TRUE(std::isinf(nearestDistanceInView(Aabb{}, cam)));
+    EXPECT_TRUE(std::isinf(nearestDistanceInView({boxOf({-1, 0, 1}, {1, 2, 3})}, cam)));
+    EXPECT_TRUE(std::isinf(nearestDistanceInView({boxOf({40, 0, -12}, {42, 2, -10})}, cam)));
+    EXPECT_TRUE(std::isinf(nearestDistanceInView({boxOf({-1, 0, -700}, {1, 2, -600})}, cam)));
+    EXPECT_TRUE(std::isinf(nearestDistanceInView({Aabb{}}, cam)));
 }
 
 TEST(ShadowCascades, ClipVolumeTestCullsOnlyBoxesOutsideTheView) {
