@@ -187,6 +187,8 @@ private:
         cd.clipJitter = {float(in_.clipJitter[12]), float(in_.clipJitter[13])};
         cd.noiseFrame = in_.noiseFrame;
         cd.sampleResolve = uint32_t(in_.sampleResolve);
+        // N stratified samples each stand for 1 / N of the pixel's area: a footprint 1 / sqrt(N) as wide.
+        cd.textureLodBias = float(-0.5 * std::log2(double(std::max(in_.meanSamples, 1u))));
         if (in_.shutter && in_.sample && (*in_.shutter)[1] > (*in_.shutter)[0])
             cd.shutterPosition =
                 float((in_.sample->time - (*in_.shutter)[0]) / ((*in_.shutter)[1] - (*in_.shutter)[0]));

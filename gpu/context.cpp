@@ -272,8 +272,12 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
     // Static geometry leaves the velocity target untouched while writing the others (motion blur).
     features.features.independentBlend = supported.independentBlend;
-    // Material textures are filtered anisotropically where the device can.
-    features.features.samplerAnisotropy = supported.samplerAnisotropy;
+    // Material textures are filtered anisotropically where the device can, except on a CPU device:
+    // lavapipe's anisotropic filter mixes in the lookups of the pixel's quad neighbours and ignores
+    // explicit gradients, so a magnified or frontal texture's edge spreads over two pixels (22% of
+    // a check's edge in the next pixel where trilinear puts 10%) and no LOD bias can narrow it.
+    features.features.samplerAnisotropy =
+        supported.samplerAnisotropy && ctx->properties_.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU;
     // Normal maps are BC5-compressed where the device samples it.
     features.features.textureCompressionBC = supported.textureCompressionBC;
     ctx->enabledFeatures_ = features.features;

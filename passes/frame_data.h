@@ -56,7 +56,12 @@ struct alignas(16) CameraData {
     float shutterFraction;
     // SampleResolve: how per-sample lighting resolves a pixel's MSAA samples.
     uint32_t sampleResolve = 0;
-    float pad[2] = {0.0f, 0.0f};
+    // Added to material textures' LOD: 0 in a real-time frame; -log2(N) / 2 in one of N samples of
+    // a still's mean (FrameViewpoint::meanSamples), each lookup filtering its own
+    // 1 / N of the pixel so that the mean converges to the pixel's box integral of the texture
+    // instead of the box blurred once more by a whole pixel's mip footprint.
+    float textureLodBias = 0.0f;
+    float pad = 0.0f;
 };
 static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16 + 16 + 16);
 OBSCURA_SHADER_OFFSET(CameraData, CameraData, view);
@@ -75,6 +80,7 @@ OBSCURA_SHADER_OFFSET(CameraData, CameraData, backdropCoverage);
 OBSCURA_SHADER_OFFSET(CameraData, CameraData, noiseFrame);
 OBSCURA_SHADER_OFFSET(CameraData, CameraData, shutterFraction);
 OBSCURA_SHADER_OFFSET(CameraData, CameraData, sampleResolve);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, textureLodBias);
 static_assert(offsetof(CameraData, pad) == shader_layout::CameraData::pad0);
 
 // kInstanceEdgeAa: hybrid AA (seed 004) chose edge AA over temporal AA for this instance: it is

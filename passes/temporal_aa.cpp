@@ -62,7 +62,7 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, const FrameScene& sce
                                    gpu::ImageHandle transparentCoverage, const TemporalAaSettings& settings,
                                    const TemporalAaFrame& frame, TemporalAaHistory& history) {
     gpu::ImageDesc colorDesc;
-    colorDesc.format = kTemporalAaColorFormat;
+    colorDesc.format = temporalAaHistoryFormat(frame.framesToConverge);
     colorDesc.width = scene.width;
     colorDesc.height = scene.height;
     colorDesc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;

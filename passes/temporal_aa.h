@@ -19,6 +19,14 @@ enum class TemporalAaMode { Smaa1tx, Smaa2tx };
 // History colour, premultiplied, with coverage in alpha: the 1TX accumulation, or 2TX's last frame.
 // Accumulating 1/n of a sample needs more mantissa than B10G11R11 has (seed 004 "HDR").
 constexpr VkFormat kTemporalAaColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+// A still's mean adds each of its n frames as 1/n of the frame's difference from the mean so far,
+// and half floats (11-bit mantissa) round away differences below about n 2^-12 of the mean: 0.4% at
+// 16 frames, 6% at 256, where the few bright samples beside an edge would vanish and the mean
+// drift dark. Means of more frames than this are kept in 32-bit floats.
+constexpr uint32_t kHalfFloatMeanFrames = 16;
+constexpr VkFormat temporalAaHistoryFormat(uint32_t framesToConverge) {
+    return framesToConverge > kHalfFloatMeanFrames ? VK_FORMAT_R32G32B32A32_SFLOAT : kTemporalAaColorFormat;
+}
 
 // The sub-pixel offset (pixels, x right and y down, each in [-0.5, 0.5)) of the projection for
 // frame `index` of a cycle of `count` frames. 1TX: the first `count` points of the Halton (2, 3)
@@ -76,11 +84,11 @@ struct TemporalAaFrame {
 // The history (an explicit history input, STYLE.md, declared with FrameGraph::addHistory):
 // persistent images the renderer keeps.
 struct TemporalAaHistory {
-    gpu::HistoryImages color;  // kTemporalAaColorFormat
+    gpu::HistoryImages color;  // temporalAaHistoryFormat(frames)
     gpu::HistoryImages depth;  // temporalAaDepthFormat(mode)
 };
 
-// Returns the anti-aliased HDR colour (kTemporalAaColorFormat, coverage in alpha; in 1TX the
+// Returns the anti-aliased HDR colour (temporalAaHistoryFormat, coverage in alpha; in 1TX the
 // history written this frame itself). `hdrColor` is the light accumulation, rendered with the
 // jittered projection.
 gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, const FrameScene& scene,

@@ -118,8 +118,10 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
             viewpoint.lensOffset = {onAperture[0] * apertureRadius, onAperture[1] * apertureRadius};
         }
         viewpoint.noiseFrame = temporalAa->noiseFrame;
-        if (temporalAa->stillSample)
+        if (temporalAa->stillSample) {
             viewpoint.sampleResolve = pixelBox ? passes::SampleResolve::PixelBox : passes::SampleResolve::Linear;
+            viewpoint.meanSamples = temporalAa->pass.framesToConverge;
+        }
         // Hybrid AA (seed 004) while anything changes; a still accumulates jittered frames of every
         // object, converging to the supersampled image, which edge AA never reaches.
         if (temporalAaSettings.mode == passes::TemporalAaMode::Smaa1tx && !temporalAa->pass.unchanged)
@@ -356,6 +358,7 @@ void FrameRenderer::accumulateReference(FrameSceneSource& source, const FrameReq
         referenceSubFrames(settings.referenceSubFrames, aperture, settings.pixelFilter, samples);
     auto sceneOf = [&](const ReferenceSubFrame& sub) {
         FrameViewpoint viewpoint;
+        viewpoint.meanSamples = uint32_t(subFrames.size());
         if (close > open) viewpoint.shutter = shutter;
         std::array<double, 2> jitter = sub.pixelJitter;
         if (samples > 1) {

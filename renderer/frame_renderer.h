@@ -87,6 +87,10 @@ struct FrameViewpoint {
     std::array<double, 2> lensOffset{0.0, 0.0};
     // How MSAA samples resolve (CameraData::sampleResolve): linearly in a sample of a still's mean.
     passes::SampleResolve sampleResolve = passes::SampleResolve::ToneMapped;
+    // The samples of the mean this frame is one of (a still's accumulated frames, the reference's
+    // sub-frames); 1 in a real-time frame. Each material texture lookup filters its own share of
+    // the pixel (CameraData::textureLodBias).
+    uint32_t meanSamples = 1;
     // Temporal AA: the last frame's models (instances whose model differs get an
     // InstanceReprojection record), and where this frame's go; null without temporal AA.
     const InstanceModels* lastModels = nullptr;

@@ -5,7 +5,9 @@
 // N = V = R, samples weighted by N.L). Level 0 is the mirror: the source resampled. Rougher
 // levels take GGX importance samples, each read from the source mip whose texels cover the
 // sample's share of the lobe's solid angle (filtered importance sampling, Colbert & Krivanek
-// 2007, GPU Gems 3 ch. 20), so a few dozen samples give a noise-free result.
+// 2007, GPU Gems 3 ch. 20). 256 samples: at roughness 1 over a checker of 45-degree squares, 64 of
+// them miss the lobe's mean by 2.2% (tests/delegate/dome_texture_test.cpp), 256 by 0.8%; the
+// prefilter runs once per texture.
 #include "common/environment_map.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -20,7 +22,7 @@ layout(push_constant) uniform Push {
     float sourceLastLod;
 } push;
 
-const uint SAMPLE_COUNT = 64u;
+const uint SAMPLE_COUNT = 256u;
 
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);

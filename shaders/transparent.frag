@@ -14,6 +14,8 @@
 // glass keeps its reflections. Built with SPHERE_IMPOSTOR for sphere impostors
 // (common/sphere_impostor.glsl): the near side of the sphere each cube bounds.
 #include "common/frame_data.glsl"
+CAMERA_BLOCK(0);
+#define MATERIAL_LOD_BIAS camera.textureLodBias
 #include "common/material_inputs.glsl"
 #include "common/light_evaluation.glsl"
 #include "common/environment_map.glsl"
@@ -27,7 +29,6 @@ layout(location = 3) flat in uint inInstance;
 layout(location = 4) in vec2 inUv;
 layout(location = 5) in vec4 inTangent;
 
-CAMERA_BLOCK(0);
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Materials { MaterialData materials[]; };
 LIGHTS_BLOCK(3);

@@ -28,7 +28,10 @@ struct CameraData {
     float shutterFraction;
     // How MSAA samples resolve (passes/frame_data.h SampleResolve, the SAMPLE_RESOLVE_* below).
     uint sampleResolve;
-    float pad0, pad1;
+    // Added to material textures' LOD: -log2(N) / 2 in one of N samples of a still's mean (each
+    // lookup filters its own share of the pixel), else 0.
+    float textureLodBias;
+    float pad0;
 };
 
 // Mirrors passes/frame_data.h SampleResolve.

@@ -16,6 +16,8 @@ layout(depth_greater) out float gl_FragDepth;
 #endif
 
 #include "frame_data.glsl"
+CAMERA_BLOCK(0);
+#define MATERIAL_LOD_BIAS camera.textureLodBias
 #include "best_fit_normals.glsl"
 #include "material_inputs.glsl"
 #include "instance_target.glsl"
@@ -37,7 +39,6 @@ layout(location = 3) flat in uint inInstance;
 layout(location = 4) in vec2 inUv;
 layout(location = 5) in vec4 inTangent;
 
-CAMERA_BLOCK(0);
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Materials { MaterialData materials[]; };
 layout(set = 0, binding = 3) uniform sampler2D fittingScale;

@@ -16,6 +16,12 @@ const uint MATERIAL_ANISOTROPIC = 16u;
 
 bool drawUses(uint feature) { return (MATERIAL_FEATURES & feature) != 0u; }
 
+// Added to every lookup's LOD. An includer whose views may be samples of a still's mean defines it
+// before including this file (CameraData::textureLodBias); a shadow map's cut-outs take none.
+#ifndef MATERIAL_LOD_BIAS
+#define MATERIAL_LOD_BIAS 0.0
+#endif
+
 // The texture's own coordinates: the affine map of st (UsdTransform2d, MaterialX uvtiling and
 // uvoffset) applied in st; uv is the image's (s, 1 - t) (common/gbuffer_vertex.glsl).
 vec2 textureCoordinates(MaterialTexture t, vec2 uv) {
@@ -33,7 +39,7 @@ vec4 sampleUdim(MaterialTexture t, sampler2D tex, vec2 uv) {
     vec2 grid = t.udimGrid.zw;
     vec2 st = vec2(uv.x, 1.0 - uv.y) - t.udimGrid.xy;  // from the grid's lower-left corner
     vec2 squareTexels = vec2(textureSize(tex, 0)) / grid;
-    vec2 dx = dFdx(st), dy = dFdy(st);
+    vec2 dx = dFdx(st) * exp2(MATERIAL_LOD_BIAS), dy = dFdy(st) * exp2(MATERIAL_LOD_BIAS);
     float lod = log2(max(max(length(dx * squareTexels), length(dy * squareTexels)), 1e-20));
     float coarsest = max(log2(min(squareTexels.x, squareTexels.y)) - 2.0, 0.0);
     if (!(lod <= coarsest)) {  // also where the derivatives are not finite
@@ -56,7 +62,7 @@ vec4 sampleUdim(MaterialTexture t, sampler2D tex, vec2 uv) {
 // transform (the texture there is untransformed or at its coarsest mip); not yet understood.
 vec4 sampleTexture(MaterialTexture t, sampler2D tex, vec2 uv) {
     vec2 at = drawUses(MATERIAL_TRANSFORMED_TEXTURE) && t.transformed != 0u ? textureCoordinates(t, uv) : uv;
-    vec4 texel = drawUses(MATERIAL_UDIM) && t.udimGrid.z > 0.0 ? sampleUdim(t, tex, at) : texture(tex, at);
+    vec4 texel = drawUses(MATERIAL_UDIM) && t.udimGrid.z > 0.0 ? sampleUdim(t, tex, at) : texture(tex, at, MATERIAL_LOD_BIAS);
     return texel * t.scale + t.bias;
 }
 

@@ -37,7 +37,7 @@ layout(set = 0, binding = 2) uniform sampler2D currentColor;   // the light accu
 layout(set = 0, binding = 3) uniform sampler2D currentDepth;   // the G-buffer's device depth (nearest)
 layout(set = 0, binding = 4) uniform sampler2D previousColor;  // last frame's history colour (linear)
 layout(set = 0, binding = 5) uniform sampler2D previousDepth;  // x: last frame's linear view depth (nearest)
-layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D historyColor;
+layout(set = 0, binding = 6) uniform writeonly image2D historyColor;  // passes/temporal_aa.h temporalAaHistoryFormat
 layout(set = 0, binding = 9) uniform sampler2D transparentCoverage;  // passes/transparent.h (nearest)
 layout(set = 0, binding = 10) uniform usampler2D instanceTarget;     // the G-buffer's instance target
 layout(set = 0, binding = 11, std430) readonly buffer Instances { InstanceData instances[]; };
