@@ -15,6 +15,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <tuple>
 #include <vector>
 
@@ -110,6 +111,9 @@ FrameView frameView(const FrameSceneInputs& in) {
 }
 
 namespace {
+
+// The most precisionPreExposure brightens, in stops: far within a float's range.
+constexpr double kMaxPreExposureStops = 64.0;
 
 // Packs one frame's scene, step by step in the order the records depend on each other: the
 // camera (and its motion), materials and lights, the camera constants, the draws (batched meshes,
@@ -251,14 +255,40 @@ private:
                 }
             } else if (auto* l = dynamic_cast<const Light*>(prim.get())) {
                 if (l->visible()) {
-                    lights_.push_back(withInfluenceRange(frameTime_ ? l->dataAt(*frameTime_) : l->data(), cd_.exposureScale));
-                    if (in_.sample) lights_.back() = emitterSample(lights_.back(), in_.sample->emitter);
+                    lights_.push_back(frameTime_ ? l->dataAt(*frameTime_) : l->data());
                     lightCastsShadows_.push_back(l->castsShadows());
                     lightPrims_.push_back(l);
                     if (l == in_.environmentDome) lights_.back().factors[2] = 1.0f;
                 }
             }
         }
+        const double preExposure = precisionPreExposure();
+        cd_.exposureScale = float(cd_.exposureScale * preExposure);
+        cd_.outputScale = float(1.0 / preExposure);
+        for (passes::LightData& light : lights_) {
+            light = withInfluenceRange(light, cd_.exposureScale);
+            if (in_.sample) light = emitterSample(light, in_.sample->emitter);
+        }
+    }
+
+    // Half floats (the light accumulation, a still's mean) hold normal numbers down to 2^-14 only;
+    // a scene lit far more dimly than irradiance 1 (an unnormalised distant light's intensity is
+    // its disc's radiance: 0.75 over the sun's 0.53 degrees gives 5e-5) lands among their
+    // subnormals, whose fixed steps cost a still of such a scene 3.5 dB against a path tracer. So
+    // the accumulation is pre-exposed beyond the camera's exposure (Lagarde & de Rousiers 2014,
+    // "Moving Frostbite to PBR", 5.1 "Pre-exposure") by the power of two that brings the brightest
+    // light or emissive surface to between 1/2 and 1, and the readback takes it back off: exactly,
+    // powers of two being exact. Never below 1, so a scene bright enough keeps its bits as they were;
+    // from the lights and materials alone, so every sub-frame and every frame of a still agrees.
+    double precisionPreExposure() const {
+        double brightest = 0.0;
+        for (const passes::LightData& light : lights_) brightest = std::max(brightest, brightestIrradiance(light));
+        for (const passes::MaterialData& m : materials_)
+            brightest = std::max(brightest, std::numbers::pi * std::max({m.emissiveMetallic[0], m.emissiveMetallic[1],
+                                                                          m.emissiveMetallic[2], 0.0f}));
+        const double exposed = brightest * cd_.exposureScale;
+        if (!(exposed > 0.0) || exposed >= 1.0 || !std::isfinite(exposed)) return 1.0;
+        return std::exp2(std::min(std::floor(-std::log2(exposed)), kMaxPreExposureStops));
     }
 
     // Hydra's domeLightCameraVisibility: a visible dome is the background, opaque.

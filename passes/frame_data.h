@@ -61,7 +61,10 @@ struct alignas(16) CameraData {
     // 1 / N of the pixel so that the mean converges to the pixel's box integral of the texture
     // instead of the box blurred once more by a whole pixel's mip footprint.
     float textureLodBias = 0.0f;
-    float pad = 0.0f;
+    // What the readback multiplies the accumulated colour by: the inverse of the pre-exposure
+    // folded into exposureScale beyond the camera's (delegate/frame_scene_builder.cpp
+    // precisionPreExposure), 1 where the scene is bright enough for half floats as it is.
+    float outputScale = 1.0f;
 };
 static_assert(sizeof(CameraData) == 7 * 64 + 16 + 16 + 16 + 16);
 OBSCURA_SHADER_OFFSET(CameraData, CameraData, view);
@@ -81,7 +84,7 @@ OBSCURA_SHADER_OFFSET(CameraData, CameraData, noiseFrame);
 OBSCURA_SHADER_OFFSET(CameraData, CameraData, shutterFraction);
 OBSCURA_SHADER_OFFSET(CameraData, CameraData, sampleResolve);
 OBSCURA_SHADER_OFFSET(CameraData, CameraData, textureLodBias);
-static_assert(offsetof(CameraData, pad) == shader_layout::CameraData::pad0);
+OBSCURA_SHADER_OFFSET(CameraData, CameraData, outputScale);
 
 // kInstanceEdgeAa: hybrid AA (seed 004) chose edge AA over temporal AA for this instance: it is
 // drawn without the jitter, its pixels keep no history and the edge AA passes smooth its edges.

@@ -57,6 +57,7 @@ void main() {
     bool covered = instanceId != 0u;
     if (colour) {
         vec4 hdr = texelFetch(hdrColor, pixel, 0);
+        hdr.rgb *= camera.outputScale;
         // Premultiplied alpha: the opaque coverage with the transparent surfaces' over it.
         float a = push.alphaIsCoverage != 0u
                       ? hdr.a

@@ -184,6 +184,14 @@ passes::LightData withInfluenceRange(passes::LightData light, double exposureSca
     return light;
 }
 
+double brightestIrradiance(const passes::LightData& light) {
+    const double brightest = std::max({light.radiance[0], light.radiance[1], light.radiance[2], 0.0f});
+    // A distant light's record holds its irradiance (placed: its radiance times its solid angle,
+    // or as given where normalised).
+    if (passes::LightType(uint32_t(light.positionType[3])) == passes::LightType::Distant) return brightest;
+    return std::numbers::pi * brightest;
+}
+
 passes::LightData emitterSample(const passes::LightData& light, std::array<double, 2> u) {
     auto type = passes::LightType(uint32_t(light.positionType[3]));
     if (type == passes::LightType::Distant) {

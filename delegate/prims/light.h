@@ -61,6 +61,10 @@ private:
 // `exposureScale`: the distance tiled culling bounds it by.
 passes::LightData withInfluenceRange(passes::LightData light, double exposureScale);
 
+// The largest irradiance the light gives anywhere, before exposure: a distant light's at normal
+// incidence, pi L at a dome's or a local light's own surface (the brightest channel).
+double brightestIrradiance(const passes::LightData& light);
+
 // The reference mode's stand-in for `light` in one sub-frame (docs/ARCHITECTURE.md "Reference
 // mode"): one point of its emitter, picked by `u` in [0, 1)^2, lighting and shadowing like a point
 // (hard shadow maps), so that the mean over stratified sub-frames converges to the integral over

@@ -10,7 +10,7 @@ struct CameraData {
     mat4 inverseProjection;
     vec4 position;       // world-space eye, w unused
     vec2 resolution;     // render size in pixels
-    float exposureScale; // camera exposure (UsdGeomCamera linear scale) x 2^(render setting exposure): pre-exposed accumulation
+    float exposureScale; // camera exposure (UsdGeomCamera linear scale) x 2^(render setting exposure) x a power of two for precision (outputScale): pre-exposed accumulation
     float shutterPosition;  // where within the shutter the frame is seen, 0 open .. 1 close (deforming meshes)
     // Motion blur: world -> clip (unjittered) at the start and end of the part of the shutter the
     // frame blurs over (the whole shutter, or a still's sample's stratum of it); the frame itself
@@ -31,7 +31,9 @@ struct CameraData {
     // Added to material textures' LOD: -log2(N) / 2 in one of N samples of a still's mean (each
     // lookup filters its own share of the pixel), else 0.
     float textureLodBias;
-    float pad0;
+    // The readback's factor on the accumulated colour: the inverse of the pre-exposure beyond the
+    // camera's that exposureScale holds (1 in a scene bright enough for half floats).
+    float outputScale;
 };
 
 // Mirrors passes/frame_data.h SampleResolve.

@@ -73,5 +73,42 @@ TEST(HdrPrecision, SmallFloatAccumulationStaysWithinItsMantissa) {
                 largestMove);
 }
 
+// A converged still of a glossy plane under a distant light of irradiance `irradiance`.
+std::vector<float> stillUnder(float irradiance) {
+    LitPlaneScene s;
+    addMaterial(s.host, "/Looks/Glossy", {0.8f, 0.35f, 0.1f}, 0.3f);
+    s.host.set("/Plane", "material:binding", HostValue::path("/Looks/Glossy"));
+    s.host.addPrim("distantLight", "/Sun",
+                   {{"inputs:intensity", HostValue::floatValue(irradiance)},
+                    {"inputs:normalize", HostValue::boolean(true)},
+                    {"inputs:color", HostValue::float3(0.6f, 0.7f, 1.0f)}},
+                   lightPointingAlong({0.4, -0.3, -1}));
+    for (int frame = 0; frame < 32; ++frame) {
+        EXPECT_EQ(s.host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_OK) << s.host.lastError();
+        if (renderStats(s.host).converged) break;
+    }
+    EXPECT_TRUE(renderStats(s.host).converged);
+    return s.host.readFloats("/Buffers/color");
+}
+
+TEST(HdrPrecision, DimScenesAreTheBrightOnesScaled) {
+    // The same still under a light 2^20 times dimmer (an unnormalised sun's irradiance is of that
+    // order): its radiances, around 1e-7, are below half floats' normal range (2^-14), where the
+    // light accumulation and the still's mean would keep a few bits of them. The accumulation is
+    // pre-exposed by a power of two instead (CameraData::outputScale), so the dim image is the
+    // bright one scaled, to the bit.
+    const float bright = 0.75f, dim = std::ldexp(bright, -20);
+    std::vector<float> brightImage = stillUnder(bright), dimImage = stillUnder(dim);
+    ASSERT_EQ(brightImage.size(), dimImage.size());
+    double worst = 0.0;
+    for (size_t i = 0; i < brightImage.size(); ++i) {
+        if (i % 4 == 3) continue;  // coverage
+        ASSERT_GT(brightImage[i], 1e-3f) << "the light reaches every pixel";
+        worst = std::max(worst, std::fabs(std::ldexp(double(dimImage[i]), 20) - brightImage[i]) / brightImage[i]);
+    }
+    std::printf("[ metric ] still under a sun 2^20 times dimmer, scaled back: worst relative difference %.3g\n", worst);
+    EXPECT_EQ(worst, 0.0);
+}
+
 }  // namespace
 }  // namespace obscura::test

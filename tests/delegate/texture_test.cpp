@@ -760,8 +760,8 @@ TEST_F(TextureTest, CompressedTexturesComeBackFromTheDiskCache) {
 TEST_F(TextureTest, MinifiedTextureAveragesInLinearSpace) {
     // A one-texel black and white checker, 256 texels over 64 pixels: each pixel's footprint
     // covers 4x4 texels, whose average in linear space is 0.5 (sRGB code 188); averaging the
-    // sRGB codes instead would give 0.216. (Mip 2 holds exactly these averages; lavapipe's
-    // anisotropic filter reaches the same value from mip 0, so gpu_tests checks the mips.)
+    // sRGB codes instead would give 0.216. (Mip 2 holds exactly these averages; gpu_tests checks
+    // the mips themselves.)
     std::string file = writePng("fine.png", 256, [](int x, int y) {
         return (x + y) % 2 ? Rgb8{255, 255, 255} : Rgb8{0, 0, 0};
     });
