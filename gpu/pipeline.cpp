@@ -146,6 +146,8 @@ Pipeline::Pipeline(Device& device, const GraphicsPipelineDesc& desc) : device_(d
     rs.depthBiasSlopeFactor = desc.depthBiasSlope;
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = desc.samples;
+    ms.sampleShadingEnable = desc.sampleShading ? VK_TRUE : VK_FALSE;
+    ms.minSampleShading = desc.sampleShading ? 1.0f : 0.0f;
     VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     ds.depthTestEnable = desc.depthTest;
     ds.depthWriteEnable = desc.depthWrite;

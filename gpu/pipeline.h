@@ -48,6 +48,8 @@ struct GraphicsPipelineDesc {
     uint32_t untouchedColorAttachments = 0;
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    // One fragment shader invocation per covered sample (sample shading, minSampleShading 1).
+    bool sampleShading = false;
     // Every colour attachment blends "over" with premultiplied colour: src + dst * (1 - src alpha)
     // (Porter & Duff 1984), the alpha likewise.
     bool premultipliedOverBlend = false;

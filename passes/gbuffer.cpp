@@ -83,14 +83,16 @@ std::vector<ShaderBinding> gbufferBindings(bool motion, const SceneBuffers& buff
 // sphere impostors their SPHERE_IMPOSTOR one (common/gbuffer_surface.glsl). `culled`: the draw's
 // records come from GPU occlusion culling's list (a static variant only).
 gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, Surface surface, bool culled, bool cullBackFaces,
-                                                  VkSampleCountFlagBits samples,
+                                                  VkSampleCountFlagBits samples, bool perSample,
                                                   const std::vector<ShaderBinding>& bindings,
                                                   const std::vector<gpu::SpecializationConstant>& specialization) {
     gpu::GraphicsPipelineDesc d;
     d.specialization = specialization;
     if (cullBackFaces) d.cullMode = VK_CULL_MODE_BACK_BIT;
     d.fragmentShader = std::string(writesVelocity(variant) ? "gbuffer_moving" : "gbuffer") +
-                       (surface == Surface::Opaque ? "_opaque.frag" : surface == Surface::Spheres ? "_spheres.frag" : ".frag");
+                       (surface == Surface::Opaque ? "_opaque" : surface == Surface::Spheres ? "_spheres" : "") +
+                       (perSample ? "_per_sample.frag" : ".frag");
+    d.sampleShading = perSample;
     d.bindings = bindingLayout(bindings);
     d.pushedSamplers = kMaterialTextureSlots;  // set 1: the draw's material textures
     d.pushConstantSize = sizeof(GBufferPush);
@@ -195,6 +197,12 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
         [ordered, &scene, bestFitNormals, samples, alphaToCoverage, culledDraws](VkCommandBuffer cmd,
                                                                                   const gpu::PassResources& res) {
             gpu::Device& device = res.device();
+            // A still's samples resolved over the pixel's box are shaded each at its own position
+            // (common/gbuffer_surface.glsl PER_SAMPLE_SHADING); sphere impostors find their
+            // samples' hits themselves and stay per pixel.
+            const bool perSampleShading = samples > VK_SAMPLE_COUNT_1_BIT &&
+                                          scene.cameraData.sampleResolve == uint32_t(SampleResolve::PixelBox) &&
+                                          device.context().enabledFeatures().sampleRateShading;
             const gpu::Pipeline* bound = nullptr;
             Variant boundVariant = Variant::Static;
             Surface boundSurface = Surface::Opaque;
@@ -213,13 +221,15 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
                         gbufferBindings(readsMotion(o.variant), scene.buffers, bestFitNormals,
                                         culledDraw ? &*culledDraws : nullptr);
                     const std::vector<gpu::SpecializationConstant> specialization{{kMaterialFeaturesConstant, features}};
+                    const bool perSample = perSampleShading && surface != Surface::Spheres;
                     bound = &res.pipelines().get<gpu::GraphicsPipelineDesc>(
                         std::string(pipelineName(o.variant)) + "." + surfaceName(surface) +
                             (culledDraw ? "culled." : "") + (backFaces ? "backFacesCulled." : "") +
-                            std::to_string(samples) + gpu::specializationSuffix(specialization),
+                            (perSample ? "perSample." : "") + std::to_string(samples) +
+                            gpu::specializationSuffix(specialization),
                         [&] {
-                            return describeGBufferPipeline(o.variant, surface, culledDraw, backFaces, samples, bindings,
-                                                           specialization);
+                            return describeGBufferPipeline(o.variant, surface, culledDraw, backFaces, samples, perSample,
+                                                           bindings, specialization);
                         });
                     boundVariant = o.variant;
                     boundSurface = surface;

@@ -32,12 +32,22 @@ CAMERA_BLOCK(0);
 layout(early_fragment_tests) in;
 #endif
 
-layout(location = 0) in vec3 inNormal;
-layout(location = 1) in vec4 inColor;
-layout(location = 2) in vec3 inWorldPosition;
+// Built with PER_SAMPLE_SHADING for a still's samples resolved over the pixel's box
+// (SampleResolve::PixelBox, passes/gbuffer.cpp): one invocation per sample, its inputs interpolated
+// at the sample, so that each sample's surface is looked up where the sample lies. Shaded once at
+// the pixel's centre for all of them, a texture is seen only where the frames' jitter puts that
+// centre, a quarter of the pixel's width with 4 samples, and the mean never covers the pixel.
+#ifdef PER_SAMPLE_SHADING
+#define SURFACE_INPUT sample in
+#else
+#define SURFACE_INPUT in
+#endif
+layout(location = 0) SURFACE_INPUT vec3 inNormal;
+layout(location = 1) SURFACE_INPUT vec4 inColor;
+layout(location = 2) SURFACE_INPUT vec3 inWorldPosition;
 layout(location = 3) flat in uint inInstance;
-layout(location = 4) in vec2 inUv;
-layout(location = 5) in vec4 inTangent;
+layout(location = 4) SURFACE_INPUT vec2 inUv;
+layout(location = 5) SURFACE_INPUT vec4 inTangent;
 
 layout(set = 0, binding = 1, std430) readonly buffer Instances { InstanceData instances[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Materials { MaterialData materials[]; };
@@ -73,7 +83,11 @@ layout(location = 2) out uint outInstance;
 // alpha-to-coverage reads RT0's alpha, which holds roughness, so the mask is made here.)
 uint cutoutCoverage(MaterialData mat, vec2 uv) {
     float threshold = mat.opacity.y;
+#ifdef PER_SAMPLE_SHADING
+    const int samples = 1;  // the invocation's own sample, at `uv`: the mask's other bits do not count
+#else
     int samples = int(push.sampleCount);
+#endif
     if (threshold <= 0.0) return ~0u;
     if (samples <= 1) return opacityAt(mat, opacityTexture, uv) < threshold ? 0u : ~0u;
     if (push.alphaToCoverage != 0u) {

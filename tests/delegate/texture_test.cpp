@@ -784,53 +784,79 @@ double tentIntegral(int i, double a, double b) {
     return upTo(b) - upTo(a);
 }
 
-TEST_F(TextureTest, StillConvergesToThePixelIntegralOfAMinifiedTexture) {
-    // A checker of 44-texel squares on a 512-texel map over 64 pixels: 8 texels a pixel, so its
-    // edges fall 5.5 pixels apart, half of them across pixels. Lit by a white dome (diffuse only,
-    // no SSAO), the converged still is each pixel's box integral of the bilinearly reconstructed
-    // albedo. Lookups filtered over a whole pixel's mip footprint in each of the still's frames
-    // blur that box by a pixel more, each edge spreading into the pixels beside it (24.6 dB).
+// A checker of 44-texel squares on a 512-texel map over the 64 pixels: 8 texels a pixel, so its
+// edges fall 5.5 pixels apart, half of them across pixels. Lit by a white dome (diffuse only, no
+// SSAO), the pixel's integral is its box integral of the bilinearly reconstructed albedo.
+class MinifiedChecker : public TextureTest {
+protected:
+    static constexpr int kTexels = 512;
+    static Rgb8 texel(int x, int y) { return (x / 44 + y / 44) % 2 ? Rgb8{230, 230, 230} : Rgb8{30, 30, 30}; }
+
+    MinifiedChecker() {
+        std::string file = writePng("checker.png", kTexels, texel);
+        // Clamped, so that the border pixels' lookups do not wrap around to the far side's squares.
+        host.addPrim("material", "/Looks/M",
+                     textured("diffuseColor", file,
+                              {{"wrapS", HostValue::token("clamp")}, {"wrapT", HostValue::token("clamp")}}));
+        addPlane("/Plane", "/Looks/M");
+        host.addPrim("domeLight", "/Sky",
+                     {{"inputs:intensity", HostValue::floatValue(1.0f)}, {"inputs:specular", HostValue::floatValue(0.0f)}});
+        setNumber("ssao", 0.0);
+    }
+    void setNumber(const char* key, double value) {
+        ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &value};
+        ASSERT_EQ(host.api().setRenderSetting(host.delegate(), key, &v), OBSCURA_OK);
+    }
+
+    // PSNR (peak 1) of the rendered colour against each pixel's integral, scaled by the dome's
+    // irradiance over pi as seen in the middle of a bright square (no edge within 2 pixels).
+    double psnrAgainstThePixelIntegral() const {
+        const float lightScale = colorAt(8, 2)[0] / srgb8Exact(texel(68, 20)[0]);
+        double squaredError = 0.0;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                // Separable: each texel's tent integrated over the pixel's span of 8 texels
+                // (clamped at the map's border).
+                double integral = 0.0;
+                for (int ty = 8 * y - 1; ty <= 8 * y + 8; ++ty)
+                    for (int tx = 8 * x - 1; tx <= 8 * x + 8; ++tx)
+                        integral += tentIntegral(tx, 8 * x, 8 * x + 8) * tentIntegral(ty, 8 * y, 8 * y + 8) *
+                                    srgb8Exact(texel(std::clamp(tx, 0, kTexels - 1), std::clamp(ty, 0, kTexels - 1))[0]);
+                double error = colorAt(x, y)[0] - lightScale * integral / 64.0;
+                squaredError += error * error;
+            }
+        return 10.0 * std::log10(1.0 / (squaredError / (kWidth * kHeight)));
+    }
+};
+
+TEST_F(MinifiedChecker, StillConvergesToThePixelIntegral) {
+    // Lookups filtered over a whole pixel's mip footprint in each of the still's frames blur the
+    // pixel's box by a pixel more, each edge spreading into the pixels beside it (24.6 dB). Enough
+    // frames that the samples' own estimate of an edge's coverage is within the bar (16 leave 1/16
+    // steps, about 33 dB here), their mean kept in 32-bit floats (passes/temporal_aa.h): what is
+    // left is how each frame's lookups filter.
     constexpr int kStillFrames = 256;
-    const Rgb8 bright{230, 230, 230}, dark{30, 30, 30};
-    auto texel = [&](int x, int y) { return (x / 44 + y / 44) % 2 ? bright : dark; };
-    std::string file = writePng("checker.png", 512, texel);
-    // Clamped, so that the border pixels' lookups do not wrap around to the far side's squares.
-    host.addPrim("material", "/Looks/M",
-                 textured("diffuseColor", file, {{"wrapS", HostValue::token("clamp")}, {"wrapT", HostValue::token("clamp")}}));
-    addPlane("/Plane", "/Looks/M");
-    host.addPrim("domeLight", "/Sky",
-                 {{"inputs:intensity", HostValue::floatValue(1.0f)}, {"inputs:specular", HostValue::floatValue(0.0f)}});
-    double off = 0.0;
-    ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &off};
-    ASSERT_EQ(host.api().setRenderSetting(host.delegate(), "ssao", &v), OBSCURA_OK);
-    // Enough frames that the samples' own estimate of an edge's coverage is within the bar (16
-    // leave 1/16 steps, about 33 dB here), their mean kept in 32-bit floats
-    // (passes/temporal_aa.h): what is left is how each frame's lookups filter.
-    double frames = kStillFrames;
-    v.data = &frames;
-    ASSERT_EQ(host.api().setRenderSetting(host.delegate(), "taa:frames", &v), OBSCURA_OK);
+    setNumber("taa:frames", kStillFrames);
     render();
     for (int frame = 0; frame < kStillFrames + 2 && !renderStats(host).converged; ++frame) render();
     ASSERT_TRUE(renderStats(host).converged);
-    // The dome's irradiance over pi, from the middle of a bright square (no edge within 2 pixels).
-    const float lightScale = colorAt(8, 2)[0] / srgb8Exact(texel(68, 20)[0]);
-    double squaredError = 0.0;
-    for (int y = 0; y < kHeight; ++y)
-        for (int x = 0; x < kWidth; ++x) {
-            // The bilinear reconstruction's integral over the pixel's 8x8 texels: separable, each
-            // texel's tent integrated over the pixel's span (clamped at the map's border).
-            double integral = 0.0;
-            for (int ty = 8 * y - 1; ty <= 8 * y + 8; ++ty)
-                for (int tx = 8 * x - 1; tx <= 8 * x + 8; ++tx)
-                    integral += tentIntegral(tx, 8 * x, 8 * x + 8) * tentIntegral(ty, 8 * y, 8 * y + 8) *
-                                srgb8Exact(texel(std::clamp(tx, 0, 511), std::clamp(ty, 0, 511))[0]);
-            double error = colorAt(x, y)[0] - lightScale * integral / 64.0;
-            squaredError += error * error;
-        }
-    const double psnr = 10.0 * std::log10(1.0 / (squaredError / (kWidth * kHeight)));
+    const double psnr = psnrAgainstThePixelIntegral();
     std::printf("[ metric ] minified checker, still of %d frames vs the pixels' box integral: %.2f dB\n", kStillFrames,
                 psnr);
     // The bar of a converged still's edges (EdgeConvergence.MsaaStillIsThePixelIntegral).
+    EXPECT_GE(psnr, 45.0);
+}
+
+TEST_F(MinifiedChecker, ReferenceIsThePixelIntegral) {
+    // The reference resolves four samples a sub-frame over the pixel's box, whichever pixel's
+    // fragment drew them: shaded once per pixel at its centre, a texture is seen at the pixel's
+    // middle quarter alone along x (the sub-frames' x jitter spans a quarter pixel, the sample
+    // pattern the rest), so each sample is shaded at its own position.
+    setNumber("reference", 256);
+    render();
+    const double psnr = psnrAgainstThePixelIntegral();
+    std::printf("[ metric ] minified checker, reference of 256 sub-frames vs the pixels' box integral: %.2f dB\n",
+                psnr);
     EXPECT_GE(psnr, 45.0);
 }
 
