@@ -197,7 +197,8 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
         [ordered, &scene, bestFitNormals, samples, alphaToCoverage, culledDraws](VkCommandBuffer cmd,
                                                                                   const gpu::PassResources& res) {
             gpu::Device& device = res.device();
-            // A still's samples resolved over the pixel's box are shaded each at its own position
+            // MSAA samples resolved over the pixel's box (a still's frames, the reference's
+            // sub-frames: SampleResolve::PixelBox) are shaded each at its own position
             // (common/gbuffer_surface.glsl PER_SAMPLE_SHADING); sphere impostors find their
             // samples' hits themselves and stay per pixel.
             const bool perSampleShading = samples > VK_SAMPLE_COUNT_1_BIT &&

@@ -32,8 +32,8 @@ CAMERA_BLOCK(0);
 layout(early_fragment_tests) in;
 #endif
 
-// Built with PER_SAMPLE_SHADING for a still's samples resolved over the pixel's box
-// (SampleResolve::PixelBox, passes/gbuffer.cpp): one invocation per sample, its inputs interpolated
+// Built with PER_SAMPLE_SHADING for frames whose MSAA samples resolve over the pixel's box (a
+// still's, the reference's: SampleResolve::PixelBox, passes/gbuffer.cpp): one invocation per sample, its inputs interpolated
 // at the sample, so that each sample's surface is looked up where the sample lies. Shaded once at
 // the pixel's centre for all of them, a texture is seen only where the frames' jitter puts that
 // centre, a quarter of the pixel's width with 4 samples, and the mean never covers the pixel.
