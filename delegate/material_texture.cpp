@@ -70,7 +70,9 @@ std::optional<BoundTexture> readBoundTexture(SceneAccess& scene, TextureCache& c
         bound.params.bias[c] = bound.texture->renormBias[c] * scale[c] + bias[c];
     }
     bound.params.channel = uint32_t(channel);
-    bound.params.reconstructZ = bound.texture->twoChannelNormal ? 1 : 0;
+    bound.params.encoding = uint32_t(bound.texture->twoChannelNormal ? passes::TexelEncoding::TwoChannelNormal
+                                     : bound.texture->srgbEncoded    ? passes::TexelEncoding::Srgb
+                                                                     : passes::TexelEncoding::Plain);
     bound.params.sampled = 1;
     bound.params.udimGrid = bound.texture->udimGrid;
     bound.stPrimvar = scene.getToken(attribute("st").c_str());

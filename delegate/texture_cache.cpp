@@ -34,6 +34,17 @@ const char* formatName(VkFormat format) {
     }
 }
 
+// The UNORM twin an sRGB format is sampled through (ImageDesc::sampledAs); VK_FORMAT_UNDEFINED
+// for the others.
+VkFormat encodedTwin(VkFormat format) {
+    switch (format) {
+        case VK_FORMAT_R8G8B8A8_SRGB: return VK_FORMAT_R8G8B8A8_UNORM;
+        case VK_FORMAT_BC1_RGB_SRGB_BLOCK: return VK_FORMAT_BC1_RGB_UNORM_BLOCK;
+        case VK_FORMAT_BC3_SRGB_BLOCK: return VK_FORMAT_BC3_UNORM_BLOCK;
+        default: return VK_FORMAT_UNDEFINED;
+    }
+}
+
 }  // namespace
 
 WrapMode parseWrapMode(const std::string& token) {
@@ -119,9 +130,15 @@ TexturePtr TextureCache::makeFromImage(const std::string& file, const std::vecto
                                      ? colourBlockFormat(image.level0, image.format)
                                      : VK_FORMAT_UNDEFINED;
     const bool compress = blockFormat != VK_FORMAT_UNDEFINED && canSampleCompressed(blockFormat);
-    // Blits filter sRGB formats in linear space, as the CPU fallback does; compressed formats
-    // cannot be blitted.
-    const bool blit = !compress && gpu::canBlitMips(device_, made.desc.format);
+    // A material's sRGB texture is filtered in its encoded values and decoded after (the shader's
+    // MaterialTexture::encoding), as offline renderers filter 8-bit textures: Cycles interpolates
+    // the bytes and converts to linear after, so a magnified texture's texels blend as in the
+    // path-traced truth. Its mips still average linear light, so that a minified texture keeps the
+    // pixel's integral: they are made on the CPU (lavapipe blits a mutable-format image's sRGB
+    // levels in their encoded values).
+    const bool decodedInShader = role != TextureRole::Plain && encodedTwin(image.format) != VK_FORMAT_UNDEFINED;
+    // Compressed formats cannot be blitted.
+    const bool blit = !compress && !decodedInShader && gpu::canBlitMips(device_, made.desc.format);
     made.levels.push_back(std::move(image.level0));
     while (!blit && made.levels.size() < made.desc.mipLevels)
         made.levels.push_back(downsample(made.levels.back(), made.desc.format));
@@ -137,6 +154,8 @@ TexturePtr TextureCache::makeFromImage(const std::string& file, const std::vecto
         made.desc.format = blockFormat;
         made.how += cached ? ", compressed (from the disk cache)" : ", compressed on the CPU";
     }
+    if (decodedInShader) made.desc.sampledAs = encodedTwin(made.desc.format);
+    texture.srgbEncoded = decodedInShader;
     texture.average = image.average;
     texture.renormScale = image.renormScale;
     texture.renormBias = image.renormBias;

@@ -39,6 +39,7 @@ struct Texture {
     std::array<float, 4> renormScale{1.0f, 1.0f, 1.0f, 1.0f};  // TextureImage::renormScale
     std::array<float, 4> renormBias{};                          // TextureImage::renormBias
     bool twoChannelNormal = false;  // x and y of a normal map; the shader reconstructs z
+    bool srgbEncoded = false;       // sampled as its sRGB-encoded values; the shader decodes after filtering
     std::array<float, 4> udimGrid{};       // UdimAtlas::grid; zero columns when not a UDIM set
     std::vector<std::string> leftOutTiles;  // UdimAtlas::leftOut
 };

@@ -172,6 +172,7 @@ VkImageCreateInfo imageCreateInfo(const ImageDesc& desc) {
     // Storage through another format's view: the usage need only hold for a view that takes it.
     if (storageAlias(desc) != VK_FORMAT_UNDEFINED)
         ii.flags = VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT | VK_IMAGE_CREATE_EXTENDED_USAGE_BIT;
+    if (desc.sampledAs != VK_FORMAT_UNDEFINED) ii.flags |= VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT;
     ii.imageType = desc.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
     ii.format = desc.format;
     ii.extent = {desc.width, desc.height, desc.depth};
@@ -246,7 +247,9 @@ ImagePtr Device::createImage(const ImageDesc& desc, const char* debugName, Image
     VkImageViewUsageCreateInfo viewUsage{VK_STRUCTURE_TYPE_IMAGE_VIEW_USAGE_CREATE_INFO};
     viewUsage.usage = desc.usage & ~VkImageUsageFlags(VK_IMAGE_USAGE_STORAGE_BIT);
     if (alias != VK_FORMAT_UNDEFINED) vi.pNext = &viewUsage;
+    if (desc.sampledAs != VK_FORMAT_UNDEFINED) vi.format = desc.sampledAs;
     vkCheck(vkCreateImageView(vk(), &vi, nullptr, &img->view), "vkCreateImageView");
+    vi.format = desc.format;
     vi.pNext = nullptr;
     if (alias != VK_FORMAT_UNDEFINED) {
         vi.format = alias;

@@ -35,6 +35,10 @@ struct ImageDesc {
     uint32_t mipLevels = 1;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     VkImageUsageFlags usage = 0;
+    // The format `view` reads the texels as, where not `format`: an sRGB texture sampled through
+    // its UNORM twin is filtered in its encoded values (the shader decodes), while uploads and mip
+    // blits, which go through the image's own format, still filter in linear light.
+    VkFormat sampledAs = VK_FORMAT_UNDEFINED;
     bool operator==(const ImageDesc&) const = default;
 };
 

@@ -181,6 +181,13 @@ OBSCURA_SHADER_OFFSET(InstanceMotion, InstanceMotion, shutterCloseModel);
 // Which texture channel a material input reads: the UsdUVTexture output connected to it.
 enum class TextureChannel : uint32_t { R = 0, G = 1, B = 2, A = 3, Rgb = 4 };
 
+// What the shader does with a filtered texel before the UsdUVTexture's scale and bias.
+enum class TexelEncoding : uint32_t {
+    Plain = 0,
+    TwoChannelNormal = 1,  // x and y of a normal map; z is reconstructed after scale and bias
+    Srgb = 2,              // sRGB-encoded colour, filtered as encoded and decoded after (delegate/texture_cache.h)
+};
+
 // A UsdUVTexture feeding one material input: input = texel * scale + bias (UsdPreviewSurface
 // spec, "UsdUVTexture": https://openusd.org/release/spec_usdpreviewsurface.html).
 struct alignas(16) MaterialTexture {
@@ -188,7 +195,7 @@ struct alignas(16) MaterialTexture {
     std::array<float, 4> bias{};
     uint32_t sampled = 0;  // 1: the input reads the draw's texture of its slot, 0: its constant
     uint32_t channel = uint32_t(TextureChannel::R);
-    uint32_t reconstructZ = 0;  // 1: a two-channel normal map, the shader reconstructs z
+    uint32_t encoding = uint32_t(TexelEncoding::Plain);
     uint32_t transformed = 0;   // 1: transformS and transformT are not the identity
     // The texture coordinates' affine map, one row per output: s' = dot(transformS.xyz, (s, t, 1)),
     // t' likewise; w unused. The identity unless UsdTransform2d or MaterialX tiling moved them.
@@ -203,7 +210,7 @@ OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, scale);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, bias);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, sampled);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, channel);
-OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, reconstructZ);
+OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, encoding);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, transformed);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, transformS);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, transformT);

@@ -88,6 +88,10 @@ struct InstanceMotion {
 };
 
 const uint TEXTURE_CHANNEL_RGB = 4u;  // else 0..3: r, g, b, a
+// MaterialTexture::encoding (passes/frame_data.h TexelEncoding).
+const uint TEXEL_PLAIN = 0u;
+const uint TEXEL_TWO_CHANNEL_NORMAL = 1u;  // x and y; z = sqrt(1 - x^2 - y^2) after scale and bias
+const uint TEXEL_SRGB = 2u;                // sRGB-encoded colour, decoded after filtering
 
 // A UsdUVTexture feeding one material input: input = texel * scale + bias.
 struct MaterialTexture {
@@ -95,7 +99,7 @@ struct MaterialTexture {
     vec4 bias;
     uint sampled;           // 1: the input reads the draw's texture of its slot, 0: its constant
     uint channel;           // r, g, b, a (0..3) or TEXTURE_CHANNEL_RGB
-    uint reconstructZ;      // 1: a two-channel normal map, z = sqrt(1 - x^2 - y^2) after scale and bias
+    uint encoding;          // TEXEL_*: what a filtered texel is decoded from, before scale and bias
     uint transformed;       // 1: transformS and transformT are not the identity
     vec4 transformS;        // xyz: s' = dot(transformS.xyz, vec3(s, t, 1)) (UsdTransform2d, MaterialX tiling)
     vec4 transformT;        // xyz: t' likewise

@@ -57,12 +57,20 @@ vec4 sampleUdim(MaterialTexture t, sampler2D tex, vec2 uv) {
     return outside ? vec4(0.0) : texel;
 }
 
-// UsdUVTexture (UsdPreviewSurface spec): texel * scale + bias. Untransformed textures look up uv
+// The sRGB transfer function's inverse (IEC 61966-2-1).
+vec3 srgbDecoded(vec3 encoded) {
+    return mix(encoded / 12.92, pow((encoded + 0.055) / 1.055, vec3(2.4)), greaterThan(encoded, vec3(0.04045)));
+}
+
+// UsdUVTexture (UsdPreviewSurface spec): texel * scale + bias. An sRGB texture is filtered in its
+// encoded values and decoded here, as Cycles interpolates 8-bit textures
+// (delegate/texture_cache.cpp makeFromImage). Untransformed textures look up uv
 // itself. XXX: on lavapipe, a one-pixel line along the edge two triangles share misreads the
 // transform (the texture there is untransformed or at its coarsest mip); not yet understood.
 vec4 sampleTexture(MaterialTexture t, sampler2D tex, vec2 uv) {
     vec2 at = drawUses(MATERIAL_TRANSFORMED_TEXTURE) && t.transformed != 0u ? textureCoordinates(t, uv) : uv;
     vec4 texel = drawUses(MATERIAL_UDIM) && t.udimGrid.z > 0.0 ? sampleUdim(t, tex, at) : texture(tex, at, MATERIAL_LOD_BIAS);
+    if (t.encoding == TEXEL_SRGB) texel.rgb = srgbDecoded(texel.rgb);
     return texel * t.scale + t.bias;
 }
 
@@ -90,7 +98,7 @@ float scalarInput(float constant, MaterialTexture t, sampler2D tex, vec2 uv) {
 vec3 perturbedNormal(vec3 n, vec4 tangent, MaterialTexture t, sampler2D tex, vec2 uv) {
     if (!drawUses(MATERIAL_NORMAL_MAP) || t.sampled == 0u) return n;
     vec3 local = sampleTexture(t, tex, uv).xyz;
-    if (t.reconstructZ != 0u) local.z = sqrt(max(0.0, 1.0 - dot(local.xy, local.xy)));
+    if (t.encoding == TEXEL_TWO_CHANNEL_NORMAL) local.z = sqrt(max(0.0, 1.0 - dot(local.xy, local.xy)));
     vec3 T = tangent.xyz - n * dot(n, tangent.xyz);  // re-orthogonalised after interpolation
     if (dot(T, T) < 1e-12 || dot(local, local) < 1e-12) return n;
     T = normalize(T);

@@ -70,6 +70,10 @@ protected:
     }
     ~TextureTest() override { std::filesystem::remove_all(dir_); }
 
+    void setNumber(const char* key, double value) {
+        ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &value};
+        ASSERT_EQ(host.api().setRenderSetting(host.delegate(), key, &v), OBSCURA_OK);
+    }
     void setCompression(bool on) {
         int32_t flag = on ? 1 : 0;
         ObscuraValue v{OBSCURA_VALUE_BOOL, 0, 1, &flag};
@@ -298,6 +302,28 @@ TEST_F(TextureTest, SourceColorSpaceDecidesHowTexelsDecode) {
     expectAlbedo(32, 32, raw({128, 64, 200}), "raw");       // linear: 128 -> 0.502
     expectAlbedo(53, 32, decoded({128, 64, 200}), "auto");  // an 8-bit RGB file is sRGB
     EXPECT_EQ(loadsOf(file), 3u) << "one texture per colour space";
+}
+
+// Between the centres of a magnified texture's texels, an sRGB texture blends its encoded values
+// and decodes after, as offline renderers reconstruct 8-bit textures (Cycles interpolates the
+// bytes): a black and a white texel stretched over the image meet at decode(1/2) = 0.214 halfway,
+// where a blend of linear values would read 0.5. One frame without temporal AA: each pixel looks
+// up its centre.
+TEST_F(TextureTest, MagnifiedTexelsBlendInTheirEncoding) {
+    std::string file = writePng("ramp.png", 2, [](int x, int) { return x == 0 ? Rgb8{0, 0, 0} : Rgb8{255, 255, 255}; });
+    host.addPrim("material", "/Looks/M",
+                 textured("diffuseColor", file, {{"wrapS", HostValue::token("clamp")}, {"wrapT", HostValue::token("clamp")}}));
+    addPlane("/Plane", "/Looks/M");
+    setNumber("taa", 0.0);
+    render();
+    for (int x = 12; x < 52; x += 4) {
+        // Texel coordinates: the centres of the two texels at 0.5 and 1.5.
+        const double between = std::clamp(2.0 * (x + 0.5) / kWidth - 0.5, 0.0, 1.0);
+        const float expected = srgbDecode(between);
+        const float* p = &albedo[(size_t(32) * kWidth + size_t(x)) * 3];
+        // The albedo target's 8-bit step and one more for the filter's 8-bit weights.
+        for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(p[c], expected, 2.0f * srgbStep(expected) + 1e-4f) << "column " << x;
+    }
 }
 
 TEST_F(TextureTest, ScalarTexturesMatchTheirConstants) {
@@ -761,7 +787,9 @@ TEST_F(TextureTest, MinifiedTextureAveragesInLinearSpace) {
     // A one-texel black and white checker, 256 texels over 64 pixels: each pixel's footprint
     // covers 4x4 texels, whose average in linear space is 0.5 (sRGB code 188); averaging the
     // sRGB codes instead would give 0.216. (Mip 2 holds exactly these averages; gpu_tests checks
-    // the mips themselves.)
+    // the mips themselves.) One real-time frame, without temporal AA: a still's frames each look
+    // up a finer mip (their share of the pixel), here the texels themselves.
+    setNumber("taa", 0.0);
     std::string file = writePng("fine.png", 256, [](int x, int y) {
         return (x + y) % 2 ? Rgb8{255, 255, 255} : Rgb8{0, 0, 0};
     });
@@ -774,19 +802,11 @@ TEST_F(TextureTest, MinifiedTextureAveragesInLinearSpace) {
     EXPECT_EQ(loadsOf(file), 1u);
 }
 
-// The integral over [a, b] (texel units) of texel i's bilinear weight, the tent of half-width 1
-// about its centre i + 1/2.
-double tentIntegral(int i, double a, double b) {
-    auto upTo = [&](double x) {
-        double u = std::clamp(x - (i + 0.5), -1.0, 1.0);
-        return u < 0.0 ? 0.5 * (1.0 + u) * (1.0 + u) : 1.0 - 0.5 * (1.0 - u) * (1.0 - u);
-    };
-    return upTo(b) - upTo(a);
-}
-
 // A checker of 44-texel squares on a 512-texel map over the 64 pixels: 8 texels a pixel, so its
 // edges fall 5.5 pixels apart, half of them across pixels. Lit by a white dome (diffuse only, no
-// SSAO), the pixel's integral is its box integral of the bilinearly reconstructed albedo.
+// SSAO), the pixel's integral is its box integral of the reconstructed albedo: bilinear in the
+// file's sRGB-encoded values, decoded after (delegate/texture_cache.cpp), as Cycles reconstructs
+// 8-bit textures.
 class MinifiedChecker : public TextureTest {
 protected:
     static constexpr int kTexels = 512;
@@ -803,28 +823,45 @@ protected:
                      {{"inputs:intensity", HostValue::floatValue(1.0f)}, {"inputs:specular", HostValue::floatValue(0.0f)}});
         setNumber("ssao", 0.0);
     }
-    void setNumber(const char* key, double value) {
-        ObscuraValue v{OBSCURA_VALUE_DOUBLE, 0, 1, &value};
-        ASSERT_EQ(host.api().setRenderSetting(host.delegate(), key, &v), OBSCURA_OK);
-    }
-
     // PSNR (peak 1) of the rendered colour against each pixel's integral, scaled by the dome's
-    // irradiance over pi as seen in the middle of a bright square (no edge within 2 pixels).
+    // irradiance over pi as seen in the middle of a bright square (no edge within 2 pixels). The
+    // integral is numerical: the midpoints of kSteps x kSteps cells a texel, whose edges hold the
+    // reconstruction's kinks at the texel centres.
     double psnrAgainstThePixelIntegral() const {
+        constexpr int kSteps = 8, kAcross = 8 * kSteps;  // points along a pixel's side
         const float lightScale = colorAt(8, 2)[0] / srgb8Exact(texel(68, 20)[0]);
+        // Along one axis of pixel p: each point's two texels (clamped at the map's border) and the
+        // second one's bilinear weight.
+        struct Tap {
+            int first, second;
+            double weight;
+        };
+        auto taps = [&](int p) {
+            std::vector<Tap> out;
+            for (int i = 0; i < kAcross; ++i) {
+                const double at = 8.0 * p + (i + 0.5) / kSteps - 0.5;  // from the first texel's centre
+                const int first = int(std::floor(at));
+                out.push_back({std::clamp(first, 0, kTexels - 1), std::clamp(first + 1, 0, kTexels - 1), at - first});
+            }
+            return out;
+        };
         double squaredError = 0.0;
-        for (int y = 0; y < kHeight; ++y)
+        for (int y = 0; y < kHeight; ++y) {
+            const std::vector<Tap> rows = taps(y);
             for (int x = 0; x < kWidth; ++x) {
-                // Separable: each texel's tent integrated over the pixel's span of 8 texels
-                // (clamped at the map's border).
+                const std::vector<Tap> columns = taps(x);
                 double integral = 0.0;
-                for (int ty = 8 * y - 1; ty <= 8 * y + 8; ++ty)
-                    for (int tx = 8 * x - 1; tx <= 8 * x + 8; ++tx)
-                        integral += tentIntegral(tx, 8 * x, 8 * x + 8) * tentIntegral(ty, 8 * y, 8 * y + 8) *
-                                    srgb8Exact(texel(std::clamp(tx, 0, kTexels - 1), std::clamp(ty, 0, kTexels - 1))[0]);
-                double error = colorAt(x, y)[0] - lightScale * integral / 64.0;
+                for (const Tap& r : rows)
+                    for (const Tap& c : columns) {
+                        const double top = (1.0 - c.weight) * texel(c.first, r.first)[0] + c.weight * texel(c.second, r.first)[0];
+                        const double bottom =
+                            (1.0 - c.weight) * texel(c.first, r.second)[0] + c.weight * texel(c.second, r.second)[0];
+                        integral += srgbDecode(((1.0 - r.weight) * top + r.weight * bottom) / 255.0);
+                    }
+                double error = colorAt(x, y)[0] - lightScale * integral / (kAcross * kAcross);
                 squaredError += error * error;
             }
+        }
         return 10.0 * std::log10(1.0 / (squaredError / (kWidth * kHeight)));
     }
 };
