@@ -13,6 +13,7 @@ uint32_t materialFeatures(const MaterialData& material) {
         if (t.udimGrid[2] > 0.0f) features |= kMaterialUdim;
         if (t.transformed != 0) features |= kMaterialTransformedTexture;
         if (slot == kTextureNormal) features |= kMaterialNormalMap;
+        if (slot == kTextureEmissive) features |= kMaterialTexturedEmission;
     }
     return features;
 }

@@ -216,9 +216,9 @@ OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, transformS);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, transformT);
 OBSCURA_SHADER_OFFSET(MaterialTexture, MaterialTexture, udimGrid);
 
-// The inputs the G-buffer pass samples, each from its own binding of descriptor set 1; textured
-// emission is constant per material (its texture's average): the lighting pass has no texture
-// coordinates.
+// The inputs the G-buffer pass samples, each from its own binding of descriptor set 1. Textured
+// emission is written to the G-buffer's emission target, which the lighting pass adds
+// (passes/frame_resources.h hasEmissionTarget).
 enum MaterialTextureSlot : uint32_t {
     kTextureDiffuse = 0,
     kTextureRoughness = 1,
@@ -226,19 +226,20 @@ enum MaterialTextureSlot : uint32_t {
     kTextureOpacity = 3,
     kTextureNormal = 4,  // tangent space, UsdPreviewSurface `normal`
     kTextureOcclusion = 5,
-    kMaterialTextureSlots = 6
+    kTextureEmissive = 6,
+    kMaterialTextureSlots = 7
 };
 
 struct alignas(16) MaterialData {
     std::array<float, 4> diffuseRoughness;
-    std::array<float, 4> emissiveMetallic;
+    std::array<float, 4> emissiveMetallic;  // rgb emissiveColor (textured: its average), a metallic
     std::array<float, 4> opacity;  // x opacity, y opacityThreshold, z occlusion
     std::array<float, 4> specularIor{0.0f, 0.0f, 0.0f, 1.5f};  // rgb specularColor, a ior
     std::array<float, 4> clearcoat{};  // x clearcoat, y clearcoatRoughness, z 1 for the specular workflow
     std::array<float, 4> anisotropy{};  // x obscura:anisotropy, y obscura:anisotropyRotation in radians
     std::array<MaterialTexture, kMaterialTextureSlots> textures;
 };
-static_assert(sizeof(MaterialData) == 96 + 6 * 96);
+static_assert(sizeof(MaterialData) == 96 + 7 * 96);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, diffuseRoughness);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, emissiveMetallic);
 OBSCURA_SHADER_OFFSET(MaterialData, MaterialData, opacity);
@@ -257,7 +258,8 @@ enum MaterialFeature : uint32_t {
     kMaterialTransformedTexture = 4u,  // some texture's coordinates are transformed
     kMaterialNormalMap = 8u,           // the normal input reads a texture
     kMaterialAnisotropic = 16u,        // obscura:anisotropy above 0
-    kAllMaterialFeatures = 31u,
+    kMaterialTexturedEmission = 32u,   // emissiveColor reads a texture: the G-buffer writes it
+    kAllMaterialFeatures = 63u,
 };
 constexpr uint32_t kMaterialFeaturesConstant = 1;  // its constant_id
 
@@ -300,6 +302,9 @@ enum class ShadowProjection : uint32_t { Cascades = 0, Cube = 1, Spot = 2 };
 constexpr uint32_t kLightKindShaped = 1u << 12;
 constexpr uint32_t kLightKindTexturedDome = 1u << 13;
 constexpr uint32_t kLightKindsConstant = 2;  // its constant_id
+// Whether the lighting pass adds the G-buffer's emission target (passes/frame_resources.h
+// GBuffer::emission), a specialization constant of lighting.comp: 1 or 0.
+constexpr uint32_t kEmissionTargetConstant = 3;  // its constant_id
 uint32_t lightKind(const LightData& light);
 
 // One view of the shadow atlas as the lighting pass reads it (passes/frame_scene.h ShadowMapView).

@@ -1,5 +1,7 @@
 #include "passes/frame_resources.h"
 
+#include <algorithm>
+
 namespace obscura::passes {
 
 void importSceneBuffers(gpu::FrameGraph& graph, FrameScene& scene) {
@@ -17,6 +19,14 @@ void importSceneBuffers(gpu::FrameGraph& graph, FrameScene& scene) {
         scene.buffers.shadowCandidates = graph.importBuffer("shadowCandidates", scene.shadows.occlusionCandidates);
 }
 
+bool hasEmissionTarget(const FrameScene& scene) {
+    return std::any_of(scene.cameraDraws.begin(), scene.cameraDraws.end(), [](const Draw& d) {
+        return !d.transparent && (d.materialFeatures & kMaterialTexturedEmission) != 0u;
+    });
+}
+
+bool hasVelocityTarget(const FrameScene& scene) { return scene.motionBlur || hasEmissionTarget(scene); }
+
 GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkSampleCountFlagBits samples,
                             const std::string& prefix) {
     auto image = [&](const char* name, VkFormat format) {
@@ -29,7 +39,8 @@ GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkS
     };
     GBuffer gb{image("depth", gbufferDepthFormat(samples)), image("normalRoughness", kNormalRoughnessFormat),
                image("albedoMetallic", kAlbedoMetallicFormat), image("instance", kInstanceFormat), {}};
-    if (scene.motionBlur) gb.velocity = image("velocity", kVelocityFormat);
+    if (hasVelocityTarget(scene)) gb.velocity = image("velocity", kVelocityFormat);
+    if (hasEmissionTarget(scene)) gb.emission = image("emission", kEmissionFormat);
     return gb;
 }
 

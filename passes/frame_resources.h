@@ -26,6 +26,11 @@ struct GBuffer {
     // The stencil bits the lighting reads, where `depth` has no stencil aspect: R8 UINT (the MSAA
     // resolve's edge bit, in a frame without clip volumes). Invalid: `depth`'s stencil.
     gpu::ImageHandle stencil;
+    // kEmissionFormat, where a drawn material's emissiveColor reads a texture (hasEmissionTarget):
+    // that emission, pre-exposed (CameraData::exposureScale), 0 where other draws cover. The
+    // lighting pass adds it for the materials whose emission is textured; the multisampled
+    // G-buffer's is read per sample and not resolved.
+    gpu::ImageHandle emission;
 };
 
 // The instance target keeps 24 bits for the instance index + 1.
@@ -51,11 +56,20 @@ constexpr VkFormat kVelocityFormat = VK_FORMAT_R16G16_SFLOAT;
 // shaders/common/motion_velocity.glsl).
 constexpr float kStaticVelocity = -65504.0f;
 
+// Half floats: the pre-exposed emission of a texture is near the light the frame is exposed for.
+constexpr VkFormat kEmissionFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+
+// Whether the G-buffer has an emission target: some drawn surface's material has textured
+// emission (kMaterialTexturedEmission). The target follows the velocity target (RT4 after RT3),
+// so such a frame has a velocity target too (hasVelocityTarget), moving draws writing it.
+bool hasEmissionTarget(const FrameScene& scene);
+bool hasVelocityTarget(const FrameScene& scene);
+
 // Imports the scene's records into `graph` (FrameScene::buffers).
 void importSceneBuffers(gpu::FrameGraph& graph, FrameScene& scene);
 
 // The G-buffer's images at the scene's size, named "<prefix>.depth" etc. (a velocity target with
-// motion blur).
+// motion blur, and an emission target with textured emission).
 GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkSampleCountFlagBits samples,
                             const std::string& prefix);
 

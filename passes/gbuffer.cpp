@@ -83,9 +83,9 @@ std::vector<ShaderBinding> gbufferBindings(bool motion, const SceneBuffers& buff
 // sphere impostors their SPHERE_IMPOSTOR one (common/gbuffer_surface.glsl). `culled`: the draw's
 // records come from GPU occlusion culling's list (a static variant only).
 gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, Surface surface, bool culled, bool cullBackFaces,
-                                                  VkSampleCountFlagBits samples, bool perSample,
-                                                  const std::vector<ShaderBinding>& bindings,
-                                                  const std::vector<gpu::SpecializationConstant>& specialization) {
+                                                  VkSampleCountFlagBits samples, bool perSample, bool emissionTarget,
+                                                  uint32_t features, const std::vector<ShaderBinding>& bindings) {
+    const std::vector<gpu::SpecializationConstant> specialization{{kMaterialFeaturesConstant, features}};
     gpu::GraphicsPipelineDesc d;
     d.specialization = specialization;
     if (cullBackFaces) d.cullMode = VK_CULL_MODE_BACK_BIT;
@@ -110,6 +110,12 @@ gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, Surface surfa
         d.colorFormats.push_back(kVelocityFormat);
     // Seed 000 "An improved reconstruction filter (3)": static geometry does not export velocity.
     if (variant == Variant::StaticWithVelocityTarget) d.untouchedColorAttachments = 1u << 3;
+    // RT4 (after the velocity target, which a frame with one has: hasEmissionTarget), written by
+    // the draws whose materials' emission is textured.
+    if (emissionTarget) {
+        d.colorFormats.push_back(kEmissionFormat);
+        if ((features & kMaterialTexturedEmission) == 0u) d.untouchedColorAttachments |= 1u << 4;
+    }
     d.depthFormat = gbufferDepthFormat(samples);
     d.samples = samples;
     return d;
@@ -142,7 +148,7 @@ std::vector<Ordered> orderedDraws(const FrameScene& scene, const CulledDraws* cu
             const size_t first = ordered.size();
             for (const Draw& draw : scene.cameraDraws) {
                 // Transparent surfaces are drawn after lighting (passes/transparent.h).
-                if (draw.transparent || surfaceOf(draw) != surface || variantOf(draw, scene.motionBlur) != variant)
+                if (draw.transparent || surfaceOf(draw) != surface || variantOf(draw, hasVelocityTarget(scene)) != variant)
                     continue;
                 if (culled && culled->phase == CulledDraws::Phase::Early && lastVariants) continue;
                 if (culled && culled->phase == CulledDraws::Phase::Late && !lastVariants && !draw.culledOnGpu())
@@ -186,12 +192,15 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
                 if (gb.velocity.valid())
                     gb.velocity =
                         pass.colorAttachment(gb.velocity, VkClearColorValue{{kStaticVelocity, 0.0f, 0.0f, 0.0f}});
+                if (gb.emission.valid())
+                    gb.emission = pass.colorAttachment(gb.emission, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
             } else {
                 gb.depth = pass.depthStencilAttachment(gb.depth, Load::Keep);
                 gb.normalRoughness = pass.colorAttachment(gb.normalRoughness, Load::Keep);
                 gb.albedoMetallic = pass.colorAttachment(gb.albedoMetallic, Load::Keep);
                 gb.instance = pass.colorAttachment(gb.instance, Load::Keep);
                 if (gb.velocity.valid()) gb.velocity = pass.colorAttachment(gb.velocity, Load::Keep);
+                if (gb.emission.valid()) gb.emission = pass.colorAttachment(gb.emission, Load::Keep);
             }
         },
         [ordered, &scene, bestFitNormals, samples, alphaToCoverage, culledDraws](VkCommandBuffer cmd,
@@ -204,6 +213,7 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
             const bool perSampleShading = samples > VK_SAMPLE_COUNT_1_BIT &&
                                           scene.cameraData.sampleResolve == uint32_t(SampleResolve::PixelBox) &&
                                           device.context().enabledFeatures().sampleRateShading;
+            const bool emissionTarget = hasEmissionTarget(scene);
             const gpu::Pipeline* bound = nullptr;
             Variant boundVariant = Variant::Static;
             Surface boundSurface = Surface::Opaque;
@@ -221,16 +231,16 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
                     const std::vector<ShaderBinding> bindings =
                         gbufferBindings(readsMotion(o.variant), scene.buffers, bestFitNormals,
                                         culledDraw ? &*culledDraws : nullptr);
-                    const std::vector<gpu::SpecializationConstant> specialization{{kMaterialFeaturesConstant, features}};
                     const bool perSample = perSampleShading && surface != Surface::Spheres;
                     bound = &res.pipelines().get<gpu::GraphicsPipelineDesc>(
                         std::string(pipelineName(o.variant)) + "." + surfaceName(surface) +
                             (culledDraw ? "culled." : "") + (backFaces ? "backFacesCulled." : "") +
-                            (perSample ? "perSample." : "") + std::to_string(samples) +
-                            gpu::specializationSuffix(specialization),
+                            (perSample ? "perSample." : "") + (emissionTarget ? "emission." : "") +
+                            std::to_string(samples) +
+                            gpu::specializationSuffix({{kMaterialFeaturesConstant, features}}),
                         [&] {
                             return describeGBufferPipeline(o.variant, surface, culledDraw, backFaces, samples, perSample,
-                                                           bindings, specialization);
+                                                           emissionTarget, features, bindings);
                         });
                     boundVariant = o.variant;
                     boundSurface = surface;

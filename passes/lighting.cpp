@@ -36,10 +36,15 @@ gpu::ImageHandle addLightingPass(gpu::FrameGraph& graph, const FrameScene& scene
                               sampled(samples.albedoMetallic), sampled(samples.instance),
                               bufferWrite(perSample->taggedPixelCount)});
     }
+    // The textured emission, the multisampled G-buffer's where lighting reads samples. Without one,
+    // the albedo stands in for the binding, and the EMISSION_TARGET specialization reads nothing.
+    const GBuffer& emissive = perSample ? perSample->multisampled : gb;
+    const bool emission = emissive.emission.valid();
+    pass.bindings.push_back(sampled(emission ? emissive.emission : emissive.albedoMetallic));
     pass.shader = perSample ? "lighting_per_sample" : "lighting";
     // Built for the kinds of light the frame holds (frame_data.h lightKind): without shadow views,
     // without the shadow lookups.
-    pass.specialization = {{kLightKindsConstant, scene.lightKinds}};
+    pass.specialization = {{kLightKindsConstant, scene.lightKinds}, {kEmissionTargetConstant, emission ? 1u : 0u}};
     pass.texelsPerGroup = {kLightingTileSize, kLightingTileSize};
     pass.label = "lighting";
     return addComputePass(graph, std::move(pass)).images[0];

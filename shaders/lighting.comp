@@ -67,6 +67,16 @@ shared uint tileTaggedList[TILE_SIZE * TILE_SIZE];
 shared vec4 tileSampleRadiance[TILE_SIZE * TILE_SIZE];
 #endif
 
+// The G-buffer's textured emission, pre-exposed (passes/frame_resources.h GBuffer::emission),
+// where the frame has one (EMISSION_TARGET; else the albedo stands in, unread): added for the
+// materials whose emission is textured, in place of their constant (its average).
+layout(constant_id = 3) const bool EMISSION_TARGET = false;
+#ifdef PER_SAMPLE_LIGHTING
+layout(set = 0, binding = 22) uniform sampler2DMS emissionSamples;
+#else
+layout(set = 0, binding = 17) uniform sampler2D emissionTexture;
+#endif
+
 #include "common/scene_lighting.glsl"
 
 shared uint tileMinDepthBits;
@@ -120,11 +130,12 @@ uint lightSlices(LightData light) {
 
 // Exposed radiance of the G-buffer surface seen through window position `windowPosition` at
 // device depth `depth`, lit by the tile's lights; `instanceTarget` holds the instance (> 0) and the
-// material's occlusion (instance_target.glsl).
+// material's occlusion (instance_target.glsl), `exposedEmission` the emission target's value.
 vec3 shadeSurface(uint instanceTarget, float depth, vec4 normalRoughness, vec4 albedoMetallic, vec2 windowPosition,
-                  ivec2 pixel, uint insideClipVolumes) {
+                  ivec2 pixel, uint insideClipVolumes, vec3 exposedEmission) {
     InstanceData inst = instances[instanceIdFromTarget(instanceTarget) - 1u];
     MaterialData mat = materials[inst.materialIndex];
+    bool texturedEmission = EMISSION_TARGET && mat.textures[TEXTURE_EMISSIVE].sampled != 0u;
     vec2 ndc = windowPosition / camera.resolution * 2.0 - 1.0;
     SurfacePoint s = surfaceFromMaterial(mat, albedoMetallic.rgb, albedoMetallic.a);
     s.P = unproject(camera.inverseViewProjection, ndc, depth);
@@ -140,7 +151,8 @@ vec3 shadeSurface(uint instanceTarget, float depth, vec4 normalRoughness, vec4 a
     // The distant lights and the domes light every tile, the local lights those of the tile's
     // list; each loop is compiled for its own kinds of light alone (light_evaluation.glsl
     // hasLightType).
-    vec3 radiance = mat.emissiveMetallic.rgb + reflectDistantLightsAndDomes(s, viewDistance, insideClipVolumes);
+    vec3 radiance = (texturedEmission ? vec3(0.0) : mat.emissiveMetallic.rgb) +
+                    reflectDistantLightsAndDomes(s, viewDistance, insideClipVolumes);
     uint count = min(tileLightCount, MAX_TILE_LIGHTS);
     uint slice = depthSliceBit(viewDistance);
     for (uint i = 0u; i < count; ++i) {
@@ -149,7 +161,7 @@ vec3 shadeSurface(uint instanceTarget, float depth, vec4 normalRoughness, vec4 a
         if (!lightReaches(light, s.P)) continue;
         radiance += clippedLight(s, light, viewDistance, insideClipVolumes, LIGHT_KINDS & LOCAL_LIGHT_KINDS);
     }
-    return radiance * camera.exposureScale;
+    return radiance * camera.exposureScale + (texturedEmission ? exposedEmission : vec3(0.0));
 }
 
 // What the camera sees through `windowPosition` where nothing is drawn: the visible domes
@@ -177,6 +189,7 @@ struct ShadingJob {
     vec4 albedoMetallic;
     vec2 windowPosition;
     ivec2 pixel;
+    vec3 emission;  // the emission target's, pre-exposed
 };
 
 #ifdef PER_SAMPLE_LIGHTING
@@ -229,6 +242,16 @@ vec4 pixelAlbedoMetallic(ivec2 pixel) {
     return sum / float(sampleCount);
 }
 
+// The emission an untagged pixel is lit with: the mean of the samples it resolves, as its base
+// colour's (pixelAlbedoMetallic).
+vec3 pixelEmission(ivec2 pixel) {
+    if (!EMISSION_TARGET) return vec3(0.0);
+    int sampleCount = textureSamples(emissionSamples);
+    vec3 sum = vec3(0.0);
+    for (int s = 0; s < sampleCount; ++s) sum += texelFetch(emissionSamples, sampleSource(pixel, s, sampleCount), s).rgb;
+    return sum / float(sampleCount);
+}
+
 ShadingJob sampleJob(uint pair, uint pairs, uint sampleCount) {
     ShadingJob job;
     job.instanceTarget = 0u;
@@ -243,6 +266,7 @@ ShadingJob sampleJob(uint pair, uint pairs, uint sampleCount) {
     job.normalRoughness = texelFetch(normalRoughnessSamples, job.pixel, k);
     job.albedoMetallic = texelFetch(albedoMetallicSamples, job.pixel, k);
     job.windowPosition = vec2(job.pixel) + standardSampleLocation(int(sampleCount), k);
+    job.emission = EMISSION_TARGET ? texelFetch(emissionSamples, job.pixel, k).rgb : vec3(0.0);
     return job;
 }
 
@@ -382,11 +406,13 @@ void main() {
         if (round == 0u && pixelFrequency) {
 #ifdef PER_SAMPLE_LIGHTING
             vec4 albedoMetallic = pixelAlbedoMetallic(pixel);
+            vec3 emission = pixelEmission(pixel);
 #else
             vec4 albedoMetallic = texelFetch(albedoMetallicTexture, pixel, 0);
+            vec3 emission = EMISSION_TARGET ? texelFetch(emissionTexture, pixel, 0).rgb : vec3(0.0);
 #endif
             job = ShadingJob(instanceTarget, depth, texelFetch(normalRoughnessTexture, pixel, 0), albedoMetallic,
-                             vec2(pixel) + 0.5, pixel);
+                             vec2(pixel) + 0.5, pixel, emission);
         }
 #ifdef PER_SAMPLE_LIGHTING
         if (round > 0u) job = sampleJob((round - 1u) * SAMPLE_ROUND + gl_LocalInvocationIndex, pairs, sampleCount);
@@ -394,7 +420,7 @@ void main() {
         bool hit = instanceIdFromTarget(job.instanceTarget) != 0u;
         vec3 radiance = hit ? shadeSurface(job.instanceTarget, job.depth, job.normalRoughness, job.albedoMetallic,
                                            job.windowPosition, job.pixel,
-                                           texelFetch(clipStencil, job.pixel, 0).r & CLIP_VOLUME_BITS)
+                                           texelFetch(clipStencil, job.pixel, 0).r & CLIP_VOLUME_BITS, job.emission)
                             : backdropRadiance(job.windowPosition);
         if (round == 0u) {
             if (pixelFrequency) imageStore(lightAccumulation, pixel, vec4(radiance, instanceId != 0u ? 1.0 : 0.0));

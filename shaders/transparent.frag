@@ -47,6 +47,7 @@ layout(set = 1, binding = 2) uniform sampler2D metallicTexture;
 layout(set = 1, binding = 3) uniform sampler2D opacityTexture;
 layout(set = 1, binding = 4) uniform sampler2D normalTexture;
 layout(set = 1, binding = 5) uniform sampler2D occlusionTexture;
+layout(set = 1, binding = 6) uniform sampler2D emissiveTexture;
 
 layout(push_constant) uniform Push {
     uint instanceIndex;    // read by the vertex stage (gbuffer.vert)
@@ -128,7 +129,8 @@ void main() {
     float viewDistance = linearDepthFromDevice(camera.projection, fragmentDepth);
     // Clipped lights light transparents unclipped (~0u: inside every volume): their volumes mark
     // opaque pixels in stencil.
-    vec3 radiance = mat.emissiveMetallic.rgb * opacity + reflectDistantLightsAndDomes(s, viewDistance, ~0u);
+    vec3 emission = colorInput(mat.emissiveMetallic.rgb, mat.textures[TEXTURE_EMISSIVE], emissiveTexture, inUv);
+    vec3 radiance = emission * opacity + reflectDistantLightsAndDomes(s, viewDistance, ~0u);
     for (uint i = distantLightCount + domeLightCount; i < lightCount; ++i)
         if (lightReaches(lights[i], s.P))
             radiance += reflectShadowedLight(s, lights[i], viewDistance, LIGHT_KINDS & LOCAL_LIGHT_KINDS);

@@ -44,8 +44,8 @@ void Material::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
 // UsdUVTexture networks the host flattened into obscura:<input>:* (UsdPreviewSurface spec).
 void Material::readTextures(SceneAccess& s, SyncContext& ctx) {
     warnings_.clear();
-    const char* const sampled[passes::kMaterialTextureSlots] = {"diffuseColor", "roughness", "metallic",
-                                                                "opacity",      "normal",    "occlusion"};
+    const char* const sampled[passes::kMaterialTextureSlots] = {"diffuseColor", "roughness", "metallic", "opacity",
+                                                                "normal",       "occlusion", "emissiveColor"};
     const BoundTexture* first = nullptr;
     for (uint32_t slot = 0; slot < passes::kMaterialTextureSlots; ++slot) {
         textures_[slot] = readBoundTexture(s, ctx.textures, sampled[slot], warnings_);
@@ -57,9 +57,10 @@ void Material::readTextures(SceneAccess& s, SyncContext& ctx) {
                                 textures_[slot]->stPrimvar + "' and another input '" + first->stPrimvar +
                                 "': meshes carry one set of texture coordinates (primvars:st), used by all");
     }
-    // Emission is added by the lighting pass, which has no texture coordinates (the G-buffer
-    // keeps none): a textured emissiveColor is the texture's average colour, its 1x1 mip.
-    if (auto emissive = readBoundTexture(s, ctx.textures, "emissiveColor", warnings_)) {
+    // A textured emissiveColor is sampled by the G-buffer pass into its emission target; the
+    // constant keeps the texture's average colour (its 1x1 mip), which the accumulation's
+    // pre-exposure takes for the material's brightness.
+    if (const auto& emissive = textures_[passes::kTextureEmissive]) {
         std::array<float, 3> average = averageColor(*emissive);
         std::copy(average.begin(), average.end(), data_.emissiveMetallic.begin());
     }

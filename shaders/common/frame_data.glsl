@@ -112,11 +112,12 @@ const uint TEXTURE_METALLIC = 2u;
 const uint TEXTURE_OPACITY = 3u;
 const uint TEXTURE_NORMAL = 4u;
 const uint TEXTURE_OCCLUSION = 5u;
-const uint MATERIAL_TEXTURE_SLOTS = 6u;
+const uint TEXTURE_EMISSIVE = 6u;
+const uint MATERIAL_TEXTURE_SLOTS = 7u;
 
 struct MaterialData {
     vec4 diffuseRoughness;  // rgb diffuseColor, a roughness
-    vec4 emissiveMetallic;  // rgb emissiveColor (textured: the texture's average), a metallic
+    vec4 emissiveMetallic;  // rgb emissiveColor (textured: the texture's average; the G-buffer's emission target has it), a metallic
     vec4 opacity;           // x opacity, y opacityThreshold, z occlusion
     vec4 specularIor;       // rgb specularColor (specular workflow), a ior
     vec4 clearcoat;         // x clearcoat, y clearcoatRoughness, z 1 for the specular workflow

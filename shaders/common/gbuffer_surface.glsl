@@ -4,7 +4,9 @@
 //   RT1 RGBA8 sRGB  albedo + metallic
 //   RT2 R32UI  instance index + 1 (0: nothing drawn) for per-prim data and the primId AOV, and the
 //              material's occlusion in its top 8 bits (instance_target.glsl)
-// (and, with motion blur, RT3 RG16F velocity, written by moving draws only: gbuffer_moving.frag).
+// (and, with motion blur, RT3 RG16F velocity, written by moving draws only: gbuffer_moving.frag;
+// with textured emission, RT4 RGBA16F emission, pre-exposed, written by the draws whose materials'
+// emission is textured: passes/frame_resources.h GBuffer::emission).
 #ifndef OBSCURA_GBUFFER_SURFACE_GLSL
 #define OBSCURA_GBUFFER_SURFACE_GLSL
 
@@ -62,6 +64,7 @@ layout(set = 1, binding = 2) uniform sampler2D metallicTexture;
 layout(set = 1, binding = 3) uniform sampler2D opacityTexture;
 layout(set = 1, binding = 4) uniform sampler2D normalTexture;
 layout(set = 1, binding = 5) uniform sampler2D occlusionTexture;
+layout(set = 1, binding = 6) uniform sampler2D emissiveTexture;
 
 // Mirrors GBufferPush in passes/gbuffer.cpp (the vertex stage reads the first member).
 layout(push_constant) uniform Push {
@@ -73,6 +76,9 @@ layout(push_constant) uniform Push {
 layout(location = 0) out vec4 outNormalRoughness;
 layout(location = 1) out vec4 outAlbedoMetallic;
 layout(location = 2) out uint outInstance;
+// Attached where the frame has an emission target; pipelines whose materials' emission is constant
+// leave it untouched (passes/gbuffer.cpp).
+layout(location = 4) out vec4 outEmission;
 
 // The samples a cut-out material (opacityThreshold) covers. Seed 000 "Deferred MSAA \ alpha test
 // SSAA": the rasteriser's coverage only knows triangle edges, so each sample's opacity is read at
@@ -130,7 +136,7 @@ uint impostorCoverage(InstanceData inst, vec3 dx, vec3 dy) {
 }
 #endif
 
-// Writes RT0..RT2 and the samples the surface covers, or discards the fragment where the material
+// Writes RT0..RT2 (and RT4's textured emission) and the samples the surface covers, or discards the fragment where the material
 // cuts the surface out of every sample. Built with SPHERE_IMPOSTOR for sphere impostors
 // (sphere_impostor.glsl): the surface is the sphere the fragment's cube bounds, its depth written
 // here (declared depth_greater) and its samples those whose lines of sight meet it.
@@ -183,6 +189,10 @@ void writeSurface() {
     outNormalRoughness = vec4(encodeBestFitNormal(n, fittingScale), roughness);
     outAlbedoMetallic = vec4(albedo, metallic);
     outInstance = packInstanceTarget(inInstance, occlusion);
+    if (drawUses(MATERIAL_TEXTURED_EMISSION))
+        outEmission = vec4(colorInput(mat.emissiveMetallic.rgb, mat.textures[TEXTURE_EMISSIVE], emissiveTexture, inUv) *
+                               camera.exposureScale,
+                           0.0);
 }
 
 #endif

@@ -13,6 +13,7 @@ const uint MATERIAL_UDIM = 2u;
 const uint MATERIAL_TRANSFORMED_TEXTURE = 4u;
 const uint MATERIAL_NORMAL_MAP = 8u;
 const uint MATERIAL_ANISOTROPIC = 16u;
+const uint MATERIAL_TEXTURED_EMISSION = 32u;
 
 bool drawUses(uint feature) { return (MATERIAL_FEATURES & feature) != 0u; }
 

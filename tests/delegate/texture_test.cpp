@@ -447,21 +447,48 @@ TEST_F(TextureTest, OcclusionTextureDarkensTheDomeWhereItSaysSo) {
     }
 }
 
-TEST_F(TextureTest, EmissiveTextureEmitsItsAverage) {
-    // Left half red, right half blue, raw: the average is (0.5, 0, 0.5); scale 2 makes it (1, 0, 1).
-    std::string file = writePng("glow.png", 8, [](int x, int) { return x < 4 ? Rgb8{255, 0, 0} : Rgb8{0, 0, 255}; });
-    std::map<std::string, HostValue> values =
-        textured("emissiveColor", file, {{"sourceColorSpace", HostValue::token("raw")}, {"scale", float4(2, 2, 2, 1)}});
-    values["inputs:diffuseColor"] = HostValue::float3(0, 0, 0);
+// A textured emissiveColor emits its texels (the G-buffer's emission target; the transparent
+// pass samples it itself): left half red, right half blue, raw, scale 2, on a black surface in
+// the dark. Its average, (1, 0, 1), is what each pixel used to get.
+class EmissiveTexture : public TextureTest {
+protected:
+    EmissiveTexture() {
+        file = writePng("glow.png", 8, [](int x, int) { return x < 4 ? Rgb8{255, 0, 0} : Rgb8{0, 0, 255}; });
+        values = textured("emissiveColor", file,
+                          {{"sourceColorSpace", HostValue::token("raw")}, {"scale", float4(2, 2, 2, 1)}});
+        values["inputs:diffuseColor"] = HostValue::float3(0, 0, 0);
+    }
+    // Each half's pixels away from the middle: `radiance` of red, then of blue.
+    void expectHalves(float radiance, const std::string& what) {
+        for (int x : {10, 24, 40, 54}) {
+            const float* p = colorAt(x, 32);
+            const bool red = x < 32;
+            EXPECT_NEAR(p[0], red ? radiance : 0.0f, 0.01f + smallFloatStep(radiance, 6)) << what << ", x " << x;
+            EXPECT_NEAR(p[1], 0.0f, 1e-4f) << what << ", x " << x;
+            EXPECT_NEAR(p[2], red ? 0.0f : radiance, 0.01f + smallFloatStep(radiance, 5)) << what << ", x " << x;
+        }
+    }
+    std::string file;
+    std::map<std::string, HostValue> values;
+};
+
+TEST_F(EmissiveTexture, OpaqueSurfacesEmitTheirTexels) {
     host.addPrim("material", "/Looks/M", values);
     addPlane("/Plane", "/Looks/M");
     render();
-    for (int x : {10, 54}) {
-        const float* p = colorAt(x, 32);
-        EXPECT_NEAR(p[0], 1.0f, 0.01f + smallFloatStep(1.0f, 6)) << "x " << x;
-        EXPECT_NEAR(p[1], 0.0f, 1e-4f) << "x " << x;
-        EXPECT_NEAR(p[2], 1.0f, 0.01f + smallFloatStep(1.0f, 5)) << "x " << x;
-    }
+    expectHalves(2.0f, "1 sample");
+    // With MSAA the lighting reads the multisampled target, per pixel and per tagged sample.
+    setNumber("msaa", 4);
+    render();
+    expectHalves(2.0f, "msaa 4");
+}
+
+TEST_F(EmissiveTexture, TransparentSurfacesEmitTheirTexelsTimesTheirOpacity) {
+    values["inputs:opacity"] = HostValue::floatValue(0.5f);
+    host.addPrim("material", "/Looks/M", values);
+    addPlane("/Plane", "/Looks/M");
+    render();
+    expectHalves(1.0f, "opacity 0.5");
 }
 
 TEST_F(TextureTest, MissingFileWarnsAndKeepsTheConstant) {
