@@ -167,6 +167,7 @@ ImageHandle FrameGraph::PassBuilder::colorAttachment(ImageHandle h, Load load) {
 ImageHandle FrameGraph::PassBuilder::colorAttachment(ImageHandle h, VkClearColorValue clear) {
     return attachment(h, false, VK_ATTACHMENT_LOAD_OP_CLEAR, {.color = clear});
 }
+void FrameGraph::PassBuilder::unusedColorAttachment() { graph_.passes_[pass_].attachments.push_back({}); }
 ImageHandle FrameGraph::PassBuilder::depthStencilAttachment(ImageHandle h, Load load) {
     return attachment(h, true, loadOp(load), {});
 }
@@ -491,6 +492,7 @@ void FrameGraph::compile(const ImageMemoryFn& imageMemory) {
                 }
             }
             for (auto& att : cp.attachments) {
+                if (!att.image.valid()) continue;
                 const auto& img = images_[att.image.index];
                 if (lastUse[att.image.index] == static_cast<int>(p) && !img.output &&
                     img.residency == Residency::Transient)
@@ -582,9 +584,13 @@ void FrameGraph::execute(Device& device, PipelineCache& pipelines, VkCommandBuff
             bool hasDepth = false, stencil = false;
             VkExtent2D extent{0, 0};
             for (const auto& att : cp.attachments) {
+                VkRenderingAttachmentInfo info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                if (!att.image.valid()) {  // an unused slot: a null view, writes discarded
+                    colors.push_back(info);
+                    continue;
+                }
                 const auto& img = images_[att.image.index];
                 extent = {img.desc.width, img.desc.height};
-                VkRenderingAttachmentInfo info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
                 info.imageView = img.image->view;
                 info.loadOp = att.load;
                 info.storeOp = att.store;

@@ -72,7 +72,7 @@ struct PlannedBarrier {
 };
 
 struct Attachment {
-    ImageHandle image;
+    ImageHandle image;  // invalid: a colour slot left unbound (PassBuilder::unusedColorAttachment)
     bool depth = false;
     VkAttachmentLoadOp load = VK_ATTACHMENT_LOAD_OP_LOAD;
     VkAttachmentStoreOp store = VK_ATTACHMENT_STORE_OP_STORE;
@@ -144,6 +144,9 @@ public:
         ImageHandle colorAttachment(ImageHandle h, VkClearColorValue clear);
         ImageHandle depthStencilAttachment(ImageHandle h, Load load = Load::Keep);
         ImageHandle depthStencilAttachment(ImageHandle h, VkClearDepthStencilValue clear);
+        // A colour slot bound to nothing (VK_NULL_HANDLE), so that the attachments after it keep
+        // their locations; the pass's pipelines name VK_FORMAT_UNDEFINED there.
+        void unusedColorAttachment();
 
     private:
         friend class FrameGraph;

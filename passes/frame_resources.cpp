@@ -25,8 +25,6 @@ bool hasEmissionTarget(const FrameScene& scene) {
     });
 }
 
-bool hasVelocityTarget(const FrameScene& scene) { return scene.motionBlur || hasEmissionTarget(scene); }
-
 GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkSampleCountFlagBits samples,
                             const std::string& prefix) {
     auto image = [&](const char* name, VkFormat format) {
@@ -39,7 +37,7 @@ GBuffer createGBufferImages(gpu::FrameGraph& graph, const FrameScene& scene, VkS
     };
     GBuffer gb{image("depth", gbufferDepthFormat(samples)), image("normalRoughness", kNormalRoughnessFormat),
                image("albedoMetallic", kAlbedoMetallicFormat), image("instance", kInstanceFormat), {}};
-    if (hasVelocityTarget(scene)) gb.velocity = image("velocity", kVelocityFormat);
+    if (scene.motionBlur) gb.velocity = image("velocity", kVelocityFormat);
     if (hasEmissionTarget(scene)) gb.emission = image("emission", kEmissionFormat);
     return gb;
 }

@@ -60,10 +60,9 @@ constexpr float kStaticVelocity = -65504.0f;
 constexpr VkFormat kEmissionFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
 // Whether the G-buffer has an emission target: some drawn surface's material has textured
-// emission (kMaterialTexturedEmission). The target follows the velocity target (RT4 after RT3),
-// so such a frame has a velocity target too (hasVelocityTarget), moving draws writing it.
+// emission (kMaterialTexturedEmission). It is RT4; a frame without a velocity target leaves RT3
+// unbound.
 bool hasEmissionTarget(const FrameScene& scene);
-bool hasVelocityTarget(const FrameScene& scene);
 
 // Imports the scene's records into `graph` (FrameScene::buffers).
 void importSceneBuffers(gpu::FrameGraph& graph, FrameScene& scene);

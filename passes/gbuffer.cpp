@@ -110,9 +110,13 @@ gpu::GraphicsPipelineDesc describeGBufferPipeline(Variant variant, Surface surfa
         d.colorFormats.push_back(kVelocityFormat);
     // Seed 000 "An improved reconstruction filter (3)": static geometry does not export velocity.
     if (variant == Variant::StaticWithVelocityTarget) d.untouchedColorAttachments = 1u << 3;
-    // RT4 (after the velocity target, which a frame with one has: hasEmissionTarget), written by
-    // the draws whose materials' emission is textured.
+    // RT4, written by the draws whose materials' emission is textured; without a velocity target,
+    // RT3 is an unused slot.
     if (emissionTarget) {
+        if (d.colorFormats.size() == 3) {
+            d.colorFormats.push_back(VK_FORMAT_UNDEFINED);
+            d.untouchedColorAttachments |= 1u << 3;
+        }
         d.colorFormats.push_back(kEmissionFormat);
         if ((features & kMaterialTexturedEmission) == 0u) d.untouchedColorAttachments |= 1u << 4;
     }
@@ -148,7 +152,7 @@ std::vector<Ordered> orderedDraws(const FrameScene& scene, const CulledDraws* cu
             const size_t first = ordered.size();
             for (const Draw& draw : scene.cameraDraws) {
                 // Transparent surfaces are drawn after lighting (passes/transparent.h).
-                if (draw.transparent || surfaceOf(draw) != surface || variantOf(draw, hasVelocityTarget(scene)) != variant)
+                if (draw.transparent || surfaceOf(draw) != surface || variantOf(draw, scene.motionBlur) != variant)
                     continue;
                 if (culled && culled->phase == CulledDraws::Phase::Early && lastVariants) continue;
                 if (culled && culled->phase == CulledDraws::Phase::Late && !lastVariants && !draw.culledOnGpu())
@@ -192,15 +196,20 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
                 if (gb.velocity.valid())
                     gb.velocity =
                         pass.colorAttachment(gb.velocity, VkClearColorValue{{kStaticVelocity, 0.0f, 0.0f, 0.0f}});
-                if (gb.emission.valid())
+                if (gb.emission.valid()) {
+                    if (!gb.velocity.valid()) pass.unusedColorAttachment();
                     gb.emission = pass.colorAttachment(gb.emission, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
+                }
             } else {
                 gb.depth = pass.depthStencilAttachment(gb.depth, Load::Keep);
                 gb.normalRoughness = pass.colorAttachment(gb.normalRoughness, Load::Keep);
                 gb.albedoMetallic = pass.colorAttachment(gb.albedoMetallic, Load::Keep);
                 gb.instance = pass.colorAttachment(gb.instance, Load::Keep);
                 if (gb.velocity.valid()) gb.velocity = pass.colorAttachment(gb.velocity, Load::Keep);
-                if (gb.emission.valid()) gb.emission = pass.colorAttachment(gb.emission, Load::Keep);
+                if (gb.emission.valid()) {
+                    if (!gb.velocity.valid()) pass.unusedColorAttachment();
+                    gb.emission = pass.colorAttachment(gb.emission, Load::Keep);
+                }
             }
         },
         [ordered, &scene, bestFitNormals, samples, alphaToCoverage, culledDraws](VkCommandBuffer cmd,
