@@ -4,6 +4,7 @@
 // of a plane, so pixel (x, y) shows st ((x + 0.5) / 64, 1 - (y + 0.5) / 64) times the st range.
 #include "harness/image/exr_writer.h"
 #include "harness/image/png_io.h"
+#include "tests/delegate/camera_scene.h"
 #include "tests/delegate/render_fixture.h"
 
 #include <gtest/gtest.h>
@@ -475,19 +476,31 @@ protected:
 TEST_F(EmissiveTexture, OpaqueSurfacesEmitTheirTexels) {
     host.addPrim("material", "/Looks/M", values);
     addPlane("/Plane", "/Looks/M");
-    render();
+    ASSERT_NO_FATAL_FAILURE(render());
     expectHalves(2.0f, "1 sample");
     // With MSAA the lighting reads the multisampled target, per pixel and per tagged sample.
     setNumber("msaa", 4);
-    render();
+    ASSERT_NO_FATAL_FAILURE(render());
     expectHalves(2.0f, "msaa 4");
+    // With motion blur the G-buffer has a velocity target (RT3) before the emission: a small
+    // plane moving across the top of the image, in front, turns it on.
+    setNumber("msaa", 1);
+    host.set("/Camera", "shutter:open", HostValue::doubleValue(-0.25));
+    host.set("/Camera", "shutter:close", HostValue::doubleValue(0.25));
+    ASSERT_EQ(host.api().markDirty(host.delegate(), "/Camera", OBSCURA_DIRTY_PARAMS), OBSCURA_OK);
+    addPlane("/Mover", "/Looks/M", 1.0f, 0.0, 0.1f * kHalf);
+    host.setTransformMotion("/Mover", -0.5, translation(-0.6 * kHalf, 0.8 * kHalf, 0.1), 0.5,
+                            translation(-0.4 * kHalf, 0.8 * kHalf, 0.1));
+    ASSERT_NO_FATAL_FAILURE(render());
+    EXPECT_TRUE(ranPass(host, "motion_blur_tile_max"));
+    expectHalves(2.0f, "with motion blur");
 }
 
 TEST_F(EmissiveTexture, TransparentSurfacesEmitTheirTexelsTimesTheirOpacity) {
     values["inputs:opacity"] = HostValue::floatValue(0.5f);
     host.addPrim("material", "/Looks/M", values);
     addPlane("/Plane", "/Looks/M");
-    render();
+    ASSERT_NO_FATAL_FAILURE(render());
     expectHalves(1.0f, "opacity 0.5");
 }
 
