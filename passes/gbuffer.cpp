@@ -212,8 +212,8 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
                 }
             }
         },
-        [ordered, &scene, bestFitNormals, samples, alphaToCoverage, culledDraws](VkCommandBuffer cmd,
-                                                                                  const gpu::PassResources& res) {
+        [ordered, &scene, bestFitNormals, samples, alphaToCoverage, culledDraws,
+         emissionTarget = gb.emission.valid()](VkCommandBuffer cmd, const gpu::PassResources& res) {
             gpu::Device& device = res.device();
             // MSAA samples resolved over the pixel's box (a still's frames, the reference's
             // sub-frames: SampleResolve::PixelBox) are shaded each at its own position
@@ -222,7 +222,6 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
             const bool perSampleShading = samples > VK_SAMPLE_COUNT_1_BIT &&
                                           scene.cameraData.sampleResolve == uint32_t(SampleResolve::PixelBox) &&
                                           device.context().enabledFeatures().sampleRateShading;
-            const bool emissionTarget = hasEmissionTarget(scene);
             const gpu::Pipeline* bound = nullptr;
             Variant boundVariant = Variant::Static;
             Surface boundSurface = Surface::Opaque;
