@@ -1,6 +1,11 @@
 #include "tests/delegate/camera_scene.h"
 
+#include "harness/image/png_io.h"
+
+#include <unistd.h>
+
 #include <algorithm>
+#include <cmath>
 
 namespace obscura::test {
 
@@ -42,6 +47,47 @@ image::Image CameraScene::renderReference(int subFrames, double time) {
     image::Image img = render(time);
     setNumber("reference", 0);
     return img;
+}
+
+void CameraScene::addChequerCard(Chequer kind, const std::string& path, std::array<double, 3> centre,
+                                 double cellSize, int cellsX, int cellsY, std::array<float, 3> light,
+                                 std::array<float, 3> dark) {
+    if (kind == Chequer::Geometry) return test::addChequerCard(host, path, centre, cellSize, cellsX, cellsY, light, dark);
+    if (files_.empty()) {
+        files_ = std::filesystem::temp_directory_path() /
+                 ("obscura_chequers_" + std::to_string(getpid()) + "_" + std::to_string(reinterpret_cast<uintptr_t>(this)));
+        std::filesystem::create_directories(files_);
+    }
+    constexpr int kTexelsPerCell = 16;
+    const int w = cellsX * kTexelsPerCell, h = cellsY * kTexelsPerCell;
+    std::vector<uint8_t> bytes;
+    for (int y = 0; y < h; ++y)  // row 0 at the top: the card's cell row cellsY - 1
+        for (int x = 0; x < w; ++x) {
+            const int i = x / kTexelsPerCell, j = cellsY - 1 - y / kTexelsPerCell;
+            for (float c : (i + j) % 2 ? dark : light)
+                bytes.push_back(uint8_t(std::lround(255.0f * srgbEncode(std::clamp(c, 0.0f, 1.0f)))));
+        }
+    const std::string file = (files_ / (path.substr(path.rfind('/') + 1) + ".png")).string();
+    auto written = image::writePng(file, w, h, image::PngFormat::Rgb, bytes.data(), size_t(w) * 3);
+    EXPECT_FALSE(image::isError(written)) << image::errorOf(written);
+    const std::string look = path + "Look";
+    host.addPrim("material", look,
+                 {{"obscura:diffuseColor:file", HostValue::token(file)},
+                  {"obscura:diffuseColor:wrapS", HostValue::token("clamp")},
+                  {"obscura:diffuseColor:wrapT", HostValue::token("clamp")}});
+    const float hx = float(0.5 * cellSize * cellsX), hy = float(0.5 * cellSize * cellsY);
+    host.addPrim("mesh", path,
+                 {{"points", HostValue::points({{-hx, -hy, 0}, {hx, -hy, 0}, {hx, hy, 0}, {-hx, hy, 0}})},
+                  {"faceVertexCounts", HostValue::intArray({4})},
+                  {"faceVertexIndices", HostValue::intArray({0, 1, 2, 3})},
+                  {"subdivisionScheme", HostValue::token("none")},
+                  {"primvars:st", HostValue::float2Array({{0, 0}, {1, 0}, {1, 1}, {0, 1}})},
+                  {"material:binding", HostValue::path(look)}},
+                 translation(centre[0], centre[1], centre[2]));
+}
+
+CameraScene::~CameraScene() {
+    if (!files_.empty()) std::filesystem::remove_all(files_);
 }
 
 void addChequerCard(TestHost& host, const std::string& path, std::array<double, 3> centre, double cellSize,

@@ -8,6 +8,7 @@
 #include "harness/image/compare.h"
 
 #include <array>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,10 @@ struct Lens {
     float rotationDegrees = 0.0f;
 };
 
+// How a chequered card's cells are told apart: faces of their own colour (edges the raster
+// anti-aliases) or texels of an 8-bit sRGB texture (edges the texture filter anti-aliases).
+enum class Chequer { Geometry, Texture };
+
 struct CameraScene {
     TestHost host;
     int width, height;
@@ -32,9 +37,17 @@ struct CameraScene {
     void setShutter(double open, double close);
     image::Image render(double time = 0.0);
     image::Image renderReference(int subFrames, double time = 0.0);
+    // A card of cells_x x cells_y chequered cells centred at `centre`, facing +Z (the camera). As
+    // a texture, 16 texels a cell, clamped at its border.
+    void addChequerCard(Chequer kind, const std::string& path, std::array<double, 3> centre, double cellSize,
+                        int cellsX, int cellsY, std::array<float, 3> light, std::array<float, 3> dark);
+    ~CameraScene();
+
+private:
+    std::filesystem::path files_;  // the scene's textures, made on first use
 };
 
-// A card of cells_x x cells_y chequered cells centred at `centre`, facing +Z (the camera).
+// CameraScene::addChequerCard's card of faces, in any host.
 void addChequerCard(TestHost& host, const std::string& path, std::array<double, 3> centre, double cellSize,
                     int cellsX, int cellsY, std::array<float, 3> light, std::array<float, 3> dark);
 

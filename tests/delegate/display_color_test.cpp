@@ -97,8 +97,7 @@ void expectRedToBlue(const std::vector<float>& color) {
         const float* p = &color[(size_t(32) * kWidth + size_t(x)) * 4];
         for (size_t c = 0; c < 3; ++c) {
             double albedo = kRed[c] + (kBlue[c] - kRed[c]) * u;
-            int code = int(std::lround(255.0 * (albedo <= 0.0031308 ? albedo * 12.92
-                                                                     : 1.055 * std::pow(albedo, 1.0 / 2.4) - 0.055)));
+            int code = int(std::lround(255.0 * srgbEncode(albedo)));
             double storageStep = srgb8Exact(std::min(code + 1, 255)) - srgb8Exact(code);
             double expected = albedo / kPi * kIrradiance;
             double tolerance = 0.01 * expected + smallFloatStep(float(expected), c == 2 ? 5 : 6) +

@@ -77,6 +77,8 @@ float smallFloatStep(float v, int mantissaBits) {
 
 float srgbDecode(double c) { return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4)); }
 
+float srgbEncode(double v) { return float(v <= 0.0031308 ? v * 12.92 : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055); }
+
 float srgb8Exact(int code) { return srgbDecode(code / 255.0); }
 
 std::array<double, 2> environmentBrdf(double roughness, double NdotV) {

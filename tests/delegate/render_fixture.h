@@ -39,8 +39,9 @@ void addMaterial(TestHost& host, const std::string& path, std::array<float, 3> d
 // allowed by Vulkan), so analytic expectations get this much slack on top of their tolerance.
 float smallFloatStep(float v, int mantissaBits);
 
-// The IEC 61966-2-1 decode of an sRGB-encoded value in [0, 1].
+// The IEC 61966-2-1 decode of an sRGB-encoded value in [0, 1], and its inverse.
 float srgbDecode(double encoded);
+float srgbEncode(double linear);
 // A linear value that 8-bit sRGB storage (the albedo G-buffer target) holds exactly.
 float srgb8Exact(int code);
 

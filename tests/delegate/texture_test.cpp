@@ -42,8 +42,6 @@ std::map<std::string, HostValue> textured(const std::string& input, const std::s
     return values;
 }
 
-float srgbEncode(float v) { return v <= 0.0031308f ? v * 12.92f : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f; }
-
 // One step of the 8-bit sRGB albedo target at `linear`: the storage's rounding.
 float srgbStep(float linear) {
     int code = std::clamp(int(std::lround(srgbEncode(std::clamp(linear, 0.0f, 1.0f)) * 255.0f)), 0, 254);
