@@ -133,26 +133,45 @@ TexturePtr TextureCache::makeFromImage(const std::string& file, const std::vecto
     // A material's sRGB texture is filtered in its encoded values and decoded after (the shader's
     // MaterialTexture::encoding), as offline renderers filter 8-bit textures: Cycles interpolates
     // the bytes and converts to linear after, so a magnified texture's texels blend as in the
-    // path-traced truth. Its mips still average linear light, so that a minified texture keeps the
-    // pixel's integral: they are made on the CPU (lavapipe blits a mutable-format image's sRGB
-    // levels in their encoded values).
+    // path-traced truth. Its mips are area means of that reconstruction in linear light, so that
+    // a minified texture keeps the pixel's integral (encodedReconstructionMips); they are made on
+    // the CPU (lavapipe blits a mutable-format image's sRGB levels in their encoded values).
     const bool decodedInShader = role != TextureRole::Plain && encodedTwin(image.format) != VK_FORMAT_UNDEFINED;
     // Compressed formats cannot be blitted.
     const bool blit = !compress && !decodedInShader && gpu::canBlitMips(device_, made.desc.format);
-    made.levels.push_back(std::move(image.level0));
-    while (!blit && made.levels.size() < made.desc.mipLevels)
-        made.levels.push_back(downsample(made.levels.back(), made.desc.format));
+    const VkFormat sourceFormat = image.format;
+    // A UDIM atlas's tiles are reconstructed apart (UdimAtlas::grid: columns, rows).
+    const uint32_t cellWidth = texture.udimGrid[2] > 0.0f ? made.desc.width / uint32_t(texture.udimGrid[2]) : 0u;
+    const uint32_t cellHeight = texture.udimGrid[3] > 0.0f ? made.desc.height / uint32_t(texture.udimGrid[3]) : 0u;
+    auto cpuChain = [&] {
+        if (decodedInShader && sourceFormat == VK_FORMAT_R8G8B8A8_SRGB)
+            return encodedReconstructionMips(std::move(image.level0), made.desc.mipLevels, cellWidth, cellHeight);
+        std::vector<gpu::MipLevel> chain{std::move(image.level0)};
+        while (chain.size() < made.desc.mipLevels) chain.push_back(downsample(chain.back(), sourceFormat));
+        return chain;
+    };
     made.how = std::string(blit ? "blitted" : "filtered on the CPU") + (image.renormalised() ? ", renormalised" : "");
     if (compress) {
-        const std::vector<gpu::MipLevel> chain = std::move(made.levels);
+        // The chain is made for the first level the disk cache lacks; a hit needs only the sizes.
+        std::vector<gpu::MipLevel> chain, extents;
+        for (uint32_t i = 0; i < made.desc.mipLevels; ++i)
+            extents.push_back({std::max(made.desc.width >> i, 1u), std::max(made.desc.height >> i, 1u), {}});
         bool cached = false;
         made.levels = blockLevels(sourceHashes,
-                                  sourceEncoding + "squish-1-" + std::to_string(blockFormat) + "-from-" +
-                                      std::to_string(image.format),
-                                  chain, blockFormat, [&](size_t i) { return compressColourLevel(chain[i], blockFormat); },
+                                  sourceEncoding + "squish-2-" + std::to_string(blockFormat) + "-from-" +
+                                      std::to_string(sourceFormat),
+                                  extents, blockFormat,
+                                  [&](size_t i) {
+                                      if (chain.empty()) chain = cpuChain();
+                                      return compressColourLevel(chain[i], blockFormat);
+                                  },
                                   cached);
         made.desc.format = blockFormat;
         made.how += cached ? ", compressed (from the disk cache)" : ", compressed on the CPU";
+    } else if (blit) {
+        made.levels.push_back(std::move(image.level0));
+    } else {
+        made.levels = cpuChain();
     }
     if (decodedInShader) made.desc.sampledAs = encodedTwin(made.desc.format);
     texture.srgbEncoded = decodedInShader;

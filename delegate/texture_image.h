@@ -8,6 +8,7 @@
 #include "gpu/texture_upload.h"
 
 #include <array>
+#include <vector>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -67,6 +68,19 @@ std::variant<TextureImage, std::string> decodeTextureImage(std::string_view byte
 // The next mip level of `level` (a 2x2 box, in linear space for sRGB formats; an odd last row or
 // column is dropped, a side of 1 stays 1).
 gpu::MipLevel downsample(const gpu::MipLevel& level, VkFormat format);
+
+// The chain of an 8-bit sRGB texture that is filtered in its encoded values and decoded after
+// (R8G8B8A8_SRGB, read through its UNORM twin): level 0 as it is, and below it `levels` - 1 levels
+// whose texels are area means, in linear light, of level 0's reconstruction over their footprints
+// — decode(bilinear of the bytes), as Cycles reconstructs byte textures — so that a minified
+// texture keeps what the path-traced pixel integrates even where neighbouring texels differ
+// strongly (the mean of the decoded texels makes a one-texel black-and-white checker 0.5 grey;
+// the reconstruction integrates to 0.246). Each level-0 texel's square is integrated at 4 x 4
+// points (0.2408 for 0.2432 on a 30/230 checker), coarser levels are 2x2 boxes of those means (an
+// odd last row or column dropped, as downsample()); alpha is a plain box. The reconstruction is
+// clamped at the borders of `cellWidth` x `cellHeight` cells (a UDIM atlas's tiles; 0: the image).
+std::vector<gpu::MipLevel> encodedReconstructionMips(gpu::MipLevel level0, uint32_t levels, uint32_t cellWidth = 0,
+                                                     uint32_t cellHeight = 0);
 
 // `level` at width x height (in linear space for sRGB formats): halved by `downsample` while it is
 // at least twice as large, then filtered bilinearly, texel centres to texel centres.

@@ -1,9 +1,11 @@
-// The CPU mip filter for formats the GPU cannot blit: a 2x2 box, in linear space for sRGB.
+// The CPU mip filters: for formats the GPU cannot blit, a 2x2 box, in linear space for sRGB; for
+// sRGB textures filtered in their encoded values, area means of that reconstruction.
 #include "delegate/texture_image.h"
 
 #include <Imath/half.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 
 namespace obscura::delegate {
@@ -58,6 +60,46 @@ TEST(TextureMips, OddSizesHalveDownAndOneStaysOne) {
     EXPECT_EQ(next.width, 1u);
     EXPECT_EQ(next.height, 1u);
     EXPECT_EQ(byteAt(next, 0), 60);
+}
+
+float srgbDecode(int code) {
+    const double c = code / 255.0;
+    return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+}
+
+// A 16x16 one-texel black and white checker: below level 0 each texel is the mean of
+// decode(bilinear of the bytes) over its footprint. Over a period that integrates to 0.2462
+// (TextureTest.MinifiedTextureIntegratesItsReconstruction integrates it); the chain's 4 x 4 points
+// a texel give 0.2424, within an 8-bit step. The mean of the decoded texels would be 0.5 (code 188).
+TEST(TextureMips, EncodedReconstructionIntegratesTheDecodedBilinear) {
+    std::vector<uint8_t> bytes;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            for (int c = 0; c < 4; ++c) bytes.push_back((x + y) % 2 ? 255 : 0);
+    auto chain = encodedReconstructionMips(rgba8(16, 16, bytes), 5);
+    ASSERT_EQ(chain.size(), 5u);
+    EXPECT_EQ(byteAt(chain[0], 4), 255);  // level 0 as it was
+    // Level 1's texel (3, 3) covers texels 6 and 7 along each axis, away from the clamped border.
+    const gpu::MipLevel& level1 = chain[1];
+    ASSERT_EQ(level1.width, 8u);
+    for (size_t c = 0; c < 3; ++c) {
+        const int code = byteAt(level1, (3 * 8 + 3) * 4 + c);
+        EXPECT_NEAR(srgbDecode(code), 0.2462f, 0.006f) << "channel " << c << " code " << code;
+    }
+    EXPECT_NEAR(byteAt(level1, (3 * 8 + 3) * 4 + 3), 128, 1);  // alpha: a box of 0 and 255
+    EXPECT_EQ(chain[4].width, 1u);
+}
+
+// A texture of one colour keeps it at every level (the table's decode and the level's encode
+// round-trip each code).
+TEST(TextureMips, EncodedReconstructionKeepsAFlatColour) {
+    for (int code : {0, 1, 30, 128, 200, 255}) {
+        auto chain = encodedReconstructionMips(rgba8(4, 2, std::vector<uint8_t>(32, uint8_t(code))), 3);
+        ASSERT_EQ(chain.size(), 3u);
+        EXPECT_EQ(chain[2].width, 1u);
+        EXPECT_EQ(chain[2].height, 1u);
+        for (size_t c = 0; c < 4; ++c) EXPECT_EQ(byteAt(chain[2], c), code) << "code " << code << " channel " << c;
+    }
 }
 
 }  // namespace
