@@ -3,6 +3,7 @@
 #include "generated/shader_layouts.h"
 #include "passes/shader_pass.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -41,7 +42,19 @@ double radicalInverse(uint32_t index, uint32_t base) {
     return inverse;
 }
 
-// [0, 1) rotated by half and centred: 0 -> 0, values stay in [-0.5, 0.5).
+// The second dimension of Sobol's sequence (its generator matrix is Pascal's triangle mod 2): with
+// the base-2 radical inverse, the first 2^m points put one in each of the 2^m rows and columns and in
+// every other elementary box of area 2^-m (a (0, 2)-sequence), where base 3's 16 points spread a
+// horizontal edge's coverage in steps up to 2/27.
+double sobolSecond(uint32_t index) {
+    uint32_t bits = 0;
+    for (uint32_t direction = 1u << 31; index > 0; index >>= 1, direction ^= direction >> 1)
+        if (index & 1u) bits ^= direction;
+    return bits / 4294967296.0;
+}
+
+
+// [0, 1) turned by half and centred: 0 -> 0, values stay in [-0.5, 0.5).
 double centredRotation(double unit) { return unit + 0.5 - std::floor(unit + 0.5) - 0.5; }
 
 }  // namespace
@@ -53,8 +66,12 @@ VkFormat temporalAaDepthFormat(TemporalAaMode mode) {
 std::array<double, 2> temporalAaJitter(TemporalAaMode mode, uint32_t index, uint32_t count) {
     if (mode == TemporalAaMode::Smaa2tx)
         return index % kSmaa2txFrames == 0 ? std::array{0.25, 0.25} : std::array{-0.25, -0.25};
-    uint32_t i = count > 0 ? index % count : 0;
-    return {centredRotation(radicalInverse(i, 2)), centredRotation(radicalInverse(i, 3))};
+    const uint32_t i = count > 0 ? index % count : 0;
+    // Both coordinates turned by half a pixel about the pixel centre; y then moved from its
+    // strata's lower edges (multiples of 1 / count from -0.5) to their centres, but for frame 0,
+    // which stays at the pixel centre, the lower edge of its stratum.
+    const double toCentre = i > 0 ? 0.5 / count : 0.0;
+    return {centredRotation(radicalInverse(i, 2)), centredRotation(sobolSecond(i)) + toCentre};
 }
 
 gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, const FrameScene& scene,

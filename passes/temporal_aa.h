@@ -29,10 +29,17 @@ constexpr VkFormat temporalAaHistoryFormat(uint32_t framesToConverge) {
 }
 
 // The sub-pixel offset (pixels, x right and y down, each in [-0.5, 0.5)) of the projection for
-// frame `index` of a cycle of `count` frames. 1TX: the first `count` points of the Halton (2, 3)
-// sequence, rotated by half a pixel (Cranley-Patterson) so that frame 0 looks through the pixel
-// centre: every frame after a reset is the unjittered image, and the base-2 coordinate puts one
-// sample in each of `count` columns when `count` is a power of two. 2TX: the 2x pattern of seed
+// frame `index` of a cycle of `count` frames. 1TX: the first `count` points of Sobol's
+// (0, 2)-sequence (x the base-2 radical inverse, y Sobol's second dimension), turned by half a
+// pixel (Cranley-Patterson) so that frame 0 looks through the pixel centre: every frame after a
+// reset is the unjittered image. When `count` is a power of two each of its columns and rows holds
+// one offset, so an axis-aligned edge's coverage is estimated to 1/count (the Halton (2, 3)
+// points before put base-3 rows, in steps up to 2/27 at 16). The rows' offsets but frame 0's are
+// moved to their strata's centres (frame 0's row is the one from the pixel centre down): the
+// rows' centroid is the pixel centre to 1/(2 count²). x keeps the Halton points' offsets, at their
+// columns' left edges (a centroid of -1/(2 count)): a motion-blurred still pairs them with its
+// shutter strata by the frame's index (shutterStratum()), and that pairing's streaks are what was
+// measured (half a column more moved a 48-pixel streak's ends). 2TX: the 2x pattern of seed
 // 000's SMAA 2TX (D3D's standard 2x MSAA positions, +-1/4 pixel on the diagonal).
 std::array<double, 2> temporalAaJitter(TemporalAaMode mode, uint32_t index, uint32_t count);
 

@@ -82,8 +82,8 @@ const RenderSettingInfo kSettings[] = {
      "reports converged (bool, default on)",
      OBSCURA_VALUE_BOOL, 1.0},
     {"taa:frames", number<&FrameSettings::temporalAaFrames>,
-     "frames a still image accumulates (1TX): the jitter cycles through this many offsets of the "
-     "Halton (2, 3) sequence, each weighted equally; with motion blur each also samples its own "
+     "frames a still image accumulates (1TX): the jitter cycles through this many offsets of "
+     "Sobol's (0, 2)-sequence, each weighted equally; with motion blur each also samples its own "
      "1/taa:frames of the shutter, as reference sub-frames do, blurred over that part alone; with "
      "depth of field each looks through its own 1/taa:frames of the aperture, its post-process "
      "spreading it over that part alone; "

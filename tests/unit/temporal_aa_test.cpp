@@ -17,7 +17,7 @@ using passes::TemporalAaMode;
 
 TEST(TemporalAaJitter, OffsetsStayInsideThePixelAndSpreadOverIt) {
     for (uint32_t count : {8u, 16u, 32u}) {
-        std::set<int> columns;
+        std::set<int> columns, rows;
         std::array<std::array<int, 4>, 4> cells{};
         double meanX = 0, meanY = 0, closest = 1e9;
         std::vector<std::array<double, 2>> points;
@@ -28,14 +28,17 @@ TEST(TemporalAaJitter, OffsetsStayInsideThePixelAndSpreadOverIt) {
             EXPECT_GE(y, -0.5);
             EXPECT_LT(y, 0.5);
             columns.insert(int(std::floor((x + 0.5) * count)));
+            rows.insert(int(std::floor((y + 0.5) * count)));
             cells[size_t((x + 0.5) * 4)][size_t((y + 0.5) * 4)]++;
             meanX += x / count;
             meanY += y / count;
             for (const auto& p : points) closest = std::min(closest, std::hypot(p[0] - x, p[1] - y));
             points.push_back({x, y});
         }
-        // Base 2 stratifies x exactly: one offset in each 1/count-wide column.
+        // A (0, 2)-sequence stratifies x and y exactly: one offset in each 1/count-wide column and
+        // in each row.
         EXPECT_EQ(columns.size(), count);
+        EXPECT_EQ(rows.size(), count);
         // Over a 4x4 grid of cells, none is crowded and few are left empty ...
         int occupied = 0;
         for (const auto& row : cells)
@@ -44,11 +47,22 @@ TEST(TemporalAaJitter, OffsetsStayInsideThePixelAndSpreadOverIt) {
                 occupied += n > 0;
             }
         EXPECT_GE(occupied, int(std::min(count, 16u)) * 3 / 4);
-        // ... the centroid stays near the pixel centre, and no two offsets nearly coincide.
+        // ... the centroid stays near the pixel centre (the rows' to frame 0's half a row from its
+        // row's centre, over count offsets), and the share of the offsets above a horizontal edge
+        // anywhere across the pixel is its coverage within one row (Halton's base 3 rows: 0.125 for
+        // 8 and 16 offsets, 0.0625 for 32).
         EXPECT_LT(std::fabs(meanX), 1.0 / count + 1e-12);
-        EXPECT_LT(std::fabs(meanY), 0.06);
-        EXPECT_GT(closest, 0.4 / std::sqrt(double(count)));
-        std::printf("%u offsets: centroid (%.4f, %.4f), closest pair %.3f pixels\n", count, meanX, meanY, closest);
+        EXPECT_LE(std::fabs(meanY), 0.5 / (count * count) + 1e-12);
+        double worst = 0.0;
+        for (int step = 0; step <= 1000; ++step) {
+            const double edge = step / 1000.0 - 0.5;
+            double above = 0.0;
+            for (const auto& p : points) above += p[1] < edge ? 1.0 / count : 0.0;
+            worst = std::max(worst, std::fabs(above - (edge + 0.5)));
+        }
+        EXPECT_LE(worst, 1.0 / count + 1e-9);
+        std::printf("%u offsets: centroid (%.4f, %.4f), closest pair %.3f pixels, horizontal edge's coverage within %.4f\n",
+                    count, meanX, meanY, closest, worst);
     }
     auto first = passes::temporalAaJitter(TemporalAaMode::Smaa1tx, 0, 16);
     EXPECT_EQ(first[0], 0.0);
