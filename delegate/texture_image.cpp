@@ -272,11 +272,11 @@ std::vector<gpu::MipLevel> encodedReconstructionMips(gpu::MipLevel level0, uint3
         const uint32_t nw = std::max(mw / 2, 1u), nh = std::max(mh / 2, 1u);
         std::vector<std::array<float, 4>> next(size_t(nw) * nh);
         gpu::MipLevel out{nw, nh, std::vector<std::byte>(size_t(nw) * nh * 4)};
+        auto mean = [&](uint32_t px, uint32_t py) -> const std::array<float, 4>& {
+            return means[size_t(std::min(py, mh - 1)) * mw + std::min(px, mw - 1)];
+        };
         for (uint32_t y = 0; y < nh; ++y)
             for (uint32_t x = 0; x < nw; ++x) {
-                auto mean = [&](uint32_t px, uint32_t py) -> const std::array<float, 4>& {
-                    return means[size_t(std::min(py, mh - 1)) * mw + std::min(px, mw - 1)];
-                };
                 std::array<float, 4>& m = next[size_t(y) * nw + x];
                 for (size_t c = 0; c < 4; ++c) {
                     m[c] = 0.25f * (mean(2 * x, 2 * y)[c] + mean(2 * x + 1, 2 * y)[c] + mean(2 * x, 2 * y + 1)[c] +

@@ -8,11 +8,11 @@
 #include "gpu/texture_upload.h"
 
 #include <array>
-#include <vector>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
+#include <vector>
 
 namespace obscura::delegate {
 

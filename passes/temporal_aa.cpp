@@ -3,7 +3,6 @@
 #include "generated/shader_layouts.h"
 #include "passes/shader_pass.h"
 
-#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -44,15 +43,13 @@ double radicalInverse(uint32_t index, uint32_t base) {
 
 // The second dimension of Sobol's sequence (its generator matrix is Pascal's triangle mod 2): with
 // the base-2 radical inverse, the first 2^m points put one in each of the 2^m rows and columns and in
-// every other elementary box of area 2^-m (a (0, 2)-sequence), where base 3's 16 points spread a
-// horizontal edge's coverage in steps up to 2/27.
+// every other elementary box of area 2^-m (a (0, 2)-sequence).
 double sobolSecond(uint32_t index) {
     uint32_t bits = 0;
     for (uint32_t direction = 1u << 31; index > 0; index >>= 1, direction ^= direction >> 1)
         if (index & 1u) bits ^= direction;
     return bits / 4294967296.0;
 }
-
 
 // [0, 1) turned by half and centred: 0 -> 0, values stay in [-0.5, 0.5).
 double centredRotation(double unit) { return unit + 0.5 - std::floor(unit + 0.5) - 0.5; }

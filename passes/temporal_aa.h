@@ -34,7 +34,7 @@ constexpr VkFormat temporalAaHistoryFormat(uint32_t framesToConverge) {
 // pixel (Cranley-Patterson) so that frame 0 looks through the pixel centre: every frame after a
 // reset is the unjittered image. When `count` is a power of two each of its columns and rows holds
 // one offset, so an axis-aligned edge's coverage is estimated to 1/count (the Halton (2, 3)
-// points before put base-3 rows, in steps up to 2/27 at 16). The rows' offsets but frame 0's are
+// points before put base-3 rows: a horizontal edge's to 1/8 at 16). The rows' offsets but frame 0's are
 // moved to their strata's centres (frame 0's row is the one from the pixel centre down): the
 // rows' centroid is the pixel centre to 1/(2 count²). x keeps the Halton points' offsets, at their
 // columns' left edges (a centroid of -1/(2 count)): a motion-blurred still pairs them with its
