@@ -235,58 +235,72 @@ std::vector<gpu::MipLevel> encodedReconstructionMips(gpu::MipLevel level0, uint3
     };
     // Each texel's square in four quadrants, each between the texel, its neighbours along x and y
     // towards it and the diagonal one; 2 x 2 points a quadrant, 1/8 and 3/8 from the centre.
-    std::vector<std::array<float, 4>> means(size_t(w) * h);
-    // Rows in bands across the machine's cores: 16 decodes a channel and texel (about 0.5 s for a
+    auto texelMean = [&](uint32_t x, uint32_t y) {
+        const uint8_t* centre = texel(x, y, x, y);
+        std::array<float, 4> sum{0.0f, 0.0f, 0.0f, 16.0f * float(centre[3]) / 255.0f};
+        for (int sy : {-1, 1})
+            for (int sx : {-1, 1}) {
+                const uint8_t* across = texel(x, y, int64_t(x) + sx, y);
+                const uint8_t* along = texel(x, y, x, int64_t(y) + sy);
+                const uint8_t* diagonal = texel(x, y, int64_t(x) + sx, int64_t(y) + sy);
+                for (int ky : {1, 3})
+                    for (int kx : {1, 3}) {
+                        const int wc = (8 - kx) * (8 - ky), wx = kx * (8 - ky);
+                        const int wy = (8 - kx) * ky, wd = kx * ky;
+                        for (size_t c = 0; c < 3; ++c)
+                            sum[c] += decodeTable[size_t(wc * centre[c] + wx * across[c] + wy * along[c] +
+                                                         wd * diagonal[c])];
+                    }
+            }
+        return sum;  // 16 times the mean
+    };
+    if (levels < 2) return {std::move(level0)};
+    // Level 1 straight from the texels' means (a 2x2 box, an odd last row or column dropped), in
+    // bands of rows across the machine's cores: 16 decodes a channel and texel (about 0.5 s for a
     // 2048² texture on one core), where the box of decoded texels took 4.
+    uint32_t mw = std::max(w / 2, 1u), mh = std::max(h / 2, 1u);
+    std::vector<std::array<float, 4>> means(size_t(mw) * mh);
     auto integrateRows = [&](uint32_t firstRow, uint32_t endRow) {
         for (uint32_t y = firstRow; y < endRow; ++y)
-            for (uint32_t x = 0; x < w; ++x) {
-                const uint8_t* centre = texel(x, y, x, y);
-                std::array<float, 3> sum{};
-                for (int sy : {-1, 1})
-                    for (int sx : {-1, 1}) {
-                        const uint8_t* across = texel(x, y, int64_t(x) + sx, y);
-                        const uint8_t* along = texel(x, y, x, int64_t(y) + sy);
-                        const uint8_t* diagonal = texel(x, y, int64_t(x) + sx, int64_t(y) + sy);
-                        for (int ky : {1, 3})
-                            for (int kx : {1, 3}) {
-                                const int wc = (8 - kx) * (8 - ky), wx = kx * (8 - ky);
-                                const int wy = (8 - kx) * ky, wd = kx * ky;
-                                for (size_t c = 0; c < 3; ++c)
-                                    sum[c] += decodeTable[size_t(wc * centre[c] + wx * across[c] + wy * along[c] +
-                                                                 wd * diagonal[c])];
-                            }
+            for (uint32_t x = 0; x < mw; ++x) {
+                std::array<float, 4> box{};
+                for (uint32_t dy : {0u, 1u})
+                    for (uint32_t dx : {0u, 1u}) {
+                        const std::array<float, 4> m =
+                            texelMean(std::min(2 * x + dx, w - 1), std::min(2 * y + dy, h - 1));
+                        for (size_t c = 0; c < 4; ++c) box[c] += m[c] / 64.0f;
                     }
-                means[size_t(y) * w + x] = {sum[0] / 16.0f, sum[1] / 16.0f, sum[2] / 16.0f, float(centre[3]) / 255.0f};
+                means[size_t(y) * mw + x] = box;
             }
     };
-    const uint32_t bands = std::clamp(std::thread::hardware_concurrency(), 1u, std::max(h / 64, 1u));
+    const uint32_t bands = std::clamp(std::thread::hardware_concurrency(), 1u, std::max(mh / 32, 1u));
     std::vector<std::thread> workers;
-    for (uint32_t b = 1; b < bands; ++b) workers.emplace_back(integrateRows, h * b / bands, h * (b + 1) / bands);
-    integrateRows(0, h / bands);
+    for (uint32_t b = 1; b < bands; ++b) workers.emplace_back(integrateRows, mh * b / bands, mh * (b + 1) / bands);
+    integrateRows(0, mh / bands);
     for (std::thread& worker : workers) worker.join();
+    auto encoded = [](uint32_t width, uint32_t height, const std::vector<std::array<float, 4>>& level) {
+        gpu::MipLevel out{width, height, std::vector<std::byte>(size_t(width) * height * 4)};
+        for (size_t i = 0; i < level.size(); ++i)
+            for (size_t c = 0; c < 4; ++c) writeChannel(&out.bytes[i * 4], VK_FORMAT_R8G8B8A8_SRGB, c, level[i][c]);
+        return out;
+    };
     std::vector<gpu::MipLevel> chain;
     chain.push_back(std::move(level0));
-    uint32_t mw = w, mh = h;
+    chain.push_back(encoded(mw, mh, means));
     while (chain.size() < levels) {
         const uint32_t nw = std::max(mw / 2, 1u), nh = std::max(mh / 2, 1u);
         std::vector<std::array<float, 4>> next(size_t(nw) * nh);
-        gpu::MipLevel out{nw, nh, std::vector<std::byte>(size_t(nw) * nh * 4)};
         auto mean = [&](uint32_t px, uint32_t py) -> const std::array<float, 4>& {
             return means[size_t(std::min(py, mh - 1)) * mw + std::min(px, mw - 1)];
         };
         for (uint32_t y = 0; y < nh; ++y)
-            for (uint32_t x = 0; x < nw; ++x) {
-                std::array<float, 4>& m = next[size_t(y) * nw + x];
-                for (size_t c = 0; c < 4; ++c) {
-                    m[c] = 0.25f * (mean(2 * x, 2 * y)[c] + mean(2 * x + 1, 2 * y)[c] + mean(2 * x, 2 * y + 1)[c] +
-                                    mean(2 * x + 1, 2 * y + 1)[c]);
-                    writeChannel(&out.bytes[(size_t(y) * nw + x) * 4], VK_FORMAT_R8G8B8A8_SRGB, c, m[c]);
-                }
-            }
+            for (uint32_t x = 0; x < nw; ++x)
+                for (size_t c = 0; c < 4; ++c)
+                    next[size_t(y) * nw + x][c] = 0.25f * (mean(2 * x, 2 * y)[c] + mean(2 * x + 1, 2 * y)[c] +
+                                                           mean(2 * x, 2 * y + 1)[c] + mean(2 * x + 1, 2 * y + 1)[c]);
         means = std::move(next);
         mw = nw, mh = nh;
-        chain.push_back(std::move(out));
+        chain.push_back(encoded(mw, mh, means));
     }
     return chain;
 }
