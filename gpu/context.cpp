@@ -184,7 +184,29 @@ VkBool32 Context::debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
 }
 
 void Context::log(LogLevel level, const std::string& message) const {
+    {
+        std::lock_guard lock(heldMutex_);
+        if (holders_ > 0) {
+            heldMessages_.emplace_back(level, message);
+            return;
+        }
+    }
     if (log_) log_(level, message);
+}
+
+Context::HeldLog::HeldLog(const Context& context) : context_(context) {
+    std::lock_guard lock(context_.heldMutex_);
+    ++context_.holders_;
+}
+
+Context::HeldLog::~HeldLog() {
+    std::vector<std::pair<LogLevel, std::string>> messages;
+    {
+        std::lock_guard lock(context_.heldMutex_);
+        if (--context_.holders_ > 0) return;
+        messages.swap(context_.heldMessages_);
+    }
+    for (const auto& [level, message] : messages) context_.log(level, message);
 }
 
 // LeakSanitizer walks allocation stacks at exit; when the loader has unloaded lavapipe (and the

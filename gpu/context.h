@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -76,6 +77,19 @@ public:
     // Validation messages of error severity since creation.
     uint32_t validationErrorCount() const { return validationErrors_.load(); }
     void log(LogLevel level, const std::string& message) const;
+    // While one lives, messages logged on any thread wait and are logged, in order, on the thread
+    // that ends it: work spread over threads of the plugin's own (PipelineCache::prepare) reports
+    // to the host's log callback on the thread that called into the plugin.
+    class HeldLog {
+    public:
+        explicit HeldLog(const Context& context);
+        ~HeldLog();
+        HeldLog(const HeldLog&) = delete;
+        HeldLog& operator=(const HeldLog&) = delete;
+
+    private:
+        const Context& context_;
+    };
 
     // Records and runs a command buffer to completion (frames, uploads at sync time). Not re-entrant.
     template <typename F>
@@ -116,6 +130,9 @@ private:
     VkCommandBuffer oneShot_ = VK_NULL_HANDLE;  // reused by every submitAndWait
     bool recording_ = false;
     std::atomic<uint32_t> validationErrors_{0};
+    mutable std::mutex heldMutex_;
+    mutable int holders_ = 0;  // HeldLog objects alive
+    mutable std::vector<std::pair<LogLevel, std::string>> heldMessages_;
 };
 
 template <typename F>

@@ -168,6 +168,9 @@ ImageHandle FrameGraph::PassBuilder::colorAttachment(ImageHandle h, VkClearColor
     return attachment(h, false, VK_ATTACHMENT_LOAD_OP_CLEAR, {.color = clear});
 }
 void FrameGraph::PassBuilder::unusedColorAttachment() { graph_.passes_[pass_].attachments.push_back({}); }
+void FrameGraph::PassBuilder::usesPipeline(PipelineCache::Request request) {
+    graph_.passes_[pass_].pipelines.push_back(std::move(request));
+}
 ImageHandle FrameGraph::PassBuilder::depthStencilAttachment(ImageHandle h, Load load) {
     return attachment(h, true, loadOp(load), {});
 }
@@ -254,7 +257,7 @@ BufferHandle FrameGraph::createBuffer(const std::string& name, std::vector<uint8
 
 void FrameGraph::addPass(const std::string& name, PassKind kind, const std::function<void(PassBuilder&)>& setup,
                          RecordFn record) {
-    passes_.push_back({name, kind, {}, {}, std::move(record)});
+    passes_.push_back({name, kind, {}, {}, std::move(record), {}});
     PassBuilder builder(*this, static_cast<uint32_t>(passes_.size() - 1));
     setup(builder);
 }
@@ -535,6 +538,11 @@ void FrameGraph::submitted() {
 }
 
 void FrameGraph::execute(Device& device, PipelineCache& pipelines, VkCommandBuffer cmd, Timestamps* timestamps) {
+    std::vector<const PipelineCache::Request*> requests;
+    for (size_t p = 0; p < passes_.size(); ++p)
+        if (!compiled_[p].culled)
+            for (const PipelineCache::Request& r : passes_[p].pipelines) requests.push_back(&r);
+    pipelines.prepare(requests);
     PassResources resources(*this, device, pipelines);
     for (size_t p = 0; p < passes_.size(); ++p) {
         const CompiledPass& cp = compiled_[p];

@@ -101,8 +101,8 @@ struct TransientMemory {
 // The memory an image of `desc` takes (VkMemoryRequirements): size, alignment, memory types.
 using ImageMemoryFn = std::function<VkMemoryRequirements(const ImageDesc&)>;
 
-// What a pass's record callback works with: the device, its pipelines (compiled the first time a
-// pass records), and the Vulkan objects behind the graph's handles.
+// What a pass's record callback works with: the device, its pipelines (those it declared built
+// before the frame records), and the Vulkan objects behind the graph's handles.
 class PassResources {
 public:
     PassResources(const class FrameGraph& graph, Device& device, PipelineCache& pipelines)
@@ -147,6 +147,9 @@ public:
         // A colour slot bound to nothing (VK_NULL_HANDLE), so that the attachments after it keep
         // their locations; the pass's pipelines name VK_FORMAT_UNDEFINED there.
         void unusedColorAttachment();
+        // A pipeline the pass binds as it records: execute() builds the missing pipelines of every
+        // pass it records before recording any, together (PipelineCache::prepare).
+        void usesPipeline(PipelineCache::Request request);
 
     private:
         friend class FrameGraph;
@@ -196,7 +199,7 @@ public:
     // Makes what the compiled frame needs: transient images placed as compile() planned, new
     // persistent images and this frame's buffers.
     void realize(FrameBackend& backend);
-    // Records every pass that was not culled.
+    // Records every pass that was not culled, once the pipelines they declared are built.
     void execute(Device& device, PipelineCache& pipelines, VkCommandBuffer cmd, Timestamps* timestamps);
     // The recorded frame was submitted: persistent images keep the layouts it leaves them in, and
     // persistent images it wrote hold something.
@@ -236,6 +239,7 @@ private:
         std::vector<Access> accesses;
         std::vector<Attachment> attachments;
         RecordFn record;
+        std::vector<PipelineCache::Request> pipelines;
     };
     enum class Residency { Transient, Texture, Persistent };
     struct ImageResource {

@@ -27,15 +27,17 @@ gpu::GraphicsPipelineDesc describeClipVolumePipeline(const std::vector<ShaderBin
 gpu::ImageHandle addClipVolumePass(gpu::FrameGraph& graph, const FrameScene& scene, gpu::ImageHandle depthStencil) {
     if (scene.clipVolumes.empty()) return depthStencil;
     const std::vector<ShaderBinding> bindings{bufferRead(scene.buffers.instances)};
+    const gpu::PipelineCache::Request pipelineRequest = gpu::PipelineCache::request<gpu::GraphicsPipelineDesc>(
+        "clip_volumes", [bindings] { return describeClipVolumePipeline(bindings); });
     graph.addPass(
         "clip_volumes", gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {
+            pass.usesPipeline(pipelineRequest);
             declareBindings(pass, bindings, ShaderStage::Graphics);
             depthStencil = pass.depthStencilAttachment(depthStencil);
         },
-        [&scene, bindings](VkCommandBuffer cmd, const gpu::PassResources& res) {
-            const gpu::Pipeline& pipeline = res.pipelines().get<gpu::GraphicsPipelineDesc>(
-                "clip_volumes", [&] { return describeClipVolumePipeline(bindings); });
+        [&scene, bindings, pipelineRequest](VkCommandBuffer cmd, const gpu::PassResources& res) {
+            const gpu::Pipeline& pipeline = res.pipelines().get(pipelineRequest);
             bindBindings(cmd, pipeline, bindings, res);
             for (const ClipVolume& volume : scene.clipVolumes) {
                 vkCmdSetStencilWriteMask(cmd, VK_STENCIL_FACE_FRONT_AND_BACK, volume.stencilBit);

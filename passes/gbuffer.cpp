@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <tuple>
 
 namespace obscura::passes {
 namespace {
@@ -167,6 +168,54 @@ std::vector<Ordered> orderedDraws(const FrameScene& scene, const CulledDraws* cu
     return ordered;
 }
 
+// Ordered draws that bind one pipeline, and its bindings: the runs of a pass's draws, up to `end`.
+struct PipelineRun {
+    size_t end;
+    gpu::PipelineCache::Request pipeline;
+    std::vector<ShaderBinding> bindings;
+};
+
+std::vector<PipelineRun> pipelineRuns(const std::vector<Ordered>& ordered, const FrameScene& scene,
+                                      const std::optional<CulledDraws>& culled, gpu::ImageHandle bestFitNormals,
+                                      VkSampleCountFlagBits samples, bool emissionTarget) {
+    // MSAA samples resolved over the pixel's box (a still's frames, the reference's sub-frames:
+    // SampleResolve::PixelBox) are shaded each at its own position (common/gbuffer_surface.glsl
+    // PER_SAMPLE_SHADING) where the device can; sphere impostors find their samples' hits
+    // themselves and stay per pixel.
+    const bool pixelBoxSamples =
+        samples > VK_SAMPLE_COUNT_1_BIT && scene.cameraData.sampleResolve == uint32_t(SampleResolve::PixelBox);
+    std::vector<PipelineRun> runs;
+    std::tuple<Variant, Surface, bool, bool, uint32_t> bound{};
+    for (size_t i = 0; i < ordered.size(); ++i) {
+        const Ordered& o = ordered[i];
+        const Surface surface = surfaceOf(*o.draw);
+        const bool culledDraw = culled && o.draw->culledOnGpu();
+        const bool backFaces = o.draw->cullBackFaces;
+        const uint32_t features = o.draw->materialFeatures;
+        const auto state = std::tuple(o.variant, surface, culledDraw, backFaces, features);
+        if (!runs.empty() && state == bound) {
+            runs.back().end = i + 1;
+            continue;
+        }
+        bound = state;
+        std::vector<ShaderBinding> bindings =
+            gbufferBindings(readsMotion(o.variant), scene.buffers, bestFitNormals, culledDraw ? &*culled : nullptr);
+        const bool perSample = pixelBoxSamples && surface != Surface::Spheres;
+        std::string name = std::string(pipelineName(o.variant)) + "." + surfaceName(surface) +
+                           (culledDraw ? "culled." : "") + (backFaces ? "backFacesCulled." : "") +
+                           (perSample ? "perSample." : "") + (emissionTarget ? "emission." : "") +
+                           std::to_string(samples) + gpu::specializationSuffix({{kMaterialFeaturesConstant, features}});
+        auto build = [=, variant = o.variant](gpu::Device& device) {
+            const bool sampleShading = perSample && device.context().enabledFeatures().sampleRateShading;
+            return std::make_unique<gpu::Pipeline>(
+                device, describeGBufferPipeline(variant, surface, culledDraw, backFaces, samples, sampleShading,
+                                                emissionTarget, features, bindings));
+        };
+        runs.push_back({i + 1, {std::move(name), std::move(build)}, std::move(bindings)});
+    }
+    return runs;
+}
+
 // One raster pass of the G-buffer over `gb`: cleared first, or (the late pass) drawn over.
 GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, const FrameScene& scene, GBuffer gb,
                              bool clear, gpu::ImageHandle bestFitNormals, VkSampleCountFlagBits samples,
@@ -176,10 +225,13 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
         std::any_of(ordered.begin(), ordered.end(), [](const Ordered& o) { return readsMotion(o.variant); });
     std::optional<CulledDraws> culledDraws;
     if (culled) culledDraws = *culled;
+    const std::vector<PipelineRun> runs =
+        pipelineRuns(ordered, scene, culledDraws, bestFitNormals, samples, gb.emission.valid());
 
     graph.addPass(
         name, gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {
+            for (const PipelineRun& run : runs) pass.usesPipeline(run.pipeline);
             declareBindings(pass, gbufferBindings(anyMotion, scene.buffers, bestFitNormals), ShaderStage::Graphics);
             if (culled) {
                 declareBindings(pass, {bufferRead(culled->lists)}, ShaderStage::Graphics);
@@ -212,64 +264,29 @@ GBuffer addGBufferRasterPass(gpu::FrameGraph& graph, const std::string& name, co
                 }
             }
         },
-        [ordered, &scene, bestFitNormals, samples, alphaToCoverage, culledDraws,
-         emissionTarget = gb.emission.valid()](VkCommandBuffer cmd, const gpu::PassResources& res) {
+        [ordered, runs, &scene, samples, alphaToCoverage, culledDraws](VkCommandBuffer cmd, const gpu::PassResources& res) {
             gpu::Device& device = res.device();
-            // MSAA samples resolved over the pixel's box (a still's frames, the reference's
-            // sub-frames: SampleResolve::PixelBox) are shaded each at its own position
-            // (common/gbuffer_surface.glsl PER_SAMPLE_SHADING); sphere impostors find their
-            // samples' hits themselves and stay per pixel.
-            const bool perSampleShading = samples > VK_SAMPLE_COUNT_1_BIT &&
-                                          scene.cameraData.sampleResolve == uint32_t(SampleResolve::PixelBox) &&
-                                          device.context().enabledFeatures().sampleRateShading;
-            const gpu::Pipeline* bound = nullptr;
-            Variant boundVariant = Variant::Static;
-            Surface boundSurface = Surface::Opaque;
-            bool boundCulled = false, boundBackFaces = false;
-            uint32_t boundFeatures = 0;
-            const MaterialTextures* pushed = nullptr;
-            for (const Ordered& o : ordered) {
-                // Draws come grouped by variant: the pipeline changes only between groups.
-                const Surface surface = surfaceOf(*o.draw);
-                const bool culledDraw = culledDraws && o.draw->culledOnGpu();
-                const bool backFaces = o.draw->cullBackFaces;
-                const uint32_t features = o.draw->materialFeatures;
-                if (!bound || o.variant != boundVariant || surface != boundSurface || culledDraw != boundCulled ||
-                    backFaces != boundBackFaces || features != boundFeatures) {
-                    const std::vector<ShaderBinding> bindings =
-                        gbufferBindings(readsMotion(o.variant), scene.buffers, bestFitNormals,
-                                        culledDraw ? &*culledDraws : nullptr);
-                    const bool perSample = perSampleShading && surface != Surface::Spheres;
-                    bound = &res.pipelines().get<gpu::GraphicsPipelineDesc>(
-                        std::string(pipelineName(o.variant)) + "." + surfaceName(surface) +
-                            (culledDraw ? "culled." : "") + (backFaces ? "backFacesCulled." : "") +
-                            (perSample ? "perSample." : "") + (emissionTarget ? "emission." : "") +
-                            std::to_string(samples) +
-                            gpu::specializationSuffix({{kMaterialFeaturesConstant, features}}),
-                        [&] {
-                            return describeGBufferPipeline(o.variant, surface, culledDraw, backFaces, samples, perSample,
-                                                           emissionTarget, features, bindings);
-                        });
-                    boundVariant = o.variant;
-                    boundSurface = surface;
-                    boundBackFaces = backFaces;
-                    boundCulled = culledDraw;
-                    boundFeatures = features;
-                    bindBindings(cmd, *bound, bindings, res);
-                    pushed = nullptr;  // a new layout: the pushed set starts over
+            size_t first = 0;
+            for (const PipelineRun& run : runs) {
+                const gpu::Pipeline& pipeline = res.pipelines().get(run.pipeline);
+                bindBindings(cmd, pipeline, run.bindings, res);
+                const MaterialTextures* pushed = nullptr;  // a new layout: the pushed set starts over
+                for (size_t i = first; i < run.end; ++i) {
+                    const Draw& draw = *ordered[i].draw;
+                    if (culledDraws && draw.culledOnGpu()) {
+                        // The draw's records from its list; its instance count from the culling pass.
+                        GBufferPush push{culledDraws->listOffset(draw.firstCandidate), uint32_t(samples),
+                                         alphaToCoverage ? 1u : 0u};
+                        IndirectDraw indirect{res.buffer(culledDraws->commands),
+                                              VkDeviceSize(culledDraws->command(draw.cullSlot)) *
+                                                  sizeof(CulledDrawCommand)};
+                        recordMaterialDraw(device, cmd, pipeline, scene, draw, pushed, &push, sizeof(push), &indirect);
+                    } else {
+                        GBufferPush push{draw.instanceIndex, uint32_t(samples), alphaToCoverage ? 1u : 0u};
+                        recordMaterialDraw(device, cmd, pipeline, scene, draw, pushed, &push, sizeof(push));
+                    }
                 }
-                if (culledDraw) {
-                    // The draw's records from its list; its instance count from the culling pass.
-                    GBufferPush push{culledDraws->listOffset(o.draw->firstCandidate), uint32_t(samples),
-                                     alphaToCoverage ? 1u : 0u};
-                    IndirectDraw indirect{res.buffer(culledDraws->commands),
-                                          VkDeviceSize(culledDraws->command(o.draw->cullSlot)) *
-                                              sizeof(CulledDrawCommand)};
-                    recordMaterialDraw(device, cmd, *bound, scene, *o.draw, pushed, &push, sizeof(push), &indirect);
-                } else {
-                    GBufferPush push{o.draw->instanceIndex, uint32_t(samples), alphaToCoverage ? 1u : 0u};
-                    recordMaterialDraw(device, cmd, *bound, scene, *o.draw, pushed, &push, sizeof(push));
-                }
+                first = run.end;
             }
         });
     return gb;

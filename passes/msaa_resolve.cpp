@@ -48,18 +48,21 @@ gpu::ImageHandle addDepthStencilPass(gpu::FrameGraph& graph, const FrameScene& s
     gpu::ImageHandle depthStencil =
         graph.createImage("resolved.depth", imageDesc2D(kDepthFormat, scene.width, scene.height));
     std::vector<ShaderBinding> bindings{sampled(centreDepth), sampled(edgeStencil)};
+    const gpu::PipelineCache::Request depthPipeline = gpu::PipelineCache::request<gpu::GraphicsPipelineDesc>(
+        "msaa_resolve_depth", [bindings] { return describeDepthPipeline(bindings); });
+    const gpu::PipelineCache::Request edgeMaskPipeline = gpu::PipelineCache::request<gpu::GraphicsPipelineDesc>(
+        "msaa_edge_mask", [bindings] { return describeEdgeMaskPipeline(bindings); });
     graph.addPass(
         "msaa_resolve_depth", gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {
+            pass.usesPipeline(depthPipeline);
+            pass.usesPipeline(edgeMaskPipeline);
             declareBindings(pass, bindings, ShaderStage::Graphics);
             depthStencil = pass.depthStencilAttachment(depthStencil, VkClearDepthStencilValue{1.0f, 0});
         },
-        [bindings](VkCommandBuffer cmd, const gpu::PassResources& res) {
-            gpu::PipelineCache& pipelines = res.pipelines();
-            const gpu::Pipeline& depth = pipelines.get<gpu::GraphicsPipelineDesc>(
-                "msaa_resolve_depth", [&] { return describeDepthPipeline(bindings); });
-            const gpu::Pipeline& edgeMask = pipelines.get<gpu::GraphicsPipelineDesc>(
-                "msaa_edge_mask", [&] { return describeEdgeMaskPipeline(bindings); });
+        [bindings, depthPipeline, edgeMaskPipeline](VkCommandBuffer cmd, const gpu::PassResources& res) {
+            const gpu::Pipeline& depth = res.pipelines().get(depthPipeline);
+            const gpu::Pipeline& edgeMask = res.pipelines().get(edgeMaskPipeline);
             for (const gpu::Pipeline* pipeline : {&depth, &edgeMask}) {
                 bindBindings(cmd, *pipeline, bindings, res);
                 if (pipeline == &edgeMask)

@@ -167,20 +167,21 @@ ComputeOutputs addComputePass(gpu::FrameGraph& graph, ComputePass pass) {
 ComputeOutputs addComputeDispatches(gpu::FrameGraph& graph, const std::string& label,
                                     std::vector<ComputePass> dispatches) {
     ComputeOutputs outputs;
+    const ComputePass& first = dispatches.front();
+    gpu::PipelineCache::Request pipelineRequest = gpu::PipelineCache::request<gpu::ComputePipelineDesc>(
+        first.shader + gpu::specializationSuffix(first.specialization),
+        [desc = gpu::ComputePipelineDesc{first.shader + ".comp", bindingLayout(first.bindings),
+                                         uint32_t(first.constants.size()), first.specialization}] { return desc; });
     graph.addPass(
         label, gpu::PassKind::Compute,
         [&](gpu::FrameGraph::PassBuilder& builder) {
+            builder.usesPipeline(pipelineRequest);
             std::vector<const std::vector<ShaderBinding>*> lists;
             for (const ComputePass& d : dispatches) lists.push_back(&d.bindings);
             outputs = declare(builder, lists, ShaderStage::Compute);
         },
-        [dispatches](VkCommandBuffer cmd, const gpu::PassResources& res) {
-            const ComputePass& first = dispatches.front();
-            const gpu::Pipeline& pipeline = res.pipelines().get<gpu::ComputePipelineDesc>(
-                first.shader + gpu::specializationSuffix(first.specialization), [&] {
-                    return gpu::ComputePipelineDesc{first.shader + ".comp", bindingLayout(first.bindings),
-                                                    uint32_t(first.constants.size()), first.specialization};
-                });
+        [dispatches, pipelineRequest](VkCommandBuffer cmd, const gpu::PassResources& res) {
+            const gpu::Pipeline& pipeline = res.pipelines().get(pipelineRequest);
             for (const ComputePass& d : dispatches) {
                 bindBindings(cmd, pipeline, d.bindings, res);
                 if (!d.constants.empty())

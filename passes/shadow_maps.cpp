@@ -95,57 +95,87 @@ bool culledInView(const ShadowMapView& view, size_t i) {
     return !view.culled.empty() && view.culled[i].cullSlot != Draw::kNotCulledOnGpu;
 }
 
-// Records the draws of every view in `views` that are `caster`s, each view into its tile. Under
-// GPU occlusion culling (`culled`) the culled draws (`culledDraws`: those alone, or the others)
-// draw their instances of `culled`'s phase.
-void recordViews(VkCommandBuffer cmd, const gpu::PassResources& res, const FrameScene& scene,
-                 const std::vector<uint32_t>& views, Caster caster, const CulledDraws* culled = nullptr,
-                 bool culledDraws = false) {
-    const std::vector<ShaderBinding> bindings = shadowBindings(scene.buffers, caster, culledDraws ? culled : nullptr);
-    const char* names[] = {"shadow_depth", "shadow_depth_cutout", "shadow_depth_spheres"};
-    auto pipelineFor = [&](bool cullBackFaces) -> const gpu::Pipeline& {
-        return res.pipelines().get<gpu::GraphicsPipelineDesc>(
-            std::string(names[int(caster)]) + (culledDraws ? ".culled" : "") + (cullBackFaces ? ".backFacesCulled" : ""),
-            [&] { return describeShadowDepthPipeline(bindings, caster, culledDraws, cullBackFaces); });
-    };
-    const gpu::Pipeline* bound = nullptr;
+// The draws of the views `views` that are `caster`s, in the order they are recorded: fn(view, i,
+// draw) for draw number i of `view`. Under GPU occlusion culling (`culled`) the culled draws
+// (`culledDraws`: those alone, or the others).
+template <typename Fn>
+void forEachCasterDraw(const FrameScene& scene, const std::vector<uint32_t>& views, Caster caster,
+                       const CulledDraws* culled, bool culledDraws, Fn&& fn) {
     for (uint32_t v : views) {
         const ShadowMapView& view = scene.shadows.views[v];
-        VkViewport viewport{float(view.x), float(view.y), float(view.size), float(view.size), 0.0f, 1.0f};
-        VkRect2D tile{{int32_t(view.x), int32_t(view.y)}, {view.size, view.size}};
-        DepthOnlyPush push{view.viewProjection, 0, kDepthBiasSlope};
-        bool inTile = false;
         for (size_t i = 0; i < view.draws.size(); ++i) {
             const Draw& draw = scene.draws[view.draws[i]];
             if (casterOf(draw) != caster || !casts(draw)) continue;
             if (culled && culledInView(view, i) != culledDraws) continue;
-            const gpu::Pipeline& pipeline = pipelineFor(!view.cullBackFaces.empty() && view.cullBackFaces[i]);
-            if (&pipeline != bound) {
-                bindBindings(cmd, pipeline, bindings, res);
-                bound = &pipeline;
-            }
-            if (caster != Caster::Opaque) {
-                const MaterialTextures& textures = scene.materialTextures[draw.textures];
-                gpu::pushSampledImages(res.device(), cmd, pipeline,
-                                       {{textures.samplers[kTextureOpacity], textures.images[kTextureOpacity]->view,
-                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}});
-            }
-            if (!inTile) {
-                vkCmdSetViewport(cmd, 0, 1, &viewport);
-                vkCmdSetScissor(cmd, 0, 1, &tile);
-                inTile = true;
-            }
-            if (culledDraws) {
-                const CulledViewDraw& c = view.culled[i];
-                push.instanceIndex = culled->listOffset(c.firstCandidate);
-                IndirectDraw indirect{res.buffer(culled->commands),
-                                      VkDeviceSize(culled->command(c.cullSlot)) * sizeof(CulledDrawCommand)};
-                recordDepthOnlyDraw(cmd, pipeline, draw, push, &indirect);
-            } else {
-                recordDepthOnlyDraw(cmd, pipeline, draw, push);
-            }
+            fn(view, i, draw);
         }
     }
+}
+
+bool cullsBackFaces(const ShadowMapView& view, size_t i) { return !view.cullBackFaces.empty() && view.cullBackFaces[i]; }
+
+// The pipeline the draws of one forEachCasterDraw call bind, by whether the draw culls back faces.
+gpu::PipelineCache::Request shadowPipeline(const FrameScene& scene, Caster caster, const CulledDraws* culled,
+                                           bool culledDraws, bool cullBackFaces) {
+    const char* names[] = {"shadow_depth", "shadow_depth_cutout", "shadow_depth_spheres"};
+    return gpu::PipelineCache::request<gpu::GraphicsPipelineDesc>(
+        std::string(names[int(caster)]) + (culledDraws ? ".culled" : "") + (cullBackFaces ? ".backFacesCulled" : ""),
+        [bindings = shadowBindings(scene.buffers, caster, culledDraws ? culled : nullptr), caster, culledDraws,
+         cullBackFaces] { return describeShadowDepthPipeline(bindings, caster, culledDraws, cullBackFaces); });
+}
+
+// The casters and culled phases one raster pass records, in order: for a caster, its draws
+// outside GPU culling (culledDraws false; none in the late pass, which draws the culled draws'
+// late instances alone), then its culled draws.
+template <typename Fn>
+void forEachRecordedGroup(const CulledDraws* culled, Fn&& fn) {
+    const bool late = culled && culled->phase == CulledDraws::Phase::Late;
+    for (Caster caster : {Caster::Opaque, Caster::Cutout, Caster::Spheres}) {
+        if (!late) fn(caster, false);
+        if (culled) fn(caster, true);
+    }
+}
+
+// Records the draws of every view in `views` that are `caster`s, each view into its tile.
+void recordViews(VkCommandBuffer cmd, const gpu::PassResources& res, const FrameScene& scene,
+                 const std::vector<uint32_t>& views, Caster caster, const CulledDraws* culled, bool culledDraws) {
+    const std::vector<ShaderBinding> bindings = shadowBindings(scene.buffers, caster, culledDraws ? culled : nullptr);
+    const gpu::Pipeline* bound = nullptr;
+    const gpu::Pipeline* pipelines[2] = {nullptr, nullptr};  // by whether the draw culls back faces
+    const ShadowMapView* inTile = nullptr;
+    forEachCasterDraw(scene, views, caster, culled, culledDraws, [&](const ShadowMapView& view, size_t i, const Draw& draw) {
+        const bool backFaces = cullsBackFaces(view, i);
+        if (!pipelines[backFaces])
+            pipelines[backFaces] = &res.pipelines().get(shadowPipeline(scene, caster, culled, culledDraws, backFaces));
+        const gpu::Pipeline& pipeline = *pipelines[backFaces];
+        if (&pipeline != bound) {
+            bindBindings(cmd, pipeline, bindings, res);
+            bound = &pipeline;
+        }
+        if (caster != Caster::Opaque) {
+            const MaterialTextures& textures = scene.materialTextures[draw.textures];
+            gpu::pushSampledImages(res.device(), cmd, pipeline,
+                                   {{textures.samplers[kTextureOpacity], textures.images[kTextureOpacity]->view,
+                                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}});
+        }
+        if (inTile != &view) {
+            VkViewport viewport{float(view.x), float(view.y), float(view.size), float(view.size), 0.0f, 1.0f};
+            VkRect2D tile{{int32_t(view.x), int32_t(view.y)}, {view.size, view.size}};
+            vkCmdSetViewport(cmd, 0, 1, &viewport);
+            vkCmdSetScissor(cmd, 0, 1, &tile);
+            inTile = &view;
+        }
+        DepthOnlyPush push{view.viewProjection, 0, kDepthBiasSlope};
+        if (culledDraws) {
+            const CulledViewDraw& c = view.culled[i];
+            push.instanceIndex = culled->listOffset(c.firstCandidate);
+            IndirectDraw indirect{res.buffer(culled->commands),
+                                  VkDeviceSize(culled->command(c.cullSlot)) * sizeof(CulledDrawCommand)};
+            recordDepthOnlyDraw(cmd, pipeline, draw, push, &indirect);
+        } else {
+            recordDepthOnlyDraw(cmd, pipeline, draw, push);
+        }
+    });
 }
 
 // A kept atlas keeps its texels outside the views rendered again: those tiles alone are cleared.
@@ -197,24 +227,31 @@ gpu::ImageHandle addShadowRasterPass(gpu::FrameGraph& graph, const std::string& 
     gpu::ImageHandle atlas = render.atlas;
     std::optional<CulledDraws> culledDraws;
     if (culled) culledDraws = *culled;
-    const bool late = culled && culled->phase == CulledDraws::Phase::Late;
     graph.addPass(
         name, gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {
+            forEachRecordedGroup(culled, [&](Caster caster, bool culledGroup) {
+                bool used[2] = {false, false};  // by draws that keep and that cull back faces
+                forEachCasterDraw(scene, render.views, caster, culled, culledGroup,
+                                  [&](const ShadowMapView& view, size_t i, const Draw&) {
+                                      used[cullsBackFaces(view, i)] = true;
+                                  });
+                for (bool cullBackFaces : {false, true})
+                    if (used[cullBackFaces])
+                        pass.usesPipeline(shadowPipeline(scene, caster, culled, culledGroup, cullBackFaces));
+            });
             declareBindings(pass, shadowBindings(scene.buffers, Caster::Cutout, culled), ShaderStage::Graphics);
             if (culled) pass.read(culled->commands, gpu::Usage::IndirectCommandRead);
             // An empty view list leaves the atlas cleared to the far depth: nothing casts.
             atlas = first && render.wholeAtlas ? pass.depthStencilAttachment(atlas, VkClearDepthStencilValue{1.0f, 0})
                                                : pass.depthStencilAttachment(atlas);
         },
-        [&scene, render, first, late, culledDraws](VkCommandBuffer cmd, const gpu::PassResources& res) {
+        [&scene, render, first, culledDraws](VkCommandBuffer cmd, const gpu::PassResources& res) {
             if (first && !render.wholeAtlas) clearTiles(cmd, scene, render.views);
             const CulledDraws* phase = culledDraws ? &*culledDraws : nullptr;
-            for (Caster caster : {Caster::Opaque, Caster::Cutout, Caster::Spheres}) {
-                // The late pass draws the culled draws' late instances alone.
-                if (!late) recordViews(cmd, res, scene, render.views, caster, phase, false);
-                if (phase) recordViews(cmd, res, scene, render.views, caster, phase, true);
-            }
+            forEachRecordedGroup(phase, [&](Caster caster, bool culledGroup) {
+                recordViews(cmd, res, scene, render.views, caster, phase, culledGroup);
+            });
         });
     return atlas;
 }
