@@ -54,10 +54,11 @@ uint8_t nearest(const std::array<float, 8>& palette, float v) {
     return std::abs(palette[below] - v) <= std::abs(palette[above] - v) ? below : above;
 }
 
-float angleBetween(const std::array<float, 3>& a, const std::array<float, 3>& b) {
-    const float d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    return std::acos(std::clamp(d, -1.0f, 1.0f));
+float cosineBetween(const std::array<float, 3>& a, const std::array<float, 3>& b) {
+    return std::clamp(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], -1.0f, 1.0f);
 }
+
+float angleBetween(const std::array<float, 3>& a, const std::array<float, 3>& b) { return std::acos(cosineBetween(a, b)); }
 
 struct Block {
     std::array<std::array<float, 3>, kTexels> reference;
@@ -84,18 +85,21 @@ Encoded perChannel(const Block& block) {
 }
 
 // Given endpoints, each texel's index pair minimising its angle among the values bracketing its
-// targets (which include the nearest of each channel, the common encoder's pair).
+// targets (which include the nearest of each channel, the common encoder's pair). The angle falls
+// as the cosine rises, so the pairs are compared by their cosines and only the chosen one's angle
+// is taken (the search evaluates this for every endpoint move: one arc cosine a texel, not four).
 Encoded jointIndices(const Block& block, Bc4 x, Bc4 y) {
     Encoded e{x, y};
     const auto px = x.palette(), py = y.palette();
     for (size_t t = 0; t < kTexels; ++t) {
         const auto bx = bracket(px, block.x[t]), by = bracket(py, block.y[t]);
-        float best = 10.0f;
+        float bestCosine = -2.0f;
         for (uint8_t i : bx)
             for (uint8_t j : by) {
-                const float a = angleBetween(reconstructNormal(px[i], py[j]), block.reference[t]);
-                if (a < best) best = a, e.ix[t] = i, e.iy[t] = j;
+                const float c = cosineBetween(reconstructNormal(px[i], py[j]), block.reference[t]);
+                if (c > bestCosine) bestCosine = c, e.ix[t] = i, e.iy[t] = j;
             }
+        const float best = std::acos(bestCosine);
         e.totalAngle += best;
         e.maxAngle = std::max(e.maxAngle, best);
     }

@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <future>
 #include <utility>
 
 namespace obscura::harness {
@@ -124,21 +125,18 @@ void Session::replaceScene(std::unique_ptr<usda::Stage> stage, std::unique_ptr<U
 std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::string& scenePath,
                                                                   const usda::StageOptions& options) {
     std::unique_ptr<Session> s(new Session());
+    // The plugin is loaded and its delegate (the GPU device, about as long as a small scene takes
+    // to read) made while the stage is read; a scene that cannot be read is reported first.
+    std::future<std::optional<SessionError>> delegate = std::async(std::launch::async, [session = s.get()] {
+        return session->createDelegate();
+    });
     auto opened = openStage(scenePath, options);
-    if (auto* error = std::get_if<SessionError>(&opened)) return *error;
-    s->stage_ = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));
     s->phases_.lap("stage");
-
-    auto plugin = loadBestPlugin();
-    if (auto* error = std::get_if<SessionError>(&plugin)) return *error;
-    s->plugin_.emplace(std::move(std::get<LoadedPlugin>(plugin)));
-    s->phases_.lap("plugin");
-
-    ObscuraDelegateCreateInfo info{OBSCURA_STRUCTURE_TYPE_DELEGATE_CREATE_INFO, nullptr, sizeof(ObscuraDelegateCreateInfo),
-                                   nullptr, -1, &Session::logToStderr, s.get()};
-    if (s->api().createDelegate(&info, &s->delegate_) != OBSCURA_OK)
-        return SessionError{kExitPluginOrDevice, std::string("cannot create a delegate: ") + s->api().lastError(nullptr)};
+    std::optional<SessionError> delegateError = delegate.get();
     s->phases_.lap("delegate");
+    if (auto* error = std::get_if<SessionError>(&opened)) return *error;
+    if (delegateError) return *delegateError;
+    s->stage_ = std::move(std::get<std::unique_ptr<usda::Stage>>(opened));
 
     // The scene's units, for settings given in metres (ssao:radius).
     double metersPerUnit = s->stage_->metadata().metersPerUnit;
@@ -155,6 +153,17 @@ std::variant<std::unique_ptr<Session>, SessionError> Session::open(const std::st
         return SessionError{kExitPluginOrDevice, s->lastError()};
     s->phases_.lap("populate");
     return s;
+}
+
+std::optional<SessionError> Session::createDelegate() {
+    auto plugin = loadBestPlugin();
+    if (auto* error = std::get_if<SessionError>(&plugin)) return *error;
+    plugin_.emplace(std::move(std::get<LoadedPlugin>(plugin)));
+    ObscuraDelegateCreateInfo info{OBSCURA_STRUCTURE_TYPE_DELEGATE_CREATE_INFO, nullptr, sizeof(ObscuraDelegateCreateInfo),
+                                   nullptr, -1, &Session::logToStderr, this};
+    if (api().createDelegate(&info, &delegate_) != OBSCURA_OK)
+        return SessionError{kExitPluginOrDevice, std::string("cannot create a delegate: ") + api().lastError(nullptr)};
+    return std::nullopt;
 }
 
 Session::~Session() {

@@ -58,8 +58,9 @@ public:
     // Also print the plugin's info messages (device, loaded textures, the MSAA tagged share).
     void setVerbose(bool verbose) { verbose_ = verbose; }
     bool verbose() const { return verbose_; }
-    // The phases of `open` (stage, plugin, delegate and device, populate), then whatever the
-    // command laps on it.
+    // The phases of `open` (stage: reading the scene, while the plugin is loaded and its delegate
+    // made; delegate: the wait for that beyond the stage; populate), then whatever the command
+    // laps on it.
     PhaseClock& phases() { return phases_; }
 
     // Reads a scene file as `open` does (USD layers, or glTF/FBX/OBJ through Assimp).
@@ -75,6 +76,8 @@ public:
 private:
     Session() = default;
     static void logToStderr(void* user, ObscuraLogLevel level, const char* message);
+    // Loads the plugin (loadBestPlugin) and creates its delegate, logging to stderr.
+    std::optional<SessionError> createDelegate();
 
     std::optional<LoadedPlugin> plugin_;
     std::unique_ptr<usda::Stage> stage_;
