@@ -62,36 +62,39 @@ TransparentResult addTransparentPass(gpu::FrameGraph& graph, const FrameScene& s
                                         bufferRead(environment.irradiance),
                                         sampled(environment.prefiltered, environment.sampler)};
 
-    // Built for the draw's material features and the frame's kinds of light.
-    auto pipelineFor = [hdrFormat, bindings, lightKinds = scene.lightKinds](const Draw& draw) {
+    // Built for the draw's material features and the frame's kinds of light: one request a draw,
+    // made once here for the declaration and the recording alike.
+    std::vector<gpu::PipelineCache::Request> pipelines;
+    for (uint32_t index : draws) {
+        const Draw& draw = scene.draws[index];
         const std::vector<gpu::SpecializationConstant> specialization{{kMaterialFeaturesConstant, draw.materialFeatures},
-                                                                      {kLightKindsConstant, lightKinds}};
-        return gpu::PipelineCache::request<gpu::GraphicsPipelineDesc>(
+                                                                      {kLightKindsConstant, scene.lightKinds}};
+        pipelines.push_back(gpu::PipelineCache::request<gpu::GraphicsPipelineDesc>(
             std::string(hdrFormat == VK_FORMAT_R16G16B16A16_SFLOAT ? "transparent.halfFloat" : "transparent") +
                 (draw.sphereImpostors ? ".spheres" : "") + (draw.cullBackFaces ? ".backFacesCulled" : "") +
                 gpu::specializationSuffix(specialization),
             [=, spheres = draw.sphereImpostors, backFaces = draw.cullBackFaces] {
                 return describeTransparentPipeline(hdrFormat, spheres, backFaces, bindings, specialization);
-            });
-    };
+            }));
+    }
     graph.addPass(
         "transparent", gpu::PassKind::Raster,
         [&](gpu::FrameGraph::PassBuilder& pass) {
-            for (uint32_t index : draws) pass.usesPipeline(pipelineFor(scene.draws[index]));
+            for (const gpu::PipelineCache::Request& pipeline : pipelines) pass.usesPipeline(pipeline);
             // Attachments in the pipeline's order.
             result.hdr = pass.colorAttachment(hdr);
             result.coverage = pass.colorAttachment(result.coverage, VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}});
             declareBindings(pass, bindings, ShaderStage::Graphics);
         },
-        [&scene, draws, bindings, settings, pipelineFor](VkCommandBuffer cmd, const gpu::PassResources& res) {
+        [&scene, draws, bindings, settings, pipelines](VkCommandBuffer cmd, const gpu::PassResources& res) {
             gpu::Device& device = res.device();
             const gpu::Pipeline* bound = nullptr;
             const MaterialTextures* pushed = nullptr;
             // Back to front: the pipeline changes where sphere impostors and other draws, or draws of other
             // material features, alternate.
-            for (uint32_t index : draws) {
-                const Draw& draw = scene.draws[index];
-                const gpu::Pipeline& pipeline = res.pipelines().get(pipelineFor(draw));
+            for (size_t i = 0; i < draws.size(); ++i) {
+                const Draw& draw = scene.draws[draws[i]];
+                const gpu::Pipeline& pipeline = res.pipelines().get(pipelines[i]);
                 if (&pipeline != bound) {
                     bindBindings(cmd, pipeline, bindings, res);
                     bound = &pipeline;
