@@ -119,10 +119,10 @@ double diskIrradianceByQuadrature(double radiance, std::array<double, 3> centre,
     return radiance * sum;
 }
 
-// A disk light along `direction` at `centre` against the quadrature of its exact circle.
-void expectDiskAlong(std::array<double, 3> direction, std::array<double, 3> centre, double radius) {
+// A disk light of `radiance` along `direction` at `centre` against the quadrature of its exact circle.
+void expectDiskAlong(std::array<double, 3> direction, std::array<double, 3> centre, double radius,
+                     double radiance = 2.0) {
     LitPlaneScene s;
-    const double radiance = 2.0;
     Matrix m = lightPointingAlong(direction);
     m[12] = centre[0], m[13] = centre[1], m[14] = centre[2];
     s.host.addPrim("diskLight", "/Disk",
@@ -147,6 +147,31 @@ TEST(AreaLight, TiltedDiskMatchesItsIrradianceIntegral) {
 TEST(AreaLight, UprightDiskIsClippedAtTheHorizon) {
     // Standing across the plane, its lower part below the ground: the clipped polygon's case.
     expectDiskAlong({0.0, -1.0, 0.0}, {0.1, 0.7, 0.3}, 0.6);
+}
+
+// Small lights are lit as point Lambert emitters beyond 32 half diagonals
+// (light_evaluation.glsl AREA_LIGHT_FAR_FIELD): the plane's points under these lie 1.67 to 2.42 m
+// from the disk, whose form changes at 1.81 m, and all beyond the rectangle's 1.15 m.
+TEST(AreaLight, SmallTiltedDiskMatchesItsIrradianceIntegralNearAndFar) {
+    expectDiskAlong({0.6, 0.0, -0.8}, {0.4, -0.3, 1.6}, 0.04, 2000.0);
+}
+
+TEST(AreaLight, SmallRectangleMatchesTheParallelRectangleFactorFar) {
+    LitPlaneScene s;
+    const double radiance = 3000.0, halfWidth = 0.03, halfHeight = 0.02, height = 1.2;
+    s.host.addPrim("rectLight", "/Panel",
+                   {{"inputs:intensity", HostValue::floatValue(float(radiance))},
+                    {"inputs:width", HostValue::floatValue(float(2 * halfWidth))},
+                    {"inputs:height", HostValue::floatValue(float(2 * halfHeight))},
+                    {"inputs:specular", HostValue::floatValue(0.0f)}},
+                   downAt(0.2, -0.1, height));
+    auto color = s.renderColor();
+    for (auto [x, y] : kPixels) {
+        auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
+        double l = kLitPlaneAlbedo / kPi *
+                   rectIrradiance(radiance, halfWidth, halfHeight, height, {p[0] - 0.2, p[1] + 0.1, p[2]});
+        expectRadiance(color, x, y, {l, l, l});
+    }
 }
 
 TEST(AreaLight, EmitsFromItsFrontFaceOnly) {
