@@ -7,6 +7,7 @@
 #include "gpu/device.h"
 #include "passes/frame_data.h"
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <vector>
@@ -20,12 +21,15 @@ struct SharedGeometry {
 
 // A mesh's drawn vertices and indices as the cache keys them: made where the geometry is built
 // (on any thread, as parallel sync's pulls are), looked up on the thread that owns the device.
+// They are the built geometry's own arrays, moved in and freed once uploaded. The key is their
+// XXH3-128 hash, trusted as the texture disk cache trusts it: no copy of a scene's meshes is kept
+// on the CPU to confirm a hit (two different meshes share a hash with a chance of 2^-128).
 struct GeometryContent {
-    std::vector<char> bytes;  // vertices then indices
-    size_t vertexBytes = 0;
-    uint64_t hash = 0;
+    std::vector<passes::Vertex> vertices;
+    std::vector<uint32_t> indices;
+    std::array<uint64_t, 2> hash{};
 };
-GeometryContent geometryContent(const std::vector<passes::Vertex>& vertices, const std::vector<uint32_t>& indices);
+GeometryContent geometryContent(std::vector<passes::Vertex> vertices, std::vector<uint32_t> indices);
 
 class GeometryCache {
 public:
@@ -39,13 +43,12 @@ public:
 
 private:
     struct Entry {
-        std::vector<char> content;  // vertices then indices, compared on a hash hit
-        size_t vertexBytes;
+        uint64_t bytes;
         std::weak_ptr<gpu::Buffer> vertices, indices;
     };
 
     gpu::Device& device_;
-    std::multimap<uint64_t, Entry> entries_;
+    std::map<std::array<uint64_t, 2>, Entry> entries_;
 };
 
 }  // namespace obscura::delegate

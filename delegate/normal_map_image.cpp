@@ -40,12 +40,25 @@ bool isIntegerImage(std::string_view bytes) {
     return stb && !isOpenExr(bytes) && !stbi_is_hdr_from_memory(stb->data, stb->size);
 }
 
+bool isSixteenBitImage(std::string_view bytes) {
+    const auto stb = StbBytes::of(bytes);
+    return stb && stbi_is_16_bit_from_memory(stb->data, stb->size);
+}
+
+std::optional<std::array<uint32_t, 2>> imageExtent(std::string_view bytes) {
+    const auto stb = StbBytes::of(bytes);
+    int width = 0, height = 0, channels = 0;
+    if (!stb || !stbi_info_from_memory(stb->data, stb->size, &width, &height, &channels) || width <= 0 || height <= 0)
+        return std::nullopt;
+    return std::array<uint32_t, 2>{uint32_t(width), uint32_t(height)};
+}
+
 std::variant<NormalMapSource, std::string> decodeNormalMap(std::string_view bytes) {
     const auto stb = StbBytes::of(bytes);
     if (!stb) return std::string(StbBytes::kTooLarge);
     int width = 0, height = 0, channels = 0;
     NormalMapSource source;
-    source.sixteenBit = stbi_is_16_bit_from_memory(stb->data, stb->size);
+    source.sixteenBit = isSixteenBitImage(bytes);
     if (source.sixteenBit) {
         std::unique_ptr<stbi_us, StbFree> data(
             stbi_load_16_from_memory(stb->data, stb->size, &width, &height, &channels, 3));

@@ -6,6 +6,9 @@
 #include "delegate/bc5_encoder.h"
 #include "gpu/texture_upload.h"
 
+#include <array>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -19,6 +22,13 @@ struct NormalMapSource {
 
 // Whether stb_image reads the file's bytes as 8 or 16 bits per channel (not a float format).
 bool isIntegerImage(std::string_view bytes);
+
+// Whether stb_image reads the file's bytes as 16 bits per channel.
+bool isSixteenBitImage(std::string_view bytes);
+
+// The width and height in the file's header, without decoding its texels; nullopt where stb_image
+// cannot read the header.
+std::optional<std::array<uint32_t, 2>> imageExtent(std::string_view bytes);
 
 // A file's bytes decoded; the reason when they cannot be.
 std::variant<NormalMapSource, std::string> decodeNormalMap(std::string_view bytes);

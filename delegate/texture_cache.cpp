@@ -7,6 +7,7 @@
 #include "gpu/vk_check.h"
 
 #include <algorithm>
+#include <cstring>
 
 namespace obscura::delegate {
 namespace {
@@ -43,6 +44,22 @@ VkFormat encodedTwin(VkFormat format) {
         case VK_FORMAT_BC3_SRGB_BLOCK: return VK_FORMAT_BC3_UNORM_BLOCK;
         default: return VK_FORMAT_UNDEFINED;
     }
+}
+
+// The sizes of a full mip chain of `desc` (each level half the last, down to one texel).
+std::vector<gpu::MipLevel> mipExtents(const gpu::ImageDesc& desc) {
+    std::vector<gpu::MipLevel> extents;
+    for (uint32_t i = 0; i < desc.mipLevels; ++i)
+        extents.push_back({std::max(desc.width >> i, 1u), std::max(desc.height >> i, 1u), {}});
+    return extents;
+}
+
+size_t blockBytes(VkFormat format) {
+    return format == VK_FORMAT_BC1_RGB_SRGB_BLOCK || format == VK_FORMAT_BC1_RGB_UNORM_BLOCK ? 8 : 16;
+}
+
+size_t blockLevelBytes(const gpu::MipLevel& level, VkFormat format) {
+    return size_t((level.width + 3) / 4) * ((level.height + 3) / 4) * blockBytes(format);
 }
 
 }  // namespace
@@ -153,14 +170,12 @@ TexturePtr TextureCache::makeFromImage(const std::string& file, const std::vecto
     made.how = std::string(blit ? "blitted" : "filtered on the CPU") + (image.renormalised() ? ", renormalised" : "");
     if (compress) {
         // The chain is made for the first level the disk cache lacks; a hit needs only the sizes.
-        std::vector<gpu::MipLevel> chain, extents;
-        for (uint32_t i = 0; i < made.desc.mipLevels; ++i)
-            extents.push_back({std::max(made.desc.width >> i, 1u), std::max(made.desc.height >> i, 1u), {}});
+        std::vector<gpu::MipLevel> chain;
         bool cached = false;
         made.levels = blockLevels(sourceHashes,
                                   sourceEncoding + "squish-2-" + std::to_string(blockFormat) + "-from-" +
                                       std::to_string(sourceFormat),
-                                  extents, blockFormat,
+                                  mipExtents(made.desc), blockFormat,
                                   [&](size_t i) {
                                       if (chain.empty()) chain = cpuChain();
                                       return compressColourLevel(chain[i], blockFormat);
@@ -185,42 +200,54 @@ std::optional<std::variant<TexturePtr, std::string>> TextureCache::makeNormalMap
                                                                                  std::string_view bytes) {
     // A float file keeps its values: it is stored as the texture it is.
     if (!isIntegerImage(bytes)) return std::nullopt;
-    auto decoded = decodeNormalMap(bytes);
-    if (auto* problem = std::get_if<std::string>(&decoded)) return *problem;
-    NormalMapSource& source = std::get<NormalMapSource>(decoded);
     // 16-bit files keep their precision (the talk's "Normal maps precision"); 8-bit ones are
     // compressed, or left to the Material path as they always were when compression is off.
-    const bool bc5 = !source.sixteenBit;
+    const bool bc5 = !isSixteenBitImage(bytes);
     if (bc5 && !(compression_ && canSampleCompressed(VK_FORMAT_BC5_UNORM_BLOCK))) return std::nullopt;
     Made made;
     made.desc.format = bc5 ? VK_FORMAT_BC5_UNORM_BLOCK : VK_FORMAT_R16G16_UNORM;
+    Texture texture;
+    texture.twoChannelNormal = true;
+    // x and y read back as 0.5 n + 0.5 of the normalised average, z 0 (two-channel formats). An
+    // encoded map keeps the average's x and y after its blocks in the disk cache: a hit reads the
+    // file's header alone, neither decoding its texels nor filtering its chain.
+    auto setAverage = [&](float x, float y) { texture.average = {0.5f * x + 0.5f, 0.5f * y + 0.5f, 0.0f, 1.0f}; };
+    std::vector<std::byte> average(2 * sizeof(float));
+    const std::string key = TextureDiskCache::key({TextureDiskCache::contentHash(bytes)}, "bc5-normal-aware-2");
+    if (auto extent = bc5 ? imageExtent(bytes) : std::nullopt) {
+        made.desc.width = (*extent)[0];
+        made.desc.height = (*extent)[1];
+        made.desc.mipLevels = gpu::mipLevelCount(made.desc.width, made.desc.height);
+        if (auto levels = cachedBlockLevels(key, mipExtents(made.desc), made.desc.format, average)) {
+            made.levels = std::move(*levels);
+            made.how = "filtered on the CPU, encoded (from the disk cache)";
+            std::array<float, 2> xy{};
+            std::memcpy(xy.data(), average.data(), average.size());
+            setAverage(xy[0], xy[1]);
+            return upload(file, std::move(made), std::move(texture));
+        }
+    }
+    auto decoded = decodeNormalMap(bytes);
+    if (auto* problem = std::get_if<std::string>(&decoded)) return *problem;
+    NormalMapSource& source = std::get<NormalMapSource>(decoded);
     made.desc.width = source.normals.width;
     made.desc.height = source.normals.height;
     made.desc.mipLevels = gpu::mipLevelCount(made.desc.width, made.desc.height);
     // Mips of unit normals, normalised after averaging, on the CPU: BC5 cannot be blitted.
     std::vector<NormalImage> chain{std::move(source.normals)};
     while (chain.size() < made.desc.mipLevels) chain.push_back(downsampleNormals(chain.back()));
-    bool cached = false;
+    const std::array<float, 3>& last = chain.back().normals[0];
+    setAverage(last[0], last[1]);
     if (!bc5) {
         for (const NormalImage& level : chain) made.levels.push_back(packTwoChannels(level, made.desc.format));
         made.how = "filtered on the CPU";
     } else {
-        std::vector<gpu::MipLevel> extents;
-        for (const NormalImage& level : chain) extents.push_back({level.width, level.height, {}});
-        made.levels = blockLevels({TextureDiskCache::contentHash(bytes)}, "bc5-normal-aware-1", extents,
-                                  made.desc.format,
-                                  [&](size_t i) {
-                                      return gpu::MipLevel{chain[i].width, chain[i].height,
-                                                           encodeBc5(chain[i], Bc5Encoder::NormalAware)};
-                                  },
-                                  cached);
-        made.how = cached ? "filtered on the CPU, encoded (from the disk cache)" : "filtered and encoded on the CPU";
+        for (const NormalImage& level : chain)
+            made.levels.push_back({level.width, level.height, encodeBc5(level, Bc5Encoder::NormalAware)});
+        std::memcpy(average.data(), last.data(), average.size());
+        storeBlockLevels(key, made.levels, average);
+        made.how = "filtered and encoded on the CPU";
     }
-    Texture texture;
-    texture.twoChannelNormal = true;
-    // x and y read back as 0.5 n + 0.5 of the normalised average, z 0 (two-channel formats).
-    const NormalImage& last = chain.back();
-    texture.average = {0.5f * last.normals[0][0] + 0.5f, 0.5f * last.normals[0][1] + 0.5f, 0.0f, 1.0f};
     return upload(file, std::move(made), std::move(texture));
 }
 
@@ -238,33 +265,42 @@ std::vector<gpu::MipLevel> TextureCache::blockLevels(const std::vector<std::stri
                                                      const std::vector<gpu::MipLevel>& extents, VkFormat format,
                                                      const std::function<gpu::MipLevel(size_t)>& encode,
                                                      bool& cached) const {
-    const size_t blockBytes = format == VK_FORMAT_BC1_RGB_SRGB_BLOCK || format == VK_FORMAT_BC1_RGB_UNORM_BLOCK ? 8 : 16;
-    auto sizeOf = [&](const gpu::MipLevel& level) {
-        return size_t((level.width + 3) / 4) * ((level.height + 3) / 4) * blockBytes;
-    };
-    size_t total = 0;
-    for (const gpu::MipLevel& level : extents) total += sizeOf(level);
     const std::string key = TextureDiskCache::key(sourceHashes, encoding);
+    std::vector<std::byte> noSummary;
+    std::optional<std::vector<gpu::MipLevel>> levels = cachedBlockLevels(key, extents, format, noSummary);
+    cached = levels.has_value();
+    if (cached) return std::move(*levels);
+    levels.emplace();
+    for (size_t i = 0; i < extents.size(); ++i) levels->push_back(encode(i));
+    storeBlockLevels(key, *levels, noSummary);
+    return std::move(*levels);
+}
+
+std::optional<std::vector<gpu::MipLevel>> TextureCache::cachedBlockLevels(const std::string& key,
+                                                                          const std::vector<gpu::MipLevel>& extents,
+                                                                          VkFormat format,
+                                                                          std::vector<std::byte>& summary) const {
+    size_t total = summary.size();
+    for (const gpu::MipLevel& level : extents) total += blockLevelBytes(level, format);
     std::optional<std::vector<std::byte>> blocks = diskCache_.read(key);
-    cached = blocks && blocks->size() == total;
+    if (!blocks || blocks->size() != total) return std::nullopt;
     std::vector<gpu::MipLevel> levels;
-    if (!cached) {
-        blocks.emplace();
-        for (size_t i = 0; i < extents.size(); ++i) {
-            levels.push_back(encode(i));
-            blocks->insert(blocks->end(), levels.back().bytes.begin(), levels.back().bytes.end());
-        }
-        diskCache_.write(key, *blocks);
-        return levels;
-    }
-    size_t offset = 0;
+    auto at = blocks->begin();
     for (const gpu::MipLevel& level : extents) {
-        levels.push_back({level.width, level.height,
-                          std::vector<std::byte>(blocks->begin() + std::ptrdiff_t(offset),
-                                                 blocks->begin() + std::ptrdiff_t(offset + sizeOf(level)))});
-        offset += sizeOf(level);
+        const auto end = at + std::ptrdiff_t(blockLevelBytes(level, format));
+        levels.push_back({level.width, level.height, std::vector<std::byte>(at, end)});
+        at = end;
     }
+    std::copy(at, blocks->end(), summary.begin());
     return levels;
+}
+
+void TextureCache::storeBlockLevels(const std::string& key, const std::vector<gpu::MipLevel>& levels,
+                                    const std::vector<std::byte>& summary) const {
+    std::vector<std::byte> bytes;
+    for (const gpu::MipLevel& level : levels) bytes.insert(bytes.end(), level.bytes.begin(), level.bytes.end());
+    bytes.insert(bytes.end(), summary.begin(), summary.end());
+    diskCache_.write(key, bytes);
 }
 
 TexturePtr TextureCache::upload(const std::string& file, Made made, Texture texture) {

@@ -88,6 +88,15 @@ private:
     std::vector<gpu::MipLevel> blockLevels(const std::vector<std::string>& sourceHashes, const std::string& encoding,
                                            const std::vector<gpu::MipLevel>& extents, VkFormat format,
                                            const std::function<gpu::MipLevel(size_t)>& encode, bool& cached) const;
+    // The block-compressed levels of the extents' sizes the disk cache holds under `key`, followed
+    // by `summary.size()` bytes it reads into `summary` (what the texture keeps of its texels beside
+    // them); nullopt where it holds no entry of that size.
+    std::optional<std::vector<gpu::MipLevel>> cachedBlockLevels(const std::string& key,
+                                                                const std::vector<gpu::MipLevel>& extents,
+                                                                VkFormat format, std::vector<std::byte>& summary) const;
+    // `levels`, then `summary`, stored under `key`.
+    void storeBlockLevels(const std::string& key, const std::vector<gpu::MipLevel>& levels,
+                          const std::vector<std::byte>& summary) const;
 
     gpu::Device& device_;
     LogSink log_;

@@ -91,9 +91,9 @@ void Curves::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     detail_ = detailAt(capped.level);
     MeshGeometry geometry = tessellateCurves(input_, detail_);
     if (!capped.warning.empty()) geometry.warnings.push_back(capped.warning);
-    setGeometry(geometry, ctx, s.path());
+    const size_t vertexCount = setGeometry(std::move(geometry), ctx, s.path());
     setShutterPositions(shutterEnds(shutterPoints_, input_, [&](const CurvesInput& in) { return tessellateCurves(in, detail_); }),
-                        geometry.vertices.size(), ctx, s.path());
+                        vertexCount, ctx, s.path());
 }
 
 void Points::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
@@ -113,9 +113,8 @@ void Points::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
                             std::to_string(triangles) + " triangles, over the cap of " +
                             std::to_string(kMaxTessellatedTriangles) + " per prim");
     MeshGeometry geometry = pointImpostorBoxes(input_);
-    setGeometry(geometry, ctx, s.path());
-    setShutterPositions(shutterEnds(shutterPoints_, input_, pointImpostorBoxes), geometry.vertices.size(), ctx,
-                        s.path());
+    const size_t vertexCount = setGeometry(std::move(geometry), ctx, s.path());
+    setShutterPositions(shutterEnds(shutterPoints_, input_, pointImpostorBoxes), vertexCount, ctx, s.path());
 }
 
 }  // namespace obscura::delegate

@@ -70,7 +70,7 @@ void ImplicitSurface::pull(SceneAccess& s, ObscuraDirtyBits, SyncContext& ctx) {
     if (auto* problem = std::get_if<std::string>(&built)) throw PrimDataError(s.path() + ": " + *problem);
     auto& geometry = std::get<MeshGeometry>(built);
     if (!colorWarning_.empty()) geometry.warnings.push_back(colorWarning_);
-    setGeometry(geometry, ctx, s.path());
+    setGeometry(std::move(geometry), ctx, s.path());
 }
 
 std::vector<DetailSphere> ImplicitSurface::detailSpheres() const {

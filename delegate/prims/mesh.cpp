@@ -52,7 +52,7 @@ void Mesh::pullGprim(SceneAccess& s, SyncContext& ctx) {
     }
 }
 
-void Mesh::setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std::string& path) {
+size_t Mesh::setGeometry(MeshGeometry&& geometry, SyncContext& ctx, const std::string& path) {
     warnings_.clear();
     for (const std::string& warning : geometry.warnings) warnings_.push_back(path + ": " + warning);
     translucentVertices_ = std::any_of(geometry.vertices.begin(), geometry.vertices.end(),
@@ -63,12 +63,15 @@ void Mesh::setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std
     updateMaterialParts();
     localBounds_ = Aabb{};
     for (const passes::Vertex& v : geometry.vertices) localBounds_.extend({v.position[0], v.position[1], v.position[2]});
-    ctx.onDevice([this, &cache = ctx.geometry, content = geometryContent(geometry.vertices, geometry.indices),
+    const size_t vertexCount = geometry.vertices.size();
+    ctx.onDevice([this, &cache = ctx.geometry,
+                  content = geometryContent(std::move(geometry.vertices), std::move(geometry.indices)),
                   path]() mutable {
         SharedGeometry shared = cache.get(std::move(content), path.c_str());
         vertices_ = std::move(shared.vertices);
         indices_ = std::move(shared.indices);
     });
+    return vertexCount;
 }
 
 std::optional<MeshPrimvar> pullPrimvar(SceneAccess& s, const char* name, size_t components) {
@@ -176,13 +179,12 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     if (auto* problem = std::get_if<std::string>(&refined)) throw PrimDataError(s.path() + ": " + *problem);
     auto built = buildMeshGeometry(std::get<MeshInput>(refined));
     if (auto* problem = std::get_if<std::string>(&built)) throw PrimDataError(s.path() + ": " + *problem);
-    auto& geometry = std::get<MeshGeometry>(built);
-    setGeometry(geometry, ctx, s.path());
+    const size_t vertexCount = setGeometry(std::move(std::get<MeshGeometry>(built)), ctx, s.path());
     warnings_.insert(warnings_.end(), faceGroups.warnings.begin(), faceGroups.warnings.end());
     std::optional<std::array<std::vector<float>, 2>> ends;
     if (shutterPoints_)
         ends = {drawnPositions((*shutterPoints_)[0], level, s.path()), drawnPositions((*shutterPoints_)[1], level, s.path())};
-    setShutterPositions(ends, geometry.vertices.size(), ctx, s.path());
+    setShutterPositions(ends, vertexCount, ctx, s.path());
 }
 
 std::vector<float> Mesh::drawnPositions(const std::vector<float>& points, int level, const std::string& path) {

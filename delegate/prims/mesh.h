@@ -76,8 +76,9 @@ protected:
     // display opacity.
     void pullGprim(SceneAccess& scene, SyncContext& ctx);
     // Keeps the drawn polygons' bounds and warnings, and queues their upload (shared through the
-    // geometry cache, keyed here on the pulling thread).
-    void setGeometry(const MeshGeometry& geometry, SyncContext& ctx, const std::string& path);
+    // geometry cache, keyed here on the pulling thread); the vertices and indices are moved out.
+    // Returns the number of vertices.
+    size_t setGeometry(MeshGeometry&& geometry, SyncContext& ctx, const std::string& path);
     // `points` at the shutter's open and close when they differ from the frame's (the prim
     // deforms within the shutter: motion blur's velocities), moved by their velocities where those
     // are authored, else the host's samples (point_motion.h); nullopt when they do not move.

@@ -130,8 +130,8 @@ void NurbsPatch::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     };
     MeshGeometry geometry = build(input_);
     if (!capped.warning.empty()) geometry.warnings.push_back(capped.warning);
-    setGeometry(geometry, ctx, s.path());
-    setShutterPositions(shutterEnds(shutterPoints_, input_, build), geometry.vertices.size(), ctx, s.path());
+    const size_t vertexCount = setGeometry(std::move(geometry), ctx, s.path());
+    setShutterPositions(shutterEnds(shutterPoints_, input_, build), vertexCount, ctx, s.path());
 }
 
 }  // namespace obscura::delegate

@@ -821,6 +821,48 @@ TEST_F(TextureTest, CompressedTexturesComeBackFromTheDiskCache) {
     EXPECT_EQ(loads(copy, "from the disk cache"), 1);
 }
 
+TEST_F(TextureTest, EncodedNormalMapsComeBackFromTheDiskCacheAsTheyWereEncoded) {
+    // A BC5 normal map's blocks come back from the disk cache by the file's content (the file's
+    // header alone read, its texels neither decoded nor filtered): the second load, after the
+    // first was released, renders exactly what the first did. Bumps of every direction, lit from
+    // the side, so each texel's normal shows; one sample a pixel, no temporal change.
+    setCompression(true);
+    setBool(host, "taa", false);
+    setBool(host, "ssao", false);
+    const std::string file = writePng("bumps.png", 16, [](int x, int y) {
+        const double a = 0.4 * x + 0.9 * y + 0.1 * double(getpid() % 97), tilt = 0.05 * ((x * 7 + y * 3) % 11);
+        auto code = [](double v) { return uint8_t(std::lround((0.5 * v + 0.5) * 255.0)); };
+        return Rgb8{code(std::sin(tilt) * std::cos(a)), code(std::sin(tilt) * std::sin(a)), code(std::cos(tilt))};
+    });
+    host.addPrim("distantLight", "/Sun", {{"inputs:intensity", HostValue::floatValue(1.0f)}},
+                 lightPointingAlong({-0.6, 0.0, -0.8}));
+    std::vector<std::vector<float>> images;
+    for (int load = 0; load < 2; ++load) {
+        host.addPrim("material", "/Looks/Bumped", textured("normal", file, {{"sourceColorSpace", HostValue::token("raw")},
+                                                                            {"channel", HostValue::token("rgb")},
+                                                                            {"scale", float4(2.0f, 2.0f, 2.0f, 1.0f)},
+                                                                            {"bias", float4(-1.0f, -1.0f, -1.0f, 0.0f)}}));
+        addPlane("/Plane", "/Looks/Bumped");
+        render();
+        images.push_back(color);
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Plane"), OBSCURA_OK);
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Looks/Bumped"), OBSCURA_OK);
+    }
+    auto loads = [&](const char* how) {
+        return std::count_if(host.loggedInfos().begin(), host.loggedInfos().end(), [&](const std::string& m) {
+            return m.rfind("loaded texture " + file + " (16x16 BC5,", 0) == 0 && m.find(how) != std::string::npos;
+        });
+    };
+    EXPECT_EQ(loads("encoded on the CPU"), 1);
+    EXPECT_EQ(loads("from the disk cache"), 1);
+    ASSERT_EQ(images[0].size(), images[1].size());
+    size_t differing = 0;
+    for (size_t i = 0; i < images[0].size(); ++i) differing += images[0][i] != images[1][i] ? 1 : 0;
+    EXPECT_EQ(differing, 0u);
+    // Not a flat image: the bumps shade the plane.
+    EXPECT_NE(*std::min_element(images[0].begin(), images[0].end()), *std::max_element(images[0].begin(), images[0].end()));
+}
+
 TEST_F(TextureTest, MinifiedTextureIntegratesItsReconstruction) {
     // A one-texel black and white checker, 256 texels over 64 pixels: each pixel's footprint
     // covers 4x4 texels. What a path tracer integrates there is the texture's reconstruction,
