@@ -46,6 +46,25 @@ VkFormat encodedTwin(VkFormat format) {
     }
 }
 
+// Whether a texture of `role` decoded to `format` is filtered in its encoded values and decoded
+// in the shader (TextureCache::makeFromImage): a material's sRGB texels.
+bool decodedInShader(TextureRole role, VkFormat format) {
+    return role != TextureRole::Plain && encodedTwin(format) != VK_FORMAT_UNDEFINED;
+}
+
+// The encoding a block-compressed colour chain is stored under in the disk cache.
+std::string colourBlockEncoding(const std::string& sourceEncoding, VkFormat blockFormat, VkFormat sourceFormat) {
+    return sourceEncoding + "squish-2-" + std::to_string(blockFormat) + "-from-" + std::to_string(sourceFormat);
+}
+
+// What a single file's block-compressed material texture keeps in the disk cache beside its
+// blocks, so that a later load makes it from the cache without decoding the file: the formats that
+// name the blocks' entry, the size, the texels' mean (Texture::average).
+struct ColourSummary {
+    uint32_t blockFormat = 0, sourceFormat = 0, width = 0, height = 0;
+    std::array<float, 4> average{};
+};
+
 // The sizes of a full mip chain of `desc` (each level half the last, down to one texel).
 std::vector<gpu::MipLevel> mipExtents(const gpu::ImageDesc& desc) {
     std::vector<gpu::MipLevel> extents;
@@ -105,10 +124,40 @@ std::variant<TexturePtr, std::string> TextureCache::make(const std::string& file
     if (!bytes) return problem;
     if (role == TextureRole::Normal)
         if (auto normalMap = makeNormalMap(file, *bytes)) return *normalMap;
+    const std::string hash = TextureDiskCache::contentHash(*bytes);
+    // Decoding a file of the texture's colour space gives the same texels each time.
+    const std::string summaryKey = TextureDiskCache::key({hash}, "colour-summary-1-space-" + std::to_string(int(colorSpace)));
+    if (role == TextureRole::Material && compression_)
+        if (TexturePtr cached = cachedColourTexture(file, {hash}, summaryKey)) return cached;
     auto decoded = decodeTextureImage(*bytes, colorSpace, role);
     if (auto* undecodable = std::get_if<std::string>(&decoded)) return *undecodable;
-    return makeFromImage(file, {TextureDiskCache::contentHash(*bytes)}, "", std::move(std::get<TextureImage>(decoded)),
-                         role, Texture{});
+    return makeFromImage(file, {hash}, "", std::move(std::get<TextureImage>(decoded)), role, Texture{}, summaryKey);
+}
+
+TexturePtr TextureCache::cachedColourTexture(const std::string& file, const std::vector<std::string>& sourceHashes,
+                                             const std::string& summaryKey) {
+    const std::optional<std::vector<std::byte>> bytes = diskCache_.read(summaryKey);
+    ColourSummary summary;
+    if (!bytes || bytes->size() != sizeof(summary)) return nullptr;
+    std::memcpy(&summary, bytes->data(), sizeof(summary));
+    const auto blockFormat = VkFormat(summary.blockFormat), sourceFormat = VkFormat(summary.sourceFormat);
+    if (!canSampleCompressed(blockFormat)) return nullptr;
+    Made made;
+    made.desc.format = blockFormat;
+    made.desc.width = summary.width;
+    made.desc.height = summary.height;
+    made.desc.mipLevels = gpu::mipLevelCount(made.desc.width, made.desc.height);
+    std::vector<std::byte> noSummary;
+    auto levels = cachedBlockLevels(TextureDiskCache::key(sourceHashes, colourBlockEncoding("", blockFormat, sourceFormat)),
+                                    mipExtents(made.desc), blockFormat, noSummary);
+    if (!levels) return nullptr;
+    made.levels = std::move(*levels);
+    made.how = "filtered on the CPU, compressed (from the disk cache)";
+    Texture texture;
+    texture.srgbEncoded = decodedInShader(TextureRole::Material, sourceFormat);
+    if (texture.srgbEncoded) made.desc.sampledAs = encodedTwin(blockFormat);
+    texture.average = summary.average;
+    return upload(file, std::move(made), std::move(texture));
 }
 
 std::variant<TexturePtr, std::string> TextureCache::makeUdim(assets::AssetReader& assets, const std::string& pattern,
@@ -129,12 +178,12 @@ std::variant<TexturePtr, std::string> TextureCache::makeUdim(assets::AssetReader
     layout += "-" + std::to_string(atlas.image.level0.width) + "x" + std::to_string(atlas.image.level0.height) + "-";
     // A normal map's set keeps its own z in RGBA (the two-channel route reads single files).
     return makeFromImage(pattern, atlas.tileHashes, layout, std::move(atlas.image),
-                         role == TextureRole::Normal ? TextureRole::Plain : role, std::move(texture));
+                         role == TextureRole::Normal ? TextureRole::Plain : role, std::move(texture), "");
 }
 
 TexturePtr TextureCache::makeFromImage(const std::string& file, const std::vector<std::string>& sourceHashes,
                                        const std::string& sourceEncoding, TextureImage image, TextureRole role,
-                                       Texture texture) {
+                                       Texture texture, const std::string& summaryKey) {
     Made made;
     made.desc.format = image.format;
     made.desc.width = image.level0.width;
@@ -153,15 +202,15 @@ TexturePtr TextureCache::makeFromImage(const std::string& file, const std::vecto
     // path-traced truth. Its mips are area means of that reconstruction in linear light, so that
     // a minified texture keeps the pixel's integral (encodedReconstructionMips); they are made on
     // the CPU (lavapipe blits a mutable-format image's sRGB levels in their encoded values).
-    const bool decodedInShader = role != TextureRole::Plain && encodedTwin(image.format) != VK_FORMAT_UNDEFINED;
+    const bool inShader = decodedInShader(role, image.format);
     // Compressed formats cannot be blitted.
-    const bool blit = !compress && !decodedInShader && gpu::canBlitMips(device_, made.desc.format);
+    const bool blit = !compress && !inShader && gpu::canBlitMips(device_, made.desc.format);
     const VkFormat sourceFormat = image.format;
     // A UDIM atlas's tiles are reconstructed apart (UdimAtlas::grid: columns, rows).
     const uint32_t cellWidth = texture.udimGrid[2] > 0.0f ? made.desc.width / uint32_t(texture.udimGrid[2]) : 0u;
     const uint32_t cellHeight = texture.udimGrid[3] > 0.0f ? made.desc.height / uint32_t(texture.udimGrid[3]) : 0u;
     auto cpuChain = [&] {
-        if (decodedInShader && sourceFormat == VK_FORMAT_R8G8B8A8_SRGB)
+        if (inShader && sourceFormat == VK_FORMAT_R8G8B8A8_SRGB)
             return encodedReconstructionMips(std::move(image.level0), made.desc.mipLevels, cellWidth, cellHeight);
         std::vector<gpu::MipLevel> chain{std::move(image.level0)};
         while (chain.size() < made.desc.mipLevels) chain.push_back(downsample(chain.back(), sourceFormat));
@@ -172,15 +221,20 @@ TexturePtr TextureCache::makeFromImage(const std::string& file, const std::vecto
         // The chain is made for the first level the disk cache lacks; a hit needs only the sizes.
         std::vector<gpu::MipLevel> chain;
         bool cached = false;
-        made.levels = blockLevels(sourceHashes,
-                                  sourceEncoding + "squish-2-" + std::to_string(blockFormat) + "-from-" +
-                                      std::to_string(sourceFormat),
+        made.levels = blockLevels(sourceHashes, colourBlockEncoding(sourceEncoding, blockFormat, sourceFormat),
                                   mipExtents(made.desc), blockFormat,
                                   [&](size_t i) {
                                       if (chain.empty()) chain = cpuChain();
                                       return compressColourLevel(chain[i], blockFormat);
                                   },
                                   cached);
+        if (!summaryKey.empty()) {
+            const ColourSummary summary{uint32_t(blockFormat), uint32_t(sourceFormat), made.desc.width,
+                                        made.desc.height, image.average};
+            std::vector<std::byte> bytes(sizeof(summary));
+            std::memcpy(bytes.data(), &summary, sizeof(summary));
+            diskCache_.write(summaryKey, bytes);
+        }
         made.desc.format = blockFormat;
         made.how += cached ? ", compressed (from the disk cache)" : ", compressed on the CPU";
     } else if (blit) {
@@ -188,8 +242,8 @@ TexturePtr TextureCache::makeFromImage(const std::string& file, const std::vecto
     } else {
         made.levels = cpuChain();
     }
-    if (decodedInShader) made.desc.sampledAs = encodedTwin(made.desc.format);
-    texture.srgbEncoded = decodedInShader;
+    if (inShader) made.desc.sampledAs = encodedTwin(made.desc.format);
+    texture.srgbEncoded = inShader;
     texture.average = image.average;
     texture.renormScale = image.renormScale;
     texture.renormBias = image.renormBias;

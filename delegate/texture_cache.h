@@ -76,9 +76,16 @@ private:
                                                    SourceColorSpace colorSpace, TextureRole role);
     // A decoded image with its mips, block-compressed where it may be. `sourceHashes` are the
     // TextureDiskCache::contentHash of the files its texels come from and `sourceEncoding` how they
-    // were combined, for the disk cache's key.
+    // were combined, for the disk cache's key. A compressed texture of one file stores under
+    // `summaryKey` (unless empty) what cachedColourTexture needs to make it again undecoded.
     TexturePtr makeFromImage(const std::string& file, const std::vector<std::string>& sourceHashes,
-                             const std::string& sourceEncoding, TextureImage image, TextureRole role, Texture texture);
+                             const std::string& sourceEncoding, TextureImage image, TextureRole role, Texture texture,
+                             const std::string& summaryKey);
+    // A single file's block-compressed material texture made from the disk cache alone, its summary
+    // under `summaryKey` and its blocks (the file's header not even read); null where the cache
+    // lacks either or the device cannot sample the blocks' format.
+    TexturePtr cachedColourTexture(const std::string& file, const std::vector<std::string>& sourceHashes,
+                                   const std::string& summaryKey);
     // `bytes` (of `file`) as a two-channel normal map; nullopt: stored as the texture it is instead.
     std::optional<std::variant<TexturePtr, std::string>> makeNormalMap(const std::string& file, std::string_view bytes);
     TexturePtr upload(const std::string& file, Made made, Texture texture);

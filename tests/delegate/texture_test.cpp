@@ -821,6 +821,54 @@ TEST_F(TextureTest, CompressedTexturesComeBackFromTheDiskCache) {
     EXPECT_EQ(loads(copy, "from the disk cache"), 1);
 }
 
+TEST_F(TextureTest, CompressedTexturesFromTheDiskCacheRenderAsTheyDidWhenEncoded) {
+    // A compressed material texture's second load is made from the disk cache alone (the blocks
+    // and a summary of the file: formats, size, mean), without decoding the file: the same image
+    // as the first load's, bit for bit, for an opaque (BC1) and a cut-out (BC3) texture. As
+    // emission its mean also sets the accumulation's pre-exposure. One sample a pixel, no
+    // temporal change.
+    setCompression(true);
+    setBool(host, "taa", false);
+    setBool(host, "ssao", false);
+    for (const bool opaque : {true, false}) {
+        // Texels unique to this process, so that the first load encodes; the cut-out's right half
+        // has alpha 40.
+        std::vector<uint8_t> rgba;
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x)
+                for (int v : {16 * x, 16 * y, (x * y + getpid()) % 256, opaque || x < 8 ? 255 : 40})
+                    rgba.push_back(uint8_t(v));
+        const std::string file = (dir_ / (opaque ? "opaque.png" : "cutout.png")).string();
+        ASSERT_FALSE(image::isError(image::writePng(file, 16, 16, image::PngFormat::Rgba, rgba.data(), 16 * 4)));
+        std::vector<std::vector<float>> images;
+        for (int load = 0; load < 2; ++load) {
+            auto values = textured("emissiveColor", file);
+            values["inputs:diffuseColor"] = HostValue::float3(0.2f, 0.2f, 0.2f);
+            host.addPrim("material", "/Looks/Glow", values);
+            addPlane("/Plane", "/Looks/Glow");
+            render();
+            images.push_back(color);
+            ASSERT_EQ(host.api().removePrim(host.delegate(), "/Plane"), OBSCURA_OK);
+            ASSERT_EQ(host.api().removePrim(host.delegate(), "/Looks/Glow"), OBSCURA_OK);
+        }
+        const std::string format = opaque ? "BC1 sRGB" : "BC3 sRGB";
+        auto loads = [&](const char* how) {
+            return std::count_if(host.loggedInfos().begin(), host.loggedInfos().end(), [&](const std::string& m) {
+                return m.rfind("loaded texture " + file + " (16x16 " + format + ",", 0) == 0 &&
+                       m.find(how) != std::string::npos;
+            });
+        };
+        EXPECT_EQ(loads("compressed on the CPU"), 1) << format;
+        EXPECT_EQ(loads("from the disk cache"), 1) << format;
+        ASSERT_EQ(images[0].size(), images[1].size());
+        size_t differing = 0;
+        for (size_t i = 0; i < images[0].size(); ++i) differing += images[0][i] != images[1][i] ? 1 : 0;
+        EXPECT_EQ(differing, 0u) << format;
+        EXPECT_NE(*std::min_element(images[0].begin(), images[0].end()),
+                  *std::max_element(images[0].begin(), images[0].end()));
+    }
+}
+
 TEST_F(TextureTest, EncodedNormalMapsComeBackFromTheDiskCacheAsTheyWereEncoded) {
     // A BC5 normal map's blocks come back from the disk cache by the file's content (the file's
     // header alone read, its texels neither decoded nor filtered): the second load, after the
