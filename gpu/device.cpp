@@ -283,10 +283,17 @@ BufferPtr Device::createBufferWithData(const void* data, VkDeviceSize size, VkBu
                                        const char* debugName) {
     if (size == 0) size = 4;  // zero-sized buffers are invalid; keep one word
     auto buffer = createBuffer(size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::DeviceLocal, debugName);
-    auto staging = createBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging");
-    if (data) std::memcpy(staging->mapped(), data, size);
-    else std::memset(staging->mapped(), 0, size);
-    pendingUploads_.push_back({std::move(staging), buffer, size});
+    // Where the device's own memory is the host's too, mapped and coherent (lavapipe, integrated
+    // GPUs), the contents are written in place: no staging copy of the whole scene waits for the
+    // flush, and the GPU copies nothing.
+    void* target = buffer->allocation.flags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT ? buffer->mapped() : nullptr;
+    if (!target) {
+        auto staging = createBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging");
+        target = staging->mapped();
+        pendingUploads_.push_back({std::move(staging), buffer, size});
+    }
+    if (data) std::memcpy(target, data, size);
+    else std::memset(target, 0, size);
     return buffer;
 }
 

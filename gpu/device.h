@@ -105,7 +105,8 @@ public:
     // An image at `offset` of `memory`, which other images may share at other times.
     ImagePtr createImage(const ImageDesc& desc, const char* debugName, ImageMemoryPtr memory, VkDeviceSize offset);
     // A device-local buffer whose contents arrive with the next flushUploads(): sync creates
-    // many, and all their copies go to the GPU in one submission.
+    // many, and all their copies go to the GPU in one submission (or none, where the buffer's
+    // memory is mapped: written at once).
     BufferPtr createBufferWithData(const void* data, VkDeviceSize size, VkBufferUsageFlags usage,
                                    const char* debugName);
     void flushUploads();
