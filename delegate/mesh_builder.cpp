@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 
 namespace obscura::delegate {
 namespace {
@@ -158,12 +159,21 @@ std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh)
                                     : 1;
     std::vector<std::vector<uint32_t>> groupIndices(groupCount);
 
-    // One vertex per face-vertex keeps face-varying and uniform primvars exact.
-    out.vertices.reserve(mesh.faceVertexIndices.size());
+    // Each face-vertex makes its vertex (face-varying and uniform primvars stay exact); those that
+    // make the same vertex, byte for byte, are drawn as one: stored once and shaded once, as the
+    // GPU's vertex reuse needs (a smooth mesh's points are shared by four faces or more). Only
+    // vertices of one point can be equal, so each point chains the vertices made from it. Which
+    // face-vertices meet depends on the primvars' values alone, never on the points: a deforming
+    // mesh's shutter positions (drawnPositions) follow the same vertices.
+    constexpr uint32_t kNone = UINT32_MAX;
+    std::vector<uint32_t> firstOfPoint(pointCount, kNone), nextOfPoint;
+    std::vector<uint32_t> corners;
+    out.vertices.reserve(pointCount);
     size_t base = 0;
     for (size_t f = 0; f < mesh.faceVertexCounts.size(); ++f) {
         std::vector<uint32_t>& triangles = groupIndices[grouped ? mesh.faceGroups[f] : 0];
         size_t count = size_t(mesh.faceVertexCounts[f]);
+        corners.clear();
         for (size_t k = 0; k < count; ++k) {
             size_t fv = base + k;
             size_t pi = size_t(mesh.faceVertexIndices[fv]);
@@ -179,11 +189,19 @@ std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh)
                                    : 1.0f;
             for (int j = 0; j < 2 && st; ++j) v.uv[j] = st->values[2 * primvarIndex(st->interpolation, f, fv, pi) + size_t(j)];
             setTangent(v, st ? &tangentSum[pi] : nullptr, st ? &bitangentSum[pi] : nullptr);
-            out.vertices.push_back(v);
+            uint32_t index = firstOfPoint[pi];
+            while (index != kNone && std::memcmp(&out.vertices[index], &v, sizeof(v)) != 0) index = nextOfPoint[index];
+            if (index == kNone) {
+                index = uint32_t(out.vertices.size());
+                out.vertices.push_back(v);
+                nextOfPoint.push_back(firstOfPoint[pi]);
+                firstOfPoint[pi] = index;
+            }
+            corners.push_back(index);
         }
         // Fan triangulation; left-handed meshes wind the other way.
         for (size_t k = 1; k + 1 < count; ++k) {
-            uint32_t a = uint32_t(base), b = uint32_t(base + k), c = uint32_t(base + k + 1);
+            uint32_t a = corners[0], b = corners[k], c = corners[k + 1];
             if (mesh.leftHanded) std::swap(b, c);
             triangles.insert(triangles.end(), {a, b, c});
         }

@@ -54,7 +54,8 @@ size_t primvarElementCount(const MeshInput& mesh, ObscuraInterpolation interpola
 // Validates topology (counts >= 3 and summing to the index count, indices within the points)
 // and returns the reason when the mesh is unusable. Primvars of the wrong size are dropped with
 // a warning: the mesh still draws. Without authored normals, smooth vertex normals are computed
-// (area-weighted face normals), as Hydra does for unrefined meshes.
+// (area-weighted face normals), as Hydra does for unrefined meshes. Face-vertices whose vertices
+// are equal are one vertex, the first made.
 std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh);
 
 // The drawn positions of built geometry (xyz per vertex): a tessellation's at the shutter's ends.
