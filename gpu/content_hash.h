@@ -1,5 +1,6 @@
-// FNV-1a over bytes: equal content, equal key. Caches key on it (shared geometry, the kept shadow
-// atlas); where a collision would be wrong rather than slow, the caller confirms with the bytes.
+// FNV-1a over bytes: equal content, equal key. Small records key on it (the kept shadow atlas's
+// views, the pipeline cache file's check); where a collision would be wrong rather than slow, the
+// caller confirms with the bytes. Bulk data (geometry, textures) is keyed by XXH3-128.
 #pragma once
 
 #include <cstddef>

@@ -43,22 +43,26 @@ BulbOverhead bulbOverhead(int x, int y, double height, double radius, double rad
 
 const std::pair<int, int> kPixels[] = {{32, 32}, {10, 20}, {50, 60}, {3, 3}, {62, 40}};
 
-TEST(AreaLight, RectangleMatchesTheParallelRectangleFactor) {
+// A rectangle light of `radiance` pointing down from (x, y, height) against the parallel
+// rectangle's closed form at each of kPixels.
+void expectParallelRectangle(double radiance, double halfWidth, double halfHeight, double x0, double y0,
+                             double height) {
     LitPlaneScene s;
-    const double radiance = 3.0, halfWidth = 1.0, halfHeight = 0.5, height = 0.75;
     s.host.addPrim("rectLight", "/Panel",
                    {{"inputs:intensity", HostValue::floatValue(float(radiance))},
                     {"inputs:width", HostValue::floatValue(float(2 * halfWidth))},
                     {"inputs:height", HostValue::floatValue(float(2 * halfHeight))},
                     {"inputs:specular", HostValue::floatValue(0.0f)}},
-                   downAt(0, 0, height));
+                   downAt(x0, y0, height));
     auto color = s.renderColor();
     for (auto [x, y] : kPixels) {
         auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
-        double l = kLitPlaneAlbedo / kPi * rectIrradiance(radiance, halfWidth, halfHeight, height, p);
+        double l = kLitPlaneAlbedo / kPi * rectIrradiance(radiance, halfWidth, halfHeight, height, {p[0] - x0, p[1] - y0, p[2]});
         expectRadiance(color, x, y, {l, l, l});
     }
 }
+
+TEST(AreaLight, RectangleMatchesTheParallelRectangleFactor) { expectParallelRectangle(3.0, 1.0, 0.5, 0.0, 0.0, 0.75); }
 
 TEST(AreaLight, NormalizedRectangleDividesByItsArea) {
     LitPlaneScene s;
@@ -157,21 +161,7 @@ TEST(AreaLight, SmallTiltedDiskMatchesItsIrradianceIntegralNearAndFar) {
 }
 
 TEST(AreaLight, SmallRectangleMatchesTheParallelRectangleFactorFar) {
-    LitPlaneScene s;
-    const double radiance = 3000.0, halfWidth = 0.03, halfHeight = 0.02, height = 1.2;
-    s.host.addPrim("rectLight", "/Panel",
-                   {{"inputs:intensity", HostValue::floatValue(float(radiance))},
-                    {"inputs:width", HostValue::floatValue(float(2 * halfWidth))},
-                    {"inputs:height", HostValue::floatValue(float(2 * halfHeight))},
-                    {"inputs:specular", HostValue::floatValue(0.0f)}},
-                   downAt(0.2, -0.1, height));
-    auto color = s.renderColor();
-    for (auto [x, y] : kPixels) {
-        auto p = planePointAtPixel(x, y, kLitPlaneCameraDistance, kLitPlaneTanHalfFov);
-        double l = kLitPlaneAlbedo / kPi *
-                   rectIrradiance(radiance, halfWidth, halfHeight, height, {p[0] - 0.2, p[1] + 0.1, p[2]});
-        expectRadiance(color, x, y, {l, l, l});
-    }
+    expectParallelRectangle(3000.0, 0.03, 0.02, 0.2, -0.1, 1.2);
 }
 
 TEST(AreaLight, EmitsFromItsFrontFaceOnly) {
