@@ -293,6 +293,10 @@ std::unique_ptr<SubdivisionTopology> buildTopology(TopologyKey key) {
 
     const std::vector<int32_t> baseFaces = lastLevelBaseFaces(*topology->refiner);
     const Far::TopologyLevel& last = topology->refiner->GetLevel(topology->refiner->GetMaxLevel());
+    topology->faceVertexCounts.reserve(size_t(last.GetNumFaces()));
+    topology->baseFace.reserve(size_t(last.GetNumFaces()));
+    topology->faceVertexIndices.reserve(size_t(last.GetNumFaceVertices()));
+    if (topology->key.faceVaryingChannel) topology->cornerValues.reserve(size_t(last.GetNumFaceVertices()));
     for (int face = 0; face < last.GetNumFaces(); ++face) {
         // Holes keep their children in the refiner, tagged (Far::TopologyLevel::IsFaceHole);
         // interpolateBoundary none also tags the faces along the boundary as holes.
@@ -358,6 +362,7 @@ MeshPrimvar refinePrimvar(const SubdivisionTopology& topology, const MeshPrimvar
     switch (primvar.interpolation) {
         case OBSCURA_INTERPOLATION_CONSTANT: out.values = primvar.values; break;
         case OBSCURA_INTERPOLATION_UNIFORM:
+            out.values.reserve(n * topology.baseFace.size());
             for (int32_t face : topology.baseFace) {
                 const auto first = primvar.values.begin() + long(n * size_t(face));
                 out.values.insert(out.values.end(), first, first + long(n));
@@ -365,6 +370,7 @@ MeshPrimvar refinePrimvar(const SubdivisionTopology& topology, const MeshPrimvar
             break;
         case OBSCURA_INTERPOLATION_FACE_VARYING: {
             const std::vector<Float3> values = refineFaceVaryingData(*topology.refiner, toFloat3(primvar.values, n));
+            out.values.reserve(n * topology.cornerValues.size());
             for (int32_t value : topology.cornerValues) {
                 const auto& v = values[size_t(value)].v;
                 out.values.insert(out.values.end(), v.begin(), v.begin() + long(n));
