@@ -63,6 +63,15 @@ std::string colourBlockEncoding(const std::string& sourceEncoding, VkFormat bloc
 struct ColourSummary {
     uint32_t blockFormat = 0, sourceFormat = 0, width = 0, height = 0;
     std::array<float, 4> average{};
+    // What makeFromImage writes; a damaged cache file reads as a miss, and no unknown format
+    // reaches the device.
+    bool plausible() const {
+        const auto block = VkFormat(blockFormat), source = VkFormat(sourceFormat);
+        const bool knownBlock = block == VK_FORMAT_BC1_RGB_SRGB_BLOCK || block == VK_FORMAT_BC1_RGB_UNORM_BLOCK ||
+                                block == VK_FORMAT_BC3_SRGB_BLOCK || block == VK_FORMAT_BC3_UNORM_BLOCK;
+        const bool knownSource = source == VK_FORMAT_R8G8B8A8_SRGB || source == VK_FORMAT_R8G8B8A8_UNORM;
+        return knownBlock && knownSource && width > 0 && height > 0;
+    }
 };
 
 // The sizes of a full mip chain of `desc` (each level half the last, down to one texel).
@@ -140,6 +149,8 @@ TexturePtr TextureCache::cachedColourTexture(const std::string& file, const std:
     ColourSummary summary;
     if (!bytes || bytes->size() != sizeof(summary)) return nullptr;
     std::memcpy(&summary, bytes->data(), sizeof(summary));
+    const uint32_t maxDimension = device_.context().properties().limits.maxImageDimension2D;
+    if (!summary.plausible() || summary.width > maxDimension || summary.height > maxDimension) return nullptr;
     const auto blockFormat = VkFormat(summary.blockFormat), sourceFormat = VkFormat(summary.sourceFormat);
     if (!canSampleCompressed(blockFormat)) return nullptr;
     Made made;

@@ -11,10 +11,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <random>
 
 namespace obscura::test {
 namespace {
@@ -831,12 +834,13 @@ TEST_F(TextureTest, CompressedTexturesFromTheDiskCacheRenderAsTheyDidWhenEncoded
     setBool(host, "taa", false);
     setBool(host, "ssao", false);
     for (const bool opaque : {true, false}) {
-        // Texels unique to this process, so that the first load encodes; the cut-out's right half
-        // has alpha 40.
+        // Texels no earlier run has encoded (blue from the bytes of a random number), so that the
+        // first load encodes; the cut-out's right half has alpha 40.
+        const uint32_t seed = std::random_device{}();
         std::vector<uint8_t> rgba;
         for (int y = 0; y < 16; ++y)
             for (int x = 0; x < 16; ++x)
-                for (int v : {16 * x, 16 * y, (x * y + getpid()) % 256, opaque || x < 8 ? 255 : 40})
+                for (int v : {16 * x, 16 * y, int((x * y + (seed >> (8 * ((x + y) % 4)))) % 256), opaque || x < 8 ? 255 : 40})
                     rgba.push_back(uint8_t(v));
         const std::string file = (dir_ / (opaque ? "opaque.png" : "cutout.png")).string();
         ASSERT_FALSE(image::isError(image::writePng(file, 16, 16, image::PngFormat::Rgba, rgba.data(), 16 * 4)));
@@ -869,6 +873,49 @@ TEST_F(TextureTest, CompressedTexturesFromTheDiskCacheRenderAsTheyDidWhenEncoded
     }
 }
 
+TEST_F(TextureTest, DamagedTextureSummariesInTheDiskCacheAreMisses) {
+    // A colour texture's summary in the disk cache (formats, size, mean) overwritten with bytes
+    // naming no format: the next load decodes the file again, finds its blocks, and renders as the
+    // first did; no unknown format reaches the device (validation would fail the test).
+    // The folder the plugin chose (delegate/cache_folder.h's order).
+    std::filesystem::path folder;
+    if (const char* set = std::getenv("OBSCURA_TEXTURE_CACHE"); set && *set) folder = set;
+    else if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) folder = std::filesystem::path(xdg) / "obscura";
+    else if (const char* home = std::getenv("HOME"); home && *home) folder = std::filesystem::path(home) / ".cache" / "obscura";
+    ASSERT_FALSE(folder.empty() || folder == "off") << "the texture disk cache is off";
+    const auto started = std::filesystem::file_time_type::clock::now() - std::chrono::seconds(2);
+    setCompression(true);
+    setBool(host, "taa", false);
+    setBool(host, "ssao", false);
+    const uint32_t seed = std::random_device{}();
+    const std::string file = writePng("damaged.png", 16, [seed](int x, int y) {
+        return Rgb8{uint8_t(16 * x), uint8_t(16 * y), uint8_t((3 * x + y + (seed >> (8 * ((x + y) % 4)))) % 256)};
+    });
+    std::vector<std::vector<float>> images;
+    for (int load = 0; load < 2; ++load) {
+        host.addPrim("material", "/Looks/M", textured("diffuseColor", file));
+        addPlane("/Plane", "/Looks/M");
+        render();
+        images.push_back(color);
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Plane"), OBSCURA_OK);
+        ASSERT_EQ(host.api().removePrim(host.delegate(), "/Looks/M"), OBSCURA_OK);
+        // The summaries written since the test began: this load's (and any a test beside it wrote,
+        // whose next load then decodes once more).
+        if (load == 0)
+            for (const auto& entry : std::filesystem::directory_iterator(folder))
+                if (entry.path().filename().string().rfind("colour-summary-", 0) == 0 &&
+                    entry.last_write_time() >= started) {
+                    std::FILE* f = std::fopen(entry.path().c_str(), "r+b");
+                    ASSERT_NE(f, nullptr);
+                    const std::vector<unsigned char> garbage(32, 0xff);
+                    std::fwrite(garbage.data(), 1, garbage.size(), f);
+                    std::fclose(f);
+                }
+    }
+    EXPECT_EQ(images[0], images[1]);
+    EXPECT_EQ(loadsOf(file), 2u);
+}
+
 TEST_F(TextureTest, EncodedNormalMapsComeBackFromTheDiskCacheAsTheyWereEncoded) {
     // A BC5 normal map's blocks come back from the disk cache by the file's content (the file's
     // header alone read, its texels neither decoded nor filtered): the second load, after the
@@ -877,10 +924,14 @@ TEST_F(TextureTest, EncodedNormalMapsComeBackFromTheDiskCacheAsTheyWereEncoded) 
     setCompression(true);
     setBool(host, "taa", false);
     setBool(host, "ssao", false);
-    const std::string file = writePng("bumps.png", 16, [](int x, int y) {
-        const double a = 0.4 * x + 0.9 * y + 0.1 * double(getpid() % 97), tilt = 0.05 * ((x * 7 + y * 3) % 11);
+    // Each texel's z one code lower where a bit of a random number says so: a map no earlier run
+    // has encoded.
+    const uint32_t seed = std::random_device{}();
+    const std::string file = writePng("bumps.png", 16, [seed](int x, int y) {
+        const double a = 0.4 * x + 0.9 * y, tilt = 0.05 * ((x * 7 + y * 3) % 11);
         auto code = [](double v) { return uint8_t(std::lround((0.5 * v + 0.5) * 255.0)); };
-        return Rgb8{code(std::sin(tilt) * std::cos(a)), code(std::sin(tilt) * std::sin(a)), code(std::cos(tilt))};
+        return Rgb8{code(std::sin(tilt) * std::cos(a)), code(std::sin(tilt) * std::sin(a)),
+                    uint8_t(code(std::cos(tilt)) - ((seed >> ((16 * y + x) % 32)) & 1u))};
     });
     host.addPrim("distantLight", "/Sun", {{"inputs:intensity", HostValue::floatValue(1.0f)}},
                  lightPointingAlong({-0.6, 0.0, -0.8}));
