@@ -416,6 +416,8 @@ SubdivisionCache::~SubdivisionCache() = default;
 SubdivisionCache::SubdivisionCache(SubdivisionCache&&) noexcept = default;
 SubdivisionCache& SubdivisionCache::operator=(SubdivisionCache&&) noexcept = default;
 
+void SubdivisionCache::release() { topology_.reset(); }
+
 std::variant<MeshInput, std::string> SubdivisionCache::refine(const MeshInput& mesh, SubdivisionScheme scheme,
                                                               const SubdivisionTags& tags, int level) {
     if (level > kMaxRefineLevel)

@@ -124,13 +124,18 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
                         "materialSubsets:materials"}) &&
         !(bits & kDirtyTessellation))
         return;
-    if (s.anyDirty({"points", "velocities", "accelerations"})) {
+    const bool pointsDirty = s.anyDirty({"points", "velocities", "accelerations"});
+    if (pointsDirty) {
         input_.points = s.getFloatArray("points").value_or(std::vector<float>{});
         shutterPoints_ = pullShutterPoints(s, input_.points, ctx);
     }
-    if (s.anyDirty({"faceVertexCounts", "faceVertexIndices", "orientation", "subdivisionScheme", "interpolateBoundary",
+    const bool topologyDirty =
+        s.anyDirty({"faceVertexCounts", "faceVertexIndices", "orientation", "subdivisionScheme", "interpolateBoundary",
                     "faceVaryingLinearInterpolation", "creaseIndices", "creaseLengths", "creaseSharpnesses",
-                    "cornerIndices", "cornerSharpnesses", "holeIndices", "obscura:refineLevel"})) {
+                    "cornerIndices", "cornerSharpnesses", "holeIndices", "obscura:refineLevel"});
+    // Points that change under a kept topology are animated: from then on the refiner is kept.
+    if (pointsDirty && !topologyDirty) pointsAnimated_ = true;
+    if (topologyDirty) {
         input_.faceVertexCounts = s.getIntArray("faceVertexCounts").value_or(std::vector<int32_t>{});
         input_.faceVertexIndices = s.getIntArray("faceVertexIndices").value_or(std::vector<int32_t>{});
         input_.leftHanded = s.getToken("orientation") == "leftHanded";
@@ -171,8 +176,8 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         if (auto st = s.getFloatArray("primvars:st"))
             input_.st = MeshPrimvar{std::move(*st), s.interpolation("primvars:st"), 2};
     }
-    // Subdivision surfaces are refined with OpenSubdiv; the cache keeps the refiner while only
-    // points change (animated meshes).
+    // Subdivision surfaces are refined with OpenSubdiv; the cache keeps the refiner for meshes
+    // whose points move (animated, or sampled over the shutter), which refine again and again.
     int level = refineLevelOverride_ >= 0 ? refineLevelOverride_ : ctx.refineLevel;
     std::variant<MeshInput, std::string> refined = input_;
     if (scheme_ != SubdivisionScheme::None && level > 0) refined = subdivision_.refine(input_, scheme_, tags_, level);
@@ -185,6 +190,7 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     if (shutterPoints_)
         ends = {drawnPositions((*shutterPoints_)[0], level, s.path()), drawnPositions((*shutterPoints_)[1], level, s.path())};
     setShutterPositions(ends, vertexCount, ctx, s.path());
+    if (!pointsAnimated_ && !shutterPoints_) subdivision_.release();
 }
 
 std::vector<float> Mesh::drawnPositions(const std::vector<float>& points, int level, const std::string& path) {

@@ -105,6 +105,7 @@ private:
     SubdivisionTags tags_;
     int refineLevelOverride_ = -1;
     SubdivisionCache subdivision_;
+    bool pointsAnimated_ = false;  // points changed while the topology stayed (subdivision_ keeps its refiner)
     Matrix4d transform_ = kIdentity;
     std::vector<TransformSample> shutterTransforms_;  // over the shutter: reference sub-frames, motion blur
     bool doubleSided_ = false;

@@ -54,6 +54,43 @@ TEST(Sync, DirtyPointsPullOnlyThatPrimsPoints) {
     EXPECT_EQ(t.host.getValueCalls["/A"], 1);  // points only
 }
 
+TEST(Sync, ASubdividedMeshFollowsItsPointsWhenTheyStartToMove) {
+    // A subdivided mesh drops its refiner after its first refinement (it may never refine again);
+    // points that then change refine through a new one, kept from there on. A quad's Catmull-Clark
+    // limit with sharp corners (edgeAndCorner) is the quad: it covers the pixels the same quad
+    // without subdivision covers, at every size it takes.
+    auto quad = [](float h) { return HostValue::points({{-h, -h, 0}, {h, -h, 0}, {h, h, 0}, {-h, h, 0}}); };
+    auto scene = [&](TestHost& host, const char* scheme, float h) {
+        host.addCamera("/Camera", translation(0, 0, 12));
+        host.addRenderBuffer("/Buffers/id", "int32", kWidth, kHeight);
+        setBool(host, "taa", false);  // every frame through the pixel centres
+        host.addPrim("mesh", "/Patch",
+                     {{"points", quad(h)},
+                      {"faceVertexCounts", HostValue::intArray({4})},
+                      {"faceVertexIndices", HostValue::intArray({0, 1, 2, 3})},
+                      {"subdivisionScheme", HostValue::token(scheme)},
+                      {"obscura:refineLevel", HostValue::intValue(2)}});
+    };
+    auto covered = [](TestHost& host) {
+        EXPECT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}}), OBSCURA_OK) << host.lastError();
+        auto ids = host.readInts("/Buffers/id");
+        return std::count_if(ids.begin(), ids.end(), [](int32_t id) { return id >= 0; });
+    };
+    auto flat = [&](float h) {
+        TestHost host;
+        scene(host, "none", h);
+        return covered(host);
+    };
+    TestHost host;
+    scene(host, "catmullClark", 2.0f);
+    EXPECT_EQ(covered(host), flat(2.0f));
+    for (float h : {1.0f, 1.5f, 1.0f}) {
+        host.set("/Patch", "points", quad(h));
+        host.api().markDirty(host.delegate(), "/Patch", OBSCURA_DIRTY_POINTS);
+        EXPECT_EQ(covered(host), flat(h)) << "half size " << h;
+    }
+}
+
 TEST(Sync, DirtyTransformPullsNoAttributes) {
     TwoPlanes t;
     ASSERT_EQ(t.render(), OBSCURA_OK);

@@ -327,6 +327,13 @@ TEST(Subdivision, CacheRebuildsTopologyOnlyWhenItChanges) {
     EXPECT_EQ(cache.topologyBuilds(), 4u);
     cache.refine(leftHandedCube(), SubdivisionScheme::CatmullClark, hole, 1);
     EXPECT_EQ(cache.topologyBuilds(), 4u);
+    // A released refiner is built again by the next refinement, which gives the same mesh.
+    const auto kept = std::get<MeshInput>(cache.refine(m, SubdivisionScheme::CatmullClark, {}, 2));
+    cache.release();
+    const auto rebuilt = std::get<MeshInput>(cache.refine(m, SubdivisionScheme::CatmullClark, {}, 2));
+    EXPECT_EQ(cache.topologyBuilds(), 6u);
+    EXPECT_EQ(rebuilt.points, kept.points);
+    EXPECT_EQ(rebuilt.faceVertexIndices, kept.faceVertexIndices);
 }
 
 TEST(Subdivision, RejectsBadTopologyAndTags) {
