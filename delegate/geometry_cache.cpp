@@ -2,6 +2,8 @@
 
 #include <xxhash.h>
 
+#include <new>
+
 namespace obscura::delegate {
 namespace {
 
@@ -12,22 +14,31 @@ size_t byteSize(const std::vector<T>& values) {
 
 }  // namespace
 
+ContentKeyBuilder::ContentKeyBuilder() : state_(XXH3_createState()) {
+    if (!state_) throw std::bad_alloc();
+    XXH3_128bits_reset(state_);
+}
+
+ContentKeyBuilder::~ContentKeyBuilder() { XXH3_freeState(state_); }
+
+void ContentKeyBuilder::add(const void* data, size_t bytes) { XXH3_128bits_update(state_, data, bytes); }
+
+ContentKey ContentKeyBuilder::key() const {
+    const XXH128_hash_t hash = XXH3_128bits_digest(state_);
+    return {hash.low64, hash.high64};
+}
+
 GeometryContent geometryContent(std::vector<passes::Vertex> vertices, std::vector<uint32_t> indices) {
     GeometryContent c{std::move(vertices), std::move(indices), {}};
-    // The vertices' byte count first: where the vertices end and the indices begin is content too.
-    const uint64_t vertexBytes = byteSize(c.vertices);
-    XXH3_state_t* state = XXH3_createState();
-    XXH3_128bits_reset(state);
-    XXH3_128bits_update(state, &vertexBytes, sizeof(vertexBytes));
-    XXH3_128bits_update(state, c.vertices.data(), byteSize(c.vertices));
-    XXH3_128bits_update(state, c.indices.data(), byteSize(c.indices));
-    const XXH128_hash_t hash = XXH3_128bits_digest(state);
-    XXH3_freeState(state);
-    c.hash = {hash.low64, hash.high64};
+    // The vertices' count first: where the vertices end and the indices begin is content too.
+    ContentKeyBuilder key;
+    key.addArray(c.vertices);
+    key.add(c.indices.data(), byteSize(c.indices));
+    c.hash = key.key();
     return c;
 }
 
-SharedGeometry GeometryCache::get(GeometryContent content, const char* debugName) {
+SharedGeometry GeometryCache::get(const GeometryContent& content, const char* debugName) {
     if (auto it = entries_.find(content.hash); it != entries_.end()) {
         SharedGeometry shared{it->second.vertices.lock(), it->second.indices.lock()};
         if (shared.vertices && shared.indices) return shared;
@@ -52,6 +63,39 @@ uint64_t GeometryCache::residentBytes() {
 void GeometryCache::prune() {
     for (auto it = entries_.begin(); it != entries_.end();)
         it = it->second.vertices.expired() ? entries_.erase(it) : std::next(it);
+}
+
+std::shared_ptr<BuiltMesh> builtMesh(MeshGeometry&& geometry) {
+    auto built = std::make_shared<BuiltMesh>();
+    built->groupRanges = std::move(geometry.groupRanges);
+    built->warnings = std::move(geometry.warnings);
+    for (const passes::Vertex& v : geometry.vertices) {
+        built->bounds.extend({v.position[0], v.position[1], v.position[2]});
+        built->translucentVertices = built->translucentVertices || v.color[3] < 1.0f;
+    }
+    built->vertexCount = geometry.vertices.size();
+    built->indexCount = static_cast<uint32_t>(geometry.indices.size());
+    built->content = geometryContent(std::move(geometry.vertices), std::move(geometry.indices));
+    return built;
+}
+
+std::shared_ptr<BuiltMesh> BuiltMeshCache::find(const ContentKey& key) {
+    std::lock_guard lock(mutex_);
+    auto it = entries_.find(key);
+    return it == entries_.end() ? nullptr : it->second.lock();
+}
+
+std::shared_ptr<BuiltMesh> BuiltMeshCache::insert(const ContentKey& key, std::shared_ptr<BuiltMesh> built) {
+    std::lock_guard lock(mutex_);
+    std::weak_ptr<BuiltMesh>& entry = entries_[key];
+    if (auto first = entry.lock()) return first;
+    entry = built;
+    return built;
+}
+
+void BuiltMeshCache::prune() {
+    std::lock_guard lock(mutex_);
+    std::erase_if(entries_, [](const auto& entry) { return entry.second.expired(); });
 }
 
 }  // namespace obscura::delegate

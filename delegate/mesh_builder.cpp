@@ -54,6 +54,14 @@ size_t primvarElementCount(const MeshInput& mesh, ObscuraInterpolation interpola
     }
 }
 
+std::string primvarCountProblem(const MeshInput& mesh, const std::optional<MeshPrimvar>& primvar, const char* name) {
+    if (!primvar) return {};
+    const size_t expected = primvarElementCount(mesh, primvar->interpolation);
+    if (primvar->values.size() == expected * primvar->components) return {};
+    return std::string(name) + " has " + std::to_string(primvar->values.size() / primvar->components) +
+           " elements but its interpolation needs " + std::to_string(expected) + "; ignored";
+}
+
 std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh) {
     MeshGeometry out;
     const size_t pointCount = mesh.points.size() / 3;
@@ -75,10 +83,8 @@ std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh)
 
     auto usable = [&](const std::optional<MeshPrimvar>& pv, const char* name) -> const MeshPrimvar* {
         if (!pv) return nullptr;
-        size_t expected = primvarElementCount(mesh, pv->interpolation);
-        if (pv->values.size() != expected * pv->components) {
-            out.warnings.push_back(std::string(name) + " has " + std::to_string(pv->values.size() / pv->components) +
-                                   " elements but its interpolation needs " + std::to_string(expected) + "; ignored");
+        if (std::string problem = primvarCountProblem(mesh, pv, name); !problem.empty()) {
+            out.warnings.push_back(std::move(problem));
             return nullptr;
         }
         return &*pv;

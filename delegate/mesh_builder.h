@@ -51,6 +51,10 @@ struct MeshGeometry {
 // Expected element count of a primvar of this interpolation on this mesh.
 size_t primvarElementCount(const MeshInput& mesh, ObscuraInterpolation interpolation);
 
+// Why `primvar` (named `name` in messages) is left out of `mesh`: its element count does not fit
+// its interpolation. "" when it fits or is not authored.
+std::string primvarCountProblem(const MeshInput& mesh, const std::optional<MeshPrimvar>& primvar, const char* name);
+
 // Validates topology (counts >= 3 and summing to the index count, indices within the points)
 // and returns the reason when the mesh is unusable. Primvars of the wrong size are dropped with
 // a warning: the mesh still draws. Without authored normals, smooth vertex normals are computed

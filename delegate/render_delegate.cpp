@@ -258,7 +258,7 @@ void RenderDelegate::sync(double time, const Camera* camera, const ObscuraRender
     });
     const renderer::FrameSettings& settings = settings_.values();
     SyncContext ctx{sceneDelegate_, *device_,      time, time, time, settings.refineLevel, settings.timeCodesPerSecond,
-                    *textures_,     *geometry_};
+                    *textures_,     *geometry_,    builtMeshes_};
     auto takeShutter = [&] {
         if (!camera || camera->skipped()) return;
         ctx.shutterOpen = time + camera->params().shutterOpen;
@@ -266,6 +266,7 @@ void RenderDelegate::sync(double time, const Camera* camera, const ObscuraRender
     };
     takeShutter();
     geometry_->prune();
+    builtMeshes_.prune();
     // A failure half-way (the device out of memory) leaves every prim not synced to the end dirty,
     // so that a later render pulls it again.
     struct Requeue {

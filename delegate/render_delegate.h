@@ -82,6 +82,7 @@ private:
     std::unique_ptr<gpu::Device> device_;
     std::unique_ptr<TextureCache> textures_;
     std::unique_ptr<GeometryCache> geometry_;
+    BuiltMeshCache builtMeshes_;
     std::unique_ptr<renderer::FrameRenderer> frame_;
     // Made by the first export: the semaphore of exported buffers and their release after each frame.
     std::unique_ptr<gpu::ExportTimeline> exportTimeline_;

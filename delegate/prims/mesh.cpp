@@ -8,6 +8,7 @@ namespace obscura::delegate {
 
 void Mesh::reset() {
     input_ = MeshInput{};
+    built_.reset();
     vertices_.reset();
     indices_.reset();
     shutterPositions_.reset();
@@ -53,25 +54,30 @@ void Mesh::pullGprim(SceneAccess& s, SyncContext& ctx) {
 }
 
 size_t Mesh::setGeometry(MeshGeometry&& geometry, SyncContext& ctx, const std::string& path) {
+    return useBuiltMesh(builtMesh(std::move(geometry)), ctx, path);
+}
+
+size_t Mesh::useBuiltMesh(std::shared_ptr<BuiltMesh> built, SyncContext& ctx, const std::string& path) {
     warnings_.clear();
-    for (const std::string& warning : geometry.warnings) warnings_.push_back(path + ": " + warning);
-    translucentVertices_ = std::any_of(geometry.vertices.begin(), geometry.vertices.end(),
-                                       [](const passes::Vertex& v) { return v.color[3] < 1.0f; });
-    indexCount_ = static_cast<uint32_t>(geometry.indices.size());
+    for (const std::string& warning : built->warnings) warnings_.push_back(path + ": " + warning);
+    translucentVertices_ = built->translucentVertices;
+    indexCount_ = built->indexCount;
     // Tessellators that do not group faces (implicit surfaces, curves) draw with one material.
-    groupRanges_ = geometry.groupRanges.empty() ? std::vector<IndexRange>{{0, indexCount_}} : geometry.groupRanges;
+    groupRanges_ = built->groupRanges.empty() ? std::vector<IndexRange>{{0, indexCount_}} : built->groupRanges;
     updateMaterialParts();
-    localBounds_ = Aabb{};
-    for (const passes::Vertex& v : geometry.vertices) localBounds_.extend({v.position[0], v.position[1], v.position[2]});
-    const size_t vertexCount = geometry.vertices.size();
-    ctx.onDevice([this, &cache = ctx.geometry,
-                  content = geometryContent(std::move(geometry.vertices), std::move(geometry.indices)),
-                  path]() mutable {
-        SharedGeometry shared = cache.get(std::move(content), path.c_str());
-        vertices_ = std::move(shared.vertices);
-        indices_ = std::move(shared.indices);
+    localBounds_ = built->bounds;
+    // The first prim to reach the device with this mesh uploads it (through the geometry cache,
+    // which finds equal content built from other inputs); the others take its buffers.
+    ctx.onDevice([this, &cache = ctx.geometry, built, path] {
+        if (!built->buffers.vertices) {
+            built->buffers = cache.get(built->content, path.c_str());
+            built->content = {};
+        }
+        vertices_ = built->buffers.vertices;
+        indices_ = built->buffers.indices;
+        built_ = built;
     });
-    return vertexCount;
+    return built->vertexCount;
 }
 
 std::optional<MeshPrimvar> pullPrimvar(SceneAccess& s, const char* name, size_t components) {
@@ -179,18 +185,69 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
     // Subdivision surfaces are refined with OpenSubdiv; the cache keeps the refiner for meshes
     // whose points move (animated, or sampled over the shutter), which refine again and again.
     int level = refineLevelOverride_ >= 0 ? refineLevelOverride_ : ctx.refineLevel;
-    std::variant<MeshInput, std::string> refined = input_;
-    if (scheme_ != SubdivisionScheme::None && level > 0) refined = subdivision_.refine(input_, scheme_, tags_, level);
-    if (auto* problem = std::get_if<std::string>(&refined)) throw PrimDataError(s.path() + ": " + *problem);
-    auto built = buildMeshGeometry(std::get<MeshInput>(refined));
-    if (auto* problem = std::get_if<std::string>(&built)) throw PrimDataError(s.path() + ": " + *problem);
-    const size_t vertexCount = setGeometry(std::move(std::get<MeshGeometry>(built)), ctx, s.path());
+    // A prim whose inputs equal another's (a repeated reference of one asset) takes its built mesh.
+    const ContentKey key = inputKey(level);
+    std::shared_ptr<BuiltMesh> built = ctx.builtMeshes.find(key);
+    if (!built) {
+        std::variant<MeshInput, std::string> refined = input_;
+        // Refinement leaves out a primvar whose count does not fit the control mesh (authored
+        // normals it ignores, as UsdGeomMesh specifies for subdivision surfaces).
+        std::vector<std::string> dropped;
+        if (scheme_ != SubdivisionScheme::None && level > 0) {
+            refined = subdivision_.refine(input_, scheme_, tags_, level);
+            for (const auto& [primvar, name] : {std::pair{&input_.displayColor, "primvars:displayColor"},
+                                                {&input_.displayOpacity, "primvars:displayOpacity"},
+                                                {&input_.st, "primvars:st"}})
+                if (std::string problem = primvarCountProblem(input_, *primvar, name); !problem.empty())
+                    dropped.push_back(std::move(problem));
+        }
+        if (auto* problem = std::get_if<std::string>(&refined)) throw PrimDataError(s.path() + ": " + *problem);
+        auto geometry = buildMeshGeometry(std::get<MeshInput>(refined));
+        if (auto* problem = std::get_if<std::string>(&geometry)) throw PrimDataError(s.path() + ": " + *problem);
+        MeshGeometry& drawn = std::get<MeshGeometry>(geometry);
+        drawn.warnings.insert(drawn.warnings.begin(), dropped.begin(), dropped.end());
+        built = ctx.builtMeshes.insert(key, builtMesh(std::move(drawn)));
+    }
+    const size_t vertexCount = useBuiltMesh(std::move(built), ctx, s.path());
     warnings_.insert(warnings_.end(), faceGroups.warnings.begin(), faceGroups.warnings.end());
     std::optional<std::array<std::vector<float>, 2>> ends;
     if (shutterPoints_)
         ends = {drawnPositions((*shutterPoints_)[0], level, s.path()), drawnPositions((*shutterPoints_)[1], level, s.path())};
     setShutterPositions(ends, vertexCount, ctx, s.path());
     if (!pointsAnimated_ && !shutterPoints_) subdivision_.release();
+}
+
+ContentKey Mesh::inputKey(int level) const {
+    ContentKeyBuilder key;
+    key.addArray(input_.points);
+    key.addArray(input_.faceVertexCounts);
+    key.addArray(input_.faceVertexIndices);
+    key.add(input_.leftHanded);
+    for (const std::optional<MeshPrimvar>* primvar : {&input_.normals, &input_.displayColor, &input_.displayOpacity, &input_.st}) {
+        key.add(primvar->has_value());
+        if (!*primvar) continue;
+        key.add((*primvar)->interpolation);
+        key.add(uint64_t((*primvar)->components));
+        key.addArray((*primvar)->values);
+    }
+    key.addArray(input_.faceGroups);
+    // The refinement: none for a mesh drawn as its polygons, whatever its tags.
+    const bool refined = scheme_ != SubdivisionScheme::None && level > 0;
+    key.add(refined ? scheme_ : SubdivisionScheme::None);
+    if (refined) {
+        key.add(level);
+        for (const std::string* token : {&tags_.interpolateBoundary, &tags_.faceVaryingLinearInterpolation}) {
+            key.add(uint64_t(token->size()));
+            key.add(token->data(), token->size());
+        }
+        key.addArray(tags_.creaseIndices);
+        key.addArray(tags_.creaseLengths);
+        key.addArray(tags_.creaseSharpnesses);
+        key.addArray(tags_.cornerIndices);
+        key.addArray(tags_.cornerSharpnesses);
+        key.addArray(tags_.holeIndices);
+    }
+    return key.key();
 }
 
 std::vector<float> Mesh::drawnPositions(const std::vector<float>& points, int level, const std::string& path) {

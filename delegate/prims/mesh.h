@@ -79,6 +79,8 @@ protected:
     // geometry cache, keyed here on the pulling thread); the vertices and indices are moved out.
     // Returns the number of vertices.
     size_t setGeometry(MeshGeometry&& geometry, SyncContext& ctx, const std::string& path);
+    // The same for a mesh built already, maybe shared with other prims (geometry_cache.h).
+    size_t useBuiltMesh(std::shared_ptr<BuiltMesh> built, SyncContext& ctx, const std::string& path);
     // `points` at the shutter's open and close when they differ from the frame's (the prim
     // deforms within the shutter: motion blur's velocities), moved by their velocities where those
     // are authored, else the host's samples (point_motion.h); nullopt when they do not move.
@@ -96,6 +98,8 @@ private:
     void pull(SceneAccess& scene, ObscuraDirtyBits bits, SyncContext& ctx) override;
     // materialParts() from the drawn groups and the bindings of the mesh and its subsets.
     void updateMaterialParts();
+    // The key of what the drawn mesh is built from (BuiltMeshCache): input_, refined to `level`.
+    ContentKey inputKey(int level) const;
     // The drawn (refined, triangulated) vertex positions of the mesh with `points` instead of its own.
     std::vector<float> drawnPositions(const std::vector<float>& points, int level, const std::string& path);
 
@@ -118,6 +122,7 @@ private:
     std::vector<std::string> subsetMaterials_;  // materialSubsets:materials
     std::vector<IndexRange> groupRanges_;        // of the drawn indices: the mesh's own faces, then each subset's
     std::vector<MaterialPart> parts_;
+    std::shared_ptr<const BuiltMesh> built_;  // what vertices_ and indices_ come from, kept for prims with equal inputs
     gpu::BufferPtr vertices_;
     gpu::BufferPtr indices_;
     std::optional<std::array<std::vector<float>, 2>> shutterPoints_;  // points at the shutter's ends

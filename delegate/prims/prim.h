@@ -18,6 +18,7 @@ namespace obscura::delegate {
 
 class TextureCache;
 class GeometryCache;
+class BuiltMeshCache;
 
 // A bit the delegate sets itself, never a host: the view (or the refineLevel setting) asks for
 // another tessellation of what was pulled, without reading anything again.
@@ -38,6 +39,7 @@ struct SyncContext {
     double timeCodesPerSecond;  // render setting: velocities are per second, times in time codes
     TextureCache& textures;
     GeometryCache& geometry;
+    BuiltMeshCache& builtMeshes;
     DeviceWork* deviceWork = nullptr;  // the prim being synced's queue
 
     void onDevice(std::function<void()> work) { deviceWork->push_back(std::move(work)); }

@@ -179,6 +179,49 @@ TEST(SharedGeometry, IdenticalMeshesAreStoredOnce) {
     EXPECT_EQ(geometryBytes(host), one);
 }
 
+TEST(SharedGeometry, CopiesOfASubdividedMeshShareOneStorageAndEachReportsItsOwnProblems) {
+    // Repeated references of one asset share their refined, built mesh (their inputs are equal);
+    // each still draws where its transform puts it and reports what its data lacks under its own
+    // path (a subdivided mesh's primvar of the wrong count too, which refinement leaves out).
+    TestHost host;
+    host.addCamera("/Camera", translation(0, 0, 12));
+    host.addRenderBuffer("/Buffers/id", "int32", kWidth, kHeight);
+    setBool(host, "taa", false);
+    auto addCopy = [&](const std::string& path, double x) {
+        host.addPrim("mesh", path,
+                     {{"points", HostValue::points({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}})},
+                      {"faceVertexCounts", HostValue::intArray({4})},
+                      {"faceVertexIndices", HostValue::intArray({0, 1, 2, 3})},
+                      {"subdivisionScheme", HostValue::token("catmullClark")},
+                      {"primvars:displayColor", HostValue::points({{1, 0, 0}, {0, 1, 0}})}},  // vertex needs 4
+                     translation(x, 0, 0));
+    };
+    addCopy("/Left", -1.2);
+    ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}}), OBSCURA_OK) << host.lastError();
+    const uint64_t one = geometryBytes(host);
+    addCopy("/Right", 1.2);
+    ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}}), OBSCURA_OK) << host.lastError();
+    EXPECT_EQ(geometryBytes(host), one);
+    auto ids = host.readInts("/Buffers/id");
+    // Each square (0.8 wide) sits on its own side of the frame's centre column.
+    std::set<int32_t> left, right;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x)
+            if (int32_t id = ids[size_t(y * kWidth + x)]; id >= 0) (x < kWidth / 2 ? left : right).insert(id);
+    ASSERT_EQ(left.size(), 1u);
+    ASSERT_EQ(right.size(), 1u);
+    EXPECT_NE(*left.begin(), *right.begin());
+    for (const std::string path : {"/Left", "/Right"}) {
+        const auto& warnings = host.loggedWarnings();
+        EXPECT_EQ(std::count_if(warnings.begin(), warnings.end(),
+                                [&](const std::string& w) {
+                                    return w.rfind(path + ": primvars:displayColor has 2 elements", 0) == 0;
+                                }),
+                  1)
+            << path;
+    }
+}
+
 TEST(SharedGeometry, InstancedCopiesKeepTheirOwnMaterialAndId) {
     // Repeated references become one instanced draw; each instance still reads its own record.
     TestHost host;
