@@ -12,6 +12,7 @@
 #include <set>
 #include <span>
 #include <thread>
+#include <tuple>
 
 namespace obscura::test {
 namespace {
@@ -220,6 +221,27 @@ TEST(SharedGeometry, CopiesOfASubdividedMeshShareOneStorageAndEachReportsItsOwnP
                   1)
             << path;
     }
+}
+
+TEST(SharedGeometry, CopiesThatDifferInAPrimvarKeepTheirOwn) {
+    // Same points and topology, another displayColor: not a copy, each draws its own colour.
+    TestHost host;
+    host.addCamera("/Camera", translation(0, 0, 10));
+    host.addRenderBuffer("/Buffers/color", "float32Vec4", kWidth, kHeight);
+    host.addPrim("distantLight", "/Sun", {{"inputs:normalize", HostValue::boolean(true)}}, lightPointingAlong({0, 0, -1}));
+    for (const auto& [path, x, colour] : {std::tuple{"/Red", -1.0, std::array<float, 3>{1, 0, 0}},
+                                          std::tuple{"/Blue", 1.0, std::array<float, 3>{0, 0, 1}}}) {
+        addPlane(host, path, "", 0.8, translation(x, 0, 0));
+        host.set(path, "primvars:displayColor", HostValue::points({colour}));
+        host.setInterpolation(path, "primvars:displayColor", OBSCURA_INTERPOLATION_CONSTANT);
+    }
+    ASSERT_EQ(host.render("/Camera", {{"color", "/Buffers/color"}}), OBSCURA_OK) << host.lastError();
+    auto color = host.readFloats("/Buffers/color");
+    // The camera sees +-2.1 units at z = 0 across 64 pixels: x = -1 is pixel 16.7, x = +1 pixel 47.3.
+    const float* red = &color[(32 * kWidth + 16) * 4];
+    const float* blue = &color[(32 * kWidth + 47) * 4];
+    EXPECT_GT(red[0], 3.0f * red[2]);  // the fallback material's white specular adds to both
+    EXPECT_GT(blue[2], 3.0f * blue[0]);
 }
 
 TEST(SharedGeometry, InstancedCopiesKeepTheirOwnMaterialAndId) {
