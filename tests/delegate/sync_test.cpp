@@ -244,6 +244,23 @@ TEST(SharedGeometry, CopiesThatDifferInAPrimvarKeepTheirOwn) {
     EXPECT_GT(blue[2], 3.0f * blue[0]);
 }
 
+TEST(SharedGeometry, CopiesThatDifferInASubdivisionTagKeepTheirOwn) {
+    // The same control mesh, one copy with its face a hole: that copy draws nothing.
+    TestHost host;
+    host.addCamera("/Camera", translation(0, 0, 10));
+    host.addRenderBuffer("/Buffers/id", "int32", kWidth, kHeight);
+    for (const auto& [path, x] : {std::pair{"/Whole", -1.0}, std::pair{"/Holed", 1.0}}) {
+        addPlane(host, path, "", 0.8, translation(x, 0, 0));
+        host.set(path, "subdivisionScheme", HostValue::token("catmullClark"));
+    }
+    host.set("/Holed", "holeIndices", HostValue::intArray({0}));
+    ASSERT_EQ(host.render("/Camera", {{"primId", "/Buffers/id"}}), OBSCURA_OK) << host.lastError();
+    auto ids = host.readInts("/Buffers/id");
+    // The camera sees +-2.1 units at z = 0 across 64 pixels: x = -1 is pixel 16.7, x = +1 pixel 47.3.
+    EXPECT_GE(ids[size_t(32 * kWidth + 16)], 0);
+    EXPECT_LT(ids[size_t(32 * kWidth + 47)], 0);
+}
+
 TEST(SharedGeometry, InstancedCopiesKeepTheirOwnMaterialAndId) {
     // Repeated references become one instanced draw; each instance still reads its own record.
     TestHost host;
