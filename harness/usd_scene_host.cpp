@@ -323,6 +323,7 @@ UsdSceneHost::UsdSceneHost(const usda::Stage& stage) : stage_(stage) {
     sceneDelegate_.sType = OBSCURA_STRUCTURE_TYPE_SCENE_DELEGATE;
     sceneDelegate_.structSize = sizeof(ObscuraSceneDelegate);
     sceneDelegate_.userData = this;
+    sceneDelegate_.flags = OBSCURA_SCENE_DELEGATE_THREAD_SAFE;
     sceneDelegate_.getValue = &UsdSceneHost::getValueThunk;
     sceneDelegate_.getInterpolation = &UsdSceneHost::getInterpolationThunk;
     sceneDelegate_.sampleTransform = &UsdSceneHost::sampleTransformThunk;
@@ -787,40 +788,41 @@ const usda::Attribute* UsdSceneHost::resolveAttribute(const std::string& path, c
 }
 
 ObscuraStatus UsdSceneHost::fill(const usda::Value& v, ObscuraValue* out) {
+    ReturnedValues& storage = returned();
     out->isArray = v.isArray ? 1 : 0;
     out->count = v.size();
     const std::string& t = v.typeName;
     if (!v.strings.empty() || t == "token" || t == "string" || t == "asset") {
-        strings_ = v.strings;
-        stringPointers_.clear();
-        for (const auto& s : strings_) stringPointers_.push_back(s.c_str());
+        storage.strings = v.strings;
+        storage.stringPointers.clear();
+        for (const auto& s : storage.strings) storage.stringPointers.push_back(s.c_str());
         out->type = OBSCURA_VALUE_TOKEN;
-        out->data = stringPointers_.data();
+        out->data = storage.stringPointers.data();
         return OBSCURA_OK;
     }
     bool integer = startsWith(t, "int") || startsWith(t, "uint") || t == "uchar";
     if (t == "bool" || (integer && v.tupleSize == 1)) {
-        ints_.assign(v.numbers.begin(), v.numbers.end());
-        std::transform(v.numbers.begin(), v.numbers.end(), ints_.begin(), [](double d) { return int32_t(d); });
+        storage.ints.assign(v.numbers.begin(), v.numbers.end());
+        std::transform(v.numbers.begin(), v.numbers.end(), storage.ints.begin(), [](double d) { return int32_t(d); });
         out->type = t == "bool" ? OBSCURA_VALUE_BOOL : OBSCURA_VALUE_INT;
-        out->data = ints_.data();
+        out->data = storage.ints.data();
         return OBSCURA_OK;
     }
     if (integer && v.tupleSize == 2) {
-        ints_.resize(v.numbers.size());
-        std::transform(v.numbers.begin(), v.numbers.end(), ints_.begin(), [](double d) { return int32_t(d); });
+        storage.ints.resize(v.numbers.size());
+        std::transform(v.numbers.begin(), v.numbers.end(), storage.ints.begin(), [](double d) { return int32_t(d); });
         out->type = OBSCURA_VALUE_INT2;
-        out->data = ints_.data();
+        out->data = storage.ints.data();
         return OBSCURA_OK;
     }
     if (v.tupleSize == 16 || ((t == "double" || t == "timecode") && v.tupleSize == 1)) {
-        doubles_ = v.numbers;
+        storage.doubles = v.numbers;
         out->type = v.tupleSize == 16 ? OBSCURA_VALUE_MATRIX4D : OBSCURA_VALUE_DOUBLE;
-        out->data = doubles_.data();
+        out->data = storage.doubles.data();
         return OBSCURA_OK;
     }
-    floats_.resize(v.numbers.size());
-    std::transform(v.numbers.begin(), v.numbers.end(), floats_.begin(), [](double d) { return float(d); });
+    storage.floats.resize(v.numbers.size());
+    std::transform(v.numbers.begin(), v.numbers.end(), storage.floats.begin(), [](double d) { return float(d); });
     switch (v.tupleSize) {
         case 1: out->type = OBSCURA_VALUE_FLOAT; break;
         case 2: out->type = OBSCURA_VALUE_FLOAT2; break;
@@ -828,7 +830,7 @@ ObscuraStatus UsdSceneHost::fill(const usda::Value& v, ObscuraValue* out) {
         case 4: out->type = OBSCURA_VALUE_FLOAT4; break;
         default: return OBSCURA_ERROR_INVALID_ARGUMENT;
     }
-    out->data = floats_.data();
+    out->data = storage.floats.data();
     return OBSCURA_OK;
 }
 
@@ -841,25 +843,26 @@ ObscuraStatus UsdSceneHost::fillToken(const char* token, ObscuraValue* out) {
 
 ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string& attribute, double time,
                                      ObscuraValue* out) {
+    ReturnedValues& storage = returned();
     auto rb = renderBuffers_.find(path);
     if (rb != renderBuffers_.end()) {
         if (attribute == "dimensions") {
-            ints_ = {rb->second.width, rb->second.height};
-            *out = {OBSCURA_VALUE_INT2, 0, 1, ints_.data()};
+            storage.ints = {rb->second.width, rb->second.height};
+            *out = {OBSCURA_VALUE_INT2, 0, 1, storage.ints.data()};
             return OBSCURA_OK;
         }
         if (attribute == "format") {
-            strings_ = {rb->second.format};
-            stringPointers_ = {strings_[0].c_str()};
-            *out = {OBSCURA_VALUE_TOKEN, 0, 1, stringPointers_.data()};
+            storage.strings = {rb->second.format};
+            storage.stringPointers = {storage.strings[0].c_str()};
+            *out = {OBSCURA_VALUE_TOKEN, 0, 1, storage.stringPointers.data()};
             return OBSCURA_OK;
         }
         return OBSCURA_ERROR_NOT_FOUND;
     }
     if (framingCamera_ && path == framingCamera_->path) {
         if (attribute != "clippingRange") return OBSCURA_ERROR_NOT_FOUND;  // schema defaults
-        floats_.assign(framingCamera_->clippingRange, framingCamera_->clippingRange + 2);
-        *out = {OBSCURA_VALUE_FLOAT2, 0, 1, floats_.data()};
+        storage.floats.assign(framingCamera_->clippingRange, framingCamera_->clippingRange + 2);
+        *out = {OBSCURA_VALUE_FLOAT2, 0, 1, storage.floats.data()};
         return OBSCURA_OK;
     }
     if (const NativeInstancer* instancer = nativeInstancing_.instancer(path))
@@ -871,49 +874,49 @@ ObscuraStatus UsdSceneHost::getValue(const std::string& path, const std::string&
     if (auto served = convertedValue(*prim, attribute, time, out)) return *served;
     if (attribute == "purpose") return computedPurpose(*prim, out);
     if (attribute == "visibility") {
-        strings_ = {stage_.isVisible(*prim, time) ? "inherited" : "invisible"};
-        stringPointers_ = {strings_[0].c_str()};
-        *out = {OBSCURA_VALUE_TOKEN, 0, 1, stringPointers_.data()};
+        storage.strings = {stage_.isVisible(*prim, time) ? "inherited" : "invisible"};
+        storage.stringPointers = {storage.strings[0].c_str()};
+        *out = {OBSCURA_VALUE_TOKEN, 0, 1, storage.stringPointers.data()};
         return OBSCURA_OK;
     }
     if (attribute == "prototypes") {
         const usda::Relationship* rel = prim->relationship("prototypes");
         if (!rel) return OBSCURA_ERROR_NOT_FOUND;
-        strings_ = rel->targets;
-        stringPointers_.clear();
-        for (const auto& t : strings_) stringPointers_.push_back(t.c_str());
-        *out = {OBSCURA_VALUE_PATH, 1, strings_.size(), stringPointers_.data()};
+        storage.strings = rel->targets;
+        storage.stringPointers.clear();
+        for (const auto& t : storage.strings) storage.stringPointers.push_back(t.c_str());
+        *out = {OBSCURA_VALUE_PATH, 1, storage.strings.size(), storage.stringPointers.data()};
         return OBSCURA_OK;
     }
     if (attribute == "obscura:clipVolume") {
         const usda::Relationship* rel = prim->relationship(attribute);
         if (!rel || rel->targets.empty()) return OBSCURA_ERROR_NOT_FOUND;
-        strings_ = {rel->targets.front()};
-        stringPointers_ = {strings_[0].c_str()};
-        *out = {OBSCURA_VALUE_PATH, 0, 1, stringPointers_.data()};
+        storage.strings = {rel->targets.front()};
+        storage.stringPointers = {storage.strings[0].c_str()};
+        *out = {OBSCURA_VALUE_PATH, 0, 1, storage.stringPointers.data()};
         return OBSCURA_OK;
     }
     if (startsWith(attribute, "materialSubsets:") && prim->typeName == "Mesh") {
         const MaterialBindSubsets subsets = bindSubsets(*prim, time);
         if (subsets.empty()) return OBSCURA_ERROR_NOT_FOUND;
         if (attribute == "materialSubsets:faceCounts" || attribute == "materialSubsets:faceIndices") {
-            ints_ = attribute == "materialSubsets:faceCounts" ? subsets.faceCounts : subsets.faceIndices;
-            *out = {OBSCURA_VALUE_INT, 1, ints_.size(), ints_.data()};
+            storage.ints = attribute == "materialSubsets:faceCounts" ? subsets.faceCounts : subsets.faceIndices;
+            *out = {OBSCURA_VALUE_INT, 1, storage.ints.size(), storage.ints.data()};
             return OBSCURA_OK;
         }
         if (attribute != "materialSubsets:materials" && attribute != "materialSubsets:paths") return OBSCURA_ERROR_NOT_FOUND;
-        strings_ = attribute == "materialSubsets:materials" ? subsets.materials : subsets.paths;
-        stringPointers_.clear();
-        for (const auto& t : strings_) stringPointers_.push_back(t.c_str());
-        *out = {OBSCURA_VALUE_PATH, 1, strings_.size(), stringPointers_.data()};
+        storage.strings = attribute == "materialSubsets:materials" ? subsets.materials : subsets.paths;
+        storage.stringPointers.clear();
+        for (const auto& t : storage.strings) storage.stringPointers.push_back(t.c_str());
+        *out = {OBSCURA_VALUE_PATH, 1, storage.strings.size(), storage.stringPointers.data()};
         return OBSCURA_OK;
     }
     if (attribute == "material:binding") {
         auto material = boundMaterial(*prim);
         if (!material) return OBSCURA_ERROR_NOT_FOUND;
-        strings_ = {*material};
-        stringPointers_ = {strings_[0].c_str()};
-        *out = {OBSCURA_VALUE_PATH, 0, 1, stringPointers_.data()};
+        storage.strings = {*material};
+        storage.stringPointers = {storage.strings[0].c_str()};
+        *out = {OBSCURA_VALUE_PATH, 0, 1, storage.stringPointers.data()};
         return OBSCURA_OK;
     }
     if (const MaterialXMapping* mapped = mappedSurface(path, time)) {
@@ -1093,11 +1096,12 @@ std::vector<double> UsdSceneHost::bezierControlPoints(const usda::Prim& prim, co
 
 std::optional<ObscuraStatus> UsdSceneHost::convertedValue(const usda::Prim& prim, const std::string& attribute,
                                                           double time, ObscuraValue* out) {
+    ReturnedValues& storage = returned();
     const bool curves = isConvertedCurves(prim.typeName);
     if (!curves && prim.typeName != "TetMesh") return std::nullopt;
     auto ints = [&](std::vector<int32_t> values) {
-        ints_ = std::move(values);
-        *out = {OBSCURA_VALUE_INT, 1, ints_.size(), ints_.data()};
+        storage.ints = std::move(values);
+        *out = {OBSCURA_VALUE_INT, 1, storage.ints.size(), storage.ints.data()};
         return OBSCURA_OK;
     };
     if (curves && attribute == "type") return fillToken("cubic", out);
@@ -1111,8 +1115,8 @@ std::optional<ObscuraStatus> UsdSceneHost::convertedValue(const usda::Prim& prim
     if (std::holds_alternative<usda::AttributeProblem>(converted.form)) {
         if (topology) return ints({});
         if (attribute != "points") return OBSCURA_ERROR_NOT_FOUND;
-        floats_.clear();
-        *out = {OBSCURA_VALUE_FLOAT3, 1, 0, floats_.data()};
+        storage.floats.clear();
+        *out = {OBSCURA_VALUE_FLOAT3, 1, 0, storage.floats.data()};
         return OBSCURA_OK;
     }
     if (const auto* faces = std::get_if<std::vector<int>>(&converted.form)) {
@@ -1274,10 +1278,11 @@ const usda::Prim* UsdSceneHost::prototypeSpace(const usda::Prim& prim) const {
 
 ObscuraStatus UsdSceneHost::getNativeInstancerValue(const NativeInstancer& instancer, const std::string& attribute,
                                                     double time, ObscuraValue* out) {
+    ReturnedValues& storage = returned();
     if (attribute == "prototypes") {
-        strings_ = {instancer.prototype->path};
-        stringPointers_ = {strings_[0].c_str()};
-        *out = {OBSCURA_VALUE_PATH, 1, 1, stringPointers_.data()};
+        storage.strings = {instancer.prototype->path};
+        storage.stringPointers = {storage.strings[0].c_str()};
+        *out = {OBSCURA_VALUE_PATH, 1, 1, storage.stringPointers.data()};
         return OBSCURA_OK;
     }
     // Each instance's visibility is its own (invisibleIds); the instancer itself is visible.
@@ -1288,12 +1293,15 @@ ObscuraStatus UsdSceneHost::getNativeInstancerValue(const NativeInstancer& insta
 ObscuraStatus UsdSceneHost::getValueThunk(void* user, const char* path, const char* attribute, double time,
                                           ObscuraValue* out) {
     if (!user || !path || !attribute || !out) return OBSCURA_ERROR_INVALID_ARGUMENT;
-    return static_cast<UsdSceneHost*>(user)->getValue(path, attribute, time, out);
+    auto* self = static_cast<UsdSceneHost*>(user);
+    std::lock_guard lock(self->callbacks_);
+    return self->getValue(path, attribute, time, out);
 }
 
 ObscuraStatus UsdSceneHost::getInterpolationThunk(void* user, const char* path, const char* attribute,
                                                   ObscuraInterpolation* out) {
     auto* self = static_cast<UsdSceneHost*>(user);
+    std::lock_guard lock(self->callbacks_);
     const usda::Attribute* a = self->resolveAttribute(path, attribute);
     if (!a) return OBSCURA_ERROR_NOT_FOUND;
     auto it = a->metadata.find("interpolation");
@@ -1311,6 +1319,7 @@ ObscuraStatus UsdSceneHost::sampleTransformThunk(void* user, const char* path, d
                                                  uint32_t maxSamples, double* times, double* matrices,
                                                  uint32_t* count) {
     auto* self = static_cast<UsdSceneHost*>(user);
+    std::lock_guard lock(self->callbacks_);
     if (self->framingCamera_ && path == self->framingCamera_->path && maxSamples > 0) {
         times[0] = t0;
         std::copy(self->framingCamera_->transform.begin(), self->framingCamera_->transform.end(), matrices);

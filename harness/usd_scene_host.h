@@ -18,9 +18,11 @@
 #include <array>
 #include <functional>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <string>
+#include <thread>
 #include <variant>
 #include <vector>
 
@@ -205,12 +207,21 @@ private:
     std::set<std::string> warned_;
     std::vector<HostMessage> messages_;
     std::function<void(const HostMessage&)> sink_;
-    // Storage that backs the last value returned (valid until the next callback, per the ABI).
-    std::vector<float> floats_;
-    std::vector<double> doubles_;
-    std::vector<int32_t> ints_;
-    std::vector<std::string> strings_;
-    std::vector<const char*> stringPointers_;
+    // Storage that backs the values a callback returns, one per calling thread: valid until that
+    // thread's next callback (the ABI's lifetime under OBSCURA_SCENE_DELEGATE_THREAD_SAFE).
+    struct ReturnedValues {
+        std::vector<float> floats;
+        std::vector<double> doubles;
+        std::vector<int32_t> ints;
+        std::vector<std::string> strings;
+        std::vector<const char*> stringPointers;
+    };
+    std::map<std::thread::id, ReturnedValues> returned_;
+    ReturnedValues& returned() { return returned_[std::this_thread::get_id()]; }
+    // The delegate pulls rprims on several threads (the host is OBSCURA_SCENE_DELEGATE_THREAD_SAFE);
+    // the callbacks answer one at a time, as answering builds state lazily (converted prims, mapped
+    // surfaces, messages, the returned values' storage).
+    std::mutex callbacks_;
 };
 
 }  // namespace obscura::harness
