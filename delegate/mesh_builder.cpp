@@ -62,6 +62,27 @@ std::string primvarCountProblem(const MeshInput& mesh, const std::optional<MeshP
            " elements but its interpolation needs " + std::to_string(expected) + "; ignored";
 }
 
+namespace {
+
+// A primvar refinement interpolates, with the name its problems report.
+struct InterpolatedPrimvar {
+    std::optional<MeshPrimvar> MeshInput::*field;
+    const char* name;
+};
+constexpr InterpolatedPrimvar kDisplayColor{&MeshInput::displayColor, "primvars:displayColor"};
+constexpr InterpolatedPrimvar kDisplayOpacity{&MeshInput::displayOpacity, "primvars:displayOpacity"};
+constexpr InterpolatedPrimvar kSt{&MeshInput::st, "primvars:st"};
+
+}  // namespace
+
+std::vector<std::string> interpolatedPrimvarProblems(const MeshInput& mesh) {
+    std::vector<std::string> problems;
+    for (const InterpolatedPrimvar& p : {kDisplayColor, kDisplayOpacity, kSt})
+        if (std::string problem = primvarCountProblem(mesh, mesh.*p.field, p.name); !problem.empty())
+            problems.push_back(std::move(problem));
+    return problems;
+}
+
 std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh) {
     MeshGeometry out;
     const size_t pointCount = mesh.points.size() / 3;
@@ -90,9 +111,9 @@ std::variant<MeshGeometry, std::string> buildMeshGeometry(const MeshInput& mesh)
         return &*pv;
     };
     const MeshPrimvar* normals = usable(mesh.normals, "normals");
-    const MeshPrimvar* colors = usable(mesh.displayColor, "primvars:displayColor");
-    const MeshPrimvar* opacities = usable(mesh.displayOpacity, "primvars:displayOpacity");
-    const MeshPrimvar* st = usable(mesh.st, "primvars:st");
+    const MeshPrimvar* colors = usable(mesh.*kDisplayColor.field, kDisplayColor.name);
+    const MeshPrimvar* opacities = usable(mesh.*kDisplayOpacity.field, kDisplayOpacity.name);
+    const MeshPrimvar* st = usable(mesh.*kSt.field, kSt.name);
 
     // Smooth vertex normals when none are authored: area-weighted sum of face normals (the
     // cross products of a fan are twice the triangle areas).

@@ -55,6 +55,10 @@ size_t primvarElementCount(const MeshInput& mesh, ObscuraInterpolation interpola
 // its interpolation. "" when it fits or is not authored.
 std::string primvarCountProblem(const MeshInput& mesh, const std::optional<MeshPrimvar>& primvar, const char* name);
 
+// The count problems of the primvars refinement interpolates (displayColor, displayOpacity, st),
+// each naming its primvar: refinement leaves them out, as buildMeshGeometry does.
+std::vector<std::string> interpolatedPrimvarProblems(const MeshInput& mesh);
+
 // Validates topology (counts >= 3 and summing to the index count, indices within the points)
 // and returns the reason when the mesh is unusable. Primvars of the wrong size are dropped with
 // a warning: the mesh still draws. Without authored normals, smooth vertex normals are computed

@@ -13,6 +13,7 @@ void Mesh::reset() {
     indices_.reset();
     shutterPositions_.reset();
     shutterPoints_.reset();
+    pointsAnimated_ = false;
     indexCount_ = 0;
     localBounds_ = Aabb{};
     groupRanges_.clear();
@@ -195,11 +196,7 @@ void Mesh::pull(SceneAccess& s, ObscuraDirtyBits bits, SyncContext& ctx) {
         std::vector<std::string> dropped;
         if (scheme_ != SubdivisionScheme::None && level > 0) {
             refined = subdivision_.refine(input_, scheme_, tags_, level);
-            for (const auto& [primvar, name] : {std::pair{&input_.displayColor, "primvars:displayColor"},
-                                                {&input_.displayOpacity, "primvars:displayOpacity"},
-                                                {&input_.st, "primvars:st"}})
-                if (std::string problem = primvarCountProblem(input_, *primvar, name); !problem.empty())
-                    dropped.push_back(std::move(problem));
+            dropped = interpolatedPrimvarProblems(input_);
         }
         if (auto* problem = std::get_if<std::string>(&refined)) throw PrimDataError(s.path() + ": " + *problem);
         auto geometry = buildMeshGeometry(std::get<MeshInput>(refined));
