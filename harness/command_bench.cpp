@@ -78,7 +78,11 @@ int runBench(const BenchOptions& o) {
     }
     Session& session = *std::get<std::unique_ptr<Session>>(opened);
     session.setVerbose(o.verbose);
-    if (auto problem = session.applySettings(withMsaaSetting(o.settings, o.msaa))) {
+    // Whole frames: a still that converged within the run would otherwise keep its colour and leave
+    // out the lighting (taa:reuseConverged); a --set of its own comes after and wins.
+    std::vector<std::string> settings{"taa:reuseConverged=off"};
+    settings.insert(settings.end(), o.settings.begin(), o.settings.end());
+    if (auto problem = session.applySettings(withMsaaSetting(settings, o.msaa))) {
         std::fprintf(stderr, "obscura: %s\n", problem->message.c_str());
         return problem->exitCode;
     }

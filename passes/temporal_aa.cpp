@@ -102,6 +102,11 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, const FrameScene& sce
     const bool twoFrame = settings.mode == TemporalAaMode::Smaa2tx;
     const bool still = !twoFrame && constants.frames[0] != 0 && frame.unchanged;
     const char* variant = twoFrame ? "temporal_aa_2tx" : still ? "temporal_aa_still" : "temporal_aa";
+    // A converged still keeps its mean (temporal_aa_still.comp) and reads none of the frame's
+    // colour: bound in its place, the mean itself lets the frame graph cull the passes that only
+    // made the colour (the lighting; SSAO still writes its history), and the render through the
+    // pixel centres for the unjittered AOVs costs little more than the G-buffer.
+    const bool keepsMean = still && settings.reuseConverged && frame.heldFrames >= frame.framesToConverge;
     ShaderBinding resolved = unbound();
     if (twoFrame) {
         gpu::ImageDesc resolvedDesc = colorDesc;
@@ -111,7 +116,8 @@ gpu::ImageHandle addTemporalAaPass(gpu::FrameGraph& graph, const FrameScene& sce
     ComputeOutputs written = addComputePass(
         graph, {variant,
                 {bufferRead(scene.buffers.camera),
-                 bufferRead(graph.createBuffer("temporalAaConstants", bytesOf(constants))), sampled(hdrColor),
+                 bufferRead(graph.createBuffer("temporalAaConstants", bytesOf(constants))),
+                 sampled(keepsMean ? color.previous : hdrColor),
                  sampled(gbuffer.depth), sampled(color.previous, SampledRead::Linear), sampled(depth.previous),
                  storageWrite(color.current), storageWrite(depth.current), resolved, sampled(transparentCoverage), sampled(gbuffer.instance),
                  bufferRead(scene.buffers.instances), bufferRead(scene.buffers.instanceReprojections)}});

@@ -56,6 +56,9 @@ struct TemporalAaSettings {
     // The slide's weights (1TX): history weight = saturate(1 / lerp(kLowFreq, kHighFreq, w_k)).
     float kLowFreq;
     float kHighFreq;
+    // A converged still's renders keep its mean without reading the frame's colour, so the frame
+    // graph leaves out what only made that colour (render setting taa:reuseConverged).
+    bool reuseConverged = true;
 };
 
 // What the renderer decided for this frame (renderer/temporal_accumulation.h), in the shader's

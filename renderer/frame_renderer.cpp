@@ -97,7 +97,7 @@ void FrameRenderer::render(FrameSceneSource& source, const FrameRequest& request
     // reference is its own ground truth, jittered per sub-frame: no temporal AA there.
     std::optional<TemporalAaStep> temporalAa;
     passes::TemporalAaSettings temporalAaSettings{settings.temporalAaMode, settings.temporalAaKLowFreq,
-                                                  settings.temporalAaKHighFreq};
+                                                  settings.temporalAaKHighFreq, settings.temporalAaReuseConverged};
     if (settings.temporalAa && referenceSubFrames == 0) {
         FrameView seen = source.view(viewpoint);
         // A still's sample resolves linearly; with MSAA under the box filter of width 1, over the

@@ -105,6 +105,13 @@ const RenderSettingInfo kSettings[] = {
      "lower keeps edges anti-aliased in motion, higher keeps them sharper, at least 1 "
      "(float, default 1.25)",
      OBSCURA_VALUE_FLOAT, 1.25, 1.0},
+    {"taa:reuseConverged", number<&FrameSettings::temporalAaReuseConverged>,
+     "renders of a converged still (1tx) keep its colour without lighting the frame again: they "
+     "draw the G-buffer for the unjittered depth, normal and id AOVs and, where no transparent "
+     "surface is drawn (its coverage reaches the AOVs), leave out the lighting, which only the colour "
+     "reads; off, each such render runs the whole frame "
+     "(`obscura bench` turns it off to time whole frames) (bool, default on)",
+     OBSCURA_VALUE_BOOL, 1.0},
     {"taa:hybridDistance", number<&FrameSettings::hybridAaDistanceMetres>,
      "hybrid AA (seed 004), 1tx only: objects whose bounds come nearer the camera than this "
      "many metres are drawn without the jitter and anti-aliased by edge AA (morphological, "

@@ -47,6 +47,7 @@ struct FrameSettings {
     passes::TemporalAaMode temporalAaMode;
     float temporalAaKLowFreq;
     float temporalAaKHighFreq;
+    bool temporalAaReuseConverged;
     double hybridAaDistanceMetres;
     bool domeLightCameraVisibility;
     double metersPerUnit;

@@ -430,6 +430,44 @@ TEST(TemporalAa, ConvergedFlagFollowsTheAccumulation) {
     EXPECT_FALSE(renderStats(s.host).converged) << "a removed prim changes the scene too";
 }
 
+// The passes the last render ran (their GPU timings' names).
+std::vector<std::string> passesRun(TestHost& host) {
+    uint32_t count = 0;
+    EXPECT_EQ(host.api().getPassTimings(host.delegate(), nullptr, &count), OBSCURA_OK);
+    std::vector<ObscuraPassTiming> timings(count);
+    EXPECT_EQ(host.api().getPassTimings(host.delegate(), timings.data(), &count), OBSCURA_OK);
+    std::vector<std::string> names;
+    for (uint32_t i = 0; i < count; ++i) names.emplace_back(timings[i].pass);
+    return names;
+}
+
+bool ran(const std::vector<std::string>& passes, const std::string& pass) {
+    return std::find(passes.begin(), passes.end(), pass) != passes.end();
+}
+
+TEST(TemporalAa, AConvergedStillsRendersKeepItsColourWithoutLightingIt) {
+    EdgeScene s;
+    setInt(s.host, "taa:frames", 4);
+    for (int i = 0; i < 4; ++i) s.renderColor();
+    EXPECT_TRUE(ran(passesRun(s.host), "lighting"));
+    std::vector<float> settled = s.renderColor();
+    ASSERT_TRUE(renderStats(s.host).converged);
+    // The render through the pixel centres and every one after it: the G-buffer for the AOVs, the
+    // kept mean for the colour; nothing lights the frame.
+    for (int i = 0; i < 2; ++i) {
+        std::vector<std::string> passes = passesRun(s.host);
+        EXPECT_TRUE(ran(passes, "gbuffer")) << "render " << i;
+        EXPECT_FALSE(ran(passes, "lighting")) << "render " << i;
+        EXPECT_EQ(settled, s.renderColor()) << "render " << i;
+    }
+    // Off (as obscura bench times whole frames), the same colour from the whole frame.
+    setBool(s.host, "taa:reuseConverged", false);
+    s.renderUntilConverged();
+    std::vector<float> whole = s.renderColor();
+    EXPECT_TRUE(ran(passesRun(s.host), "lighting"));
+    EXPECT_EQ(settled, whole);
+}
+
 TEST(TemporalAa, BadSettingsAreRefused) {
     EdgeScene s;
     const ObscuraApiV1& api = s.host.api();
